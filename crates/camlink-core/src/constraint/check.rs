@@ -1,0 +1,221 @@
+//! Finite-difference checks of a constraint's analytic derivatives.
+//!
+//! On random configurations z = (q_i, q_j, own) and times t:
+//! - Φ_q against central differences of Φ in each coordinate;
+//! - ν against −Φ_t by central differences in t;
+//! - γ against the second time derivative of Φ along the trajectory
+//!   z(τ) = z₀ + v τ + a τ²/2, t = t₀ + τ, using
+//!   d²Φ/dτ² = Φ_q a − γ.
+//!
+//! Differences use Richardson extrapolation, so the tolerance can stay tight.
+
+use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::model::BodyId;
+
+/// Deterministic pseudo-random numbers (SplitMix64) for reproducible checks.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    /// Uniform in [0, 1).
+    pub fn unit(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^= z >> 31;
+        (z >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// The full local coordinate vector z = (q_i, q_j, own) as 6 + MAX_OWN numbers.
+const NZ: usize = 6 + MAX_OWN;
+
+fn to_z(x: &Local) -> [f64; NZ] {
+    let mut z = [0.0; NZ];
+    z[..3].copy_from_slice(&x.q[0]);
+    z[3..6].copy_from_slice(&x.q[1]);
+    z[6..].copy_from_slice(&x.own);
+    z
+}
+
+fn from_z(z: &[f64; NZ], t: f64, template: &Local) -> Local {
+    let mut x = *template;
+    x.t = t;
+    x.q[0].copy_from_slice(&z[..3]);
+    x.q[1].copy_from_slice(&z[3..6]);
+    x.own.copy_from_slice(&z[6..]);
+    x
+}
+
+fn jac_row(j: &Jac, r: usize) -> [f64; NZ] {
+    let mut row = [0.0; NZ];
+    row[..3].copy_from_slice(&j.body[0][r]);
+    row[3..6].copy_from_slice(&j.body[1][r]);
+    row[6..].copy_from_slice(&j.own[r]);
+    row
+}
+
+/// Mask of the coordinates that move: ground bodies and unused own
+/// coordinates stay fixed.
+fn moving<C: Equations>(c: &C) -> [bool; NZ] {
+    let b = c.bodies();
+    let mut m = [false; NZ];
+    for k in 0..2 {
+        if b[k] != BodyId::GROUND {
+            m[3 * k..3 * k + 3].fill(true);
+        }
+    }
+    for o in 0..c.own_count() {
+        m[6 + o] = true;
+    }
+    m
+}
+
+/// First derivative of `f` at 0 by Richardson-extrapolated central differences.
+fn d1(f: impl Fn(f64) -> Rows, h: f64) -> Rows {
+    let c = |h: f64| {
+        let (p, m) = (f(h), f(-h));
+        [0, 1, 2].map(|r| (p[r] - m[r]) / (2.0 * h))
+    };
+    let (a, b) = (c(h), c(h / 2.0));
+    [0, 1, 2].map(|r| (4.0 * b[r] - a[r]) / 3.0)
+}
+
+/// Second derivative of `f` at 0 by Richardson-extrapolated central differences.
+fn d2(f: impl Fn(f64) -> Rows, h: f64) -> Rows {
+    let f0 = f(0.0);
+    let c = |h: f64| {
+        let (p, m) = (f(h), f(-h));
+        [0, 1, 2].map(|r| (p[r] - 2.0 * f0[r] + m[r]) / (h * h))
+    };
+    let (a, b) = (c(h), c(h / 2.0));
+    [0, 1, 2].map(|r| (4.0 * b[r] - a[r]) / 3.0)
+}
+
+fn close(what: &str, kind: &str, r: usize, got: f64, want: f64, x: &Local) {
+    let tol = 1e-6 * (1.0 + want.abs().max(got.abs()));
+    assert!(
+        (got - want).abs() <= tol,
+        "{kind}: {what} of equation {r}: analytic {got:.12e}, finite difference {want:.12e} at {x:?}"
+    );
+}
+
+/// Checks Φ_q, ν and γ of `c` at the configuration `x` (velocities in
+/// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`).
+pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
+    let m = c.rows();
+    let mask = moving(c);
+    let z0 = to_z(x);
+    let phi_at = |z: &[f64; NZ], t: f64| {
+        let mut out = [0.0; 3];
+        c.phi(&from_z(z, t, x), &mut out);
+        out
+    };
+    let mut jac = Jac::default();
+    c.jacobian(x, &mut jac);
+
+    // Φ_q against differences in each coordinate.
+    for k in 0..NZ {
+        if !mask[k] {
+            continue;
+        }
+        let d = d1(
+            |h| {
+                let mut z = z0;
+                z[k] += h;
+                phi_at(&z, x.t)
+            },
+            1e-4,
+        );
+        for r in 0..m {
+            close("Φ_q column", c.kind(), r, jac_row(&jac, r)[k], d[r], x);
+        }
+    }
+
+    // ν = −Φ_t.
+    let mut nu = [0.0; 3];
+    c.nu(x, &mut nu);
+    let dt = d1(|h| phi_at(&z0, x.t + h), 1e-4);
+    for r in 0..m {
+        close("ν", c.kind(), r, nu[r], -dt[r], x);
+    }
+
+    // γ = Φ_q a − d²Φ/dτ² along z(τ) = z₀ + v τ + a τ²/2.
+    let mut v = [0.0; NZ];
+    v[..3].copy_from_slice(&x.qd[0]);
+    v[3..6].copy_from_slice(&x.qd[1]);
+    v[6..].copy_from_slice(&x.own_d);
+    let mut gamma = [0.0; 3];
+    c.gamma(x, &mut gamma);
+    let dd = d2(
+        |h| {
+            let z = std::array::from_fn(|k| z0[k] + v[k] * h + 0.5 * acc[k] * h * h);
+            phi_at(&z, x.t + h)
+        },
+        1e-3,
+    );
+    for r in 0..m {
+        let row = jac_row(&jac, r);
+        let jac_a: f64 = (0..NZ).map(|k| row[k] * acc[k]).sum();
+        close("γ", c.kind(), r, gamma[r], jac_a - dd[r], x);
+    }
+}
+
+/// A random configuration for `c`: ground bodies at rest at the origin,
+/// own coordinates drawn from `own_range`.
+pub fn random_local<C: Equations>(
+    c: &C,
+    rng: &mut Rng,
+    own_range: [(f64, f64); MAX_OWN],
+) -> (Local, [f64; NZ]) {
+    let mask = moving(c);
+    let mut x = Local {
+        t: rng.range(0.0, 2.0),
+        ..Local::default()
+    };
+    for k in 0..2 {
+        if mask[3 * k] {
+            x.q[k] = [
+                rng.range(-2.0, 2.0),
+                rng.range(-2.0, 2.0),
+                rng.range(-3.1, 3.1),
+            ];
+            x.qd[k] = [
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+                rng.range(-3.0, 3.0),
+            ];
+        }
+    }
+    for o in 0..c.own_count() {
+        x.own[o] = rng.range(own_range[o].0, own_range[o].1);
+        x.own_d[o] = rng.range(-2.0, 2.0);
+    }
+    let acc = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
+    (x, acc)
+}
+
+/// Checks `c` on `n` random configurations, own coordinates in [−π, π].
+pub fn check_random<C: Equations>(c: &C, n: usize) {
+    let pi = std::f64::consts::PI;
+    check_random_own(c, n, [(-pi, pi); MAX_OWN]);
+}
+
+/// Checks `c` on `n` random configurations with own coordinates drawn from
+/// `own_range` (for curves with a limited parameter range).
+pub fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); MAX_OWN]) {
+    let mut rng = Rng::new(0x5EED ^ n as u64);
+    for _ in 0..n {
+        let (x, acc) = random_local(c, &mut rng, own_range);
+        check_at(c, &x, &acc);
+    }
+}

@@ -1,0 +1,144 @@
+//! The constraint library.
+//!
+//! Every constraint provides, analytically and in this order, its residual
+//! Φ, its Jacobian Φ_q, ν = −Φ_t and
+//! γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
+//!
+//! A constraint sees only its own coordinates (a [`Local`] view): the two
+//! bodies it joins, `i` and `j` (either may be ground, whose coordinates are
+//! fixed at zero), and up to [`MAX_OWN`] coordinates of its own (a contact
+//! parameter α, a centre-line angle θ). It writes per-body Jacobian blocks;
+//! only assembly knows global indices.
+//!
+//! Adding a constraint is one new file and one line in [`constraints!`].
+
+use crate::model::BodyId;
+
+pub mod absolute;
+pub mod composite;
+pub mod gear;
+pub mod relative;
+pub mod revolute;
+pub mod translational;
+
+#[cfg(any(test, feature = "check"))]
+pub mod check;
+
+/// Most equations one constraint contributes.
+pub const MAX_ROWS: usize = 3;
+/// Most own coordinates one constraint carries.
+pub const MAX_OWN: usize = 2;
+
+/// Values of a constraint's equations; entries past `rows()` are unused.
+pub type Rows = [f64; MAX_ROWS];
+
+/// What a constraint sees of the state.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Local {
+    /// Time t (s).
+    pub t: f64,
+    /// Coordinates (x, y, φ) of body i and body j (m, m, rad).
+    pub q: [[f64; 3]; 2],
+    /// Their velocities (ẋ, ẏ, φ̇) (m/s, m/s, rad/s).
+    pub qd: [[f64; 3]; 2],
+    /// The constraint's own coordinates.
+    pub own: [f64; MAX_OWN],
+    /// Their time derivatives.
+    pub own_d: [f64; MAX_OWN],
+}
+
+/// Jacobian blocks of one constraint: `body[k][r][c]` = ∂Φ_r/∂q_k,c for
+/// body k ∈ {i, j} and coordinate c ∈ {x, y, φ}; `own[r][c]` = ∂Φ_r/∂own_c.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Jac {
+    pub body: [[[f64; 3]; MAX_ROWS]; 2],
+    pub own: [[f64; MAX_OWN]; MAX_ROWS],
+}
+
+/// The equations of one constraint.
+pub trait Equations {
+    /// Short kind name used in reports, e.g. `"revolute"`.
+    fn kind(&self) -> &'static str;
+    /// Names of the equations in order, e.g. `["x", "y"]`; the length is the
+    /// number of equations m ≤ [`MAX_ROWS`].
+    fn equations(&self) -> &'static [&'static str];
+    /// The bodies i and j this constraint joins.
+    fn bodies(&self) -> [BodyId; 2];
+    /// Number of own coordinates (≤ [`MAX_OWN`]).
+    fn own_count(&self) -> usize {
+        0
+    }
+    /// A starting value for the own coordinates from the current body
+    /// coordinates (`x.own` holds a guess or zeros).
+    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+        x.own
+    }
+    /// Φ.
+    fn phi(&self, x: &Local, out: &mut Rows);
+    /// Φ_q as per-body blocks (every entry of `out` is written).
+    fn jacobian(&self, x: &Local, out: &mut Jac);
+    /// ν = −Φ_t.
+    fn nu(&self, x: &Local, out: &mut Rows);
+    /// γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
+    fn gamma(&self, x: &Local, out: &mut Rows);
+    /// Number of equations m.
+    fn rows(&self) -> usize {
+        self.equations().len()
+    }
+}
+
+/// Declares the [`Constraint`] enum and dispatches [`Equations`] to its
+/// variants statically.
+macro_rules! constraints {
+    ($($variant:ident($ty:ty)),* $(,)?) => {
+        /// Every constraint camlink knows.
+        #[derive(Clone, Debug)]
+        pub enum Constraint {
+            $($variant($ty),)*
+        }
+
+        $(impl From<$ty> for Constraint {
+            fn from(c: $ty) -> Self {
+                Constraint::$variant(c)
+            }
+        })*
+
+        impl Equations for Constraint {
+            fn kind(&self) -> &'static str {
+                match self { $(Constraint::$variant(c) => c.kind(),)* }
+            }
+            fn equations(&self) -> &'static [&'static str] {
+                match self { $(Constraint::$variant(c) => c.equations(),)* }
+            }
+            fn bodies(&self) -> [BodyId; 2] {
+                match self { $(Constraint::$variant(c) => c.bodies(),)* }
+            }
+            fn own_count(&self) -> usize {
+                match self { $(Constraint::$variant(c) => c.own_count(),)* }
+            }
+            fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+                match self { $(Constraint::$variant(c) => c.initial_own(x),)* }
+            }
+            #[inline]
+            fn phi(&self, x: &Local, out: &mut Rows) {
+                match self { $(Constraint::$variant(c) => c.phi(x, out),)* }
+            }
+            #[inline]
+            fn jacobian(&self, x: &Local, out: &mut Jac) {
+                match self { $(Constraint::$variant(c) => c.jacobian(x, out),)* }
+            }
+            #[inline]
+            fn nu(&self, x: &Local, out: &mut Rows) {
+                match self { $(Constraint::$variant(c) => c.nu(x, out),)* }
+            }
+            #[inline]
+            fn gamma(&self, x: &Local, out: &mut Rows) {
+                match self { $(Constraint::$variant(c) => c.gamma(x, out),)* }
+            }
+        }
+    };
+}
+
+constraints! {
+    Revolute(revolute::Revolute),
+}

@@ -1,0 +1,92 @@
+//! Revolute joint: point P of body i coincides with point P of body j.
+//!
+//! Φ = r_i + A_i s'_i − r_j − A_j s'_j (2 equations, m)
+//! Φ_q = [I  B_i s'_i | −I  −B_j s'_j]
+//! ν = 0
+//! γ = A_i s'_i φ̇_i² − A_j s'_j φ̇_j²
+
+use super::{Equations, Jac, Local, Rows};
+use crate::math::{point, rot, rot_d, V2};
+use crate::model::BodyId;
+
+#[derive(Clone, Debug)]
+pub struct Revolute {
+    pub body_i: BodyId,
+    /// s'_i: the joint point in body i's frame (m).
+    pub s_i: V2,
+    pub body_j: BodyId,
+    /// s'_j: the joint point in body j's frame (m).
+    pub s_j: V2,
+}
+
+impl Equations for Revolute {
+    fn kind(&self) -> &'static str {
+        "revolute"
+    }
+
+    fn equations(&self) -> &'static [&'static str] {
+        &["x", "y"]
+    }
+
+    fn bodies(&self) -> [BodyId; 2] {
+        [self.body_i, self.body_j]
+    }
+
+    fn phi(&self, x: &Local, out: &mut Rows) {
+        let pi = point(x.q[0], self.s_i);
+        let pj = point(x.q[1], self.s_j);
+        out[0] = pi[0] - pj[0];
+        out[1] = pi[1] - pj[1];
+    }
+
+    fn jacobian(&self, x: &Local, out: &mut Jac) {
+        let bi = rot_d(x.q[0][2], self.s_i);
+        let bj = rot_d(x.q[1][2], self.s_j);
+        *out = Jac::default();
+        out.body[0][0] = [1.0, 0.0, bi[0]];
+        out.body[0][1] = [0.0, 1.0, bi[1]];
+        out.body[1][0] = [-1.0, 0.0, -bj[0]];
+        out.body[1][1] = [0.0, -1.0, -bj[1]];
+    }
+
+    fn nu(&self, _x: &Local, out: &mut Rows) {
+        *out = [0.0; 3];
+    }
+
+    fn gamma(&self, x: &Local, out: &mut Rows) {
+        let (wi, wj) = (x.qd[0][2], x.qd[1][2]);
+        let ai = rot(x.q[0][2], self.s_i);
+        let aj = rot(x.q[1][2], self.s_j);
+        out[0] = ai[0] * wi * wi - aj[0] * wj * wj;
+        out[1] = ai[1] * wi * wi - aj[1] * wj * wj;
+        out[2] = 0.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::check::check_random;
+
+    #[test]
+    fn derivatives_match_finite_differences() {
+        let c = Revolute {
+            body_i: BodyId(1),
+            s_i: [0.4, -0.2],
+            body_j: BodyId(2),
+            s_j: [-0.3, 0.7],
+        };
+        check_random(&c, 50);
+    }
+
+    #[test]
+    fn derivatives_match_with_ground() {
+        let c = Revolute {
+            body_i: BodyId(1),
+            s_i: [1.0, 0.0],
+            body_j: BodyId::GROUND,
+            s_j: [0.5, 0.5],
+        };
+        check_random(&c, 20);
+    }
+}

@@ -1,0 +1,223 @@
+//! The core model: validated and immutable.
+//!
+//! Units are SI throughout: metres, radians, seconds, kilograms,
+//! kilogram-square-metres. Body 0 is the ground, named `ground`, fixed at
+//! the origin of the global frame.
+
+use std::collections::HashMap;
+
+use crate::constraint::{Constraint, Equations, MAX_OWN};
+use crate::math::V2;
+
+/// Index of a body in [`Model::bodies`]; body 0 is the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyId(pub usize);
+
+impl BodyId {
+    pub const GROUND: BodyId = BodyId(0);
+
+    pub fn is_ground(self) -> bool {
+        self == Self::GROUND
+    }
+}
+
+/// A named point fixed in a body, at `s` (m) in the body frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Point {
+    pub name: String,
+    pub s: V2,
+}
+
+/// A rigid body.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Body {
+    pub name: String,
+    /// Mass m (kg).
+    pub mass: f64,
+    /// Polar moment of inertia about the centroid J' (kg·m²).
+    pub inertia: f64,
+    /// Centroid position in the body frame (m).
+    pub centroid: V2,
+    /// Initial (or guessed) coordinates (x, y, φ) of the body frame (m, m, rad).
+    pub q0: [f64; 3],
+    /// Initial velocities (ẋ, ẏ, φ̇) (m/s, m/s, rad/s), used by dynamics.
+    pub qd0: [f64; 3],
+    pub points: Vec<Point>,
+}
+
+impl Body {
+    /// A massless body at `q0` with no points.
+    pub fn new(name: impl Into<String>, q0: [f64; 3]) -> Self {
+        Body {
+            name: name.into(),
+            mass: 0.0,
+            inertia: 0.0,
+            centroid: [0.0, 0.0],
+            q0,
+            qd0: [0.0; 3],
+            points: Vec::new(),
+        }
+    }
+
+    /// The local vector of the named point.
+    pub fn point(&self, name: &str) -> Option<V2> {
+        self.points.iter().find(|p| p.name == name).map(|p| p.s)
+    }
+}
+
+/// A named constraint: a joint or a driver.
+#[derive(Clone, Debug)]
+pub struct Joint {
+    pub name: String,
+    pub constraint: Constraint,
+    /// Starting values of the joint's own coordinates, when the model gives them.
+    pub own0: Option<[f64; MAX_OWN]>,
+    /// True for a driving (rheonomic) constraint.
+    pub driver: bool,
+}
+
+/// A mechanism: bodies (ground first), joints and drivers.
+#[derive(Clone, Debug)]
+pub struct Model {
+    pub name: String,
+    pub bodies: Vec<Body>,
+    pub joints: Vec<Joint>,
+    /// Gravity vector g (m/s²) in the global frame.
+    pub gravity: V2,
+}
+
+/// Why a model is not valid.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ModelError {
+    #[error("duplicate body name '{0}'")]
+    DuplicateBody(String),
+    #[error("duplicate point name '{point}' on body '{body}'")]
+    DuplicatePoint { body: String, point: String },
+    #[error("duplicate joint name '{0}'")]
+    DuplicateJoint(String),
+    #[error("joint '{joint}' refers to body number {body}, which does not exist")]
+    NoSuchBody { joint: String, body: usize },
+    #[error("joint '{0}' joins a body to itself")]
+    SelfJoint(String),
+    #[error("{what} is not a finite number ({value})")]
+    NotFinite { what: String, value: f64 },
+    #[error("{0}")]
+    Invalid(String),
+}
+
+impl Model {
+    /// A model with only the ground.
+    pub fn new(name: impl Into<String>) -> Self {
+        Model {
+            name: name.into(),
+            bodies: vec![Body::new("ground", [0.0; 3])],
+            joints: Vec::new(),
+            gravity: [0.0, -9.81],
+        }
+    }
+
+    /// Adds a body and returns its id.
+    pub fn add_body(&mut self, body: Body) -> BodyId {
+        self.bodies.push(body);
+        BodyId(self.bodies.len() - 1)
+    }
+
+    /// Adds a scleronomic joint.
+    pub fn add_joint(&mut self, name: impl Into<String>, c: impl Into<Constraint>) {
+        self.joints.push(Joint {
+            name: name.into(),
+            constraint: c.into(),
+            own0: None,
+            driver: false,
+        });
+    }
+
+    /// Adds a driving constraint.
+    pub fn add_driver(&mut self, name: impl Into<String>, c: impl Into<Constraint>) {
+        self.joints.push(Joint {
+            name: name.into(),
+            constraint: c.into(),
+            own0: None,
+            driver: true,
+        });
+    }
+
+    pub fn body(&self, id: BodyId) -> &Body {
+        &self.bodies[id.0]
+    }
+
+    pub fn body_id(&self, name: &str) -> Option<BodyId> {
+        self.bodies.iter().position(|b| b.name == name).map(BodyId)
+    }
+
+    pub fn joint(&self, name: &str) -> Option<&Joint> {
+        self.joints.iter().find(|j| j.name == name)
+    }
+
+    /// Moving bodies (all but the ground).
+    pub fn moving_bodies(&self) -> impl Iterator<Item = (BodyId, &Body)> {
+        self.bodies
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(k, b)| (BodyId(k), b))
+    }
+
+    /// Checks names, references and numbers.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let mut seen = HashMap::new();
+        for (k, b) in self.bodies.iter().enumerate() {
+            if seen.insert(b.name.as_str(), k).is_some() {
+                return Err(ModelError::DuplicateBody(b.name.clone()));
+            }
+            let mut pts = HashMap::new();
+            for p in &b.points {
+                if pts.insert(p.name.as_str(), ()).is_some() {
+                    return Err(ModelError::DuplicatePoint {
+                        body: b.name.clone(),
+                        point: p.name.clone(),
+                    });
+                }
+                finite(&format!("point '{}.{}'", b.name, p.name), &p.s)?;
+            }
+            finite(&format!("body '{}' position", b.name), &b.q0)?;
+            finite(&format!("body '{}' velocity", b.name), &b.qd0)?;
+            finite(
+                &format!("body '{}' mass properties", b.name),
+                &[b.mass, b.inertia, b.centroid[0], b.centroid[1]],
+            )?;
+        }
+        let mut joints = HashMap::new();
+        for j in &self.joints {
+            if joints.insert(j.name.as_str(), ()).is_some() {
+                return Err(ModelError::DuplicateJoint(j.name.clone()));
+            }
+            let [bi, bj] = j.constraint.bodies();
+            for b in [bi, bj] {
+                if b.0 >= self.bodies.len() {
+                    return Err(ModelError::NoSuchBody {
+                        joint: j.name.clone(),
+                        body: b.0,
+                    });
+                }
+            }
+            if bi == bj {
+                return Err(ModelError::SelfJoint(j.name.clone()));
+            }
+            if let Some(o) = &j.own0 {
+                finite(&format!("joint '{}' starting parameters", j.name), o)?;
+            }
+        }
+        finite("gravity", &self.gravity)
+    }
+}
+
+fn finite(what: &str, v: &[f64]) -> Result<(), ModelError> {
+    match v.iter().find(|x| !x.is_finite()) {
+        Some(&value) => Err(ModelError::NotFinite {
+            what: what.to_string(),
+            value,
+        }),
+        None => Ok(()),
+    }
+}

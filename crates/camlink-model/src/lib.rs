@@ -1,0 +1,1 @@
+//! camlink model files (TOML and JSON).
