@@ -15,3 +15,6 @@ pub mod model;
 pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
+pub mod assembly;
+pub mod kinematics;
+pub mod linsolve;
