@@ -9,11 +9,9 @@
 //! The factorization of step 3 is the one step 2 reuses at the next time,
 //! so a smooth run factors the Jacobian once per step.
 
-use faer::Mat;
-
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
-use crate::linsolve::{DenseLu, Singular};
+use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
 
@@ -219,9 +217,8 @@ pub struct Solver<'m> {
     model: &'m Model,
     asm: Assembly,
     settings: Settings,
-    /// Φ_q, dense; entries outside the pattern stay zero.
-    jac: Mat<f64>,
-    lu: DenseLu,
+    /// Φ_q and its factorization.
+    jac: SystemMatrix,
     pub q: Vec<f64>,
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
@@ -258,11 +255,12 @@ impl<'m> Solver<'m> {
             ));
         }
         let q = asm.initial_q(model);
+        let mut pattern = Vec::new();
+        asm.jacobian(model, &q, 0.0, |r, c, _| pattern.push((r, c)));
         Ok(Solver {
             model,
             settings,
-            jac: Mat::zeros(m, n),
-            lu: DenseLu::new(n),
+            jac: SystemMatrix::new(n, &pattern),
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             rhs: vec![0.0; n],
@@ -286,17 +284,17 @@ impl<'m> Solver<'m> {
                 self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k];
             }
         } else {
-            self.lu.invalidate();
+            self.jac.invalidate();
         }
         self.positions(t, prev.is_none())?;
 
         // Velocity and acceleration share one factorization at the solution.
         self.refactor(t)?;
         self.asm.nu(self.model, &self.q, t, &mut self.qd);
-        self.lu.solve(&mut self.qd);
+        self.jac.solve(&mut self.qd);
         self.asm
             .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
-        self.lu.solve(&mut self.qdd);
+        self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(t, "velocities or accelerations are not finite numbers"));
         }
@@ -321,12 +319,12 @@ impl<'m> Solver<'m> {
             if it == self.settings.max_iter {
                 break;
             }
-            if full || !self.lu.is_valid() || r > 0.25 * last {
+            if full || !self.jac.is_valid() || r > 0.25 * last {
                 self.refactor(t)?;
             }
             last = r;
             self.summary.newton_iterations += 1;
-            self.lu.solve(&mut self.rhs);
+            self.jac.solve(&mut self.rhs);
             for k in 0..self.q.len() {
                 self.q[k] -= self.rhs[k];
             }
@@ -343,10 +341,13 @@ impl<'m> Solver<'m> {
     /// Fills and factors Φ_q at the current q.
     fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
         let jac = &mut self.jac;
-        self.asm
-            .jacobian(self.model, &self.q, t, |r, c, v| jac[(r, c)] = v);
+        let mut k = 0;
+        self.asm.jacobian(self.model, &self.q, t, |r, c, v| {
+            jac.put(k, r, c, v);
+            k += 1;
+        });
         self.summary.factorizations += 1;
-        match self.lu.factor(self.jac.as_ref()) {
+        match self.jac.factor() {
             Ok(()) => Ok(()),
             Err(s) => Err(self.singular(t, s)),
         }
