@@ -91,6 +91,21 @@ impl Assembly {
         format!("coordinate {col}")
     }
 
+    /// True for the coordinates that are angles: bodies' φ and joints' own
+    /// coordinates (contact parameters and centre-line angles).
+    pub fn angle_mask(&self, model: &Model) -> Vec<bool> {
+        let mut mask = vec![false; self.n];
+        for c in self.body_col.iter().flatten() {
+            mask[c + 2] = true;
+        }
+        for (j, joint) in model.joints.iter().enumerate() {
+            for k in 0..joint.constraint.own_count() {
+                mask[self.own_col[j] + k] = true;
+            }
+        }
+        mask
+    }
+
     /// The local view of joint `j` at (q, q̇, t); `qd` may be empty for
     /// position-only evaluations.
     #[inline]

@@ -283,10 +283,10 @@ impl<'m> Solver<'m> {
             for k in 0..self.q.len() {
                 self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k];
             }
+            self.positions(t)?;
         } else {
-            self.jac.invalidate();
+            self.assemble(t)?;
         }
-        self.positions(t, prev.is_none())?;
 
         // Velocity and acceleration share one factorization at the solution.
         self.refactor(t)?;
@@ -302,10 +302,68 @@ impl<'m> Solver<'m> {
         Ok(())
     }
 
-    /// Newton–Raphson on Φ(q, t) = 0. With `full`, the Jacobian is refreshed
-    /// every iteration; otherwise the last factorization is reused while the
-    /// residual falls fast.
-    fn positions(&mut self, t: f64, full: bool) -> Result<(), AnalysisError> {
+    /// Assembles the mechanism at `t` from the model's rough placement:
+    /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
+    /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
+    /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
+    /// singular.
+    pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
+        let angles = self.asm.angle_mask(self.model);
+        let mut trial = self.q.clone();
+        let mut phi = vec![0.0; self.asm.m];
+        for _ in 0..ASSEMBLY_ITER {
+            self.asm.phi(self.model, &self.q, t, &mut phi);
+            let r = max_abs(&phi);
+            if !r.is_finite() {
+                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+            }
+            if r <= self.settings.tol {
+                return Ok(());
+            }
+            // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
+            self.rhs.copy_from_slice(&phi);
+            match self.refactor(t) {
+                Ok(()) => self.jac.solve(&mut self.rhs),
+                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, &mut self.rhs),
+            }
+            self.summary.newton_iterations += 1;
+            let big = (0..self.q.len())
+                .filter(|&k| angles[k])
+                .fold(0.0f64, |a, k| a.max(self.rhs[k].abs()));
+            let mut s = if big > MAX_ANGLE_STEP { MAX_ANGLE_STEP / big } else { 1.0 };
+            // Backtrack until ‖Φ‖₂ decreases enough.
+            let r2 = norm2(&phi);
+            loop {
+                for k in 0..self.q.len() {
+                    trial[k] = self.q[k] - s * self.rhs[k];
+                }
+                self.asm.phi(self.model, &trial, t, &mut phi);
+                let r2_new = norm2(&phi);
+                if r2_new.is_finite() && r2_new <= (1.0 - 1e-4 * s) * r2 {
+                    break;
+                }
+                s *= 0.5;
+                if s < 1e-6 {
+                    return Err(self.failure(
+                        t,
+                        "the mechanism cannot be assembled from the given placement: \
+                         no step reduces the constraint residual (check the joints \
+                         named here, or place the bodies closer to a valid configuration)",
+                    ));
+                }
+            }
+            self.q.copy_from_slice(&trial);
+        }
+        Err(self.failure(
+            t,
+            &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
+        ))
+    }
+
+    /// Newton–Raphson on Φ(q, t) = 0 from the predicted q, reusing the last
+    /// factorization of Φ_q while the residual falls fast and refreshing it
+    /// when it does not.
+    fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
         let mut last = f64::INFINITY;
         for it in 0..=self.settings.max_iter {
             self.asm.phi(self.model, &self.q, t, &mut self.rhs);
@@ -319,7 +377,7 @@ impl<'m> Solver<'m> {
             if it == self.settings.max_iter {
                 break;
             }
-            if full || !self.jac.is_valid() || r > 0.25 * last {
+            if !self.jac.is_valid() || r > 0.25 * last {
                 self.refactor(t)?;
             }
             last = r;
@@ -462,6 +520,31 @@ impl<'m> Solver<'m> {
             None => ([0.0; 3], [0.0; 3], [0.0; 3]),
         }
     }
+}
+
+/// Iterations allowed to assemble from the model's placement.
+const ASSEMBLY_ITER: usize = 100;
+/// Largest change of an angle (rad) in one assembly iteration.
+pub const MAX_ANGLE_STEP: f64 = 0.5;
+
+/// The Levenberg–Marquardt step δ = (JᵀJ + μI)⁻¹ Jᵀ Φ into `out`, for a
+/// singular J, with μ scaled to JᵀJ.
+fn levenberg_marquardt(j: &faer::Mat<f64>, phi: &[f64], out: &mut [f64]) {
+    use faer::linalg::solvers::Solve;
+    let jtj = j.transpose() * j;
+    let mu = 1e-6 * (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
+    let a = faer::Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
+        jtj[(r, c)] + if r == c { mu } else { 0.0 }
+    });
+    let f = faer::Mat::from_fn(phi.len(), 1, |r, _| phi[r]);
+    let x = a.partial_piv_lu().solve(j.transpose() * &f);
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = x[(k, 0)];
+    }
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 fn fail(time: f64, message: &str) -> AnalysisError {
