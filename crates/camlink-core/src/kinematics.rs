@@ -330,7 +330,11 @@ impl<'m> Solver<'m> {
             let big = (0..self.q.len())
                 .filter(|&k| angles[k])
                 .fold(0.0f64, |a, k| a.max(self.rhs[k].abs()));
-            let mut s = if big > MAX_ANGLE_STEP { MAX_ANGLE_STEP / big } else { 1.0 };
+            let mut s = if big > MAX_ANGLE_STEP {
+                MAX_ANGLE_STEP / big
+            } else {
+                1.0
+            };
             // Backtrack until ‖Φ‖₂ decreases enough.
             let r2 = norm2(&phi);
             loop {

@@ -16,5 +16,6 @@ pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
 pub mod assembly;
+pub mod diagnose;
 pub mod kinematics;
 pub mod linsolve;
