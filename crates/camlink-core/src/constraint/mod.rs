@@ -141,4 +141,6 @@ macro_rules! constraints {
 
 constraints! {
     Revolute(revolute::Revolute),
+    AbsoluteCoord(absolute::AbsoluteCoord),
+    AbsoluteDistance(absolute::AbsoluteDistance),
 }
