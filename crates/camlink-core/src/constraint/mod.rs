@@ -143,4 +143,6 @@ constraints! {
     Revolute(revolute::Revolute),
     AbsoluteCoord(absolute::AbsoluteCoord),
     AbsoluteDistance(absolute::AbsoluteDistance),
+    RelativeCoord(relative::RelativeCoord),
+    RelativeDistance(relative::RelativeDistance),
 }
