@@ -145,4 +145,5 @@ constraints! {
     AbsoluteDistance(absolute::AbsoluteDistance),
     RelativeCoord(relative::RelativeCoord),
     RelativeDistance(relative::RelativeDistance),
+    Translational(translational::Translational),
 }
