@@ -146,4 +146,6 @@ constraints! {
     RelativeCoord(relative::RelativeCoord),
     RelativeDistance(relative::RelativeDistance),
     Translational(translational::Translational),
+    RevoluteRevolute(composite::RevoluteRevolute),
+    RevoluteTranslational(composite::RevoluteTranslational),
 }
