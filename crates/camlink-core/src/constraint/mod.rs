@@ -148,4 +148,6 @@ constraints! {
     Translational(translational::Translational),
     RevoluteRevolute(composite::RevoluteRevolute),
     RevoluteTranslational(composite::RevoluteTranslational),
+    Gear(gear::Gear),
+    RackPinion(gear::RackPinion),
 }
