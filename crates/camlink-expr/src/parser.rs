@@ -455,9 +455,11 @@ impl<'a> Parser<'a> {
 }
 
 /// The closest of `names` to `text`: equal ignoring case, or within an edit
-/// distance of 1 (names up to 3 characters) or 2 (longer names).
+/// distance of 1 (names up to 3 characters) or 2 (longer names) that keeps
+/// at least one character (`x` suggests nothing, not `e`).
 fn suggest<'n>(text: &str, names: &[&'n str]) -> Option<&'n str> {
-    let limit = if text.chars().count() <= 3 { 1 } else { 2 };
+    let len = text.chars().count();
+    let limit = if len <= 3 { 1 } else { 2 }.min(len.saturating_sub(1));
     let lower = text.to_lowercase();
     names
         .iter()
@@ -509,5 +511,7 @@ mod tests {
         assert_eq!(suggest("tt", &["t", "pi", "e"]), Some("t"));
         assert_eq!(suggest("PI", &["t", "pi", "e"]), Some("pi"));
         assert_eq!(suggest("zzz", &["t", "pi", "e"]), None);
+        assert_eq!(suggest("x", &["t", "pi", "e"]), None);
+        assert_eq!(suggest("T", &["t", "pi", "e"]), Some("t"));
     }
 }
