@@ -127,3 +127,12 @@ fn mutated_every_bad_file_never_panics() {
         }
     }
 }
+
+#[test]
+fn deep_nesting_is_an_error_not_a_crash() {
+    let depth = 100_000;
+    let toml = format!("x = {}{}", "[".repeat(depth), "]".repeat(depth));
+    assert!(load_str(&toml, Format::Toml, "deep.toml").is_err());
+    let json = format!("{{\"x\": {}{}}}", "[".repeat(depth), "]".repeat(depth));
+    assert!(load_str(&json, Format::Json, "deep.json").is_err());
+}
