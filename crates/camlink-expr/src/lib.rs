@@ -74,6 +74,8 @@
 //! Sources longer than [`MAX_LEN`] bytes and sub-expressions nested more
 //! than [`MAX_NESTING`] levels deep are rejected with a [`ParseError`].
 
+#![forbid(unsafe_code)]
+
 mod compile;
 mod error;
 mod function;

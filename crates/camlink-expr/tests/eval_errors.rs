@@ -28,6 +28,7 @@ fn domain_errors_name_the_operation_and_quote_it() {
         "division by zero in `1/(t - 2)` at t = 2"
     );
     assert_eq!(message("t/0", 1.0), "division by zero in `t/0` at t = 1");
+    assert_eq!(message("t/-0", 1.0), "division by zero in `t/-0` at t = 1");
     assert_eq!(
         message("(1 + t)/t", 0.0),
         "division by zero in `(1 + t)/t` at t = 0"
