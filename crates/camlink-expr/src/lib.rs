@@ -7,6 +7,26 @@
 //! (truncated Taylor arithmetic to third order, see [`Jet`]), never by finite
 //! differences.
 //!
+//! ```
+//! use camlink_expr::Expr;
+//!
+//! let rho = Expr::parse("if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)", "a").unwrap();
+//! let [r, dr, ddr, dddr] = rho.jet(0.5);
+//! assert_eq!(r, 1.25 - 1.5f64.cos() / 4.0);
+//! assert_eq!(dr, 0.75 * 1.5f64.sin());
+//! assert_eq!(rho.jet(3.0), [1.0, 0.0, 0.0, 0.0]);
+//!
+//! let src = "2*tt";
+//! let err = Expr::parse(src, "t").unwrap_err();
+//! assert_eq!(err.render(src), "2*tt\n  ^^\nunknown name 'tt'; the variable here is 't'");
+//!
+//! let f = Expr::parse("log(t - 1)", "t").unwrap();
+//! assert_eq!(
+//!     f.check(0.5).unwrap_err().to_string(),
+//!     "log of a negative number (-0.5) in `log(t - 1)` at t = 0.5"
+//! );
+//! ```
+//!
 //! Parsing and evaluating never run user code: a tokenizer and a Pratt
 //! parser compile the source to a flat list of stack-machine instructions
 //! whose only control flow is forward jumps. Evaluation allocates nothing
@@ -73,6 +93,8 @@
 //!
 //! Sources longer than [`MAX_LEN`] bytes and sub-expressions nested more
 //! than [`MAX_NESTING`] levels deep are rejected with a [`ParseError`].
+
+#![forbid(unsafe_code)]
 
 mod compile;
 mod error;

@@ -551,7 +551,7 @@ fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
     match op {
         Op::Var if !x.is_finite() => Some(format!("the variable is not finite ({x})")),
         Op::Div if pair().1 == 0.0 => Some("division by zero".into()),
-        Op::DivC(c) if c == 0.0 => Some("division by zero".into()),
+        Op::DivC(0.0) => Some("division by zero".into()),
         Op::RDivC(_) if top() == 0.0 => Some("division by zero".into()),
         Op::Mod if pair().1 == 0.0 => Some("mod by zero".into()),
         Op::Ln if top() < 0.0 => Some(format!("log of a negative number ({})", top())),
