@@ -15,8 +15,11 @@
 use crate::model::BodyId;
 
 pub mod absolute;
+pub mod cam_follower;
 pub mod composite;
+pub mod flat_follower;
 pub mod gear;
+pub mod point_follower;
 pub mod relative;
 pub mod revolute;
 pub mod translational;
@@ -149,4 +152,7 @@ macro_rules! constraints {
 
 constraints! {
     Revolute(revolute::Revolute),
+    CamFollower(cam_follower::CamFollower),
+    FlatFollower(flat_follower::FlatFollower),
+    PointFollower(point_follower::PointFollower),
 }
