@@ -258,3 +258,32 @@ mod tests {
         })
     }
 }
+
+#[cfg(test)]
+mod expr_tests {
+    use super::*;
+    use crate::constraint::check::check_random_own;
+    use crate::curve::{Parametric, Polar};
+
+    #[test]
+    fn derivatives_match_finite_differences_seed_example() {
+        // Example 3.4.3: the lobed cam ρ₁ and a roller ρ₂ = 1/4; α₁ kept
+        // inside the lobe, away from the curvature jumps at 0 and 2π/3.
+        let c = CamFollower {
+            body_i: BodyId(1),
+            curve_i: Polar::expr([0.0, 0.0], "if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)")
+                .unwrap()
+                .into(),
+            body_j: BodyId(2),
+            curve_j: Polar::circle([0.0, 0.0], 0.25).unwrap().into(),
+        };
+        check_random_own(&c, 30, [(0.05, 2.0), (-6.0, 6.0)]);
+        let c = CamFollower {
+            curve_j: Parametric::expr("0.3*cos(s)", "0.2*sin(s) + 0.1*s", -1.0, 2.0, false)
+                .unwrap()
+                .into(),
+            ..c
+        };
+        check_random_own(&c, 30, [(0.05, 2.0), (-0.9, 1.9)]);
+    }
+}

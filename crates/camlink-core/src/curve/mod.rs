@@ -196,8 +196,12 @@ impl Curve {
             if closed && !out.is_empty() && out[0].0 == s0 {
                 // An interval running over the end joins the one that
                 // started at s₀.
-                let first = out.remove(0);
-                out.push((st, first.1 + (s1 - s0)));
+                // An edge found within rounding of s₁ is the start itself
+                // (the curvature jumps there).
+                if s1 - st > 1e-9 * (s1 - s0) {
+                    let first = out.remove(0);
+                    out.push((st, first.1 + (s1 - s0)));
+                }
             } else {
                 out.push((st, s1));
             }
@@ -246,5 +250,83 @@ impl From<Polar> for Curve {
 impl From<Parametric> for Curve {
     fn from(c: Parametric) -> Self {
         Curve::Parametric(c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// Numerator of the polar curvature, ρ² + 2ρ′² − ρρ″.
+    fn polar_numerator(p: &Polar, a: f64) -> f64 {
+        let [r, r1, r2, _] = p.rho.jet(a);
+        r * r + 2.0 * r1 * r1 - r * r2
+    }
+
+    #[test]
+    fn polar_curvature_matches_the_polar_formula() {
+        let p = Polar::fourier([0.2, 0.1], 1.0, &[0.3, 0.1], &[0.0, 0.05]).unwrap();
+        let c = Curve::from(p.clone());
+        for &a in &[0.1, 1.0, 2.5, 4.0] {
+            let [r, r1, _, _] = p.rho.jet(a);
+            let want = polar_numerator(&p, a) / (r * r + r1 * r1).powf(1.5);
+            assert!((c.curvature(a) - want).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn concave_ranges_of_a_three_lobe_cam() {
+        // ρ = 1 + 0.3 cos 3α is concave about α = π/3, π, 5π/3.
+        let p = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, 0.3], &[]).unwrap();
+        let c = Curve::from(p.clone());
+        let r = c.concave_ranges(360);
+        assert_eq!(r.len(), 3, "{r:?}");
+        for (k, &(a, b)) in r.iter().enumerate() {
+            let mid = (2 * k + 1) as f64 * PI / 3.0;
+            assert!(((a + b) / 2.0 - mid).abs() < 1e-9, "{r:?}");
+            // The edges are where κ crosses −10⁻⁹ max|κ|.
+            assert!(polar_numerator(&p, a).abs() < 1e-7 && polar_numerator(&p, b).abs() < 1e-7);
+            assert!(c.curvature(mid) < 0.0);
+        }
+        // A circle has none; a concave range across α = 0 comes back whole.
+        assert!(Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap())
+            .concave_ranges(90)
+            .is_empty());
+        let p = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, -0.3], &[]).unwrap();
+        let r = Curve::from(p).concave_ranges(360);
+        assert_eq!(r.len(), 3, "{r:?}");
+        let (a, b) = r[2];
+        assert!(
+            a < TAU && b > TAU && ((a + b) / 2.0 - TAU).abs() < 1e-9,
+            "{r:?}"
+        );
+    }
+
+    #[test]
+    fn concave_ranges_of_an_open_s_curve() {
+        // y = sin x for x in (0.5, 5): concave (κ < 0) where sin x > 0.
+        let pts: Vec<V2> = (0..=90)
+            .map(|k| {
+                let x = 0.5 + 4.5 * k as f64 / 90.0;
+                [x, x.sin()]
+            })
+            .collect();
+        let c = Curve::from(Parametric::spline(&pts, false).unwrap());
+        let r = c.concave_ranges(400);
+        assert_eq!(r.len(), 1, "{r:?}");
+        assert_eq!(r[0].0, 0.0);
+        let x_end = c.jet(r[0].1).p[0];
+        assert!((x_end - PI).abs() < 1e-3, "{x_end}");
+    }
+
+    #[test]
+    fn check_reports_a_bad_profile() {
+        assert!(Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap())
+            .check(100)
+            .is_ok());
+        let p = Polar::fourier([0.0, 0.0], 0.5, &[1.0], &[]).unwrap();
+        let e = Curve::from(p).check(100).unwrap_err();
+        assert!(e.to_string().contains("ρ"), "{e}");
     }
 }

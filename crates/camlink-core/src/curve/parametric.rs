@@ -259,3 +259,22 @@ mod tests {
         assert!(Parametric::expr("s", "s", 1.0, 0.0, false).is_err());
     }
 }
+
+#[cfg(test)]
+mod expr_tests {
+    use super::*;
+    use crate::curve::Curve;
+
+    #[test]
+    fn ellipse_from_expressions() {
+        let e = Parametric::expr("2*cos(s)", "sin(s)", 0.0, TAU, true).unwrap();
+        let c = Curve::from(e);
+        assert!(c.closed());
+        let j = c.jet(0.7 + TAU);
+        let want = [2.0 * 0.7f64.cos(), 0.7f64.sin()];
+        assert!((j.p[0] - want[0]).abs() < 1e-14 && (j.p[1] - want[1]).abs() < 1e-14);
+        assert!((j.d3[0] - 2.0 * 0.7f64.sin()).abs() < 1e-14);
+        assert!((c.curvature(0.0) - 2.0).abs() < 1e-12);
+        assert!(Parametric::expr("2*cos(s)", "sin(t)", 0.0, 1.0, false).is_err());
+    }
+}

@@ -175,3 +175,62 @@ mod tests {
         assert!(Polar::circle([0.0, 0.0], f64::NAN).is_err());
     }
 }
+
+#[cfg(test)]
+mod expr_tests {
+    use super::*;
+    use crate::curve::{parse_points_csv, Curve};
+    use std::f64::consts::PI;
+
+    /// The seed's example 3.4.3 cam.
+    const SEED_CAM: &str = "if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)";
+
+    #[test]
+    fn seed_example_cam_from_an_expression() {
+        let c = Polar::expr([0.0, 0.0], SEED_CAM).unwrap();
+        for &a in &[0.5, 1.7] {
+            let j = c.jet(a);
+            let (rho, drho) = (1.25 - (3.0 * a).cos() / 4.0, 0.75 * (3.0 * a).sin());
+            let g = [
+                drho * a.cos() - rho * a.sin(),
+                drho * a.sin() + rho * a.cos(),
+            ];
+            assert!((j.d1[0] - g[0]).abs() < 1e-14 && (j.d1[1] - g[1]).abs() < 1e-14);
+        }
+        // The base circle, also one turn on.
+        let j = c.jet(3.0 + 2.0 * PI);
+        assert!((j.p[0] - 3.0f64.cos()).abs() < 1e-14);
+        // The lobe is concave near its flanks, α ∈ (0, α₁) and
+        // (2π/3 − α₁, 2π/3).
+        let r = Curve::from(c).concave_ranges(720);
+        assert_eq!(r.len(), 2, "{r:?}");
+        assert!(
+            r[0].0 == 0.0 && (r[1].1 - 2.0 * PI / 3.0).abs() < 1e-9,
+            "{r:?}"
+        );
+        assert!((r[0].1 - (2.0 * PI / 3.0 - r[1].0)).abs() < 1e-9, "{r:?}");
+    }
+
+    #[test]
+    fn expression_errors_name_the_source() {
+        let e = Polar::expr([0.0, 0.0], "1 + cos(b)").unwrap_err();
+        assert!(e.to_string().contains("1 + cos(b)"), "{e}");
+    }
+
+    #[test]
+    fn spline_profile_from_csv() {
+        let mut text = String::from("alpha,rho\n");
+        for k in 0..=24 {
+            let a = k as f64 * 2.0 * PI / 24.0;
+            text += &format!("{a},{}\n", 1.0 + 0.1 * (2.0 * a).cos());
+        }
+        let pts = parse_points_csv(&text, "cam.csv").unwrap();
+        let c = Polar::spline([0.0, 0.0], &pts).unwrap();
+        for p in &pts {
+            assert!((c.rho.jet(p[0])[0] - p[1]).abs() < 1e-12);
+        }
+        let a: f64 = 1.234;
+        assert!((c.rho.jet(a)[0] - (1.0 + 0.1 * (2.0 * a).cos())).abs() < 1e-5);
+        assert!(Curve::from(c).check(360).is_ok());
+    }
+}
