@@ -238,6 +238,33 @@ mod tests {
     }
 
     #[test]
+    fn initial_own_refines_a_guess_on_a_lobed_cam() {
+        // Two-lobe cam ρ = 1 + 0.2 cos 2α turned by π/2 under a face: the
+        // lobe tip α = 0 points at the face. A guess one turn on is refined
+        // to the tip one turn on, not wrapped.
+        let c = FlatFollower::new(
+            BodyId(1),
+            Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.2], &[])
+                .unwrap()
+                .into(),
+            BodyId(2),
+            [0.0, 0.0],
+            [1.0, 0.0],
+        )
+        .unwrap();
+        let mut x = Local::default();
+        x.q[0] = [0.0, 0.0, FRAC_PI_2];
+        x.q[1] = [0.0, 1.5, 0.0];
+        let own = c.initial_own(&x)[0];
+        assert!(own.abs() < 1e-9 || (own - TAU).abs() < 1e-9, "{own}");
+        let own = c.initial_own(&Local {
+            own: [TAU + 0.3, 0.0],
+            ..x
+        });
+        assert!((own[0] - TAU).abs() < 1e-9, "{own:?}");
+    }
+
+    #[test]
     fn rejects_a_zero_face_direction() {
         let cam: Curve = Polar::circle([0.0, 0.0], 1.0).unwrap().into();
         assert!(FlatFollower::new(BodyId(1), cam, BodyId(2), [0.0; 2], [0.0; 2]).is_none());

@@ -321,6 +321,13 @@ mod tests {
     }
 
     #[test]
+    fn curves_are_shareable_across_threads() {
+        fn shareable<T: Clone + std::fmt::Debug + Send + Sync>() {}
+        shareable::<Curve>();
+        shareable::<CurveJet>();
+    }
+
+    #[test]
     fn check_reports_a_bad_profile() {
         assert!(Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap())
             .check(100)
