@@ -373,11 +373,8 @@ pub(crate) struct Fault {
     pub what: String,
 }
 
-/// Runs `code` at x with `s` as the stack, which must hold at least the
-/// program's maximum stack depth (see [`max_depth`]).
-///
-/// The top of the stack lives in `acc` (in registers), the values below it
-/// in `s[..sp]`; `s[0]` holds a placeholder spilled by the first push.
+/// Runs `code` at x on `stack`, which must hold at least the program's
+/// maximum stack depth (see [`max_depth`]).
 ///
 /// With `CHECK`, each op's operands are tested against its domain first and
 /// its result for finiteness after; the first failure is returned. Without
@@ -388,62 +385,59 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
     x: f64,
     s: &mut [V],
 ) -> Result<V, Fault> {
-    let mut acc = V::constant(0.0);
     let mut sp = 0usize;
     let mut pc = 0usize;
     while pc < code.len() {
         let op = code[pc];
         if CHECK {
-            if let Some(what) = domain(op, &s[..sp], acc, x) {
+            if let Some(what) = domain(op, &s[..sp], x) {
                 return Err(Fault { pc, what });
             }
         }
         match op {
             Op::Const(c) => {
-                s[sp] = acc;
+                s[sp] = V::constant(c);
                 sp += 1;
-                acc = V::constant(c);
             }
             Op::Var => {
-                s[sp] = acc;
+                s[sp] = V::variable(x);
                 sp += 1;
-                acc = V::variable(x);
             }
             Op::Add => {
                 sp -= 1;
-                acc = s[sp] + acc;
+                s[sp - 1] = s[sp - 1] + s[sp];
             }
             Op::Sub => {
                 sp -= 1;
-                acc = s[sp] - acc;
+                s[sp - 1] = s[sp - 1] - s[sp];
             }
             Op::Mul => {
                 sp -= 1;
-                acc = s[sp] * acc;
+                s[sp - 1] = s[sp - 1] * s[sp];
             }
             Op::Div => {
                 sp -= 1;
-                acc = s[sp] / acc;
+                s[sp - 1] = s[sp - 1] / s[sp];
             }
             Op::Pow => {
                 sp -= 1;
-                acc = s[sp].pow(acc);
+                s[sp - 1] = s[sp - 1].pow(s[sp]);
             }
-            Op::Neg => acc = -acc,
-            Op::AddC(c) => acc = acc.add_c(c),
-            Op::MulC(c) => acc = acc.mul_c(c),
-            Op::DivC(c) => acc = acc.div_c(c),
-            Op::RSubC(c) => acc = acc.rsub_c(c),
-            Op::RDivC(c) => acc = acc.rdiv_c(c),
-            Op::PowC(c) => acc = acc.pow_c(c),
-            Op::PowI(n) => acc = acc.pow_i(n),
+            Op::Neg => s[sp - 1] = -s[sp - 1],
+            Op::AddC(c) => s[sp - 1] = s[sp - 1].add_c(c),
+            Op::MulC(c) => s[sp - 1] = s[sp - 1].mul_c(c),
+            Op::DivC(c) => s[sp - 1] = s[sp - 1].div_c(c),
+            Op::RSubC(c) => s[sp - 1] = s[sp - 1].rsub_c(c),
+            Op::RDivC(c) => s[sp - 1] = s[sp - 1].rdiv_c(c),
+            Op::PowC(c) => s[sp - 1] = s[sp - 1].pow_c(c),
+            Op::PowI(n) => s[sp - 1] = s[sp - 1].pow_i(n),
             Op::Cmp(k) => {
                 sp -= 1;
-                acc = boolean(k.test(s[sp].value(), acc.value()));
+                s[sp - 1] = boolean(k.test(s[sp - 1].value(), s[sp].value()));
             }
-            Op::CmpC(k, c) => acc = boolean(k.test(acc.value(), c)),
-            Op::Not => acc = boolean(!truth(acc.value())),
-            Op::Truth => acc = boolean(truth(acc.value())),
+            Op::CmpC(k, c) => s[sp - 1] = boolean(k.test(s[sp - 1].value(), c)),
+            Op::Not => s[sp - 1] = boolean(!truth(s[sp - 1].value())),
+            Op::Truth => s[sp - 1] = boolean(truth(s[sp - 1].value())),
             Op::Sin
             | Op::Cos
             | Op::Tan
@@ -459,69 +453,62 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
             | Op::Abs
             | Op::Sign
             | Op::Floor
-            | Op::Ceil => acc = acc.unary(op),
+            | Op::Ceil => s[sp - 1] = s[sp - 1].unary(op),
             Op::Atan2 => {
                 sp -= 1;
-                acc = s[sp].atan2(acc);
+                s[sp - 1] = s[sp - 1].atan2(s[sp]);
             }
             Op::Hypot => {
                 sp -= 1;
-                acc = s[sp].hypot(acc);
+                s[sp - 1] = s[sp - 1].hypot(s[sp]);
             }
             Op::Min => {
                 sp -= 1;
-                acc = if acc.value() < s[sp].value() {
-                    acc
-                } else {
-                    s[sp]
-                };
+                if s[sp].value() < s[sp - 1].value() {
+                    s[sp - 1] = s[sp];
+                }
             }
             Op::Max => {
                 sp -= 1;
-                acc = if acc.value() > s[sp].value() {
-                    acc
-                } else {
-                    s[sp]
-                };
+                if s[sp].value() > s[sp - 1].value() {
+                    s[sp - 1] = s[sp];
+                }
             }
             Op::Mod => {
                 sp -= 1;
-                acc = s[sp].modulo(acc);
+                s[sp - 1] = s[sp - 1].modulo(s[sp]);
             }
             Op::Motion(law) => {
                 sp -= 4;
-                acc = V::motion(law, [s[sp], s[sp + 1], s[sp + 2], s[sp + 3], acc]);
+                let a = [s[sp - 1], s[sp], s[sp + 1], s[sp + 2], s[sp + 3]];
+                s[sp - 1] = V::motion(law, a);
             }
             Op::JumpIfFalse(off) => {
-                let cond = acc.value();
                 sp -= 1;
-                acc = s[sp];
-                if !truth(cond) {
+                if !truth(s[sp].value()) {
                     pc += off as usize;
                 }
             }
             Op::Jump(off) => pc += off as usize,
             Op::AndJump(off) => {
-                if truth(acc.value()) {
+                if truth(s[sp - 1].value()) {
                     sp -= 1;
-                    acc = s[sp];
                 } else {
-                    acc = V::constant(0.0);
+                    s[sp - 1] = V::constant(0.0);
                     pc += off as usize;
                 }
             }
             Op::OrJump(off) => {
-                if truth(acc.value()) {
-                    acc = V::constant(1.0);
+                if truth(s[sp - 1].value()) {
+                    s[sp - 1] = V::constant(1.0);
                     pc += off as usize;
                 } else {
                     sp -= 1;
-                    acc = s[sp];
                 }
             }
         }
         if CHECK && !op.is_jump() {
-            if let Some((k, v)) = acc.first_non_finite() {
+            if let Some((k, v)) = s[sp - 1].first_non_finite() {
                 return Err(Fault {
                     pc,
                     what: non_finite(k, v),
@@ -530,7 +517,7 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
         }
         pc += 1;
     }
-    Ok(acc)
+    Ok(s[0])
 }
 
 fn non_finite(order: usize, v: f64) -> String {
@@ -542,12 +529,11 @@ fn non_finite(order: usize, v: f64) -> String {
     }
 }
 
-/// The domain failure of `op` on its operands, if any: the top of the stack
-/// is `acc`, the values below it end `stack`.
-fn domain<V: Value>(op: Op, stack: &[V], acc: V, x: f64) -> Option<String> {
+/// The domain failure of `op` on the operands at the top of `stack`, if any.
+fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
     let n = stack.len();
-    let top = || acc.value();
-    let pair = || (stack[n - 1].value(), acc.value());
+    let top = || stack[n - 1].value();
+    let pair = || (stack[n - 2].value(), stack[n - 1].value());
     let outside = |name: &str, u: f64| {
         (!(-1.0..=1.0).contains(&u)).then(|| format!("{name} of {u}, outside [-1, 1]"))
     };
@@ -583,7 +569,7 @@ fn domain<V: Value>(op: Op, stack: &[V], acc: V, x: f64) -> Option<String> {
         }
         Op::Atan2 if pair() == (0.0, 0.0) => Some("atan2(0, 0) is undefined".into()),
         Op::Motion(_) => {
-            let (x0, x1) = (stack[n - 3].value(), stack[n - 1].value());
+            let (x0, x1) = (stack[n - 4].value(), stack[n - 2].value());
             (x0 == x1).then(|| format!("motion law with x0 = x1 (= {x0})"))
         }
         _ => None,
