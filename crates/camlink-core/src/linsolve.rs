@@ -47,6 +47,8 @@ pub struct SmallLu {
     /// Row k of the factors is row `perm[k]` of the matrix.
     perm: Vec<usize>,
     valid: bool,
+    /// Smallest pivot of the last factorization relative to the largest entry.
+    min_pivot: f64,
 }
 
 impl SmallLu {
@@ -57,6 +59,7 @@ impl SmallLu {
             lu: vec![0.0; n * n],
             perm: (0..n).collect(),
             valid: false,
+            min_pivot: 0.0,
         }
     }
 
@@ -77,6 +80,7 @@ impl SmallLu {
             *p = k;
         }
         let lu = &mut self.lu;
+        self.min_pivot = f64::INFINITY;
         for k in 0..n {
             // Pivot: the largest entry of column k on or below the diagonal.
             let mut p = k;
@@ -95,6 +99,7 @@ impl SmallLu {
                     pivot: big / scale,
                 });
             }
+            self.min_pivot = self.min_pivot.min(big / scale);
             if p != k {
                 for c in 0..n {
                     lu.swap(k * n + c, p * n + c);
@@ -154,6 +159,7 @@ pub struct DenseLu {
     perm_inv: Vec<usize>,
     scratch: MemBuffer,
     valid: bool,
+    min_pivot: f64,
 }
 
 impl DenseLu {
@@ -166,6 +172,7 @@ impl DenseLu {
             perm_inv: vec![0; n],
             scratch: MemBuffer::new(req),
             valid: false,
+            min_pivot: 0.0,
         }
     }
 
@@ -196,8 +203,10 @@ impl DenseLu {
             Default::default(),
         );
         let n = self.dim();
+        self.min_pivot = f64::INFINITY;
         for k in 0..n {
             let pivot = self.lu[(k, k)].abs() / scale;
+            self.min_pivot = self.min_pivot.min(pivot);
             if pivot <= SINGULAR_PIVOT || pivot.is_nan() {
                 self.valid = false;
                 return Err(Singular {
@@ -380,6 +389,16 @@ impl SystemMatrix {
             SystemMatrix::Small { lu, .. } => lu.valid = false,
             SystemMatrix::Dense { lu, .. } => lu.invalidate(),
             SystemMatrix::Sparse(s) => s.valid = false,
+        }
+    }
+
+    /// The smallest pivot of the last factorization relative to the largest
+    /// entry, a cheap sign of near-singularity (dense kernels only).
+    pub fn min_pivot(&self) -> Option<f64> {
+        match self {
+            SystemMatrix::Small { lu, .. } => Some(lu.min_pivot),
+            SystemMatrix::Dense { lu, .. } => Some(lu.min_pivot),
+            SystemMatrix::Sparse(_) => None,
         }
     }
 
