@@ -98,6 +98,9 @@ pub struct Summary {
     pub halvings: usize,
     /// (time in s, message) of each warning.
     pub warnings: Vec<(f64, String)>,
+    /// How assembly moved each body from its given placement:
+    /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
+    pub assembly_moves: Vec<(String, [f64; 3])>,
 }
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
@@ -359,6 +362,7 @@ impl<'m> Solver<'m> {
             jump = self.jump_from(t);
         } else {
             self.assemble(t)?;
+            self.record_assembly_moves();
         }
 
         // Velocity and acceleration share one factorization at the solution.
@@ -374,6 +378,21 @@ impl<'m> Solver<'m> {
         self.watch_singularity(t);
         self.summary.steps += 1;
         Ok(jump)
+    }
+
+    /// Lists the bodies that assembly moved away from the model's placement.
+    fn record_assembly_moves(&mut self) {
+        let size = self.size;
+        self.summary.assembly_moves = self
+            .model
+            .moving_bodies()
+            .filter_map(|(id, b)| {
+                let c = self.asm.body_col(id.0)?;
+                let d = [0, 1, 2].map(|k| self.q[c + k] - b.q0[k]);
+                let moved = d[0].hypot(d[1]) > 1e-9 * size || d[2].abs() > 1e-9;
+                moved.then(|| (b.name.clone(), d))
+            })
+            .collect();
     }
 
     /// Compares the solution with the prediction made by `step`.
