@@ -208,3 +208,129 @@ fn pendulum() {
     }
     c.report();
 }
+
+// ---------------------------------------------------------------------------
+// 2–3. Offset slider-crank
+// ---------------------------------------------------------------------------
+
+/// Slider-crank geometry (m): crank r, rod l, offset e.
+const SC: (f64, f64, f64) = (0.05, 0.2, 0.01);
+
+/// The rod angle ψ of A–B and its rates, from the crank angle θ and slider
+/// position x with their rates (each [value, rate, second rate]):
+/// u = x − r cos θ, v = e − r sin θ, ψ = atan2(v, u), u² + v² = l², so
+/// ψ̇ = (u v̇ − v u̇)/l² and ψ̈ = (u v̈ − v ü)/l².
+fn rod_angle(th: [f64; 3], x: [f64; 3]) -> [f64; 3] {
+    let (r, l, e) = SC;
+    let (s, c) = th[0].sin_cos();
+    let (u, v) = (x[0] - r * c, e - r * s);
+    let ud = x[1] + r * s * th[1];
+    let udd = x[2] + r * (c * th[1] * th[1] + s * th[2]);
+    let vd = -r * c * th[1];
+    let vdd = r * (s * th[1] * th[1] - c * th[2]);
+    [v.atan2(u), (u * vd - v * ud) / (l * l), (u * vdd - v * udd) / (l * l)]
+}
+
+/// Point [r cos θ, r sin θ] turning about the origin at θ̇, θ̈:
+/// (position, velocity, acceleration).
+fn on_circle(r: f64, centre: [f64; 2], th: [f64; 3]) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let (s, c) = th[0].sin_cos();
+    (
+        [centre[0] + r * c, centre[1] + r * s],
+        [-r * s * th[1], r * c * th[1]],
+        [
+            -r * (c * th[1] * th[1] + s * th[2]),
+            r * (c * th[2] - s * th[1] * th[1]),
+        ],
+    )
+}
+
+/// Crank-driven: x = r cos θ + D, D = sqrt(l² − σ²), σ = r sin θ − e;
+/// Ḋ = −σσ̇/D, D̈ = −(σ̇² + σσ̈ + Ḋ²)/D (from D² = l² − σ²).
+#[test]
+fn slider_crank() {
+    let (loaded, mut c) = Check::new("slider_crank");
+    let (r, l, e) = SC;
+    let (w, th0) = (2.0 * PI * 10.0, 30f64.to_radians());
+    assert_eq!(point_of(&loaded, "rod", "B"), [l / 2.0, 0.0]);
+    assert_eq!(point_of(&loaded, "crank", "A"), [r, 0.0]);
+    assert_eq!(point_of(&loaded, "ground", "S"), [0.0, e]);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let th = [th0 + w * t, w, 0.0];
+        let (s, co) = th[0].sin_cos();
+        let sg = [r * s - e, r * co * th[1], r * (co * th[2] - s * th[1] * th[1])];
+        let dd = (l * l - sg[0] * sg[0]).sqrt();
+        let ddot = -sg[0] * sg[1] / dd;
+        let dddot = -(sg[1] * sg[1] + sg[0] * sg[2] + ddot * ddot) / dd;
+        let x = [
+            r * co + dd,
+            -r * s * th[1] + ddot,
+            -r * (co * th[1] * th[1] + s * th[2]) + dddot,
+        ];
+        // Scales: r ω and r ω² for the slider and the crank pin; (r/l) ω and
+        // (r/l) ω² for the rod's rotation.
+        let (vs, as_) = (r * w, r * w * w);
+        c.rotation("crank", k, th, [w, w * w]);
+        c.pos("slider.x", k, x[0]);
+        c.pos("slider.y", k, e);
+        c.angle("slider.phi", k, 0.0);
+        c.rate("slider.vx", k, x[1], vs);
+        c.rate("slider.ax", k, x[2], as_);
+        c.rate("slider.vy", k, 0.0, vs);
+        c.rate("slider.ay", k, 0.0, as_);
+        c.point("slider.B", k, [x[0], e], [x[1], 0.0], [x[2], 0.0], [vs, as_]);
+        let (pa, va, aa) = on_circle(r, [0.0, 0.0], th);
+        c.point("crank.A", k, pa, va, aa, [vs, as_]);
+        let psi = rod_angle(th, x);
+        c.rotation("rod", k, psi, [r / l * w, r / l * w * w]);
+    }
+    c.report();
+}
+
+/// Slider-driven: x = xm + s0 sin ωt; θ = δ + acos(K / (2 r ρ)) with
+/// K = x² + e² + r² − l², ρ = |(x, e)|, δ = atan2(e, x) (crank above the
+/// line). Rates by implicit differentiation of
+/// F(θ, x) = x cos θ + e sin θ − (x² + e² + r² − l²)/(2r) = 0:
+/// F_θ θ̇ + F_x ẋ = 0 and
+/// F_θ θ̈ + F_θθ θ̇² + 2 F_θx θ̇ ẋ + F_xx ẋ² + F_x ẍ = 0.
+#[test]
+fn slider_crank_slider_driven() {
+    let (loaded, mut c) = Check::new("slider_crank_slider_driven");
+    let (r, l, e) = SC;
+    let (xm, s0, w) = (0.2, 0.035, 2.0 * PI);
+    assert_eq!(point_of(&loaded, "rod", "A"), [-l / 2.0, 0.0]);
+    assert_eq!(point_of(&loaded, "ground", "S"), [0.0, e]);
+    // The stroke keeps clear of both dead centres, |K/(2rρ)| < 1.
+    let reach = (((l - r) * (l - r) - e * e).sqrt(), ((l + r) * (l + r) - e * e).sqrt());
+    assert!(reach.0 + 0.01 < xm - s0 && xm + s0 < reach.1 - 0.01);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let x = [
+            xm + s0 * (w * t).sin(),
+            s0 * w * (w * t).cos(),
+            -s0 * w * w * (w * t).sin(),
+        ];
+        let kk = x[0] * x[0] + e * e + r * r - l * l;
+        let rho = x[0].hypot(e);
+        let th0 = e.atan2(x[0]) + (kk / (2.0 * r * rho)).acos();
+        let (s, co) = th0.sin_cos();
+        let f_th = -x[0] * s + e * co;
+        let f_x = co - x[0] / r;
+        let (f_thth, f_thx, f_xx) = (-x[0] * co - e * s, -s, -1.0 / r);
+        let th1 = -f_x * x[1] / f_th;
+        let th2 = -(f_thth * th1 * th1 + 2.0 * f_thx * th1 * x[1] + f_xx * x[1] * x[1] + f_x * x[2])
+            / f_th;
+        let th = [th0, th1, th2];
+        // Scales: s0 ω, s0 ω² for the slider; divided by r for the crank,
+        // by l for the rod; the crank pin moves about as fast as the slider.
+        let (vs, as_) = (s0 * w, s0 * w * w);
+        c.pos("slider.x", k, x[0]);
+        c.rate("slider.vx", k, x[1], vs);
+        c.rate("slider.ax", k, x[2], as_);
+        c.rotation("crank", k, th, [vs / r, as_ / r]);
+        let (pa, va, aa) = on_circle(r, [0.0, 0.0], th);
+        c.point("crank.A", k, pa, va, aa, [vs, as_]);
+        c.point("rod.B", k, [x[0], e], [x[1], 0.0], [x[2], 0.0], [vs, as_]);
+        c.rotation("rod", k, rod_angle(th, x), [vs / l, as_ / l]);
+    }
+    c.report();
+}
