@@ -334,3 +334,193 @@ fn slider_crank_slider_driven() {
     }
     c.report();
 }
+
+// ---------------------------------------------------------------------------
+// 4. Four-bar crank-rocker
+// ---------------------------------------------------------------------------
+
+/// Freudenstein's closed form for the four-bar [d, a, b, c] at crank angle
+/// θ₂ and speed ω₂ (α₂ = 0): ([θ₃, θ₄], [ω₃, ω₄], [α₃, α₄]), open branch
+/// (`sign` = −1) or crossed (+1). Copied from camlink-core's
+/// `tests/common/mod.rs`.
+fn freudenstein(l: [f64; 4], th2: f64, w2: f64, sign: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
+    let [d, a, b, c] = l;
+    let (k1, k2, k4) = (d / a, d / c, d / b);
+    let k3 = (a * a - b * b + c * c + d * d) / (2.0 * a * c);
+    let k5 = (c * c - d * d - a * a - b * b) / (2.0 * a * b);
+    let (cs, sn) = (th2.cos(), th2.sin());
+    let (aa, bb, cc) = (cs - k1 - k2 * cs + k3, -2.0 * sn, k1 - (k2 + 1.0) * cs + k3);
+    let th4 = 2.0 * (-bb + sign * (bb * bb - 4.0 * aa * cc).sqrt()).atan2(2.0 * aa);
+    let (dd, ee, ff) = (cs - k1 + k4 * cs + k5, -2.0 * sn, k1 + (k4 - 1.0) * cs + k5);
+    let th3 = 2.0 * (-ee + sign * (ee * ee - 4.0 * dd * ff).sqrt()).atan2(2.0 * dd);
+    // Velocity loop: a ω₂ e^{iθ₂}i + b ω₃ e^{iθ₃}i = c ω₄ e^{iθ₄}i.
+    let w3 = a * w2 * (th4 - th2).sin() / (b * (th3 - th4).sin());
+    let w4 = a * w2 * (th2 - th3).sin() / (c * (th4 - th3).sin());
+    // Acceleration loop, α₂ = 0: b α₃ i e^{iθ₃} − c α₄ i e^{iθ₄} = r, with
+    // r = a ω₂² e^{iθ₂} + b ω₃² e^{iθ₃} − c ω₄² e^{iθ₄}; solved by Cramer.
+    let rx = a * w2 * w2 * th2.cos() + b * w3 * w3 * th3.cos() - c * w4 * w4 * th4.cos();
+    let ry = a * w2 * w2 * th2.sin() + b * w3 * w3 * th3.sin() - c * w4 * w4 * th4.sin();
+    let (m11, m12) = (-b * th3.sin(), c * th4.sin());
+    let (m21, m22) = (b * th3.cos(), -c * th4.cos());
+    let det = m11 * m22 - m12 * m21;
+    let al3 = (rx * m22 - m12 * ry) / det;
+    let al4 = (m11 * ry - rx * m21) / det;
+    ([th3, th4], [w3, w4], [al3, al4])
+}
+
+/// Link angles θ₃, θ₄ and their rates from Freudenstein (open branch, B
+/// above the ground line); the coupler point P = A + A(θ₃)[b/2, p] and the
+/// rocker tip B by rigid-body kinematics on those.
+#[test]
+fn four_bar() {
+    let (loaded, mut c) = Check::new("four_bar");
+    let l @ [d, a, b, cc] = [0.4, 0.12, 0.38, 0.3];
+    let (p, w, th0) = (0.1, 2.0 * PI, 0.3);
+    assert_eq!(point_of(&loaded, "coupler", "P"), [b / 2.0, p]);
+    assert_eq!(point_of(&loaded, "rocker", "B"), [cc, 0.0]);
+    assert_eq!(point_of(&loaded, "ground", "O4"), [d, 0.0]);
+    // Grashof crank-rocker: the crank is the shortest link and s + l ≤ p + q.
+    assert!(a + d <= b + cc && a < b.min(cc).min(d));
+    for (k, t) in c.t().into_iter().enumerate() {
+        let th2 = [th0 + w * t, w, 0.0];
+        let (th, om, al) = freudenstein(l, th2[0], w, -1.0);
+        assert!(th[1].sin() > 0.0, "open branch");
+        // Scales: a ω and a ω² for points, (a/c) ω and (a/c) ω² for rotations.
+        let (vs, as_) = (a * w, a * w * w);
+        c.rotation("crank", k, th2, [w, w * w]);
+        c.rotation("coupler", k, [th[0], om[0], al[0]], [vs / cc, as_ / cc]);
+        c.rotation("rocker", k, [th[1], om[1], al[1]], [vs / cc, as_ / cc]);
+        let (ra, va, aa) = on_circle(a, [0.0, 0.0], th2);
+        let (s3, c3) = th[0].sin_cos();
+        let rho = [b / 2.0 * c3 - p * s3, b / 2.0 * s3 + p * c3];
+        let (w3, a3) = (om[0], al[0]);
+        c.point(
+            "coupler.P",
+            k,
+            [ra[0] + rho[0], ra[1] + rho[1]],
+            [va[0] - w3 * rho[1], va[1] + w3 * rho[0]],
+            [
+                aa[0] - a3 * rho[1] - w3 * w3 * rho[0],
+                aa[1] + a3 * rho[0] - w3 * w3 * rho[1],
+            ],
+            [vs, as_],
+        );
+        let (rb, vb, ab) = on_circle(cc, [d, 0.0], [th[1], om[1], al[1]]);
+        c.point("rocker.B", k, rb, vb, ab, [vs, as_]);
+    }
+    c.report();
+}
+
+// ---------------------------------------------------------------------------
+// 5. Crank-shaper quick return
+// ---------------------------------------------------------------------------
+
+/// Lever angle β = atan2(r sin θ, d + r cos θ) about O4 at the origin, crank
+/// pivot O2 = (d, 0). With ρ² = d² + r² + 2dr cos θ:
+/// β̇ = N(θ) θ̇, N = r (r + d cos θ)/ρ²; β̈ = N θ̈ + N′ θ̇²,
+/// N′ = r d sin θ (r² − d²)/ρ⁴.
+#[test]
+fn quick_return() {
+    let (loaded, mut c) = Check::new("quick_return");
+    let (d, r, l, w, th0) = (0.3, 0.1, 0.5, 2.0 * PI, 0.0);
+    assert_eq!(point_of(&loaded, "lever", "T"), [l, 0.0]);
+    assert_eq!(point_of(&loaded, "ground", "O2"), [d, 0.0]);
+    let mut beta = Vec::new();
+    for (k, t) in c.t().into_iter().enumerate() {
+        let th = [th0 + w * t, w, 0.0];
+        let (s, co) = th[0].sin_cos();
+        let rho2 = d * d + r * r + 2.0 * d * r * co;
+        let n = r * (r + d * co) / rho2;
+        let n1 = r * d * s * (r * r - d * d) / (rho2 * rho2);
+        let b = [
+            (r * s).atan2(d + r * co),
+            n * th[1],
+            n * th[2] + n1 * th[1] * th[1],
+        ];
+        beta.push(b[0]);
+        // Scales: (r/d) ω and (r/d) ω² for the lever, times L at its tip.
+        let (ws, als) = (r / d * w, r / d * w * w);
+        c.rotation("crank", k, th, [w, w * w]);
+        c.rotation("lever", k, b, [ws, als]);
+        let (pt, vt, at) = on_circle(l, [0.0, 0.0], b);
+        c.point("lever.T", k, pt, vt, at, [l * ws, l * als]);
+        let (pa, va, aa) = on_circle(r, [d, 0.0], th);
+        c.point("crank.A", k, pa, va, aa, [r * w, r * w * w]);
+    }
+    // The lever swings ±asin(r/d).
+    let swing = beta.iter().fold(0.0f64, |m, b| m.max(b.abs()));
+    assert!((swing - (r / d).asin()).abs() < 1e-3, "swing {swing}");
+    c.report();
+}
+
+// ---------------------------------------------------------------------------
+// 6. Rack and pinion
+// ---------------------------------------------------------------------------
+
+/// φ = φ0 sin ωt; a counter-clockwise pinion above the rack drives the rack
+/// towards +x (the pinion's lowest point moves at ω × (0, −R) = (ωR, 0)), so
+/// x_rack = R φ, ẋ = R φ̇, ẍ = R φ̈.
+#[test]
+fn rack_pinion() {
+    let (loaded, mut c) = Check::new("rack_pinion");
+    let (rr, phi0, w) = (0.02, 270f64.to_radians(), PI);
+    assert_eq!(point_of(&loaded, "pinion", "tooth"), [rr, 0.0]);
+    assert_eq!(point_of(&loaded, "rack", "E"), [0.3, 0.0]);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let phi = [
+            phi0 * (w * t).sin(),
+            phi0 * w * (w * t).cos(),
+            -phi0 * w * w * (w * t).sin(),
+        ];
+        // Scales: φ0 ω and φ0 ω², times R for the rack.
+        let (ws, als) = (phi0 * w, phi0 * w * w);
+        c.rotation("pinion", k, phi, [ws, als]);
+        c.rotation("rack", k, [0.0; 3], [ws, als]);
+        c.pos("rack.x", k, rr * phi[0]);
+        c.pos("rack.y", k, 0.0);
+        c.rate("rack.vx", k, rr * phi[1], rr * ws);
+        c.rate("rack.ax", k, rr * phi[2], rr * als);
+        c.point(
+            "rack.E",
+            k,
+            [0.3 + rr * phi[0], 0.0],
+            [rr * phi[1], 0.0],
+            [rr * phi[2], 0.0],
+            [rr * ws, rr * als],
+        );
+        let (pt, vt, at) = on_circle(rr, [0.0, rr], phi);
+        c.point("pinion.tooth", k, pt, vt, at, [rr * ws, rr * als]);
+    }
+    c.report();
+}
+
+// ---------------------------------------------------------------------------
+// 7. Gear train
+// ---------------------------------------------------------------------------
+
+/// Fixed shafts, all gears starting at φ = 0: φ2 = −(R1/R2) φ1,
+/// φ3 = (R1/R3) φ1, φ4 = (R3b/R4) φ3; accelerations zero.
+#[test]
+fn gear_train() {
+    let (loaded, mut c) = Check::new("gear_train");
+    let (r1, r2, r3, r3b, r4, w) = (0.03, 0.05, 0.04, 0.015, 0.06, 4.0 * PI);
+    let c3 = [r1 + 2.0 * r2 + r3, 0.0];
+    let c4 = [c3[0] + r4 - r3b, 0.0];
+    assert_eq!(point_of(&loaded, "ground", "C3"), c3);
+    assert_eq!(point_of(&loaded, "ground", "C4"), c4);
+    assert_eq!(point_of(&loaded, "ring", "P"), [r4, 0.0]);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let ratios = [1.0, -r1 / r2, r1 / r3, r1 / r3 * r3b / r4];
+        // Scales: ω1 and ω1² for every rotation (the accelerations are zero,
+        // so this is an absolute 1e-7 ω1²), times R at the pitch points.
+        let (ws, als) = (w, w * w);
+        for (body, ratio) in ["gear1", "gear2", "gear3", "ring"].iter().zip(ratios) {
+            c.rotation(body, k, [ratio * w * t, ratio * w, 0.0], [ws, als]);
+        }
+        let (p3, v3, a3) = on_circle(r3, c3, [ratios[2] * w * t, ratios[2] * w, 0.0]);
+        c.point("gear3.P", k, p3, v3, a3, [r3 * ws, r3 * als]);
+        let (p4, v4, a4) = on_circle(r4, c4, [ratios[3] * w * t, ratios[3] * w, 0.0]);
+        c.point("ring.P", k, p4, v4, a4, [r4 * ws, r4 * als]);
+    }
+    c.report();
+}
