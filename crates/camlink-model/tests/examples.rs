@@ -524,3 +524,176 @@ fn gear_train() {
     }
     c.report();
 }
+
+// ---------------------------------------------------------------------------
+// 7b. Planetary stage
+// ---------------------------------------------------------------------------
+
+/// Sun driven at ω_s, ring fixed, all bodies starting at φ = 0:
+/// ω_c = ω_s Rs/(Rs + Rr), ω_p = ω_c − (Rs/Rp)(ω_s − ω_c); the planet centre
+/// is (Rs + Rp)(cos φ_c, sin φ_c). The sun–planet centre line points along
+/// the carrier (θ = φ_c), the planet–ring one back to the centre
+/// (θ = φ_c + π), both continuous over turns.
+#[test]
+fn planetary() {
+    let (loaded, mut c) = Check::new("planetary");
+    let (rs, rp, w) = (0.03, 0.02, 10.0 * PI);
+    let rr = rs + 2.0 * rp;
+    assert_eq!(point_of(&loaded, "carrier", "pin"), [rs + rp, 0.0]);
+    assert_eq!(point_of(&loaded, "planet", "P"), [rp, 0.0]);
+    let wc = w * rs / (rs + rr);
+    let wp = wc - rs / rp * (w - wc);
+    // The same from the fixed ring: (ω_p − ω_c)/(0 − ω_c) = Rr/Rp.
+    assert!((wp - (wc - rr / rp * wc)).abs() < 1e-12);
+    let own = |c: &Check, joint: &str| {
+        let prefix = format!("{joint}.");
+        let names: Vec<&String> = c
+            .table
+            .channels
+            .iter()
+            .filter(|n| n.starts_with(&prefix))
+            .collect();
+        assert_eq!(names.len(), 1, "one own coordinate for '{joint}': {names:?}");
+        names[0].clone()
+    };
+    let (sun_planet, planet_ring) = (own(&c, "sun_planet"), own(&c, "planet_ring"));
+    for (k, t) in c.t().into_iter().enumerate() {
+        // Scales: ω_s and ω_s² (accelerations are zero: absolute 1e-7 ω_s²),
+        // times the radius at points.
+        let (ws, als) = (w, w * w);
+        c.rotation("sun", k, [w * t, w, 0.0], [ws, als]);
+        c.rotation("carrier", k, [wc * t, wc, 0.0], [ws, als]);
+        c.rotation("planet", k, [wp * t, wp, 0.0], [ws, als]);
+        let th_c = [wc * t, wc, 0.0];
+        let (pc, vc, ac) = on_circle(rs + rp, [0.0, 0.0], th_c);
+        c.point("carrier.pin", k, pc, vc, ac, [rs * ws, rs * als]);
+        c.pos("planet.x", k, pc[0]);
+        c.pos("planet.y", k, pc[1]);
+        // Planet pitch point: centre motion plus rotation about the centre.
+        let (pp, vp, ap) = on_circle(rp, [0.0, 0.0], [wp * t, wp, 0.0]);
+        c.point(
+            "planet.P",
+            k,
+            [pc[0] + pp[0], pc[1] + pp[1]],
+            [vc[0] + vp[0], vc[1] + vp[1]],
+            [ac[0] + ap[0], ac[1] + ap[1]],
+            [rs * ws, rs * als],
+        );
+        c.pos(&sun_planet, k, wc * t);
+        c.pos(&planet_ring, k, wc * t + PI);
+    }
+    c.report();
+}
+
+// ---------------------------------------------------------------------------
+// Every example is tested and documented
+// ---------------------------------------------------------------------------
+
+/// The examples this file runs: the names passed to `Check::new` in its
+/// source.
+fn tested_examples() -> Vec<String> {
+    let src = include_str!("examples.rs");
+    let key = concat!("Check::new", "(\"");
+    src.split(key)
+        .skip(1)
+        .filter_map(|s| s.split('"').next())
+        .map(str::to_string)
+        .collect()
+}
+
+/// Adding a model to `examples/` without a test here fails.
+#[test]
+fn every_example_has_a_test() {
+    let tested = tested_examples();
+    let mut untested = Vec::new();
+    let mut count = 0;
+    for entry in std::fs::read_dir(examples_dir()).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let Some(stem) = name.strip_suffix(".toml") else {
+            untested.push(format!("{name} (examples/ holds .toml model files only)"));
+            continue;
+        };
+        count += 1;
+        if !tested.iter().any(|t| t == stem) {
+            untested.push(name);
+        }
+    }
+    assert!(
+        untested.is_empty(),
+        "examples without a test in crates/camlink-model/tests/examples.rs: {untested:?}"
+    );
+    assert_eq!(count, tested.len(), "each example is tested once: {tested:?}");
+}
+
+/// Every example has a section in `docs/examples.md` naming its file.
+#[test]
+fn every_example_is_documented() {
+    let doc = std::fs::read_to_string(examples_dir().join("../docs/examples.md")).unwrap();
+    for name in tested_examples() {
+        assert!(
+            doc.contains(&format!("examples/{name}.toml")),
+            "docs/examples.md does not mention examples/{name}.toml"
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Regressions found while writing the examples
+// ---------------------------------------------------------------------------
+
+/// A gear pair whose centre line points along −x at the start (θ = π, the
+/// planet–ring pair of `planetary.toml`) must start where it was placed:
+/// the loader's default phase and the joint's initial centre-line angle
+/// have to agree on θ = π rather than −π, or the assembly turns the
+/// mechanism by half a turn to make up the 2π (Rr − Rp) of phase.
+#[test]
+fn issue_gear_centre_line_along_negative_x() {
+    let text = r#"
+        [ground]
+        points = { O = [0, 0], C = [0.05, 0] }
+        [[bodies]]
+        name = "big"
+        points = { C = [0, 0] }
+        [[bodies]]
+        name = "small"
+        position = [0.05, 0]
+        points = { C = [0, 0] }
+        [[joints]]
+        name = "big_shaft"
+        type = "revolute"
+        body_i = "ground"
+        point_i = "O"
+        body_j = "big"
+        point_j = "C"
+        [[joints]]
+        name = "small_shaft"
+        type = "revolute"
+        body_i = "ground"
+        point_i = "C"
+        body_j = "small"
+        point_j = "C"
+        # body i is the one on the right: the centre line from i to j is −x.
+        [[joints]]
+        name = "mesh"
+        type = "gear"
+        body_i = "small"
+        point_i = "C"
+        radius_i = 0.02
+        body_j = "big"
+        point_j = "C"
+        radius_j = 0.03
+        [[drivers]]
+        type = "absolute_phi"
+        body = "small"
+        f = "t"
+    "#;
+    let loaded =
+        camlink_model::load_str(text, camlink_model::Format::Toml, "gear.toml").unwrap();
+    let mut table = Table::default();
+    run(&loaded.model, &[0.0, 0.1], &Settings::default(), &[], &mut table).unwrap();
+    let big = table.channel("big.phi").unwrap();
+    assert!(big[0].abs() < 1e-12, "the big gear turned to {} at t = 0", big[0]);
+    // ω_big = −(R_small/R_big) ω_small.
+    assert!((big[1] + 0.1 * 0.02 / 0.03).abs() < 1e-12, "{}", big[1]);
+}
