@@ -228,7 +228,11 @@ fn rod_angle(th: [f64; 3], x: [f64; 3]) -> [f64; 3] {
     let udd = x[2] + r * (c * th[1] * th[1] + s * th[2]);
     let vd = -r * c * th[1];
     let vdd = r * (s * th[1] * th[1] - c * th[2]);
-    [v.atan2(u), (u * vd - v * ud) / (l * l), (u * vdd - v * udd) / (l * l)]
+    [
+        v.atan2(u),
+        (u * vd - v * ud) / (l * l),
+        (u * vdd - v * udd) / (l * l),
+    ]
 }
 
 /// Point [r cos θ, r sin θ] turning about the origin at θ̇, θ̈:
@@ -258,7 +262,11 @@ fn slider_crank() {
     for (k, t) in c.t().into_iter().enumerate() {
         let th = [th0 + w * t, w, 0.0];
         let (s, co) = th[0].sin_cos();
-        let sg = [r * s - e, r * co * th[1], r * (co * th[2] - s * th[1] * th[1])];
+        let sg = [
+            r * s - e,
+            r * co * th[1],
+            r * (co * th[2] - s * th[1] * th[1]),
+        ];
         let dd = (l * l - sg[0] * sg[0]).sqrt();
         let ddot = -sg[0] * sg[1] / dd;
         let dddot = -(sg[1] * sg[1] + sg[0] * sg[2] + ddot * ddot) / dd;
@@ -278,7 +286,14 @@ fn slider_crank() {
         c.rate("slider.ax", k, x[2], as_);
         c.rate("slider.vy", k, 0.0, vs);
         c.rate("slider.ay", k, 0.0, as_);
-        c.point("slider.B", k, [x[0], e], [x[1], 0.0], [x[2], 0.0], [vs, as_]);
+        c.point(
+            "slider.B",
+            k,
+            [x[0], e],
+            [x[1], 0.0],
+            [x[2], 0.0],
+            [vs, as_],
+        );
         let (pa, va, aa) = on_circle(r, [0.0, 0.0], th);
         c.point("crank.A", k, pa, va, aa, [vs, as_]);
         let psi = rod_angle(th, x);
@@ -301,7 +316,10 @@ fn slider_crank_slider_driven() {
     assert_eq!(point_of(&loaded, "rod", "A"), [-l / 2.0, 0.0]);
     assert_eq!(point_of(&loaded, "ground", "S"), [0.0, e]);
     // The stroke keeps clear of both dead centres, |K/(2rρ)| < 1.
-    let reach = (((l - r) * (l - r) - e * e).sqrt(), ((l + r) * (l + r) - e * e).sqrt());
+    let reach = (
+        ((l - r) * (l - r) - e * e).sqrt(),
+        ((l + r) * (l + r) - e * e).sqrt(),
+    );
     assert!(reach.0 + 0.01 < xm - s0 && xm + s0 < reach.1 - 0.01);
     for (k, t) in c.t().into_iter().enumerate() {
         let x = [
@@ -317,8 +335,9 @@ fn slider_crank_slider_driven() {
         let f_x = co - x[0] / r;
         let (f_thth, f_thx, f_xx) = (-x[0] * co - e * s, -s, -1.0 / r);
         let th1 = -f_x * x[1] / f_th;
-        let th2 = -(f_thth * th1 * th1 + 2.0 * f_thx * th1 * x[1] + f_xx * x[1] * x[1] + f_x * x[2])
-            / f_th;
+        let th2 =
+            -(f_thth * th1 * th1 + 2.0 * f_thx * th1 * x[1] + f_xx * x[1] * x[1] + f_x * x[2])
+                / f_th;
         let th = [th0, th1, th2];
         // Scales: s0 ω, s0 ω² for the slider; divided by r for the crank,
         // by l for the rod; the crank pin moves about as fast as the slider.
@@ -553,7 +572,11 @@ fn planetary() {
             .iter()
             .filter(|n| n.starts_with(&prefix))
             .collect();
-        assert_eq!(names.len(), 1, "one own coordinate for '{joint}': {names:?}");
+        assert_eq!(
+            names.len(),
+            1,
+            "one own coordinate for '{joint}': {names:?}"
+        );
         names[0].clone()
     };
     let (sun_planet, planet_ring) = (own(&c, "sun_planet"), own(&c, "planet_ring"));
@@ -623,7 +646,11 @@ fn every_example_has_a_test() {
         untested.is_empty(),
         "examples without a test in crates/camlink-model/tests/examples.rs: {untested:?}"
     );
-    assert_eq!(count, tested.len(), "each example is tested once: {tested:?}");
+    assert_eq!(
+        count,
+        tested.len(),
+        "each example is tested once: {tested:?}"
+    );
 }
 
 /// Every example has a section in `docs/examples.md` naming its file.
@@ -688,12 +715,22 @@ fn issue_gear_centre_line_along_negative_x() {
         body = "small"
         f = "t"
     "#;
-    let loaded =
-        camlink_model::load_str(text, camlink_model::Format::Toml, "gear.toml").unwrap();
+    let loaded = camlink_model::load_str(text, camlink_model::Format::Toml, "gear.toml").unwrap();
     let mut table = Table::default();
-    run(&loaded.model, &[0.0, 0.1], &Settings::default(), &[], &mut table).unwrap();
+    run(
+        &loaded.model,
+        &[0.0, 0.1],
+        &Settings::default(),
+        &[],
+        &mut table,
+    )
+    .unwrap();
     let big = table.channel("big.phi").unwrap();
-    assert!(big[0].abs() < 1e-12, "the big gear turned to {} at t = 0", big[0]);
+    assert!(
+        big[0].abs() < 1e-12,
+        "the big gear turned to {} at t = 0",
+        big[0]
+    );
     // ω_big = −(R_small/R_big) ω_small.
     assert!((big[1] + 0.1 * 0.02 / 0.03).abs() < 1e-12, "{}", big[1]);
 }
