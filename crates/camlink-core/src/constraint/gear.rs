@@ -125,7 +125,7 @@ impl Equations for Gear {
         let mut own = x.own;
         if d != [0.0, 0.0] {
             let theta = d[1].atan2(d[0]);
-            own[0] = theta + TAU * ((x.own[0] - theta) / TAU).round();
+            own[0] = theta + TAU * ((x.own[0] - theta) / TAU).round_ties_even();
         }
         own
     }
