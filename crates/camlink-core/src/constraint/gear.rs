@@ -117,6 +117,10 @@ impl Equations for Gear {
         1
     }
 
+    fn own_names(&self) -> &'static [&'static str] {
+        &["theta"]
+    }
+
     /// θ from the current centre line, on the branch θ + 2πk nearest the
     /// guess in `x.own[0]`, so θ stays continuous; the guess is kept when
     /// the centres coincide.
