@@ -11,6 +11,8 @@
 
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
+use crate::contact::Contacts;
+use crate::design::StepGuard;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
@@ -174,6 +176,7 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
             names.push(format!("{}.{n}", j.name));
         }
     }
+    names.extend(Contacts::new(model).channels(model));
     names
 }
 
@@ -181,6 +184,10 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
 ///
 /// Rows reach `sink` as each step completes, so a run that fails keeps every
 /// step before the failure.
+/// After each step the curve contacts are checked
+/// ([`StepGuard`](crate::design::StepGuard)): a contact that runs off an
+/// open curve, or reaches a part of a cam its follower cannot touch, stops
+/// the run.
 pub fn run(
     model: &Model,
     times: &[f64],
@@ -189,6 +196,7 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let mut solver = Solver::new(model, settings.clone())?;
+    let guard = StepGuard::new(model);
     let names = channels(model, points);
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
@@ -205,6 +213,7 @@ pub fn run(
             }
         }
         solver.step(t, prev_t)?;
+        guard.check(model, solver.assembly(), &solver.q, t)?;
         solver.outputs(points, &mut values);
         sink.row(t, &values);
         prev_t = Some(t);
@@ -224,6 +233,8 @@ pub struct Solver<'m> {
     pub qdd: Vec<f64>,
     rhs: Vec<f64>,
     pub summary: Summary,
+    /// Contact points and pressure angles of the curve-contact joints.
+    contacts: Contacts,
 }
 
 impl<'m> Solver<'m> {
@@ -267,6 +278,7 @@ impl<'m> Solver<'m> {
             q,
             asm,
             summary: Summary::default(),
+            contacts: Contacts::new(model),
         })
     }
 
@@ -511,6 +523,8 @@ impl<'m> Solver<'m> {
                 k += 1;
             }
         }
+        self.contacts
+            .fill(self.model, &self.asm, &self.q, &mut out[k..]);
     }
 
     /// (q, q̇, q̈) of one body; zeros for the ground.
