@@ -305,8 +305,14 @@ mod tests {
         assert!(close(pressure_angle([0.0, 1.0], [0.0, 1.0]), 0.0));
         assert!(close(pressure_angle([0.0, 1.0], [0.0, -2.0]), 0.0));
         assert!(close(pressure_angle([1.0, 0.0], [0.0, 1.0]), FRAC_PI_2));
-        assert!(close(pressure_angle([1.0, 1.0], [0.0, -1.0]), FRAC_PI_2 / 2.0));
-        assert!(close(pressure_angle([-1.0, 1.0], [0.0, 1.0]), FRAC_PI_2 / 2.0));
+        assert!(close(
+            pressure_angle([1.0, 1.0], [0.0, -1.0]),
+            FRAC_PI_2 / 2.0
+        ));
+        assert!(close(
+            pressure_angle([-1.0, 1.0], [0.0, 1.0]),
+            FRAC_PI_2 / 2.0
+        ));
         assert!(pressure_angle([0.0, 0.0], [0.0, 1.0]).is_nan());
     }
 }

@@ -321,7 +321,10 @@ pub fn orientation(c: &Curve) -> Option<f64> {
 fn max_curvature(c: &Curve) -> f64 {
     let (s0, s1) = c.range();
     (0..SAMPLES)
-        .map(|k| c.curvature(s0 + (s1 - s0) * k as f64 / SAMPLES as f64).abs())
+        .map(|k| {
+            c.curvature(s0 + (s1 - s0) * k as f64 / SAMPLES as f64)
+                .abs()
+        })
         .fold(0.0, f64::max)
 }
 
