@@ -70,8 +70,13 @@ impl fmt::Display for Finding {
 
 /// The design checks of every curve-contact joint of `model`.
 pub fn check(model: &Model) -> Vec<Finding> {
+    findings(model).into_iter().map(|(_, f)| f).collect()
+}
+
+/// The findings with the index of their joint.
+fn findings(model: &Model) -> Vec<(usize, Finding)> {
     let mut out = Vec::new();
-    for j in &model.joints {
+    for (k, j) in model.joints.iter().enumerate() {
         match &j.constraint {
             Constraint::FlatFollower(ff) => {
                 let Some(o) = orientation(&ff.curve_i) else {
@@ -80,16 +85,19 @@ pub fn check(model: &Model) -> Vec<Finding> {
                 let tol = FLAT * max_curvature(&ff.curve_i);
                 let r = ranges_where(&ff.curve_i, |s| o * ff.curve_i.curvature(s) < -tol);
                 if !r.is_empty() {
-                    out.push(Finding {
-                        severity: Severity::Warning,
-                        joint: j.name.clone(),
-                        message: format!(
-                            "the flat-faced follower's cam profile is concave for {}; \
-                             a flat face cannot touch it there (the run stops if the contact \
-                             gets there)",
-                            describe_ranges(&ff.curve_i, "α_i", &r)
-                        ),
-                    });
+                    out.push((
+                        k,
+                        Finding {
+                            severity: Severity::Warning,
+                            joint: j.name.clone(),
+                            message: format!(
+                                "the flat-faced follower's cam profile is concave for {}: \
+                             a flat face cannot touch it there, and leaves the profile at \
+                             the edges of these ranges",
+                                describe_ranges(&ff.curve_i, "α_i", &r)
+                            ),
+                        },
+                    ));
                 }
             }
             Constraint::CamFollower(cf) => {
@@ -113,18 +121,20 @@ pub fn check(model: &Model) -> Vec<Finding> {
                 if let Some((rho, at)) = min.filter(|m| m.0 < r) {
                     let bad = ranges_where(cam, |s| o * cam.curvature(s) < -1.0 / r);
                     let name = if which == 0 { "α_i" } else { "α_j" };
-                    out.push(Finding {
-                        severity: Severity::Warning,
-                        joint: j.name.clone(),
-                        message: format!(
-                            "the roller's radius {r} m exceeds the cam's smallest concave \
+                    out.push((
+                        k,
+                        Finding {
+                            severity: Severity::Warning,
+                            joint: j.name.clone(),
+                            message: format!(
+                                "the roller's radius {r} m exceeds the cam's smallest concave \
                              radius of curvature {rho:.6} m (at {name} = {}): the cam is \
-                             undercut for {}, where the roller cannot reach the profile \
-                             (the run stops if the contact gets there)",
-                            value(cam, at),
-                            describe_ranges(cam, name, &bad)
-                        ),
-                    });
+                             undercut for {}, where the roller cannot follow the profile",
+                                value(cam, at),
+                                describe_ranges(cam, name, &bad)
+                            ),
+                        },
+                    ));
                 }
             }
             _ => {}
@@ -157,6 +167,8 @@ struct Item {
 #[derive(Clone, Debug, Default)]
 pub struct StepGuard {
     items: Vec<Item>,
+    /// The design findings, to explain a failed step.
+    findings: Vec<(usize, Finding)>,
 }
 
 impl StepGuard {
@@ -203,7 +215,26 @@ impl StepGuard {
                 _ => {}
             }
         }
-        StepGuard { items }
+        StepGuard {
+            items,
+            findings: findings(model),
+        }
+    }
+
+    /// Adds to a failed step's error the design findings of the joints it
+    /// names: a follower that meets a concave part of its cam or an
+    /// undercut does not enter it, its contact equations lose their
+    /// solution at the edge, and Newton's method stops there.
+    pub fn explain(&self, model: &Model, mut e: AnalysisError) -> AnalysisError {
+        for (k, f) in &self.findings {
+            if e.joints.contains(&model.joints[*k].name) {
+                e.message.push_str(&format!(
+                    "; possible cause: joint '{}': {}",
+                    f.joint, f.message
+                ));
+            }
+        }
+        e
     }
 
     /// Checks the contacts at coordinates `q` (time `t`, s): an error names

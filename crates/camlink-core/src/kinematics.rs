@@ -187,7 +187,7 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
 /// After each step the curve contacts are checked
 /// ([`StepGuard`](crate::design::StepGuard)): a contact that runs off an
 /// open curve, or reaches a part of a cam its follower cannot touch, stops
-/// the run.
+/// the run; a failed step's error names the design findings of its joints.
 pub fn run(
     model: &Model,
     times: &[f64],
@@ -212,7 +212,9 @@ pub fn run(
                 });
             }
         }
-        solver.step(t, prev_t)?;
+        solver
+            .step(t, prev_t)
+            .map_err(|e| guard.explain(model, e))?;
         guard.check(model, solver.assembly(), &solver.q, t)?;
         solver.outputs(points, &mut values);
         sink.row(t, &values);
