@@ -593,3 +593,148 @@ fn every_cam_and_slot_example_has_a_test() {
         }
     }
 }
+
+/// A small cam model with `curves` and `joint` spliced in, loaded as
+/// `source`.
+fn cam_model(curves: &str, joint: &str, source: &str) -> Result<Loaded, String> {
+    let text = format!(
+        r#"
+[[bodies]]
+name = "cam"
+
+[[bodies]]
+name = "follower"
+position = [0, 2]
+
+{curves}
+
+[[joints]]
+type = "revolute"
+name = "pivot"
+body_i = "ground"
+body_j = "cam"
+
+{joint}
+"#
+    );
+    load_str(&text, Format::Toml, source).map_err(|e| e.to_string())
+}
+
+const ROLLER: &str =
+    "[[curves]]\nname = \"roller\"\nbody = \"follower\"\nsource = \"circle\"\nradius = 0.2";
+
+#[test]
+fn curve_errors_name_the_field() {
+    let e = cam_model(
+        &format!("{ROLLER}\n[[curves]]\nname = \"lobe\"\nbody = \"cam\"\nsource = \"circle\"\nradius = 1"),
+        "[[joints]]\ntype = \"cam_follower\"\ncurve_i = \"lobb\"\ncurve_j = \"roller\"",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("joints[1].curve_i: no curve named 'lobb' (did you mean 'lobe'?)"),
+        "{e}"
+    );
+
+    let e = cam_model(
+        "[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"expression\"\nrho = \"1\"\nx = \"s\"",
+        "",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(e.contains("curves[0].rho: give either `rho`"), "{e}");
+
+    let e = cam_model(
+        "[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"expression\"\nrho = \"0.5 + cos(a)\"",
+        "",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("curves[0]: curve 'c': the polar profile has ρ = "),
+        "{e}"
+    );
+
+    let e = cam_model(
+        "[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"expression\"\nrho = \"1 + cos(b)\"",
+        "",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(e.contains("curves[0].rho: invalid expression"), "{e}");
+    // The line and column of the faulty value come first.
+    assert!(e.starts_with("m.toml:13:7: "), "{e}");
+
+    let e = cam_model(
+        "[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"circle\"\nradius = 1\nstart = 0.3",
+        "",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("curves[0].start: `start` applies to a parametric circle"),
+        "{e}"
+    );
+
+    let e = cam_model(
+        "[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"circle\"\nradius = 1\nradus = 2",
+        "",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(e.contains("unknown field `radus`"), "{e}");
+}
+
+#[test]
+fn csv_errors_name_the_csv_file_and_line() {
+    let dir = std::env::temp_dir().join(format!("camlink_cam_csv_{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("data")).unwrap();
+    std::fs::write(dir.join("data/bad.csv"), "alpha,rho\n0,1\n1,1.1\n2 1.2 7\n").unwrap();
+    let source = dir.join("m.toml").display().to_string();
+    let spline = |file: &str| {
+        format!("[[curves]]\nname = \"c\"\nbody = \"cam\"\nsource = \"spline\"\nkind = \"polar\"\nfile = \"{file}\"")
+    };
+    let e = cam_model(&spline("data/bad.csv"), "", &source).unwrap_err();
+    assert!(
+        e.contains("curves[0].file: ") && e.contains("bad.csv:4: expected 2 columns"),
+        "{e}"
+    );
+    let e = cam_model(&spline("data/missing.csv"), "", &source).unwrap_err();
+    assert!(
+        e.contains("curves[0].file: ") && e.contains("missing.csv"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn curve_travel_needs_a_point_follower() {
+    let e = cam_model(
+        ROLLER,
+        "[[drivers]]\ntype = \"curve_travel\"\njoint = \"pivot\"\nf = \"t\"",
+        "m.toml",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("drivers[0].joint: joint 'pivot' is a revolute joint, but a curve_travel driver needs a point_follower joint"),
+        "{e}"
+    );
+}
+
+#[test]
+fn one_given_contact_parameter_seeds_the_other() {
+    // Cam circle about the origin (radius 1), roller of 0.2 centred at
+    // (0, 2) on the follower: α_i = π/2 on the cam is (0, 1), nearest to
+    // the roller's point straight below its centre, at α_j = 3π/2.
+    let l = cam_model(
+        &format!("{ROLLER}\n[[curves]]\nname = \"disc\"\nbody = \"cam\"\nsource = \"circle\"\nradius = 1"),
+        "[[joints]]\ntype = \"cam_follower\"\nname = \"c\"\ncurve_i = \"disc\"\ncurve_j = \"roller\"\nalpha_i = \"pi/2\"",
+        "m.toml",
+    )
+    .unwrap();
+    let own = l.model.joint("c").unwrap().own0.unwrap();
+    assert!(
+        (own[0] - PI / 2.0).abs() < 1e-15 && (own[1] - 1.5 * PI).abs() < 1e-9,
+        "{own:?}"
+    );
+}
