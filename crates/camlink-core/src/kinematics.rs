@@ -1,7 +1,8 @@
 //! Kinematic analysis of a fully driven model.
 //!
 //! At each time t_k:
-//! 1. predict q from the previous step, q ≈ q + h q̇ + h²/2 q̈;
+//! 1. predict q from the previous steps, q ≈ q + h q̇ + h²/2 q̈ + h³/6 q⃛,
+//!    with the jerk q⃛ estimated from the last two accelerations;
 //! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
 //!    Φ_q while it keeps converging fast, refreshing it when it does not;
 //! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ.
@@ -263,8 +264,12 @@ pub struct Solver<'m> {
     rhs: Vec<f64>,
     /// The predicted q of the current step.
     predicted: Vec<f64>,
+    /// q̈ of the step before the last, and the time from it to the last
+    /// step (s); `None` until two steps are solved.
+    qdd_prev: Vec<f64>,
+    h_prev: Option<f64>,
     /// The state at the start of a step, to retry it.
-    saved: [Vec<f64>; 3],
+    saved: [Vec<f64>; 4],
     /// True for angle coordinates (bodies' φ, joints' own coordinates).
     angles: Vec<bool>,
     /// A length that sizes the model (m), for the jump test.
@@ -315,7 +320,9 @@ impl<'m> Solver<'m> {
             qdd: vec![0.0; n],
             rhs: vec![0.0; n],
             predicted: vec![0.0; n],
-            saved: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            qdd_prev: vec![0.0; n],
+            h_prev: None,
+            saved: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
@@ -330,9 +337,14 @@ impl<'m> Solver<'m> {
     /// (up to [`MAX_HALVINGS`] times) where Newton fails or the solution
     /// jumps away from the prediction.
     pub fn advance(&mut self, prev: f64, t: f64, depth: u32) -> Result<(), AnalysisError> {
-        for (s, v) in self.saved.iter_mut().zip([&self.q, &self.qd, &self.qdd]) {
+        for (s, v) in self
+            .saved
+            .iter_mut()
+            .zip([&self.q, &self.qd, &self.qdd, &self.qdd_prev])
+        {
             s.copy_from_slice(v);
         }
+        let h_prev = self.h_prev;
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
             Some(what) => Err(self.failure(t, &what)),
             None => Ok(()),
@@ -344,6 +356,8 @@ impl<'m> Solver<'m> {
                 self.q.copy_from_slice(&self.saved[0]);
                 self.qd.copy_from_slice(&self.saved[1]);
                 self.qdd.copy_from_slice(&self.saved[2]);
+                self.qdd_prev.copy_from_slice(&self.saved[3]);
+                self.h_prev = h_prev;
                 self.jac.invalidate();
                 self.summary.halvings += 1;
                 let mid = 0.5 * (prev + t);
@@ -365,8 +379,11 @@ impl<'m> Solver<'m> {
         let mut jump = None;
         if let Some(p) = prev {
             let h = t - p;
+            // Taylor predictor; the jerk term once two accelerations are known.
+            let c3 = self.h_prev.map_or(0.0, |hp| h * h * h / (6.0 * hp));
             for k in 0..self.q.len() {
-                self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k];
+                let jerk = self.qdd[k] - self.qdd_prev[k];
+                self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k] + c3 * jerk;
             }
             self.predicted.copy_from_slice(&self.q);
             self.positions(t)?;
@@ -378,6 +395,8 @@ impl<'m> Solver<'m> {
 
         // Velocity and acceleration share one factorization at the solution.
         self.refactor(t)?;
+        self.qdd_prev.copy_from_slice(&self.qdd);
+        self.h_prev = prev.map(|p| t - p);
         self.asm.nu(self.model, &self.q, t, &mut self.qd);
         self.jac.solve(&mut self.qd);
         self.asm
@@ -515,7 +534,9 @@ impl<'m> Solver<'m> {
 
     /// Newton–Raphson on Φ(q, t) = 0 from the predicted q, reusing the last
     /// factorization of Φ_q while the residual falls fast and refreshing it
-    /// when it does not.
+    /// when it does not. Once max |Φ| ≤ tol, the correction that residual
+    /// gives is applied too, so positions are accurate well beyond what the
+    /// residual test alone guarantees.
     fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
         let mut last = f64::INFINITY;
         for it in 0..=self.settings.max_iter {
@@ -525,6 +546,14 @@ impl<'m> Solver<'m> {
                 return Err(self.failure(t, "the constraint equations are not finite numbers"));
             }
             if r <= self.settings.tol {
+                // Converged: still apply the correction this residual gives,
+                // which costs one solve and takes the error well below tol.
+                if self.jac.is_valid() {
+                    self.jac.solve(&mut self.rhs);
+                    for (q, d) in self.q.iter_mut().zip(&self.rhs) {
+                        *q -= d;
+                    }
+                }
                 return Ok(());
             }
             if it == self.settings.max_iter {
