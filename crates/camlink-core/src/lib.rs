@@ -18,5 +18,6 @@ pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
 pub mod assembly;
 pub mod diagnose;
+pub mod dynamics;
 pub mod kinematics;
 pub mod linsolve;

@@ -1,0 +1,21 @@
+//! Dynamics: applied forces, inverse dynamics and reactions, equilibrium and
+//! forward dynamics of the constrained equations of motion
+//!
+//! M(q) q̈ + Φ_qᵀ λ = Q(q, q̇, t),  Φ(q, t) = 0
+//!
+//! (Haug ch. 6; the theory and the sign conventions are in `docs/dynamics.md`).
+//!
+//! - [`mass`]: the mass matrix of a body whose centroid is anywhere in its
+//!   frame, gravity and the velocity-quadratic force;
+//! - [`force`]: point forces and torques, TSDA, RSDA, user callbacks;
+//! - [`system`]: assembly of M, Q and the augmented matrices;
+//! - [`reaction`]: joint reactions and driver efforts from λ;
+//! - [`inverse`]: inverse dynamics of a driven (zero-DOF) model;
+//! - [`statics`]: equilibrium;
+//! - [`integrator`]: forward dynamics, implicit index-3 generalized-α.
+
+pub mod force;
+pub mod mass;
+pub mod system;
+
+pub use force::{Applied, Force, ForceKind};
