@@ -11,11 +11,12 @@
 //! - [`system`]: assembly of M, Q and the augmented matrices;
 //! - [`reaction`]: joint reactions and driver efforts from λ;
 //! - [`inverse`]: inverse dynamics of a driven (zero-DOF) model;
-//! - [`statics`]: equilibrium;
-//! - [`integrator`]: forward dynamics, implicit index-3 generalized-α.
 
 pub mod force;
+pub mod inverse;
 pub mod mass;
+pub mod output;
+pub mod reaction;
 pub mod system;
 
 pub use force::{Applied, Force, ForceKind};

@@ -1,0 +1,99 @@
+//! Output channels of the dynamic analyses.
+//!
+//! After the kinematic channels of every body, point and own coordinate
+//! ([`crate::kinematics::channels`]):
+//! - per joint (not driver), the reaction on body i:
+//!   `<joint>.fx .fy .torque .fx_local .fy_local`, and on body j:
+//!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`
+//!   (see [`super::reaction`] for the conventions);
+//! - per driver: `<driver>.effort .power`;
+//! - `energy.kinetic`, `energy.potential` (gravity and springs) and
+//!   `energy.total` (J);
+//! - `constraint.residual`, max |Φ| (m or rad), and
+//!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
+
+use super::reaction::{effort, reactions};
+use super::system::System;
+use crate::model::Model;
+
+/// Names of the dynamic channels (after the kinematic ones).
+pub fn channels(model: &Model) -> Vec<String> {
+    let mut names = Vec::new();
+    for j in &model.joints {
+        if j.driver {
+            for c in ["effort", "power"] {
+                names.push(format!("{}.{c}", j.name));
+            }
+        } else {
+            for side in ["", "_j"] {
+                for c in ["fx", "fy", "torque", "fx_local", "fy_local"] {
+                    names.push(format!("{}.{c}{side}", j.name));
+                }
+            }
+        }
+    }
+    for c in [
+        "energy.kinetic",
+        "energy.potential",
+        "energy.total",
+        "constraint.residual",
+        "constraint.velocity",
+    ] {
+        names.push(c.to_string());
+    }
+    names
+}
+
+/// Scratch for [`fill`], allocated once.
+pub struct Scratch {
+    phi: Vec<f64>,
+    nu: Vec<f64>,
+}
+
+impl Scratch {
+    pub fn new(s: &System) -> Self {
+        Scratch {
+            phi: vec![0.0; s.m()],
+            nu: vec![0.0; s.m()],
+        }
+    }
+}
+
+/// Fills the dynamic channels at (q, q̇, λ, t).
+pub fn fill(s: &System, w: &mut Scratch, q: &[f64], qd: &[f64], lambda: &[f64], t: f64, out: &mut [f64]) {
+    let (model, asm) = (s.model, &s.asm);
+    s.asm.nu(model, q, t, &mut w.nu);
+    let mut k = 0;
+    for (j, joint) in model.joints.iter().enumerate() {
+        if joint.driver {
+            let r = asm.rows_of(model, j).start;
+            let (e, p) = effort(model, j, lambda[r], w.nu[r], t);
+            out[k] = e;
+            out[k + 1] = p;
+            k += 2;
+        } else {
+            for r in reactions(model, asm, j, q, lambda, t) {
+                out[k..k + 5].copy_from_slice(&[
+                    r.force[0],
+                    r.force[1],
+                    r.torque,
+                    r.force_local[0],
+                    r.force_local[1],
+                ]);
+                k += 5;
+            }
+        }
+    }
+    let kin = s.kinetic(q, qd);
+    let pot = s.potential(q, t);
+    // Drift: Φ and Φ_q q̇ − ν.
+    asm.phi(model, q, t, &mut w.phi);
+    let res = w.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for v in w.nu.iter_mut() {
+        *v = -*v;
+    }
+    let nu = &mut w.nu;
+    asm.jacobian(model, q, t, |r, c, v| nu[r] += v * qd[c]);
+    let vel = w.nu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    out[k..k + 5].copy_from_slice(&[kin, pot, kin + pot, res, vel]);
+}
