@@ -11,12 +11,15 @@
 //! - [`system`]: assembly of M, Q and the augmented matrices;
 //! - [`reaction`]: joint reactions and driver efforts from λ;
 //! - [`inverse`]: inverse dynamics of a driven (zero-DOF) model;
+//! - [`statics`]: equilibrium;
 
 pub mod force;
 pub mod inverse;
 pub mod mass;
 pub mod output;
+pub mod project;
 pub mod reaction;
+pub mod statics;
 pub mod system;
 
 pub use force::{Applied, Force, ForceKind};
