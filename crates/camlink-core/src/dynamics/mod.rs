@@ -12,8 +12,10 @@
 //! - [`reaction`]: joint reactions and driver efforts from λ;
 //! - [`inverse`]: inverse dynamics of a driven (zero-DOF) model;
 //! - [`statics`]: equilibrium;
+//! - [`integrator`]: forward dynamics, implicit index-3 generalized-α.
 
 pub mod force;
+pub mod integrator;
 pub mod inverse;
 pub mod mass;
 pub mod output;
