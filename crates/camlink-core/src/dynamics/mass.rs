@@ -94,6 +94,23 @@ impl Inertia {
         (dphi, domega)
     }
 
+    /// R = M q̈ − Q_g − Q_v, with one evaluation of sin φ and cos φ.
+    #[inline]
+    pub fn residual(&self, q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], g: V2) -> [f64; 3] {
+        let m = self.mass;
+        let (sn, cs) = q[2].sin_cos();
+        let c = self.centroid;
+        let a = [cs * c[0] - sn * c[1], sn * c[0] + cs * c[1]];
+        let b = [-a[1], a[0]];
+        let j = self.inertia + m * dot(c, c);
+        let w2 = qd[2] * qd[2];
+        [
+            m * (qdd[0] + b[0] * qdd[2] - g[0] - a[0] * w2),
+            m * (qdd[1] + b[1] * qdd[2] - g[1] - a[1] * w2),
+            m * (b[0] * (qdd[0] - g[0]) + b[1] * (qdd[1] - g[1])) + j * qdd[2],
+        ]
+    }
+
     /// Kinetic energy T = ½ q̇ᵀ M q̇ (J).
     #[inline]
     pub fn kinetic(&self, q: [f64; 3], qd: [f64; 3]) -> f64 {
@@ -154,6 +171,7 @@ mod tests {
             let lagrange = (pp[k] - pm[k]) / (2.0 * h) - dt_dq + dv_dq;
             let ours: f64 = (0..3).map(|c| mm[k][c] * qdd[c]).sum::<f64>() - loads[k];
             assert!((lagrange - ours).abs() < 1e-7, "row {k}: {lagrange} vs {ours}");
+            assert!((b.residual(q, qd, qdd, g)[k] - ours).abs() < 1e-12);
         }
     }
 

@@ -81,6 +81,11 @@ impl<'m> System<'m> {
             let l = inertia.loads(body(q, c), body(qd, c), g);
             out[c..c + 3].copy_from_slice(&l);
         }
+        self.add_applied(q, qd, t, 1.0, out);
+    }
+
+    /// `out += w Q_a`, the applied forces times w.
+    fn add_applied(&self, q: &[f64], qd: &[f64], t: f64, w: f64, out: &mut [f64]) {
         let mut qf = BodyQ::default();
         for (f, force) in self.model.forces.iter().enumerate() {
             let x = self.force_local(f, q, qd, t);
@@ -88,7 +93,7 @@ impl<'m> System<'m> {
             for (k, b) in force.kind.bodies().iter().enumerate() {
                 if let Some(c) = self.asm.body_col(b.0) {
                     for d in 0..3 {
-                        out[c + d] += qf[k][d];
+                        out[c + d] += w * qf[k][d];
                     }
                 }
             }
@@ -114,11 +119,13 @@ impl<'m> System<'m> {
     /// R = M q̈ − Q + Φ_qᵀλ, the residual of the equations of motion, into
     /// `out` (length n).
     pub fn residual(&self, q: &[f64], qd: &[f64], qdd: &[f64], lambda: &[f64], t: f64, out: &mut [f64]) {
-        self.forces(q, qd, t, out);
-        for v in out.iter_mut() {
-            *v = -*v;
+        out.fill(0.0);
+        let g = self.model.gravity;
+        for &(c, inertia) in &self.bodies {
+            let r = inertia.residual(body(q, c), body(qd, c), body(qdd, c), g);
+            out[c..c + 3].copy_from_slice(&r);
         }
-        self.add_mass_times(q, qdd, out);
+        self.add_applied(q, qd, t, -1.0, out);
         self.add_jt_lambda(q, t, lambda, out);
     }
 
