@@ -22,6 +22,8 @@ use crate::eval;
 use crate::file::*;
 use crate::AnalysisSpec;
 
+mod forces;
+
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
 pub(crate) struct Fail {
@@ -94,6 +96,9 @@ pub(crate) fn resolve(file: &ModelFile, default_name: &str) -> R<(Model, Analysi
     }
     for (k, d) in file.drivers.iter().enumerate() {
         cx.driver(d, k)?;
+    }
+    for (k, f) in file.forces.iter().enumerate() {
+        cx.force(f, k)?;
     }
     let analysis = cx.analysis(file.analysis.as_ref())?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
