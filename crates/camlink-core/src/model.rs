@@ -232,9 +232,9 @@ impl Model {
                     )));
                 }
             }
-            f.kind.validate().map_err(|e| {
-                ModelError::Invalid(format!("force '{}': {e}", f.name))
-            })?;
+            f.kind
+                .validate()
+                .map_err(|e| ModelError::Invalid(format!("force '{}': {e}", f.name)))?;
         }
         finite("gravity", &self.gravity)
     }

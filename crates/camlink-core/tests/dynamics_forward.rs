@@ -9,7 +9,9 @@ use camlink_core::dynamics::integrator::{run, Adaptive, Integrator, Settings};
 use camlink_core::dynamics::Force;
 use camlink_core::kinematics::{time_grid, Table};
 use camlink_core::{BodyId, Model, TimeFn};
-use mechanisms::{chain, pendulum, slider_crank, CRANK, CRANK_CENTROID, INERTIA, MASS, ROD, ROD_CENTROID};
+use mechanisms::{
+    chain, pendulum, slider_crank, CRANK, CRANK_CENTROID, INERTIA, MASS, ROD, ROD_CENTROID,
+};
 
 const G: f64 = 9.81;
 
@@ -102,7 +104,11 @@ impl J2 {
         J2(self.0 - o.0, self.1 - o.1, self.2 - o.2)
     }
     fn mul(self, o: J2) -> J2 {
-        J2(self.0 * o.0, self.1 * o.0 + self.0 * o.1, self.2 * o.0 + 2.0 * self.1 * o.1 + self.0 * o.2)
+        J2(
+            self.0 * o.0,
+            self.1 * o.0 + self.0 * o.1,
+            self.2 * o.0 + 2.0 * self.1 * o.1 + self.0 * o.2,
+        )
     }
     /// g(f) for g, g', g'' at f.
     fn chain(self, g: f64, g1: f64, g2: f64) -> J2 {
@@ -133,7 +139,12 @@ fn bodies(th: f64) -> [([J2; 2], J2); 3] {
     let (a, b) = (J2::c(CRANK), J2::c(ROD));
     // Crank: frame at O, φ = θ.
     let (c1, s1) = (t.cos(), t.sin());
-    let rot = |c: J2, s: J2, v: [f64; 2]| [c.mul(J2::c(v[0])).sub(s.mul(J2::c(v[1]))), s.mul(J2::c(v[0])).add(c.mul(J2::c(v[1])))];
+    let rot = |c: J2, s: J2, v: [f64; 2]| {
+        [
+            c.mul(J2::c(v[0])).sub(s.mul(J2::c(v[1]))),
+            s.mul(J2::c(v[0])).add(c.mul(J2::c(v[1]))),
+        ]
+    };
     let crank = rot(c1, s1, CRANK_CENTROID);
     // Rod: sin ψ = −a sin θ / b, from B = a (cos θ, sin θ).
     let psi = J2::c(0.0).sub(a.mul(s1).mul(J2::c(1.0 / ROD))).asin();

@@ -46,7 +46,10 @@ fn slider_crank_driver_torque_matches_power_balance() {
         let de = (energy[k + 1] - energy[k - 1]) / (2.0 * h);
         worst = worst.max((power[k] - de).abs());
     }
-    assert!(worst <= 1e-5 * peak, "power balance off by {worst} W (peak {peak} W)");
+    assert!(
+        worst <= 1e-5 * peak,
+        "power balance off by {worst} W (peak {peak} W)"
+    );
 }
 
 /// Two massless bars pinned to the ground at A and C and to each other at
@@ -59,7 +62,12 @@ fn truss_reactions_match_hand_statics() {
     let bar = |p: [f64; 2], q: [f64; 2]| {
         let d = [q[0] - p[0], q[1] - p[1]];
         let l = d[0].hypot(d[1]);
-        (l, [d[0] / l, d[1] / l], d[1].atan2(d[0]), [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])])
+        (
+            l,
+            [d[0] / l, d[1] / l],
+            d[1].atan2(d[0]),
+            [0.5 * (p[0] + q[0]), 0.5 * (p[1] + q[1])],
+        )
     };
     let (l1, e1, phi1, m1) = bar(a, b);
     let (l2, e2, phi2, m2) = bar(c, b);

@@ -20,11 +20,21 @@ fn pendulum_held_by_a_torque() {
     for at_pivot in [false, true] {
         let mut model = pendulum(l, mass, 0.02, 0.0, at_pivot);
         let bob = model.body_id("bob").unwrap();
-        model.add_force(Force::new("hold", Torque { body: bob, t: TimeFn::Const(torque) }));
+        model.add_force(Force::new(
+            "hold",
+            Torque {
+                body: bob,
+                t: TimeFn::Const(torque),
+            },
+        ));
         let mut table = Table::default();
         run(&model, 0.0, &Settings::default(), &[], &mut table).unwrap();
         let v = |n: &str| table.channel(n).unwrap()[0];
-        assert!((v("bob.phi") - want).abs() < 1e-10, "{} vs {want}", v("bob.phi"));
+        assert!(
+            (v("bob.phi") - want).abs() < 1e-10,
+            "{} vs {want}",
+            v("bob.phi")
+        );
         // The pivot holds the weight up; a revolute carries no torque.
         assert!(v("pivot.fx_j").abs() < 1e-9);
         assert!((v("pivot.fy_j") - mass * 9.81).abs() < 1e-9);
@@ -69,7 +79,11 @@ fn mass_on_a_spring() {
     run(&model, 0.0, &Settings::default(), &[], &mut table).unwrap();
     let v = |n: &str| table.channel(n).unwrap()[0];
     let want = -(l0 + mass * 9.81 / k);
-    assert!((v("block.y") - want).abs() < 1e-10, "{} vs {want}", v("block.y"));
+    assert!(
+        (v("block.y") - want).abs() < 1e-10,
+        "{} vs {want}",
+        v("block.y")
+    );
     assert!(v("slide.fy_j").abs() < 1e-9, "no force along the slide");
     assert!(v("slide.fx_j").abs() < 1e-9);
 }

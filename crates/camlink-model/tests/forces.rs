@@ -90,15 +90,29 @@ fn every_force_type_loads() {
 #[test]
 fn bad_forces_name_the_field() {
     let bad = MODEL.replace("stiffness = \"k\"", "stiffness = -1");
-    let e = load_str(&bad, Format::Toml, "f.toml").unwrap_err().to_string();
-    assert!(e.contains("forces[2].stiffness") && e.contains("≥ 0"), "{e}");
+    let e = load_str(&bad, Format::Toml, "f.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("forces[2].stiffness") && e.contains("≥ 0"),
+        "{e}"
+    );
     let bad = MODEL.replace("body = \"arm\"\ntorque", "body = \"amr\"\ntorque");
-    let e = load_str(&bad, Format::Toml, "f.toml").unwrap_err().to_string();
-    assert!(e.contains("forces[1].body") && e.contains("did you mean 'arm'"), "{e}");
+    let e = load_str(&bad, Format::Toml, "f.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("forces[1].body") && e.contains("did you mean 'arm'"),
+        "{e}"
+    );
     let bad = MODEL.replace("torque = 3", "torque = 3\nspeed = 1");
-    let e = load_str(&bad, Format::Toml, "f.toml").unwrap_err().to_string();
+    let e = load_str(&bad, Format::Toml, "f.toml")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("speed"), "{e}");
     let bad = MODEL.replace("name = \"spring\"", "name = \"push\"");
-    let e = load_str(&bad, Format::Toml, "f.toml").unwrap_err().to_string();
+    let e = load_str(&bad, Format::Toml, "f.toml")
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("duplicate force name 'push'"), "{e}");
 }

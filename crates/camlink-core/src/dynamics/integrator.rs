@@ -145,7 +145,11 @@ impl<'m> Integrator<'m> {
     }
 
     /// As [`new`](Self::new), starting at `t0`.
-    pub fn starting_at(model: &'m Model, settings: Settings, t0: f64) -> Result<Self, AnalysisError> {
+    pub fn starting_at(
+        model: &'m Model,
+        settings: Settings,
+        t0: f64,
+    ) -> Result<Self, AnalysisError> {
         let fail = |message: String, residual: f64| AnalysisError {
             time: t0,
             message,
@@ -153,7 +157,13 @@ impl<'m> Integrator<'m> {
             residual,
         };
         if !(settings.step.is_finite() && settings.step > 0.0) {
-            return Err(fail(format!("the time step must be a positive number, not {}", settings.step), 0.0));
+            return Err(fail(
+                format!(
+                    "the time step must be a positive number, not {}",
+                    settings.step
+                ),
+                0.0,
+            ));
         }
         let sys = System::new(model);
         let (n, m) = (sys.n(), sys.m());
@@ -161,7 +171,10 @@ impl<'m> Integrator<'m> {
             return Err(fail("the model has no moving bodies".into(), 0.0));
         }
         if m > n {
-            return Err(fail(format!("{n} coordinates but {m} equations: the model is over-constrained"), 0.0));
+            return Err(fail(
+                format!("{n} coordinates but {m} equations: the model is over-constrained"),
+                0.0,
+            ));
         }
         let mut q = sys.asm.initial_q(model);
         let mut qd = vec![0.0; n];
@@ -172,7 +185,8 @@ impl<'m> Integrator<'m> {
         let mut aug = Augmented::new(&sys, &q);
         project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
             .map_err(|e| fail(e.message, e.residual))?;
-        project::velocities(&sys, &mut aug, &q, &mut qd, t0).map_err(|e| fail(e.message, e.residual))?;
+        project::velocities(&sys, &mut aug, &q, &mut qd, t0)
+            .map_err(|e| fail(e.message, e.residual))?;
         let mut it = Integrator {
             c: Coeffs::new(settings.rho_inf),
             aug,
@@ -182,7 +196,13 @@ impl<'m> Integrator<'m> {
             lambda: vec![0.0; m],
             a: vec![0.0; n],
             h_factored: 0.0,
-            saved: [q.clone(), qd.clone(), vec![0.0; n], vec![0.0; m], vec![0.0; n]],
+            saved: [
+                q.clone(),
+                qd.clone(),
+                vec![0.0; n],
+                vec![0.0; m],
+                vec![0.0; n],
+            ],
             prev: [vec![0.0; n], vec![0.0; m]],
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
@@ -205,7 +225,11 @@ impl<'m> Integrator<'m> {
             scale: 1.0,
             ..Default::default()
         };
-        if self.aug.refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k).is_err() {
+        if self
+            .aug
+            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .is_err()
+        {
             return Err(self.error(
                 "the mass matrix is singular on the constraints: give every moving body \
                  a mass and an inertia, or constrain the massless ones",
@@ -213,7 +237,8 @@ impl<'m> Integrator<'m> {
         }
         self.h_factored = 0.0;
         s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
-        s.asm.gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
+        s.asm
+            .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
         self.aug.solve(&mut self.rhs);
         self.qdd.copy_from_slice(&self.rhs[..n]);
         self.lambda.copy_from_slice(&self.rhs[n..]);
@@ -280,7 +305,11 @@ impl<'m> Integrator<'m> {
         let s = 1.0 / bp;
         // Predictor: q̈ and λ extrapolated linearly from the last two steps
         // (held constant on the first); a_{n+1} and (q, q̇) follow.
-        let r = if self.h_prev > 0.0 { h / self.h_prev } else { 0.0 };
+        let r = if self.h_prev > 0.0 {
+            h / self.h_prev
+        } else {
+            0.0
+        };
         for k in 0..n {
             self.qdd[k] += r * (self.qdd[k] - self.prev[0][k]);
         }
@@ -289,7 +318,8 @@ impl<'m> Integrator<'m> {
         }
         for k in 0..n {
             let a0 = self.a[k];
-            let a1 = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k] - c.alpha_m * a0)
+            let a1 = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
+                - c.alpha_m * a0)
                 / (1.0 - c.alpha_m);
             self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
@@ -298,7 +328,14 @@ impl<'m> Integrator<'m> {
         for _ in 0..self.settings.max_iter {
             // r = [s R ; Φ].
             let sys = &self.sys;
-            sys.residual(&self.q, &self.qd, &self.qdd, &self.lambda, t1, &mut self.rhs[..n]);
+            sys.residual(
+                &self.q,
+                &self.qd,
+                &self.qdd,
+                &self.lambda,
+                t1,
+                &mut self.rhs[..n],
+            );
             for v in &mut self.rhs[..n] {
                 *v *= -s;
             }
@@ -387,7 +424,11 @@ impl<'m> Integrator<'m> {
             match self.settings.adaptive.clone() {
                 None => {
                     // Steps of h_max, the last one landing on t_end.
-                    let h = if left <= h_max * (1.0 + 1e-9) { left } else { h_max };
+                    let h = if left <= h_max * (1.0 + 1e-9) {
+                        left
+                    } else {
+                        h_max
+                    };
                     self.step(h)?;
                 }
                 Some(ad) => {
@@ -447,8 +488,22 @@ pub fn run(
             }
             it.advance_to(t, &mut h_next)?;
         }
-        output::kinematic(model, &it.sys.asm, [&it.q, &it.qd, &it.qdd], points, &mut values[..nk]);
-        output::fill(&it.sys, &mut scratch, &it.q, &it.qd, &it.lambda, it.t, &mut values[nk..]);
+        output::kinematic(
+            model,
+            &it.sys.asm,
+            [&it.q, &it.qd, &it.qdd],
+            points,
+            &mut values[..nk],
+        );
+        output::fill(
+            &it.sys,
+            &mut scratch,
+            &it.q,
+            &it.qd,
+            &it.lambda,
+            it.t,
+            &mut values[nk..],
+        );
         sink.row(t, &values);
     }
     Ok(it.summary.clone())

@@ -80,7 +80,13 @@ impl Inertia {
     /// The φ column of ∂R/∂q and the φ̇ column of ∂R/∂q̇, where
     /// R = M q̈ − Q_g − Q_v.
     #[inline]
-    pub fn derivatives(&self, q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], g: V2) -> ([f64; 3], [f64; 3]) {
+    pub fn derivatives(
+        &self,
+        q: [f64; 3],
+        qd: [f64; 3],
+        qdd: [f64; 3],
+        g: V2,
+    ) -> ([f64; 3], [f64; 3]) {
         let m = self.mass;
         let a = rot(q[2], self.centroid);
         let b = rot_d(q[2], self.centroid);
@@ -166,11 +172,16 @@ mod tests {
         for k in 0..3 {
             let mut e = [0.0; 3];
             e[k] = h;
-            let dt_dq = (b.kinetic(shift(q, e, 1.0), qd) - b.kinetic(shift(q, e, -1.0), qd)) / (2.0 * h);
-            let dv_dq = (b.potential(shift(q, e, 1.0), g) - b.potential(shift(q, e, -1.0), g)) / (2.0 * h);
+            let dt_dq =
+                (b.kinetic(shift(q, e, 1.0), qd) - b.kinetic(shift(q, e, -1.0), qd)) / (2.0 * h);
+            let dv_dq =
+                (b.potential(shift(q, e, 1.0), g) - b.potential(shift(q, e, -1.0), g)) / (2.0 * h);
             let lagrange = (pp[k] - pm[k]) / (2.0 * h) - dt_dq + dv_dq;
             let ours: f64 = (0..3).map(|c| mm[k][c] * qdd[c]).sum::<f64>() - loads[k];
-            assert!((lagrange - ours).abs() < 1e-7, "row {k}: {lagrange} vs {ours}");
+            assert!(
+                (lagrange - ours).abs() < 1e-7,
+                "row {k}: {lagrange} vs {ours}"
+            );
             assert!((b.residual(q, qd, qdd, g)[k] - ours).abs() < 1e-12);
         }
     }

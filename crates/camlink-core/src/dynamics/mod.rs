@@ -5,14 +5,16 @@
 //!
 //! (Haug ch. 6; the theory and the sign conventions are in `docs/dynamics.md`).
 //!
-//! - [`mass`]: the mass matrix of a body whose centroid is anywhere in its
-//!   frame, gravity and the velocity-quadratic force;
-//! - [`force`]: point forces and torques, TSDA, RSDA, user callbacks;
-//! - [`system`]: assembly of M, Q and the augmented matrices;
-//! - [`reaction`]: joint reactions and driver efforts from λ;
-//! - [`inverse`]: inverse dynamics of a driven (zero-DOF) model;
-//! - [`statics`]: equilibrium;
-//! - [`integrator`]: forward dynamics, implicit index-3 generalized-α.
+//! - the mass matrix of a body whose centroid is anywhere in its frame,
+//!   gravity and the velocity-quadratic force, in [`mass`];
+//! - point forces and torques, TSDA, RSDA, user callbacks, in [`force`];
+//! - assembly of M, Q and the augmented matrices, in [`system`];
+//! - consistent initial conditions, in [`project`];
+//! - joint reactions and driver efforts from λ, in [`reaction`], and the
+//!   output channels, in [`output`];
+//! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
+//! - equilibrium, in [`statics`];
+//! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
 
 pub mod force;
 pub mod integrator;

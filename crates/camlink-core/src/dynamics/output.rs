@@ -63,7 +63,15 @@ impl Scratch {
 }
 
 /// Fills the dynamic channels at (q, q̇, λ, t).
-pub fn fill(s: &System, w: &mut Scratch, q: &[f64], qd: &[f64], lambda: &[f64], t: f64, out: &mut [f64]) {
+pub fn fill(
+    s: &System,
+    w: &mut Scratch,
+    q: &[f64],
+    qd: &[f64],
+    lambda: &[f64],
+    t: f64,
+    out: &mut [f64],
+) {
     let (model, asm) = (s.model, &s.asm);
     s.asm.nu(model, q, t, &mut w.nu);
     let mut k = 0;

@@ -66,7 +66,8 @@ pub fn positions(
         }
         aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
             .map_err(|_| ProjectionError {
-                message: "the constraint Jacobian is rank deficient (redundant or locked joints)".into(),
+                message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
+                    .into(),
                 residual: r,
             })?;
         rhs[..n].fill(0.0);
@@ -77,7 +78,11 @@ pub fn positions(
         let big = (0..n)
             .filter(|&k| angles[k])
             .fold(0.0f64, |a, k| a.max(rhs[k].abs()));
-        let mut step = if big > MAX_ANGLE_STEP { MAX_ANGLE_STEP / big } else { 1.0 };
+        let mut step = if big > MAX_ANGLE_STEP {
+            MAX_ANGLE_STEP / big
+        } else {
+            1.0
+        };
         // Backtrack until ‖Φ‖₂ decreases.
         let r2 = norm2(&phi);
         loop {
@@ -102,12 +107,19 @@ pub fn positions(
 }
 
 /// Projects `qd` onto Φ_q q̇ = ν at a consistent `q`.
-pub fn velocities(s: &System, aug: &mut Augmented, q: &[f64], qd: &mut [f64], t: f64) -> Result<(), ProjectionError> {
+pub fn velocities(
+    s: &System,
+    aug: &mut Augmented,
+    q: &[f64],
+    qd: &mut [f64],
+    t: f64,
+) -> Result<(), ProjectionError> {
     let (n, m) = (s.n(), s.m());
     let zeros = vec![0.0; n];
     aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
         .map_err(|_| ProjectionError {
-            message: "the constraint Jacobian is rank deficient (redundant or locked joints)".into(),
+            message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
+                .into(),
             residual: 0.0,
         })?;
     let mut rhs = vec![0.0; n + m];

@@ -74,7 +74,14 @@ pub fn joint_points(c: &Constraint, x: &Local) -> [V2; 2] {
 
 /// The reactions of joint `j` on its bodies i and j at q, from its
 /// multipliers in the full λ.
-pub fn reactions(model: &Model, asm: &Assembly, j: usize, q: &[f64], lambda: &[f64], t: f64) -> [Reaction; 2] {
+pub fn reactions(
+    model: &Model,
+    asm: &Assembly,
+    j: usize,
+    q: &[f64],
+    lambda: &[f64],
+    t: f64,
+) -> [Reaction; 2] {
     let c = &model.joints[j].constraint;
     let x = asm.local(model, j, q, &[], t);
     let mut jac = Jac::default();
@@ -86,8 +93,8 @@ pub fn reactions(model: &Model, asm: &Assembly, j: usize, q: &[f64], lambda: &[f
         // Q_b = −Φ_{q_b}ᵀ λ.
         let mut g = [0.0; 3];
         for (r, &l) in lam.iter().enumerate() {
-            for d in 0..3 {
-                g[d] -= jac.body[b][r][d] * l;
+            for (gd, jd) in g.iter_mut().zip(jac.body[b][r]) {
+                *gd -= jd * l;
             }
         }
         let f = [g[0], g[1]];

@@ -73,8 +73,20 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     let mut rhs = vec![0.0; n + m];
     s.forces(&q, &zeros, t, &mut qf);
     rhs[..n].copy_from_slice(&qf);
-    aug.refactor(&s, &q, &zeros, &zeros, None, t, Coefficients { identity: 1.0, scale: 1.0, ..Default::default() })
-        .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
+    aug.refactor(
+        &s,
+        &q,
+        &zeros,
+        &zeros,
+        None,
+        t,
+        Coefficients {
+            identity: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        },
+    )
+    .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
     aug.solve(&mut rhs);
     let mut lambda = rhs[n..].to_vec();
 
@@ -128,8 +140,14 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         }
         let r2 = norm2(&res);
         aug.solve(&mut res);
-        let big = (0..n).filter(|&k| angles[k]).fold(0.0f64, |a, k| a.max(res[k].abs()));
-        let mut step = if big > MAX_ANGLE_STEP { MAX_ANGLE_STEP / big } else { 1.0 };
+        let big = (0..n)
+            .filter(|&k| angles[k])
+            .fold(0.0f64, |a, k| a.max(res[k].abs()));
+        let mut step = if big > MAX_ANGLE_STEP {
+            MAX_ANGLE_STEP / big
+        } else {
+            1.0
+        };
         let mut trial = vec![0.0; n + m];
         loop {
             for k in 0..n {
@@ -167,9 +185,23 @@ pub fn run(
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let zeros = vec![0.0; s.n()];
-    output::kinematic(model, &s.asm, [&e.q, &zeros, &zeros], points, &mut values[..nk]);
+    output::kinematic(
+        model,
+        &s.asm,
+        [&e.q, &zeros, &zeros],
+        points,
+        &mut values[..nk],
+    );
     let mut scratch = Scratch::new(&s);
-    output::fill(&s, &mut scratch, &e.q, &zeros, &e.lambda, t, &mut values[nk..]);
+    output::fill(
+        &s,
+        &mut scratch,
+        &e.q,
+        &zeros,
+        &e.lambda,
+        t,
+        &mut values[nk..],
+    );
     sink.row(t, &values);
     Ok(Summary {
         steps: 1,

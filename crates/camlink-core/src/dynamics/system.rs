@@ -118,7 +118,15 @@ impl<'m> System<'m> {
 
     /// R = M q̈ − Q + Φ_qᵀλ, the residual of the equations of motion, into
     /// `out` (length n).
-    pub fn residual(&self, q: &[f64], qd: &[f64], qdd: &[f64], lambda: &[f64], t: f64, out: &mut [f64]) {
+    pub fn residual(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        lambda: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) {
         out.fill(0.0);
         let g = self.model.gravity;
         for &(c, inertia) in &self.bodies {
@@ -189,12 +197,16 @@ pub struct Augmented {
     force_slots: Vec<[[Option<[usize; 9]>; 2]; 2]>,
     /// Per joint: its local coordinates (local index, global column) and
     /// the slots of the L × L coupling block, row-major.
-    joint_slots: Vec<(Vec<(usize, usize)>, Vec<usize>)>,
+    joint_slots: Vec<JointSlots>,
     /// Slots (lower Φ_q, upper Φ_qᵀ) of each Jacobian entry, in fill order.
     jac_slots: Vec<(usize, usize)>,
     /// Scratch for (Φ_qᵀλ)_q.
     jac: [Jac; 2],
 }
+
+/// A joint's local coordinates (local index, global column) and the slots
+/// of its coupling block.
+type JointSlots = (Vec<(usize, usize)>, Vec<usize>);
 
 /// Local coordinate index k of a joint: 0–2 body i, 3–5 body j, 6+ own.
 const OWN0: usize = 6;
@@ -219,7 +231,11 @@ impl Augmented {
             }
             b
         };
-        let body_slots: Vec<[usize; 9]> = s.bodies.iter().map(|&(c, _)| block(&mut slot, c, c)).collect();
+        let body_slots: Vec<[usize; 9]> = s
+            .bodies
+            .iter()
+            .map(|&(c, _)| block(&mut slot, c, c))
+            .collect();
         let mut own_slots = Vec::new();
         for j in 0..s.model.joints.len() {
             let o = s.asm.own_col(j);
@@ -321,7 +337,8 @@ impl Augmented {
                 for col in 0..3 {
                     self.vals[slots[3 * r + col]] += k.scale * k.mass * mm[r][col];
                 }
-                self.vals[slots[3 * r + 2]] += k.scale * (k.stiffness * dphi[r] + k.damping * domega[r]);
+                self.vals[slots[3 * r + 2]] +=
+                    k.scale * (k.stiffness * dphi[r] + k.damping * domega[r]);
                 self.vals[slots[3 * r + r]] += k.identity;
             }
         }
@@ -339,7 +356,8 @@ impl Augmented {
                         for r in 0..3 {
                             for col in 0..3 {
                                 self.vals[slots[3 * r + col]] -= k.scale
-                                    * (k.stiffness * dq[a][b][r][col] + k.damping * dqd[a][b][r][col]);
+                                    * (k.stiffness * dq[a][b][r][col]
+                                        + k.damping * dqd[a][b][r][col]);
                             }
                         }
                     }
@@ -380,7 +398,11 @@ impl Augmented {
         for (kb, &(kk, _)) in local.iter().enumerate() {
             for (sign, jac) in [(1.0, 0), (-1.0, 1)] {
                 let mut x = x0;
-                let v = if kk < OWN0 { &mut x.q[kk / 3][kk % 3] } else { &mut x.own[kk - OWN0] };
+                let v = if kk < OWN0 {
+                    &mut x.q[kk / 3][kk % 3]
+                } else {
+                    &mut x.own[kk - OWN0]
+                };
                 *v += sign * h;
                 c.jacobian(&x, &mut self.jac[jac]);
             }
@@ -388,7 +410,10 @@ impl Augmented {
                 let mut d = 0.0;
                 for (r, &lr) in lam.iter().enumerate() {
                     let (p, m) = if k < OWN0 {
-                        (self.jac[0].body[k / 3][r][k % 3], self.jac[1].body[k / 3][r][k % 3])
+                        (
+                            self.jac[0].body[k / 3][r][k % 3],
+                            self.jac[1].body[k / 3][r][k % 3],
+                        )
                     } else {
                         (self.jac[0].own[r][k - OWN0], self.jac[1].own[r][k - OWN0])
                     };

@@ -54,7 +54,13 @@ pub fn slider_crank(th0: f64, omega: f64, driver: bool) -> Model {
     let bx = a * th0.cos();
     let by = a * th0.sin();
     let mut m = Model::new("slider-crank");
-    let mut crank = body("crank", [0.0, 0.0, th0], MASS[0], INERTIA[0], CRANK_CENTROID);
+    let mut crank = body(
+        "crank",
+        [0.0, 0.0, th0],
+        MASS[0],
+        INERTIA[0],
+        CRANK_CENTROID,
+    );
     crank.qd0 = [0.0, 0.0, omega];
     let crank = m.add_body(crank);
     let rod = m.add_body(body(
@@ -64,7 +70,13 @@ pub fn slider_crank(th0: f64, omega: f64, driver: bool) -> Model {
         INERTIA[1],
         ROD_CENTROID,
     ));
-    let slider = m.add_body(body("slider", [xc, 0.0, 0.0], MASS[2], INERTIA[2], [0.0, 0.0]));
+    let slider = m.add_body(body(
+        "slider",
+        [xc, 0.0, 0.0],
+        MASS[2],
+        INERTIA[2],
+        [0.0, 0.0],
+    ));
     let g = BodyId::GROUND;
     m.add_joint("O", rev(g, [0.0, 0.0], crank, [0.0, 0.0]));
     m.add_joint("B", rev(crank, [a, 0.0], rod, [-b / 2.0, 0.0]));
@@ -124,7 +136,11 @@ pub fn chain(n: usize, l: f64) -> Model {
             },
         ];
         let id = m.add_body(b);
-        let sp = if prev.is_ground() { [0.0, 0.0] } else { [l / 2.0, 0.0] };
+        let sp = if prev.is_ground() {
+            [0.0, 0.0]
+        } else {
+            [l / 2.0, 0.0]
+        };
         m.add_joint(format!("J{k}"), rev(prev, sp, id, [-l / 2.0, 0.0]));
         prev = id;
     }
@@ -141,7 +157,13 @@ pub fn pendulum(l: f64, mass: f64, inertia: f64, th0: f64, frame_at_pivot: bool)
     let b = if frame_at_pivot {
         body("bob", [0.0, 0.0, th0], mass, inertia, [0.0, -l])
     } else {
-        body("bob", [l * th0.sin(), -l * th0.cos(), th0], mass, inertia, [0.0, 0.0])
+        body(
+            "bob",
+            [l * th0.sin(), -l * th0.cos(), th0],
+            mass,
+            inertia,
+            [0.0, 0.0],
+        )
     };
     let id = m.add_body(b);
     let s = if frame_at_pivot { [0.0, 0.0] } else { [0.0, l] };

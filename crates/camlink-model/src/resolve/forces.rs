@@ -35,12 +35,18 @@ impl Ctx {
                     f,
                     local: *local,
                 };
-                (self.force_name(name.as_ref(), format!("point_force_{k}"), p)?, kind.into())
+                (
+                    self.force_name(name.as_ref(), format!("point_force_{k}"), p)?,
+                    kind.into(),
+                )
             }
             ForceSpec::Torque { name, body, torque } => {
                 let b = self.body(body, &format!("{p}.body"))?;
                 let t = self.time_fn(torque, &format!("{p}.torque"))?;
-                (self.force_name(name.as_ref(), format!("torque_{k}"), p)?, Torque { body: b, t }.into())
+                (
+                    self.force_name(name.as_ref(), format!("torque_{k}"), p)?,
+                    Torque { body: b, t }.into(),
+                )
             }
             ForceSpec::Tsda {
                 name,
@@ -64,12 +70,23 @@ impl Ctx {
                     s_i,
                     body_j: bj,
                     s_j,
-                    stiffness: self.non_negative(stiffness.as_ref(), 0.0, &format!("{p}.stiffness"))?,
-                    free_length: self.non_negative(free_length.as_ref(), l0, &format!("{p}.free_length"))?,
+                    stiffness: self.non_negative(
+                        stiffness.as_ref(),
+                        0.0,
+                        &format!("{p}.stiffness"),
+                    )?,
+                    free_length: self.non_negative(
+                        free_length.as_ref(),
+                        l0,
+                        &format!("{p}.free_length"),
+                    )?,
                     damping: self.non_negative(damping.as_ref(), 0.0, &format!("{p}.damping"))?,
                     actuator: self.opt_time_fn(actuator.as_ref(), &format!("{p}.actuator"))?,
                 };
-                (self.force_name(name.as_ref(), format!("tsda_{k}"), p)?, kind.into())
+                (
+                    self.force_name(name.as_ref(), format!("tsda_{k}"), p)?,
+                    kind.into(),
+                )
             }
             ForceSpec::Rsda {
                 name,
@@ -89,12 +106,19 @@ impl Ctx {
                 let kind = Rsda {
                     body_i: bi,
                     body_j: bj,
-                    stiffness: self.non_negative(stiffness.as_ref(), 0.0, &format!("{p}.stiffness"))?,
+                    stiffness: self.non_negative(
+                        stiffness.as_ref(),
+                        0.0,
+                        &format!("{p}.stiffness"),
+                    )?,
                     free_angle: self.opt(free_angle.as_ref(), th0, &format!("{p}.free_angle"))?,
                     damping: self.non_negative(damping.as_ref(), 0.0, &format!("{p}.damping"))?,
                     actuator: self.opt_time_fn(actuator.as_ref(), &format!("{p}.actuator"))?,
                 };
-                (self.force_name(name.as_ref(), format!("rsda_{k}"), p)?, kind.into())
+                (
+                    self.force_name(name.as_ref(), format!("rsda_{k}"), p)?,
+                    kind.into(),
+                )
             }
         };
         self.model.add_force(Force { name, kind });
@@ -106,7 +130,10 @@ impl Ctx {
         let name = given.cloned().unwrap_or(default);
         check_name(&name, "force", &format!("{path}.name"))?;
         if self.model.forces.iter().any(|f| f.name == name) {
-            return fail(format!("{path}.name"), format!("duplicate force name '{name}'"));
+            return fail(
+                format!("{path}.name"),
+                format!("duplicate force name '{name}'"),
+            );
         }
         Ok(name)
     }

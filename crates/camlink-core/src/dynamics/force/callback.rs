@@ -22,7 +22,9 @@ pub struct Callback {
 
 impl std::fmt::Debug for Callback {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Callback").field("body", &self.body).finish()
+        f.debug_struct("Callback")
+            .field("body", &self.body)
+            .finish()
     }
 }
 

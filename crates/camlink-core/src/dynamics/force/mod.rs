@@ -126,14 +126,19 @@ pub type ForceFn = Arc<dyn Fn(f64, [f64; 3], [f64; 3]) -> [f64; 3] + Send + Sync
 /// Finite-difference checks of `generalized` against `derivatives`, shared
 /// by the force kinds' tests.
 #[cfg(test)]
+#[allow(clippy::needless_range_loop)]
 pub(crate) mod check {
     use super::*;
 
     /// A deterministic state with both bodies moving.
     pub fn state(seed: u64) -> Local {
-        let mut s = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        let mut s = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         let mut r = || {
-            s = s.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
         };
         let mut x = Local {

@@ -117,7 +117,10 @@ impl Applied for Tsda {
         let u = scale(1.0 / l, d);
         // P = I − u uᵀ, H = (f/l) P + k u uᵀ + (c/l) u (P ḋ)ᵀ.
         let p = |r: usize, s: usize| (r == s) as u8 as f64 - u[r] * u[s];
-        let pdd = [p(0, 0) * dd[0] + p(0, 1) * dd[1], p(1, 0) * dd[0] + p(1, 1) * dd[1]];
+        let pdd = [
+            p(0, 0) * dd[0] + p(0, 1) * dd[1],
+            p(1, 0) * dd[0] + p(1, 1) * dd[1],
+        ];
         let h = |r: usize, s: usize| f / l * p(r, s) + k * u[r] * u[s] + c / l * u[r] * pdd[s];
         let sigma = [-1.0, 1.0];
         // G_b = [I  B_b s'_b] as columns (x, y, φ), each a 2-vector.
