@@ -20,5 +20,6 @@ pub mod assembly;
 pub mod contact;
 pub mod design;
 pub mod diagnose;
+pub mod dynamics;
 pub mod kinematics;
 pub mod linsolve;

@@ -7,6 +7,7 @@
 use std::collections::HashMap;
 
 use crate::constraint::{Constraint, Equations, MAX_OWN};
+use crate::dynamics::force::{Applied, Force};
 use crate::math::V2;
 
 /// Index of a body in [`Model::bodies`]; body 0 is the ground.
@@ -84,6 +85,8 @@ pub struct Model {
     pub joints: Vec<Joint>,
     /// Gravity vector g (m/s²) in the global frame.
     pub gravity: V2,
+    /// Applied forces: point forces and torques, springs, dampers, actuators.
+    pub forces: Vec<Force>,
 }
 
 /// Why a model is not valid.
@@ -95,6 +98,8 @@ pub enum ModelError {
     DuplicatePoint { body: String, point: String },
     #[error("duplicate joint name '{0}'")]
     DuplicateJoint(String),
+    #[error("duplicate force name '{0}'")]
+    DuplicateForce(String),
     #[error("joint '{joint}' refers to body number {body}, which does not exist")]
     NoSuchBody { joint: String, body: usize },
     #[error("joint '{0}' joins a body to itself")]
@@ -113,7 +118,13 @@ impl Model {
             bodies: vec![Body::new("ground", [0.0; 3])],
             joints: Vec::new(),
             gravity: [0.0, -9.81],
+            forces: Vec::new(),
         }
+    }
+
+    /// Adds an applied force.
+    pub fn add_force(&mut self, force: Force) {
+        self.forces.push(force);
     }
 
     /// Adds a body and returns its id.
@@ -207,6 +218,23 @@ impl Model {
             if let Some(o) = &j.own0 {
                 finite(&format!("joint '{}' starting parameters", j.name), o)?;
             }
+        }
+        let mut forces = HashMap::new();
+        for f in &self.forces {
+            if forces.insert(f.name.as_str(), ()).is_some() {
+                return Err(ModelError::DuplicateForce(f.name.clone()));
+            }
+            for b in f.kind.bodies() {
+                if b.0 >= self.bodies.len() {
+                    return Err(ModelError::Invalid(format!(
+                        "force '{}' refers to body number {}, which does not exist",
+                        f.name, b.0
+                    )));
+                }
+            }
+            f.kind
+                .validate()
+                .map_err(|e| ModelError::Invalid(format!("force '{}': {e}", f.name)))?;
         }
         finite("gravity", &self.gravity)
     }

@@ -14,6 +14,9 @@ use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 
+mod forces;
+pub use forces::ForceSpec;
+
 /// A number, or a string holding an expression.
 ///
 /// In a constant field the expression may use the file's parameters, `pi`
@@ -182,6 +185,9 @@ pub struct ModelFile {
     /// Driving constraints: a coordinate as a function of time.
     #[serde(default)]
     pub drivers: Vec<DriverSpec>,
+    /// Applied forces: point forces, torques, springs, dampers, actuators.
+    #[serde(default)]
+    pub forces: Vec<ForceSpec>,
     /// What to compute and output.
     #[serde(default)]
     pub analysis: Option<AnalysisSection>,

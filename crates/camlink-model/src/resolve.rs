@@ -24,6 +24,7 @@ use crate::file::*;
 use crate::AnalysisSpec;
 
 mod curves;
+mod forces;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
@@ -111,6 +112,9 @@ pub(crate) fn resolve(
     }
     for (k, d) in file.drivers.iter().enumerate() {
         cx.driver(d, k)?;
+    }
+    for (k, f) in file.forces.iter().enumerate() {
+        cx.force(f, k)?;
     }
     let analysis = cx.analysis(file.analysis.as_ref())?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;

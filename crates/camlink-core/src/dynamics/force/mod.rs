@@ -1,0 +1,215 @@
+//! Applied forces and their generalized forces Q.
+//!
+//! A force acts on one or two bodies, i and j (a single-body force has the
+//! ground as j). It sees the same [`Local`] view as a constraint and writes
+//! per-body blocks; only the dynamics assembly knows global indices.
+//!
+//! The generalized force on body k, Q_k = (F_x, F_y, n), is the virtual-work
+//! conjugate of q_k = (x, y, φ): a force F (N, global frame) at body point P
+//! (s'_P in the body frame) and a torque T (N·m) give
+//!
+//! Q_k = [F ; (B_k s'_P)ᵀ F + T],
+//!
+//! so n is the moment about the body-frame origin, (B s')ᵀF = (A s') × F.
+//!
+//! For the implicit integrator and the equilibrium solver every force also
+//! gives its derivatives ∂Q/∂q and ∂Q/∂q̇ as per-body 3 × 3 blocks, and a
+//! conservative force its potential energy V (J), so that energy can be
+//! reported.
+//!
+//! Adding a force kind is one new file and one line in [`forces!`].
+
+use std::sync::Arc;
+
+use crate::constraint::Local;
+use crate::model::BodyId;
+
+pub mod callback;
+pub mod point;
+pub mod rsda;
+pub mod tsda;
+
+/// Generalized forces (F_x, F_y, n) on bodies i and j (N, N, N·m).
+pub type BodyQ = [[f64; 3]; 2];
+
+/// Derivative blocks: `d[a][b][r][c]` = ∂Q_a,r / ∂q_b,c for bodies a, b ∈ {i, j}.
+pub type BodyJac = [[[[f64; 3]; 3]; 2]; 2];
+
+/// The equations of one applied force.
+pub trait Applied {
+    /// Short kind name, e.g. `"tsda"`.
+    fn kind(&self) -> &'static str;
+    /// The bodies i and j the force acts on (j is the ground for a
+    /// single-body force).
+    fn bodies(&self) -> [BodyId; 2];
+    /// Checks the force's numbers (the model's validation calls it).
+    fn validate(&self) -> Result<(), String> {
+        Ok(())
+    }
+    /// Q_i and Q_j at the local state (every entry of `out` is written).
+    fn generalized(&self, x: &Local, out: &mut BodyQ);
+    /// ∂Q/∂q into `dq` and ∂Q/∂q̇ into `dqd` (every entry is written).
+    fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac);
+    /// Potential energy V (J) of a conservative part; 0 otherwise.
+    fn potential(&self, _x: &Local) -> f64 {
+        0.0
+    }
+}
+
+/// A named applied force.
+#[derive(Clone, Debug)]
+pub struct Force {
+    pub name: String,
+    pub kind: ForceKind,
+}
+
+impl Force {
+    pub fn new(name: impl Into<String>, kind: impl Into<ForceKind>) -> Self {
+        Force {
+            name: name.into(),
+            kind: kind.into(),
+        }
+    }
+}
+
+/// Declares [`ForceKind`] and dispatches [`Applied`] statically.
+macro_rules! forces {
+    ($($variant:ident($ty:ty)),* $(,)?) => {
+        /// Every applied force camlink knows.
+        #[derive(Clone, Debug)]
+        pub enum ForceKind {
+            $($variant($ty),)*
+        }
+
+        $(impl From<$ty> for ForceKind {
+            fn from(c: $ty) -> Self {
+                ForceKind::$variant(c)
+            }
+        })*
+
+        impl Applied for ForceKind {
+            fn kind(&self) -> &'static str {
+                match self { $(ForceKind::$variant(c) => c.kind(),)* }
+            }
+            fn bodies(&self) -> [BodyId; 2] {
+                match self { $(ForceKind::$variant(c) => c.bodies(),)* }
+            }
+            fn validate(&self) -> Result<(), String> {
+                match self { $(ForceKind::$variant(c) => c.validate(),)* }
+            }
+            #[inline]
+            fn generalized(&self, x: &Local, out: &mut BodyQ) {
+                match self { $(ForceKind::$variant(c) => c.generalized(x, out),)* }
+            }
+            #[inline]
+            fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
+                match self { $(ForceKind::$variant(c) => c.derivatives(x, dq, dqd),)* }
+            }
+            fn potential(&self, x: &Local) -> f64 {
+                match self { $(ForceKind::$variant(c) => c.potential(x),)* }
+            }
+        }
+    };
+}
+
+forces! {
+    PointForce(point::PointForce),
+    Torque(point::Torque),
+    Tsda(tsda::Tsda),
+    Rsda(rsda::Rsda),
+    Callback(callback::Callback),
+}
+
+/// A shared user function, for [`callback::Callback`].
+pub type ForceFn = Arc<dyn Fn(f64, [f64; 3], [f64; 3]) -> [f64; 3] + Send + Sync>;
+
+/// Finite-difference checks of `generalized` against `derivatives`, shared
+/// by the force kinds' tests.
+#[cfg(test)]
+#[allow(clippy::needless_range_loop)]
+pub(crate) mod check {
+    use super::*;
+
+    /// A deterministic state with both bodies moving.
+    pub fn state(seed: u64) -> Local {
+        let mut s = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        let mut r = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((s >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let mut x = Local {
+            t: 0.3 + 0.5 * r(),
+            ..Local::default()
+        };
+        for k in 0..2 {
+            for c in 0..3 {
+                x.q[k][c] = r();
+                x.qd[k][c] = r();
+            }
+        }
+        x
+    }
+
+    /// Compares ∂Q/∂q and ∂Q/∂q̇ with central differences of Q, and −∂V/∂q
+    /// with the conservative part `q_cons` when given.
+    pub fn derivatives<F: Applied>(f: &F, x: &Local) {
+        let mut dq = BodyJac::default();
+        let mut dqd = BodyJac::default();
+        f.derivatives(x, &mut dq, &mut dqd);
+        let h = 1e-6;
+        for b in 0..2 {
+            for c in 0..3 {
+                for vel in [false, true] {
+                    let (mut xp, mut xm) = (*x, *x);
+                    if vel {
+                        xp.qd[b][c] += h;
+                        xm.qd[b][c] -= h;
+                    } else {
+                        xp.q[b][c] += h;
+                        xm.q[b][c] -= h;
+                    }
+                    let (mut qp, mut qm) = (BodyQ::default(), BodyQ::default());
+                    f.generalized(&xp, &mut qp);
+                    f.generalized(&xm, &mut qm);
+                    for a in 0..2 {
+                        for r in 0..3 {
+                            let fd = (qp[a][r] - qm[a][r]) / (2.0 * h);
+                            let an = if vel { dqd[a][b][r][c] } else { dq[a][b][r][c] };
+                            assert!(
+                                (fd - an).abs() <= 1e-6 * (1.0 + fd.abs()),
+                                "{}: d Q[{a}][{r}] / d {}[{b}][{c}]: analytic {an}, numeric {fd}",
+                                f.kind(),
+                                if vel { "qd" } else { "q" }
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Checks Q = −∂V/∂q for a force with no velocity or time dependence.
+    pub fn potential<F: Applied>(f: &F, x: &Local) {
+        let mut q = BodyQ::default();
+        f.generalized(x, &mut q);
+        let h = 1e-6;
+        for b in 0..2 {
+            for c in 0..3 {
+                let (mut xp, mut xm) = (*x, *x);
+                xp.q[b][c] += h;
+                xm.q[b][c] -= h;
+                let fd = -(f.potential(&xp) - f.potential(&xm)) / (2.0 * h);
+                assert!(
+                    (fd - q[b][c]).abs() <= 1e-6 * (1.0 + fd.abs()),
+                    "{}: Q[{b}][{c}] = {} but -dV/dq = {fd}",
+                    f.kind(),
+                    q[b][c]
+                );
+            }
+        }
+    }
+}

@@ -1,0 +1,510 @@
+//! Forward dynamics: the implicit index-3 generalized-α method
+//! (Chung & Hulbert 1993; Arnold & Brüls 2007) with Newton's method on the
+//! discretised equations.
+//!
+//! The equations M(q) q̈ + Φ_qᵀλ = Q(q, q̇, t), Φ(q, t) = 0 are enforced at
+//! every t_{n+1} = t_n + h. The pseudo-acceleration a carries the numerical
+//! damping:
+//!
+//! (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) q̈_{n+1} + α_f q̈_n,
+//! q_{n+1} = q_n + h q̇_n + h² (½ − β) a_n + h² β a_{n+1},
+//! q̇_{n+1} = q̇_n + h (1 − γ) a_n + h γ a_{n+1},
+//!
+//! with, for a spectral radius at infinity ρ∞ ∈ [0, 1] (1: no numerical
+//! damping, 0: the most), α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1),
+//! γ = ½ + α_f − α_m, β = ¼ (γ + ½)². Second-order accurate in q and q̇.
+//!
+//! Newton unknowns are q̈_{n+1} and λ_{n+1}; a change Δq of positions goes
+//! with Δq̇ = γ' Δq and Δq̈ = β' Δq, β' = (1 − α_m)/(β h² (1 − α_f)),
+//! γ' = γ/(β h). The iteration matrix is the augmented matrix
+//!
+//! [ s (β' M + γ' ∂R/∂q̇ + ∂R/∂q)  Φ_qᵀ ; Φ_q  0 ],  s = 1/β',
+//!
+//! whose first block row is the equations of motion scaled by s (so that
+//! both block rows are O(1) for small h, Bottasso et al. 2007) and whose
+//! unknowns are (Δq, s Δλ). ∂R/∂q includes the constraint curvature
+//! (Φ_qᵀλ)_q and the derivatives of gravity, springs and dampers, so stiff
+//! springs converge. The factorization is kept from step to step and
+//! refreshed only when Newton converges slowly (chord iterations).
+//!
+//! Initial conditions are made consistent: positions and velocities
+//! projected onto Φ = 0 and Φ_q q̇ = ν ([`super::project`]), then q̈₀ and λ₀
+//! from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], and a₀ = q̈₀.
+//!
+//! The error-controlled mode estimates the local error of a step as
+//! h² |β − 1/6| |q̈_{n+1} − q̈_n| per coordinate, the leading term of the
+//! Newmark truncation error (with q̈ for a, whose parasitic oscillation
+//! after a change of step would trigger needless rejections), rejects steps whose weighted norm exceeds 1 and
+//! changes h by (1/err)^{1/3}.
+
+use super::output::{self, Scratch};
+use super::project::{self, max_abs};
+use super::system::{Augmented, Coefficients, System};
+use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
+use crate::model::Model;
+
+/// Error control of the variable-step mode: the weighted local error
+/// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Adaptive {
+    /// Absolute tolerance (m or rad).
+    pub atol: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Smallest step allowed (s).
+    pub h_min: f64,
+}
+
+/// Integrator settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// Time step h (s); the largest step in the error-controlled mode.
+    pub step: f64,
+    /// Spectral radius at infinity ρ∞ ∈ [0, 1].
+    pub rho_inf: f64,
+    /// Newton stops when the last corrections of positions and of
+    /// velocities, max |Δq| and max |Δq̇| = γ' max |Δq|, are both ≤ tol
+    /// (m or rad; m/s or rad/s).
+    pub tol: f64,
+    /// Newton iterations per step.
+    pub max_iter: usize,
+    /// Tolerance of the initial position projection (m or rad).
+    pub projection_tol: f64,
+    /// `Some` for the error-controlled mode.
+    pub adaptive: Option<Adaptive>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            step: 1e-3,
+            rho_inf: 0.8,
+            tol: 1e-6,
+            max_iter: 12,
+            projection_tol: 1e-12,
+            adaptive: None,
+        }
+    }
+}
+
+/// The method's coefficients for ρ∞.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coeffs {
+    pub alpha_m: f64,
+    pub alpha_f: f64,
+    pub beta: f64,
+    pub gamma: f64,
+}
+
+impl Coeffs {
+    pub fn new(rho_inf: f64) -> Self {
+        let r = rho_inf.clamp(0.0, 1.0);
+        let alpha_m = (2.0 * r - 1.0) / (r + 1.0);
+        let alpha_f = r / (r + 1.0);
+        let gamma = 0.5 + alpha_f - alpha_m;
+        Coeffs {
+            alpha_m,
+            alpha_f,
+            beta: 0.25 * (gamma + 0.5) * (gamma + 0.5),
+            gamma,
+        }
+    }
+}
+
+/// The state and scratch of a forward-dynamics run; allocated once.
+pub struct Integrator<'m> {
+    pub sys: System<'m>,
+    aug: Augmented,
+    settings: Settings,
+    c: Coeffs,
+    /// Time t (s) and the state there.
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    /// The pseudo-acceleration a.
+    a: Vec<f64>,
+    /// The step h the factorization was made for (0: none).
+    h_factored: f64,
+    /// Start-of-step copies (q, q̇, q̈, λ, a), to retry a step.
+    saved: [Vec<f64>; 5],
+    /// q̈ and λ of the step before, and its length (0: none), for the predictor.
+    prev: [Vec<f64>; 2],
+    h_prev: f64,
+    rhs: Vec<f64>,
+    pub summary: Summary,
+    /// Steps rejected by the error control.
+    pub rejected: usize,
+}
+
+impl<'m> Integrator<'m> {
+    /// Lays the model out and makes the initial conditions consistent at t = 0.
+    pub fn new(model: &'m Model, settings: Settings) -> Result<Self, AnalysisError> {
+        Self::starting_at(model, settings, 0.0)
+    }
+
+    /// As [`new`](Self::new), starting at `t0`.
+    pub fn starting_at(
+        model: &'m Model,
+        settings: Settings,
+        t0: f64,
+    ) -> Result<Self, AnalysisError> {
+        let fail = |message: String, residual: f64| AnalysisError {
+            time: t0,
+            message,
+            joints: Vec::new(),
+            residual,
+        };
+        if !(settings.step.is_finite() && settings.step > 0.0) {
+            return Err(fail(
+                format!(
+                    "the time step must be a positive number, not {}",
+                    settings.step
+                ),
+                0.0,
+            ));
+        }
+        let sys = System::new(model);
+        let (n, m) = (sys.n(), sys.m());
+        if n == 0 {
+            return Err(fail("the model has no moving bodies".into(), 0.0));
+        }
+        if m > n {
+            return Err(fail(
+                format!("{n} coordinates but {m} equations: the model is over-constrained"),
+                0.0,
+            ));
+        }
+        let mut q = sys.asm.initial_q(model);
+        let mut qd = vec![0.0; n];
+        for (id, b) in model.moving_bodies() {
+            let c = sys.asm.body_col(id.0).expect("moving body");
+            qd[c..c + 3].copy_from_slice(&b.qd0);
+        }
+        let mut aug = Augmented::new(&sys, &q);
+        project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
+            .map_err(|e| fail(e.message, e.residual))?;
+        project::velocities(&sys, &mut aug, &q, &mut qd, t0)
+            .map_err(|e| fail(e.message, e.residual))?;
+        let mut it = Integrator {
+            c: Coeffs::new(settings.rho_inf),
+            aug,
+            settings,
+            t: t0,
+            qdd: vec![0.0; n],
+            lambda: vec![0.0; m],
+            a: vec![0.0; n],
+            h_factored: 0.0,
+            saved: [
+                q.clone(),
+                qd.clone(),
+                vec![0.0; n],
+                vec![0.0; m],
+                vec![0.0; n],
+            ],
+            prev: [vec![0.0; n], vec![0.0; m]],
+            h_prev: 0.0,
+            rhs: vec![0.0; n + m],
+            q,
+            qd,
+            sys,
+            summary: Summary::default(),
+            rejected: 0,
+        };
+        it.accelerations()?;
+        it.a.copy_from_slice(&it.qdd);
+        Ok(it)
+    }
+
+    /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
+    pub fn accelerations(&mut self) -> Result<(), AnalysisError> {
+        let (n, s) = (self.sys.n(), &self.sys);
+        let k = Coefficients {
+            mass: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        if self
+            .aug
+            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .is_err()
+        {
+            return Err(self.error(
+                "the mass matrix is singular on the constraints: give every moving body \
+                 a mass and an inertia, or constrain the massless ones",
+            ));
+        }
+        self.h_factored = 0.0;
+        s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
+        s.asm
+            .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
+        self.aug.solve(&mut self.rhs);
+        self.qdd.copy_from_slice(&self.rhs[..n]);
+        self.lambda.copy_from_slice(&self.rhs[n..]);
+        Ok(())
+    }
+
+    fn error(&self, what: &str) -> AnalysisError {
+        let mut phi = vec![0.0; self.sys.m()];
+        self.sys.asm.phi(self.sys.model, &self.q, self.t, &mut phi);
+        AnalysisError {
+            time: self.t,
+            message: what.to_string(),
+            joints: Vec::new(),
+            residual: max_abs(&phi),
+        }
+    }
+
+    /// Advances one step of size `h`; the state is unchanged on failure.
+    pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        self.save();
+        if self.try_step(h, false)? {
+            return Ok(());
+        }
+        // Slow convergence with an old matrix: retry from the constant
+        // predictor with a fresh matrix each iteration.
+        self.restore();
+        self.h_prev = 0.0;
+        if self.try_step(h, true)? {
+            return Ok(());
+        }
+        self.restore();
+        Err(self.error(&format!(
+            "Newton did not converge in {} iterations at step {h:.3e} s \
+             (a stiffer problem needs a smaller step)",
+            self.settings.max_iter
+        )))
+    }
+
+    fn save(&mut self) {
+        let [q, qd, qdd, l, a] = &mut self.saved;
+        q.copy_from_slice(&self.q);
+        qd.copy_from_slice(&self.qd);
+        qdd.copy_from_slice(&self.qdd);
+        l.copy_from_slice(&self.lambda);
+        a.copy_from_slice(&self.a);
+    }
+
+    fn restore(&mut self) {
+        let [q, qd, qdd, l, a] = &self.saved;
+        self.q.copy_from_slice(q);
+        self.qd.copy_from_slice(qd);
+        self.qdd.copy_from_slice(qdd);
+        self.lambda.copy_from_slice(l);
+        self.a.copy_from_slice(a);
+    }
+
+    /// One step; Ok(false) when Newton did not converge.
+    fn try_step(&mut self, h: f64, fresh: bool) -> Result<bool, AnalysisError> {
+        let c = self.c;
+        let n = self.sys.n();
+        let t1 = self.t + h;
+        let bp = (1.0 - c.alpha_m) / (c.beta * h * h * (1.0 - c.alpha_f));
+        let gp = c.gamma / (c.beta * h);
+        let s = 1.0 / bp;
+        // Predictor: q̈ and λ extrapolated linearly from the last two steps
+        // (held constant on the first); a_{n+1} and (q, q̇) follow.
+        let r = if self.h_prev > 0.0 {
+            h / self.h_prev
+        } else {
+            0.0
+        };
+        for k in 0..n {
+            self.qdd[k] += r * (self.qdd[k] - self.prev[0][k]);
+        }
+        for k in 0..self.lambda.len() {
+            self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]);
+        }
+        for k in 0..n {
+            let a0 = self.a[k];
+            let a1 = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
+                - c.alpha_m * a0)
+                / (1.0 - c.alpha_m);
+            self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
+            self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
+        }
+        let mut last = f64::INFINITY;
+        for _ in 0..self.settings.max_iter {
+            // r = [s R ; Φ].
+            let sys = &self.sys;
+            sys.residual(
+                &self.q,
+                &self.qd,
+                &self.qdd,
+                &self.lambda,
+                t1,
+                &mut self.rhs[..n],
+            );
+            for v in &mut self.rhs[..n] {
+                *v *= -s;
+            }
+            sys.asm.phi(sys.model, &self.q, t1, &mut self.rhs[n..]);
+            for v in &mut self.rhs[n..] {
+                *v = -*v;
+            }
+            // The factorization serves steps within rounding of its own.
+            let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
+            if fresh || !self.aug.is_valid() || !same_h {
+                let k = Coefficients {
+                    mass: bp,
+                    damping: gp,
+                    stiffness: 1.0,
+                    identity: 0.0,
+                    scale: s,
+                };
+                if self
+                    .aug
+                    .refactor(sys, &self.q, &self.qd, &self.qdd, Some(&self.lambda), t1, k)
+                    .is_err()
+                {
+                    self.h_factored = 0.0;
+                    return Err(self.error("the Newton iteration matrix is singular"));
+                }
+                self.h_factored = h;
+                self.summary.factorizations += 1;
+            }
+            self.aug.solve(&mut self.rhs);
+            self.summary.newton_iterations += 1;
+            let mut dmax = 0.0f64;
+            for k in 0..n {
+                let d = self.rhs[k];
+                self.q[k] += d;
+                self.qd[k] += gp * d;
+                self.qdd[k] += bp * d;
+                dmax = dmax.max(d.abs());
+            }
+            for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
+                *l += d / s;
+            }
+            if !dmax.is_finite() {
+                return Ok(false);
+            }
+            if dmax * gp.max(1.0) <= self.settings.tol {
+                // a_{n+1} from the converged q̈_{n+1}.
+                for k in 0..n {
+                    self.a[k] = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
+                        - c.alpha_m * self.a[k])
+                        / (1.0 - c.alpha_m);
+                }
+                self.prev[0].copy_from_slice(&self.saved[2]);
+                self.prev[1].copy_from_slice(&self.saved[3]);
+                self.h_prev = h;
+                self.t = t1;
+                self.summary.steps += 1;
+                return Ok(true);
+            }
+            // Chord iterations that stall get a fresh matrix.
+            if dmax > 0.25 * last {
+                self.aug.invalidate();
+            }
+            last = dmax;
+        }
+        self.aug.invalidate();
+        Ok(false)
+    }
+
+    /// The weighted local error estimate of the last step (≤ 1 to accept).
+    fn local_error(&self, h: f64, ad: &Adaptive) -> f64 {
+        let w = h * h * (self.c.beta - 1.0 / 6.0).abs();
+        let mut e = 0.0f64;
+        for k in 0..self.q.len() {
+            let d = w * (self.qdd[k] - self.saved[2][k]);
+            e = e.max(d.abs() / (ad.atol + ad.rtol * self.q[k].abs()));
+        }
+        e
+    }
+
+    /// Advances to `t_end`: fixed steps of `settings.step` (the last one
+    /// shortened to land on `t_end`), or error-controlled steps.
+    pub fn advance_to(&mut self, t_end: f64, h_next: &mut f64) -> Result<(), AnalysisError> {
+        let h_max = self.settings.step;
+        while t_end - self.t > 1e-12 * h_max.max(t_end.abs()) {
+            let left = t_end - self.t;
+            match self.settings.adaptive.clone() {
+                None => {
+                    // Steps of h_max, the last one landing on t_end.
+                    let h = if left <= h_max * (1.0 + 1e-9) {
+                        left
+                    } else {
+                        h_max
+                    };
+                    self.step(h)?;
+                }
+                Some(ad) => {
+                    let h = h_next.min(h_max).min(left);
+                    self.step(h)?;
+                    let err = self.local_error(h, &ad);
+                    let factor = (0.9 * err.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 2.0);
+                    if err > 1.0 && h > ad.h_min {
+                        self.restore();
+                        self.h_prev = 0.0;
+                        self.t -= h;
+                        self.summary.steps -= 1;
+                        self.rejected += 1;
+                        *h_next = (h * factor).max(ad.h_min);
+                        continue;
+                    }
+                    if h < left {
+                        *h_next = (h * factor).max(ad.h_min);
+                    }
+                }
+            }
+        }
+        self.t = t_end.max(self.t);
+        Ok(())
+    }
+}
+
+/// Forward dynamics with output at `times` (increasing; the first is the
+/// start time): the kinematic channels, then reactions, driver efforts,
+/// energy and drift ([`super::output`]). Rows reach `sink` as each output
+/// time is reached, so a run that fails keeps everything before.
+pub fn run(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let t0 = times.first().copied().unwrap_or(0.0);
+    let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
+    let mut names = kinematics::channels(model, points);
+    let nk = names.len();
+    names.extend(output::channels(model));
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let mut scratch = Scratch::new(&it.sys);
+    let mut h_next = settings.step;
+    for (k, &t) in times.iter().enumerate() {
+        if k > 0 {
+            if t <= times[k - 1] || t.is_nan() {
+                return Err(AnalysisError {
+                    time: t,
+                    message: format!("times must increase, but {t} follows {}", times[k - 1]),
+                    joints: Vec::new(),
+                    residual: 0.0,
+                });
+            }
+            it.advance_to(t, &mut h_next)?;
+        }
+        output::kinematic(
+            model,
+            &it.sys.asm,
+            [&it.q, &it.qd, &it.qdd],
+            points,
+            &mut values[..nk],
+        );
+        output::fill(
+            &it.sys,
+            &mut scratch,
+            &it.q,
+            &it.qd,
+            &it.lambda,
+            it.t,
+            &mut values[nk..],
+        );
+        sink.row(t, &values);
+    }
+    Ok(it.summary.clone())
+}

@@ -1,0 +1,133 @@
+//! Inverse dynamics of a kinematically driven model (zero degrees of
+//! freedom): the forces that make the prescribed motion happen.
+//!
+//! At each time t_k, kinematic analysis gives q, q̇, q̈
+//! ([`crate::kinematics::Solver`]); with as many equations as coordinates
+//! Φ_q is square, and the equations of motion give the multipliers from
+//!
+//! Φ_qᵀ λ = Q(q, q̇, t) − M(q) q̈,
+//!
+//! one solve with the transposed Jacobian (Haug §6.5). Joint reactions and
+//! driver efforts follow from λ ([`super::reaction`]).
+
+use super::output::{self, Scratch};
+use super::system::System;
+use crate::kinematics::{self, AnalysisError, PointOutput, Settings, Sink, Summary};
+use crate::linsolve::SystemMatrix;
+use crate::model::Model;
+
+/// The state and scratch of an inverse-dynamics run; allocated once.
+pub struct InverseSolver<'m> {
+    pub kin: kinematics::Solver<'m>,
+    pub sys: System<'m>,
+    /// Φ_qᵀ and its factorization.
+    jt: SystemMatrix,
+    /// λ at the last step (one per equation, in assembly order).
+    pub lambda: Vec<f64>,
+    rhs: Vec<f64>,
+}
+
+impl<'m> InverseSolver<'m> {
+    /// Checks that the model is fully driven and lays it out.
+    pub fn new(model: &'m Model, settings: Settings) -> Result<Self, AnalysisError> {
+        let kin = kinematics::Solver::new(model, settings)?;
+        let sys = System::new(model);
+        let mut pattern = Vec::new();
+        sys.asm
+            .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
+        let n = sys.n();
+        Ok(InverseSolver {
+            jt: SystemMatrix::new(n, &pattern),
+            lambda: vec![0.0; n],
+            rhs: vec![0.0; n],
+            kin,
+            sys,
+        })
+    }
+
+    /// Kinematics at `t`, then λ.
+    pub fn step(&mut self, t: f64, prev: Option<f64>) -> Result<(), AnalysisError> {
+        self.kin.step(t, prev)?;
+        let (q, qd, qdd) = (&self.kin.q, &self.kin.qd, &self.kin.qdd);
+        // Φ_qᵀ λ = Q − M q̈.
+        self.sys.forces(q, qd, t, &mut self.rhs);
+        for v in self.rhs.iter_mut() {
+            *v = -*v;
+        }
+        self.sys.add_mass_times(q, qdd, &mut self.rhs);
+        for v in self.rhs.iter_mut() {
+            *v = -*v;
+        }
+        let jt = &mut self.jt;
+        let mut k = 0;
+        self.sys.asm.jacobian(self.sys.model, q, t, |r, c, v| {
+            jt.put(k, c, r, v);
+            k += 1;
+        });
+        if self.jt.factor().is_err() {
+            return Err(AnalysisError {
+                time: t,
+                message: "the constraint Jacobian is singular: reactions are not determined".into(),
+                joints: Vec::new(),
+                residual: 0.0,
+            });
+        }
+        self.lambda.copy_from_slice(&self.rhs);
+        self.jt.solve(&mut self.lambda);
+        if self.lambda.iter().any(|v| !v.is_finite()) {
+            return Err(AnalysisError {
+                time: t,
+                message: "the Lagrange multipliers are not finite numbers".into(),
+                joints: Vec::new(),
+                residual: 0.0,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Inverse dynamics over `times`: the kinematic channels, then reactions,
+/// efforts and energy ([`super::output`]). Rows reach `sink` as each step
+/// completes.
+pub fn run(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let mut s = InverseSolver::new(model, settings.clone())?;
+    let mut names = kinematics::channels(model, points);
+    let nk = names.len();
+    names.extend(output::channels(model));
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let mut scratch = Scratch::new(&s.sys);
+    let mut prev: Option<f64> = None;
+    for &t in times {
+        if let Some(p) = prev {
+            if t <= p || t.is_nan() {
+                return Err(AnalysisError {
+                    time: t,
+                    message: format!("times must increase, but {t} follows {p}"),
+                    joints: Vec::new(),
+                    residual: 0.0,
+                });
+            }
+        }
+        s.step(t, prev)?;
+        s.kin.outputs(points, &mut values[..nk]);
+        output::fill(
+            &s.sys,
+            &mut scratch,
+            &s.kin.q,
+            &s.kin.qd,
+            &s.lambda,
+            t,
+            &mut values[nk..],
+        );
+        sink.row(t, &values);
+        prev = Some(t);
+    }
+    Ok(s.kin.summary.clone())
+}

@@ -1,0 +1,29 @@
+//! Dynamics: applied forces, inverse dynamics and reactions, equilibrium and
+//! forward dynamics of the constrained equations of motion
+//!
+//! M(q) q̈ + Φ_qᵀ λ = Q(q, q̇, t),  Φ(q, t) = 0
+//!
+//! (Haug ch. 6; the theory and the sign conventions are in `docs/dynamics.md`).
+//!
+//! - the mass matrix of a body whose centroid is anywhere in its frame,
+//!   gravity and the velocity-quadratic force, in [`mass`];
+//! - point forces and torques, TSDA, RSDA, user callbacks, in [`force`];
+//! - assembly of M, Q and the augmented matrices, in [`system`];
+//! - consistent initial conditions, in [`project`];
+//! - joint reactions and driver efforts from λ, in [`reaction`], and the
+//!   output channels, in [`output`];
+//! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
+//! - equilibrium, in [`statics`];
+//! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
+
+pub mod force;
+pub mod integrator;
+pub mod inverse;
+pub mod mass;
+pub mod output;
+pub mod project;
+pub mod reaction;
+pub mod statics;
+pub mod system;
+
+pub use force::{Applied, Force, ForceKind};

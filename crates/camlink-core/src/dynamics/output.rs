@@ -1,0 +1,154 @@
+//! Output channels of the dynamic analyses.
+//!
+//! After the kinematic channels of every body, point and own coordinate
+//! ([`crate::kinematics::channels`]):
+//! - per joint (not driver), the reaction on body i:
+//!   `<joint>.fx .fy .torque .fx_local .fy_local`, and on body j:
+//!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`
+//!   (see [`super::reaction`] for the conventions);
+//! - per driver: `<driver>.effort .power`;
+//! - `energy.kinetic`, `energy.potential` (gravity and springs) and
+//!   `energy.total` (J);
+//! - `constraint.residual`, max |Φ| (m or rad), and
+//!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
+
+use super::reaction::{effort, reactions};
+use super::system::System;
+use crate::constraint::Equations;
+use crate::kinematics::PointOutput;
+use crate::math::{point, point_vel, rot, rot_d};
+use crate::model::{BodyId, Model};
+
+/// Names of the dynamic channels (after the kinematic ones).
+pub fn channels(model: &Model) -> Vec<String> {
+    let mut names = Vec::new();
+    for j in &model.joints {
+        if j.driver {
+            for c in ["effort", "power"] {
+                names.push(format!("{}.{c}", j.name));
+            }
+        } else {
+            for side in ["", "_j"] {
+                for c in ["fx", "fy", "torque", "fx_local", "fy_local"] {
+                    names.push(format!("{}.{c}{side}", j.name));
+                }
+            }
+        }
+    }
+    for c in [
+        "energy.kinetic",
+        "energy.potential",
+        "energy.total",
+        "constraint.residual",
+        "constraint.velocity",
+    ] {
+        names.push(c.to_string());
+    }
+    names
+}
+
+/// Scratch for [`fill`], allocated once.
+pub struct Scratch {
+    phi: Vec<f64>,
+    nu: Vec<f64>,
+}
+
+impl Scratch {
+    pub fn new(s: &System) -> Self {
+        Scratch {
+            phi: vec![0.0; s.m()],
+            nu: vec![0.0; s.m()],
+        }
+    }
+}
+
+/// Fills the dynamic channels at (q, q̇, λ, t).
+pub fn fill(
+    s: &System,
+    w: &mut Scratch,
+    q: &[f64],
+    qd: &[f64],
+    lambda: &[f64],
+    t: f64,
+    out: &mut [f64],
+) {
+    let (model, asm) = (s.model, &s.asm);
+    s.asm.nu(model, q, t, &mut w.nu);
+    let mut k = 0;
+    for (j, joint) in model.joints.iter().enumerate() {
+        if joint.driver {
+            let r = asm.rows_of(model, j).start;
+            let (e, p) = effort(model, j, lambda[r], w.nu[r], t);
+            out[k] = e;
+            out[k + 1] = p;
+            k += 2;
+        } else {
+            for r in reactions(model, asm, j, q, lambda, t) {
+                out[k..k + 5].copy_from_slice(&[
+                    r.force[0],
+                    r.force[1],
+                    r.torque,
+                    r.force_local[0],
+                    r.force_local[1],
+                ]);
+                k += 5;
+            }
+        }
+    }
+    let kin = s.kinetic(q, qd);
+    let pot = s.potential(q, t);
+    // Drift: Φ and Φ_q q̇ − ν.
+    asm.phi(model, q, t, &mut w.phi);
+    let res = w.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    for v in w.nu.iter_mut() {
+        *v = -*v;
+    }
+    let nu = &mut w.nu;
+    asm.jacobian(model, q, t, |r, c, v| nu[r] += v * qd[c]);
+    let vel = w.nu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    out[k..k + 5].copy_from_slice(&[kin, pot, kin + pot, res, vel]);
+}
+
+/// Fills the kinematic channels ([`crate::kinematics::channels`]) from
+/// (q, q̇, q̈).
+pub fn kinematic(
+    model: &Model,
+    asm: &crate::assembly::Assembly,
+    state: [&[f64]; 3],
+    points: &[PointOutput],
+    out: &mut [f64],
+) {
+    let mut k = 0;
+    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
+        match asm.body_col(id.0) {
+            Some(c) => [v[c], v[c + 1], v[c + 2]],
+            None => [0.0; 3],
+        }
+    };
+    for (id, _) in model.moving_bodies() {
+        for v in state {
+            out[k..k + 3].copy_from_slice(&body(v, id));
+            k += 3;
+        }
+    }
+    for p in points {
+        let [q, qd, qdd] = state.map(|v| body(v, p.body));
+        let r = point(q, p.s);
+        let v = point_vel(q, qd, p.s);
+        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
+        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
+        let acc = [
+            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
+            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
+        ];
+        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
+        k += 6;
+    }
+    for (j, joint) in model.joints.iter().enumerate() {
+        let c = asm.own_col(j);
+        for o in 0..joint.constraint.own_count() {
+            out[k] = state[0][c + o];
+            k += 1;
+        }
+    }
+}

@@ -1,0 +1,147 @@
+//! Consistent initial conditions: positions and velocities projected onto
+//! the constraints.
+//!
+//! Positions: the nearest q (in the Euclidean norm of the coordinates) with
+//! Φ(q, t) = 0, by Newton steps of least change,
+//!
+//! [ I  Φ_qᵀ ; Φ_q  0 ] [Δq ; μ] = [0 ; −Φ],
+//!
+//! with angle steps limited to [`MAX_ANGLE_STEP`] and a backtracking line
+//! search on ‖Φ‖₂, so that a rough placement lands on the nearest branch.
+//!
+//! Velocities: the nearest q̇ to the given q̇₀ with Φ_q q̇ = ν,
+//!
+//! [ I  Φ_qᵀ ; Φ_q  0 ] [q̇ ; μ] = [q̇₀ ; ν].
+
+use super::system::{Augmented, Coefficients, System};
+use crate::kinematics::MAX_ANGLE_STEP;
+
+/// The projection matrix's coefficients: D = I.
+const IDENTITY: Coefficients = Coefficients {
+    mass: 0.0,
+    damping: 0.0,
+    stiffness: 0.0,
+    identity: 1.0,
+    scale: 1.0,
+};
+
+/// Why a projection failed, with the largest |Φ| reached.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ProjectionError {
+    pub message: String,
+    pub residual: f64,
+}
+
+/// Projects `q` onto Φ(q, t) = 0 (to max |Φ| ≤ `tol`); returns the Newton
+/// iterations used.
+pub fn positions(
+    s: &System,
+    aug: &mut Augmented,
+    q: &mut [f64],
+    t: f64,
+    tol: f64,
+    max_iter: usize,
+) -> Result<usize, ProjectionError> {
+    let (n, m) = (s.n(), s.m());
+    let angles = s.asm.angle_mask(s.model);
+    let zeros = vec![0.0; n];
+    let mut phi = vec![0.0; m];
+    let mut rhs = vec![0.0; n + m];
+    let mut trial = q.to_vec();
+    for it in 0..=max_iter {
+        s.asm.phi(s.model, q, t, &mut phi);
+        let r = max_abs(&phi);
+        if r <= tol {
+            return Ok(it);
+        }
+        if !r.is_finite() || it == max_iter {
+            return Err(ProjectionError {
+                message: if r.is_finite() {
+                    format!("the positions did not reach the constraints in {max_iter} iterations")
+                } else {
+                    "the constraint equations are not finite numbers".into()
+                },
+                residual: r,
+            });
+        }
+        aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
+            .map_err(|_| ProjectionError {
+                message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
+                    .into(),
+                residual: r,
+            })?;
+        rhs[..n].fill(0.0);
+        for (k, p) in phi.iter().enumerate() {
+            rhs[n + k] = -p;
+        }
+        aug.solve(&mut rhs);
+        let big = (0..n)
+            .filter(|&k| angles[k])
+            .fold(0.0f64, |a, k| a.max(rhs[k].abs()));
+        let mut step = if big > MAX_ANGLE_STEP {
+            MAX_ANGLE_STEP / big
+        } else {
+            1.0
+        };
+        // Backtrack until ‖Φ‖₂ decreases.
+        let r2 = norm2(&phi);
+        loop {
+            for k in 0..n {
+                trial[k] = q[k] + step * rhs[k];
+            }
+            s.asm.phi(s.model, &trial, t, &mut phi);
+            if norm2(&phi) <= (1.0 - 1e-4 * step) * r2 {
+                break;
+            }
+            step *= 0.5;
+            if step < 1e-6 {
+                return Err(ProjectionError {
+                    message: "the mechanism cannot be assembled from the given placement".into(),
+                    residual: r,
+                });
+            }
+        }
+        q.copy_from_slice(&trial);
+    }
+    unreachable!("the loop returns")
+}
+
+/// Projects `qd` onto Φ_q q̇ = ν at a consistent `q`.
+pub fn velocities(
+    s: &System,
+    aug: &mut Augmented,
+    q: &[f64],
+    qd: &mut [f64],
+    t: f64,
+) -> Result<(), ProjectionError> {
+    let (n, m) = (s.n(), s.m());
+    let zeros = vec![0.0; n];
+    aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
+        .map_err(|_| ProjectionError {
+            message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
+                .into(),
+            residual: 0.0,
+        })?;
+    let mut rhs = vec![0.0; n + m];
+    rhs[..n].copy_from_slice(qd);
+    s.asm.nu(s.model, q, t, &mut rhs[n..]);
+    aug.solve(&mut rhs);
+    qd.copy_from_slice(&rhs[..n]);
+    Ok(())
+}
+
+pub(crate) fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// max |v_k|, NaN when any entry is NaN.
+pub(crate) fn max_abs(v: &[f64]) -> f64 {
+    let mut m = 0.0f64;
+    for &x in v {
+        if x.is_nan() {
+            return f64::NAN;
+        }
+        m = m.max(x.abs());
+    }
+    m
+}

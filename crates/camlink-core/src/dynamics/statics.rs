@@ -1,0 +1,212 @@
+//! Equilibrium (static) analysis: the configuration where applied forces,
+//! springs and gravity balance, and the reactions there.
+//!
+//! With q̇ = q̈ = 0 the equations of motion reduce to
+//!
+//! Φ_qᵀ λ − Q(q, 0, t) = 0,  Φ(q, t) = 0,
+//!
+//! n + m equations in (q, λ), solved by Newton's method with the matrix
+//!
+//! [ (Φ_qᵀλ)_q − Q_q   Φ_qᵀ ; Φ_q  0 ].
+//!
+//! The curvature term (Φ_qᵀλ)_q is what makes a pendulum hang (with its
+//! frame at the centroid, gravity alone has no stiffness in φ); it is
+//! formed joint by joint by central differences of the analytic Jacobian
+//! blocks. Start: q projected onto the constraints, λ the least-squares
+//! multipliers min ‖Φ_qᵀλ − Q‖. Steps are limited in angle and
+//! backtracked on ‖residual‖₂, so the solver goes to an equilibrium near the
+//! starting placement; it may be unstable (an inverted pendulum is in
+//! equilibrium too). Drivers hold their coordinates at f(t) and report the
+//! effort that does it.
+
+use super::output::{self, Scratch};
+use super::project::{self, max_abs, norm2};
+use super::system::{Augmented, Coefficients, System};
+use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary, MAX_ANGLE_STEP};
+use crate::model::Model;
+
+/// Equilibrium solver settings.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Stop when max |Φ| ≤ tol (m or rad) and max |Φ_qᵀλ − Q| ≤ tol·(1 + max |Q|).
+    pub tol: f64,
+    pub max_iter: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol: 1e-10,
+            max_iter: 100,
+        }
+    }
+}
+
+/// An equilibrium: coordinates, multipliers and the Newton iterations used.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Equilibrium {
+    pub q: Vec<f64>,
+    pub lambda: Vec<f64>,
+    pub iterations: usize,
+}
+
+/// The equilibrium at time `t` (drivers at f(t)) nearest the model's placement.
+pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, AnalysisError> {
+    let s = System::new(model);
+    let (n, m) = (s.n(), s.m());
+    let err = |message: String, residual: f64| AnalysisError {
+        time: t,
+        message,
+        joints: Vec::new(),
+        residual,
+    };
+    if n == 0 {
+        return Err(err("the model has no moving bodies".into(), 0.0));
+    }
+    let mut q = s.asm.initial_q(model);
+    let mut aug = Augmented::new(&s, &q);
+    project::positions(&s, &mut aug, &mut q, t, settings.tol, settings.max_iter)
+        .map_err(|e| err(e.message, e.residual))?;
+    let zeros = vec![0.0; n];
+    let mut qf = vec![0.0; n];
+    // Least-squares multipliers: [I Φ_qᵀ; Φ_q 0][x; λ] = [Q; 0].
+    let mut rhs = vec![0.0; n + m];
+    s.forces(&q, &zeros, t, &mut qf);
+    rhs[..n].copy_from_slice(&qf);
+    aug.refactor(
+        &s,
+        &q,
+        &zeros,
+        &zeros,
+        None,
+        t,
+        Coefficients {
+            identity: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        },
+    )
+    .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
+    aug.solve(&mut rhs);
+    let mut lambda = rhs[n..].to_vec();
+
+    let angles = s.asm.angle_mask(model);
+    let newton = Coefficients {
+        stiffness: 1.0,
+        scale: 1.0,
+        ..Default::default()
+    };
+    let mut res = vec![0.0; n + m];
+    let (mut tq, mut tl) = (q.clone(), lambda.clone());
+    let residual = |q: &[f64], lambda: &[f64], res: &mut [f64], qf: &mut [f64]| -> (f64, f64) {
+        s.residual(q, &zeros, &zeros, lambda, t, &mut res[..n]);
+        s.asm.phi(model, q, t, &mut res[n..]);
+        s.forces(q, &zeros, t, qf);
+        let scale = 1.0 + max_abs(qf);
+        (max_abs(&res[..n]) / scale, max_abs(&res[n..]))
+    };
+    for it in 0..=settings.max_iter {
+        let (rf, rp) = residual(&q, &lambda, &mut res, &mut qf);
+        if !(rf.is_finite() && rp.is_finite()) {
+            return Err(err("the equations are not finite numbers".into(), rp));
+        }
+        if rf <= settings.tol && rp <= settings.tol {
+            return Ok(Equilibrium {
+                q,
+                lambda,
+                iterations: it,
+            });
+        }
+        if it == settings.max_iter {
+            return Err(err(
+                format!(
+                    "no equilibrium found in {} iterations (force residual {rf:.2e}, relative)",
+                    settings.max_iter
+                ),
+                rp,
+            ));
+        }
+        aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
+            .map_err(|_| {
+                err(
+                    "the equilibrium equations are singular: a degree of freedom is neither \
+                     restrained by a spring or gravity nor driven (neutral equilibrium)"
+                        .into(),
+                    rp,
+                )
+            })?;
+        for v in res.iter_mut() {
+            *v = -*v;
+        }
+        let r2 = norm2(&res);
+        aug.solve(&mut res);
+        let big = (0..n)
+            .filter(|&k| angles[k])
+            .fold(0.0f64, |a, k| a.max(res[k].abs()));
+        let mut step = if big > MAX_ANGLE_STEP {
+            MAX_ANGLE_STEP / big
+        } else {
+            1.0
+        };
+        let mut trial = vec![0.0; n + m];
+        loop {
+            for k in 0..n {
+                tq[k] = q[k] + step * res[k];
+            }
+            for k in 0..m {
+                tl[k] = lambda[k] + step * res[n + k];
+            }
+            residual(&tq, &tl, &mut trial, &mut qf);
+            if norm2(&trial) <= (1.0 - 1e-4 * step) * r2 || step < 1e-3 {
+                break;
+            }
+            step *= 0.5;
+        }
+        q.copy_from_slice(&tq);
+        lambda.copy_from_slice(&tl);
+    }
+    unreachable!("the loop returns")
+}
+
+/// Equilibrium at `t`, written as one row: the kinematic channels (zero
+/// velocities and accelerations), then reactions, efforts and energy.
+pub fn run(
+    model: &Model,
+    t: f64,
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let e = solve(model, t, settings)?;
+    let s = System::new(model);
+    let mut names = kinematics::channels(model, points);
+    let nk = names.len();
+    names.extend(output::channels(model));
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let zeros = vec![0.0; s.n()];
+    output::kinematic(
+        model,
+        &s.asm,
+        [&e.q, &zeros, &zeros],
+        points,
+        &mut values[..nk],
+    );
+    let mut scratch = Scratch::new(&s);
+    output::fill(
+        &s,
+        &mut scratch,
+        &e.q,
+        &zeros,
+        &e.lambda,
+        t,
+        &mut values[nk..],
+    );
+    sink.row(t, &values);
+    Ok(Summary {
+        steps: 1,
+        newton_iterations: e.iterations,
+        factorizations: e.iterations,
+        ..Summary::default()
+    })
+}

@@ -1,0 +1,440 @@
+//! The dynamics assembly: mass matrix, generalized forces and the augmented
+//! matrix of the constrained equations, filled into preallocated buffers.
+//!
+//! The equations of motion of the constrained system (Haug ch. 6) are
+//!
+//! M(q) q̈ + Φ_qᵀ λ = Q(q, q̇, t),  Φ(q, t) = 0,
+//!
+//! with Q = Q_g + Q_v + Q_a: gravity, the velocity-quadratic force of
+//! bodies whose frame is not at the centroid ([`super::mass`]), and the
+//! applied forces ([`super::force`]). Joints' own coordinates (contact
+//! parameters) carry no mass and no force.
+//!
+//! Every analysis solves linear systems with the augmented matrix
+//!
+//! S = [ D  Φ_qᵀ
+//!       Φ_q  0  ],  D = a_M M + a_C ∂R/∂q̇ + a_K ∂R/∂q + a_I I,
+//!
+//! R = M q̈ − Q + Φ_qᵀλ being the residual of the equations of motion, for
+//! coefficients chosen by the analysis (see [`Coefficients`]). Its
+//! sparsity pattern (body blocks, force couplings, joint couplings and Φ_q)
+//! is laid out once; values are refilled in place.
+
+use std::collections::HashMap;
+
+use super::force::{Applied, BodyJac, BodyQ};
+use super::mass::Inertia;
+use crate::assembly::Assembly;
+use crate::constraint::{Equations, Jac, Local};
+use crate::linsolve::{Singular, SystemMatrix};
+use crate::model::Model;
+
+/// The model with its layout and the inertia of each body.
+pub struct System<'m> {
+    pub model: &'m Model,
+    pub asm: Assembly,
+    /// (first column, inertia) of each moving body.
+    bodies: Vec<(usize, Inertia)>,
+}
+
+impl<'m> System<'m> {
+    pub fn new(model: &'m Model) -> Self {
+        let asm = Assembly::new(model);
+        let bodies = model
+            .moving_bodies()
+            .map(|(id, b)| (asm.body_col(id.0).expect("moving body"), Inertia::from(b)))
+            .collect();
+        System { model, asm, bodies }
+    }
+
+    /// Number of coordinates n.
+    pub fn n(&self) -> usize {
+        self.asm.n
+    }
+
+    /// Number of constraint equations m.
+    pub fn m(&self) -> usize {
+        self.asm.m
+    }
+
+    /// The local view of force `f` at (q, q̇, t).
+    #[inline]
+    pub fn force_local(&self, f: usize, q: &[f64], qd: &[f64], t: f64) -> Local {
+        let mut x = Local {
+            t,
+            ..Local::default()
+        };
+        for (k, b) in self.model.forces[f].kind.bodies().iter().enumerate() {
+            if let Some(c) = self.asm.body_col(b.0) {
+                x.q[k].copy_from_slice(&q[c..c + 3]);
+                x.qd[k].copy_from_slice(&qd[c..c + 3]);
+            }
+        }
+        x
+    }
+
+    /// Q(q, q̇, t) = Q_g + Q_v + Q_a into `out` (length n).
+    pub fn forces(&self, q: &[f64], qd: &[f64], t: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        let g = self.model.gravity;
+        for &(c, inertia) in &self.bodies {
+            let l = inertia.loads(body(q, c), body(qd, c), g);
+            out[c..c + 3].copy_from_slice(&l);
+        }
+        self.add_applied(q, qd, t, 1.0, out);
+    }
+
+    /// `out += w Q_a`, the applied forces times w.
+    fn add_applied(&self, q: &[f64], qd: &[f64], t: f64, w: f64, out: &mut [f64]) {
+        let mut qf = BodyQ::default();
+        for (f, force) in self.model.forces.iter().enumerate() {
+            let x = self.force_local(f, q, qd, t);
+            force.kind.generalized(&x, &mut qf);
+            for (k, b) in force.kind.bodies().iter().enumerate() {
+                if let Some(c) = self.asm.body_col(b.0) {
+                    for d in 0..3 {
+                        out[c + d] += w * qf[k][d];
+                    }
+                }
+            }
+        }
+    }
+
+    /// `out += M(q) v` (length n).
+    pub fn add_mass_times(&self, q: &[f64], v: &[f64], out: &mut [f64]) {
+        for &(c, inertia) in &self.bodies {
+            let mm = inertia.matrix(q[c + 2]);
+            for r in 0..3 {
+                out[c + r] += mm[r][0] * v[c] + mm[r][1] * v[c + 1] + mm[r][2] * v[c + 2];
+            }
+        }
+    }
+
+    /// `out += Φ_qᵀ λ` (length n).
+    pub fn add_jt_lambda(&self, q: &[f64], t: f64, lambda: &[f64], out: &mut [f64]) {
+        self.asm
+            .jacobian(self.model, q, t, |r, c, v| out[c] += v * lambda[r]);
+    }
+
+    /// R = M q̈ − Q + Φ_qᵀλ, the residual of the equations of motion, into
+    /// `out` (length n).
+    pub fn residual(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        lambda: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) {
+        out.fill(0.0);
+        let g = self.model.gravity;
+        for &(c, inertia) in &self.bodies {
+            let r = inertia.residual(body(q, c), body(qd, c), body(qdd, c), g);
+            out[c..c + 3].copy_from_slice(&r);
+        }
+        self.add_applied(q, qd, t, -1.0, out);
+        self.add_jt_lambda(q, t, lambda, out);
+    }
+
+    /// Kinetic energy T = ½ q̇ᵀ M q̇ (J).
+    pub fn kinetic(&self, q: &[f64], qd: &[f64]) -> f64 {
+        self.bodies
+            .iter()
+            .map(|&(c, i)| i.kinetic(body(q, c), body(qd, c)))
+            .sum()
+    }
+
+    /// Potential energy of gravity and springs (J), zero with every body
+    /// frame at the origin and every spring at its free length.
+    pub fn potential(&self, q: &[f64], t: f64) -> f64 {
+        let g = self.model.gravity;
+        let zeros = vec![0.0; q.len()];
+        let gravity: f64 = self
+            .bodies
+            .iter()
+            .map(|&(c, i)| i.potential(body(q, c), g))
+            .sum();
+        let springs: f64 = (0..self.model.forces.len())
+            .map(|f| {
+                let x = self.force_local(f, q, &zeros, t);
+                self.model.forces[f].kind.potential(&x)
+            })
+            .sum();
+        gravity + springs
+    }
+}
+
+/// (x, y, φ) of the body whose first column is `c`.
+#[inline]
+fn body(v: &[f64], c: usize) -> [f64; 3] {
+    [v[c], v[c + 1], v[c + 2]]
+}
+
+/// Coefficients of D = a_M M + a_C ∂R/∂q̇ + a_K ∂R/∂q + a_I I, all of them
+/// multiplied by `scale` (the identity term excepted).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Coefficients {
+    pub mass: f64,
+    pub damping: f64,
+    pub stiffness: f64,
+    pub identity: f64,
+    pub scale: f64,
+}
+
+/// The augmented matrix S, its pattern and its factorization.
+pub struct Augmented {
+    n: usize,
+    m: usize,
+    sys: SystemMatrix,
+    pattern: Vec<(usize, usize)>,
+    vals: Vec<f64>,
+    /// Slots of each moving body's 3 × 3 block, row-major.
+    body_slots: Vec<[usize; 9]>,
+    /// Slots of each own coordinate's diagonal entry.
+    own_slots: Vec<usize>,
+    /// Per force, per (a, b) body pair, the 3 × 3 block's slots (None for ground).
+    force_slots: Vec<[[Option<[usize; 9]>; 2]; 2]>,
+    /// Per joint: its local coordinates (local index, global column) and
+    /// the slots of the L × L coupling block, row-major.
+    joint_slots: Vec<JointSlots>,
+    /// Slots (lower Φ_q, upper Φ_qᵀ) of each Jacobian entry, in fill order.
+    jac_slots: Vec<(usize, usize)>,
+    /// Scratch for (Φ_qᵀλ)_q.
+    jac: [Jac; 2],
+}
+
+/// A joint's local coordinates (local index, global column) and the slots
+/// of its coupling block.
+type JointSlots = (Vec<(usize, usize)>, Vec<usize>);
+
+/// Local coordinate index k of a joint: 0–2 body i, 3–5 body j, 6+ own.
+const OWN0: usize = 6;
+
+impl Augmented {
+    pub fn new(s: &System, q: &[f64]) -> Self {
+        let (n, m) = (s.n(), s.m());
+        let mut map: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut pattern = Vec::new();
+        let mut slot = |r: usize, c: usize| -> usize {
+            *map.entry((r, c)).or_insert_with(|| {
+                pattern.push((r, c));
+                pattern.len() - 1
+            })
+        };
+        let block = |slot: &mut dyn FnMut(usize, usize) -> usize, ra: usize, cb: usize| {
+            let mut b = [0; 9];
+            for r in 0..3 {
+                for c in 0..3 {
+                    b[3 * r + c] = slot(ra + r, cb + c);
+                }
+            }
+            b
+        };
+        let body_slots: Vec<[usize; 9]> = s
+            .bodies
+            .iter()
+            .map(|&(c, _)| block(&mut slot, c, c))
+            .collect();
+        let mut own_slots = Vec::new();
+        for j in 0..s.model.joints.len() {
+            let o = s.asm.own_col(j);
+            for k in 0..s.model.joints[j].constraint.own_count() {
+                own_slots.push(slot(o + k, o + k));
+            }
+        }
+        let force_slots = s
+            .model
+            .forces
+            .iter()
+            .map(|f| {
+                let cols = f.kind.bodies().map(|b| s.asm.body_col(b.0));
+                let mut out = [[None; 2]; 2];
+                for a in 0..2 {
+                    for b in 0..2 {
+                        if let (Some(ca), Some(cb)) = (cols[a], cols[b]) {
+                            out[a][b] = Some(block(&mut slot, ca, cb));
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
+        let joint_slots = (0..s.model.joints.len())
+            .map(|j| {
+                let c = &s.model.joints[j].constraint;
+                let mut local = Vec::new();
+                for (k, b) in c.bodies().iter().enumerate() {
+                    if let Some(col) = s.asm.body_col(b.0) {
+                        for d in 0..3 {
+                            local.push((3 * k + d, col + d));
+                        }
+                    }
+                }
+                for o in 0..c.own_count() {
+                    local.push((OWN0 + o, s.asm.own_col(j) + o));
+                }
+                let mut slots = Vec::with_capacity(local.len() * local.len());
+                for &(_, r) in &local {
+                    for &(_, col) in &local {
+                        slots.push(slot(r, col));
+                    }
+                }
+                (local, slots)
+            })
+            .collect();
+        let mut jac_slots = Vec::new();
+        s.asm.jacobian(s.model, q, 0.0, |r, c, _| {
+            jac_slots.push((slot(n + r, c), slot(c, n + r)));
+        });
+        // The zero block's diagonal, so that a sparse LU may pivot there.
+        for r in 0..m {
+            slot(n + r, n + r);
+        }
+        let sys = SystemMatrix::new(n + m, &pattern);
+        Augmented {
+            n,
+            m,
+            vals: vec![0.0; pattern.len()],
+            sys,
+            pattern,
+            body_slots,
+            own_slots,
+            force_slots,
+            joint_slots,
+            jac_slots,
+            jac: [Jac::default(); 2],
+        }
+    }
+
+    /// Dimension n + m.
+    pub fn dim(&self) -> usize {
+        self.n + self.m
+    }
+
+    /// Fills S at (q, q̇, q̈, λ, t) with the coefficients `k` and factors it.
+    /// The curvature (Φ_qᵀλ)_q enters with `k.stiffness` when `lambda` is
+    /// given.
+    #[allow(clippy::too_many_arguments)]
+    pub fn refactor(
+        &mut self,
+        s: &System,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        lambda: Option<&[f64]>,
+        t: f64,
+        k: Coefficients,
+    ) -> Result<(), Singular> {
+        self.vals.fill(0.0);
+        let g = s.model.gravity;
+        // Body blocks: a_M M + a_K ∂R/∂q + a_C ∂R/∂q̇ + a_I I.
+        for (b, &(c, inertia)) in s.bodies.iter().enumerate() {
+            let slots = &self.body_slots[b];
+            let mm = inertia.matrix(q[c + 2]);
+            let (dphi, domega) = inertia.derivatives(body(q, c), body(qd, c), body(qdd, c), g);
+            for r in 0..3 {
+                for col in 0..3 {
+                    self.vals[slots[3 * r + col]] += k.scale * k.mass * mm[r][col];
+                }
+                self.vals[slots[3 * r + 2]] +=
+                    k.scale * (k.stiffness * dphi[r] + k.damping * domega[r]);
+                self.vals[slots[3 * r + r]] += k.identity;
+            }
+        }
+        for &o in &self.own_slots {
+            self.vals[o] += k.identity;
+        }
+        // Applied forces: R has −Q.
+        let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
+        for (f, force) in s.model.forces.iter().enumerate() {
+            let x = s.force_local(f, q, qd, t);
+            force.kind.derivatives(&x, &mut dq, &mut dqd);
+            for a in 0..2 {
+                for b in 0..2 {
+                    if let Some(slots) = self.force_slots[f][a][b] {
+                        for r in 0..3 {
+                            for col in 0..3 {
+                                self.vals[slots[3 * r + col]] -= k.scale
+                                    * (k.stiffness * dq[a][b][r][col]
+                                        + k.damping * dqd[a][b][r][col]);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        // Constraint curvature (Φ_qᵀλ)_q, by central differences of the
+        // analytic Jacobian blocks, joint by joint.
+        if let (Some(lambda), true) = (lambda, k.stiffness != 0.0) {
+            for j in 0..s.model.joints.len() {
+                self.curvature(s, j, q, lambda, t, k.scale * k.stiffness);
+            }
+        }
+        // Φ_q below, Φ_qᵀ to the right.
+        let (vals, slots) = (&mut self.vals, &self.jac_slots);
+        let mut e = 0;
+        s.asm.jacobian(s.model, q, t, |_, _, v| {
+            let (lo, up) = slots[e];
+            vals[lo] = v;
+            vals[up] = v;
+            e += 1;
+        });
+        for (slot, (&(r, c), &v)) in self.pattern.iter().zip(&self.vals).enumerate() {
+            self.sys.put(slot, r, c, v);
+        }
+        self.sys.factor()
+    }
+
+    /// Adds `w (Φ^jᵀ λ_j)_q` of joint `j` to its coupling block.
+    fn curvature(&mut self, s: &System, j: usize, q: &[f64], lambda: &[f64], t: f64, w: f64) {
+        let c = &s.model.joints[j].constraint;
+        let rows = s.asm.rows_of(s.model, j);
+        let lam = &lambda[rows];
+        let x0 = s.asm.local(s.model, j, q, &[], t);
+        let (local, slots) = &self.joint_slots[j];
+        let l = local.len();
+        let h = 1e-6;
+        for (kb, &(kk, _)) in local.iter().enumerate() {
+            for (sign, jac) in [(1.0, 0), (-1.0, 1)] {
+                let mut x = x0;
+                let v = if kk < OWN0 {
+                    &mut x.q[kk / 3][kk % 3]
+                } else {
+                    &mut x.own[kk - OWN0]
+                };
+                *v += sign * h;
+                c.jacobian(&x, &mut self.jac[jac]);
+            }
+            for (ka, &(k, _)) in local.iter().enumerate() {
+                let mut d = 0.0;
+                for (r, &lr) in lam.iter().enumerate() {
+                    let (p, m) = if k < OWN0 {
+                        (
+                            self.jac[0].body[k / 3][r][k % 3],
+                            self.jac[1].body[k / 3][r][k % 3],
+                        )
+                    } else {
+                        (self.jac[0].own[r][k - OWN0], self.jac[1].own[r][k - OWN0])
+                    };
+                    d += lr * (p - m);
+                }
+                self.vals[slots[ka * l + kb]] += w * d / (2.0 * h);
+            }
+        }
+    }
+
+    /// Solves S x = b in place with the last factorization.
+    #[inline]
+    pub fn solve(&mut self, b: &mut [f64]) {
+        self.sys.solve(b);
+    }
+
+    pub fn is_valid(&self) -> bool {
+        self.sys.is_valid()
+    }
+
+    pub fn invalidate(&mut self) {
+        self.sys.invalidate();
+    }
+}

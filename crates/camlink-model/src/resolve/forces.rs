@@ -1,0 +1,152 @@
+//! `[[forces]]` into core [`Force`]s.
+
+use camlink_core::dynamics::force::point::{PointForce, Torque};
+use camlink_core::dynamics::force::rsda::Rsda;
+use camlink_core::dynamics::force::tsda::Tsda;
+use camlink_core::dynamics::Force;
+use camlink_core::math::{norm, sub};
+use camlink_core::TimeFn;
+
+use super::{check_name, fail, Ctx, R};
+use crate::file::{ForceSpec, Num};
+
+impl Ctx {
+    /// Resolves `forces[k]` and adds it to the model.
+    pub(super) fn force(&mut self, f: &ForceSpec, k: usize) -> R<()> {
+        let path = format!("forces[{k}]");
+        let p = path.as_str();
+        let (name, kind) = match f {
+            ForceSpec::PointForce {
+                name,
+                body,
+                point,
+                fx,
+                fy,
+                local,
+            } => {
+                let (b, s) = self.at(body, point.as_ref(), p, "body", "point")?;
+                let f = [
+                    self.opt_time_fn(fx.as_ref(), &format!("{p}.fx"))?,
+                    self.opt_time_fn(fy.as_ref(), &format!("{p}.fy"))?,
+                ];
+                let kind = PointForce {
+                    body: b,
+                    s,
+                    f,
+                    local: *local,
+                };
+                (
+                    self.force_name(name.as_ref(), format!("point_force_{k}"), p)?,
+                    kind.into(),
+                )
+            }
+            ForceSpec::Torque { name, body, torque } => {
+                let b = self.body(body, &format!("{p}.body"))?;
+                let t = self.time_fn(torque, &format!("{p}.torque"))?;
+                (
+                    self.force_name(name.as_ref(), format!("torque_{k}"), p)?,
+                    Torque { body: b, t }.into(),
+                )
+            }
+            ForceSpec::Tsda {
+                name,
+                body_i,
+                point_i,
+                body_j,
+                point_j,
+                stiffness,
+                free_length,
+                damping,
+                actuator,
+            } => {
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                if bi == bj {
+                    return fail(format!("{p}.body_j"), "a spring joins two different bodies");
+                }
+                let l0 = norm(sub(self.r0(bj, s_j), self.r0(bi, s_i)));
+                let kind = Tsda {
+                    body_i: bi,
+                    s_i,
+                    body_j: bj,
+                    s_j,
+                    stiffness: self.non_negative(
+                        stiffness.as_ref(),
+                        0.0,
+                        &format!("{p}.stiffness"),
+                    )?,
+                    free_length: self.non_negative(
+                        free_length.as_ref(),
+                        l0,
+                        &format!("{p}.free_length"),
+                    )?,
+                    damping: self.non_negative(damping.as_ref(), 0.0, &format!("{p}.damping"))?,
+                    actuator: self.opt_time_fn(actuator.as_ref(), &format!("{p}.actuator"))?,
+                };
+                (
+                    self.force_name(name.as_ref(), format!("tsda_{k}"), p)?,
+                    kind.into(),
+                )
+            }
+            ForceSpec::Rsda {
+                name,
+                body_i,
+                body_j,
+                stiffness,
+                free_angle,
+                damping,
+                actuator,
+            } => {
+                let bi = self.body(body_i, &format!("{p}.body_i"))?;
+                let bj = self.body(body_j, &format!("{p}.body_j"))?;
+                if bi == bj {
+                    return fail(format!("{p}.body_j"), "a spring joins two different bodies");
+                }
+                let th0 = self.q0(bj)[2] - self.q0(bi)[2];
+                let kind = Rsda {
+                    body_i: bi,
+                    body_j: bj,
+                    stiffness: self.non_negative(
+                        stiffness.as_ref(),
+                        0.0,
+                        &format!("{p}.stiffness"),
+                    )?,
+                    free_angle: self.opt(free_angle.as_ref(), th0, &format!("{p}.free_angle"))?,
+                    damping: self.non_negative(damping.as_ref(), 0.0, &format!("{p}.damping"))?,
+                    actuator: self.opt_time_fn(actuator.as_ref(), &format!("{p}.actuator"))?,
+                };
+                (
+                    self.force_name(name.as_ref(), format!("rsda_{k}"), p)?,
+                    kind.into(),
+                )
+            }
+        };
+        self.model.add_force(Force { name, kind });
+        Ok(())
+    }
+
+    /// A force name, unique among forces.
+    fn force_name(&self, given: Option<&String>, default: String, path: &str) -> R<String> {
+        let name = given.cloned().unwrap_or(default);
+        check_name(&name, "force", &format!("{path}.name"))?;
+        if self.model.forces.iter().any(|f| f.name == name) {
+            return fail(
+                format!("{path}.name"),
+                format!("duplicate force name '{name}'"),
+            );
+        }
+        Ok(name)
+    }
+
+    fn opt_time_fn(&self, f: Option<&Num>, path: &str) -> R<TimeFn> {
+        f.map_or(Ok(TimeFn::Const(0.0)), |f| self.time_fn(f, path))
+    }
+
+    fn non_negative(&self, n: Option<&Num>, default: f64, path: &str) -> R<f64> {
+        let v = self.opt(n, default, path)?;
+        if v < 0.0 {
+            return fail(path, format!("must be ≥ 0 (got {v})"));
+        }
+        Ok(v)
+    }
+}
