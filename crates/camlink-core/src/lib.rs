@@ -15,3 +15,7 @@ pub mod model;
 pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
+pub mod assembly;
+pub mod diagnose;
+pub mod kinematics;
+pub mod linsolve;

@@ -68,6 +68,11 @@ pub trait Equations {
     fn own_count(&self) -> usize {
         0
     }
+    /// Names of the own coordinates, used in output channels
+    /// (`<joint>.<name>`); as many as [`own_count`](Self::own_count).
+    fn own_names(&self) -> &'static [&'static str] {
+        &[]
+    }
     /// A starting value for the own coordinates from the current body
     /// coordinates (`x.own` holds a guess or zeros).
     fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
@@ -115,6 +120,9 @@ macro_rules! constraints {
             }
             fn own_count(&self) -> usize {
                 match self { $(Constraint::$variant(c) => c.own_count(),)* }
+            }
+            fn own_names(&self) -> &'static [&'static str] {
+                match self { $(Constraint::$variant(c) => c.own_names(),)* }
             }
             fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
                 match self { $(Constraint::$variant(c) => c.initial_own(x),)* }

@@ -1,0 +1,224 @@
+//! Assembly: lays out the global coordinates and fills Φ, Φ_q, ν and γ.
+//!
+//! q = [moving bodies' (x, y, φ)…, joints' own coordinates…]. Equations are
+//! stacked joint by joint in model order. Only this module knows global
+//! indices; constraints see a [`Local`] view and write per-body blocks.
+
+use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::model::Model;
+
+/// Where each body's and joint's coordinates and equations sit.
+#[derive(Clone, Debug)]
+pub struct Assembly {
+    /// Number of coordinates n.
+    pub n: usize,
+    /// Number of equations m.
+    pub m: usize,
+    /// First column of each body (`None` for the ground), by body index.
+    body_col: Vec<Option<usize>>,
+    /// First column of each joint's own coordinates, by joint index.
+    own_col: Vec<usize>,
+    /// First row of each joint's equations, by joint index.
+    row: Vec<usize>,
+}
+
+impl Assembly {
+    pub fn new(model: &Model) -> Self {
+        let mut body_col = vec![None; model.bodies.len()];
+        let mut n = 0;
+        for (id, _) in model.moving_bodies() {
+            body_col[id.0] = Some(n);
+            n += 3;
+        }
+        let mut own_col = Vec::with_capacity(model.joints.len());
+        let mut row = Vec::with_capacity(model.joints.len());
+        let mut m = 0;
+        for j in &model.joints {
+            own_col.push(n);
+            n += j.constraint.own_count();
+            row.push(m);
+            m += j.constraint.rows();
+        }
+        Assembly {
+            n,
+            m,
+            body_col,
+            own_col,
+            row,
+        }
+    }
+
+    /// First column of a body's (x, y, φ), or `None` for the ground.
+    pub fn body_col(&self, body: usize) -> Option<usize> {
+        self.body_col[body]
+    }
+
+    /// First column of joint `j`'s own coordinates.
+    pub fn own_col(&self, j: usize) -> usize {
+        self.own_col[j]
+    }
+
+    /// Rows of joint `j`'s equations.
+    pub fn rows_of(&self, model: &Model, j: usize) -> std::ops::Range<usize> {
+        self.row[j]..self.row[j] + model.joints[j].constraint.rows()
+    }
+
+    /// The joint owning equation `row`, and the equation's index within it.
+    pub fn joint_of_row(&self, row: usize) -> (usize, usize) {
+        let j = self.row.partition_point(|&r| r <= row) - 1;
+        (j, row - self.row[j])
+    }
+
+    /// The body or joint owning coordinate `col`, as a readable name such as
+    /// `crank.phi` or `gear.theta`.
+    pub fn coordinate_name(&self, model: &Model, col: usize) -> String {
+        for (k, c) in self.body_col.iter().enumerate() {
+            if let Some(c) = *c {
+                if (c..c + 3).contains(&col) {
+                    return format!("{}.{}", model.bodies[k].name, ["x", "y", "phi"][col - c]);
+                }
+            }
+        }
+        for (j, joint) in model.joints.iter().enumerate() {
+            let c = self.own_col[j];
+            let names = joint.constraint.own_names();
+            if (c..c + joint.constraint.own_count()).contains(&col) {
+                let k = col - c;
+                let name = names.get(k).copied().unwrap_or("own");
+                return format!("{}.{}", joint.name, name);
+            }
+        }
+        format!("coordinate {col}")
+    }
+
+    /// True for the coordinates that are angles: bodies' φ and joints' own
+    /// coordinates (contact parameters and centre-line angles).
+    pub fn angle_mask(&self, model: &Model) -> Vec<bool> {
+        let mut mask = vec![false; self.n];
+        for c in self.body_col.iter().flatten() {
+            mask[c + 2] = true;
+        }
+        for (j, joint) in model.joints.iter().enumerate() {
+            for k in 0..joint.constraint.own_count() {
+                mask[self.own_col[j] + k] = true;
+            }
+        }
+        mask
+    }
+
+    /// The local view of joint `j` at (q, q̇, t); `qd` may be empty for
+    /// position-only evaluations.
+    #[inline]
+    pub fn local(&self, model: &Model, j: usize, q: &[f64], qd: &[f64], t: f64) -> Local {
+        let c = &model.joints[j].constraint;
+        let mut x = Local {
+            t,
+            ..Local::default()
+        };
+        for (k, b) in c.bodies().iter().enumerate() {
+            if let Some(col) = self.body_col[b.0] {
+                x.q[k].copy_from_slice(&q[col..col + 3]);
+                if !qd.is_empty() {
+                    x.qd[k].copy_from_slice(&qd[col..col + 3]);
+                }
+            }
+        }
+        let o = self.own_col[j];
+        for k in 0..c.own_count() {
+            x.own[k] = q[o + k];
+            if !qd.is_empty() {
+                x.own_d[k] = qd[o + k];
+            }
+        }
+        x
+    }
+
+    /// The starting coordinate vector: bodies at their given placement, own
+    /// coordinates from the model's guesses refined by each joint.
+    pub fn initial_q(&self, model: &Model) -> Vec<f64> {
+        let mut q = vec![0.0; self.n];
+        for (id, b) in model.moving_bodies() {
+            let c = self.body_col[id.0].expect("moving body has columns");
+            q[c..c + 3].copy_from_slice(&b.q0);
+        }
+        for (j, joint) in model.joints.iter().enumerate() {
+            let k = joint.constraint.own_count();
+            if k == 0 {
+                continue;
+            }
+            let mut x = self.local(model, j, &q, &[], 0.0);
+            x.own = joint.own0.unwrap_or([0.0; MAX_OWN]);
+            let own = joint.constraint.initial_own(&x);
+            q[self.own_col[j]..self.own_col[j] + k].copy_from_slice(&own[..k]);
+        }
+        q
+    }
+
+    /// Φ(q, t) into `out` (length m).
+    pub fn phi(&self, model: &Model, q: &[f64], t: f64, out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, joint) in model.joints.iter().enumerate() {
+            let x = self.local(model, j, q, &[], t);
+            joint.constraint.phi(&x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
+        }
+    }
+
+    /// Φ_q(q, t): calls `put(row, col, value)` for every structural entry, in
+    /// the same order every time.
+    #[inline]
+    pub fn jacobian(
+        &self,
+        model: &Model,
+        q: &[f64],
+        t: f64,
+        mut put: impl FnMut(usize, usize, f64),
+    ) {
+        let mut jac = Jac::default();
+        for (j, joint) in model.joints.iter().enumerate() {
+            let c = &joint.constraint;
+            let x = self.local(model, j, q, &[], t);
+            c.jacobian(&x, &mut jac);
+            let r0 = self.row[j];
+            let bodies = c.bodies();
+            for r in 0..c.rows() {
+                for (k, b) in bodies.iter().enumerate() {
+                    if let Some(col) = self.body_col[b.0] {
+                        for d in 0..3 {
+                            put(r0 + r, col + d, jac.body[k][r][d]);
+                        }
+                    }
+                }
+                for o in 0..c.own_count() {
+                    put(r0 + r, self.own_col[j] + o, jac.own[r][o]);
+                }
+            }
+        }
+    }
+
+    /// ν(q, t) into `out`.
+    pub fn nu(&self, model: &Model, q: &[f64], t: f64, out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, joint) in model.joints.iter().enumerate() {
+            let x = self.local(model, j, q, &[], t);
+            joint.constraint.nu(&x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
+        }
+    }
+
+    /// γ(q, q̇, t) into `out`.
+    pub fn gamma(&self, model: &Model, q: &[f64], qd: &[f64], t: f64, out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, joint) in model.joints.iter().enumerate() {
+            let x = self.local(model, j, q, qd, t);
+            joint.constraint.gamma(&x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
+        }
+    }
+}

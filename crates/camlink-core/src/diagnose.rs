@@ -1,0 +1,320 @@
+//! What a model's constraints allow: rank of Φ_q, degrees of freedom,
+//! redundant equations and free motions, at the assembled initial
+//! configuration.
+//!
+//! Counting equations against coordinates is not enough: a planar four-bar
+//! with a fifth revolute, or a parallelogram linkage, has dependent
+//! equations. The rank of Φ_q (from its singular values) gives the true
+//! number of degrees of freedom, n − rank.
+
+use faer::linalg::solvers::{Solve, SolveLstsq};
+use faer::Mat;
+
+use crate::assembly::Assembly;
+use crate::constraint::Equations;
+use crate::model::Model;
+
+/// One equation that depends on others.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Redundancy {
+    /// `joint.equation`, e.g. `O4.y`.
+    pub equation: String,
+    /// The independent equations it is a combination of, with coefficients.
+    pub depends_on: Vec<(String, f64)>,
+}
+
+/// The result of [`diagnose`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct Diagnosis {
+    pub coordinates: usize,
+    pub equations: usize,
+    /// Rank of Φ_q at the initial configuration.
+    pub rank: usize,
+    /// Degrees of freedom, coordinates − rank.
+    pub dof: usize,
+    /// Equations that depend on earlier ones (in model order).
+    pub redundant: Vec<Redundancy>,
+    /// A basis of the motions the constraints leave free, each as the
+    /// coordinates that move most (name, relative amount; largest = ±1).
+    pub free_motions: Vec<Vec<(String, f64)>>,
+    /// Largest |Φ| after assembly; above the tolerance the configuration
+    /// could not be assembled and the rank is that of the placement.
+    pub residual: f64,
+    /// σ_max / σ_min of the nonzero singular values.
+    pub condition: f64,
+}
+
+/// Relative size under which a singular value counts as zero.
+const RANK_TOL: f64 = 1e-9;
+
+/// Assembles in the least-squares sense from the model's placement (so that
+/// an under-driven model assembles too), then analyses Φ_q at time `t`.
+pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
+    let asm = Assembly::new(model);
+    let (n, m) = (asm.n, asm.m);
+    let mut q = asm.initial_q(model);
+    let residual = least_squares_assembly(model, &asm, &mut q, t, tol);
+    let j = dense_jacobian(model, &asm, &q, t);
+
+    let (rank, condition, null) = if m == 0 || n == 0 {
+        (0, 1.0, (0..n).map(|k| unit(n, k)).collect())
+    } else {
+        svd_rank(&j)
+    };
+    let redundant = redundant_rows(model, &asm, &j);
+    let free_motions = null
+        .iter()
+        .map(|v| describe_motion(model, &asm, v))
+        .collect();
+    Diagnosis {
+        coordinates: n,
+        equations: m,
+        rank,
+        dof: n - rank,
+        redundant,
+        free_motions,
+        residual,
+        condition,
+    }
+}
+
+/// Φ_q as a dense m × n matrix.
+pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f64> {
+    let mut j = Mat::zeros(asm.m, asm.n);
+    asm.jacobian(model, q, t, |r, c, v| j[(r, c)] = v);
+    j
+}
+
+/// Levenberg–Marquardt on ‖Φ‖² from q; returns the final max |Φ|.
+fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, tol: f64) -> f64 {
+    let mut phi = vec![0.0; asm.m];
+    let mut trial = q.to_vec();
+    let mut trial_phi = phi.clone();
+    let mut mu = 1e-6;
+    asm.phi(model, q, t, &mut phi);
+    for _ in 0..200 {
+        let r = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        if !(r > tol) {
+            break;
+        }
+        let j = dense_jacobian(model, asm, q, t);
+        let jtj = j.transpose() * &j;
+        let f = Mat::from_fn(asm.m, 1, |r, _| phi[r]);
+        let g = j.transpose() * &f;
+        let scale = (0..asm.n).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
+        let a = Mat::from_fn(asm.n, asm.n, |r, c| {
+            jtj[(r, c)] + if r == c { mu * scale } else { 0.0 }
+        });
+        let dq = a.partial_piv_lu().solve(&g);
+        for k in 0..asm.n {
+            trial[k] = q[k] - dq[(k, 0)].clamp(-0.5, 0.5);
+        }
+        asm.phi(model, &trial, t, &mut trial_phi);
+        if norm(&trial_phi) < norm(&phi) {
+            q.copy_from_slice(&trial);
+            phi.copy_from_slice(&trial_phi);
+            mu = (mu * 0.3).max(1e-12);
+        } else {
+            mu *= 10.0;
+            if mu > 1e6 {
+                break;
+            }
+        }
+    }
+    phi.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn unit(n: usize, k: usize) -> Vec<f64> {
+    let mut v = vec![0.0; n];
+    v[k] = 1.0;
+    v
+}
+
+/// Rank, condition number and a basis of the null space of `j`.
+fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
+    let n = j.ncols();
+    let svd = match j.svd() {
+        Ok(svd) => svd,
+        Err(_) => return (0, f64::INFINITY, Vec::new()),
+    };
+    let s = svd.S().column_vector();
+    let smax = (0..s.nrows()).fold(0.0f64, |a, k| a.max(s[k]));
+    let cut = RANK_TOL * smax.max(1e-300) * (j.nrows().max(n) as f64);
+    let rank = (0..s.nrows()).filter(|&k| s[k] > cut).count();
+    let smin = (0..s.nrows())
+        .filter(|&k| s[k] > cut)
+        .fold(f64::INFINITY, |a, k| a.min(s[k]));
+    let v = svd.V();
+    let null = (rank..n)
+        .map(|c| (0..n).map(|r| v[(r, c)]).collect())
+        .collect();
+    (rank, smax / smin, null)
+}
+
+/// Equations (in model order) that are combinations of earlier independent
+/// ones, found by Gram–Schmidt on the rows of Φ_q.
+fn redundant_rows(model: &Model, asm: &Assembly, j: &Mat<f64>) -> Vec<Redundancy> {
+    let (m, n) = (j.nrows(), j.ncols());
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut independent: Vec<usize> = Vec::new();
+    let mut out = Vec::new();
+    let row_scale = (0..m)
+        .map(|r| (0..n).map(|c| j[(r, c)].powi(2)).sum::<f64>().sqrt())
+        .fold(0.0f64, f64::max);
+    for r in 0..m {
+        let row: Vec<f64> = (0..n).map(|c| j[(r, c)]).collect();
+        let mut v = row.clone();
+        for _ in 0..2 {
+            for b in &basis {
+                let d: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+                v.iter_mut().zip(b).for_each(|(x, y)| *x -= d * y);
+            }
+        }
+        let len = norm(&v);
+        if len > 1e-8 * row_scale.max(1e-300) {
+            basis.push(v.iter().map(|x| x / len).collect());
+            independent.push(r);
+            continue;
+        }
+        // Coefficients c with J_Iᵀ c = J_r, by least squares.
+        let a = Mat::from_fn(n, independent.len(), |c, k| j[(independent[k], c)]);
+        let b = Mat::from_fn(n, 1, |c, _| row[c]);
+        let coef = if independent.is_empty() {
+            Mat::zeros(0, 1)
+        } else {
+            a.qr().solve_lstsq(&b)
+        };
+        let cmax = (0..coef.nrows()).fold(0.0f64, |x, k| x.max(coef[(k, 0)].abs()));
+        let depends_on = (0..coef.nrows())
+            .filter(|&k| coef[(k, 0)].abs() > 1e-6 * cmax.max(1e-300))
+            .map(|k| (equation_name(model, asm, independent[k]), coef[(k, 0)]))
+            .collect();
+        out.push(Redundancy {
+            equation: equation_name(model, asm, r),
+            depends_on,
+        });
+    }
+    out
+}
+
+/// `joint.equation` for row `r`, e.g. `O4.x`.
+pub fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
+    let (j, e) = asm.joint_of_row(r);
+    let joint = &model.joints[j];
+    let names = joint.constraint.equations();
+    format!("{}.{}", joint.name, names.get(e).copied().unwrap_or("?"))
+}
+
+/// The coordinates that move most in the motion `v`.
+fn describe_motion(model: &Model, asm: &Assembly, v: &[f64]) -> Vec<(String, f64)> {
+    let vmax = v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let mut parts: Vec<(usize, f64)> = v
+        .iter()
+        .enumerate()
+        .filter(|(_, x)| x.abs() > 0.05 * vmax)
+        .map(|(k, x)| (k, x / vmax))
+        .collect();
+    // Sign so that the largest component is positive.
+    if let Some(&(_, big)) = parts.iter().max_by(|a, b| a.1.abs().total_cmp(&b.1.abs())) {
+        if big < 0.0 {
+            parts.iter_mut().for_each(|p| p.1 = -p.1);
+        }
+    }
+    parts.sort_by(|a, b| b.1.abs().total_cmp(&a.1.abs()));
+    parts
+        .into_iter()
+        .map(|(k, x)| (asm.coordinate_name(model, k), x))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::revolute::Revolute;
+    use crate::model::{Body, BodyId};
+
+    /// A four-bar with its links placed exactly, undriven.
+    fn four_bar(parallelogram: bool) -> Model {
+        let (a, b, c, d) = if parallelogram {
+            (0.2, 0.5, 0.2, 0.5)
+        } else {
+            (0.1, 0.35, 0.3, 0.4)
+        };
+        // Exact placement for crank angle 90° (parallelogram) or by solving.
+        let th2: f64 = 1.2;
+        let bx = a * th2.cos();
+        let by = a * th2.sin();
+        // Rocker angle from the circle intersection.
+        let (dx, dy) = (d - bx, -by);
+        let l = (dx * dx + dy * dy).sqrt();
+        let ang = dy.atan2(dx);
+        let beta = ((l * l + c * c - b * b) / (2.0 * l * c)).acos();
+        let th4 = std::f64::consts::PI + ang - beta;
+        let cx = d + c * th4.cos();
+        let cy = c * th4.sin();
+        let th3 = (cy - by).atan2(cx - bx);
+        let mut m = Model::new("four-bar");
+        let crank = m.add_body(Body::new("crank", [0.0, 0.0, th2]));
+        let coupler = m.add_body(Body::new("coupler", [bx, by, th3]));
+        let rocker = m.add_body(Body::new("rocker", [d, 0.0, th4]));
+        let g = BodyId::GROUND;
+        let rev = |bi, si, bj, sj| Revolute {
+            body_i: bi,
+            s_i: si,
+            body_j: bj,
+            s_j: sj,
+        };
+        m.add_joint("O2", rev(g, [0.0, 0.0], crank, [0.0, 0.0]));
+        m.add_joint("B", rev(crank, [a, 0.0], coupler, [0.0, 0.0]));
+        m.add_joint("C", rev(coupler, [b, 0.0], rocker, [c, 0.0]));
+        m.add_joint("O4", rev(g, [d, 0.0], rocker, [0.0, 0.0]));
+        m
+    }
+
+    #[test]
+    fn four_bar_has_one_dof_and_no_redundancy() {
+        let d = diagnose(&four_bar(false), 0.0, 1e-10);
+        assert_eq!((d.coordinates, d.equations), (9, 8));
+        // A planar four-bar: 8 independent equations, 1 DOF, nothing redundant.
+        assert_eq!(d.rank, 8);
+        assert_eq!(d.dof, 1);
+        assert!(d.redundant.is_empty(), "{:?}", d.redundant);
+        assert_eq!(d.free_motions.len(), 1);
+        assert!(d.residual < 1e-10);
+    }
+
+    #[test]
+    fn extra_revolute_is_named_redundant() {
+        // A fifth revolute at the rocker pivot duplicates O4's equations.
+        let mut m = four_bar(false);
+        let rocker = m.body_id("rocker").unwrap();
+        m.add_joint(
+            "O4_again",
+            Revolute {
+                body_i: BodyId::GROUND,
+                s_i: [0.4, 0.0],
+                body_j: rocker,
+                s_j: [0.0, 0.0],
+            },
+        );
+        let d = diagnose(&m, 0.0, 1e-10);
+        assert_eq!(d.equations, 10);
+        assert_eq!(d.rank, 8);
+        assert_eq!(d.dof, 1);
+        let names: Vec<&str> = d.redundant.iter().map(|r| r.equation.as_str()).collect();
+        assert_eq!(names, ["O4_again.x", "O4_again.y"]);
+        assert!(d.redundant[0].depends_on.iter().any(|(e, _)| e == "O4.x"));
+    }
+
+    #[test]
+    fn free_motion_of_an_undriven_crank_names_the_links() {
+        let d = diagnose(&four_bar(false), 0.0, 1e-10);
+        let motion: Vec<&str> = d.free_motions[0].iter().map(|(n, _)| n.as_str()).collect();
+        assert!(motion.contains(&"crank.phi"), "{motion:?}");
+        assert!(motion.contains(&"rocker.phi"), "{motion:?}");
+    }
+}

@@ -1,0 +1,573 @@
+//! Kinematic analysis of a fully driven model.
+//!
+//! At each time t_k:
+//! 1. predict q from the previous step, q ≈ q + h q̇ + h²/2 q̈;
+//! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
+//!    Φ_q while it keeps converging fast, refreshing it when it does not;
+//! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ.
+//!
+//! The factorization of step 3 is the one step 2 reuses at the next time,
+//! so a smooth run factors the Jacobian once per step.
+
+use crate::assembly::Assembly;
+use crate::constraint::Equations;
+use crate::linsolve::{Singular, SystemMatrix};
+use crate::math::{point, point_vel, rot, rot_d, V2};
+use crate::model::{BodyId, Model};
+
+/// Solver settings.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Newton stops when max |Φ| ≤ tol (m or rad).
+    pub tol: f64,
+    /// Newton iterations allowed per time step.
+    pub max_iter: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol: 1e-10,
+            max_iter: 25,
+        }
+    }
+}
+
+/// A body point whose motion is output, as channels
+/// `<name>.x .y .vx .vy .ax .ay`.
+#[derive(Clone, Debug)]
+pub struct PointOutput {
+    pub body: BodyId,
+    /// Channel prefix, e.g. `coupler.P`.
+    pub name: String,
+    /// The point in the body frame (m).
+    pub s: V2,
+}
+
+/// Receives results as the run goes.
+pub trait Sink {
+    /// Called once before the first row with the channel names (not `t`).
+    fn begin(&mut self, channels: &[String]);
+    /// One time step: time t (s) and the values, in channel order.
+    fn row(&mut self, t: f64, values: &[f64]);
+}
+
+/// A sink that keeps everything in memory, row by row.
+#[derive(Clone, Debug, Default)]
+pub struct Table {
+    pub channels: Vec<String>,
+    pub t: Vec<f64>,
+    /// Row-major values, `channels.len()` per step.
+    pub values: Vec<f64>,
+}
+
+impl Table {
+    /// The series of one channel.
+    pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
+        let k = self.channels.iter().position(|c| c == name)?;
+        let w = self.channels.len();
+        Some(self.values.chunks(w).map(|row| row[k]).collect())
+    }
+}
+
+impl Sink for Table {
+    fn begin(&mut self, channels: &[String]) {
+        self.channels = channels.to_vec();
+    }
+    fn row(&mut self, t: f64, values: &[f64]) {
+        self.t.push(t);
+        self.values.extend_from_slice(values);
+    }
+}
+
+/// How a run went.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Summary {
+    pub steps: usize,
+    pub newton_iterations: usize,
+    pub factorizations: usize,
+}
+
+/// An analysis that cannot proceed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("at t = {time} s: {message}")]
+pub struct AnalysisError {
+    /// Time (s) of the step that failed.
+    pub time: f64,
+    pub message: String,
+    /// Joints whose equations are involved.
+    pub joints: Vec<String>,
+    /// Largest |Φ| at failure (m or rad).
+    pub residual: f64,
+}
+
+/// What `check` reports about a model.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Report {
+    pub bodies: usize,
+    pub coordinates: usize,
+    pub equations: usize,
+    /// Coordinates minus equations.
+    pub dof: i64,
+    /// (name, kind, equations, driver) of each joint.
+    pub joints: Vec<(String, String, usize, bool)>,
+}
+
+/// Counts bodies, coordinates and equations.
+pub fn check(model: &Model) -> Report {
+    let asm = Assembly::new(model);
+    Report {
+        bodies: model.bodies.len() - 1,
+        coordinates: asm.n,
+        equations: asm.m,
+        dof: asm.n as i64 - asm.m as i64,
+        joints: model
+            .joints
+            .iter()
+            .map(|j| {
+                (
+                    j.name.clone(),
+                    j.constraint.kind().to_string(),
+                    j.constraint.rows(),
+                    j.driver,
+                )
+            })
+            .collect(),
+    }
+}
+
+/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
+pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
+    if !(step.is_finite() && step > 0.0) {
+        return Err(format!(
+            "the time step must be a positive number, not {step}"
+        ));
+    }
+    if !(t_end.is_finite() && t_end >= 0.0) {
+        return Err(format!("the end time must be a number ≥ 0, not {t_end}"));
+    }
+    let n = (t_end / step + 1e-9).floor() as usize;
+    if n > 100_000_000 {
+        return Err(format!(
+            "{n} steps ({t_end} s at {step} s) is more than 100 million; use a larger step"
+        ));
+    }
+    Ok((0..=n).map(|k| k as f64 * step).collect())
+}
+
+/// The output channel names of a run.
+pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["x", "y", "vx", "vy", "ax", "ay"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
+    for j in &model.joints {
+        for k in 0..j.constraint.own_count() {
+            let n = j.constraint.own_names().get(k).copied().unwrap_or("own");
+            names.push(format!("{}.{n}", j.name));
+        }
+    }
+    names
+}
+
+/// Position, velocity and acceleration analysis over `times`.
+///
+/// Rows reach `sink` as each step completes, so a run that fails keeps every
+/// step before the failure.
+pub fn run(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let mut solver = Solver::new(model, settings.clone())?;
+    let names = channels(model, points);
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let mut prev_t = None;
+    for &t in times {
+        if let Some(p) = prev_t {
+            if !(t > p) {
+                return Err(AnalysisError {
+                    time: t,
+                    message: format!("times must increase, but {t} follows {p}"),
+                    joints: Vec::new(),
+                    residual: 0.0,
+                });
+            }
+        }
+        solver.step(t, prev_t)?;
+        solver.outputs(points, &mut values);
+        sink.row(t, &values);
+        prev_t = Some(t);
+    }
+    Ok(solver.summary.clone())
+}
+
+/// The state and scratch of a kinematic run; allocated once.
+pub struct Solver<'m> {
+    model: &'m Model,
+    asm: Assembly,
+    settings: Settings,
+    /// Φ_q and its factorization.
+    jac: SystemMatrix,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    rhs: Vec<f64>,
+    pub summary: Summary,
+}
+
+impl<'m> Solver<'m> {
+    /// Checks the counts and lays out the model.
+    pub fn new(model: &'m Model, settings: Settings) -> Result<Self, AnalysisError> {
+        let asm = Assembly::new(model);
+        let (n, m) = (asm.n, asm.m);
+        if n == 0 {
+            return Err(fail(0.0, "the model has no moving bodies"));
+        }
+        if m < n {
+            return Err(fail(
+                0.0,
+                &format!(
+                    "{n} coordinates but {m} equations: {} degree(s) of freedom are not driven; \
+                     add as many drivers (or run a dynamic analysis)",
+                    n - m
+                ),
+            ));
+        }
+        if m > n {
+            return Err(fail(
+                0.0,
+                &format!(
+                    "{n} coordinates but {m} equations: {} equation(s) too many; \
+                     remove redundant joints or drivers (`camlink check` names them)",
+                    m - n
+                ),
+            ));
+        }
+        let q = asm.initial_q(model);
+        let mut pattern = Vec::new();
+        asm.jacobian(model, &q, 0.0, |r, c, _| pattern.push((r, c)));
+        Ok(Solver {
+            model,
+            settings,
+            jac: SystemMatrix::new(n, &pattern),
+            qd: vec![0.0; n],
+            qdd: vec![0.0; n],
+            rhs: vec![0.0; n],
+            q,
+            asm,
+            summary: Summary::default(),
+        })
+    }
+
+    pub fn assembly(&self) -> &Assembly {
+        &self.asm
+    }
+
+    /// Solves positions, velocities and accelerations at `t`; `prev` is the
+    /// previous time (None for the first step, which assembles from the
+    /// model's placement).
+    pub fn step(&mut self, t: f64, prev: Option<f64>) -> Result<(), AnalysisError> {
+        if let Some(p) = prev {
+            let h = t - p;
+            for k in 0..self.q.len() {
+                self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k];
+            }
+            self.positions(t)?;
+        } else {
+            self.assemble(t)?;
+        }
+
+        // Velocity and acceleration share one factorization at the solution.
+        self.refactor(t)?;
+        self.asm.nu(self.model, &self.q, t, &mut self.qd);
+        self.jac.solve(&mut self.qd);
+        self.asm
+            .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
+        self.jac.solve(&mut self.qdd);
+        if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
+            return Err(self.failure(t, "velocities or accelerations are not finite numbers"));
+        }
+        self.summary.steps += 1;
+        Ok(())
+    }
+
+    /// Assembles the mechanism at `t` from the model's rough placement:
+    /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
+    /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
+    /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
+    /// singular.
+    pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
+        let angles = self.asm.angle_mask(self.model);
+        let mut trial = self.q.clone();
+        let mut phi = vec![0.0; self.asm.m];
+        for _ in 0..ASSEMBLY_ITER {
+            self.asm.phi(self.model, &self.q, t, &mut phi);
+            let r = max_abs(&phi);
+            if !r.is_finite() {
+                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+            }
+            if r <= self.settings.tol {
+                return Ok(());
+            }
+            // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
+            self.rhs.copy_from_slice(&phi);
+            match self.refactor(t) {
+                Ok(()) => self.jac.solve(&mut self.rhs),
+                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, &mut self.rhs),
+            }
+            self.summary.newton_iterations += 1;
+            let big = (0..self.q.len())
+                .filter(|&k| angles[k])
+                .fold(0.0f64, |a, k| a.max(self.rhs[k].abs()));
+            let mut s = if big > MAX_ANGLE_STEP {
+                MAX_ANGLE_STEP / big
+            } else {
+                1.0
+            };
+            // Backtrack until ‖Φ‖₂ decreases enough.
+            let r2 = norm2(&phi);
+            loop {
+                for k in 0..self.q.len() {
+                    trial[k] = self.q[k] - s * self.rhs[k];
+                }
+                self.asm.phi(self.model, &trial, t, &mut phi);
+                let r2_new = norm2(&phi);
+                if r2_new.is_finite() && r2_new <= (1.0 - 1e-4 * s) * r2 {
+                    break;
+                }
+                s *= 0.5;
+                if s < 1e-6 {
+                    return Err(self.failure(
+                        t,
+                        "the mechanism cannot be assembled from the given placement: \
+                         no step reduces the constraint residual (check the joints \
+                         named here, or place the bodies closer to a valid configuration)",
+                    ));
+                }
+            }
+            self.q.copy_from_slice(&trial);
+        }
+        Err(self.failure(
+            t,
+            &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
+        ))
+    }
+
+    /// Newton–Raphson on Φ(q, t) = 0 from the predicted q, reusing the last
+    /// factorization of Φ_q while the residual falls fast and refreshing it
+    /// when it does not.
+    fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
+        let mut last = f64::INFINITY;
+        for it in 0..=self.settings.max_iter {
+            self.asm.phi(self.model, &self.q, t, &mut self.rhs);
+            let r = max_abs(&self.rhs);
+            if !r.is_finite() {
+                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+            }
+            if r <= self.settings.tol {
+                return Ok(());
+            }
+            if it == self.settings.max_iter {
+                break;
+            }
+            if !self.jac.is_valid() || r > 0.25 * last {
+                self.refactor(t)?;
+            }
+            last = r;
+            self.summary.newton_iterations += 1;
+            self.jac.solve(&mut self.rhs);
+            for k in 0..self.q.len() {
+                self.q[k] -= self.rhs[k];
+            }
+        }
+        Err(self.failure(
+            t,
+            &format!(
+                "positions did not converge in {} Newton iterations",
+                self.settings.max_iter
+            ),
+        ))
+    }
+
+    /// Fills and factors Φ_q at the current q.
+    fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
+        let jac = &mut self.jac;
+        let mut k = 0;
+        self.asm.jacobian(self.model, &self.q, t, |r, c, v| {
+            jac.put(k, r, c, v);
+            k += 1;
+        });
+        self.summary.factorizations += 1;
+        match self.jac.factor() {
+            Ok(()) => Ok(()),
+            Err(s) => Err(self.singular(t, s)),
+        }
+    }
+
+    fn singular(&self, t: f64, s: Singular) -> AnalysisError {
+        let (j, _) = self.asm.joint_of_row(s.row);
+        let mut e = self.failure(
+            t,
+            &format!(
+                "the constraint Jacobian is singular (relative pivot {:.1e}): \
+                 the mechanism is locked, at a singular configuration, or over-constrained",
+                s.pivot
+            ),
+        );
+        let name = self.model.joints[j].name.clone();
+        if !e.joints.contains(&name) {
+            e.joints.insert(0, name);
+        }
+        e
+    }
+
+    /// An error at `t` naming the joints with the largest residuals.
+    fn failure(&self, t: f64, what: &str) -> AnalysisError {
+        let mut phi = vec![0.0; self.asm.m];
+        self.asm.phi(self.model, &self.q, t, &mut phi);
+        let mut worst: Vec<(f64, usize)> = Vec::new();
+        for (j, _) in self.model.joints.iter().enumerate() {
+            let r = self
+                .asm
+                .rows_of(self.model, j)
+                .map(|k| phi[k].abs())
+                .fold(
+                    0.0,
+                    |a: f64, b| {
+                        if b.is_nan() {
+                            f64::INFINITY
+                        } else {
+                            a.max(b)
+                        }
+                    },
+                );
+            if r > self.settings.tol {
+                worst.push((r, j));
+            }
+        }
+        worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let joints: Vec<String> = worst
+            .iter()
+            .take(5)
+            .map(|&(_, j)| self.model.joints[j].name.clone())
+            .collect();
+        let residual = worst.first().map_or(0.0, |w| w.0);
+        let mut message = what.to_string();
+        if !joints.is_empty() {
+            message.push_str(&format!(
+                "; largest residual {residual:.3e} in {}",
+                joints
+                    .iter()
+                    .map(|j| format!("'{j}'"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+        }
+        AnalysisError {
+            time: t,
+            message,
+            joints,
+            residual,
+        }
+    }
+
+    /// Fills the output channels for the current state.
+    pub fn outputs(&self, points: &[PointOutput], out: &mut [f64]) {
+        let mut k = 0;
+        for (id, _) in self.model.moving_bodies() {
+            let c = self.asm.body_col(id.0).expect("moving body");
+            for v in [&self.q, &self.qd, &self.qdd] {
+                out[k..k + 3].copy_from_slice(&v[c..c + 3]);
+                k += 3;
+            }
+        }
+        for p in points {
+            let (q, qd, qdd) = self.body_state(p.body);
+            let r = point(q, p.s);
+            let v = point_vel(q, qd, p.s);
+            // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
+            let a = [
+                qdd[0] + rot_d(q[2], p.s)[0] * qdd[2] - rot(q[2], p.s)[0] * qd[2] * qd[2],
+                qdd[1] + rot_d(q[2], p.s)[1] * qdd[2] - rot(q[2], p.s)[1] * qd[2] * qd[2],
+            ];
+            out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], a[0], a[1]]);
+            k += 6;
+        }
+        for (j, joint) in self.model.joints.iter().enumerate() {
+            let c = self.asm.own_col(j);
+            for o in 0..joint.constraint.own_count() {
+                out[k] = self.q[c + o];
+                k += 1;
+            }
+        }
+    }
+
+    /// (q, q̇, q̈) of one body; zeros for the ground.
+    pub fn body_state(&self, body: BodyId) -> ([f64; 3], [f64; 3], [f64; 3]) {
+        match self.asm.body_col(body.0) {
+            Some(c) => (
+                [self.q[c], self.q[c + 1], self.q[c + 2]],
+                [self.qd[c], self.qd[c + 1], self.qd[c + 2]],
+                [self.qdd[c], self.qdd[c + 1], self.qdd[c + 2]],
+            ),
+            None => ([0.0; 3], [0.0; 3], [0.0; 3]),
+        }
+    }
+}
+
+/// Iterations allowed to assemble from the model's placement.
+const ASSEMBLY_ITER: usize = 100;
+/// Largest change of an angle (rad) in one assembly iteration.
+pub const MAX_ANGLE_STEP: f64 = 0.5;
+
+/// The Levenberg–Marquardt step δ = (JᵀJ + μI)⁻¹ Jᵀ Φ into `out`, for a
+/// singular J, with μ scaled to JᵀJ.
+fn levenberg_marquardt(j: &faer::Mat<f64>, phi: &[f64], out: &mut [f64]) {
+    use faer::linalg::solvers::Solve;
+    let jtj = j.transpose() * j;
+    let mu = 1e-6 * (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
+    let a = faer::Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
+        jtj[(r, c)] + if r == c { mu } else { 0.0 }
+    });
+    let f = faer::Mat::from_fn(phi.len(), 1, |r, _| phi[r]);
+    let x = a.partial_piv_lu().solve(j.transpose() * &f);
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = x[(k, 0)];
+    }
+}
+
+fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+fn fail(time: f64, message: &str) -> AnalysisError {
+    AnalysisError {
+        time,
+        message: message.to_string(),
+        joints: Vec::new(),
+        residual: 0.0,
+    }
+}
+
+/// max |v_k|, or NaN when any entry is NaN.
+fn max_abs(v: &[f64]) -> f64 {
+    let mut m = 0.0f64;
+    for &x in v {
+        if x.is_nan() {
+            return f64::NAN;
+        }
+        m = m.max(x.abs());
+    }
+    m
+}

@@ -1,0 +1,337 @@
+//! Linear solves with matrices of fixed structure (Φ_q, and the augmented
+//! matrices of dynamics).
+//!
+//! Structure once, numbers every step: a [`SystemMatrix`] is built from its
+//! sparsity pattern once, then refilled and refactored in place. Small
+//! systems use a dense LU with partial pivoting, large ones a sparse LU
+//! whose symbolic analysis (fill-reducing ordering) is done once; both from
+//! faer.
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor, solve};
+use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
+use faer::{Conj, Mat, MatMut, MatRef, Par};
+
+/// Systems with at most this many unknowns are solved densely.
+pub const DENSE_MAX: usize = 120;
+
+/// A pivot smaller than this, relative to the largest entry of the matrix,
+/// marks the matrix as singular.
+const SINGULAR_PIVOT: f64 = 1e-12;
+
+/// A factorization found the matrix singular at `column` (0-based) of U.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Singular {
+    /// The row of the original matrix whose pivot vanished.
+    pub row: usize,
+    /// The pivot's size relative to the largest entry.
+    pub pivot: f64,
+}
+
+/// P A = L U of a square matrix, with reusable storage.
+pub struct DenseLu {
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+    scratch: MemBuffer,
+    valid: bool,
+}
+
+impl DenseLu {
+    pub fn new(n: usize) -> Self {
+        let req = factor::lu_in_place_scratch::<usize, f64>(n, n, Par::Seq, Default::default())
+            .or(solve::solve_in_place_scratch::<usize, f64>(n, 1, Par::Seq));
+        DenseLu {
+            lu: Mat::zeros(n, n),
+            perm: vec![0; n],
+            perm_inv: vec![0; n],
+            scratch: MemBuffer::new(req),
+            valid: false,
+        }
+    }
+
+    pub fn dim(&self) -> usize {
+        self.lu.nrows()
+    }
+
+    /// True after a successful [`factor`](Self::factor).
+    pub fn is_valid(&self) -> bool {
+        self.valid
+    }
+
+    /// Forgets the factorization, so the next solve needs a new one.
+    pub fn invalidate(&mut self) {
+        self.valid = false;
+    }
+
+    /// Factors `a` (copied; `a` is left untouched).
+    pub fn factor(&mut self, a: MatRef<'_, f64>) -> Result<(), Singular> {
+        self.lu.copy_from(a);
+        let scale = max_abs(a).max(f64::MIN_POSITIVE);
+        factor::lu_in_place(
+            self.lu.as_mut(),
+            &mut self.perm,
+            &mut self.perm_inv,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        let n = self.dim();
+        for k in 0..n {
+            let pivot = self.lu[(k, k)].abs() / scale;
+            if !(pivot > SINGULAR_PIVOT) {
+                self.valid = false;
+                return Err(Singular {
+                    row: self.perm[k],
+                    pivot,
+                });
+            }
+        }
+        self.valid = true;
+        Ok(())
+    }
+
+    /// Solves A x = b in place (`b` becomes x).
+    pub fn solve(&mut self, b: &mut [f64]) {
+        let n = self.dim();
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        let perm = unsafe { faer::perm::PermRef::new_unchecked(&self.perm, &self.perm_inv, n) };
+        solve::solve_in_place(
+            self.lu.as_ref(),
+            self.lu.as_ref(),
+            perm,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+        );
+    }
+}
+
+/// Sparse LU of a square matrix with a fixed pattern.
+pub struct SparseLu {
+    pattern: SymbolicSparseColMat<usize>,
+    /// Values in column-compressed order.
+    values: Vec<f64>,
+    /// Position in `values` of the k-th pattern entry.
+    pos: Vec<usize>,
+    symbolic: SymbolicLu<usize>,
+    numeric: NumericLu<usize, f64>,
+    scratch: MemBuffer,
+    valid: bool,
+}
+
+impl SparseLu {
+    /// Analyses the pattern `(row, col)` (no duplicates) of an n × n matrix.
+    pub fn new(n: usize, pattern: &[(usize, usize)]) -> Self {
+        let pairs: Vec<Pair<usize, usize>> = pattern
+            .iter()
+            .map(|&(row, col)| Pair { row, col })
+            .collect();
+        let (sym, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
+            .expect("pattern indices are within the matrix");
+        let pos = pattern
+            .iter()
+            .map(|&(r, c)| {
+                let start = sym.col_ptr()[c];
+                let rows = &sym.row_idx()[start..sym.col_ptr()[c + 1]];
+                start + rows.binary_search(&r).expect("entry is in the pattern")
+            })
+            .collect();
+        let symbolic = factorize_symbolic_lu(sym.as_ref(), Default::default())
+            .expect("symbolic LU of a valid pattern");
+        let req = symbolic
+            .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
+            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        SparseLu {
+            values: vec![0.0; sym.row_idx().len()],
+            pattern: sym,
+            pos,
+            symbolic,
+            numeric: NumericLu::new(),
+            scratch: MemBuffer::new(req),
+            valid: false,
+        }
+    }
+
+    /// Sets the k-th pattern entry.
+    #[inline]
+    pub fn put(&mut self, k: usize, v: f64) {
+        self.values[self.pos[k]] = v;
+    }
+
+    pub fn factor(&mut self) -> Result<(), Singular> {
+        let a = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let res = self.symbolic.factorize_numeric_lu(
+            &mut self.numeric,
+            a,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+            Default::default(),
+        );
+        self.valid = res.is_ok();
+        res.map(|_| ()).map_err(|_| Singular { row: 0, pivot: 0.0 })
+    }
+
+    pub fn solve(&mut self, b: &mut [f64]) {
+        let n = b.len();
+        let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
+        let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
+        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut self.scratch));
+    }
+
+    /// The matrix as a dense one (for diagnostics).
+    pub fn to_dense(&self) -> Mat<f64> {
+        let n = self.pattern.nrows();
+        let mut a = Mat::zeros(n, n);
+        for c in 0..n {
+            for k in self.pattern.col_ptr()[c]..self.pattern.col_ptr()[c + 1] {
+                a[(self.pattern.row_idx()[k], c)] = self.values[k];
+            }
+        }
+        a
+    }
+}
+
+/// A square matrix of fixed pattern with its LU factorization, dense or
+/// sparse by size.
+pub enum SystemMatrix {
+    Dense { a: Mat<f64>, lu: DenseLu },
+    Sparse(SparseLu),
+}
+
+impl SystemMatrix {
+    /// An n × n matrix with the entries `pattern` (row, col), in the order
+    /// [`put`](Self::put) will fill them.
+    pub fn new(n: usize, pattern: &[(usize, usize)]) -> Self {
+        if n <= DENSE_MAX {
+            SystemMatrix::Dense {
+                a: Mat::zeros(n, n),
+                lu: DenseLu::new(n),
+            }
+        } else {
+            SystemMatrix::Sparse(SparseLu::new(n, pattern))
+        }
+    }
+
+    /// Sets entry k of the pattern, at (r, c).
+    #[inline]
+    pub fn put(&mut self, k: usize, r: usize, c: usize, v: f64) {
+        match self {
+            SystemMatrix::Dense { a, .. } => a[(r, c)] = v,
+            SystemMatrix::Sparse(s) => s.put(k, v),
+        }
+    }
+
+    /// Factors the current values.
+    pub fn factor(&mut self) -> Result<(), Singular> {
+        match self {
+            SystemMatrix::Dense { a, lu } => lu.factor(a.as_ref()),
+            SystemMatrix::Sparse(s) => s.factor(),
+        }
+    }
+
+    /// Solves A x = b in place with the last factorization.
+    #[inline]
+    pub fn solve(&mut self, b: &mut [f64]) {
+        match self {
+            SystemMatrix::Dense { lu, .. } => lu.solve(b),
+            SystemMatrix::Sparse(s) => s.solve(b),
+        }
+    }
+
+    pub fn is_valid(&self) -> bool {
+        match self {
+            SystemMatrix::Dense { lu, .. } => lu.is_valid(),
+            SystemMatrix::Sparse(s) => s.valid,
+        }
+    }
+
+    pub fn invalidate(&mut self) {
+        match self {
+            SystemMatrix::Dense { lu, .. } => lu.invalidate(),
+            SystemMatrix::Sparse(s) => s.valid = false,
+        }
+    }
+
+    /// The current values as a dense matrix (for diagnostics).
+    pub fn to_dense(&self) -> Mat<f64> {
+        match self {
+            SystemMatrix::Dense { a, .. } => a.clone(),
+            SystemMatrix::Sparse(s) => s.to_dense(),
+        }
+    }
+}
+
+/// Largest absolute entry of `a`.
+pub fn max_abs(a: MatRef<'_, f64>) -> f64 {
+    let mut m = 0.0f64;
+    for j in 0..a.ncols() {
+        for i in 0..a.nrows() {
+            m = m.max(a[(i, j)].abs());
+        }
+    }
+    m
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn solves_a_small_system() {
+        let a = Mat::from_fn(3, 3, |i, j| {
+            [[0.0, 2.0, 1.0], [1.0, 1.0, 0.0], [3.0, 0.0, 1.0]][i][j]
+        });
+        let x = [1.0, -2.0, 0.5];
+        let mut b: Vec<f64> = (0..3)
+            .map(|i| (0..3).map(|j| a[(i, j)] * x[j]).sum())
+            .collect();
+        let mut lu = DenseLu::new(3);
+        lu.factor(a.as_ref()).unwrap();
+        lu.solve(&mut b);
+        for i in 0..3 {
+            assert!((b[i] - x[i]).abs() < 1e-14, "{b:?}");
+        }
+    }
+
+    #[test]
+    fn sparse_and_dense_agree() {
+        // A tridiagonal system large enough to take the sparse path.
+        let n = DENSE_MAX + 30;
+        let mut pattern = Vec::new();
+        let mut vals = Vec::new();
+        for i in 0..n {
+            for j in i.saturating_sub(1)..(i + 2).min(n) {
+                pattern.push((i, j));
+                vals.push(if i == j { 4.0 + i as f64 * 0.01 } else { -1.0 });
+            }
+        }
+        let mut sys = SystemMatrix::new(n, &pattern);
+        assert!(matches!(sys, SystemMatrix::Sparse(_)));
+        for (k, (&(r, c), &v)) in pattern.iter().zip(&vals).enumerate() {
+            sys.put(k, r, c, v);
+        }
+        let a = sys.to_dense();
+        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+        let mut b: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| a[(i, j)] * x[j]).sum())
+            .collect();
+        sys.factor().unwrap();
+        sys.solve(&mut b);
+        for i in 0..n {
+            assert!((b[i] - x[i]).abs() < 1e-12, "{i}: {} vs {}", b[i], x[i]);
+        }
+    }
+
+    #[test]
+    fn reports_a_singular_matrix() {
+        let a = Mat::from_fn(3, 3, |i, j| {
+            [[1.0, 2.0, 3.0], [2.0, 4.0, 6.0], [0.0, 1.0, 1.0]][i][j]
+        });
+        let mut lu = DenseLu::new(3);
+        let err = lu.factor(a.as_ref()).unwrap_err();
+        assert!(err.pivot < 1e-12);
+        assert!(!lu.is_valid());
+    }
+}
