@@ -10,11 +10,12 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
+use camlink_core::diagnose::diagnose;
 use camlink_core::kinematics::{self, PointOutput, Settings, Sink};
 use camlink_core::Equations;
 use camlink_model::{Format, Loaded};
 use numpy::ndarray::Array2;
-use numpy::{IntoPyArray, PyArray2, PyReadonlyArray1};
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -156,17 +157,22 @@ impl Model {
         Ok(d)
     }
 
-    /// Counts of bodies, coordinates and equations, the degrees of freedom
-    /// and every constraint with its kind and equation count.
+    /// Counts of bodies, coordinates and equations, every constraint with
+    /// its kind and equation count, and the diagnosis of Φ_q at t = 0:
+    /// rank, degrees of freedom, redundant equations and free motions.
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
-            let report = kinematics::check(&self.loaded.model)
-                .map_err(|e| analysis_error(py, &e, Vec::new(), None))?;
+            let model = &self.loaded.model;
+            let (report, diagnosis) = py.detach(|| {
+                (
+                    kinematics::check(model),
+                    diagnose(model, 0.0, self.loaded.analysis.tol),
+                )
+            });
             let d = PyDict::new(py);
             d.set_item("bodies", report.bodies)?;
             d.set_item("coordinates", report.coordinates)?;
             d.set_item("equations", report.equations)?;
-            d.set_item("dof", report.dof)?;
             let joints = PyList::empty(py);
             for (name, kind, equations, driver) in &report.joints {
                 let j = PyDict::new(py);
@@ -177,6 +183,19 @@ impl Model {
                 joints.append(j)?;
             }
             d.set_item("joints", joints)?;
+            d.set_item("rank", diagnosis.rank)?;
+            d.set_item("dof", diagnosis.dof)?;
+            let redundant = PyList::empty(py);
+            for r in &diagnosis.redundant {
+                let e = PyDict::new(py);
+                e.set_item("equation", &r.equation)?;
+                e.set_item("depends_on", r.depends_on.clone())?;
+                redundant.append(e)?;
+            }
+            d.set_item("redundant", redundant)?;
+            d.set_item("free_motions", diagnosis.free_motions.clone())?;
+            d.set_item("residual", diagnosis.residual)?;
+            d.set_item("condition", diagnosis.condition)?;
             Ok(d)
         })
     }
@@ -246,9 +265,7 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .iter()
         .map(|full| {
             let (body, point) = full.split_once('.').ok_or_else(|| {
-                ModelError::new_err(format!(
-                    "point '{full}' should be written as 'body.point'"
-                ))
+                ModelError::new_err(format!("point '{full}' should be written as 'body.point'"))
             })?;
             let id = model.body_id(body).ok_or_else(|| {
                 ModelError::new_err(format!("point '{full}': no body named '{body}'"))
@@ -276,7 +293,7 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
 
 /// A `rows × width` NumPy array from row-major values.
 fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
-    let rows = if width == 0 { 0 } else { values.len() / width };
+    let rows = values.len().checked_div(width).unwrap_or(0);
     let a = Array2::from_shape_vec((rows, width), values)
         .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
     Ok(a.into_pyarray(py))
@@ -377,6 +394,15 @@ impl Sink for ChunkSink {
     }
 }
 
+/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
+#[pyfunction]
+fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    guard(|| {
+        let times = kinematics::time_grid(t_end, step).map_err(ModelError::new_err)?;
+        Ok(times.into_pyarray(py))
+    })
+}
+
 /// The JSON Schema of model files, as JSON text.
 #[pyfunction]
 fn json_schema() -> PyResult<String> {
@@ -391,6 +417,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
