@@ -22,13 +22,13 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 create_exception!(
-    _core,
+    camlink,
     ModelError,
     PyValueError,
     "A model file, a builder call or an argument is not valid."
 );
 create_exception!(
-    _core,
+    camlink,
     AnalysisError,
     PyRuntimeError,
     "An analysis could not proceed. Attributes: time (s), joints (names), \
