@@ -1,36 +1,256 @@
 //! Expressions of one variable with exact derivatives.
 //!
-//! Interface placeholder while the parser lands: `Expr::parse` reports that
-//! expressions are not available yet.
+//! Drivers f(t) such as `pi/6 + 2*pi*t` and cam profiles ρ(α) such as
+//! `if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)` are parsed once into an [`Expr`];
+//! [`Expr::jet`] then returns `[f, f', f'', f''']` at a point, derivatives
+//! with respect to the variable computed exactly by forward-mode jets
+//! (truncated Taylor arithmetic to third order, see [`Jet`]), never by finite
+//! differences.
+//!
+//! ```
+//! use camlink_expr::Expr;
+//!
+//! let rho = Expr::parse("if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)", "a").unwrap();
+//! let [r, dr, ddr, dddr] = rho.jet(0.5);
+//! assert_eq!(r, 1.25 - 1.5f64.cos() / 4.0);
+//! assert_eq!(dr, 0.75 * 1.5f64.sin());
+//! assert_eq!(rho.jet(3.0), [1.0, 0.0, 0.0, 0.0]);
+//!
+//! let src = "2*tt";
+//! let err = Expr::parse(src, "t").unwrap_err();
+//! assert_eq!(err.render(src), "2*tt\n  ^^\nunknown name 'tt'; the variable here is 't'");
+//!
+//! let f = Expr::parse("log(t - 1)", "t").unwrap();
+//! assert_eq!(
+//!     f.check(0.5).unwrap_err().to_string(),
+//!     "log of a negative number (-0.5) in `log(t - 1)` at t = 0.5"
+//! );
+//! ```
+//!
+//! Parsing and evaluating never run user code: a tokenizer and a Pratt
+//! parser compile the source to a flat list of stack-machine instructions
+//! whose only control flow is forward jumps. Evaluation allocates nothing
+//! and never panics; an operation outside its domain yields NaN or infinity,
+//! and [`Expr::check`] names it.
+//!
+//! # Language
+//!
+//! - Numbers: `1`, `1.5`, `.5`, `2.`, `1e-3`, `1.5E+2`.
+//! - Names: the variable (chosen by the caller, e.g. `t` or `a`; any letter
+//!   including `α`), parameters passed to [`Expr::parse_with`], and the
+//!   constants `pi` (also `π`) and `e`. Parameters shadow `pi` and `e`; a
+//!   parameter may not share the variable's name.
+//! - Arithmetic: `+ - * /`, powers `^` or `**` (right-associative; `-x^2`
+//!   is −(x²)), unary `-` and `+`, parentheses.
+//! - Comparisons `< <= > >= == !=` give 1 or 0 and cannot be chained.
+//!   Logic: `and` `or` `not` (also `&&` `||` `!`) treat any non-zero value
+//!   as true, give 1 or 0, and evaluate their right operand only when needed.
+//!   All of these have zero derivatives.
+//! - `if(cond, a, b)`: a where cond is non-zero, else b. Only the chosen
+//!   branch is evaluated, and the derivatives are those of that branch.
+//!
+//! Precedence, loosest first: `or`, `and`, `not`, comparisons, `+ -`,
+//! `* /`, unary `- +`, `^`.
+//!
+//! # Functions
+//!
+//! | call | value | derivative notes |
+//! |---|---|---|
+//! | `sin(x)` `cos(x)` `tan(x)` | trigonometric, radians | |
+//! | `asin(x)` `acos(x)` | inverse sine and cosine, x in [−1, 1] | infinite at ±1 |
+//! | `atan(x)` | inverse tangent | |
+//! | `atan2(y, x)` | angle of the point (x, y) in (−π, π] | those of atan(y/x) |
+//! | `sinh(x)` `cosh(x)` `tanh(x)` | hyperbolic | |
+//! | `exp(x)` | eˣ | |
+//! | `log(x)` `ln(x)` | natural logarithm, x > 0 | |
+//! | `sqrt(x)` | √x, x ≥ 0 | infinite at 0 |
+//! | `abs(x)` | \|x\| | sign(x); 0 at x = 0 |
+//! | `sign(x)` | −1, 0 or 1 | zero |
+//! | `floor(x)` `ceil(x)` | round down, up | zero |
+//! | `min(a, b, ...)` `max(a, b, ...)` | smallest, largest | those of the chosen argument (the first on a tie) |
+//! | `mod(x, y)` | x − y⌊x/y⌋, the sign of y | x' − ⌊x/y⌋ y' |
+//! | `hypot(x, y)` | √(x² + y²) | |
+//! | `deg(x)` | x·π/180 (degrees to radians) | |
+//!
+//! # Motion laws
+//!
+//! Each law is called as `law(x, x0, h0, x1, h1)`, the argument order of
+//! ADAMS `STEP`, and goes from the point (x0, h0) to the point (x1, h1):
+//! h0 for x on the x0 side, h1 beyond x1, and in between
+//! h0 + (h1 − h0)·s(u) with u = (x − x0)/(x1 − x0). x is usually the variable
+//! (`step(t, 0, 0, 1, 0.5)`) but may be any expression. Derivatives of the
+//! shapes are analytic (see [`Law::shape`]).
+//!
+//! | call | shape s(u) | smooth to |
+//! |---|---|---|
+//! | `ramp` | u (constant velocity) | value (C0) |
+//! | `step` | u²(3 − 2u), ADAMS STEP | velocity (C1) |
+//! | `step5`, `poly345` | 10u³ − 15u⁴ + 6u⁵, ADAMS STEP5 | acceleration (C2) |
+//! | `harmonic` | (1 − cos πu)/2 | velocity (C1) |
+//! | `cycloidal` | u − sin(2πu)/(2π) | acceleration (C2) |
+//!
+//! # Limits
+//!
+//! Sources longer than [`MAX_LEN`] bytes and sub-expressions nested more
+//! than [`MAX_NESTING`] levels deep are rejected with a [`ParseError`].
 
-/// A compiled expression of one variable.
+#![forbid(unsafe_code)]
+
+mod compile;
+mod error;
+mod function;
+mod jet;
+mod lexer;
+mod motion;
+mod parser;
+mod vm;
+
+use std::collections::HashMap;
+use std::fmt;
+
+use compile::Span;
+use vm::{run, Fault, Op};
+
+pub use error::{EvalError, ParseError};
+pub use function::functions;
+pub use jet::Jet;
+pub use motion::Law;
+pub use parser::{MAX_LEN, MAX_NESTING};
+
+/// A compiled expression of one variable, immutable after parsing.
 #[derive(Clone, Debug)]
 pub struct Expr {
     source: String,
-}
-
-/// Why an expression could not be parsed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("{message}")]
-pub struct ParseError {
-    pub message: String,
+    var: Option<String>,
+    code: Box<[Op]>,
+    spans: Box<[Span]>,
+    /// Evaluation stack slots the code needs.
+    depth: usize,
 }
 
 impl Expr {
-    /// Parses `src` as an expression of the variable `var`.
+    /// Parses `src` as an expression of the single variable named `var`
+    /// (e.g. `"t"` or `"a"`).
     pub fn parse(src: &str, var: &str) -> Result<Expr, ParseError> {
-        let _ = var;
-        Err(ParseError {
-            message: format!("expressions are not available yet: {src}"),
+        Expr::parse_with(src, Some(var), &HashMap::new())
+    }
+
+    /// Parses `src` with named constants (model parameters) substituted at
+    /// compile time; `var: None` makes a constant expression.
+    pub fn parse_with(
+        src: &str,
+        var: Option<&str>,
+        constants: &HashMap<String, f64>,
+    ) -> Result<Expr, ParseError> {
+        let p = parser::compile(src, var, constants)?;
+        Ok(Expr {
+            source: src.to_owned(),
+            var: var.map(str::to_owned),
+            code: p.code.into_boxed_slice(),
+            spans: p.spans.into_boxed_slice(),
+            depth: p.depth,
         })
     }
 
-    /// `[f, f', f'', f''']` at `x`.
-    pub fn jet(&self, _x: f64) -> [f64; 4] {
-        [f64::NAN; 4]
+    /// The value f(x).
+    #[inline]
+    pub fn eval(&self, x: f64) -> f64 {
+        match self.depth {
+            0..=8 => self.eval_on::<8>(x),
+            9..=32 => self.eval_on::<32>(x),
+            _ => self.eval_on::<{ parser::MAX_STACK }>(x),
+        }
     }
 
+    /// `[f, f', f'', f''']` at x, derivatives with respect to the variable.
+    /// Domain errors give NaN or infinity, never a panic.
+    #[inline]
+    pub fn jet(&self, x: f64) -> [f64; 4] {
+        match self.depth {
+            0..=8 => self.jet_on::<8>(x),
+            9..=32 => self.jet_on::<32>(x),
+            _ => self.jet_on::<{ parser::MAX_STACK }>(x),
+        }
+    }
+
+    #[inline]
+    fn eval_on<const N: usize>(&self, x: f64) -> f64 {
+        let mut stack = [0.0; N];
+        run::<f64, false>(&self.code, x, &mut stack).unwrap_or(f64::NAN)
+    }
+
+    #[inline]
+    fn jet_on<const N: usize>(&self, x: f64) -> [f64; 4] {
+        let mut stack = [Jet::ZERO; N];
+        run::<Jet, false>(&self.code, x, &mut stack).map_or([f64::NAN; 4], |j| j.0)
+    }
+
+    /// Evaluates the jet at x with checks and names the first operation that
+    /// fails: division by zero, log or square root of a negative number,
+    /// asin/acos outside [−1, 1], a value or derivative that is not finite.
+    pub fn check(&self, x: f64) -> Result<(), EvalError> {
+        self.fault(x).map_or(Ok(()), |(what, span)| {
+            let mut message = format!("{what} in `{}`", self.snippet(span));
+            if let Some(v) = &self.var {
+                message += &format!(" at {v} = {x}");
+            }
+            Err(EvalError { message, x })
+        })
+    }
+
+    /// The first failing operation at x and its source span.
+    fn fault(&self, x: f64) -> Option<(String, Span)> {
+        let mut stack = vec![Jet::ZERO; self.depth.max(1)];
+        match run::<Jet, true>(&self.code, x, &mut stack) {
+            Ok(_) => None,
+            Err(Fault { pc, what }) => Some((what, self.spans[pc])),
+        }
+    }
+
+    /// The source of `span` on one line, shortened to about 60 characters.
+    fn snippet(&self, span: Span) -> String {
+        let text = self.source.get(span.start..span.end).unwrap_or("");
+        let words: Vec<&str> = text.split_whitespace().collect();
+        let one_line = words.join(" ");
+        if one_line.chars().count() > 60 {
+            let head: String = one_line.chars().take(57).collect();
+            format!("{head}...")
+        } else {
+            one_line
+        }
+    }
+
+    /// The source text.
     pub fn source(&self) -> &str {
         &self.source
     }
+
+    /// The variable's name; `None` for a constant expression.
+    pub fn var(&self) -> Option<&str> {
+        self.var.as_deref()
+    }
+
+    /// True when the expression does not depend on the variable: the
+    /// variable does not appear in it, or appears only in an `if` branch
+    /// that a constant condition rules out.
+    pub fn is_constant(&self) -> bool {
+        !self.code.contains(&Op::Var)
+    }
+}
+
+impl fmt::Display for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.source)
+    }
+}
+
+/// Evaluates a constant expression such as `"deg(30)"` or `"2*r"` with
+/// parameters. A value that is not finite (`1/0`, `log(-1)`) is an error
+/// pointing at the operation.
+pub fn eval_constant(src: &str, constants: &HashMap<String, f64>) -> Result<f64, ParseError> {
+    let e = Expr::parse_with(src, None, constants)?;
+    if let Some((what, span)) = e.fault(0.0) {
+        return Err(ParseError::new(what, span.start, span.end - span.start));
+    }
+    Ok(e.eval(0.0))
 }

@@ -1,1 +1,260 @@
-//! camlink model files (TOML and JSON).
+//! camlink model files: one schema for TOML and JSON.
+//!
+//! [`load_path`] and [`load_str`] read a model file into a validated core
+//! [`camlink_core::Model`] plus the [`AnalysisSpec`] of its `[analysis]`
+//! table. Errors name the file, the line and column (TOML always, JSON where
+//! the value can be found) and the field path, e.g.
+//! `four_bar.toml:12:5: joints[2].body_i: no body named 'crnak' (did you mean 'crank'?)`.
+//! [`json_schema`] is the published JSON Schema of the format; the format
+//! itself is documented in `docs/model-files.md`.
+
+mod error;
+mod eval;
+pub mod file;
+mod locate;
+mod resolve;
+
+use std::path::Path;
+
+pub use error::LoadError;
+
+/// Largest model file accepted (bytes).
+pub const MAX_FILE_SIZE: u64 = 16 * 1024 * 1024;
+
+/// The syntax of a model file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Toml,
+    Json,
+}
+
+impl Format {
+    /// The format for a file name's extension (`.toml` or `.json`, any case).
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "toml" => Some(Format::Toml),
+            "json" => Some(Format::Json),
+            _ => None,
+        }
+    }
+}
+
+/// A loaded model file: the model and how to analyse it.
+#[derive(Clone, Debug)]
+pub struct Loaded {
+    pub model: camlink_core::Model,
+    pub analysis: AnalysisSpec,
+}
+
+/// The `[analysis]` table, evaluated. Times in seconds.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AnalysisSpec {
+    /// End time (s); the run starts at t = 0.
+    pub t_end: Option<f64>,
+    /// Output step (s).
+    pub step: Option<f64>,
+    /// Explicit output times (s), non-decreasing; excludes `t_end`/`step`.
+    pub times: Option<Vec<f64>>,
+    /// Newton tolerance on the constraint residual.
+    pub tol: f64,
+    /// Most Newton iterations per time step.
+    pub max_iter: usize,
+    /// Output points as `"body.point"`; each names an existing point.
+    pub points: Vec<String>,
+}
+
+impl AnalysisSpec {
+    pub const DEFAULT_TOL: f64 = 1e-10;
+    pub const DEFAULT_MAX_ITER: usize = 25;
+}
+
+impl Default for AnalysisSpec {
+    fn default() -> Self {
+        AnalysisSpec {
+            t_end: None,
+            step: None,
+            times: None,
+            tol: Self::DEFAULT_TOL,
+            max_iter: Self::DEFAULT_MAX_ITER,
+            points: Vec::new(),
+        }
+    }
+}
+
+/// Loads a model file; the format comes from the extension (`.toml`, `.json`).
+pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
+    let source = path.display().to_string();
+    let Some(format) = Format::from_path(path) else {
+        return Err(LoadError::file(
+            &source,
+            "unknown model file type; expected a .toml or .json file",
+        ));
+    };
+    let meta = std::fs::metadata(path)
+        .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    if meta.len() > MAX_FILE_SIZE {
+        return Err(too_large(&source, meta.len()));
+    }
+    let bytes =
+        std::fs::read(path).map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        LoadError::file(
+            &source,
+            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+        )
+    })?;
+    load_str(&text, format, &source)
+}
+
+fn too_large(source: &str, len: u64) -> LoadError {
+    LoadError::file(
+        source,
+        format!("file is too large ({len} bytes; the limit is {MAX_FILE_SIZE} bytes)"),
+    )
+}
+
+/// Loads a model from text; `source` names it in errors (usually the file name).
+pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
+    if text.len() as u64 > MAX_FILE_SIZE {
+        return Err(too_large(source, text.len() as u64));
+    }
+    let file = match format {
+        Format::Toml => parse_toml(text, source)?,
+        Format::Json => parse_json(text, source)?,
+    };
+    let stem = Path::new(source)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .filter(|s| !s.is_empty())
+        .unwrap_or("model");
+    let (model, analysis) = resolve::resolve(&file, stem).map_err(|f| {
+        let span = match format {
+            Format::Toml => locate::toml_span(text, &f.path),
+            Format::Json => locate::json_span(text, &f.path),
+        };
+        at(text, source, span.map(|s| s.start), Some(f.path), f.message)
+    })?;
+    Ok(Loaded { model, analysis })
+}
+
+/// A [`LoadError`] at byte `offset` of `text`.
+fn at(
+    text: &str,
+    source: &str,
+    offset: Option<usize>,
+    field: Option<String>,
+    message: String,
+) -> LoadError {
+    let (line, column) = match offset.map(|o| error::line_col(text, o)) {
+        Some((l, c)) => (Some(l), Some(c)),
+        None => (None, None),
+    };
+    LoadError {
+        source: source.to_string(),
+        line,
+        column,
+        field: field.filter(|f| !f.is_empty()),
+        message,
+    }
+}
+
+/// Field path as written in our errors: `joints[2].body_i`.
+fn field_path(p: &serde_path_to_error::Path) -> String {
+    use serde_path_to_error::Segment;
+    let mut out = String::new();
+    for seg in p.iter() {
+        match seg {
+            Segment::Seq { index } => out.push_str(&format!("[{index}]")),
+            Segment::Map { key } | Segment::Enum { variant: key } => {
+                if !out.is_empty() {
+                    out.push('.');
+                }
+                out.push_str(key);
+            }
+            Segment::Unknown => {}
+        }
+    }
+    out
+}
+
+fn parse_toml(text: &str, source: &str) -> Result<file::ModelFile, LoadError> {
+    let de = toml::Deserializer::parse(text).map_err(|e| {
+        let offset = e.span().map(|s| s.start);
+        at(
+            text,
+            source,
+            offset,
+            None,
+            format!("syntax error: {}", e.message().trim()),
+        )
+    })?;
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = field_path(e.path());
+        let inner = e.inner();
+        let offset = inner
+            .span()
+            .map(|s| s.start)
+            .or_else(|| locate::toml_span(text, &path).map(|s| s.start));
+        at(
+            text,
+            source,
+            offset,
+            Some(path),
+            inner.message().trim().to_string(),
+        )
+    })
+}
+
+fn parse_json(text: &str, source: &str) -> Result<file::ModelFile, LoadError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let file: file::ModelFile =
+        serde_path_to_error::deserialize(&mut de).map_err(|e| json_error(text, source, e))?;
+    de.end().map_err(|e| json_syntax(text, source, &e))?;
+    Ok(file)
+}
+
+fn json_error(
+    text: &str,
+    source: &str,
+    e: serde_path_to_error::Error<serde_json::Error>,
+) -> LoadError {
+    let path = field_path(e.path());
+    let inner = e.into_inner();
+    if inner.is_syntax() || inner.is_eof() {
+        return json_syntax(text, source, &inner);
+    }
+    let mut err = json_syntax(text, source, &inner);
+    err.message = strip_json_position(&inner.to_string());
+    err.field = Some(path).filter(|p| !p.is_empty());
+    err
+}
+
+fn json_syntax(_text: &str, source: &str, e: &serde_json::Error) -> LoadError {
+    let known = e.line() > 0;
+    let mut message = strip_json_position(&e.to_string());
+    if e.is_syntax() || e.is_eof() {
+        message = format!("syntax error: {message}");
+    }
+    LoadError {
+        source: source.to_string(),
+        line: known.then(|| e.line()),
+        column: known.then(|| e.column()),
+        field: None,
+        message,
+    }
+}
+
+/// serde_json appends " at line L column C"; the position is reported separately.
+fn strip_json_position(msg: &str) -> String {
+    match msg.rfind(" at line ") {
+        Some(k) => msg[..k].to_string(),
+        None => msg.to_string(),
+    }
+}
+
+/// The JSON Schema of the model file format (draft 2020-12).
+pub fn json_schema() -> serde_json::Value {
+    let schema = schemars::schema_for!(file::ModelFile);
+    serde_json::to_value(&schema).unwrap_or(serde_json::Value::Null)
+}

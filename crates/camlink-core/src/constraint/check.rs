@@ -9,6 +9,9 @@
 //!
 //! Differences use Richardson extrapolation, so the tolerance can stay tight.
 
+// Rows, coordinates and own coordinates are indexed in parallel arrays.
+#![allow(clippy::needless_range_loop)]
+
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::model::BodyId;
 
@@ -217,5 +220,90 @@ pub fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); M
     for _ in 0..n {
         let (x, acc) = random_local(c, &mut rng, own_range);
         check_at(c, &x, &acc);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::revolute::Revolute;
+    use crate::math::rot;
+
+    /// Which derivative a [`Broken`] revolute gets wrong.
+    #[derive(Clone, Copy)]
+    enum Fault {
+        /// γ without the −A_j s'_j φ̇_j² term.
+        GammaTerm,
+        /// ∂Φ/∂φ_j with the wrong sign.
+        JacobianSign,
+        /// ν = 1 instead of 0.
+        Nu,
+    }
+
+    /// A revolute joint with one deliberate mistake.
+    struct Broken(Revolute, Fault);
+
+    impl Equations for Broken {
+        fn kind(&self) -> &'static str {
+            "broken_revolute"
+        }
+        fn equations(&self) -> &'static [&'static str] {
+            self.0.equations()
+        }
+        fn bodies(&self) -> [BodyId; 2] {
+            self.0.bodies()
+        }
+        fn phi(&self, x: &Local, out: &mut Rows) {
+            self.0.phi(x, out)
+        }
+        fn jacobian(&self, x: &Local, out: &mut Jac) {
+            self.0.jacobian(x, out);
+            if let Fault::JacobianSign = self.1 {
+                out.body[1][0][2] = -out.body[1][0][2];
+            }
+        }
+        fn nu(&self, x: &Local, out: &mut Rows) {
+            self.0.nu(x, out);
+            if let Fault::Nu = self.1 {
+                out[0] = 1.0;
+            }
+        }
+        fn gamma(&self, x: &Local, out: &mut Rows) {
+            self.0.gamma(x, out);
+            if let Fault::GammaTerm = self.1 {
+                let wj = x.qd[1][2];
+                let aj = rot(x.q[1][2], self.0.s_j);
+                out[0] += aj[0] * wj * wj;
+                out[1] += aj[1] * wj * wj;
+            }
+        }
+    }
+
+    fn broken(fault: Fault) -> Broken {
+        let joint = Revolute {
+            body_i: BodyId(1),
+            s_i: [0.4, -0.2],
+            body_j: BodyId(2),
+            s_j: [-0.3, 0.7],
+        };
+        Broken(joint, fault)
+    }
+
+    #[test]
+    #[should_panic(expected = "γ of equation")]
+    fn catches_a_missing_gamma_term() {
+        check_random(&broken(Fault::GammaTerm), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "Φ_q column of equation")]
+    fn catches_a_wrong_jacobian_entry() {
+        check_random(&broken(Fault::JacobianSign), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "ν of equation")]
+    fn catches_a_wrong_nu() {
+        check_random(&broken(Fault::Nu), 10);
     }
 }

@@ -149,4 +149,13 @@ macro_rules! constraints {
 
 constraints! {
     Revolute(revolute::Revolute),
+    AbsoluteCoord(absolute::AbsoluteCoord),
+    AbsoluteDistance(absolute::AbsoluteDistance),
+    RelativeCoord(relative::RelativeCoord),
+    RelativeDistance(relative::RelativeDistance),
+    Translational(translational::Translational),
+    RevoluteRevolute(composite::RevoluteRevolute),
+    RevoluteTranslational(composite::RevoluteTranslational),
+    Gear(gear::Gear),
+    RackPinion(gear::RackPinion),
 }

@@ -1,0 +1,139 @@
+//! Load errors: where (file, line, column, field path) and what.
+
+use std::fmt;
+
+/// Why a model file could not be loaded.
+///
+/// Displays as `four_bar.toml:12:5: joints[2].body_i: no body named 'crnak'
+/// (did you mean 'crank'?)`; missing parts are left out.
+///
+/// `std::error::Error` is implemented by hand: thiserror's derive would take
+/// the `source` field (the file name) for the underlying error.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadError {
+    /// The file name (or the `source` label given to [`crate::load_str`]).
+    pub source: String,
+    /// 1-based line of the offending text, when known.
+    pub line: Option<usize>,
+    /// 1-based column (in characters) of the offending text, when known.
+    pub column: Option<usize>,
+    /// Path of the offending field, e.g. `joints[2].body_i`.
+    pub field: Option<String>,
+    /// What is wrong.
+    pub message: String,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.source)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+            if let Some(col) = self.column {
+                write!(f, ":{col}")?;
+            }
+        }
+        f.write_str(": ")?;
+        if let Some(field) = self.field.as_deref().filter(|s| !s.is_empty()) {
+            write!(f, "{field}: ")?;
+        }
+        f.write_str(&self.message)
+    }
+}
+
+impl std::error::Error for LoadError {}
+
+impl LoadError {
+    /// An error about the whole file.
+    pub(crate) fn file(source: &str, message: impl Into<String>) -> Self {
+        LoadError {
+            source: source.to_string(),
+            line: None,
+            column: None,
+            field: None,
+            message: message.into(),
+        }
+    }
+}
+
+/// 1-based (line, column) of byte `offset` in `text`; column counts characters.
+pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let start = before.rfind('\n').map_or(0, |k| k + 1);
+    (line, before[start..].chars().count() + 1)
+}
+
+/// ` (did you mean 'x'?)` when a candidate is close to `name`, else empty.
+pub(crate) fn did_you_mean<'a>(
+    name: &str,
+    candidates: impl IntoIterator<Item = &'a str>,
+) -> String {
+    let best = candidates
+        .into_iter()
+        .map(|c| (edit_distance(name, c), c))
+        .min_by_key(|(d, _)| *d);
+    match best {
+        Some((d, c)) if d <= (name.chars().count() / 3).max(1) + usize::from(name.len() > 5) => {
+            format!(" (did you mean '{c}'?)")
+        }
+        _ => String::new(),
+    }
+}
+
+/// Levenshtein distance in characters, with adjacent transposition counted as one edit.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.chars().collect();
+    let b: Vec<char> = b.chars().collect();
+    let w = b.len() + 1;
+    let mut d = vec![0usize; (a.len() + 1) * w];
+    for i in 0..=a.len() {
+        for j in 0..=b.len() {
+            d[i * w + j] = if i == 0 || j == 0 {
+                i + j
+            } else {
+                let sub = d[(i - 1) * w + j - 1] + usize::from(a[i - 1] != b[j - 1]);
+                let mut v = sub.min(d[(i - 1) * w + j] + 1).min(d[i * w + j - 1] + 1);
+                if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                    v = v.min(d[(i - 2) * w + j - 2] + 1);
+                }
+                v
+            };
+        }
+    }
+    d[a.len() * w + b.len()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn display_omits_missing_parts() {
+        let mut e = LoadError::file("m.toml", "bad");
+        assert_eq!(e.to_string(), "m.toml: bad");
+        e.field = Some("joints[2].body_i".into());
+        assert_eq!(e.to_string(), "m.toml: joints[2].body_i: bad");
+        e.line = Some(12);
+        e.column = Some(5);
+        assert_eq!(e.to_string(), "m.toml:12:5: joints[2].body_i: bad");
+    }
+
+    #[test]
+    fn suggestions() {
+        assert_eq!(
+            did_you_mean("crnak", ["crank", "rocker"]),
+            " (did you mean 'crank'?)"
+        );
+        assert_eq!(did_you_mean("zzz", ["crank", "rocker"]), "");
+    }
+
+    #[test]
+    fn line_and_column() {
+        assert_eq!(line_col("ab\ncd", 4), (2, 2));
+        assert_eq!(line_col("é\nx", 1), (1, 1));
+    }
+}

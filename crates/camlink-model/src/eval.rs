@@ -1,0 +1,41 @@
+//! Expressions in model files, through camlink-expr.
+//!
+//! The one place this crate calls the expression parser: constant fields
+//! evaluate with the file's parameters; a driver's `f` becomes a [`TimeFn`]
+//! of `t` (s). Errors come back as text: the parser's message, then the
+//! expression with a caret under the fault.
+
+use std::collections::HashMap;
+
+use camlink_core::TimeFn;
+use camlink_expr::{Expr, ParseError};
+
+/// Evaluates a constant expression with the file's parameters.
+pub fn constant(src: &str, consts: &HashMap<String, f64>) -> Result<f64, String> {
+    camlink_expr::eval_constant(src, consts).map_err(|e| describe(src, &e))
+}
+
+/// Parses a function of time `t` (s) with the file's parameters.
+pub fn time_fn(src: &str, consts: &HashMap<String, f64>) -> Result<TimeFn, String> {
+    let e = Expr::parse_with(src, Some("t"), consts).map_err(|e| describe(src, &e))?;
+    if e.is_constant() {
+        let v = e.eval(0.0);
+        if !v.is_finite() {
+            return Err(format!("value is not a finite number ({v})"));
+        }
+        return Ok(TimeFn::Const(v));
+    }
+    Ok(TimeFn::from(e))
+}
+
+/// `invalid expression: <message>` followed by the source line and carets.
+fn describe(src: &str, e: &ParseError) -> String {
+    let rendered = e.render(src);
+    let caret = rendered
+        .splitn(3, '\n')
+        .take(2)
+        .map(|l| format!("    {l}"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    format!("invalid expression: {}\n{caret}", e.message)
+}

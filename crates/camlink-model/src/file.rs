@@ -1,0 +1,583 @@
+//! The model file as written: serde structs shared by TOML and JSON.
+//!
+//! These structs mirror the file one to one and hold names and unevaluated
+//! numbers; [`crate::resolve`] turns them into a core [`camlink_core::Model`].
+//! Every table denies unknown keys, so a misspelt key is an error that names
+//! it and lists the valid ones. The JSON Schema is derived from these structs,
+//! and their doc comments become its descriptions.
+
+use std::borrow::Cow;
+use std::collections::BTreeMap;
+use std::fmt;
+
+use schemars::{json_schema, JsonSchema, Schema, SchemaGenerator};
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::Deserialize;
+
+/// A number, or a string holding an expression.
+///
+/// In a constant field the expression may use the file's parameters, `pi`
+/// and functions such as `deg(30)`; in a driver's `f` it is a function of
+/// time `t` (s).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Num {
+    Value(f64),
+    Expr(String),
+}
+
+impl<'de> Deserialize<'de> for Num {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl Visitor<'_> for V {
+            type Value = Num;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a number or an expression string")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Num, E> {
+                Ok(Num::Value(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Num, E> {
+                Ok(Num::Value(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Num, E> {
+                Ok(Num::Value(v as f64))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Num, E> {
+                Ok(Num::Expr(v.to_string()))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl JsonSchema for Num {
+    fn schema_name() -> Cow<'static, str> {
+        "Number".into()
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A number, or an expression string such as \"deg(30)\" or \"2*r\" using the file's parameters.",
+            "anyOf": [{ "type": "number" }, { "type": "string" }]
+        })
+    }
+}
+
+/// A point given by name (declared in the body's `points`) or inline as
+/// `[x, y]` in the body frame (m).
+#[derive(Clone, Debug, PartialEq)]
+pub enum PointRef {
+    Name(String),
+    Inline(Vec2),
+}
+
+impl<'de> Deserialize<'de> for PointRef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = PointRef;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a point name or an [x, y] pair")
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<PointRef, E> {
+                Ok(PointRef::Name(v.to_string()))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<PointRef, A::Error> {
+                pair(seq).map(|v| PointRef::Inline(Vec2(v)))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl JsonSchema for PointRef {
+    fn schema_name() -> Cow<'static, str> {
+        "PointRef".into()
+    }
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let vec2 = generator.subschema_for::<Vec2>();
+        json_schema!({
+            "description": "A point of the body: the name of one of its `points`, or [x, y] in the body frame (m).",
+            "anyOf": [{ "type": "string" }, vec2]
+        })
+    }
+}
+
+/// A planar vector `[x, y]` whose entries are numbers or expressions.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Vec2(pub [Num; 2]);
+
+impl<'de> Deserialize<'de> for Vec2 {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = Vec2;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("an [x, y] pair")
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<Vec2, A::Error> {
+                pair(seq).map(Vec2)
+            }
+        }
+        d.deserialize_seq(V)
+    }
+}
+
+impl JsonSchema for Vec2 {
+    fn schema_name() -> Cow<'static, str> {
+        "Vec2".into()
+    }
+    fn json_schema(generator: &mut SchemaGenerator) -> Schema {
+        let num = generator.subschema_for::<Num>();
+        json_schema!({
+            "description": "A planar vector [x, y].",
+            "type": "array", "items": num, "minItems": 2, "maxItems": 2
+        })
+    }
+}
+
+/// Reads exactly two numbers from a sequence.
+fn pair<'de, A: SeqAccess<'de>>(mut seq: A) -> Result<[Num; 2], A::Error> {
+    let x: Num = seq
+        .next_element()?
+        .ok_or_else(|| de::Error::invalid_length(0, &"an [x, y] pair"))?;
+    let y: Num = seq
+        .next_element()?
+        .ok_or_else(|| de::Error::invalid_length(1, &"an [x, y] pair"))?;
+    let mut n = 2;
+    while seq.next_element::<de::IgnoredAny>()?.is_some() {
+        n += 1;
+    }
+    if n != 2 {
+        return Err(de::Error::invalid_length(n, &"an [x, y] pair"));
+    }
+    Ok([x, y])
+}
+
+/// A camlink model file.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+#[schemars(title = "camlink model file")]
+pub struct ModelFile {
+    /// The JSON Schema this file follows (ignored by the loader).
+    #[serde(rename = "$schema", default)]
+    pub schema: Option<String>,
+    /// Name and global settings.
+    #[serde(default)]
+    pub model: Option<ModelSection>,
+    /// Named numbers usable in every numeric field and expression.
+    #[serde(default)]
+    pub parameters: BTreeMap<String, Num>,
+    /// Points of the ground, the implicit fixed body named `ground`.
+    #[serde(default)]
+    pub ground: Option<GroundSection>,
+    /// The moving bodies.
+    #[serde(default)]
+    pub bodies: Vec<BodySpec>,
+    /// Kinematic joints (time-independent constraints).
+    #[serde(default)]
+    pub joints: Vec<JointSpec>,
+    /// Driving constraints: a coordinate as a function of time.
+    #[serde(default)]
+    pub drivers: Vec<DriverSpec>,
+    /// What to compute and output.
+    #[serde(default)]
+    pub analysis: Option<AnalysisSection>,
+}
+
+/// `[model]`: name and global settings.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    /// Model name; defaults to the file name without extension.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Gravity vector g in the global frame (m/s²); default [0, -9.81].
+    #[serde(default)]
+    pub gravity: Option<Vec2>,
+}
+
+/// `[ground]`: the fixed body, whose frame is the global frame.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GroundSection {
+    /// Named ground points, `name = [x, y]` in the global frame (m).
+    #[serde(default)]
+    pub points: BTreeMap<String, Vec2>,
+}
+
+/// `[[bodies]]`: a rigid body.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    /// Unique name (not `ground`, no `.`).
+    pub name: String,
+    /// Initial position [x, y] of the body frame's origin, global frame (m); default [0, 0].
+    #[serde(default)]
+    pub position: Option<Vec2>,
+    /// Initial angle φ of the body frame (rad); default 0.
+    #[serde(default)]
+    pub angle: Option<Num>,
+    /// Mass m (kg), ≥ 0; default 0 (enough for kinematics).
+    #[serde(default)]
+    pub mass: Option<Num>,
+    /// Polar moment of inertia J' about the centroid (kg·m²), ≥ 0; default 0.
+    #[serde(default)]
+    pub inertia: Option<Num>,
+    /// Centroid [x, y] in the body frame (m); default [0, 0].
+    #[serde(default)]
+    pub centroid: Option<Vec2>,
+    /// Initial velocity [ẋ, ẏ] of the frame origin (m/s); default [0, 0].
+    #[serde(default)]
+    pub velocity: Option<Vec2>,
+    /// Initial angular velocity φ̇ (rad/s); default 0.
+    #[serde(default)]
+    pub omega: Option<Num>,
+    /// Named points, `name = [x, y]` in the body frame (m).
+    #[serde(default)]
+    pub points: BTreeMap<String, Vec2>,
+}
+
+/// Gear pair kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum GearKindSpec {
+    /// Two external gears (they turn in opposite senses).
+    #[default]
+    External,
+    /// Gear i runs inside ring gear j (same sense).
+    Internal,
+}
+
+/// `[[joints]]`: a time-independent constraint, selected by `type`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum JointSpec {
+    /// Point `point_i` of `body_i` coincides with `point_j` of `body_j` (2 equations).
+    Revolute {
+        /// Unique joint name; default `<type>_<index>`.
+        #[serde(default)]
+        name: Option<String>,
+        body_i: String,
+        /// Default: the body origin [0, 0].
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        body_j: String,
+        /// Default: the body origin [0, 0].
+        #[serde(default)]
+        point_j: Option<PointRef>,
+    },
+    /// `point_j` slides on the line through `point_i` along `axis` (body i
+    /// frame), and the relative angle φ_j − φ_i stays `angle` (2 equations).
+    Translational {
+        #[serde(default)]
+        name: Option<String>,
+        body_i: String,
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        /// Sliding direction in body i's frame; normalised, must not be zero.
+        axis: Vec2,
+        body_j: String,
+        #[serde(default)]
+        point_j: Option<PointRef>,
+        /// θ₀ = φ_j − φ_i (rad); default: its initial value.
+        #[serde(default)]
+        angle: Option<Num>,
+    },
+    /// A massless link of `length` between `point_i` and `point_j` (1 equation).
+    RevoluteRevolute {
+        #[serde(default)]
+        name: Option<String>,
+        body_i: String,
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        body_j: String,
+        #[serde(default)]
+        point_j: Option<PointRef>,
+        /// Link length L (m), > 0; default: the initial distance.
+        #[serde(default)]
+        length: Option<Num>,
+    },
+    /// Pin `point_i` of `body_i` runs on the line of `body_j` through
+    /// `point_j` along `axis`, at signed `offset` to its left (1 equation).
+    RevoluteTranslational {
+        #[serde(default)]
+        name: Option<String>,
+        /// The body carrying the pin.
+        body_i: String,
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        /// The body carrying the line.
+        body_j: String,
+        #[serde(default)]
+        point_j: Option<PointRef>,
+        /// Line direction in body j's frame; normalised, must not be zero.
+        axis: Vec2,
+        /// Signed offset c of the pin to the left of the line (m); default: its initial value.
+        #[serde(default)]
+        offset: Option<Num>,
+    },
+    /// Global x of a body point is constant (1 equation).
+    AbsoluteX(AbsoluteCoordJoint),
+    /// Global y of a body point is constant (1 equation).
+    AbsoluteY(AbsoluteCoordJoint),
+    /// The body angle φ is constant (1 equation).
+    AbsolutePhi(AbsolutePhiJoint),
+    /// Distance from a body point to a ground point is constant (1 equation).
+    AbsoluteDistance(AbsoluteDistanceJoint),
+    /// x_j^P − x_i^P is constant (1 equation).
+    RelativeX(RelativeCoordJoint),
+    /// y_j^P − y_i^P is constant (1 equation).
+    RelativeY(RelativeCoordJoint),
+    /// φ_j − φ_i is constant (1 equation).
+    RelativePhi(RelativePhiJoint),
+    /// Distance between two body points is constant (1 equation).
+    RelativeDistance(RelativeCoordJoint),
+    /// Two gears rolling on their pitch circles (2 equations, 1 own coordinate).
+    Gear {
+        #[serde(default)]
+        name: Option<String>,
+        body_i: String,
+        /// Centre of gear i; default the body origin.
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        /// Pitch radius R_i (m), > 0.
+        radius_i: Num,
+        body_j: String,
+        /// Centre of gear j; default the body origin.
+        #[serde(default)]
+        point_j: Option<PointRef>,
+        /// Pitch radius R_j (m), > 0.
+        radius_j: Num,
+        /// `external` (default) or `internal` (body j is the ring gear).
+        #[serde(default)]
+        kind: GearKindSpec,
+        /// Phase constant c (m); default: the initial placement.
+        #[serde(default)]
+        phase: Option<Num>,
+    },
+    /// Pinion `body_i` rolls on the pitch line of rack `body_j` (1 equation).
+    RackPinion {
+        #[serde(default)]
+        name: Option<String>,
+        /// The pinion.
+        body_i: String,
+        /// Pinion centre; default the body origin.
+        #[serde(default)]
+        point_i: Option<PointRef>,
+        /// Pitch radius R (m), > 0.
+        radius: Num,
+        /// The rack.
+        body_j: String,
+        /// A point of the pitch line; default the body origin.
+        #[serde(default)]
+        point_j: Option<PointRef>,
+        /// Rack direction in body j's frame; normalised, must not be zero.
+        axis: Vec2,
+        /// Phase constant c (m); default: the initial placement.
+        #[serde(default)]
+        phase: Option<Num>,
+    },
+}
+
+/// `absolute_x` / `absolute_y` joint.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsoluteCoordJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    /// Default: the body origin.
+    #[serde(default)]
+    pub point: Option<PointRef>,
+    /// The held coordinate (m); default: its initial value.
+    #[serde(default)]
+    pub value: Option<Num>,
+}
+
+/// `absolute_phi` joint.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsolutePhiJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    /// The held angle (rad); default: its initial value.
+    #[serde(default)]
+    pub value: Option<Num>,
+}
+
+/// `absolute_distance` joint.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsoluteDistanceJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    #[serde(default)]
+    pub point: Option<PointRef>,
+    /// The ground point C: a name from `[ground] points` or [x, y] (m).
+    pub ground_point: PointRef,
+    /// The held distance (m), > 0; default: its initial value.
+    #[serde(default)]
+    pub distance: Option<Num>,
+}
+
+/// `relative_x` / `relative_y` / `relative_distance` joint.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RelativeCoordJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    pub body_j: String,
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// The held difference or distance (m); default: its initial value.
+    #[serde(default)]
+    pub value: Option<Num>,
+}
+
+/// `relative_phi` joint.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RelativePhiJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    pub body_j: String,
+    /// The held φ_j − φ_i (rad); default: its initial value.
+    #[serde(default)]
+    pub value: Option<Num>,
+}
+
+/// `[[drivers]]`: a coordinate prescribed as f(t), selected by `type`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum DriverSpec {
+    /// x of a body point = f(t) (m).
+    AbsoluteX(AbsoluteCoordDriver),
+    /// y of a body point = f(t) (m).
+    AbsoluteY(AbsoluteCoordDriver),
+    /// φ of a body = f(t) (rad).
+    AbsolutePhi(AbsolutePhiDriver),
+    /// Distance from a body point to a ground point = f(t) (m).
+    AbsoluteDistance(AbsoluteDistanceDriver),
+    /// x_j^P − x_i^P = f(t) (m).
+    RelativeX(RelativeCoordDriver),
+    /// y_j^P − y_i^P = f(t) (m).
+    RelativeY(RelativeCoordDriver),
+    /// φ_j − φ_i = f(t) (rad).
+    RelativePhi(RelativePhiDriver),
+    /// Distance between two body points = f(t) (m).
+    RelativeDistance(RelativeCoordDriver),
+    /// The angle φ_j − φ_i of the named revolute joint = f(t) (rad).
+    RevoluteAngle(JointDriver),
+    /// Travel of the named translational joint's point_j from its point_i
+    /// along the axis = f(t) (m).
+    TranslationalTravel(JointDriver),
+}
+
+/// `absolute_x` / `absolute_y` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsoluteCoordDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    #[serde(default)]
+    pub point: Option<PointRef>,
+    /// f(t): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `absolute_phi` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsolutePhiDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    /// f(t) (rad): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `absolute_distance` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AbsoluteDistanceDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body: String,
+    #[serde(default)]
+    pub point: Option<PointRef>,
+    /// The ground point C: a name from `[ground] points` or [x, y] (m).
+    pub ground_point: PointRef,
+    /// f(t) (m): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `relative_x` / `relative_y` / `relative_distance` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RelativeCoordDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    pub body_j: String,
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// f(t) (m): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `relative_phi` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RelativePhiDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    pub body_j: String,
+    /// f(t) (rad): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `revolute_angle` / `translational_travel` driver.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct JointDriver {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// Name of the driven joint (revolute or translational, by driver type).
+    pub joint: String,
+    /// f(t) (rad or m): a number or an expression in `t` (s).
+    pub f: Num,
+}
+
+/// `[analysis]`: the time grid, solver settings and output points.
+#[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisSection {
+    /// End time (s), ≥ 0; the run starts at t = 0.
+    #[serde(default)]
+    pub t_end: Option<Num>,
+    /// Output step (s), > 0.
+    #[serde(default)]
+    pub step: Option<Num>,
+    /// Explicit output times (s), non-decreasing; instead of `t_end`/`step`.
+    #[serde(default)]
+    pub times: Option<Vec<Num>>,
+    /// Newton tolerance on the constraint residual; default 1e-10.
+    #[serde(default)]
+    pub tol: Option<Num>,
+    /// Most Newton iterations per step; default 25.
+    #[serde(default)]
+    pub max_iter: Option<u32>,
+    /// Body points to output as "body.point" (x, y, vx, vy, ax, ay).
+    #[serde(default)]
+    pub points: Vec<String>,
+}

@@ -1,0 +1,1046 @@
+//! From the file structs to a validated core [`Model`] and an [`AnalysisSpec`].
+//!
+//! Names become body ids and point vectors, numbers and expressions are
+//! evaluated with the file's parameters, and defaults that depend on the
+//! initial configuration (a coupler's length, a translational joint's angle,
+//! a gear's phase) are computed from the bodies' initial coordinates.
+//! Every failure carries the field path of the value at fault.
+
+use std::collections::{BTreeMap, HashMap};
+
+use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
+use camlink_core::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
+use camlink_core::constraint::gear::{Gear, GearKind, RackPinion};
+use camlink_core::constraint::relative::{RelCoord, RelativeCoord, RelativeDistance};
+use camlink_core::constraint::revolute::Revolute;
+use camlink_core::constraint::translational::Translational;
+use camlink_core::math::{dot, norm, perp, point, rot, scale, sub, V2};
+use camlink_core::{Body, BodyId, Constraint, Model, Point, TimeFn};
+
+use crate::error::did_you_mean;
+use crate::eval;
+use crate::file::*;
+use crate::AnalysisSpec;
+
+/// A semantic error: the field path and what is wrong.
+#[derive(Debug)]
+pub(crate) struct Fail {
+    pub path: String,
+    pub message: String,
+}
+
+type R<T> = Result<T, Fail>;
+
+fn fail<T>(path: impl Into<String>, message: impl Into<String>) -> R<T> {
+    Err(Fail {
+        path: path.into(),
+        message: message.into(),
+    })
+}
+
+/// The time variable of driver expressions, so not a parameter name.
+const TIME_VAR: &str = "t";
+
+/// What a driver of a named joint needs to know about that joint.
+#[derive(Clone, Debug)]
+enum JointInfo {
+    Revolute {
+        bi: BodyId,
+        s_i: V2,
+        bj: BodyId,
+        s_j: V2,
+    },
+    Translational {
+        bi: BodyId,
+        s_i: V2,
+        v_i: V2,
+        bj: BodyId,
+        s_j: V2,
+    },
+    Other(&'static str),
+}
+
+struct Ctx {
+    params: HashMap<String, f64>,
+    model: Model,
+    /// File path of each joint or driver name, for duplicate reports.
+    names: HashMap<String, String>,
+    joints: HashMap<String, JointInfo>,
+}
+
+/// Builds the model and analysis settings described by `file`.
+pub(crate) fn resolve(file: &ModelFile, default_name: &str) -> R<(Model, AnalysisSpec)> {
+    let params = parameters(&file.parameters)?;
+    let mut cx = Ctx {
+        params,
+        model: Model::new(default_name),
+        names: HashMap::new(),
+        joints: HashMap::new(),
+    };
+    if let Some(m) = &file.model {
+        if let Some(name) = &m.name {
+            cx.model.name = name.clone();
+        }
+        if let Some(g) = &m.gravity {
+            cx.model.gravity = cx.vec2(g, "model.gravity")?;
+        }
+    }
+    if let Some(g) = &file.ground {
+        cx.model.bodies[0].points = cx.points(&g.points, "ground.points")?;
+    }
+    cx.bodies(&file.bodies)?;
+    for (k, j) in file.joints.iter().enumerate() {
+        cx.joint(j, k)?;
+    }
+    for (k, d) in file.drivers.iter().enumerate() {
+        cx.driver(d, k)?;
+    }
+    let analysis = cx.analysis(file.analysis.as_ref())?;
+    cx.model.validate().or_else(|e| fail("", e.to_string()))?;
+    Ok((cx.model, analysis))
+}
+
+/// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
+fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
+    let mut done = HashMap::new();
+    for name in list.keys() {
+        let path = format!("parameters.{name}");
+        if !is_identifier(name) {
+            return fail(
+                path,
+                format!("parameter name '{name}' is not an identifier (letters, digits and _, not starting with a digit)"),
+            );
+        }
+        if name == TIME_VAR {
+            return fail(
+                path,
+                "the name 't' is reserved for time in driver expressions",
+            );
+        }
+    }
+    let mut pending: Vec<(&String, &Num)> = list.iter().collect();
+    while !pending.is_empty() {
+        let mut left = Vec::new();
+        let mut first_error = None;
+        for (name, value) in pending.iter().copied() {
+            let v = match value {
+                Num::Value(v) => Ok(*v),
+                Num::Expr(src) => eval::constant(src, &done),
+            };
+            match v {
+                Ok(v) => {
+                    if !v.is_finite() {
+                        return fail(
+                            format!("parameters.{name}"),
+                            format!("value is not a finite number ({v})"),
+                        );
+                    }
+                    done.insert(name.clone(), v);
+                }
+                Err(e) => {
+                    first_error.get_or_insert((name, e));
+                    left.push((name, value));
+                }
+            }
+        }
+        if left.len() == pending.len() {
+            let names: Vec<&str> = left.iter().map(|(n, _)| n.as_str()).collect();
+            let cyclic = left.iter().all(|(_, v)| match v {
+                Num::Expr(src) => names.iter().any(|n| mentions(src, n)),
+                Num::Value(_) => false,
+            });
+            if cyclic {
+                return fail(
+                    format!("parameters.{}", names[0]),
+                    format!(
+                        "parameters {} refer to each other in a cycle",
+                        names.join(", ")
+                    ),
+                );
+            }
+            if let Some((name, e)) = first_error {
+                return fail(format!("parameters.{name}"), e);
+            }
+        }
+        pending = left;
+    }
+    Ok(done)
+}
+
+/// True when `src` contains `name` as a whole word.
+fn mentions(src: &str, name: &str) -> bool {
+    src.split(|c: char| !(c.is_alphanumeric() || c == '_'))
+        .any(|w| w == name)
+}
+
+fn is_identifier(s: &str) -> bool {
+    let mut c = s.chars();
+    matches!(c.next(), Some(ch) if ch.is_ascii_alphabetic() || ch == '_')
+        && c.all(|ch| ch.is_ascii_alphanumeric() || ch == '_')
+}
+
+/// Checks a body, point or joint name: not empty, no `.` (used in `body.point`).
+fn check_name(name: &str, what: &str, path: &str) -> R<()> {
+    if name.trim().is_empty() {
+        return fail(path, format!("{what} name is empty"));
+    }
+    if name.contains('.') || name.contains('[') || name.contains(']') {
+        return fail(
+            path,
+            format!("{what} name '{name}' may not contain '.', '[' or ']'"),
+        );
+    }
+    Ok(())
+}
+
+impl Ctx {
+    /// A constant number: a value or a constant expression.
+    fn num(&self, n: &Num, path: &str) -> R<f64> {
+        let v = match n {
+            Num::Value(v) => *v,
+            Num::Expr(src) => match eval::constant(src, &self.params) {
+                Ok(v) => v,
+                Err(e) => return fail(path, e),
+            },
+        };
+        if !v.is_finite() {
+            return fail(path, format!("value is not a finite number ({v})"));
+        }
+        Ok(v)
+    }
+
+    fn opt(&self, n: Option<&Num>, default: f64, path: &str) -> R<f64> {
+        n.map_or(Ok(default), |n| self.num(n, path))
+    }
+
+    fn vec2(&self, v: &Vec2, path: &str) -> R<V2> {
+        Ok([
+            self.num(&v.0[0], &format!("{path}[0]"))?,
+            self.num(&v.0[1], &format!("{path}[1]"))?,
+        ])
+    }
+
+    /// A unit vector from a direction; zero length is an error.
+    fn axis(&self, v: &Vec2, path: &str) -> R<V2> {
+        let a = self.vec2(v, path)?;
+        let n = norm(a);
+        if n <= f64::MIN_POSITIVE || !n.is_finite() {
+            return fail(path, "axis has zero length");
+        }
+        Ok(scale(1.0 / n, a))
+    }
+
+    fn points(&self, pts: &BTreeMap<String, Vec2>, path: &str) -> R<Vec<Point>> {
+        pts.iter()
+            .map(|(name, v)| {
+                let p = format!("{path}.{name}");
+                check_name(name, "point", &p)?;
+                Ok(Point {
+                    name: name.clone(),
+                    s: self.vec2(v, &p)?,
+                })
+            })
+            .collect()
+    }
+
+    fn bodies(&mut self, bodies: &[BodySpec]) -> R<()> {
+        let mut seen: HashMap<&str, usize> = HashMap::new();
+        for (k, b) in bodies.iter().enumerate() {
+            let path = format!("bodies[{k}]");
+            check_name(&b.name, "body", &format!("{path}.name"))?;
+            if b.name == "ground" {
+                return fail(
+                    format!("{path}.name"),
+                    "'ground' is the implicit fixed body; declare its points in [ground] points",
+                );
+            }
+            if let Some(first) = seen.insert(&b.name, k) {
+                return fail(
+                    format!("{path}.name"),
+                    format!("duplicate body name '{}' (also bodies[{first}])", b.name),
+                );
+            }
+            let pos = match &b.position {
+                Some(v) => self.vec2(v, &format!("{path}.position"))?,
+                None => [0.0; 2],
+            };
+            let vel = match &b.velocity {
+                Some(v) => self.vec2(v, &format!("{path}.velocity"))?,
+                None => [0.0; 2],
+            };
+            let mass = self.opt(b.mass.as_ref(), 0.0, &format!("{path}.mass"))?;
+            if mass < 0.0 {
+                return fail(
+                    format!("{path}.mass"),
+                    format!("mass must not be negative ({mass} kg)"),
+                );
+            }
+            let inertia = self.opt(b.inertia.as_ref(), 0.0, &format!("{path}.inertia"))?;
+            if inertia < 0.0 {
+                return fail(
+                    format!("{path}.inertia"),
+                    format!("inertia must not be negative ({inertia} kg·m²)"),
+                );
+            }
+            let body = Body {
+                name: b.name.clone(),
+                mass,
+                inertia,
+                centroid: match &b.centroid {
+                    Some(v) => self.vec2(v, &format!("{path}.centroid"))?,
+                    None => [0.0; 2],
+                },
+                q0: [
+                    pos[0],
+                    pos[1],
+                    self.opt(b.angle.as_ref(), 0.0, &format!("{path}.angle"))?,
+                ],
+                qd0: [
+                    vel[0],
+                    vel[1],
+                    self.opt(b.omega.as_ref(), 0.0, &format!("{path}.omega"))?,
+                ],
+                points: self.points(&b.points, &format!("{path}.points"))?,
+            };
+            self.model.add_body(body);
+        }
+        if bodies.is_empty() {
+            return fail(
+                "bodies",
+                "the model has no moving bodies; add at least one [[bodies]] entry",
+            );
+        }
+        Ok(())
+    }
+
+    /// Resolves a body name.
+    fn body(&self, name: &str, path: &str) -> R<BodyId> {
+        match self.model.body_id(name) {
+            Some(id) => Ok(id),
+            None => fail(
+                path,
+                format!(
+                    "no body named '{name}'{}",
+                    did_you_mean(name, self.model.bodies.iter().map(|b| b.name.as_str()))
+                ),
+            ),
+        }
+    }
+
+    /// Resolves a point of `body`; `None` is the body origin.
+    fn point(&self, body: BodyId, p: Option<&PointRef>, path: &str) -> R<V2> {
+        match p {
+            None => Ok([0.0; 2]),
+            Some(PointRef::Inline(v)) => self.vec2(v, path),
+            Some(PointRef::Name(name)) => {
+                let b = self.model.body(body);
+                if let Some(s) = b.point(name) {
+                    return Ok(s);
+                }
+                let hint = if b.points.is_empty() {
+                    " (it declares no points; add it to the body's points or give [x, y])"
+                        .to_string()
+                } else {
+                    did_you_mean(name, b.points.iter().map(|p| p.name.as_str()))
+                };
+                fail(
+                    path,
+                    format!("body '{}' has no point named '{name}'{hint}", b.name),
+                )
+            }
+        }
+    }
+
+    /// Body id and local point, from a name field and a point field.
+    fn at(
+        &self,
+        body: &str,
+        p: Option<&PointRef>,
+        path: &str,
+        bf: &str,
+        pf: &str,
+    ) -> R<(BodyId, V2)> {
+        let id = self.body(body, &format!("{path}.{bf}"))?;
+        Ok((id, self.point(id, p, &format!("{path}.{pf}"))?))
+    }
+
+    fn q0(&self, b: BodyId) -> [f64; 3] {
+        self.model.body(b).q0
+    }
+
+    /// Initial global position of a body point (m).
+    fn r0(&self, b: BodyId, s: V2) -> V2 {
+        point(self.q0(b), s)
+    }
+
+    /// Registers a joint or driver name, rejecting duplicates.
+    fn name(&mut self, given: Option<&String>, default: String, path: &str) -> R<String> {
+        let name = given.cloned().unwrap_or(default);
+        check_name(&name, "joint", &format!("{path}.name"))?;
+        if let Some(first) = self.names.insert(name.clone(), path.to_string()) {
+            return fail(
+                format!("{path}.name"),
+                format!("duplicate joint or driver name '{name}' (also {first})"),
+            );
+        }
+        Ok(name)
+    }
+
+    fn add(&mut self, name: String, c: impl Into<Constraint>, driver: bool) {
+        if driver {
+            self.model.add_driver(name, c);
+        } else {
+            self.model.add_joint(name, c);
+        }
+    }
+
+    fn time_fn(&self, f: &Num, path: &str) -> R<TimeFn> {
+        match f {
+            Num::Value(v) if v.is_finite() => Ok(TimeFn::Const(*v)),
+            Num::Value(v) => fail(path, format!("value is not a finite number ({v})")),
+            Num::Expr(src) => eval::time_fn(src, &self.params).or_else(|e| fail(path, e)),
+        }
+    }
+
+    fn positive(&self, n: &Num, path: &str, what: &str) -> R<f64> {
+        let v = self.num(n, path)?;
+        if v <= 0.0 {
+            return fail(path, format!("{what} must be positive ({v} m)"));
+        }
+        Ok(v)
+    }
+
+    fn joint(&mut self, j: &JointSpec, k: usize) -> R<()> {
+        let path = format!("joints[{k}]");
+        let p = path.as_str();
+        match j {
+            JointSpec::Revolute {
+                name,
+                body_i,
+                point_i,
+                body_j,
+                point_j,
+            } => {
+                let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                self.joints
+                    .insert(name.clone(), JointInfo::Revolute { bi, s_i, bj, s_j });
+                self.add(
+                    name,
+                    Revolute {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                    },
+                    false,
+                );
+            }
+            JointSpec::Translational {
+                name,
+                body_i,
+                point_i,
+                axis,
+                body_j,
+                point_j,
+                angle,
+            } => {
+                let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let v_i = self.axis(axis, &format!("{p}.axis"))?;
+                let mut c = Translational {
+                    body_i: bi,
+                    s_i,
+                    v_i,
+                    body_j: bj,
+                    s_j,
+                    angle: 0.0,
+                };
+                c.angle = match angle {
+                    Some(a) => self.num(a, &format!("{p}.angle"))?,
+                    None => Translational::angle_from(self.q0(bi), self.q0(bj)),
+                };
+                self.joints.insert(
+                    name.clone(),
+                    JointInfo::Translational {
+                        bi,
+                        s_i,
+                        v_i,
+                        bj,
+                        s_j,
+                    },
+                );
+                self.add(name, c, false);
+            }
+            JointSpec::RevoluteRevolute {
+                name,
+                body_i,
+                point_i,
+                body_j,
+                point_j,
+                length,
+            } => {
+                let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let length = match length {
+                    Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
+                    None => {
+                        let l = norm(sub(self.r0(bj, s_j), self.r0(bi, s_i)));
+                        if l <= 0.0 {
+                            return fail(
+                                format!("{p}.length"),
+                                "the two points coincide initially; give the length",
+                            );
+                        }
+                        l
+                    }
+                };
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("revolute_revolute"));
+                self.add(
+                    name,
+                    RevoluteRevolute {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        length,
+                    },
+                    false,
+                );
+            }
+            JointSpec::RevoluteTranslational {
+                name,
+                body_i,
+                point_i,
+                body_j,
+                point_j,
+                axis,
+                offset,
+            } => {
+                let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let v_j = self.axis(axis, &format!("{p}.axis"))?;
+                let offset = match offset {
+                    Some(c) => self.num(c, &format!("{p}.offset"))?,
+                    None => {
+                        let u = rot(self.q0(bj)[2], v_j);
+                        dot(perp(u), sub(self.r0(bi, s_i), self.r0(bj, s_j)))
+                    }
+                };
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("revolute_translational"));
+                let c = RevoluteTranslational {
+                    body_i: bi,
+                    s_i,
+                    body_j: bj,
+                    s_j,
+                    v_j,
+                    offset,
+                };
+                self.add(name, c, false);
+            }
+            JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
+                let (kind, coord, axis) = match j {
+                    JointSpec::AbsoluteX(_) => ("absolute_x", Coord::X, 0),
+                    _ => ("absolute_y", Coord::Y, 1),
+                };
+                let name = self.name(a.name.as_ref(), format!("{kind}_{k}"), p)?;
+                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
+                self.moving(b, &format!("{p}.body"))?;
+                let f = self.opt(a.value.as_ref(), self.r0(b, s)[axis], &format!("{p}.value"))?;
+                self.joints.insert(name.clone(), JointInfo::Other(kind));
+                self.add(
+                    name,
+                    AbsoluteCoord {
+                        body: b,
+                        s,
+                        coord,
+                        f: TimeFn::Const(f),
+                    },
+                    false,
+                );
+            }
+            JointSpec::AbsolutePhi(a) => {
+                let name = self.name(a.name.as_ref(), format!("absolute_phi_{k}"), p)?;
+                let b = self.body(&a.body, &format!("{p}.body"))?;
+                self.moving(b, &format!("{p}.body"))?;
+                let f = self.opt(a.value.as_ref(), self.q0(b)[2], &format!("{p}.value"))?;
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("absolute_phi"));
+                let c = AbsoluteCoord {
+                    body: b,
+                    s: [0.0; 2],
+                    coord: Coord::Phi,
+                    f: TimeFn::Const(f),
+                };
+                self.add(name, c, false);
+            }
+            JointSpec::AbsoluteDistance(a) => {
+                let name = self.name(a.name.as_ref(), format!("absolute_distance_{k}"), p)?;
+                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
+                self.moving(b, &format!("{p}.body"))?;
+                let c0 = self.point(
+                    BodyId::GROUND,
+                    Some(&a.ground_point),
+                    &format!("{p}.ground_point"),
+                )?;
+                let f = match &a.distance {
+                    Some(d) => self.positive(d, &format!("{p}.distance"), "distance")?,
+                    None => norm(sub(self.r0(b, s), c0)),
+                };
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("absolute_distance"));
+                let c = AbsoluteDistance {
+                    body: b,
+                    s,
+                    ground_point: c0,
+                    f: TimeFn::Const(f),
+                };
+                self.add(name, c, false);
+            }
+            JointSpec::RelativeX(r) | JointSpec::RelativeY(r) | JointSpec::RelativeDistance(r) => {
+                let kind = match j {
+                    JointSpec::RelativeX(_) => "relative_x",
+                    JointSpec::RelativeY(_) => "relative_y",
+                    _ => "relative_distance",
+                };
+                let name = self.name(r.name.as_ref(), format!("{kind}_{k}"), p)?;
+                let (bi, s_i) = self.at(&r.body_i, r.point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(&r.body_j, r.point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let d = sub(self.r0(bj, s_j), self.r0(bi, s_i));
+                let vp = format!("{p}.value");
+                self.joints.insert(name.clone(), JointInfo::Other(kind));
+                let c: Constraint = match j {
+                    JointSpec::RelativeDistance(_) => {
+                        let f = match &r.value {
+                            Some(v) => self.positive(v, &vp, "distance")?,
+                            None => norm(d),
+                        };
+                        RelativeDistance {
+                            body_i: bi,
+                            s_i,
+                            body_j: bj,
+                            s_j,
+                            f: TimeFn::Const(f),
+                        }
+                        .into()
+                    }
+                    _ => {
+                        let (coord, k) = if kind == "relative_x" {
+                            (RelCoord::X, 0)
+                        } else {
+                            (RelCoord::Y, 1)
+                        };
+                        let f = self.opt(r.value.as_ref(), d[k], &vp)?;
+                        RelativeCoord {
+                            body_i: bi,
+                            s_i,
+                            body_j: bj,
+                            s_j,
+                            coord,
+                            f: TimeFn::Const(f),
+                        }
+                        .into()
+                    }
+                };
+                self.add(name, c, false);
+            }
+            JointSpec::RelativePhi(r) => {
+                let name = self.name(r.name.as_ref(), format!("relative_phi_{k}"), p)?;
+                let bi = self.body(&r.body_i, &format!("{p}.body_i"))?;
+                let bj = self.body(&r.body_j, &format!("{p}.body_j"))?;
+                self.distinct(bi, bj, p)?;
+                let f0 = self.q0(bj)[2] - self.q0(bi)[2];
+                let f = self.opt(r.value.as_ref(), f0, &format!("{p}.value"))?;
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("relative_phi"));
+                let c = RelativeCoord {
+                    body_i: bi,
+                    s_i: [0.0; 2],
+                    body_j: bj,
+                    s_j: [0.0; 2],
+                    coord: RelCoord::Phi,
+                    f: TimeFn::Const(f),
+                };
+                self.add(name, c, false);
+            }
+            JointSpec::Gear {
+                name,
+                body_i,
+                point_i,
+                radius_i,
+                body_j,
+                point_j,
+                radius_j,
+                kind,
+                phase,
+            } => {
+                let name = self.name(name.as_ref(), format!("gear_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let mut c = Gear {
+                    body_i: bi,
+                    s_i,
+                    radius_i: self.positive(radius_i, &format!("{p}.radius_i"), "radius")?,
+                    body_j: bj,
+                    s_j,
+                    radius_j: self.positive(radius_j, &format!("{p}.radius_j"), "radius")?,
+                    kind: match kind {
+                        GearKindSpec::External => GearKind::External,
+                        GearKindSpec::Internal => GearKind::Internal,
+                    },
+                    phase: 0.0,
+                };
+                if norm(sub(self.r0(bj, s_j), self.r0(bi, s_i))) <= 0.0 && phase.is_none() {
+                    return fail(
+                        format!("{p}.point_j"),
+                        "the gear centres coincide initially, so the centre line is undefined",
+                    );
+                }
+                c.phase = match phase {
+                    Some(v) => self.num(v, &format!("{p}.phase"))?,
+                    None => c.phase_from(self.q0(bi), self.q0(bj)),
+                };
+                self.joints.insert(name.clone(), JointInfo::Other("gear"));
+                self.add(name, c, false);
+            }
+            JointSpec::RackPinion {
+                name,
+                body_i,
+                point_i,
+                radius,
+                body_j,
+                point_j,
+                axis,
+                phase,
+            } => {
+                let name = self.name(name.as_ref(), format!("rack_pinion_{k}"), p)?;
+                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let mut c = RackPinion {
+                    body_i: bi,
+                    s_i,
+                    radius: self.positive(radius, &format!("{p}.radius"), "radius")?,
+                    body_j: bj,
+                    s_j,
+                    u_j: self.axis(axis, &format!("{p}.axis"))?,
+                    phase: 0.0,
+                };
+                c.phase = match phase {
+                    Some(v) => self.num(v, &format!("{p}.phase"))?,
+                    None => c.phase_from(self.q0(bi), self.q0(bj)),
+                };
+                self.joints
+                    .insert(name.clone(), JointInfo::Other("rack_pinion"));
+                self.add(name, c, false);
+            }
+        }
+        Ok(())
+    }
+
+    fn distinct(&self, bi: BodyId, bj: BodyId, path: &str) -> R<()> {
+        if bi == bj {
+            return fail(
+                format!("{path}.body_j"),
+                format!(
+                    "body_i and body_j are both '{}'; a joint needs two different bodies",
+                    self.model.body(bi).name
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    fn moving(&self, b: BodyId, path: &str) -> R<()> {
+        if b.is_ground() {
+            return fail(path, "this constraint needs a moving body, not the ground");
+        }
+        Ok(())
+    }
+
+    fn driver(&mut self, d: &DriverSpec, k: usize) -> R<()> {
+        let path = format!("drivers[{k}]");
+        let p = path.as_str();
+        let fp = format!("{p}.f");
+        let c: (String, Constraint) = match d {
+            DriverSpec::AbsoluteX(a) | DriverSpec::AbsoluteY(a) => {
+                let (kind, coord) = match d {
+                    DriverSpec::AbsoluteX(_) => ("absolute_x", Coord::X),
+                    _ => ("absolute_y", Coord::Y),
+                };
+                let name = self.name(a.name.as_ref(), format!("{kind}_driver_{k}"), p)?;
+                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
+                self.moving(b, &format!("{p}.body"))?;
+                let f = self.time_fn(&a.f, &fp)?;
+                (
+                    name,
+                    AbsoluteCoord {
+                        body: b,
+                        s,
+                        coord,
+                        f,
+                    }
+                    .into(),
+                )
+            }
+            DriverSpec::AbsolutePhi(a) => {
+                let name = self.name(a.name.as_ref(), format!("absolute_phi_driver_{k}"), p)?;
+                let b = self.body(&a.body, &format!("{p}.body"))?;
+                self.moving(b, &format!("{p}.body"))?;
+                let f = self.time_fn(&a.f, &fp)?;
+                (
+                    name,
+                    AbsoluteCoord {
+                        body: b,
+                        s: [0.0; 2],
+                        coord: Coord::Phi,
+                        f,
+                    }
+                    .into(),
+                )
+            }
+            DriverSpec::AbsoluteDistance(a) => {
+                let name =
+                    self.name(a.name.as_ref(), format!("absolute_distance_driver_{k}"), p)?;
+                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
+                self.moving(b, &format!("{p}.body"))?;
+                let c0 = self.point(
+                    BodyId::GROUND,
+                    Some(&a.ground_point),
+                    &format!("{p}.ground_point"),
+                )?;
+                let f = self.time_fn(&a.f, &fp)?;
+                (
+                    name,
+                    AbsoluteDistance {
+                        body: b,
+                        s,
+                        ground_point: c0,
+                        f,
+                    }
+                    .into(),
+                )
+            }
+            DriverSpec::RelativeX(r)
+            | DriverSpec::RelativeY(r)
+            | DriverSpec::RelativeDistance(r) => {
+                let kind = match d {
+                    DriverSpec::RelativeX(_) => "relative_x",
+                    DriverSpec::RelativeY(_) => "relative_y",
+                    _ => "relative_distance",
+                };
+                let name = self.name(r.name.as_ref(), format!("{kind}_driver_{k}"), p)?;
+                let (bi, s_i) = self.at(&r.body_i, r.point_i.as_ref(), p, "body_i", "point_i")?;
+                let (bj, s_j) = self.at(&r.body_j, r.point_j.as_ref(), p, "body_j", "point_j")?;
+                self.distinct(bi, bj, p)?;
+                let f = self.time_fn(&r.f, &fp)?;
+                let c: Constraint = match kind {
+                    "relative_x" => RelativeCoord {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        coord: RelCoord::X,
+                        f,
+                    }
+                    .into(),
+                    "relative_y" => RelativeCoord {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        coord: RelCoord::Y,
+                        f,
+                    }
+                    .into(),
+                    _ => RelativeDistance {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        f,
+                    }
+                    .into(),
+                };
+                (name, c)
+            }
+            DriverSpec::RelativePhi(r) => {
+                let name = self.name(r.name.as_ref(), format!("relative_phi_driver_{k}"), p)?;
+                let bi = self.body(&r.body_i, &format!("{p}.body_i"))?;
+                let bj = self.body(&r.body_j, &format!("{p}.body_j"))?;
+                self.distinct(bi, bj, p)?;
+                let f = self.time_fn(&r.f, &fp)?;
+                let c = RelativeCoord {
+                    body_i: bi,
+                    s_i: [0.0; 2],
+                    body_j: bj,
+                    s_j: [0.0; 2],
+                    coord: RelCoord::Phi,
+                    f,
+                };
+                (name, c.into())
+            }
+            DriverSpec::RevoluteAngle(jd) | DriverSpec::TranslationalTravel(jd) => {
+                let want = if matches!(d, DriverSpec::RevoluteAngle(_)) {
+                    "revolute"
+                } else {
+                    "translational"
+                };
+                let kind = format!(
+                    "{}_driver_{k}",
+                    if want == "revolute" {
+                        "revolute_angle"
+                    } else {
+                        "translational_travel"
+                    }
+                );
+                let name = self.name(jd.name.as_ref(), kind, p)?;
+                let jp = format!("{p}.joint");
+                let Some(info) = self.joints.get(&jd.joint).cloned() else {
+                    return fail(
+                        jp,
+                        format!(
+                            "no joint named '{}'{}",
+                            jd.joint,
+                            did_you_mean(&jd.joint, self.joints.keys().map(String::as_str))
+                        ),
+                    );
+                };
+                let f = self.time_fn(&jd.f, &fp)?;
+                let c = match (want, info) {
+                    ("revolute", JointInfo::Revolute { bi, s_i, bj, s_j }) => RelativeCoord {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        coord: RelCoord::Phi,
+                        f,
+                    },
+                    (
+                        "translational",
+                        JointInfo::Translational {
+                            bi,
+                            s_i,
+                            v_i,
+                            bj,
+                            s_j,
+                        },
+                    ) => RelativeCoord {
+                        body_i: bi,
+                        s_i,
+                        body_j: bj,
+                        s_j,
+                        coord: RelCoord::Along(v_i),
+                        f,
+                    },
+                    (_, other) => {
+                        let is = match other {
+                            JointInfo::Revolute { .. } => "revolute",
+                            JointInfo::Translational { .. } => "translational",
+                            JointInfo::Other(kind) => kind,
+                        };
+                        let ty = if want == "revolute" {
+                            "revolute_angle"
+                        } else {
+                            "translational_travel"
+                        };
+                        return fail(
+                            jp,
+                            format!("joint '{}' is a {is} joint, but a {ty} driver needs a {want} joint", jd.joint),
+                        );
+                    }
+                };
+                (name, c.into())
+            }
+        };
+        self.add(c.0, c.1, true);
+        Ok(())
+    }
+
+    fn analysis(&self, a: Option<&AnalysisSection>) -> R<AnalysisSpec> {
+        let Some(a) = a else {
+            return Ok(AnalysisSpec::default());
+        };
+        let t_end = match &a.t_end {
+            Some(n) => {
+                let v = self.num(n, "analysis.t_end")?;
+                if v < 0.0 {
+                    return fail(
+                        "analysis.t_end",
+                        format!("t_end must not be negative ({v} s)"),
+                    );
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        let step = match &a.step {
+            Some(n) => {
+                let v = self.num(n, "analysis.step")?;
+                if v <= 0.0 {
+                    return fail("analysis.step", format!("step must be positive ({v} s)"));
+                }
+                Some(v)
+            }
+            None => None,
+        };
+        let times = match &a.times {
+            Some(list) => {
+                if t_end.is_some() || step.is_some() {
+                    return fail(
+                        "analysis.times",
+                        "give either times or t_end/step, not both",
+                    );
+                }
+                let mut out = Vec::with_capacity(list.len());
+                for (k, n) in list.iter().enumerate() {
+                    let v = self.num(n, &format!("analysis.times[{k}]"))?;
+                    if out.last().is_some_and(|&last| v < last) {
+                        return fail(format!("analysis.times[{k}]"), "times must not decrease");
+                    }
+                    out.push(v);
+                }
+                Some(out)
+            }
+            None => None,
+        };
+        let tol = self.opt(a.tol.as_ref(), AnalysisSpec::DEFAULT_TOL, "analysis.tol")?;
+        if tol <= 0.0 {
+            return fail("analysis.tol", format!("tol must be positive ({tol})"));
+        }
+        let max_iter = a
+            .max_iter
+            .map_or(AnalysisSpec::DEFAULT_MAX_ITER, |m| m as usize);
+        if max_iter == 0 {
+            return fail("analysis.max_iter", "max_iter must be at least 1");
+        }
+        for (k, name) in a.points.iter().enumerate() {
+            let path = format!("analysis.points[{k}]");
+            let Some((b, pt)) = name.split_once('.') else {
+                return fail(path, format!("expected \"body.point\", found '{name}'"));
+            };
+            let id = self.body(b, &path)?;
+            self.point(id, Some(&PointRef::Name(pt.to_string())), &path)?;
+        }
+        Ok(AnalysisSpec {
+            t_end,
+            step,
+            times,
+            tol,
+            max_iter,
+            points: a.points.clone(),
+        })
+    }
+}
