@@ -94,7 +94,7 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
     asm.phi(model, q, t, &mut phi);
     for _ in 0..200 {
         let r = phi.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        if !(r > tol) {
+        if r <= tol || r.is_nan() {
             break;
         }
         let j = dense_jacobian(model, asm, q, t);

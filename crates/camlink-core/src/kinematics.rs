@@ -195,7 +195,7 @@ pub fn run(
     let mut prev_t = None;
     for &t in times {
         if let Some(p) = prev_t {
-            if !(t > p) {
+            if t <= p || t.is_nan() {
                 return Err(AnalysisError {
                     time: t,
                     message: format!("times must increase, but {t} follows {p}"),
@@ -338,8 +338,8 @@ impl<'m> Solver<'m> {
             // Backtrack until ‖Φ‖₂ decreases enough.
             let r2 = norm2(&phi);
             loop {
-                for k in 0..self.q.len() {
-                    trial[k] = self.q[k] - s * self.rhs[k];
+                for ((t, q), d) in trial.iter_mut().zip(&self.q).zip(&self.rhs) {
+                    *t = q - s * d;
                 }
                 self.asm.phi(self.model, &trial, t, &mut phi);
                 let r2_new = norm2(&phi);

@@ -8,6 +8,7 @@
 //! buffers) → analyses such as [`kinematics`].
 
 pub mod constraint;
+pub mod curve;
 pub mod function;
 pub mod math;
 pub mod model;

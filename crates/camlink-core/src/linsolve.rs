@@ -80,7 +80,7 @@ impl DenseLu {
         let n = self.dim();
         for k in 0..n {
             let pivot = self.lu[(k, k)].abs() / scale;
-            if !(pivot > SINGULAR_PIVOT) {
+            if pivot <= SINGULAR_PIVOT || pivot.is_nan() {
                 self.valid = false;
                 return Err(Singular {
                     row: self.perm[k],
@@ -197,7 +197,7 @@ impl SparseLu {
 /// sparse by size.
 pub enum SystemMatrix {
     Dense { a: Mat<f64>, lu: DenseLu },
-    Sparse(SparseLu),
+    Sparse(Box<SparseLu>),
 }
 
 impl SystemMatrix {
@@ -210,7 +210,7 @@ impl SystemMatrix {
                 lu: DenseLu::new(n),
             }
         } else {
-            SystemMatrix::Sparse(SparseLu::new(n, pattern))
+            SystemMatrix::Sparse(Box::new(SparseLu::new(n, pattern)))
         }
     }
 

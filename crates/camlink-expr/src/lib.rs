@@ -156,7 +156,8 @@ impl Expr {
     #[inline]
     pub fn eval(&self, x: f64) -> f64 {
         match self.depth {
-            0..=8 => self.eval_on::<8>(x),
+            0..=4 => self.eval_on::<4>(x),
+            5..=8 => self.eval_on::<8>(x),
             9..=32 => self.eval_on::<32>(x),
             _ => self.eval_on::<{ parser::MAX_STACK }>(x),
         }
@@ -166,8 +167,11 @@ impl Expr {
     /// Domain errors give NaN or infinity, never a panic.
     #[inline]
     pub fn jet(&self, x: f64) -> [f64; 4] {
+        // The stack is an array on the call stack, of the smallest size
+        // class that holds the program's depth.
         match self.depth {
-            0..=8 => self.jet_on::<8>(x),
+            0..=4 => self.jet_on::<4>(x),
+            5..=8 => self.jet_on::<8>(x),
             9..=32 => self.jet_on::<32>(x),
             _ => self.jet_on::<{ parser::MAX_STACK }>(x),
         }

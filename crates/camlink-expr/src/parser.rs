@@ -46,13 +46,17 @@ pub(crate) fn compile(
     constants: &HashMap<String, f64>,
 ) -> Result<Program, ParseError> {
     if src.len() > MAX_LEN {
+        let mut cut = MAX_LEN;
+        while !src.is_char_boundary(cut) {
+            cut -= 1;
+        }
         return Err(ParseError::new(
             format!(
                 "expression too long ({} bytes; the limit is {MAX_LEN})",
                 src.len()
             ),
-            MAX_LEN,
-            src.len() - MAX_LEN,
+            cut,
+            src.len() - cut,
         ));
     }
     if let Some(v) = var {

@@ -205,6 +205,11 @@ fn nesting_and_length_limits() {
         )
     );
     assert_eq!((e.offset, e.len), (MAX_LEN, 1));
+    // The offset stays on a character boundary.
+    let wide = "1".repeat(MAX_LEN - 1) + "ααα";
+    let e = error(&wide);
+    assert_eq!((e.offset, e.len), (MAX_LEN - 1, 6));
+    assert!(wide.is_char_boundary(e.offset));
 }
 
 #[test]

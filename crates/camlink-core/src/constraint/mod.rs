@@ -15,8 +15,11 @@
 use crate::model::BodyId;
 
 pub mod absolute;
+pub mod cam_follower;
 pub mod composite;
+pub mod flat_follower;
 pub mod gear;
+pub mod point_follower;
 pub mod relative;
 pub mod revolute;
 pub mod translational;
@@ -158,4 +161,7 @@ constraints! {
     RevoluteTranslational(composite::RevoluteTranslational),
     Gear(gear::Gear),
     RackPinion(gear::RackPinion),
+    CamFollower(cam_follower::CamFollower),
+    FlatFollower(flat_follower::FlatFollower),
+    PointFollower(point_follower::PointFollower),
 }

@@ -1,0 +1,226 @@
+//! Point–follower (pin in slot): point P_i of body i runs along a curve C_j
+//! of body j (seed 3.4.3, Haug's Φ^pf(i,j)).
+//!
+//! Own coordinate α_j: the parameter of the pin's place on C_j (for a polar
+//! slot the seed's angle α_j, p_j = s′_Q + ρ u′_j; for a parametric slot its
+//! length parameter). With p_j(α_j) in body j's frame, g′_j = dp_j/dα_j:
+//!
+//! Φ = r_i + A_i s′_i − r_j − A_j p_j(α_j)      (2 equations, m)
+//! Φ_q = [I  B_i s′_i | −I  −B_j p_j | −A_j g′_j]   (q_i | q_j | α_j)
+//! ν = 0
+//! γ = A_i s′_i φ̇_i² − A_j (p_j φ̇_j² − 2 g′_j⊥ φ̇_j α̇_j − (g′_j)_α α̇_j²)
+//!
+//! γ is the revolute joint's with the moving point's extra terms: the
+//! Coriolis term 2 B_j g′_j φ̇_j α̇_j and the curvature term A_j p″_j α̇_j².
+
+use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::curve::{search, Carried, Curve};
+use crate::math::{rot_t, sub, V2};
+use crate::model::BodyId;
+
+#[derive(Clone, Debug)]
+pub struct PointFollower {
+    pub body_i: BodyId,
+    /// s′_i: the pin P_i in body i's frame (m).
+    pub s_i: V2,
+    pub body_j: BodyId,
+    /// C_j, the slot, in body j's frame.
+    pub curve_j: Curve,
+}
+
+impl PointFollower {
+    #[inline]
+    fn parts(&self, x: &Local) -> (Carried, Carried) {
+        (
+            Carried::fixed(x.q[0], x.qd[0], self.s_i),
+            Carried::new(x.q[1], x.qd[1], &self.curve_j.jet(x.own[0]), x.own_d[0]),
+        )
+    }
+}
+
+impl Equations for PointFollower {
+    fn kind(&self) -> &'static str {
+        "point-follower"
+    }
+
+    fn equations(&self) -> &'static [&'static str] {
+        &["x", "y"]
+    }
+
+    fn bodies(&self) -> [BodyId; 2] {
+        [self.body_i, self.body_j]
+    }
+
+    fn own_count(&self) -> usize {
+        1
+    }
+
+    fn own_names(&self) -> &'static [&'static str] {
+        &["alpha_j"]
+    }
+
+    /// The point of C_j nearest to the pin; refined from `x.own[0]` when it
+    /// is nonzero.
+    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+        let pin = Carried::fixed(x.q[0], [0.0; 3], self.s_i).p;
+        let local = rot_t(x.q[1][2], sub(pin, [x.q[1][0], x.q[1][1]]));
+        let guess = (x.own[0] != 0.0).then_some(x.own[0]);
+        let mut own = x.own;
+        own[0] = search::closest(&self.curve_j, local, guess);
+        own
+    }
+
+    fn phi(&self, x: &Local, out: &mut Rows) {
+        let (a, b) = self.parts(x);
+        out[0] = a.p[0] - b.p[0];
+        out[1] = a.p[1] - b.p[1];
+        out[2] = 0.0;
+    }
+
+    fn jacobian(&self, x: &Local, out: &mut Jac) {
+        let (a, b) = self.parts(x);
+        *out = Jac::default();
+        for r in 0..2 {
+            out.body[0][r][r] = 1.0;
+            out.body[0][r][2] = a.p_phi[r];
+            out.body[1][r][r] = -1.0;
+            out.body[1][r][2] = -b.p_phi[r];
+            out.own[r][0] = -b.g[r];
+        }
+    }
+
+    fn nu(&self, _x: &Local, out: &mut Rows) {
+        *out = [0.0; 3];
+    }
+
+    fn gamma(&self, x: &Local, out: &mut Rows) {
+        let (a, b) = self.parts(x);
+        out[0] = b.p_quad[0] - a.p_quad[0];
+        out[1] = b.p_quad[1] - a.p_quad[1];
+        out[2] = 0.0;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::check::check_random_own;
+    use crate::curve::{Parametric, Polar};
+    use crate::math::{norm, point};
+    use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn derivatives_match_finite_differences_polar_slot() {
+        let c = PointFollower {
+            body_i: BodyId(1),
+            s_i: [0.3, -0.2],
+            body_j: BodyId(2),
+            curve_j: Polar::fourier([0.1, 0.0], 1.0, &[0.1, 0.2], &[0.05])
+                .unwrap()
+                .into(),
+        };
+        check_random_own(&c, 40, [(-TAU, 2.0 * TAU); MAX_OWN]);
+    }
+
+    #[test]
+    fn derivatives_match_finite_differences_parametric_slots() {
+        let slots: [Curve; 3] = [
+            Parametric::line([0.0, 0.0], [1.0, 0.5]).unwrap().into(),
+            Parametric::arc([0.2, 0.1], 0.8, -0.5, 1.5).unwrap().into(),
+            Parametric::spline(
+                &[[0.0, 0.0], [0.3, 0.5], [0.8, 0.6], [1.2, 0.2], [1.5, -0.1]],
+                false,
+            )
+            .unwrap()
+            .into(),
+        ];
+        for slot in slots {
+            let (s0, s1) = slot.range();
+            let c = PointFollower {
+                body_i: BodyId(2),
+                s_i: [0.1, 0.4],
+                body_j: BodyId(1),
+                curve_j: slot,
+            };
+            let m = 0.05 * (s1 - s0);
+            check_random_own(&c, 25, [(s0 + m, s1 - m); MAX_OWN]);
+        }
+        let c = PointFollower {
+            body_i: BodyId(1),
+            s_i: [0.1, 0.4],
+            body_j: BodyId::GROUND,
+            curve_j: Parametric::spline(&[[1.0, 0.0], [0.0, 1.0], [-1.0, 0.2], [0.0, -0.8]], true)
+                .unwrap()
+                .into(),
+        };
+        check_random_own(&c, 25, [(-4.0, 12.0); MAX_OWN]);
+    }
+
+    #[test]
+    fn pin_in_circular_slot_keeps_its_distance() {
+        // A pin at the centre of a roller (r = 0.25) in a ground "slot"
+        // that is the circle R + r = 1.25 about Q: the pin stays at 1.25
+        // from Q, like a distance constraint; solved for (x, α_j) at fixed y.
+        let c = PointFollower {
+            body_i: BodyId(1),
+            s_i: [0.0, 0.0],
+            body_j: BodyId::GROUND,
+            curve_j: Polar::circle([0.3, 0.2], 1.25).unwrap().into(),
+        };
+        let y = 0.9;
+        let mut x = Local::default();
+        x.q[0] = [1.5, y, 0.4];
+        x.own = c.initial_own(&x);
+        for _ in 0..30 {
+            let (mut f, mut jac) = ([0.0; 3], Jac::default());
+            c.phi(&x, &mut f);
+            c.jacobian(&x, &mut jac);
+            let (a, b, cc, d) = (
+                jac.body[0][0][0],
+                jac.own[0][0],
+                jac.body[0][1][0],
+                jac.own[1][0],
+            );
+            let det = a * d - b * cc;
+            x.q[0][0] -= (f[0] * d - b * f[1]) / det;
+            x.own[0] -= (a * f[1] - cc * f[0]) / det;
+        }
+        let dist = norm(sub([x.q[0][0], y], [0.3, 0.2]));
+        assert!((dist - 1.25).abs() < 1e-12, "{dist}");
+    }
+
+    #[test]
+    fn initial_own_is_the_nearest_slot_point() {
+        let c = PointFollower {
+            body_i: BodyId(1),
+            s_i: [0.0, 0.1],
+            body_j: BodyId(2),
+            curve_j: Polar::circle([0.0, 0.0], 1.0).unwrap().into(),
+        };
+        let mut x = Local::default();
+        x.q[0] = [-2.0, 0.0, 0.0];
+        x.q[1] = [0.0, 0.0, 0.5];
+        let own = c.initial_own(&x);
+        let pin = point(x.q[0], c.s_i);
+        let want = (pin[1].atan2(pin[0]) - 0.5).rem_euclid(TAU);
+        assert!((own[0] - want).abs() < 1e-9, "{own:?} {want}");
+        // From a guess one turn on: the same point, one turn on.
+        let own = c.initial_own(&Local {
+            own: [want + TAU + 0.2, 0.0],
+            ..x
+        });
+        assert!((own[0] - want - TAU).abs() < 1e-9, "{own:?}");
+        // Open slot: beyond its end, the end.
+        let c = PointFollower {
+            curve_j: Parametric::arc([0.0, 0.0], 1.0, 0.0, PI / 2.0)
+                .unwrap()
+                .into(),
+            ..c
+        };
+        let own = c.initial_own(&x);
+        assert!(
+            (own[0] - PI / 2.0).abs() < 1e-12 || own[0].abs() < 1e-12,
+            "{own:?}"
+        );
+    }
+}

@@ -1,0 +1,339 @@
+//! Curves attached to bodies: cam profiles, follower faces and slots.
+//!
+//! A curve answers, at its parameter s, the point p(s) in the frame of the
+//! body that carries it (m) and the derivatives p′ = dp/ds (the tangent g′
+//! of the seed lecture), p″ and p‴ ([`CurveJet`]). The curve-contact
+//! constraints need p‴ for γ.
+//!
+//! Two kinds of curve:
+//!
+//! - [`Polar`] — a profile ρ(α) about a body point Q, exactly the seed's
+//!   convex-boundary parameterization: s′ = s′_Q + ρ(α) u(α),
+//!   g′ = ρ′(α) u(α) + ρ(α) u⊥(α), u(α) = (cos α, sin α). The parameter is
+//!   the angle α (rad) in the body frame; the profile is closed with period
+//!   2π. Sources of ρ ([`Radius`]): a constant (circle), an expression in
+//!   `a`, a Fourier series, a periodic cubic spline.
+//! - [`Parametric`] — a curve (x(s), y(s)) for open slots and shapes that are
+//!   not star-shaped: line segment, arc, full circle, an expression pair in
+//!   `s`, a cubic spline through points. Built-in shapes and splines use arc
+//!   length (m) as parameter (chord length for splines); an expression pair
+//!   uses the user's parameter.
+//!
+//! A closed curve wraps its parameter ([`Curve::wrap`]): a contact
+//! coordinate may grow without bound as a cam turns, and the curve is
+//! evaluated at the wrapped value. An open curve has ends ([`Curve::range`])
+//! and is evaluated past them by extension (the line goes on, the arc goes
+//! round, a spline continues its end cubic); whether a contact left the
+//! curve is a question for the analysis, which knows the range.
+//!
+//! Derivatives are exact: closed forms for lines, arcs, circles and Fourier
+//! series, forward-mode jets for expressions, and the spline's own
+//! polynomial pieces. A cubic spline is C² — position, tangent and
+//! curvature are continuous — and its third derivative is piecewise
+//! constant, jumping at the knots.
+
+use std::f64::consts::TAU;
+
+use crate::math::{cross, norm, V2};
+
+pub mod carried;
+pub mod fourier;
+pub mod parametric;
+pub mod points;
+pub mod polar;
+pub mod search;
+pub mod spline;
+
+pub use carried::Carried;
+pub use fourier::Fourier;
+pub use parametric::Parametric;
+pub use points::{parse_points_csv, read_points_csv};
+pub use polar::{Polar, Radius};
+pub use spline::{PlanarSpline, Spline};
+
+/// A curve point and its derivatives with respect to the curve parameter
+/// s, all in the body frame: p (m), p′ = dp/ds, p″, p‴.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CurveJet {
+    pub p: V2,
+    pub d1: V2,
+    pub d2: V2,
+    pub d3: V2,
+}
+
+/// Why a curve could not be built.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CurveError {
+    /// A points file could not be read.
+    #[error("{file}: {message}")]
+    Io { file: String, message: String },
+    /// A row of a points file is not two numbers.
+    #[error("{file}:{line}: {message}")]
+    Csv {
+        file: String,
+        line: usize,
+        message: String,
+    },
+    /// An expression did not parse.
+    #[error("expression '{source_text}': {message}")]
+    Expr {
+        source_text: String,
+        message: String,
+    },
+    /// A size, range or set of points that does not make a curve.
+    #[error("{0}")]
+    Invalid(String),
+}
+
+/// A curve in a body frame: a polar profile or a parametric curve.
+#[derive(Clone, Debug)]
+pub enum Curve {
+    Polar(Polar),
+    Parametric(Parametric),
+}
+
+impl Curve {
+    /// p(s), p′, p″, p‴ in the body frame at parameter `s` (closed curves
+    /// wrap `s`).
+    #[inline]
+    pub fn jet(&self, s: f64) -> CurveJet {
+        match self {
+            Curve::Polar(c) => c.jet(s),
+            Curve::Parametric(c) => c.jet(s),
+        }
+    }
+
+    /// True for a closed curve (its parameter wraps).
+    pub fn closed(&self) -> bool {
+        match self {
+            Curve::Polar(_) => true,
+            Curve::Parametric(c) => c.closed(),
+        }
+    }
+
+    /// The parameter range (s₀, s₁): the ends of an open curve, one period
+    /// of a closed one ((0, 2π) for a polar profile).
+    pub fn range(&self) -> (f64, f64) {
+        match self {
+            Curve::Polar(_) => (0.0, TAU),
+            Curve::Parametric(c) => c.range(),
+        }
+    }
+
+    /// The period s₁ − s₀ of a closed curve; `None` for an open one.
+    pub fn period(&self) -> Option<f64> {
+        let (s0, s1) = self.range();
+        self.closed().then_some(s1 - s0)
+    }
+
+    /// `s` wrapped into [s₀, s₁) for a closed curve; `s` itself for an open
+    /// one.
+    #[inline]
+    pub fn wrap(&self, s: f64) -> f64 {
+        let (s0, s1) = self.range();
+        if self.closed() {
+            s0 + (s - s0).rem_euclid(s1 - s0)
+        } else {
+            s
+        }
+    }
+
+    /// Signed curvature κ = (p′ × p″)/|p′|³ (1/m) in the body frame:
+    /// positive where the curve turns left (counterclockwise) as s grows.
+    /// A convex polar profile has κ > 0 everywhere.
+    pub fn curvature(&self, s: f64) -> f64 {
+        let j = self.jet(s);
+        cross(j.d1, j.d2) / norm(j.d1).powi(3)
+    }
+
+    /// Parameter intervals (a, b) where the curve is concave, κ < 0 (below
+    /// −10⁻⁹ times the largest |κ| found, so straight pieces do not count).
+    /// The curvature is sampled at `samples` points over the range and each
+    /// sign change located by bisection. For a closed curve an interval
+    /// that crosses the start of the range is returned once, as (a, b) with
+    /// s₀ ≤ a < s₁ < b. A flat-faced follower needs a cam with no concave
+    /// interval.
+    pub fn concave_ranges(&self, samples: usize) -> Vec<(f64, f64)> {
+        let n = samples.max(8);
+        let (s0, s1) = self.range();
+        let closed = self.closed();
+        let at = |k: usize| s0 + (s1 - s0) * k as f64 / n as f64;
+        let kmax = (0..n)
+            .map(|k| self.curvature(at(k)).abs())
+            .fold(0.0, f64::max);
+        let tol = 1e-9 * kmax;
+        let concave = |s: f64| self.curvature(s) < -tol;
+        // Locate the sign change between a (in state sa) and b by bisection.
+        let edge = |mut a: f64, mut b: f64| {
+            let sa = concave(a);
+            for _ in 0..60 {
+                let m = 0.5 * (a + b);
+                if concave(m) == sa {
+                    a = m;
+                } else {
+                    b = m;
+                }
+            }
+            0.5 * (a + b)
+        };
+        let mut out = Vec::new();
+        let mut start = concave(s0).then_some(s0);
+        let mut prev = start.is_some();
+        for k in 0..n {
+            let (a, b) = (at(k), at(k + 1));
+            let now = concave(b);
+            if now != prev {
+                let e = edge(a, b);
+                if now {
+                    start = Some(e);
+                } else if let Some(st) = start.take() {
+                    out.push((st, e));
+                }
+            }
+            prev = now;
+        }
+        if let Some(st) = start {
+            if closed && !out.is_empty() && out[0].0 == s0 {
+                // An interval running over the end joins the one that
+                // started at s₀.
+                // An edge found within rounding of s₁ is the start itself
+                // (the curvature jumps there).
+                if s1 - st > 1e-9 * (s1 - s0) {
+                    let first = out.remove(0);
+                    out.push((st, first.1 + (s1 - s0)));
+                }
+            } else {
+                out.push((st, s1));
+            }
+        }
+        out
+    }
+
+    /// Checks the curve on a grid of `samples` points: every jet finite,
+    /// the tangent nonzero, and ρ > 0 for a polar profile.
+    pub fn check(&self, samples: usize) -> Result<(), CurveError> {
+        let (s0, s1) = self.range();
+        let n = samples.max(2);
+        for k in 0..=n {
+            let s = s0 + (s1 - s0) * k as f64 / n as f64;
+            let j = self.jet(s);
+            let all = [j.p, j.d1, j.d2, j.d3];
+            if all.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(CurveError::Invalid(format!(
+                    "the curve is not finite at parameter {s}"
+                )));
+            }
+            if norm(j.d1) == 0.0 {
+                return Err(CurveError::Invalid(format!(
+                    "the curve has no tangent (p′ = 0) at parameter {s}"
+                )));
+            }
+            if let Curve::Polar(p) = self {
+                let rho = p.rho.jet(s)[0];
+                if rho <= 0.0 {
+                    return Err(CurveError::Invalid(format!(
+                        "the polar profile has ρ = {rho} ≤ 0 at α = {s}"
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+impl From<Polar> for Curve {
+    fn from(c: Polar) -> Self {
+        Curve::Polar(c)
+    }
+}
+
+impl From<Parametric> for Curve {
+    fn from(c: Parametric) -> Self {
+        Curve::Parametric(c)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    /// Numerator of the polar curvature, ρ² + 2ρ′² − ρρ″.
+    fn polar_numerator(p: &Polar, a: f64) -> f64 {
+        let [r, r1, r2, _] = p.rho.jet(a);
+        r * r + 2.0 * r1 * r1 - r * r2
+    }
+
+    #[test]
+    fn polar_curvature_matches_the_polar_formula() {
+        let p = Polar::fourier([0.2, 0.1], 1.0, &[0.3, 0.1], &[0.0, 0.05]).unwrap();
+        let c = Curve::from(p.clone());
+        for &a in &[0.1, 1.0, 2.5, 4.0] {
+            let [r, r1, _, _] = p.rho.jet(a);
+            let want = polar_numerator(&p, a) / (r * r + r1 * r1).powf(1.5);
+            assert!((c.curvature(a) - want).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn concave_ranges_of_a_three_lobe_cam() {
+        // ρ = 1 + 0.3 cos 3α is concave about α = π/3, π, 5π/3.
+        let p = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, 0.3], &[]).unwrap();
+        let c = Curve::from(p.clone());
+        let r = c.concave_ranges(360);
+        assert_eq!(r.len(), 3, "{r:?}");
+        for (k, &(a, b)) in r.iter().enumerate() {
+            let mid = (2 * k + 1) as f64 * PI / 3.0;
+            assert!(((a + b) / 2.0 - mid).abs() < 1e-9, "{r:?}");
+            // The edges are where κ crosses −10⁻⁹ max|κ|.
+            assert!(polar_numerator(&p, a).abs() < 1e-7 && polar_numerator(&p, b).abs() < 1e-7);
+            assert!(c.curvature(mid) < 0.0);
+        }
+        // A circle has none; a concave range across α = 0 comes back whole.
+        assert!(Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap())
+            .concave_ranges(90)
+            .is_empty());
+        let p = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, -0.3], &[]).unwrap();
+        let r = Curve::from(p).concave_ranges(360);
+        assert_eq!(r.len(), 3, "{r:?}");
+        let (a, b) = r[2];
+        assert!(
+            a < TAU && b > TAU && ((a + b) / 2.0 - TAU).abs() < 1e-9,
+            "{r:?}"
+        );
+    }
+
+    #[test]
+    fn concave_ranges_of_an_open_s_curve() {
+        // y = sin x for x in (0.5, 5): concave (κ < 0) where sin x > 0.
+        let pts: Vec<V2> = (0..=90)
+            .map(|k| {
+                let x = 0.5 + 4.5 * k as f64 / 90.0;
+                [x, x.sin()]
+            })
+            .collect();
+        let c = Curve::from(Parametric::spline(&pts, false).unwrap());
+        let r = c.concave_ranges(400);
+        assert_eq!(r.len(), 1, "{r:?}");
+        assert_eq!(r[0].0, 0.0);
+        let x_end = c.jet(r[0].1).p[0];
+        assert!((x_end - PI).abs() < 1e-3, "{x_end}");
+    }
+
+    #[test]
+    fn curves_are_shareable_across_threads() {
+        fn shareable<T: Clone + std::fmt::Debug + Send + Sync>() {}
+        shareable::<Curve>();
+        shareable::<CurveJet>();
+    }
+
+    #[test]
+    fn check_reports_a_bad_profile() {
+        assert!(Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap())
+            .check(100)
+            .is_ok());
+        let p = Polar::fourier([0.0, 0.0], 0.5, &[1.0], &[]).unwrap();
+        let e = Curve::from(p).check(100).unwrap_err();
+        assert!(e.to_string().contains("ρ"), "{e}");
+    }
+}
