@@ -92,3 +92,19 @@ def test_callback_error_propagates(four_bar_file):
 
     with pytest.raises(ZeroDivisionError, match="from the callback"):
         model._core.run_kinematics(model.times(), on_chunk=boom, chunk_rows=10)
+
+
+def test_callback_error_stops_the_run(four_bar_file):
+    model = camlink.load(four_bar_file)
+    calls = []
+
+    def stop_at_second_chunk(names, rows):
+        calls.append(len(rows))
+        if len(calls) == 2:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        model._core.run_kinematics(
+            model.times(t_end=10.0, step=0.001), on_chunk=stop_at_second_chunk, chunk_rows=100
+        )
+    assert calls == [100, 100]

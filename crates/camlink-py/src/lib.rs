@@ -205,7 +205,9 @@ impl Model {
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
-    /// as the run goes. The GIL is released while the core computes.
+    /// as the run goes. The GIL is released while the core computes. An
+    /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
+    /// boundaries) stops the run and is re-raised.
     #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
@@ -241,6 +243,9 @@ impl Model {
             }
             let data = to_array(py, all, names.len())?;
             match outcome {
+                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
+                    "internal error: run stopped without a Python error",
+                )),
                 Err(payload) => Err(internal_error(payload)),
                 Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
                 Ok(Ok(_summary)) => Ok((names, data)),
@@ -359,22 +364,27 @@ impl ChunkSink {
         if self.chunk.is_empty() {
             return;
         }
-        if let Some(cb) = &self.on_chunk {
-            let result = Python::attach(|py| -> PyResult<()> {
+        let result = Python::attach(|py| -> PyResult<()> {
+            // Ctrl-C raises KeyboardInterrupt here even without a callback.
+            py.check_signals()?;
+            if let Some(cb) = &self.on_chunk {
                 let rows = to_array(py, self.chunk.clone(), self.width())?;
                 cb.call1(py, (self.names.clone(), rows))?;
-                Ok(())
-            });
-            if let Err(e) = result {
-                // A failing callback stops further calls; the error is raised
-                // when the run returns.
-                self.callback_error = Some(e);
-                self.on_chunk = None;
             }
+            Ok(())
+        });
+        if let Err(e) = result {
+            self.callback_error.get_or_insert(e);
+            self.on_chunk = None;
         }
         self.all.append(&mut self.chunk);
     }
 }
+
+/// Unwinding payload that stops a run from inside the sink once Python has
+/// raised (an interrupt, a failing callback). `resume_unwind` does not call
+/// the panic hook, so nothing is printed; `run_kinematics` catches it.
+struct StopRun;
 
 impl Sink for ChunkSink {
     fn begin(&mut self, channels: &[String]) {
@@ -390,6 +400,9 @@ impl Sink for ChunkSink {
         self.chunk.extend_from_slice(values);
         if self.chunk.len() >= self.chunk_rows * self.width() {
             self.flush();
+            if self.callback_error.is_some() {
+                std::panic::resume_unwind(Box::new(StopRun));
+            }
         }
     }
 }
