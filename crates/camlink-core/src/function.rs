@@ -55,6 +55,19 @@ impl TimeFn {
         }
     }
 
+    /// Checks that f and its derivatives are finite at `t`, naming the
+    /// failing operation of an expression (a division by zero, the log of a
+    /// negative number…).
+    pub fn check(&self, t: f64) -> Result<(), String> {
+        if let TimeFn::Expr(e) = self {
+            return e.check(t).map_err(|err| err.message);
+        }
+        match self.jet(t).iter().all(|v| v.is_finite()) {
+            true => Ok(()),
+            false => Err(format!("the function of time is not finite at t = {t}")),
+        }
+    }
+
     #[inline]
     pub fn value(&self, t: f64) -> f64 {
         self.jet(t)[0]

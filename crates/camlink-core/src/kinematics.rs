@@ -8,6 +8,14 @@
 //!
 //! The factorization of step 3 is the one step 2 reuses at the next time,
 //! so a smooth run factors the Jacobian once per step.
+//!
+//! A step whose Newton iterations fail, or whose solution lands far from
+//! the prediction (a jump to another assembly branch), is retried as two
+//! half steps, down to 1/2^[`MAX_HALVINGS`] of the output step; past that
+//! the run stops with an error naming the time, the joints involved, the
+//! largest residual and the condition of Φ_q. Near-singular configurations
+//! that the mechanism passes through (toggle, dead centre) are reported as
+//! warnings.
 
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
@@ -86,7 +94,24 @@ pub struct Summary {
     pub steps: usize,
     pub newton_iterations: usize,
     pub factorizations: usize,
+    /// Steps retried as two half steps.
+    pub halvings: usize,
+    /// (time in s, message) of each warning.
+    pub warnings: Vec<(f64, String)>,
+    /// How assembly moved each body from its given placement:
+    /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
+    pub assembly_moves: Vec<(String, [f64; 3])>,
 }
+
+/// Times an output step may be halved when Newton fails or a jump is seen.
+pub const MAX_HALVINGS: u32 = 8;
+/// Relative pivot of Φ_q under which a configuration is reported as near
+/// singular (a healthy four-bar stays near 0.25; a parallelogram sampled
+/// 1 mrad from its change point gives about 1e-4).
+pub const NEAR_SINGULAR: f64 = 1e-3;
+/// Largest correction of an angle (rad) from the predicted position that
+/// still counts as continuous motion; a larger one is treated as a jump.
+pub const JUMP_ANGLE: f64 = 0.2;
 
 /// An analysis that cannot proceed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -204,7 +229,12 @@ pub fn run(
                 });
             }
         }
-        solver.step(t, prev_t)?;
+        match prev_t {
+            None => {
+                solver.step(t, None)?;
+            }
+            Some(p) => solver.advance(p, t, 0)?,
+        }
         solver.outputs(points, &mut values);
         sink.row(t, &values);
         prev_t = Some(t);
@@ -223,6 +253,16 @@ pub struct Solver<'m> {
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
     rhs: Vec<f64>,
+    /// The predicted q of the current step.
+    predicted: Vec<f64>,
+    /// The state at the start of a step, to retry it.
+    saved: [Vec<f64>; 3],
+    /// True for angle coordinates (bodies' φ, joints' own coordinates).
+    angles: Vec<bool>,
+    /// A length that sizes the model (m), for the jump test.
+    size: f64,
+    /// Whether the last factorization was near singular.
+    near_singular: bool,
     pub summary: Summary,
 }
 
@@ -264,10 +304,42 @@ impl<'m> Solver<'m> {
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             rhs: vec![0.0; n],
+            predicted: vec![0.0; n],
+            saved: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            angles: asm.angle_mask(model),
+            size: model_size(model),
+            near_singular: false,
             q,
             asm,
             summary: Summary::default(),
         })
+    }
+
+    /// Advances from the solved state at `prev` to `t`, halving the step
+    /// (up to [`MAX_HALVINGS`] times) where Newton fails or the solution
+    /// jumps away from the prediction.
+    pub fn advance(&mut self, prev: f64, t: f64, depth: u32) -> Result<(), AnalysisError> {
+        for (s, v) in self.saved.iter_mut().zip([&self.q, &self.qd, &self.qdd]) {
+            s.copy_from_slice(v);
+        }
+        let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
+            Some(what) => Err(self.failure(t, &what)),
+            None => Ok(()),
+        });
+        match outcome {
+            Ok(()) => Ok(()),
+            Err(e) if depth >= MAX_HALVINGS => Err(e),
+            Err(_) => {
+                self.q.copy_from_slice(&self.saved[0]);
+                self.qd.copy_from_slice(&self.saved[1]);
+                self.qdd.copy_from_slice(&self.saved[2]);
+                self.jac.invalidate();
+                self.summary.halvings += 1;
+                let mid = 0.5 * (prev + t);
+                self.advance(prev, mid, depth + 1)?;
+                self.advance(mid, t, depth + 1)
+            }
+        }
     }
 
     pub fn assembly(&self) -> &Assembly {
@@ -276,16 +348,21 @@ impl<'m> Solver<'m> {
 
     /// Solves positions, velocities and accelerations at `t`; `prev` is the
     /// previous time (None for the first step, which assembles from the
-    /// model's placement).
-    pub fn step(&mut self, t: f64, prev: Option<f64>) -> Result<(), AnalysisError> {
+    /// model's placement). Returns a description of a jump away from the
+    /// predicted position, if there was one.
+    pub fn step(&mut self, t: f64, prev: Option<f64>) -> Result<Option<String>, AnalysisError> {
+        let mut jump = None;
         if let Some(p) = prev {
             let h = t - p;
             for k in 0..self.q.len() {
                 self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k];
             }
+            self.predicted.copy_from_slice(&self.q);
             self.positions(t)?;
+            jump = self.jump_from(t);
         } else {
             self.assemble(t)?;
+            self.record_assembly_moves();
         }
 
         // Velocity and acceleration share one factorization at the solution.
@@ -298,8 +375,69 @@ impl<'m> Solver<'m> {
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(t, "velocities or accelerations are not finite numbers"));
         }
+        self.watch_singularity(t);
         self.summary.steps += 1;
-        Ok(())
+        Ok(jump)
+    }
+
+    /// Lists the bodies that assembly moved away from the model's placement.
+    fn record_assembly_moves(&mut self) {
+        let size = self.size;
+        self.summary.assembly_moves = self
+            .model
+            .moving_bodies()
+            .filter_map(|(id, b)| {
+                let c = self.asm.body_col(id.0)?;
+                let d = [0, 1, 2].map(|k| self.q[c + k] - b.q0[k]);
+                let moved = d[0].hypot(d[1]) > 1e-9 * size || d[2].abs() > 1e-9;
+                moved.then(|| (b.name.clone(), d))
+            })
+            .collect();
+    }
+
+    /// Compares the solution with the prediction made by `step`.
+    fn jump_from(&self, t: f64) -> Option<String> {
+        let mut worst: Option<(f64, usize)> = None;
+        for k in 0..self.q.len() {
+            let d = (self.q[k] - self.predicted[k]).abs();
+            let limit = if self.angles[k] {
+                JUMP_ANGLE
+            } else {
+                JUMP_ANGLE * self.size
+            };
+            if d > limit && worst.is_none_or(|(w, _)| d / limit > w) {
+                worst = Some((d / limit, k));
+            }
+        }
+        worst.map(|(_, k)| {
+            format!(
+                "the solution jumped away from continuous motion ({} moved {:.3} from its \
+                 predicted value at t = {t} s): the mechanism passed a singular position \
+                 or changed assembly branch; a smaller step or a different driver may help",
+                self.asm.coordinate_name(self.model, k),
+                self.q[k] - self.predicted[k],
+            )
+        })
+    }
+
+    /// Records a warning when Φ_q becomes, or stops being, near singular.
+    fn watch_singularity(&mut self, t: f64) {
+        let Some(pivot) = self.jac.min_pivot() else {
+            return;
+        };
+        let near = pivot < NEAR_SINGULAR;
+        if near && !self.near_singular {
+            self.summary.warnings.push((
+                t,
+                format!(
+                    "near-singular configuration (relative pivot {pivot:.1e}, \
+                     condition about {:.1e}): a toggle or dead-centre position; \
+                     accuracy of velocities and accelerations may suffer here",
+                    1.0 / pivot
+                ),
+            ));
+        }
+        self.near_singular = near;
     }
 
     /// Assembles the mechanism at `t` from the model's rough placement:
@@ -464,6 +602,14 @@ impl<'m> Solver<'m> {
             .collect();
         let residual = worst.first().map_or(0.0, |w| w.0);
         let mut message = what.to_string();
+        // A function of time or of a curve parameter that cannot be evaluated.
+        for (j, joint) in self.model.joints.iter().enumerate() {
+            let x = self.asm.local(self.model, j, &self.q, &[], t);
+            if let Err(e) = joint.constraint.check_functions(&x) {
+                message.push_str(&format!("; in '{}': {e}", joint.name));
+                break;
+            }
+        }
         if !joints.is_empty() {
             message.push_str(&format!(
                 "; largest residual {residual:.3e} in {}",
@@ -473,6 +619,16 @@ impl<'m> Solver<'m> {
                     .collect::<Vec<_>>()
                     .join(", ")
             ));
+        }
+        if self.asm.n <= DIAGNOSE_MAX && residual.is_finite() {
+            let j = crate::diagnose::dense_jacobian(self.model, &self.asm, &self.q, t);
+            if let Ok(s) = j.singular_values() {
+                let (hi, lo) = (
+                    s.first().copied().unwrap_or(0.0),
+                    s.last().copied().unwrap_or(0.0),
+                );
+                message.push_str(&format!("; condition of Φ_q {:.1e}", hi / lo));
+            }
         }
         AnalysisError {
             time: t,
@@ -524,6 +680,23 @@ impl<'m> Solver<'m> {
             None => ([0.0; 3], [0.0; 3], [0.0; 3]),
         }
     }
+}
+
+/// Largest model (coordinates) whose Jacobian condition is computed for an
+/// error message.
+const DIAGNOSE_MAX: usize = 600;
+
+/// A length that sizes the model: the largest distance of a body or point
+/// from the origin (m), at least 1 mm.
+fn model_size(model: &Model) -> f64 {
+    let mut size = 1e-3f64;
+    for b in &model.bodies {
+        size = size.max(b.q0[0].hypot(b.q0[1]));
+        for p in &b.points {
+            size = size.max(p.s[0].hypot(p.s[1]));
+        }
+    }
+    size
 }
 
 /// Iterations allowed to assemble from the model's placement.

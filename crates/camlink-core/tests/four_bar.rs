@@ -51,6 +51,14 @@ fn crank_rocker_matches_freudenstein() {
         assert!((cx[k] - (d + c * th[1].cos())).abs() < 1e-9);
         assert!((cy[k] - c * th[1].sin()).abs() < 1e-9);
     }
+    // The model is placed roughly: assembly reports moving the coupler and
+    // rocker, and not the crank, which was placed exactly.
+    let moved: Vec<&str> = summary
+        .assembly_moves
+        .iter()
+        .map(|(b, _)| b.as_str())
+        .collect();
+    assert_eq!(moved, ["coupler", "rocker"], "{:?}", summary.assembly_moves);
     // One factorization per step once running.
     assert!(
         summary.factorizations <= 2 * summary.steps + 10,

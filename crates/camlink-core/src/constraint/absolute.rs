@@ -51,6 +51,10 @@ pub struct AbsoluteDistance {
 }
 
 impl Equations for AbsoluteCoord {
+    fn check_functions(&self, x: &Local) -> Result<(), String> {
+        self.f.check(x.t)
+    }
+
     fn kind(&self) -> &'static str {
         "absolute_coordinate"
     }
@@ -103,6 +107,10 @@ impl Equations for AbsoluteCoord {
 }
 
 impl Equations for AbsoluteDistance {
+    fn check_functions(&self, x: &Local) -> Result<(), String> {
+        self.f.check(x.t)
+    }
+
     fn kind(&self) -> &'static str {
         "absolute_distance"
     }

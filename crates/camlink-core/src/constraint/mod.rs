@@ -81,6 +81,11 @@ pub trait Equations {
     fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
         x.own
     }
+    /// Checks the functions the constraint evaluates (of time, of a curve
+    /// parameter) at `x`, naming the operation that fails.
+    fn check_functions(&self, _x: &Local) -> Result<(), String> {
+        Ok(())
+    }
     /// Φ.
     fn phi(&self, x: &Local, out: &mut Rows);
     /// Φ_q as per-body blocks (every entry of `out` is written).
@@ -123,6 +128,9 @@ macro_rules! constraints {
             }
             fn own_count(&self) -> usize {
                 match self { $(Constraint::$variant(c) => c.own_count(),)* }
+            }
+            fn check_functions(&self, x: &Local) -> Result<(), String> {
+                match self { $(Constraint::$variant(c) => c.check_functions(x),)* }
             }
             fn own_names(&self) -> &'static [&'static str] {
                 match self { $(Constraint::$variant(c) => c.own_names(),)* }

@@ -136,6 +136,10 @@ pub(super) fn projection_gamma(x: &Local, axis: usize, s_a: V2, w: V2, s_b: V2) 
 }
 
 impl Equations for RelativeCoord {
+    fn check_functions(&self, x: &Local) -> Result<(), String> {
+        self.f.check(x.t)
+    }
+
     fn kind(&self) -> &'static str {
         "relative_coordinate"
     }
@@ -205,6 +209,10 @@ impl Equations for RelativeCoord {
 }
 
 impl Equations for RelativeDistance {
+    fn check_functions(&self, x: &Local) -> Result<(), String> {
+        self.f.check(x.t)
+    }
+
     fn kind(&self) -> &'static str {
         "relative_distance"
     }

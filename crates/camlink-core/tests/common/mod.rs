@@ -107,3 +107,75 @@ pub fn freudenstein(l: [f64; 4], th2: f64, w2: f64, sign: f64) -> ([f64; 2], [f6
     let al4 = (m11 * ry - rx * m21) / det;
     ([th3, th4], [w3, w4], [al3, al4])
 }
+
+fn rev(bi: BodyId, si: [f64; 2], bj: BodyId, sj: [f64; 2]) -> Revolute {
+    Revolute {
+        body_i: bi,
+        s_i: si,
+        body_j: bj,
+        s_j: sj,
+    }
+}
+
+/// A four-bar with link lengths [d, a, b, c] (ground, crank, coupler,
+/// rocker), body frames at each link's first joint, placed at crank angle
+/// `th2` on the open branch (exactly), the crank driven at θ₂ = th2 + ω t.
+pub fn four_bar_with(l: [f64; 4], th2: f64, omega: f64) -> Model {
+    let [d, a, b, c] = l;
+    let (th, _, _) = freudenstein(l, th2, omega, -1.0);
+    let mut m = Model::new("four-bar");
+    let crank = m.add_body(body("crank", [0.0, 0.0, th2], &[]));
+    let bx = a * th2.cos();
+    let by = a * th2.sin();
+    let coupler = m.add_body(body("coupler", [bx, by, th[0]], &[]));
+    let rocker = m.add_body(body("rocker", [d, 0.0, th[1]], &[]));
+    let g = BodyId::GROUND;
+    m.add_joint("O2", rev(g, [0.0, 0.0], crank, [0.0, 0.0]));
+    m.add_joint("B", rev(crank, [a, 0.0], coupler, [0.0, 0.0]));
+    m.add_joint("C", rev(coupler, [b, 0.0], rocker, [c, 0.0]));
+    m.add_joint("O4", rev(g, [d, 0.0], rocker, [0.0, 0.0]));
+    m.add_driver(
+        "motor",
+        RelativeCoord {
+            body_i: g,
+            s_i: [0.0, 0.0],
+            body_j: crank,
+            s_j: [0.0, 0.0],
+            coord: RelCoord::Phi,
+            f: TimeFn::Linear {
+                value: th2,
+                rate: omega,
+            },
+        },
+    );
+    m
+}
+
+/// A slider-crank (crank r, rod l, slider on the x axis), body frames at
+/// the crank pivot, the crank pin and the slider pin, placed exactly at
+/// crank angle `th`. No driver.
+pub fn slider_crank(r: f64, l: f64, th: f64) -> Model {
+    use camlink_core::constraint::translational::Translational;
+    let mut m = Model::new("slider-crank");
+    let (bx, by) = (r * th.cos(), r * th.sin());
+    let x = bx + (l * l - by * by).sqrt();
+    let crank = m.add_body(body("crank", [0.0, 0.0, th], &[]));
+    let rod = m.add_body(body("rod", [bx, by, (-by).atan2(x - bx)], &[]));
+    let slider = m.add_body(body("slider", [x, 0.0, 0.0], &[]));
+    let g = BodyId::GROUND;
+    m.add_joint("O", rev(g, [0.0, 0.0], crank, [0.0, 0.0]));
+    m.add_joint("A", rev(crank, [r, 0.0], rod, [0.0, 0.0]));
+    m.add_joint("B", rev(rod, [l, 0.0], slider, [0.0, 0.0]));
+    m.add_joint(
+        "slide",
+        Translational {
+            body_i: g,
+            s_i: [0.0, 0.0],
+            v_i: [1.0, 0.0],
+            body_j: slider,
+            s_j: [0.0, 0.0],
+            angle: 0.0,
+        },
+    );
+    m
+}
