@@ -103,6 +103,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
         else:
             print(f"camlink: no step completed; {output} holds only the header", file=sys.stderr)
         return EXIT_ANALYSIS
+    for t, message in res.summary.get("warnings", []):
+        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
     if not args.quiet:
         print(
             f"{model.name}: {len(res)} steps, t = {res.t[0]:g} … {res.t[-1]:g} s, "

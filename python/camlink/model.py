@@ -138,7 +138,7 @@ class Model:
                 writer.write(chunk_names, rows)
 
         try:
-            names, data = self._core.run_kinematics(
+            names, data, summary = self._core.run_kinematics(
                 grid,
                 tol=tol,
                 max_iter=max_iter,
@@ -155,7 +155,7 @@ class Model:
         finally:
             if writer is not None:
                 writer.close(names)
-        return Results(names, data, model=self.name)
+        return Results(names, data, model=self.name, summary=summary)
 
     def __repr__(self) -> str:
         return repr(self._core)

@@ -28,7 +28,7 @@ class Results:
     ``results["crank.phi"]`` is a NumPy array over the time steps;
     ``results.channels`` lists the channel names (without ``t``).
     A run that stopped early has ``complete == False`` and keeps every step
-    it computed.
+    it computed. ``summary`` holds the solver's counts and warnings.
     """
 
     def __init__(
@@ -38,6 +38,7 @@ class Results:
         *,
         model: str = "",
         complete: bool = True,
+        summary: dict | None = None,
     ) -> None:
         data = np.asarray(data, dtype=np.float64)
         if data.ndim != 2 or (names and data.shape[1] != len(names)):
@@ -49,6 +50,11 @@ class Results:
         self._data = data
         self.model = model
         self.complete = complete
+        #: Solver counts (steps, newton_iterations, factorizations, halvings),
+        #: ``warnings`` as (t, message) pairs and ``assembly_moves`` as
+        #: (body, (Δx, Δy, Δφ)) for bodies that assembly moved; empty for
+        #: results read from a file.
+        self.summary = summary or {}
 
     @property
     def t(self) -> npt.NDArray[np.float64]:

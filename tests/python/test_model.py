@@ -131,3 +131,17 @@ def test_analysis_error_keeps_partial_results(stuck_file):
     assert err.data.shape == (len(partial), len(err.names))
     assert partial["crank.phi"] == pytest.approx(math.radians(60) + 2 * math.pi * partial.t)
     assert STUCK_FOUR_BAR["L"] == 2.6
+
+
+def test_run_summary_counts_steps_and_reports_assembly_moves():
+    from conftest import ROOT
+
+    res = camlink.load(ROOT / "tests" / "models" / "four_bar.toml").run()
+    s = res.summary
+    assert s["steps"] == len(res)
+    assert s["newton_iterations"] >= s["steps"] - 1
+    assert isinstance(s["warnings"], list)
+    # The file places the coupler and rocker roughly; assembly moves them.
+    moved = dict(s["assembly_moves"])
+    assert set(moved) <= {"crank", "coupler", "rocker"}
+    assert "rocker" in moved or "coupler" in moved

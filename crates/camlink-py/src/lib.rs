@@ -59,6 +59,9 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
+/// What `run_kinematics` returns: channel names, data, summary.
+type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
+
 /// A loaded model: the core model and the file's `[analysis]` settings.
 #[pyclass(frozen, module = "camlink._core")]
 struct Model {
@@ -200,8 +203,9 @@ impl Model {
         })
     }
 
-    /// Kinematic analysis at `times` (s). Returns `(names, data)`: channel
-    /// names starting with `"t"` and a `steps × len(names)` array.
+    /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
+    /// channel names starting with `"t"`, a `steps × len(names)` array and
+    /// a dict of solver counts, warnings and assembly moves.
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
@@ -219,7 +223,7 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
-    ) -> PyResult<(Vec<String>, Bound<'py, PyArray2<f64>>)> {
+    ) -> PyResult<RunOutput<'py>> {
         guard(|| {
             let times = times.as_array().to_vec();
             let points = resolve_points(&self.loaded.model, &points)?;
@@ -248,7 +252,7 @@ impl Model {
                 )),
                 Err(payload) => Err(internal_error(payload)),
                 Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
-                Ok(Ok(_summary)) => Ok((names, data)),
+                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
             }
         })
     }
@@ -294,6 +298,19 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
             })
         })
         .collect()
+}
+
+/// The run summary as a dict: counts, `warnings` as (t, message) pairs and
+/// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs.
+fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("steps", s.steps)?;
+    d.set_item("newton_iterations", s.newton_iterations)?;
+    d.set_item("factorizations", s.factorizations)?;
+    d.set_item("halvings", s.halvings)?;
+    d.set_item("warnings", s.warnings.clone())?;
+    d.set_item("assembly_moves", s.assembly_moves.clone())?;
+    Ok(d)
 }
 
 /// A `rows × width` NumPy array from row-major values.
