@@ -91,8 +91,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
         details = []
         if e.joints:
             details.append(f"joints involved: {', '.join(e.joints)}")
-        details.append(f"largest residual: {e.residual:.3g}")
-        print(f"camlink: {'; '.join(details)}", file=sys.stderr)
+        if "residual" not in str(e):
+            details.append(f"largest residual: {e.residual:.3g}")
+        if details:
+            print(f"camlink: {'; '.join(details)}", file=sys.stderr)
         partial = e.results
         if len(partial):
             print(
@@ -162,6 +164,11 @@ def main(argv: list[str] | None = None) -> int:
     except ModelError as e:
         _error(str(e))
         return EXIT_INPUT
+    except BrokenPipeError:
+        # Output piped into a command that stopped reading (`| head`).
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_OK
     except OSError as e:
         _error(_os_message(e))
         return EXIT_INPUT

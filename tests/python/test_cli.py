@@ -43,7 +43,7 @@ def test_analysis_failure_exits_1_and_keeps_results(stuck_file, tmp_path):
     assert proc.returncode == 1
     assert_clean(proc)
     assert proc.stderr.startswith("camlink: error: at t = ")
-    assert "residual" in proc.stderr
+    assert "residual" in proc.stderr and "joints involved: " in proc.stderr
     assert "written to" in proc.stderr
     assert len(Results.load(out)) > 5
 
@@ -135,3 +135,18 @@ def test_schema_is_json():
 def test_version():
     proc = run_cli("--version")
     assert proc.returncode == 0 and proc.stdout.startswith("camlink ")
+
+
+def test_schema_into_a_closed_pipe_is_quiet():
+    import subprocess
+    import sys
+
+    proc = subprocess.run(
+        f'"{sys.executable}" -m camlink schema | head -1',
+        shell=True,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert proc.stdout.strip() == "{"
+    assert proc.stderr == ""
