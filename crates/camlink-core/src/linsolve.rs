@@ -70,17 +70,19 @@ impl SmallLu {
 
     pub fn factor(&mut self) -> Result<(), Singular> {
         let n = self.n;
-        let scale = self
-            .a
-            .iter()
-            .fold(0.0f64, |m, x| m.max(x.abs()))
-            .max(f64::MIN_POSITIVE);
+        let mut scale = f64::MIN_POSITIVE;
+        for x in &self.a {
+            let v = x.abs();
+            if v > scale {
+                scale = v;
+            }
+        }
         self.lu.copy_from_slice(&self.a);
         for (k, p) in self.perm.iter_mut().enumerate() {
             *p = k;
         }
         let lu = &mut self.lu;
-        self.min_pivot = f64::INFINITY;
+        let mut min_pivot = f64::INFINITY;
         for k in 0..n {
             // Pivot: the largest entry of column k on or below the diagonal.
             let mut p = k;
@@ -92,34 +94,42 @@ impl SmallLu {
                     p = i;
                 }
             }
-            if big / scale <= SINGULAR_PIVOT || big.is_nan() {
+            let ratio = big / scale;
+            if ratio <= SINGULAR_PIVOT || ratio.is_nan() {
                 self.valid = false;
+                self.min_pivot = ratio;
                 return Err(Singular {
                     row: self.perm[p],
-                    pivot: big / scale,
+                    pivot: ratio,
                 });
             }
-            self.min_pivot = self.min_pivot.min(big / scale);
+            if ratio < min_pivot {
+                min_pivot = ratio;
+            }
             if p != k {
-                for c in 0..n {
-                    lu.swap(k * n + c, p * n + c);
-                }
+                let (upper, lower) = lu.split_at_mut(p * n);
+                upper[k * n..k * n + n].swap_with_slice(&mut lower[..n]);
                 self.perm.swap(k, p);
             }
-            // Eliminate below the pivot.
+            // Eliminate below the pivot; rows whose multiplier is zero (most,
+            // in a sparse Jacobian) are skipped.
             let inv = 1.0 / lu[k * n + k];
             let (top, rest) = lu.split_at_mut((k + 1) * n);
             let pivot_row = &top[k * n + k + 1..k * n + n];
+            let len = pivot_row.len();
             for row in rest.chunks_exact_mut(n) {
+                if row[k] == 0.0 {
+                    continue;
+                }
                 let l = row[k] * inv;
                 row[k] = l;
-                if l != 0.0 {
-                    for (x, u) in row[k + 1..].iter_mut().zip(pivot_row) {
-                        *x -= l * u;
-                    }
+                let tail = &mut row[k + 1..k + 1 + len];
+                for c in 0..len {
+                    tail[c] -= l * pivot_row[c];
                 }
             }
         }
+        self.min_pivot = min_pivot;
         self.valid = true;
         Ok(())
     }

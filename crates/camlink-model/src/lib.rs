@@ -47,6 +47,39 @@ pub struct Loaded {
     pub analysis: AnalysisSpec,
 }
 
+impl Loaded {
+    /// The `[analysis] points` as kinematic outputs, each named `"body.point"`
+    /// and located by the body's point vector s′ (m).
+    ///
+    /// The loader has checked every name; an error means `analysis.points`
+    /// was changed after loading to name a body or point the model lacks.
+    pub fn point_outputs(&self) -> Result<Vec<camlink_core::kinematics::PointOutput>, String> {
+        self.analysis
+            .points
+            .iter()
+            .map(|full| {
+                let (body, point) = full
+                    .split_once('.')
+                    .ok_or_else(|| format!("expected \"body.point\", found '{full}'"))?;
+                let id = self
+                    .model
+                    .body_id(body)
+                    .ok_or_else(|| format!("'{full}': no body named '{body}'"))?;
+                let s = self
+                    .model
+                    .body(id)
+                    .point(point)
+                    .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
+                Ok(camlink_core::kinematics::PointOutput {
+                    body: id,
+                    name: full.clone(),
+                    s,
+                })
+            })
+            .collect()
+    }
+}
+
 /// The `[analysis]` table, evaluated. Times in seconds.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AnalysisSpec {

@@ -117,6 +117,10 @@ impl Equations for Gear {
         1
     }
 
+    fn own_names(&self) -> &'static [&'static str] {
+        &["theta"]
+    }
+
     /// θ from the current centre line, on the branch θ + 2πk nearest the
     /// guess in `x.own[0]`, so θ stays continuous; the guess is kept when
     /// the centres coincide.
@@ -125,7 +129,7 @@ impl Equations for Gear {
         let mut own = x.own;
         if d != [0.0, 0.0] {
             let theta = d[1].atan2(d[0]);
-            own[0] = theta + TAU * ((x.own[0] - theta) / TAU).round();
+            own[0] = theta + TAU * ((x.own[0] - theta) / TAU).round_ties_even();
         }
         own
     }
