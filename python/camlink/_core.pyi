@@ -7,6 +7,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from camlink.results import Results
+
 __version__: str
 
 class ModelError(ValueError):
@@ -20,6 +22,9 @@ class AnalysisError(RuntimeError):
     residual: float
     names: list[str]
     data: npt.NDArray[np.float64] | None
+    # Set by camlink.Model.run: the partial results and the file written.
+    results: Results
+    output: PathLike[str] | None
 
 class Model:
     @staticmethod
