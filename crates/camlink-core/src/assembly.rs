@@ -20,6 +20,9 @@ pub struct Assembly {
     own_col: Vec<usize>,
     /// First row of each joint's equations, by joint index.
     row: Vec<usize>,
+    /// For each joint: the first columns of its bodies i and j (`None` for
+    /// the ground), and its number of own coordinates.
+    joint_cols: Vec<([Option<usize>; 2], usize)>,
 }
 
 impl Assembly {
@@ -39,12 +42,21 @@ impl Assembly {
             row.push(m);
             m += j.constraint.rows();
         }
+        let joint_cols = model
+            .joints
+            .iter()
+            .map(|j| {
+                let [bi, bj] = j.constraint.bodies();
+                ([body_col[bi.0], body_col[bj.0]], j.constraint.own_count())
+            })
+            .collect();
         Assembly {
             n,
             m,
             body_col,
             own_col,
             row,
+            joint_cols,
         }
     }
 
@@ -109,22 +121,22 @@ impl Assembly {
     /// The local view of joint `j` at (q, q̇, t); `qd` may be empty for
     /// position-only evaluations.
     #[inline]
-    pub fn local(&self, model: &Model, j: usize, q: &[f64], qd: &[f64], t: f64) -> Local {
-        let c = &model.joints[j].constraint;
+    pub fn local(&self, _model: &Model, j: usize, q: &[f64], qd: &[f64], t: f64) -> Local {
+        let (cols, own) = self.joint_cols[j];
         let mut x = Local {
             t,
             ..Local::default()
         };
-        for (k, b) in c.bodies().iter().enumerate() {
-            if let Some(col) = self.body_col[b.0] {
-                x.q[k].copy_from_slice(&q[col..col + 3]);
+        for (k, col) in cols.iter().enumerate() {
+            if let Some(c) = *col {
+                x.q[k] = [q[c], q[c + 1], q[c + 2]];
                 if !qd.is_empty() {
-                    x.qd[k].copy_from_slice(&qd[col..col + 3]);
+                    x.qd[k] = [qd[c], qd[c + 1], qd[c + 2]];
                 }
             }
         }
         let o = self.own_col[j];
-        for k in 0..c.own_count() {
+        for k in 0..own {
             x.own[k] = q[o + k];
             if !qd.is_empty() {
                 x.own_d[k] = qd[o + k];

@@ -19,6 +19,8 @@
 
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
+use crate::contact::Contacts;
+use crate::design::StepGuard;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
@@ -199,6 +201,7 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
             names.push(format!("{}.{n}", j.name));
         }
     }
+    names.extend(Contacts::new(model).channels(model));
     names
 }
 
@@ -206,6 +209,10 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
 ///
 /// Rows reach `sink` as each step completes, so a run that fails keeps every
 /// step before the failure.
+/// After each step the curve contacts are checked
+/// ([`StepGuard`](crate::design::StepGuard)): a contact that runs off an
+/// open curve, or reaches a part of a cam its follower cannot touch, stops
+/// the run; a failed step's error names the design findings of its joints.
 pub fn run(
     model: &Model,
     times: &[f64],
@@ -214,6 +221,7 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let mut solver = Solver::new(model, settings.clone())?;
+    let guard = StepGuard::new(model);
     let names = channels(model, points);
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
@@ -230,11 +238,11 @@ pub fn run(
             }
         }
         match prev_t {
-            None => {
-                solver.step(t, None)?;
-            }
-            Some(p) => solver.advance(p, t, 0)?,
+            None => solver.step(t, None).map(|_| ()),
+            Some(p) => solver.advance(p, t, 0),
         }
+        .map_err(|e| guard.explain(model, e))?;
+        guard.check(model, solver.assembly(), &solver.q, t)?;
         solver.outputs(points, &mut values);
         sink.row(t, &values);
         prev_t = Some(t);
@@ -264,6 +272,8 @@ pub struct Solver<'m> {
     /// Whether the last factorization was near singular.
     near_singular: bool,
     pub summary: Summary,
+    /// Contact points and pressure angles of the curve-contact joints.
+    contacts: Contacts,
 }
 
 impl<'m> Solver<'m> {
@@ -312,6 +322,7 @@ impl<'m> Solver<'m> {
             q,
             asm,
             summary: Summary::default(),
+            contacts: Contacts::new(model),
         })
     }
 
@@ -667,6 +678,8 @@ impl<'m> Solver<'m> {
                 k += 1;
             }
         }
+        self.contacts
+            .fill(self.model, &self.asm, &self.q, &mut out[k..]);
     }
 
     /// (q, q̇, q̈) of one body; zeros for the ground.

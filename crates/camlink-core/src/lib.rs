@@ -17,6 +17,8 @@ pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
 pub mod assembly;
+pub mod contact;
+pub mod design;
 pub mod diagnose;
 pub mod kinematics;
 pub mod linsolve;

@@ -39,3 +39,9 @@ fn describe(src: &str, e: &ParseError) -> String {
         .join("\n");
     format!("invalid expression: {}\n{caret}", e.message)
 }
+
+/// Parses a function of the variable `var` (a curve's `a` or `s`) with the
+/// file's parameters.
+pub fn function_of(src: &str, var: &str, consts: &HashMap<String, f64>) -> Result<Expr, String> {
+    Expr::parse_with(src, Some(var), consts).map_err(|e| describe(src, &e))
+}

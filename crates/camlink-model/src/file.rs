@@ -173,6 +173,9 @@ pub struct ModelFile {
     /// The moving bodies.
     #[serde(default)]
     pub bodies: Vec<BodySpec>,
+    /// Curves attached to bodies: cam profiles, roller and follower shapes, slots.
+    #[serde(default)]
+    pub curves: Vec<CurveSpec>,
     /// Kinematic joints (time-independent constraints).
     #[serde(default)]
     pub joints: Vec<JointSpec>,
@@ -377,6 +380,194 @@ pub enum JointSpec {
         #[serde(default)]
         phase: Option<Num>,
     },
+    /// Curve `curve_i` touches curve `curve_j` (2 equations for the shared
+    /// point, 1 for collinear tangents; 2 own coordinates α_i, α_j).
+    CamFollower(CamFollowerJoint),
+    /// Curve `curve_i` touches the straight face of `body_j` (2 equations,
+    /// 1 own coordinate α_i).
+    FlatFollower(FlatFollowerJoint),
+    /// Pin `point_i` of `body_i` runs in the slot `curve_j` (2 equations,
+    /// 1 own coordinate α_j).
+    PointFollower(PointFollowerJoint),
+}
+
+/// `cam_follower` joint: two curves in contact.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct CamFollowerJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The name of curve C_i (usually the cam); its body is body i.
+    pub curve_i: String,
+    /// The name of curve C_j (usually the follower or roller); its body is body j.
+    pub curve_j: String,
+    /// Starting guess of the contact parameter on C_i (rad on a polar
+    /// profile, the curve's parameter otherwise); default: found from the
+    /// initial placement.
+    #[serde(default)]
+    pub alpha_i: Option<Num>,
+    /// Starting guess of the contact parameter on C_j; default: found.
+    #[serde(default)]
+    pub alpha_j: Option<Num>,
+}
+
+/// `flat_follower` joint: a curve on a straight face.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FlatFollowerJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The name of the cam curve C_i; its body is body i.
+    pub curve_i: String,
+    /// The body carrying the flat face.
+    pub body_j: String,
+    /// A point of the face; default the body origin.
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// Direction of the face in body j's frame; normalised, must not be zero.
+    pub axis: Vec2,
+    /// Starting guess of the contact parameter on C_i; default: the cam
+    /// point nearest the face.
+    #[serde(default)]
+    pub alpha_i: Option<Num>,
+}
+
+/// `point_follower` joint: a pin in a slot.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct PointFollowerJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The body carrying the pin.
+    pub body_i: String,
+    /// The pin; default the body origin.
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    /// The name of the slot curve C_j; its body is body j.
+    pub curve_j: String,
+    /// Starting guess of the pin's parameter on C_j; default: the slot
+    /// point nearest the pin.
+    #[serde(default)]
+    pub alpha_j: Option<Num>,
+}
+
+/// Whether a curve is a polar profile ρ(α) or a parametric curve (x(s), y(s)).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum CurveKind {
+    /// ρ(α) about `centre`; parameter: the angle α (rad); always closed.
+    Polar,
+    /// (x(s), y(s)); parameter: length along the curve (m), or `s` of an expression.
+    Parametric,
+}
+
+/// `[[curves]]`: a named curve on a body, selected by `source`.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(tag = "source", rename_all = "snake_case", deny_unknown_fields)]
+pub enum CurveSpec {
+    /// A circle of `radius` about `centre`.
+    Circle {
+        /// Unique curve name.
+        name: String,
+        /// The body carrying the curve (may be `ground`).
+        body: String,
+        /// `polar` (default; parameter α in rad) or `parametric` (arc length in m).
+        #[serde(default)]
+        kind: Option<CurveKind>,
+        /// Centre, a point of the body; default the body origin.
+        #[serde(default)]
+        centre: Option<PointRef>,
+        /// Radius (m), > 0.
+        radius: Num,
+        /// Parametric only: the angle (rad, body frame) where s = 0; default 0.
+        #[serde(default)]
+        start: Option<Num>,
+    },
+    /// The straight segment from `from` to `to` (parametric, open; s in m from `from`).
+    Line {
+        name: String,
+        body: String,
+        /// Start point (a point of the body).
+        from: PointRef,
+        /// End point (a point of the body).
+        to: PointRef,
+    },
+    /// An arc of `radius` about `centre` from angle `start` to `end` (parametric, open; s in m).
+    Arc {
+        name: String,
+        body: String,
+        /// Centre; default the body origin.
+        #[serde(default)]
+        centre: Option<PointRef>,
+        /// Radius (m), > 0.
+        radius: Num,
+        /// Start angle (rad, body frame).
+        start: Num,
+        /// End angle (rad); counterclockwise when end > start; at most one turn.
+        end: Num,
+    },
+    /// A profile written as expressions: polar `rho` in `a`, or parametric `x`, `y` in `s`.
+    Expression {
+        name: String,
+        body: String,
+        /// Inferred from the keys given (`rho` → polar, `x`/`y` → parametric).
+        #[serde(default)]
+        kind: Option<CurveKind>,
+        /// Polar: the centre Q; default the body origin.
+        #[serde(default)]
+        centre: Option<PointRef>,
+        /// Polar: ρ(a) (m) as an expression of the angle `a` (rad), e.g.
+        /// "if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)"; evaluated for a in [0, 2π).
+        #[serde(default)]
+        rho: Option<String>,
+        /// Parametric: x(s) (m) in the body frame.
+        #[serde(default)]
+        x: Option<String>,
+        /// Parametric: y(s) (m) in the body frame.
+        #[serde(default)]
+        y: Option<String>,
+        /// Parametric: the parameter range [s0, s1], s0 < s1.
+        #[serde(default)]
+        range: Option<Vec2>,
+        /// Parametric: true when the curve closes (period s1 − s0); default false.
+        #[serde(default)]
+        closed: Option<bool>,
+    },
+    /// A polar profile ρ(α) = a0 + Σ (a_k cos kα + b_k sin kα), k = 1, 2, …
+    Fourier {
+        name: String,
+        body: String,
+        /// The centre Q; default the body origin.
+        #[serde(default)]
+        centre: Option<PointRef>,
+        /// Mean radius a0 (m).
+        a0: Num,
+        /// Cosine coefficients a_1, a_2, … (m).
+        #[serde(default)]
+        a: Vec<Num>,
+        /// Sine coefficients b_1, b_2, … (m).
+        #[serde(default)]
+        b: Vec<Num>,
+    },
+    /// A cubic spline (C², periodic when closed) through points given inline or in a CSV file.
+    Spline {
+        name: String,
+        body: String,
+        /// `polar`: points are (α, ρ) in rad and m, periodic; `parametric`: (x, y) in m.
+        kind: CurveKind,
+        /// Polar: the centre Q; default the body origin.
+        #[serde(default)]
+        centre: Option<PointRef>,
+        /// The points, inline.
+        #[serde(default)]
+        points: Option<Vec<Vec2>>,
+        /// A CSV file of points (two columns), relative to the model file.
+        #[serde(default)]
+        file: Option<String>,
+        /// Parametric: true for a closed (periodic) curve; default false.
+        #[serde(default)]
+        closed: Option<bool>,
+    },
 }
 
 /// `absolute_x` / `absolute_y` joint.
@@ -477,6 +668,10 @@ pub enum DriverSpec {
     /// Travel of the named translational joint's point_j from its point_i
     /// along the axis = f(t) (m).
     TranslationalTravel(JointDriver),
+    /// The contact parameter α_j of the named point_follower joint = f(t):
+    /// travel along its curve (rad on a polar slot, m on a line, arc,
+    /// circle or spline slot).
+    CurveTravel(JointDriver),
 }
 
 /// `absolute_x` / `absolute_y` driver.
@@ -552,7 +747,7 @@ pub struct RelativePhiDriver {
 pub struct JointDriver {
     #[serde(default)]
     pub name: Option<String>,
-    /// Name of the driven joint (revolute or translational, by driver type).
+    /// Name of the driven joint (revolute, translational or point_follower, by driver type).
     pub joint: String,
     /// f(t) (rad or m): a number or an expression in `t` (s).
     pub f: Num,

@@ -147,7 +147,9 @@ fn too_large(source: &str, len: u64) -> LoadError {
     )
 }
 
-/// Loads a model from text; `source` names it in errors (usually the file name).
+/// Loads a model from text; `source` names it in errors (usually the file
+/// name), and data files it names (a spline's CSV points) are read relative
+/// to `source`'s directory.
 pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
     if text.len() as u64 > MAX_FILE_SIZE {
         return Err(too_large(source, text.len() as u64));
@@ -161,7 +163,8 @@ pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, Load
         .and_then(|s| s.to_str())
         .filter(|s| !s.is_empty())
         .unwrap_or("model");
-    let (model, analysis) = resolve::resolve(&file, stem).map_err(|f| {
+    let base = Path::new(source).parent().unwrap_or(Path::new(""));
+    let (model, analysis) = resolve::resolve(&file, stem, base).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),

@@ -7,6 +7,7 @@
 //! Every failure carries the field path of the value at fault.
 
 use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
 use camlink_core::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
@@ -21,6 +22,8 @@ use crate::error::did_you_mean;
 use crate::eval;
 use crate::file::*;
 use crate::AnalysisSpec;
+
+mod curves;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
@@ -66,16 +69,27 @@ struct Ctx {
     /// File path of each joint or driver name, for duplicate reports.
     names: HashMap<String, String>,
     joints: HashMap<String, JointInfo>,
+    /// Named curves (`[[curves]]`).
+    curves: HashMap<String, curves::CurveEntry>,
+    /// Directory that relative data file names are resolved against.
+    base: PathBuf,
 }
 
 /// Builds the model and analysis settings described by `file`.
-pub(crate) fn resolve(file: &ModelFile, default_name: &str) -> R<(Model, AnalysisSpec)> {
+/// Data files named in the model (CSV points) are read relative to `base`.
+pub(crate) fn resolve(
+    file: &ModelFile,
+    default_name: &str,
+    base: &Path,
+) -> R<(Model, AnalysisSpec)> {
     let params = parameters(&file.parameters)?;
     let mut cx = Ctx {
         params,
         model: Model::new(default_name),
         names: HashMap::new(),
         joints: HashMap::new(),
+        curves: HashMap::new(),
+        base: base.to_path_buf(),
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -89,6 +103,9 @@ pub(crate) fn resolve(file: &ModelFile, default_name: &str) -> R<(Model, Analysi
         cx.model.bodies[0].points = cx.points(&g.points, "ground.points")?;
     }
     cx.bodies(&file.bodies)?;
+    for (k, c) in file.curves.iter().enumerate() {
+        cx.curve(c, k)?;
+    }
     for (k, j) in file.joints.iter().enumerate() {
         cx.joint(j, k)?;
     }
@@ -746,6 +763,9 @@ impl Ctx {
                     .insert(name.clone(), JointInfo::Other("rack_pinion"));
                 self.add(name, c, false);
             }
+            JointSpec::CamFollower(c) => self.cam_follower(c, k)?,
+            JointSpec::FlatFollower(c) => self.flat_follower(c, k)?,
+            JointSpec::PointFollower(c) => self.point_follower(c, k)?,
         }
         Ok(())
     }
@@ -892,6 +912,7 @@ impl Ctx {
                 };
                 (name, c.into())
             }
+            DriverSpec::CurveTravel(jd) => return self.curve_travel(jd, k),
             DriverSpec::RevoluteAngle(jd) | DriverSpec::TranslationalTravel(jd) => {
                 let want = if matches!(d, DriverSpec::RevoluteAngle(_)) {
                     "revolute"

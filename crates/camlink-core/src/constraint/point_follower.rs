@@ -12,9 +12,18 @@
 //!
 //! γ is the revolute joint's with the moving point's extra terms: the
 //! Coriolis term 2 B_j g′_j φ̇_j α̇_j and the curvature term A_j p″_j α̇_j².
+//!
+//! Travel driver (optional): the pin's place on the slot prescribed as a
+//! function of time, "travel along a curve = f(t)", adds a third equation
+//!
+//! Φ₃ = α_j − f(t),   Φ₃_q = [0 | 0 | 1],   ν₃ = f′(t),   γ₃ = f″(t),
+//!
+//! in the unit of α_j (rad on a polar slot, m of length on a line, arc,
+//! circle or spline slot, the user's parameter on an expression slot).
 
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::curve::{search, Carried, Curve};
+use crate::function::TimeFn;
 use crate::math::{rot_t, sub, V2};
 use crate::model::BodyId;
 
@@ -26,9 +35,22 @@ pub struct PointFollower {
     pub body_j: BodyId,
     /// C_j, the slot, in body j's frame.
     pub curve_j: Curve,
+    /// f(t): when present, α_j = f(t) drives the pin along the slot.
+    pub travel: Option<TimeFn>,
 }
 
 impl PointFollower {
+    /// An undriven pin in a slot.
+    pub fn new(body_i: BodyId, s_i: V2, body_j: BodyId, curve_j: Curve) -> Self {
+        PointFollower {
+            body_i,
+            s_i,
+            body_j,
+            curve_j,
+            travel: None,
+        }
+    }
+
     #[inline]
     fn parts(&self, x: &Local) -> (Carried, Carried) {
         (
@@ -40,11 +62,17 @@ impl PointFollower {
 
 impl Equations for PointFollower {
     fn kind(&self) -> &'static str {
-        "point-follower"
+        match self.travel {
+            None => "point-follower",
+            Some(_) => "driven point-follower",
+        }
     }
 
     fn equations(&self) -> &'static [&'static str] {
-        &["x", "y"]
+        match self.travel {
+            None => &["x", "y"],
+            Some(_) => &["x", "y", "travel"],
+        }
     }
 
     fn bodies(&self) -> [BodyId; 2] {
@@ -60,8 +88,13 @@ impl Equations for PointFollower {
     }
 
     /// The point of C_j nearest to the pin; refined from `x.own[0]` when it
-    /// is nonzero.
+    /// is nonzero. A driven pin starts at α_j = f(0).
     fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+        if let Some(f) = &self.travel {
+            let mut own = x.own;
+            own[0] = f.value(x.t);
+            return own;
+        }
         let pin = Carried::fixed(x.q[0], [0.0; 3], self.s_i).p;
         let local = rot_t(x.q[1][2], sub(pin, [x.q[1][0], x.q[1][1]]));
         let guess = (x.own[0] != 0.0).then_some(x.own[0]);
@@ -74,7 +107,10 @@ impl Equations for PointFollower {
         let (a, b) = self.parts(x);
         out[0] = a.p[0] - b.p[0];
         out[1] = a.p[1] - b.p[1];
-        out[2] = 0.0;
+        out[2] = match &self.travel {
+            Some(f) => x.own[0] - f.value(x.t),
+            None => 0.0,
+        };
     }
 
     fn jacobian(&self, x: &Local, out: &mut Jac) {
@@ -87,17 +123,27 @@ impl Equations for PointFollower {
             out.body[1][r][2] = -b.p_phi[r];
             out.own[r][0] = -b.g[r];
         }
+        // Travel driver.
+        if self.travel.is_some() {
+            out.own[2][0] = 1.0;
+        }
     }
 
-    fn nu(&self, _x: &Local, out: &mut Rows) {
+    fn nu(&self, x: &Local, out: &mut Rows) {
         *out = [0.0; 3];
+        if let Some(f) = &self.travel {
+            out[2] = f.jet(x.t)[1];
+        }
     }
 
     fn gamma(&self, x: &Local, out: &mut Rows) {
         let (a, b) = self.parts(x);
         out[0] = b.p_quad[0] - a.p_quad[0];
         out[1] = b.p_quad[1] - a.p_quad[1];
-        out[2] = 0.0;
+        out[2] = match &self.travel {
+            Some(f) => f.jet(x.t)[2],
+            None => 0.0,
+        };
     }
 }
 
@@ -118,6 +164,7 @@ mod tests {
             curve_j: Polar::fourier([0.1, 0.0], 1.0, &[0.1, 0.2], &[0.05])
                 .unwrap()
                 .into(),
+            travel: None,
         };
         check_random_own(&c, 40, [(-TAU, 2.0 * TAU); MAX_OWN]);
     }
@@ -141,6 +188,7 @@ mod tests {
                 s_i: [0.1, 0.4],
                 body_j: BodyId(1),
                 curve_j: slot,
+                travel: None,
             };
             let m = 0.05 * (s1 - s0);
             check_random_own(&c, 25, [(s0 + m, s1 - m); MAX_OWN]);
@@ -152,8 +200,54 @@ mod tests {
             curve_j: Parametric::spline(&[[1.0, 0.0], [0.0, 1.0], [-1.0, 0.2], [0.0, -0.8]], true)
                 .unwrap()
                 .into(),
+            travel: None,
         };
         check_random_own(&c, 25, [(-4.0, 12.0); MAX_OWN]);
+    }
+
+    #[test]
+    fn travel_driver_derivatives_match_finite_differences() {
+        let f = camlink_expr::Expr::parse("0.2 + 0.3*t + 0.1*sin(2*t)", "t").unwrap();
+        let slots: [Curve; 2] = [
+            Polar::fourier([0.1, 0.0], 1.0, &[0.1, 0.2], &[0.05])
+                .unwrap()
+                .into(),
+            Parametric::spline(&[[0.0, 0.0], [0.3, 0.5], [0.8, 0.6], [1.2, 0.2]], false)
+                .unwrap()
+                .into(),
+        ];
+        for slot in slots {
+            let mut c = PointFollower::new(BodyId(1), [0.1, 0.4], BodyId(2), slot);
+            c.travel = Some(TimeFn::from(f.clone()));
+            assert_eq!(c.rows(), 3);
+            check_random_own(&c, 25, [(0.2, 1.0); MAX_OWN]);
+        }
+    }
+
+    #[test]
+    fn a_driven_pin_starts_at_f_of_zero() {
+        let mut c = PointFollower::new(
+            BodyId(1),
+            [0.0, 0.0],
+            BodyId::GROUND,
+            Parametric::line([0.0, 0.0], [2.0, 0.0]).unwrap().into(),
+        );
+        c.travel = Some(TimeFn::Linear {
+            value: 0.5,
+            rate: 1.0,
+        });
+        let x = Local::default();
+        assert_eq!(c.initial_own(&x)[0], 0.5);
+        let mut f = [0.0; 3];
+        c.phi(
+            &Local {
+                t: 1.0,
+                own: [1.25, 0.0],
+                ..x
+            },
+            &mut f,
+        );
+        assert!((f[2] + 0.25).abs() < 1e-15, "{f:?}");
     }
 
     #[test]
@@ -166,6 +260,7 @@ mod tests {
             s_i: [0.0, 0.0],
             body_j: BodyId::GROUND,
             curve_j: Polar::circle([0.3, 0.2], 1.25).unwrap().into(),
+            travel: None,
         };
         let y = 0.9;
         let mut x = Local::default();
@@ -196,6 +291,7 @@ mod tests {
             s_i: [0.0, 0.1],
             body_j: BodyId(2),
             curve_j: Polar::circle([0.0, 0.0], 1.0).unwrap().into(),
+            travel: None,
         };
         let mut x = Local::default();
         x.q[0] = [-2.0, 0.0, 0.0];

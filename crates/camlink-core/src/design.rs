@@ -1,0 +1,517 @@
+//! Design checks of the curve contacts: what a cam designer needs to hear
+//! before the run, and what must stop a run that has left the mechanism's
+//! real geometry.
+//!
+//! Before the run, [`check`] reports as [`Finding`]s:
+//! - a flat-faced follower on a cam profile with concave parts: a flat face
+//!   cannot touch them (the α ranges are named, in degrees too for a polar
+//!   profile);
+//! - a roller (a circular follower curve, radius r) on a cam whose smallest
+//!   concave radius of curvature is below r: the cam is undercut there, the
+//!   roller cannot reach the bottom of the hollow.
+//!
+//! Both are warnings, because a run that keeps the contact away from those
+//! parts is valid. During the run, [`StepGuard::check`], called after every
+//! step, turns them into analysis errors naming the time and the joint when
+//! the contact actually gets there, and also stops a contact that runs off
+//! the end of an open curve (a slot).
+//!
+//! Concave means curving away from the follower: for a closed curve, signed
+//! curvature κ (positive turning left as the parameter grows) times the
+//! curve's orientation (+1 counterclockwise, −1 clockwise) is negative.
+//! Polar profiles are counterclockwise. The checks assume the follower
+//! touches a closed cam from outside; open cam curves are not checked for
+//! concavity.
+
+use std::fmt;
+
+use crate::assembly::Assembly;
+use crate::constraint::Constraint;
+use crate::contact::circle_centre;
+use crate::curve::Curve;
+use crate::kinematics::AnalysisError;
+use crate::math::cross;
+use crate::model::Model;
+
+/// Samples per curve for the pre-run checks.
+const SAMPLES: usize = 720;
+/// Relative curvature below which a curve counts as straight.
+const FLAT: f64 = 1e-9;
+/// Relative tolerance of the per-step checks.
+const STEP_TOL: f64 = 1e-6;
+
+/// How serious a finding is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Severity {
+    /// The design may be unsound; the run may still be valid.
+    Warning,
+    /// The model cannot be analysed as given.
+    Error,
+}
+
+/// One design finding about a joint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Finding {
+    pub severity: Severity,
+    /// The joint concerned.
+    pub joint: String,
+    pub message: String,
+}
+
+impl fmt::Display for Finding {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let level = match self.severity {
+            Severity::Warning => "warning",
+            Severity::Error => "error",
+        };
+        write!(f, "{level}: joint '{}': {}", self.joint, self.message)
+    }
+}
+
+/// The design checks of every curve-contact joint of `model`.
+pub fn check(model: &Model) -> Vec<Finding> {
+    findings(model).into_iter().map(|(_, f)| f).collect()
+}
+
+/// The findings with the index of their joint.
+fn findings(model: &Model) -> Vec<(usize, Finding)> {
+    let mut out = Vec::new();
+    for (k, j) in model.joints.iter().enumerate() {
+        match &j.constraint {
+            Constraint::FlatFollower(ff) => {
+                let Some(o) = orientation(&ff.curve_i) else {
+                    continue;
+                };
+                let tol = FLAT * max_curvature(&ff.curve_i);
+                let r = ranges_where(&ff.curve_i, |s| o * ff.curve_i.curvature(s) < -tol);
+                if !r.is_empty() {
+                    out.push((
+                        k,
+                        Finding {
+                            severity: Severity::Warning,
+                            joint: j.name.clone(),
+                            message: format!(
+                                "the flat-faced follower's cam profile is concave for {}: \
+                             a flat face cannot touch it there, and leaves the profile at \
+                             the edges of these ranges",
+                                describe_ranges(&ff.curve_i, "α_i", &r)
+                            ),
+                        },
+                    ));
+                }
+            }
+            Constraint::CamFollower(cf) => {
+                let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) else {
+                    continue;
+                };
+                let Some(o) = orientation(cam) else {
+                    continue;
+                };
+                // Smallest concave radius of curvature, sampled.
+                let (s0, s1) = cam.range();
+                let min = (0..SAMPLES)
+                    .map(|k| s0 + (s1 - s0) * k as f64 / SAMPLES as f64)
+                    .map(|s| (o * cam.curvature(s), s))
+                    .filter(|(k, _)| *k < 0.0)
+                    .map(|(k, s)| (-1.0 / k, s))
+                    .fold(None, |m: Option<(f64, f64)>, v| match m {
+                        Some(m) if m.0 <= v.0 => Some(m),
+                        _ => Some(v),
+                    });
+                if let Some((rho, at)) = min.filter(|m| m.0 < r) {
+                    let bad = ranges_where(cam, |s| o * cam.curvature(s) < -1.0 / r);
+                    let name = if which == 0 { "α_i" } else { "α_j" };
+                    out.push((
+                        k,
+                        Finding {
+                            severity: Severity::Warning,
+                            joint: j.name.clone(),
+                            message: format!(
+                                "the roller's radius {r} m exceeds the cam's smallest concave \
+                             radius of curvature {rho:.6} m (at {name} = {}): the cam is \
+                             undercut for {}, where the roller cannot follow the profile",
+                                value(cam, at),
+                                describe_ranges(cam, name, &bad)
+                            ),
+                        },
+                    ));
+                }
+            }
+            _ => {}
+        }
+    }
+    out
+}
+
+/// What the per-step guard watches on one contact parameter.
+#[derive(Clone, Debug)]
+enum Watch {
+    /// An open curve: the parameter must stay in [s₀, s₁].
+    Ends { s0: f64, s1: f64 },
+    /// A flat face on a closed cam: o κ ≥ −tol at the contact.
+    Convex { o: f64, tol: f64 },
+    /// A roller of radius r on a closed cam: o κ ≥ −1/r at the contact.
+    Roller { o: f64, r: f64 },
+}
+
+#[derive(Clone, Debug)]
+struct Item {
+    joint: usize,
+    /// Which own coordinate: 0 for α_i (or the point–follower's α_j), 1
+    /// for the cam–follower's α_j.
+    own: usize,
+    watch: Watch,
+}
+
+/// Per-step checks of the contacts, set up once.
+#[derive(Clone, Debug, Default)]
+pub struct StepGuard {
+    items: Vec<Item>,
+    /// The design findings, to explain a failed step.
+    findings: Vec<(usize, Finding)>,
+}
+
+impl StepGuard {
+    /// Finds what to watch in `model`.
+    pub fn new(model: &Model) -> Self {
+        let mut items = Vec::new();
+        for (k, j) in model.joints.iter().enumerate() {
+            let mut ends = |own: usize, c: &Curve| {
+                if !c.closed() {
+                    let (s0, s1) = c.range();
+                    items.push(Item {
+                        joint: k,
+                        own,
+                        watch: Watch::Ends { s0, s1 },
+                    });
+                }
+            };
+            match &j.constraint {
+                Constraint::PointFollower(pf) => ends(0, &pf.curve_j),
+                Constraint::FlatFollower(ff) => {
+                    ends(0, &ff.curve_i);
+                    if let Some(o) = orientation(&ff.curve_i) {
+                        let tol = STEP_TOL * max_curvature(&ff.curve_i);
+                        items.push(Item {
+                            joint: k,
+                            own: 0,
+                            watch: Watch::Convex { o, tol },
+                        });
+                    }
+                }
+                Constraint::CamFollower(cf) => {
+                    ends(0, &cf.curve_i);
+                    ends(1, &cf.curve_j);
+                    if let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) {
+                        if let Some(o) = orientation(cam) {
+                            items.push(Item {
+                                joint: k,
+                                own: which,
+                                watch: Watch::Roller { o, r },
+                            });
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        StepGuard {
+            items,
+            findings: findings(model),
+        }
+    }
+
+    /// Adds to a failed step's error the design findings of the joints it
+    /// names: a follower that meets a concave part of its cam or an
+    /// undercut does not enter it, its contact equations lose their
+    /// solution at the edge, and Newton's method stops there.
+    pub fn explain(&self, model: &Model, mut e: AnalysisError) -> AnalysisError {
+        for (k, f) in &self.findings {
+            if e.joints.contains(&model.joints[*k].name) {
+                e.message.push_str(&format!(
+                    "; possible cause: joint '{}': {}",
+                    f.joint, f.message
+                ));
+            }
+        }
+        e
+    }
+
+    /// Checks the contacts at coordinates `q` (time `t`, s): an error names
+    /// the time, the joint and the contact parameter.
+    pub fn check(
+        &self,
+        model: &Model,
+        asm: &Assembly,
+        q: &[f64],
+        t: f64,
+    ) -> Result<(), AnalysisError> {
+        for it in &self.items {
+            let joint = &model.joints[it.joint];
+            let a = q[asm.own_col(it.joint) + it.own];
+            let name = joint_own_name(&joint.constraint, it.own);
+            let curve = contact_curve(&joint.constraint, it.own);
+            let message = match it.watch {
+                Watch::Ends { s0, s1 } => {
+                    let tol = 1e-9 * (s1 - s0);
+                    if a >= s0 - tol && a <= s1 + tol {
+                        continue;
+                    }
+                    format!(
+                        "the contact ran off the end of the open curve of joint '{}': \
+                         {name} = {a} is outside its range [{s0}, {s1}]",
+                        joint.name
+                    )
+                }
+                Watch::Convex { o, tol } => {
+                    let k = o * curve.curvature(a);
+                    if k >= -tol {
+                        continue;
+                    }
+                    format!(
+                        "the flat-faced follower of joint '{}' touches the cam where it is \
+                         concave ({name} = {}, radius of curvature {:.6} m): a flat face \
+                         cannot follow this profile",
+                        joint.name,
+                        value(curve, a),
+                        -1.0 / k
+                    )
+                }
+                Watch::Roller { o, r } => {
+                    let k = o * curve.curvature(a);
+                    if k >= -(1.0 + STEP_TOL) / r {
+                        continue;
+                    }
+                    format!(
+                        "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
+                         with a smaller radius of curvature ({:.6} m at {name} = {}): the cam \
+                         is undercut there",
+                        joint.name,
+                        -1.0 / k,
+                        value(curve, a)
+                    )
+                }
+            };
+            return Err(AnalysisError {
+                time: t,
+                message,
+                joints: vec![joint.name.clone()],
+                residual: 0.0,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The curve of a contact joint that own coordinate `own` runs on.
+fn contact_curve(c: &Constraint, own: usize) -> &Curve {
+    match (c, own) {
+        (Constraint::CamFollower(cf), 0) => &cf.curve_i,
+        (Constraint::CamFollower(cf), _) => &cf.curve_j,
+        (Constraint::FlatFollower(ff), _) => &ff.curve_i,
+        (Constraint::PointFollower(pf), _) => &pf.curve_j,
+        _ => unreachable!("the guard watches curve-contact joints only"),
+    }
+}
+
+fn joint_own_name(c: &Constraint, own: usize) -> &'static str {
+    match (c, own) {
+        (Constraint::PointFollower(_), _) | (Constraint::CamFollower(_), 1) => "α_j",
+        _ => "α_i",
+    }
+}
+
+/// (cam, roller radius, which own coordinate runs on the cam) when exactly
+/// one of the two curves is a circle and the other is closed.
+fn roller_pair<'a>(ci: &'a Curve, cj: &'a Curve) -> Option<(&'a Curve, f64, usize)> {
+    match (circle_centre(ci), circle_centre(cj)) {
+        (None, Some((_, r))) if ci.closed() => Some((ci, r, 0)),
+        (Some((_, r)), None) if cj.closed() => Some((cj, r, 1)),
+        _ => None,
+    }
+}
+
+/// +1 for a counterclockwise closed curve, −1 for a clockwise one (the sign
+/// of its enclosed area ½∮ p × p′ ds); `None` for an open curve.
+pub fn orientation(c: &Curve) -> Option<f64> {
+    if !c.closed() {
+        return None;
+    }
+    let (s0, s1) = c.range();
+    let h = (s1 - s0) / SAMPLES as f64;
+    let area: f64 = (0..SAMPLES)
+        .map(|k| {
+            let j = c.jet(s0 + (k as f64 + 0.5) * h);
+            cross(j.p, j.d1)
+        })
+        .sum();
+    Some(if area < 0.0 { -1.0 } else { 1.0 })
+}
+
+/// Largest |κ| over the samples (1/m).
+fn max_curvature(c: &Curve) -> f64 {
+    let (s0, s1) = c.range();
+    (0..SAMPLES)
+        .map(|k| {
+            c.curvature(s0 + (s1 - s0) * k as f64 / SAMPLES as f64)
+                .abs()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Parameter intervals (a, b) of the range where `inside` holds, sampled at
+/// [`SAMPLES`] points and each edge located by bisection. On a closed curve
+/// an interval across the start of the range is returned once, as (a, b)
+/// with b beyond s₁.
+pub fn ranges_where(c: &Curve, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
+    let (s0, s1) = c.range();
+    let at = |k: usize| s0 + (s1 - s0) * k as f64 / SAMPLES as f64;
+    let edge = |mut a: f64, mut b: f64| {
+        let sa = inside(a);
+        for _ in 0..60 {
+            let m = 0.5 * (a + b);
+            if inside(m) == sa {
+                a = m;
+            } else {
+                b = m;
+            }
+        }
+        0.5 * (a + b)
+    };
+    let mut out = Vec::new();
+    let mut start = inside(s0).then_some(s0);
+    let mut prev = start.is_some();
+    for k in 0..SAMPLES {
+        let (a, b) = (at(k), at(k + 1));
+        let now = if k + 1 == SAMPLES && c.closed() {
+            inside(s0)
+        } else {
+            inside(b)
+        };
+        if now != prev {
+            let e = edge(a, b);
+            if now {
+                start = Some(e);
+            } else if let Some(st) = start.take() {
+                out.push((st, e));
+            }
+        }
+        prev = now;
+    }
+    if let Some(st) = start {
+        if c.closed() && !out.is_empty() && out[0].0 == s0 && st != s0 {
+            let first = out.remove(0);
+            out.push((st, first.1 + (s1 - s0)));
+        } else {
+            out.push((st, s1));
+        }
+    }
+    out
+}
+
+/// A parameter value with its unit: rad and degrees for a polar profile,
+/// the curve's own parameter otherwise.
+fn value(c: &Curve, s: f64) -> String {
+    match c {
+        Curve::Polar(_) => format!("{s:.6} rad ({:.3}°)", s.to_degrees()),
+        Curve::Parametric(_) => format!("{s:.6}"),
+    }
+}
+
+/// "α_i in [a, b] rad ([a°, b°]), …".
+fn describe_ranges(c: &Curve, name: &str, r: &[(f64, f64)]) -> String {
+    let one = |&(a, b): &(f64, f64)| match c {
+        Curve::Polar(_) => format!(
+            "{name} in [{a:.6}, {b:.6}] rad ([{:.3}°, {:.3}°])",
+            a.to_degrees(),
+            b.to_degrees()
+        ),
+        Curve::Parametric(_) => format!("{name} in [{a:.6}, {b:.6}]"),
+    };
+    r.iter().map(one).collect::<Vec<_>>().join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::{cam_follower::CamFollower, flat_follower::FlatFollower};
+    use crate::curve::{Parametric, Polar};
+    use crate::model::{Body, BodyId};
+    use std::f64::consts::PI;
+
+    fn model_with(c: impl Into<Constraint>) -> Model {
+        let mut m = Model::new("m");
+        m.add_body(Body::new("cam", [0.0; 3]));
+        m.add_body(Body::new("follower", [0.0, 2.0, 0.0]));
+        m.add_joint("contact", c);
+        m
+    }
+
+    #[test]
+    fn flat_follower_on_a_three_lobe_cam_names_the_concave_ranges() {
+        // ρ = 1 + 0.3 cos 3α is concave about α = π/3, π, 5π/3.
+        let cam = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, 0.3], &[]).unwrap();
+        let ff = FlatFollower::new(BodyId(1), cam.into(), BodyId(2), [0.0; 2], [1.0, 0.0]);
+        let f = check(&model_with(ff.unwrap()));
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(f[0].severity, Severity::Warning);
+        assert!(f[0].message.contains("concave"), "{}", f[0]);
+        assert!(f[0].message.contains("°"), "{}", f[0]);
+        // Three ranges centred on 60°, 180°, 300°.
+        assert_eq!(f[0].message.matches("α_i in").count(), 3, "{}", f[0]);
+        // A circle has none.
+        let ff = FlatFollower::new(
+            BodyId(1),
+            Polar::circle([0.2, 0.0], 1.0).unwrap().into(),
+            BodyId(2),
+            [0.0; 2],
+            [1.0, 0.0],
+        );
+        assert!(check(&model_with(ff.unwrap())).is_empty());
+    }
+
+    #[test]
+    fn roller_larger_than_the_hollow_is_an_undercut() {
+        // Concave radius of curvature of ρ = 1 + 0.3 cos 3α at α = π/3:
+        // ρ = 0.7, ρ′ = 0, ρ″ = 2.7: κ = (ρ² − ρρ″)/ρ³ = (0.49 − 1.89)/0.343.
+        let cam: Curve = Polar::fourier([0.0, 0.0], 1.0, &[0.0, 0.0, 0.3], &[])
+            .unwrap()
+            .into();
+        let rho_min = 0.343 / 1.4;
+        let with = |r: f64| {
+            model_with(CamFollower {
+                body_i: BodyId(1),
+                curve_i: cam.clone(),
+                body_j: BodyId(2),
+                curve_j: Polar::circle([0.0, 0.0], r).unwrap().into(),
+            })
+        };
+        assert!(check(&with(0.9 * rho_min)).is_empty());
+        let f = check(&with(1.1 * rho_min));
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert!(f[0].message.contains("undercut"), "{}", f[0]);
+        assert!(f[0].message.contains(&format!("{rho_min:.6}")), "{}", f[0]);
+    }
+
+    #[test]
+    fn a_clockwise_closed_spline_is_convex() {
+        let pts: Vec<[f64; 2]> = (0..12)
+            .map(|k| {
+                let a = -(k as f64) * PI / 6.0;
+                [a.cos(), 0.5 * a.sin()]
+            })
+            .collect();
+        let c: Curve = Parametric::spline(&pts, true).unwrap().into();
+        assert_eq!(orientation(&c), Some(-1.0));
+        let ff = FlatFollower::new(BodyId(1), c, BodyId(2), [0.0; 2], [1.0, 0.0]);
+        assert!(check(&model_with(ff.unwrap())).is_empty());
+    }
+
+    #[test]
+    fn ranges_across_the_start_come_back_whole() {
+        let c: Curve = Polar::circle([0.0, 0.0], 1.0).unwrap().into();
+        let r = ranges_where(&c, |s| !(0.5..=6.0).contains(&s));
+        assert_eq!(r.len(), 1, "{r:?}");
+        assert!((r[0].0 - 6.0).abs() < 1e-9 && (r[0].1 - (0.5 + 2.0 * PI)).abs() < 1e-9);
+    }
+}

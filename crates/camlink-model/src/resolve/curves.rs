@@ -1,0 +1,497 @@
+//! `[[curves]]`, the curve-contact joints and the `curve_travel` driver.
+//!
+//! A curve is built on its body from its `source`; joints then name curves
+//! (a curve's body is the joint's body). Contact parameters the file gives
+//! are starting guesses: the joint refines them at assembly. Given only one
+//! of a cam–follower's two, the other is the point of the second curve
+//! nearest the first curve's point.
+
+use std::sync::Arc;
+
+use camlink_core::constraint::cam_follower::CamFollower;
+use camlink_core::constraint::flat_follower::FlatFollower;
+use camlink_core::constraint::point_follower::PointFollower;
+use camlink_core::constraint::{Constraint, MAX_OWN};
+use camlink_core::curve::{read_points_csv, search, Curve, Parametric, Polar, Radius};
+use camlink_core::math::{point, rot_t, sub, V2};
+use camlink_core::BodyId;
+
+use super::{check_name, fail, Ctx, JointInfo, R};
+use crate::error::did_you_mean;
+use crate::eval;
+use crate::file::*;
+
+/// Samples on which a new curve is checked (finite, non-zero tangent, ρ > 0).
+const CHECK_SAMPLES: usize = 720;
+
+/// A resolved `[[curves]]` entry.
+#[derive(Clone, Debug)]
+pub(super) struct CurveEntry {
+    pub body: BodyId,
+    pub curve: Curve,
+}
+
+impl CurveSpec {
+    fn name_body(&self) -> (&str, &str) {
+        match self {
+            CurveSpec::Circle { name, body, .. }
+            | CurveSpec::Line { name, body, .. }
+            | CurveSpec::Arc { name, body, .. }
+            | CurveSpec::Expression { name, body, .. }
+            | CurveSpec::Fourier { name, body, .. }
+            | CurveSpec::Spline { name, body, .. } => (name, body),
+        }
+    }
+}
+
+impl Ctx {
+    /// Builds `curves[k]` on its body.
+    pub(super) fn curve(&mut self, c: &CurveSpec, k: usize) -> R<()> {
+        let path = format!("curves[{k}]");
+        let (name, body) = c.name_body();
+        check_name(name, "curve", &format!("{path}.name"))?;
+        if self.curves.contains_key(name) {
+            return fail(
+                format!("{path}.name"),
+                format!("duplicate curve name '{name}'"),
+            );
+        }
+        let b = self.body(body, &format!("{path}.body"))?;
+        let curve = self.build_curve(c, b, &path)?;
+        if let Err(e) = curve.check(CHECK_SAMPLES) {
+            return fail(path, format!("curve '{name}': {e}"));
+        }
+        self.curves
+            .insert(name.to_string(), CurveEntry { body: b, curve });
+        Ok(())
+    }
+
+    fn build_curve(&self, c: &CurveSpec, b: BodyId, p: &str) -> R<Curve> {
+        let centre = |c: &Option<PointRef>| self.point(b, c.as_ref(), &format!("{p}.centre"));
+        let bad = |field: &str, e: camlink_core::curve::CurveError| {
+            fail::<Curve>(format!("{p}.{field}"), e.to_string())
+        };
+        match c {
+            CurveSpec::Circle {
+                kind,
+                centre: cen,
+                radius,
+                start,
+                ..
+            } => {
+                let q = centre(cen)?;
+                let r = self.positive(radius, &format!("{p}.radius"), "radius")?;
+                match kind.unwrap_or(CurveKind::Polar) {
+                    CurveKind::Polar => {
+                        if start.is_some() {
+                            return fail(
+                                format!("{p}.start"),
+                                "`start` applies to a parametric circle; a polar circle's parameter is the angle α itself",
+                            );
+                        }
+                        Polar::circle(q, r)
+                            .map(Into::into)
+                            .or_else(|e| bad("radius", e))
+                    }
+                    CurveKind::Parametric => {
+                        let s = self.opt(start.as_ref(), 0.0, &format!("{p}.start"))?;
+                        Parametric::circle(q, r, s)
+                            .map(Into::into)
+                            .or_else(|e| bad("radius", e))
+                    }
+                }
+            }
+            CurveSpec::Line { from, to, .. } => {
+                let a = self.point(b, Some(from), &format!("{p}.from"))?;
+                let z = self.point(b, Some(to), &format!("{p}.to"))?;
+                Parametric::line(a, z)
+                    .map(Into::into)
+                    .or_else(|e| bad("to", e))
+            }
+            CurveSpec::Arc {
+                centre: cen,
+                radius,
+                start,
+                end,
+                ..
+            } => {
+                let q = centre(cen)?;
+                let r = self.positive(radius, &format!("{p}.radius"), "radius")?;
+                let s = self.num(start, &format!("{p}.start"))?;
+                let e = self.num(end, &format!("{p}.end"))?;
+                Parametric::arc(q, r, s, e)
+                    .map(Into::into)
+                    .or_else(|err| bad("end", err))
+            }
+            CurveSpec::Expression {
+                kind,
+                centre: cen,
+                rho,
+                x,
+                y,
+                range,
+                closed,
+                ..
+            } => {
+                let inferred = match (rho.is_some(), x.is_some() || y.is_some()) {
+                    (true, false) => CurveKind::Polar,
+                    (false, true) => CurveKind::Parametric,
+                    (true, true) => {
+                        return fail(
+                            format!("{p}.rho"),
+                            "give either `rho` (a polar profile) or `x` and `y` (a parametric curve), not both",
+                        )
+                    }
+                    (false, false) => {
+                        return fail(
+                            p,
+                            "an expression curve needs `rho` (a polar profile ρ(a)) or `x` and `y` (a parametric curve in s)",
+                        )
+                    }
+                };
+                if let Some(k) = kind.filter(|k| *k != inferred) {
+                    let want = match k {
+                        CurveKind::Polar => "a polar expression curve needs `rho`",
+                        CurveKind::Parametric => "a parametric expression curve needs `x` and `y`",
+                    };
+                    return fail(format!("{p}.kind"), want);
+                }
+                match inferred {
+                    CurveKind::Polar => {
+                        for (key, given) in
+                            [("range", range.is_some()), ("closed", closed.is_some())]
+                        {
+                            if given {
+                                return fail(
+                                    format!("{p}.{key}"),
+                                    format!("`{key}` applies to a parametric curve; a polar profile is closed, with α in [0, 2π)"),
+                                );
+                            }
+                        }
+                        let src = rho.as_deref().unwrap_or_default();
+                        let e = eval::function_of(src, "a", &self.params)
+                            .or_else(|m| fail(format!("{p}.rho"), m))?;
+                        Ok(Polar {
+                            q: centre(cen)?,
+                            rho: Radius::Expr(Arc::new(e)),
+                        }
+                        .into())
+                    }
+                    CurveKind::Parametric => {
+                        if cen.is_some() {
+                            return fail(
+                                format!("{p}.centre"),
+                                "`centre` applies to a polar profile; write the offset into x and y",
+                            );
+                        }
+                        let (Some(xs), Some(ys)) = (x, y) else {
+                            let missing = if x.is_none() { "x" } else { "y" };
+                            return fail(
+                                p,
+                                format!("a parametric expression curve needs both `x` and `y`; `{missing}` is missing"),
+                            );
+                        };
+                        let Some(range) = range else {
+                            return fail(
+                                p,
+                                "a parametric expression curve needs `range = [s0, s1]`",
+                            );
+                        };
+                        let [s0, s1] = self.vec2(range, &format!("{p}.range"))?;
+                        if s1 <= s0 {
+                            return fail(
+                                format!("{p}.range"),
+                                format!("the range must increase, got [{s0}, {s1}]"),
+                            );
+                        }
+                        let f = |src: &str, key: &str| {
+                            eval::function_of(src, "s", &self.params)
+                                .map(Arc::new)
+                                .or_else(|m| fail(format!("{p}.{key}"), m))
+                        };
+                        Ok(Parametric::Expr {
+                            x: f(xs, "x")?,
+                            y: f(ys, "y")?,
+                            s0,
+                            s1,
+                            closed: closed.unwrap_or(false),
+                        }
+                        .into())
+                    }
+                }
+            }
+            CurveSpec::Fourier {
+                centre: cen,
+                a0,
+                a,
+                b: bs,
+                ..
+            } => {
+                let a0 = self.num(a0, &format!("{p}.a0"))?;
+                let list = |v: &[Num], key: &str| -> R<Vec<f64>> {
+                    v.iter()
+                        .enumerate()
+                        .map(|(k, n)| self.num(n, &format!("{p}.{key}[{k}]")))
+                        .collect()
+                };
+                Polar::fourier(centre(cen)?, a0, &list(a, "a")?, &list(bs, "b")?)
+                    .map(Into::into)
+                    .or_else(|e| bad("a0", e))
+            }
+            CurveSpec::Spline {
+                kind,
+                centre: cen,
+                points,
+                file,
+                closed,
+                ..
+            } => {
+                let (pts, field) = match (points, file) {
+                    (Some(list), None) => {
+                        let pts = list
+                            .iter()
+                            .enumerate()
+                            .map(|(k, v)| self.vec2(v, &format!("{p}.points[{k}]")))
+                            .collect::<R<Vec<V2>>>()?;
+                        (pts, "points")
+                    }
+                    (None, Some(f)) => {
+                        let path = self.base.join(f);
+                        let pts = read_points_csv(&path)
+                            .or_else(|e| fail(format!("{p}.file"), e.to_string()))?;
+                        (pts, "file")
+                    }
+                    (Some(_), Some(_)) => {
+                        return fail(
+                            format!("{p}.file"),
+                            "give either `points` or `file`, not both",
+                        )
+                    }
+                    (None, None) => {
+                        return fail(
+                            p,
+                            "a spline needs `points = [[x, y], …]` or `file = \"points.csv\"`",
+                        )
+                    }
+                };
+                match kind {
+                    CurveKind::Polar => {
+                        if *closed == Some(false) {
+                            return fail(
+                                format!("{p}.closed"),
+                                "a polar profile is always closed (periodic in α)",
+                            );
+                        }
+                        Polar::spline(centre(cen)?, &pts)
+                            .map(Into::into)
+                            .or_else(|e| bad(field, e))
+                    }
+                    CurveKind::Parametric => {
+                        if cen.is_some() {
+                            return fail(
+                                format!("{p}.centre"),
+                                "`centre` applies to a polar profile",
+                            );
+                        }
+                        Parametric::spline(&pts, closed.unwrap_or(false))
+                            .map(Into::into)
+                            .or_else(|e| bad(field, e))
+                    }
+                }
+            }
+        }
+    }
+
+    /// Resolves a curve name.
+    fn curve_ref(&self, name: &str, path: &str) -> R<(BodyId, Curve)> {
+        match self.curves.get(name) {
+            Some(e) => Ok((e.body, e.curve.clone())),
+            None => {
+                let hint = if self.curves.is_empty() {
+                    " (the file declares no [[curves]])".to_string()
+                } else {
+                    did_you_mean(name, self.curves.keys().map(String::as_str))
+                };
+                fail(path, format!("no curve named '{name}'{hint}"))
+            }
+        }
+    }
+
+    /// The parameter of the point of `c` (on body `b`) nearest to the global
+    /// point `r`, at the initial placement.
+    fn nearest(&self, b: BodyId, c: &Curve, r: V2) -> f64 {
+        let q = self.q0(b);
+        let local = rot_t(q[2], sub(r, [q[0], q[1]]));
+        search::closest(c, local, None)
+    }
+
+    /// Adds a contact joint with its starting guesses.
+    fn add_contact(&mut self, name: String, c: Constraint, own0: Option<[f64; MAX_OWN]>) {
+        let kind = match &c {
+            Constraint::CamFollower(_) => "cam_follower",
+            Constraint::FlatFollower(_) => "flat_follower",
+            _ => "point_follower",
+        };
+        self.joints.insert(name.clone(), JointInfo::Other(kind));
+        self.add(name, c, false);
+        if let Some(j) = self.model.joints.last_mut() {
+            j.own0 = own0;
+        }
+    }
+
+    pub(super) fn cam_follower(&mut self, c: &CamFollowerJoint, k: usize) -> R<()> {
+        let path = format!("joints[{k}]");
+        let p = path.as_str();
+        let name = self.name(c.name.as_ref(), format!("cam_follower_{k}"), p)?;
+        let (bi, ci) = self.curve_ref(&c.curve_i, &format!("{p}.curve_i"))?;
+        let (bj, cj) = self.curve_ref(&c.curve_j, &format!("{p}.curve_j"))?;
+        self.different(bi, bj, &c.curve_i, &c.curve_j, &format!("{p}.curve_j"))?;
+        let ai = c
+            .alpha_i
+            .as_ref()
+            .map(|n| self.num(n, &format!("{p}.alpha_i")))
+            .transpose()?;
+        let aj = c
+            .alpha_j
+            .as_ref()
+            .map(|n| self.num(n, &format!("{p}.alpha_j")))
+            .transpose()?;
+        let own0 = match (ai, aj) {
+            (None, None) => None,
+            (Some(a), Some(b)) => Some([a, b]),
+            (Some(a), None) => {
+                let r = point(self.q0(bi), ci.jet(a).p);
+                Some([a, self.nearest(bj, &cj, r)])
+            }
+            (None, Some(b)) => {
+                let r = point(self.q0(bj), cj.jet(b).p);
+                Some([self.nearest(bi, &ci, r), b])
+            }
+        };
+        let cf = CamFollower {
+            body_i: bi,
+            curve_i: ci,
+            body_j: bj,
+            curve_j: cj,
+        };
+        self.add_contact(name, cf.into(), own0);
+        Ok(())
+    }
+
+    pub(super) fn flat_follower(&mut self, c: &FlatFollowerJoint, k: usize) -> R<()> {
+        let path = format!("joints[{k}]");
+        let p = path.as_str();
+        let name = self.name(c.name.as_ref(), format!("flat_follower_{k}"), p)?;
+        let (bi, ci) = self.curve_ref(&c.curve_i, &format!("{p}.curve_i"))?;
+        let (bj, s_j) = self.at(&c.body_j, c.point_j.as_ref(), p, "body_j", "point_j")?;
+        if bi == bj {
+            return fail(
+                format!("{p}.body_j"),
+                format!(
+                    "curve '{}' is on body '{}' itself; the face must be on another body",
+                    c.curve_i,
+                    self.model.body(bi).name
+                ),
+            );
+        }
+        let u_j = self.axis(&c.axis, &format!("{p}.axis"))?;
+        let Some(ff) = FlatFollower::new(bi, ci, bj, s_j, u_j) else {
+            return fail(format!("{p}.axis"), "axis has zero length");
+        };
+        let own0 = c
+            .alpha_i
+            .as_ref()
+            .map(|n| self.num(n, &format!("{p}.alpha_i")).map(|a| [a, 0.0]))
+            .transpose()?;
+        self.add_contact(name, ff.into(), own0);
+        Ok(())
+    }
+
+    pub(super) fn point_follower(&mut self, c: &PointFollowerJoint, k: usize) -> R<()> {
+        let path = format!("joints[{k}]");
+        let p = path.as_str();
+        let name = self.name(c.name.as_ref(), format!("point_follower_{k}"), p)?;
+        let (bi, s_i) = self.at(&c.body_i, c.point_i.as_ref(), p, "body_i", "point_i")?;
+        let (bj, cj) = self.curve_ref(&c.curve_j, &format!("{p}.curve_j"))?;
+        if bi == bj {
+            return fail(
+                format!("{p}.curve_j"),
+                format!(
+                    "curve '{}' is on body '{}', which also carries the pin; the slot must be on another body",
+                    c.curve_j,
+                    self.model.body(bi).name
+                ),
+            );
+        }
+        let own0 = c
+            .alpha_j
+            .as_ref()
+            .map(|n| self.num(n, &format!("{p}.alpha_j")).map(|a| [a, 0.0]))
+            .transpose()?;
+        self.add_contact(name, PointFollower::new(bi, s_i, bj, cj).into(), own0);
+        Ok(())
+    }
+
+    fn different(&self, bi: BodyId, bj: BodyId, ci: &str, cj: &str, path: &str) -> R<()> {
+        if bi == bj {
+            return fail(
+                path,
+                format!(
+                    "curves '{ci}' and '{cj}' are both on body '{}'; a contact needs two different bodies",
+                    self.model.body(bi).name
+                ),
+            );
+        }
+        Ok(())
+    }
+
+    /// `curve_travel`: drives the named point–follower's α_j = f(t); the
+    /// joint gains the equation `travel`.
+    pub(super) fn curve_travel(&mut self, jd: &JointDriver, k: usize) -> R<()> {
+        let path = format!("drivers[{k}]");
+        let p = path.as_str();
+        self.name(jd.name.as_ref(), format!("curve_travel_driver_{k}"), p)?;
+        let jp = format!("{p}.joint");
+        let Some(info) = self.joints.get(&jd.joint).cloned() else {
+            return fail(
+                jp,
+                format!(
+                    "no joint named '{}'{}",
+                    jd.joint,
+                    did_you_mean(&jd.joint, self.joints.keys().map(String::as_str))
+                ),
+            );
+        };
+        let f = self.time_fn(&jd.f, &format!("{p}.f"))?;
+        let joint = self.model.joints.iter_mut().find(|j| j.name == jd.joint);
+        match joint.map(|j| &mut j.constraint) {
+            Some(Constraint::PointFollower(pf)) => {
+                if pf.travel.is_some() {
+                    return fail(
+                        jp,
+                        format!(
+                            "joint '{}' is already driven by another curve_travel driver",
+                            jd.joint
+                        ),
+                    );
+                }
+                pf.travel = Some(f);
+                Ok(())
+            }
+            _ => {
+                let is = match info {
+                    JointInfo::Revolute { .. } => "revolute",
+                    JointInfo::Translational { .. } => "translational",
+                    JointInfo::Other(kind) => kind,
+                };
+                fail(
+                    jp,
+                    format!(
+                        "joint '{}' is a {is} joint, but a curve_travel driver needs a point_follower joint",
+                        jd.joint
+                    ),
+                )
+            }
+        }
+    }
+}
