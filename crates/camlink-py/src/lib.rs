@@ -1,1 +1,455 @@
-//! Python bindings for camlink.
+//! Python bindings for camlink: `camlink._core`.
+//!
+//! Bindings convert, they do not think: this layer turns Python values into
+//! core types and core results into NumPy arrays and Python exceptions. The
+//! user-facing API lives in the `camlink` Python package.
+//!
+//! No Rust panic crosses into Python: every entry point runs under
+//! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::PathBuf;
+
+use camlink_core::diagnose::diagnose;
+use camlink_core::kinematics::{self, PointOutput, Settings, Sink};
+use camlink_core::Equations;
+use camlink_model::{Format, Loaded};
+use numpy::ndarray::Array2;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use pyo3::create_exception;
+use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList};
+
+create_exception!(
+    camlink,
+    ModelError,
+    PyValueError,
+    "A model file, a builder call or an argument is not valid."
+);
+create_exception!(
+    camlink,
+    AnalysisError,
+    PyRuntimeError,
+    "An analysis could not proceed. Attributes: time (s), joints (names), \
+     residual (largest |Φ|), names and data (the results computed so far)."
+);
+
+/// Rows buffered between two calls of `on_chunk`, unless the caller says.
+const DEFAULT_CHUNK_ROWS: usize = 1024;
+
+/// Runs `f`, turning a Rust panic into a Python `RuntimeError`.
+fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
+    catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|payload| Err(internal_error(payload)))
+}
+
+/// The `RuntimeError` for a caught panic.
+fn internal_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
+    let what = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".to_string());
+    PyRuntimeError::new_err(format!(
+        "internal error: {what}; this is a bug in camlink, please report it with the model that caused it"
+    ))
+}
+
+fn model_error(e: impl std::fmt::Display) -> PyErr {
+    ModelError::new_err(e.to_string())
+}
+
+/// What `run_kinematics` returns: channel names, data, summary.
+type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
+
+/// A loaded model: the core model and the file's `[analysis]` settings.
+#[pyclass(frozen, module = "camlink._core")]
+struct Model {
+    loaded: Loaded,
+}
+
+#[pymethods]
+impl Model {
+    /// Loads a TOML or JSON model file (format from the extension).
+    #[staticmethod]
+    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
+        guard(|| {
+            let loaded = py.detach(|| camlink_model::load_path(&path));
+            Ok(Model {
+                loaded: loaded.map_err(model_error)?,
+            })
+        })
+    }
+
+    /// Loads a model from text; `format` is `"toml"` or `"json"`; `source`
+    /// names the text in error messages.
+    #[staticmethod]
+    #[pyo3(signature = (text, format, source = "<string>"))]
+    fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
+        guard(|| {
+            let format = match format.to_ascii_lowercase().as_str() {
+                "toml" => Format::Toml,
+                "json" => Format::Json,
+                other => {
+                    return Err(ModelError::new_err(format!(
+                        "unknown model format '{other}' (expected 'toml' or 'json')"
+                    )))
+                }
+            };
+            let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
+            Ok(Model { loaded })
+        })
+    }
+
+    #[getter]
+    fn name(&self) -> &str {
+        &self.loaded.model.name
+    }
+
+    /// Moving bodies (the ground is implicit): a list of dicts.
+    #[getter]
+    fn bodies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        for (_, b) in self.loaded.model.moving_bodies() {
+            let d = PyDict::new(py);
+            d.set_item("name", &b.name)?;
+            d.set_item("position", [b.q0[0], b.q0[1]])?;
+            d.set_item("angle", b.q0[2])?;
+            d.set_item("mass", b.mass)?;
+            d.set_item("inertia", b.inertia)?;
+            d.set_item("centroid", b.centroid)?;
+            let points = PyDict::new(py);
+            for p in &b.points {
+                points.set_item(&p.name, p.s)?;
+            }
+            d.set_item("points", points)?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
+    /// Joints and drivers in model order: a list of dicts.
+    #[getter]
+    fn joints<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let model = &self.loaded.model;
+        let list = PyList::empty(py);
+        for j in &model.joints {
+            let d = PyDict::new(py);
+            let [bi, bj] = j.constraint.bodies();
+            d.set_item("name", &j.name)?;
+            d.set_item("kind", j.constraint.kind())?;
+            d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+            d.set_item("equations", j.constraint.rows())?;
+            d.set_item("driver", j.driver)?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
+    /// The file's `[analysis]` table as a dict.
+    #[getter]
+    fn analysis<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let a = &self.loaded.analysis;
+        let d = PyDict::new(py);
+        d.set_item("t_end", a.t_end)?;
+        d.set_item("step", a.step)?;
+        d.set_item("times", a.times.clone())?;
+        d.set_item("tol", a.tol)?;
+        d.set_item("max_iter", a.max_iter)?;
+        d.set_item("points", a.points.clone())?;
+        Ok(d)
+    }
+
+    /// Counts of bodies, coordinates and equations, every constraint with
+    /// its kind and equation count, and the diagnosis of Φ_q at t = 0:
+    /// rank, degrees of freedom, redundant equations and free motions.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| {
+            let model = &self.loaded.model;
+            let (report, diagnosis) = py.detach(|| {
+                (
+                    kinematics::check(model),
+                    diagnose(model, 0.0, self.loaded.analysis.tol),
+                )
+            });
+            let d = PyDict::new(py);
+            d.set_item("bodies", report.bodies)?;
+            d.set_item("coordinates", report.coordinates)?;
+            d.set_item("equations", report.equations)?;
+            let joints = PyList::empty(py);
+            for (name, kind, equations, driver) in &report.joints {
+                let j = PyDict::new(py);
+                j.set_item("name", name)?;
+                j.set_item("kind", kind)?;
+                j.set_item("equations", equations)?;
+                j.set_item("driver", driver)?;
+                joints.append(j)?;
+            }
+            d.set_item("joints", joints)?;
+            d.set_item("rank", diagnosis.rank)?;
+            d.set_item("dof", diagnosis.dof)?;
+            let redundant = PyList::empty(py);
+            for r in &diagnosis.redundant {
+                let e = PyDict::new(py);
+                e.set_item("equation", &r.equation)?;
+                e.set_item("depends_on", r.depends_on.clone())?;
+                redundant.append(e)?;
+            }
+            d.set_item("redundant", redundant)?;
+            d.set_item("free_motions", diagnosis.free_motions.clone())?;
+            d.set_item("residual", diagnosis.residual)?;
+            d.set_item("condition", diagnosis.condition)?;
+            Ok(d)
+        })
+    }
+
+    /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
+    /// channel names starting with `"t"`, a `steps × len(names)` array and
+    /// a dict of solver counts, warnings and assembly moves.
+    ///
+    /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
+    /// the end, also when the analysis fails, so a caller can write results
+    /// as the run goes. The GIL is released while the core computes. An
+    /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
+    /// boundaries) stops the run and is re-raised.
+    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[allow(clippy::too_many_arguments)]
+    fn run_kinematics<'py>(
+        &self,
+        py: Python<'py>,
+        times: PyReadonlyArray1<'py, f64>,
+        tol: f64,
+        max_iter: usize,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+    ) -> PyResult<RunOutput<'py>> {
+        guard(|| {
+            let times = times.as_array().to_vec();
+            let points = resolve_points(&self.loaded.model, &points)?;
+            let settings = Settings { tol, max_iter };
+            let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
+            let model = &self.loaded.model;
+            let outcome = py.detach(|| {
+                catch_unwind(AssertUnwindSafe(|| {
+                    kinematics::run(model, &times, &settings, &points, &mut sink)
+                }))
+            });
+            sink.flush();
+            let ChunkSink {
+                names,
+                all,
+                callback_error,
+                ..
+            } = sink;
+            if let Some(e) = callback_error {
+                return Err(e);
+            }
+            let data = to_array(py, all, names.len())?;
+            match outcome {
+                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
+                    "internal error: run stopped without a Python error",
+                )),
+                Err(payload) => Err(internal_error(payload)),
+                Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
+                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
+            }
+        })
+    }
+
+    fn __repr__(&self) -> String {
+        let m = &self.loaded.model;
+        format!(
+            "<camlink Model '{}': {} bodies, {} joints>",
+            m.name,
+            m.bodies.len() - 1,
+            m.joints.len()
+        )
+    }
+}
+
+/// `"body.point"` names to core point outputs.
+fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec<PointOutput>> {
+    names
+        .iter()
+        .map(|full| {
+            let (body, point) = full.split_once('.').ok_or_else(|| {
+                ModelError::new_err(format!("point '{full}' should be written as 'body.point'"))
+            })?;
+            let id = model.body_id(body).ok_or_else(|| {
+                ModelError::new_err(format!("point '{full}': no body named '{body}'"))
+            })?;
+            let b = model.body(id);
+            let s = b.point(point).ok_or_else(|| {
+                let known: Vec<&str> = b.points.iter().map(|p| p.name.as_str()).collect();
+                ModelError::new_err(format!(
+                    "point '{full}': body '{body}' has no point '{point}' (it has: {})",
+                    if known.is_empty() {
+                        "none".to_string()
+                    } else {
+                        known.join(", ")
+                    }
+                ))
+            })?;
+            Ok(PointOutput {
+                body: id,
+                name: full.clone(),
+                s,
+            })
+        })
+        .collect()
+}
+
+/// The run summary as a dict: counts, `warnings` as (t, message) pairs and
+/// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs.
+fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("steps", s.steps)?;
+    d.set_item("newton_iterations", s.newton_iterations)?;
+    d.set_item("factorizations", s.factorizations)?;
+    d.set_item("halvings", s.halvings)?;
+    d.set_item("warnings", s.warnings.clone())?;
+    d.set_item("assembly_moves", s.assembly_moves.clone())?;
+    Ok(d)
+}
+
+/// A `rows × width` NumPy array from row-major values.
+fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
+    let rows = values.len().checked_div(width).unwrap_or(0);
+    let a = Array2::from_shape_vec((rows, width), values)
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
+    Ok(a.into_pyarray(py))
+}
+
+/// The Python `AnalysisError` for a core analysis error, with the partial
+/// results attached.
+fn analysis_error(
+    py: Python<'_>,
+    e: &kinematics::AnalysisError,
+    names: Vec<String>,
+    data: Option<Bound<'_, PyArray2<f64>>>,
+) -> PyErr {
+    let err = AnalysisError::new_err(e.to_string());
+    let value = err.value(py);
+    let set = || -> PyResult<()> {
+        value.setattr("time", e.time)?;
+        value.setattr("joints", e.joints.clone())?;
+        value.setattr("residual", e.residual)?;
+        value.setattr("names", names)?;
+        match data {
+            Some(d) => value.setattr("data", d)?,
+            None => value.setattr("data", py.None())?,
+        }
+        Ok(())
+    };
+    match set() {
+        Ok(()) => err,
+        Err(e) => e,
+    }
+}
+
+/// Collects rows and hands them to Python in chunks.
+struct ChunkSink {
+    names: Vec<String>,
+    /// Rows of the current chunk, row-major.
+    chunk: Vec<f64>,
+    /// Every row so far, row-major.
+    all: Vec<f64>,
+    chunk_rows: usize,
+    on_chunk: Option<Py<PyAny>>,
+    callback_error: Option<PyErr>,
+}
+
+impl ChunkSink {
+    fn new(on_chunk: Option<Py<PyAny>>, chunk_rows: usize) -> Self {
+        ChunkSink {
+            names: Vec::new(),
+            chunk: Vec::new(),
+            all: Vec::new(),
+            chunk_rows,
+            on_chunk,
+            callback_error: None,
+        }
+    }
+
+    fn width(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Calls `on_chunk` with the buffered rows (if any) and moves them to `all`.
+    fn flush(&mut self) {
+        if self.chunk.is_empty() {
+            return;
+        }
+        let result = Python::attach(|py| -> PyResult<()> {
+            // Ctrl-C raises KeyboardInterrupt here even without a callback.
+            py.check_signals()?;
+            if let Some(cb) = &self.on_chunk {
+                let rows = to_array(py, self.chunk.clone(), self.width())?;
+                cb.call1(py, (self.names.clone(), rows))?;
+            }
+            Ok(())
+        });
+        if let Err(e) = result {
+            self.callback_error.get_or_insert(e);
+            self.on_chunk = None;
+        }
+        self.all.append(&mut self.chunk);
+    }
+}
+
+/// Unwinding payload that stops a run from inside the sink once Python has
+/// raised (an interrupt, a failing callback). `resume_unwind` does not call
+/// the panic hook, so nothing is printed; `run_kinematics` catches it.
+struct StopRun;
+
+impl Sink for ChunkSink {
+    fn begin(&mut self, channels: &[String]) {
+        self.names = std::iter::once("t".to_string())
+            .chain(channels.iter().cloned())
+            .collect();
+        let width = self.width();
+        self.chunk.reserve(self.chunk_rows * width);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64]) {
+        self.chunk.push(t);
+        self.chunk.extend_from_slice(values);
+        if self.chunk.len() >= self.chunk_rows * self.width() {
+            self.flush();
+            if self.callback_error.is_some() {
+                std::panic::resume_unwind(Box::new(StopRun));
+            }
+        }
+    }
+}
+
+/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
+#[pyfunction]
+fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
+    guard(|| {
+        let times = kinematics::time_grid(t_end, step).map_err(ModelError::new_err)?;
+        Ok(times.into_pyarray(py))
+    })
+}
+
+/// The JSON Schema of model files, as JSON text.
+#[pyfunction]
+fn json_schema() -> PyResult<String> {
+    guard(|| {
+        serde_json::to_string_pretty(&camlink_model::json_schema())
+            .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))
+    })
+}
+
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    let py = m.py();
+    m.add_class::<Model>()?;
+    m.add_function(wrap_pyfunction!(json_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(time_grid, m)?)?;
+    m.add("ModelError", py.get_type::<ModelError>())?;
+    m.add("AnalysisError", py.get_type::<AnalysisError>())?;
+    m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    Ok(())
+}

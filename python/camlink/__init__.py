@@ -1,0 +1,27 @@
+"""camlink: planar multibody kinematics and dynamics.
+
+Load a model file or build one in code, run an analysis, and get named
+time series back::
+
+    import camlink
+    model = camlink.load("fourbar.toml")
+    res = model.run(t_end=2.0, step=0.01)
+    res["crank.phi"], res.to_pandas()
+"""
+
+from camlink._core import AnalysisError, ModelError, __version__
+from camlink.builder import Mechanism
+from camlink.model import Model, json_schema, load, loads
+from camlink.results import Results
+
+__all__ = [
+    "AnalysisError",
+    "Mechanism",
+    "Model",
+    "ModelError",
+    "Results",
+    "__version__",
+    "json_schema",
+    "load",
+    "loads",
+]

@@ -1,0 +1,299 @@
+"""Building models in code.
+
+`Mechanism` collects the same tables a model file has and loads them through
+the same loader (as JSON), so a model built in code and the same model
+written as a file are identical. Values may be numbers or expression strings
+(``"r/2"``, ``"deg(60) + 2*pi*t"``) exactly as in a file.
+
+    m = camlink.Mechanism("slider_crank")
+    m.ground_point("O", (0, 0))
+    m.body("crank", angle=0.0, points={"O": (0, 0), "A": (0.1, 0)})
+    ...
+    m.revolute("O", "ground", "O", "crank", "O")
+    m.revolute_driver("motor", "O", f="2*pi*t")
+    model = m.build()
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import numbers
+from typing import Any, Union
+
+from camlink.model import Model, loads
+
+__all__ = ["Mechanism"]
+
+Num = Union[float, int, str]
+Vec2 = Union[tuple[Num, Num], list[Num]]
+PointRef = Union[str, Vec2]
+
+
+def _value(v: Any) -> Any:
+    """Plain JSON values: tuples and arrays to lists, NumPy scalars to floats."""
+    if isinstance(v, str | bool) or v is None:
+        return v
+    if isinstance(v, numbers.Integral):
+        return int(v)
+    if isinstance(v, numbers.Real):
+        return float(v)
+    if isinstance(v, dict):
+        return {str(k): _value(x) for k, x in v.items()}
+    if hasattr(v, "tolist"):
+        return _value(v.tolist())
+    if isinstance(v, list | tuple):
+        return [_value(x) for x in v]
+    raise TypeError(f"cannot put a {type(v).__name__} ({v!r}) into a model")
+
+
+def _fields(**kw: Any) -> dict[str, Any]:
+    """Keyword arguments that were given, as model-file fields."""
+    return {k: _value(v) for k, v in kw.items() if v is not None}
+
+
+class Mechanism:
+    """A model under construction, with one method per model-file table."""
+
+    def __init__(self, name: str, gravity: Vec2 | None = None) -> None:
+        self._model: dict[str, Any] = _fields(name=name, gravity=gravity)
+        self._parameters: dict[str, Any] = {}
+        self._ground_points: dict[str, Any] = {}
+        self._bodies: list[dict[str, Any]] = []
+        self._joints: list[dict[str, Any]] = []
+        self._drivers: list[dict[str, Any]] = []
+        self._analysis: dict[str, Any] = {}
+
+    @property
+    def name(self) -> str:
+        return self._model["name"]
+
+    # -- parameters and bodies ------------------------------------------
+
+    def parameter(self, name: str, value: Num) -> str:
+        """A named parameter usable in expressions; returns its name."""
+        self._parameters[name] = _value(value)
+        return name
+
+    def ground_point(self, name: str, xy: Vec2) -> str:
+        """A named point of the ground (m); returns its name."""
+        self._ground_points[name] = _value(xy)
+        return name
+
+    def body(
+        self,
+        name: str,
+        position: Vec2 | None = None,
+        angle: Num | None = None,
+        *,
+        mass: Num | None = None,
+        inertia: Num | None = None,
+        centroid: Vec2 | None = None,
+        velocity: Vec2 | None = None,
+        omega: Num | None = None,
+        points: dict[str, Vec2] | None = None,
+    ) -> str:
+        """A rigid body: initial (or guessed) position (m) and angle (rad),
+        mass (kg), inertia about the centroid (kg·m²), named points in the
+        body frame (m). Returns its name."""
+        self._bodies.append(
+            _fields(
+                name=name,
+                position=position,
+                angle=angle,
+                mass=mass,
+                inertia=inertia,
+                centroid=centroid,
+                velocity=velocity,
+                omega=omega,
+                points=dict(points) if points else None,
+            )
+        )
+        return name
+
+    def point(self, body: str, name: str, xy: Vec2) -> str:
+        """Adds a named point to `body` (or to ``"ground"``); returns
+        ``"body.name"``."""
+        if body == "ground":
+            self.ground_point(name, xy)
+            return f"ground.{name}"
+        for b in self._bodies:
+            if b["name"] == body:
+                b.setdefault("points", {})[name] = _value(xy)
+                return f"{body}.{name}"
+        known = ", ".join(b["name"] for b in self._bodies) or "none yet"
+        raise KeyError(f"no body named {body!r} (bodies: {known})")
+
+    # -- joints ---------------------------------------------------------
+
+    def joint(self, name: str, type: str, **fields: Any) -> str:
+        """Any joint of the model-file schema, e.g.
+        ``joint("g", "gear", body_i=…, radius_i=…, …)``; returns its name."""
+        self._joints.append({"name": name, "type": type, **_fields(**fields)})
+        return name
+
+    def revolute(
+        self,
+        name: str,
+        body_i: str,
+        point_i: PointRef | None,
+        body_j: str,
+        point_j: PointRef | None,
+    ) -> str:
+        """Point `point_i` of `body_i` coincides with `point_j` of `body_j`."""
+        return self.joint(
+            name, "revolute", body_i=body_i, point_i=point_i, body_j=body_j, point_j=point_j
+        )
+
+    def translational(
+        self,
+        name: str,
+        body_i: str,
+        point_i: PointRef | None,
+        body_j: str,
+        point_j: PointRef | None,
+        axis: Vec2,
+        angle: Num | None = None,
+    ) -> str:
+        """`point_j` slides on the line through `point_i` along `axis` (body i
+        frame); the relative angle stays `angle` (default: its initial value)."""
+        return self.joint(
+            name,
+            "translational",
+            body_i=body_i,
+            point_i=point_i,
+            axis=axis,
+            body_j=body_j,
+            point_j=point_j,
+            angle=angle,
+        )
+
+    def revolute_revolute(
+        self,
+        name: str,
+        body_i: str,
+        point_i: PointRef | None,
+        body_j: str,
+        point_j: PointRef | None,
+        length: Num | None = None,
+    ) -> str:
+        """A massless link of `length` (m) between two body points."""
+        return self.joint(
+            name,
+            "revolute_revolute",
+            body_i=body_i,
+            point_i=point_i,
+            body_j=body_j,
+            point_j=point_j,
+            length=length,
+        )
+
+    # -- drivers --------------------------------------------------------
+
+    def driver(self, name: str, type: str, **fields: Any) -> str:
+        """Any driver of the model-file schema, e.g.
+        ``driver("lift", "absolute_y", body="slider", f="0.1*sin(t)")``."""
+        self._drivers.append({"name": name, "type": type, **_fields(**fields)})
+        return name
+
+    def revolute_driver(self, name: str, joint: str, f: Num) -> str:
+        """The angle of revolute `joint` = f(t) (rad)."""
+        return self.driver(name, "revolute_angle", joint=joint, f=f)
+
+    def translational_driver(self, name: str, joint: str, f: Num) -> str:
+        """The travel along translational `joint` = f(t) (m)."""
+        return self.driver(name, "translational_travel", joint=joint, f=f)
+
+    # -- analysis and output ------------------------------------------
+
+    def analysis(
+        self,
+        t_end: Num | None = None,
+        step: Num | None = None,
+        *,
+        times: list[Num] | None = None,
+        tol: Num | None = None,
+        max_iter: int | None = None,
+        points: list[str] | None = None,
+    ) -> None:
+        """The default time grid, solver settings and output points."""
+        self._analysis.update(
+            _fields(t_end=t_end, step=step, times=times, tol=tol, max_iter=max_iter, points=points)
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """The model as the model-file tables (JSON-compatible)."""
+        d: dict[str, Any] = {"model": dict(self._model)}
+        if self._parameters:
+            d["parameters"] = dict(self._parameters)
+        if self._ground_points:
+            d["ground"] = {"points": dict(self._ground_points)}
+        for key, items in (
+            ("bodies", self._bodies),
+            ("joints", self._joints),
+            ("drivers", self._drivers),
+        ):
+            if items:
+                d[key] = [dict(x) for x in items]
+        if self._analysis:
+            d["analysis"] = dict(self._analysis)
+        return d
+
+    def to_json(self) -> str:
+        return json.dumps(self.to_dict(), indent=2)
+
+    def to_toml(self) -> str:
+        """The model as a TOML model file."""
+        d = self.to_dict()
+        out: list[str] = []
+        for key in ("model", "parameters"):
+            if key in d:
+                out.append(f"[{key}]")
+                out += [f"{_key(k)} = {_toml(v)}" for k, v in d[key].items()]
+                out.append("")
+        if "ground" in d:
+            out += ["[ground]", f"points = {_toml(d['ground']['points'])}", ""]
+        for key in ("bodies", "joints", "drivers"):
+            for item in d.get(key, []):
+                out.append(f"[[{key}]]")
+                out += [f"{_key(k)} = {_toml(v)}" for k, v in item.items()]
+                out.append("")
+        if "analysis" in d:
+            out.append("[analysis]")
+            out += [f"{_key(k)} = {_toml(v)}" for k, v in d["analysis"].items()]
+            out.append("")
+        return "\n".join(out)
+
+    def build(self) -> Model:
+        """Validates and loads the model (raises `ModelError` if invalid)."""
+        return loads(json.dumps(self.to_dict()), "json", f"<Mechanism '{self.name}'>")
+
+    def run(self, **kwargs: Any):
+        """`build()` then `Model.run(**kwargs)`."""
+        return self.build().run(**kwargs)
+
+
+def _key(k: str) -> str:
+    bare = k and all(c.isalnum() or c in "_-" for c in k)
+    return k if bare else json.dumps(k)
+
+
+def _toml(v: Any) -> str:
+    """A TOML value; JSON string escapes are valid TOML basic strings."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return json.dumps(v, ensure_ascii=False)
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if math.isnan(v):
+            return "nan"
+        if math.isinf(v):
+            return "inf" if v > 0 else "-inf"
+        return repr(v)
+    if isinstance(v, list):
+        return "[" + ", ".join(_toml(x) for x in v) + "]"
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{_key(k)} = {_toml(x)}" for k, x in v.items()) + " }"
+    raise TypeError(f"cannot write {v!r} as TOML")

@@ -1,0 +1,186 @@
+"""The `camlink` command.
+
+Exit status: 0 success; 1 the analysis could not proceed (results up to the
+failure are still written); 2 bad input (a model file, an argument, a path);
+3 an internal error (a bug in camlink; set CAMLINK_TRACEBACK=1 to see where).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from pathlib import Path
+
+import camlink
+from camlink._core import AnalysisError, ModelError
+
+EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+
+def _parser() -> argparse.ArgumentParser:
+    p = argparse.ArgumentParser(
+        prog="camlink",
+        description="Planar multibody kinematics: load a model file, check it, run it.",
+    )
+    p.add_argument("--version", action="version", version=f"camlink {camlink.__version__}")
+    sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    run = sub.add_parser(
+        "run",
+        help="run a kinematic analysis and write the results",
+        description="Run a kinematic analysis. Settings left out come from the "
+        "model file's [analysis] table.",
+    )
+    run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument(
+        "-o",
+        "--output",
+        metavar="FILE",
+        help="results file, .csv or .parquet (default: MODEL's name with .csv, "
+        "in the current directory)",
+    )
+    run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
+    run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
+    run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance on |Φ|")
+    run.add_argument(
+        "-p",
+        "--point",
+        action="append",
+        dest="points",
+        metavar="BODY.POINT",
+        help="also output this body point (repeatable; replaces [analysis] points)",
+    )
+    run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+
+    check = sub.add_parser(
+        "check",
+        help="count bodies, coordinates and constraints; find the degrees of freedom",
+    )
+    check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    check.add_argument("--json", action="store_true", help="print the report as JSON")
+
+    sub.add_parser("schema", help="print the JSON Schema of model files")
+    return p
+
+
+def _error(message: str) -> None:
+    print(f"camlink: error: {message}", file=sys.stderr)
+
+
+def _os_message(e: OSError) -> str:
+    if e.filename is not None:
+        return f"{e.filename}: {e.strerror or e}"
+    return str(e)
+
+
+def _cmd_run(args: argparse.Namespace) -> int:
+    model = camlink.load(args.model)
+    output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
+    try:
+        res = model.run(
+            t_end=args.t_end,
+            step=args.step,
+            tol=args.tol,
+            points=args.points,
+            output=output,
+        )
+    except AnalysisError as e:
+        _error(str(e))
+        details = []
+        if e.joints:
+            details.append(f"joints involved: {', '.join(e.joints)}")
+        if "residual" not in str(e):
+            details.append(f"largest residual: {e.residual:.3g}")
+        if details:
+            print(f"camlink: {'; '.join(details)}", file=sys.stderr)
+        partial = e.results
+        if len(partial):
+            print(
+                f"camlink: {len(partial)} steps (t = {partial.t[0]:g} … {partial.t[-1]:g} s) "
+                f"written to {output}",
+                file=sys.stderr,
+            )
+        else:
+            print(f"camlink: no step completed; {output} holds only the header", file=sys.stderr)
+        return EXIT_ANALYSIS
+    for t, message in res.summary.get("warnings", []):
+        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
+    if not args.quiet:
+        print(
+            f"{model.name}: {len(res)} steps, t = {res.t[0]:g} … {res.t[-1]:g} s, "
+            f"{len(res.channels)} channels → {output}"
+        )
+    return EXIT_OK
+
+
+def _cmd_check(args: argparse.Namespace) -> int:
+    model = camlink.load(args.model)
+    r = model.check()
+    if args.json:
+        print(json.dumps({"model": model.name, **r}, indent=2))
+        return EXIT_OK
+    print(f"model        {model.name} ({args.model})")
+    print(f"bodies       {r['bodies']} moving (plus ground)")
+    print(f"coordinates  {r['coordinates']}")
+    print(f"equations    {r['equations']}")
+    joints = r["joints"]
+    if joints:
+        w_name = max(len(j["name"]) for j in joints)
+        w_kind = max(len(j["kind"]) for j in joints)
+        print("constraints")
+        for j in joints:
+            role = "driver" if j["driver"] else "joint"
+            print(
+                f"  {j['name']:<{w_name}}  {j['kind']:<{w_kind}}  "
+                f"{j['equations']} eq  {role}"
+            )
+    for red in r["redundant"]:
+        deps = " + ".join(f"{c:.3g}·{n}" for n, c in red["depends_on"])
+        print(f"redundant    {red['equation']}" + (f" = {deps}" if deps else ""))
+    dof = r["dof"]
+    if dof == 0:
+        verdict = "fully driven: ready for kinematic analysis"
+    else:
+        verdict = f"{dof} free motion{'s' if dof != 1 else ''}: add {dof} driver{'s' if dof != 1 else ''} for kinematics"
+    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
+    for k, motion in enumerate(r["free_motions"], 1):
+        parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
+        print(f"  free motion {k}: {parts}")
+    return EXIT_OK
+
+
+def _cmd_schema(_args: argparse.Namespace) -> int:
+    print(json.dumps(camlink.json_schema(), indent=2))
+    return EXIT_OK
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    try:
+        return command(args)
+    except ModelError as e:
+        _error(str(e))
+        return EXIT_INPUT
+    except BrokenPipeError:
+        # Output piped into a command that stopped reading (`| head`).
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return EXIT_OK
+    except OSError as e:
+        _error(_os_message(e))
+        return EXIT_INPUT
+    except KeyboardInterrupt:
+        print("camlink: interrupted", file=sys.stderr)
+        return 130
+    except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
+        if os.environ.get("CAMLINK_TRACEBACK"):
+            raise
+        _error(f"{e}" if str(e).startswith("internal error") else f"internal error: {e!r}")
+        return EXIT_INTERNAL
+
+
+if __name__ == "__main__":
+    sys.exit(main())

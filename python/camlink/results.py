@@ -1,0 +1,211 @@
+"""Results of an analysis: named time series, and writers that save them
+as the run goes."""
+
+from __future__ import annotations
+
+import difflib
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+import numpy.typing as npt
+
+from camlink._core import ModelError
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+__all__ = ["Results", "open_writer", "SUFFIXES"]
+
+#: File name suffixes `Results.save` and the `output=` of a run understand.
+SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
+
+
+class Results:
+    """Time series of one run: ``t`` and one array per channel.
+
+    ``results["crank.phi"]`` is a NumPy array over the time steps;
+    ``results.channels`` lists the channel names (without ``t``).
+    A run that stopped early has ``complete == False`` and keeps every step
+    it computed. ``summary`` holds the solver's counts and warnings.
+    """
+
+    def __init__(
+        self,
+        names: list[str],
+        data: npt.NDArray[np.float64],
+        *,
+        model: str = "",
+        complete: bool = True,
+        summary: dict | None = None,
+    ) -> None:
+        data = np.asarray(data, dtype=np.float64)
+        if data.ndim != 2 or (names and data.shape[1] != len(names)):
+            raise ValueError(
+                f"data of shape {data.shape} does not match {len(names)} names"
+            )
+        self._names = list(names)
+        self._index = {n: k for k, n in enumerate(self._names)}
+        self._data = data
+        self.model = model
+        self.complete = complete
+        #: Solver counts (steps, newton_iterations, factorizations, halvings),
+        #: ``warnings`` as (t, message) pairs and ``assembly_moves`` as
+        #: (body, (Δx, Δy, Δφ)) for bodies that assembly moved; empty for
+        #: results read from a file.
+        self.summary = summary or {}
+
+    @property
+    def t(self) -> npt.NDArray[np.float64]:
+        """Times (s) of the steps."""
+        if "t" not in self._index:
+            return np.empty(0)
+        return self._data[:, self._index["t"]]
+
+    @property
+    def channels(self) -> list[str]:
+        """Channel names, in output order, without ``t``."""
+        return [n for n in self._names if n != "t"]
+
+    @property
+    def data(self) -> npt.NDArray[np.float64]:
+        """All values, one row per step, columns ``["t", *channels]``."""
+        return self._data
+
+    def __getitem__(self, name: str) -> npt.NDArray[np.float64]:
+        try:
+            return self._data[:, self._index[name]]
+        except KeyError:
+            close = difflib.get_close_matches(name, self._names, n=3)
+            hint = f" (did you mean {', '.join(repr(c) for c in close)}?)" if close else ""
+            raise KeyError(f"no channel named {name!r}{hint}") from None
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._index
+
+    def __len__(self) -> int:
+        """Number of time steps."""
+        return self._data.shape[0]
+
+    def __repr__(self) -> str:
+        span = f", t = {self.t[0]:g} … {self.t[-1]:g} s" if len(self) else ""
+        state = "" if self.complete else ", stopped early"
+        name = f" of '{self.model}'" if self.model else ""
+        return (
+            f"<camlink Results{name}: {len(self)} steps, "
+            f"{len(self.channels)} channels{span}{state}>"
+        )
+
+    def to_pandas(self) -> pd.DataFrame:
+        """A DataFrame with one column per channel, indexed by ``t``."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            self._data[:, 1:],
+            index=pd.Index(self.t, name="t"),
+            columns=self.channels,
+        )
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Writes the results as CSV or Parquet, chosen by the suffix."""
+        writer = open_writer(path)
+        try:
+            writer.write(self._names, self._data)
+        finally:
+            writer.close(self._names)
+        return writer.path
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Results:
+        """Reads results written by `save` or by a run with ``output=``."""
+        path = Path(path)
+        kind = _kind(path)
+        if kind == "csv":
+            with path.open(newline="") as f:
+                header = f.readline().strip()
+                names = header.split(",") if header else []
+                data = np.loadtxt(f, delimiter=",", ndmin=2)
+            if data.size == 0:
+                data = np.empty((0, len(names)))
+        else:
+            import pyarrow.parquet as pq
+
+            table = pq.read_table(path)
+            names = table.column_names
+            data = np.column_stack(
+                [table.column(n).to_numpy() for n in names]
+            ) if table.num_rows else np.empty((0, len(names)))
+        return cls(names, data, model=path.stem)
+
+
+def _kind(path: Path) -> str:
+    try:
+        return SUFFIXES[path.suffix.lower()]
+    except KeyError:
+        known = ", ".join(sorted(SUFFIXES))
+        raise ModelError(
+            f"cannot write results to '{path}': unknown file type "
+            f"'{path.suffix or '(none)'}' (use one of {known})"
+        ) from None
+
+
+class _CsvWriter:
+    """Appends rows to a CSV file with a header line, flushing each chunk."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self._file = path.open("w", newline="")
+        self._header = False
+
+    def write(self, names: list[str], rows: npt.NDArray[np.float64]) -> None:
+        if not self._header:
+            self._file.write(",".join(names) + "\n")
+            self._header = True
+        if len(rows):
+            # %.17g keeps every bit of a double.
+            np.savetxt(self._file, rows, delimiter=",", fmt="%.17g")
+        self._file.flush()
+
+    def close(self, names: list[str]) -> None:
+        if not self._header and names:
+            self.write(names, np.empty((0, len(names))))
+        self._file.close()
+
+
+class _ParquetWriter:
+    """Writes one Parquet row group per chunk; `close` leaves a valid file."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        self._writer = None
+        # Fail now, not after the run, if the file cannot be written.
+        path.open("wb").close()
+
+    def _table(self, names: list[str], rows: npt.NDArray[np.float64]):
+        import pyarrow as pa
+
+        return pa.table({n: rows[:, k] for k, n in enumerate(names)})
+
+    def write(self, names: list[str], rows: npt.NDArray[np.float64]) -> None:
+        import pyarrow.parquet as pq
+
+        table = self._table(names, rows)
+        if self._writer is None:
+            self._writer = pq.ParquetWriter(self.path, table.schema)
+        self._writer.write_table(table)
+
+    def close(self, names: list[str]) -> None:
+        if self._writer is None and names:
+            self.write(names, np.empty((0, len(names))))
+        if self._writer is not None:
+            self._writer.close()
+            self._writer = None
+
+
+def open_writer(path: str | os.PathLike[str]) -> _CsvWriter | _ParquetWriter:
+    """A writer for `path` (CSV or Parquet by suffix), created now so that an
+    unwritable path fails before any work is done."""
+    path = Path(path)
+    kind = _kind(path)
+    return _CsvWriter(path) if kind == "csv" else _ParquetWriter(path)

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# The whole gate, as CI runs it: Rust format, lints and tests, then the
+# Python package built from source and its tests.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+echo "== cargo fmt"
+cargo fmt --all -- --check
+
+echo "== cargo clippy"
+cargo clippy --workspace --all-targets -- -D warnings
+
+echo "== cargo test"
+# Default members: everything but the Python binding, which needs an
+# interpreter to link and is tested through pytest below.
+cargo test
+
+echo "== pytest"
+if command -v uv >/dev/null 2>&1; then
+    uv=(uv)
+else
+    python3 -m pip install --quiet uv
+    uv=(python3 -m uv)
+fi
+# uv builds the extension (release, via maturin) and installs the locked
+# dependencies; --locked fails if uv.lock is out of date with pyproject.toml.
+"${uv[@]}" run --locked pytest -q tests/python

@@ -1,0 +1,28 @@
+"""Every example model loads, checks and runs."""
+
+from __future__ import annotations
+
+import pytest
+
+import camlink
+from conftest import ROOT
+
+EXAMPLES = sorted((ROOT / "examples").glob("**/*.toml")) + sorted(
+    (ROOT / "examples").glob("**/*.json")
+)
+MODELS = sorted((ROOT / "tests" / "models").glob("*.toml")) + sorted(
+    (ROOT / "tests" / "models").glob("*.json")
+)
+
+
+@pytest.mark.skipif(not EXAMPLES + MODELS, reason="no example models yet")
+@pytest.mark.parametrize("path", EXAMPLES + MODELS or [None], ids=lambda p: p and p.name)
+def test_example_runs_end_to_end(path, tmp_path):
+    model = camlink.load(path)
+    assert model.check()["dof"] == 0
+    out = tmp_path / "out.parquet"
+    res = model.run(output=out)
+    assert res.complete and len(res) > 1
+    assert res.t[0] == 0.0
+    back = camlink.Results.load(out)
+    assert back.channels == res.channels and len(back) == len(res)
