@@ -91,7 +91,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
         try:
             res = cargo("camlink-model", "examples", ["four_bar_10k_steps"])["four_bar_10k_steps"]
             rows.append(
-                Row("four_bar", "camlink core (Rust, divan)", "q, q̇, q̈", res["median"] / 1e4 * 1e6,
+                Row("four_bar", "camlink core (Rust, divan)", "pos, vel, acc", res["median"] / 1e4 * 1e6,
                     note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}", base=True)
             )
         except (RuntimeError, KeyError, OSError) as e:
@@ -104,7 +104,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
     elapsed, results = best_of(reps, lambda: model.run(t_end=t_end, step=1e-3))
     assert len(results.t) == n, len(results.t)
     rows.append(
-        Row("four_bar", "camlink from Python (Model.run)", "q, q̇, q̈ + 2 points",
+        Row("four_bar", "camlink from Python (Model.run)", "pos, vel, acc + 2 points",
             elapsed / n * 1e6, note="whole call: set-up, solve, channels, Results")
     )
     # The binding alone: no point channels, no chunk callback.
@@ -113,7 +113,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
         reps, lambda: model._core.run_kinematics(times, tol=a["tol"], max_iter=a["max_iter"], points=[])
     )
     rows.append(
-        Row("four_bar", "camlink binding (_core.run_kinematics)", "q, q̇, q̈",
+        Row("four_bar", "camlink binding (_core.run_kinematics)", "pos, vel, acc",
             elapsed / n * 1e6, note="one call into Rust, arrays back")
     )
 
@@ -132,7 +132,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
     agree = ", ".join(f"{k} {v:.1e}" for k, v in diff.items())
     print(f"  textbook NumPy vs camlink over {m} steps, max |difference|: {agree}")
     rows.append(
-        Row("four_bar", "textbook NumPy (bench/textbook_four_bar.py)", "q, q̇, q̈",
+        Row("four_bar", "textbook NumPy (bench/textbook_four_bar.py)", "pos, vel, acc",
             elapsed / m * 1e6, note=f"{m} steps; max diff vs camlink {agree}")
     )
 
@@ -143,7 +143,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
             err = float(np.max(np.abs(q - np.concatenate(
                 [[results[f"{b}.{c}"][-1] for c in ("x", "y", "phi")] for b in names]))))
             rows.append(
-                Row("four_bar", f"Exudyn {pe.VERSION} SolveStatic", "q only", elapsed / n * 1e6,
+                Row("four_bar", f"Exudyn {pe.VERSION} SolveStatic", "pos only", elapsed / n * 1e6,
                     note=f"one load step per time, driver offset by Python user function; "
                     f"final q vs camlink {err:.1e}")
             )
@@ -264,6 +264,10 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
 # ---------------------------------------------------------------------------
 
 
+def ratio(x: float) -> str:
+    return f"{x:.2f}" if x < 10 else f"{x:.0f}"
+
+
 def table(rows: list[Row]) -> None:
     # The base of each benchmark: camlink's core, else its first row.
     base: dict[str, float] = {}
@@ -276,7 +280,7 @@ def table(rows: list[Row]) -> None:
     lines = [
         (r.bench, r.engine, r.computes,
          f"{r.us:.3g} {r.unit}" if r.us is not None else "—",
-         f"{r.us / base[r.bench]:.2g}" if r.us is not None and r.bench in base else "—",
+         ratio(r.us / base[r.bench]) if r.us is not None and r.bench in base else "—",
          r.note)
         for r in rows
     ]
