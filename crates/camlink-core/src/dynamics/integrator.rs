@@ -469,6 +469,7 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
+    let contacts = crate::contact::Contacts::new(model);
     let mut names = kinematics::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
@@ -488,9 +489,10 @@ pub fn run(
             }
             it.advance_to(t, &mut h_next)?;
         }
-        output::kinematic(
+        kinematics::fill_outputs(
             model,
             &it.sys.asm,
+            &contacts,
             [&it.q, &it.qd, &it.qdd],
             points,
             &mut values[..nk],
