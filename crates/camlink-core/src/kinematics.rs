@@ -572,7 +572,9 @@ impl<'m> Solver<'m> {
         Err(self.failure(
             t,
             &format!(
-                "positions did not converge in {} Newton iterations",
+                "positions did not converge in {} Newton iterations: the drivers may ask \
+                 for a position the mechanism cannot reach (past a limit or dead-centre \
+                 position)",
                 self.settings.max_iter
             ),
         ))
