@@ -115,10 +115,14 @@ fn too_large(source: &str, len: u64) -> LoadError {
 }
 
 /// Loads a model from text; `source` names it in errors (usually the file name).
+///
+/// A leading byte order mark (U+FEFF, written by some Windows editors) is
+/// skipped; positions in errors count from the character after it.
 pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
     if text.len() as u64 > MAX_FILE_SIZE {
         return Err(too_large(source, text.len() as u64));
     }
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let file = match format {
         Format::Toml => parse_toml(text, source)?,
         Format::Json => parse_json(text, source)?,

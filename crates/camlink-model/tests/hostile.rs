@@ -1,0 +1,40 @@
+//! Hostile input: every malformed model gets a clear message and never a
+//! panic. The broken fixtures themselves are checked by `bad_models.rs`
+//! (`tests/models/bad/expected.toml`); this file covers what needs more
+//! than "fails to load with these words": inputs generated at test time,
+//! models that load and then fail at check or run time
+//! (`tests/models/errors/expected.toml`), the mass check dynamics calls,
+//! the examples on `docs/errors.md`, and one test per fixed bug, named
+//! after it.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use camlink_model::{load_path, load_str, Format, Loaded};
+
+fn root() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn load_toml(text: &str) -> Result<Loaded, String> {
+    load_str(text, Format::Toml, "m.toml").map_err(|e| e.to_string())
+}
+
+fn load_json(text: &str) -> Result<Loaded, String> {
+    load_str(text, Format::Json, "m.json").map_err(|e| e.to_string())
+}
+
+const ARM_TOML: &str = "[[bodies]]\nname = \"arm\"\n\n[[joints]]\ntype = \"revolute\"\nbody_i = \"ground\"\nbody_j = \"arm\"\n";
+const ARM_JSON: &str = r#"{"bodies": [{"name": "arm"}], "joints": [{"type": "revolute", "body_i": "ground", "body_j": "arm"}]}"#;
+
+#[test]
+fn byte_order_mark_is_skipped() {
+    // A BOM made every JSON file saved by Notepad a syntax error at 1:1.
+    let json = format!("\u{feff}{ARM_JSON}");
+    assert!(load_json(&json).is_ok(), "{:?}", load_json(&json).err());
+    let toml = format!("\u{feff}{ARM_TOML}");
+    assert!(load_toml(&toml).is_ok(), "{:?}", load_toml(&toml).err());
+    // Positions after the BOM are those an editor shows.
+    let err = load_json("\u{feff}{\n  \"bodies\": 3\n}").unwrap_err();
+    assert!(err.starts_with("m.json:2:"), "{err}");
+}
