@@ -14,6 +14,7 @@ pub mod file;
 mod locate;
 mod resolve;
 
+use std::io::Read;
 use std::path::Path;
 
 pub use error::LoadError;
@@ -94,10 +95,16 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
     if meta.len() > MAX_FILE_SIZE {
-        return Err(too_large(&source, meta.len()));
+        return Err(too_large(&source, Some(meta.len())));
     }
-    let bytes =
-        std::fs::read(path).map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    // A device or a pipe reports no length: read at most one byte past the limit.
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_FILE_SIZE + 1).read_to_end(&mut bytes))
+        .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_SIZE {
+        return Err(too_large(&source, None));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
         LoadError::file(
             &source,
@@ -107,10 +114,11 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
     load_str(&text, format, &source)
 }
 
-fn too_large(source: &str, len: u64) -> LoadError {
+fn too_large(source: &str, len: Option<u64>) -> LoadError {
+    let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,
-        format!("file is too large ({len} bytes; the limit is {MAX_FILE_SIZE} bytes)"),
+        format!("file is too large ({size}; the limit is {MAX_FILE_SIZE} bytes)"),
     )
 }
 
@@ -120,7 +128,7 @@ fn too_large(source: &str, len: u64) -> LoadError {
 /// skipped; positions in errors count from the character after it.
 pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
     if text.len() as u64 > MAX_FILE_SIZE {
-        return Err(too_large(source, text.len() as u64));
+        return Err(too_large(source, Some(text.len() as u64)));
     }
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let file = match format {

@@ -38,3 +38,20 @@ fn byte_order_mark_is_skipped() {
     let err = load_json("\u{feff}{\n  \"bodies\": 3\n}").unwrap_err();
     assert!(err.starts_with("m.json:2:"), "{err}");
 }
+
+#[cfg(unix)]
+#[test]
+fn device_file_is_refused_without_reading_it_all() {
+    // A model path that is a link to /dev/zero (length 0, endless content)
+    // used to be read until memory ran out.
+    let dir = std::env::temp_dir().join(format!("camlink-hostile-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let link = dir.join("zero.toml");
+    let _ = std::fs::remove_file(&link);
+    std::os::unix::fs::symlink("/dev/zero", &link).unwrap();
+    let start = Instant::now();
+    let err = load_path(&link).unwrap_err().to_string();
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(start.elapsed() < Duration::from_secs(5));
+    assert!(err.contains("zero.toml: file is too large"), "{err}");
+}
