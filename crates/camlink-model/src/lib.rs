@@ -106,9 +106,14 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
         return Err(too_large(&source, None));
     }
     let text = String::from_utf8(bytes).map_err(|e| {
-        LoadError::file(
+        let valid = e.utf8_error().valid_up_to();
+        let before = String::from_utf8_lossy(&e.as_bytes()[..valid]);
+        at(
+            &before,
             &source,
-            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+            Some(valid),
+            None,
+            format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
     load_str(&text, format, &source)

@@ -55,3 +55,13 @@ fn device_file_is_refused_without_reading_it_all() {
     assert!(start.elapsed() < Duration::from_secs(5));
     assert!(err.contains("zero.toml: file is too large"), "{err}");
 }
+
+#[test]
+fn not_utf8_error_names_the_line() {
+    // The error gave only a byte offset.
+    let path = root().join("tests/models/bad/not_utf8.toml");
+    let err = load_path(&path).unwrap_err();
+    assert_eq!((err.line, err.column), (Some(3), Some(10)), "{err}");
+    assert!(err.message.contains("save the file as UTF-8"), "{err}");
+}
+
