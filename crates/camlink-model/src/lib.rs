@@ -256,7 +256,8 @@ fn json_syntax(_text: &str, source: &str, e: &serde_json::Error) -> LoadError {
     LoadError {
         source: source.to_string(),
         line: known.then(|| e.line()),
-        column: known.then(|| e.column()),
+        // serde_json gives column 0 at the very start of a line.
+        column: known.then(|| e.column().max(1)),
         field: None,
         message,
     }

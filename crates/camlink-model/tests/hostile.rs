@@ -65,3 +65,11 @@ fn not_utf8_error_names_the_line() {
     assert!(err.message.contains("save the file as UTF-8"), "{err}");
 }
 
+#[test]
+fn json_error_columns_are_one_based() {
+    // serde_json's column 0 for an empty file showed as `m.json:1:0`.
+    let err = load_json("").unwrap_err();
+    assert!(err.starts_with("m.json:1:1: syntax error"), "{err}");
+    let err = load_json("{\"bodies\": [\n").unwrap_err();
+    assert!(!err.contains(":0:"), "{err}");
+}
