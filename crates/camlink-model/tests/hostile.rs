@@ -73,3 +73,16 @@ fn json_error_columns_are_one_based() {
     let err = load_json("{\"bodies\": [\n").unwrap_err();
     assert!(!err.contains(":0:"), "{err}");
 }
+
+#[test]
+fn control_characters_in_messages_are_escaped() {
+    // A name with an escape sequence was printed raw, so a model file
+    // could clear or retitle the terminal that showed its error.
+    let json = r#"{"bodies": [{"name": "arm"}], "joints": [{"type": "revolute", "body_i": "ground", "body_j": "x\u001b]0;owned\u0007\u202e"}]}"#;
+    let err = load_json(json).unwrap_err();
+    assert!(!err.chars().any(|c| c.is_control() || c == '\u{202e}'), "{err:?}");
+    assert!(err.contains(r"no body named 'x\u{1b}]0;owned\u{7}\u{202e}'"), "{err}");
+    // Newlines of a multi-line message stay.
+    let err = load_toml("[[bodies]]\nname = \"arm\"\nangle = \"sinn(1)\"\n").unwrap_err();
+    assert!(err.contains("\n    sinn(1)\n    ^^^^"), "{err}");
+}
