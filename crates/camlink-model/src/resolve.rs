@@ -184,6 +184,13 @@ fn check_name(name: &str, what: &str, path: &str) -> R<()> {
     if name.trim().is_empty() {
         return fail(path, format!("{what} name is empty"));
     }
+    // Names become output channel names (CSV headers, column labels).
+    if name.chars().any(char::is_control) {
+        return fail(
+            path,
+            format!("{what} name '{name}' may not contain control characters (tabs, line breaks, escapes)"),
+        );
+    }
     if name.contains('.') || name.contains('[') || name.contains(']') {
         return fail(
             path,

@@ -80,9 +80,33 @@ fn control_characters_in_messages_are_escaped() {
     // could clear or retitle the terminal that showed its error.
     let json = r#"{"bodies": [{"name": "arm"}], "joints": [{"type": "revolute", "body_i": "ground", "body_j": "x\u001b]0;owned\u0007\u202e"}]}"#;
     let err = load_json(json).unwrap_err();
-    assert!(!err.chars().any(|c| c.is_control() || c == '\u{202e}'), "{err:?}");
-    assert!(err.contains(r"no body named 'x\u{1b}]0;owned\u{7}\u{202e}'"), "{err}");
+    assert!(
+        !err.chars().any(|c| c.is_control() || c == '\u{202e}'),
+        "{err:?}"
+    );
+    assert!(
+        err.contains(r"no body named 'x\u{1b}]0;owned\u{7}\u{202e}'"),
+        "{err}"
+    );
     // Newlines of a multi-line message stay.
     let err = load_toml("[[bodies]]\nname = \"arm\"\nangle = \"sinn(1)\"\n").unwrap_err();
     assert!(err.contains("\n    sinn(1)\n    ^^^^"), "{err}");
+}
+
+#[test]
+fn control_character_in_a_name_is_an_error() {
+    // A tab or a line break in a body name went into the output channel
+    // names and broke CSV headers.
+    for name in ["a\tb", "a\nb", "a\u{1b}c", "a\u{0}"] {
+        let json = format!(
+            r#"{{"bodies": [{{"name": {}}}]}}"#,
+            serde_json::to_string(name).unwrap()
+        );
+        let err = load_json(&json).unwrap_err();
+        assert!(err.contains("bodies[0].name: body name"), "{err}");
+        assert!(err.contains("may not contain control characters"), "{err}");
+    }
+    let err = load_toml("[[bodies]]\nname = \"arm\"\npoints = { \"P\\u0007\" = [0, 0] }\n")
+        .unwrap_err();
+    assert!(err.contains("point name"), "{err}");
 }
