@@ -106,7 +106,27 @@ fn control_character_in_a_name_is_an_error() {
         assert!(err.contains("bodies[0].name: body name"), "{err}");
         assert!(err.contains("may not contain control characters"), "{err}");
     }
-    let err = load_toml("[[bodies]]\nname = \"arm\"\npoints = { \"P\\u0007\" = [0, 0] }\n")
-        .unwrap_err();
+    let err =
+        load_toml("[[bodies]]\nname = \"arm\"\npoints = { \"P\\u0007\" = [0, 0] }\n").unwrap_err();
     assert!(err.contains("point name"), "{err}");
+}
+
+#[test]
+fn json_duplicate_keys_are_an_error() {
+    // JSON maps (parameters, points) silently kept the last of two values.
+    let err =
+        load_json(r#"{"parameters": {"r": 1, "r": 2}, "bodies": [{"name": "arm"}]}"#).unwrap_err();
+    assert!(err.contains("parameters: duplicate key `r`"), "{err}");
+    let err = load_json(r#"{"bodies": [{"name": "arm", "points": {"A": [0, 0], "A": [1, 0]}}]}"#)
+        .unwrap_err();
+    assert!(err.contains("bodies[0].points: duplicate key `A`"), "{err}");
+    let err = load_json(r#"{"ground": {"points": {"O": [0, 0], "O": [0, 0]}}, "bodies": [{"name": "arm"}]}"#)
+        .unwrap_err();
+    assert!(err.contains("duplicate key `O`"), "{err}");
+    // Fields of a table were already checked by serde.
+    let err = load_json(r#"{"bodies": [{"name": "arm", "name": "leg"}]}"#).unwrap_err();
+    assert!(err.contains("duplicate field `name`"), "{err}");
+    // TOML rejects duplicates itself.
+    let err = load_toml("[parameters]\nr = 1\nr = 2\n").unwrap_err();
+    assert!(err.contains("duplicate key"), "{err}");
 }
