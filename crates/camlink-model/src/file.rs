@@ -596,7 +596,7 @@ pub struct AnalysisSection {
     /// Output step (s), > 0.
     #[serde(default)]
     pub step: Option<Num>,
-    /// Explicit output times (s), non-decreasing; instead of `t_end`/`step`.
+    /// Explicit output times (s), increasing; instead of `t_end`/`step`.
     #[serde(default)]
     pub times: Option<Vec<Num>>,
     /// Newton tolerance on the constraint residual; default 1e-10.

@@ -55,7 +55,7 @@ pub struct AnalysisSpec {
     pub t_end: Option<f64>,
     /// Output step (s).
     pub step: Option<f64>,
-    /// Explicit output times (s), non-decreasing; excludes `t_end`/`step`.
+    /// Explicit output times (s), increasing; excludes `t_end`/`step`.
     pub times: Option<Vec<f64>>,
     /// Newton tolerance on the constraint residual.
     pub tol: f64,

@@ -1014,8 +1014,11 @@ impl Ctx {
                 let mut out = Vec::with_capacity(list.len());
                 for (k, n) in list.iter().enumerate() {
                     let v = self.num(n, &format!("analysis.times[{k}]"))?;
-                    if out.last().is_some_and(|&last| v < last) {
-                        return fail(format!("analysis.times[{k}]"), "times must not decrease");
+                    if let Some(&last) = out.last().filter(|&&last| v <= last) {
+                        return fail(
+                            format!("analysis.times[{k}]"),
+                            format!("times must increase ({v} s follows {last} s)"),
+                        );
                     }
                     out.push(v);
                 }

@@ -120,8 +120,10 @@ fn json_duplicate_keys_are_an_error() {
     let err = load_json(r#"{"bodies": [{"name": "arm", "points": {"A": [0, 0], "A": [1, 0]}}]}"#)
         .unwrap_err();
     assert!(err.contains("bodies[0].points: duplicate key `A`"), "{err}");
-    let err = load_json(r#"{"ground": {"points": {"O": [0, 0], "O": [0, 0]}}, "bodies": [{"name": "arm"}]}"#)
-        .unwrap_err();
+    let err = load_json(
+        r#"{"ground": {"points": {"O": [0, 0], "O": [0, 0]}}, "bodies": [{"name": "arm"}]}"#,
+    )
+    .unwrap_err();
     assert!(err.contains("duplicate key `O`"), "{err}");
     // Fields of a table were already checked by serde.
     let err = load_json(r#"{"bodies": [{"name": "arm", "name": "leg"}]}"#).unwrap_err();
@@ -129,4 +131,16 @@ fn json_duplicate_keys_are_an_error() {
     // TOML rejects duplicates itself.
     let err = load_toml("[parameters]\nr = 1\nr = 2\n").unwrap_err();
     assert!(err.contains("duplicate key"), "{err}");
+}
+
+#[test]
+fn repeated_output_time_is_a_load_error() {
+    // `times = [0, 0.5, 0.5]` loaded, then the run stopped with "times
+    // must increase"; the loader now says so, at the line.
+    let err =
+        load_toml("[[bodies]]\nname = \"arm\"\n[analysis]\ntimes = [0, 0.5, 0.5]\n").unwrap_err();
+    assert!(
+        err.starts_with("m.toml:4:") && err.contains("analysis.times[2]: times must increase"),
+        "{err}"
+    );
 }
