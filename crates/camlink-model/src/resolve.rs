@@ -66,6 +66,8 @@ struct Ctx {
     /// File path of each joint or driver name, for duplicate reports.
     names: HashMap<String, String>,
     joints: HashMap<String, JointInfo>,
+    /// Body ids by name, ground included (a scan per reference is quadratic).
+    body_ids: HashMap<String, BodyId>,
 }
 
 /// Builds the model and analysis settings described by `file`.
@@ -76,6 +78,7 @@ pub(crate) fn resolve(file: &ModelFile, default_name: &str) -> R<(Model, Analysi
         model: Model::new(default_name),
         names: HashMap::new(),
         joints: HashMap::new(),
+        body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -309,7 +312,8 @@ impl Ctx {
                 ],
                 points: self.points(&b.points, &format!("{path}.points"))?,
             };
-            self.model.add_body(body);
+            let id = self.model.add_body(body);
+            self.body_ids.insert(b.name.clone(), id);
         }
         if bodies.is_empty() {
             return fail(
@@ -322,8 +326,8 @@ impl Ctx {
 
     /// Resolves a body name.
     fn body(&self, name: &str, path: &str) -> R<BodyId> {
-        match self.model.body_id(name) {
-            Some(id) => Ok(id),
+        match self.body_ids.get(name) {
+            Some(&id) => Ok(id),
             None => fail(
                 path,
                 format!(

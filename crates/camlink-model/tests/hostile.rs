@@ -144,3 +144,41 @@ fn repeated_output_time_is_a_load_error() {
         "{err}"
     );
 }
+
+/// A chain of `n` pendulum links, each pinned to the one before, as JSON.
+fn chain_json(n: usize) -> String {
+    let bodies: Vec<String> = (0..n)
+        .map(|k| format!(r#"{{"name": "b{k}", "position": [{k}, 0]}}"#))
+        .collect();
+    let joints: Vec<String> = (0..n)
+        .map(|k| {
+            let prev = if k == 0 {
+                "ground".to_string()
+            } else {
+                format!("b{}", k - 1)
+            };
+            format!(
+                r#"{{"type": "revolute", "body_i": "{prev}", "point_i": [1, 0], "body_j": "b{k}"}}"#
+            )
+        })
+        .collect();
+    format!(
+        "{{\"bodies\": [\n{}\n],\n\"joints\": [\n{}\n]}}",
+        bodies.join(",\n"),
+        joints.join(",\n")
+    )
+}
+
+#[test]
+fn hundred_thousand_bodies_load_quickly() {
+    // Body names were looked up by a linear scan per joint reference:
+    // quadratic in the model size (9 minutes for this file).
+    let text = chain_json(100_000);
+    assert!(text.len() < camlink_model::MAX_FILE_SIZE as usize);
+    let start = Instant::now();
+    let loaded = load_str(&text, Format::Json, "chain.json").unwrap();
+    let took = start.elapsed();
+    assert_eq!(loaded.model.bodies.len(), 100_001);
+    assert_eq!(loaded.model.check_grounded(), Ok(()));
+    assert!(took < Duration::from_secs(20), "{took:?}");
+}
