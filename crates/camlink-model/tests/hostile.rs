@@ -182,3 +182,109 @@ fn hundred_thousand_bodies_load_quickly() {
     assert_eq!(loaded.model.check_grounded(), Ok(()));
     assert!(took < Duration::from_secs(20), "{took:?}");
 }
+
+/// What happens to a model that loads, at `stage`: the error or warning
+/// text, or a description of the diagnosis.
+fn outcome(loaded: &Loaded, stage: &str) -> String {
+    use camlink_core::kinematics::{run, time_grid, Settings, Table};
+    let a = &loaded.analysis;
+    match stage {
+        "run" | "warning" => {
+            let times = match (&a.times, a.t_end, a.step) {
+                (Some(t), _, _) => t.clone(),
+                (None, Some(end), Some(step)) => time_grid(end, step).unwrap(),
+                _ => vec![0.0],
+            };
+            let settings = Settings {
+                tol: a.tol,
+                max_iter: a.max_iter,
+            };
+            let mut table = Table::default();
+            match run(&loaded.model, &times, &settings, &[], &mut table) {
+                Err(e) => format!("error: {e}\njoints: {:?}", e.joints),
+                Ok(s) => s
+                    .warnings
+                    .iter()
+                    .map(|(t, w)| format!("warning at t = {t} s: {w}"))
+                    .collect::<Vec<_>>()
+                    .join("\n"),
+            }
+        }
+        "check" => {
+            let d = camlink_core::diagnose::diagnose(&loaded.model, 0.0, a.tol);
+            let mut out = format!(
+                "{} coordinates, {} equations, rank {}, {} degree(s) of freedom\n",
+                d.coordinates, d.equations, d.rank, d.dof
+            );
+            for r in &d.redundant {
+                let on: Vec<String> = r
+                    .depends_on
+                    .iter()
+                    .map(|(e, c)| format!("{c:+.3}·{e}"))
+                    .collect();
+                out += &format!("redundant: {} = {}\n", r.equation, on.join(" "));
+            }
+            for m in &d.free_motions {
+                let on: Vec<String> = m.iter().map(|(c, v)| format!("{c} {v:+.2}")).collect();
+                out += &format!("free motion: {}\n", on.join(", "));
+            }
+            out
+        }
+        "dynamics" => match loaded.model.check_mass_properties() {
+            Ok(()) => "ok".into(),
+            Err(e) => format!("error: {e}"),
+        },
+        other => panic!("unknown stage {other:?}"),
+    }
+}
+
+#[derive(serde::Deserialize)]
+struct Expect {
+    stage: String,
+    fragments: Vec<String>,
+}
+
+#[test]
+fn every_error_model_gives_its_message() {
+    let dir = root().join("tests/models/errors");
+    let text = std::fs::read_to_string(dir.join("expected.toml")).unwrap();
+    let table: std::collections::BTreeMap<String, Vec<Expect>> = toml::from_str(&text).unwrap();
+    let mut failures = Vec::new();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
+        if name != "expected.toml" && !table.contains_key(&name) {
+            failures.push(format!("{name} has no entry in expected.toml"));
+        }
+    }
+    for (file, expects) in &table {
+        let loaded = load_path(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        for x in expects {
+            let got = outcome(&loaded, &x.stage);
+            if std::env::var_os("CAMLINK_SHOW").is_some() {
+                eprintln!("== {file} [{}]\n{got}", x.stage);
+            }
+            for frag in &x.fragments {
+                if !got.contains(frag.as_str()) {
+                    failures.push(format!("{file} [{}]: missing {frag:?} in:\n{got}", x.stage));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+}
+
+#[test]
+fn mass_check_passes_a_model_with_masses() {
+    let four_bar = load_path(&root().join("tests/models/four_bar.toml")).unwrap();
+    assert_eq!(four_bar.model.check_mass_properties(), Ok(()));
+    // Zero mass is fine for kinematics: the same model without masses runs.
+    let err = load_toml(ARM_TOML)
+        .unwrap()
+        .model
+        .check_mass_properties()
+        .unwrap_err();
+    assert!(
+        err.to_string().starts_with("body 'arm': mass m (kg) is 0"),
+        "{err}"
+    );
+}
