@@ -288,3 +288,47 @@ fn mass_check_passes_a_model_with_masses() {
         "{err}"
     );
 }
+
+/// The message a referenced example gives: its load error for a file under
+/// `tests/models/bad/`, else what `stage` reports.
+fn documented_outcome(file: &str, stage: &str) -> String {
+    let path = root().join(file);
+    let name = path.file_name().unwrap().to_string_lossy().into_owned();
+    match load_path(&path) {
+        Err(e) => e.to_string().replacen(&path.display().to_string(), &name, 1),
+        Ok(loaded) => outcome(&loaded, stage),
+    }
+}
+
+#[test]
+fn docs_errors_page_matches_real_output() {
+    // Each `<!-- output: FILE STAGE -->` marker in docs/errors.md is
+    // followed by a ```text block that must appear, line by line, in what
+    // FILE really gives at STAGE ("load" for files that do not load).
+    let page = std::fs::read_to_string(root().join("docs/errors.md")).unwrap();
+    let lines: Vec<&str> = page.lines().collect();
+    let mut checked = 0;
+    let mut failures = Vec::new();
+    for (k, line) in lines.iter().enumerate() {
+        let Some(rest) = line.trim().strip_prefix("<!-- output:") else {
+            continue;
+        };
+        let mut words = rest.trim_end_matches("-->").split_whitespace();
+        let (file, stage) = (words.next().unwrap(), words.next().unwrap_or("load"));
+        assert!(root().join(file).exists(), "docs/errors.md names missing {file}");
+        assert!(lines[k + 1].starts_with("```text"), "no text block after {line}");
+        let got = documented_outcome(file, stage);
+        if std::env::var_os("CAMLINK_SHOW").is_some() {
+            eprintln!("== {file} [{stage}]\n{got}");
+        }
+        for shown in lines[k + 2..].iter().take_while(|l| !l.starts_with("```")) {
+            let shown = shown.trim_end();
+            if !shown.is_empty() && shown != "..." && !got.contains(shown) {
+                failures.push(format!("{file} [{stage}]: {shown:?} not in:\n{got}"));
+            }
+        }
+        checked += 1;
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert!(checked >= 20, "only {checked} examples checked");
+}
