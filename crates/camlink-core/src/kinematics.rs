@@ -289,6 +289,9 @@ impl<'m> Solver<'m> {
         if n == 0 {
             return Err(fail(0.0, "the model has no moving bodies"));
         }
+        model
+            .check_grounded()
+            .map_err(|e| fail(0.0, &e.to_string()))?;
         if m < n {
             return Err(fail(
                 0.0,
