@@ -295,7 +295,9 @@ fn documented_outcome(file: &str, stage: &str) -> String {
     let path = root().join(file);
     let name = path.file_name().unwrap().to_string_lossy().into_owned();
     match load_path(&path) {
-        Err(e) => e.to_string().replacen(&path.display().to_string(), &name, 1),
+        Err(e) => e
+            .to_string()
+            .replacen(&path.display().to_string(), &name, 1),
         Ok(loaded) => outcome(&loaded, stage),
     }
 }
@@ -315,8 +317,14 @@ fn docs_errors_page_matches_real_output() {
         };
         let mut words = rest.trim_end_matches("-->").split_whitespace();
         let (file, stage) = (words.next().unwrap(), words.next().unwrap_or("load"));
-        assert!(root().join(file).exists(), "docs/errors.md names missing {file}");
-        assert!(lines[k + 1].starts_with("```text"), "no text block after {line}");
+        assert!(
+            root().join(file).exists(),
+            "docs/errors.md names missing {file}"
+        );
+        assert!(
+            lines[k + 1].starts_with("```text"),
+            "no text block after {line}"
+        );
         let got = documented_outcome(file, stage);
         if std::env::var_os("CAMLINK_SHOW").is_some() {
             eprintln!("== {file} [{stage}]\n{got}");
