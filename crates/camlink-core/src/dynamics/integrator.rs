@@ -156,6 +156,10 @@ impl<'m> Integrator<'m> {
             joints: Vec::new(),
             residual,
         };
+        // Forward dynamics inverts the mass matrix: every body needs mass.
+        if let Err(e) = model.check_mass_properties() {
+            return Err(fail(format!("{e}; forward dynamics needs it"), 0.0));
+        }
         if !(settings.step.is_finite() && settings.step > 0.0) {
             return Err(fail(
                 format!(
