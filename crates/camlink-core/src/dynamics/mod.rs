@@ -16,6 +16,7 @@
 //! - equilibrium, in [`statics`];
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
 
+pub mod contact_force;
 pub mod force;
 pub mod integrator;
 pub mod inverse;
