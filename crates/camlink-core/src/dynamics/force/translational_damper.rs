@@ -58,10 +58,7 @@ impl TranslationalDamper {
         let up = perp(u);
         let aj = rot(x.q[1][2], self.s_j);
         let ajp = perp(aj);
-        let ai = [
-            x.q[1][0] + aj[0] - x.q[0][0],
-            x.q[1][1] + aj[1] - x.q[0][1],
-        ];
+        let ai = [x.q[1][0] + aj[0] - x.q[0][0], x.q[1][1] + aj[1] - x.q[0][1]];
         let w = [-u[0], -u[1], -cross(ai, u), u[0], u[1], cross(aj, u)];
         let ut = [u[1], -u[0]];
         let mut dw = [[0.0; 6]; 6];
