@@ -415,3 +415,86 @@ pub fn lift_off(model: &Model, table: &crate::kinematics::Table) -> Vec<LiftOff>
     }
     w.finish()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A watch over rows (N, φ).
+    fn watch() -> LiftOffWatch {
+        LiftOffWatch {
+            watched: vec![Watched {
+                joint: "bucket".into(),
+                cam: "cam".into(),
+                n: 0,
+                phi: Some(1),
+                prev: None,
+                scale: 0.0,
+                open: None,
+            }],
+            found: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn intervals_start_and_end_at_interpolated_zeros() {
+        let mut w = watch();
+        // N = 1, −1, −3, 1, 2 at t = 0..4, φ = 10 t.
+        for (k, n) in [1.0, -1.0, -3.0, 1.0, 2.0].into_iter().enumerate() {
+            let t = k as f64;
+            w.observe(t, &[n, 10.0 * t]);
+        }
+        let found = w.finish();
+        assert_eq!(found.len(), 1);
+        let l = &found[0];
+        assert_eq!(
+            l.start,
+            Crossing {
+                time: 0.5,
+                cam_angle: 5.0
+            }
+        );
+        assert_eq!(
+            l.end,
+            Some(Crossing {
+                time: 2.75,
+                cam_angle: 27.5
+            })
+        );
+        assert_eq!((l.least, l.least_at.time), (-3.0, 2.0));
+        let m = l.message();
+        assert!(
+            m.starts_with("bucket: normal force < 0, the follower would leave cam 'cam'"),
+            "{m}"
+        );
+        assert!(
+            m.contains("from t = 0.500000 s (cam angle 5.0000 rad, 286.5°)"),
+            "{m}"
+        );
+        assert!(m.contains("to t = 2.750000 s"), "{m}");
+    }
+
+    #[test]
+    fn rounding_is_not_lift_off_and_an_open_interval_has_no_end() {
+        let mut w = watch();
+        w.observe(0.0, &[100.0, 0.0]);
+        w.observe(1.0, &[-1e-8, 0.0]);
+        w.observe(2.0, &[50.0, 0.0]);
+        assert!(w.found.is_empty());
+        // Starts negative: the interval starts at the first sample.
+        let mut w = watch();
+        w.observe(0.0, &[-2.0, 0.3]);
+        w.observe(1.0, &[-1.0, 0.4]);
+        let found = w.finish();
+        assert_eq!(found.len(), 1);
+        assert_eq!(
+            found[0].start,
+            Crossing {
+                time: 0.0,
+                cam_angle: 0.3
+            }
+        );
+        assert_eq!(found[0].end, None);
+        assert!(found[0].message().contains("to the end of the run"));
+    }
+}
