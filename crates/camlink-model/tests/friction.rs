@@ -106,7 +106,12 @@ fn viscous_friction_errors_name_the_field() {
 #[test]
 fn block_slides_to_its_terminal_speed() {
     let (beta, c, m, g) = (0.4f64, 4.0, 2.0, 9.81);
-    let l = load_str(&model(beta, &c.to_string(), "incline"), Format::Toml, "f.toml").unwrap();
+    let l = load_str(
+        &model(beta, &c.to_string(), "incline"),
+        Format::Toml,
+        "f.toml",
+    )
+    .unwrap();
     let times = time_grid(2.0, 0.01).unwrap();
     let settings = Settings {
         step: 1e-3,

@@ -8,7 +8,9 @@
 //! Φ_qᵀ λ = Q(q, q̇, t) − M(q) q̈,
 //!
 //! one solve with the transposed Jacobian (Haug §6.5). Joint reactions and
-//! driver efforts follow from λ ([`super::reaction`]).
+//! driver efforts follow from λ ([`super::reaction`]), and so do the curve
+//! contacts' normal forces, whose negative intervals (lift-off) become
+//! warnings of the run summary ([`super::contact_force`]).
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
