@@ -37,6 +37,7 @@
 //! after a change of step would trigger needless rejections), rejects steps whose weighted norm exceeds 1 and
 //! changes h by (1/err)^{1/3}.
 
+use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project::{self, max_abs};
 use super::system::{Augmented, Coefficients, System};
@@ -478,6 +479,7 @@ pub fn run(
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
+    let mut lift_off = LiftOffWatch::new(model, &names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&it.sys);
     let mut h_next = settings.step;
@@ -511,6 +513,11 @@ pub fn run(
             &mut values[nk..],
         );
         sink.row(t, &values);
+        lift_off.observe(t, &values);
     }
-    Ok(it.summary.clone())
+    let mut summary = it.summary.clone();
+    for l in lift_off.finish() {
+        summary.warnings.push((l.start.time, l.message()));
+    }
+    Ok(summary)
 }

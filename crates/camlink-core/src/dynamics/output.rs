@@ -5,21 +5,25 @@
 //! - per joint (not driver), the reaction on body i:
 //!   `<joint>.fx .fy .torque .fx_local .fy_local`, and on body j:
 //!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`
-//!   (see [`super::reaction`] for the conventions);
+//!   (see [`super::reaction`] for the conventions), then, for a curve
+//!   contact, `<joint>.normal_force .tangential_force` (see
+//!   [`super::contact_force`]);
 //! - per driver: `<driver>.effort .power`;
 //! - `energy.kinetic`, `energy.potential` (gravity and springs) and
 //!   `energy.total` (J);
 //! - `constraint.residual`, max |Φ| (m or rad), and
 //!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
 
+use super::contact_force::ContactForces;
 use super::reaction::{effort, reactions};
 use super::system::System;
 use crate::model::Model;
 
 /// Names of the dynamic channels (after the kinematic ones).
 pub fn channels(model: &Model) -> Vec<String> {
+    let contacts = ContactForces::new(model);
     let mut names = Vec::new();
-    for j in &model.joints {
+    for (k, j) in model.joints.iter().enumerate() {
         if j.driver {
             for c in ["effort", "power"] {
                 names.push(format!("{}.{c}", j.name));
@@ -30,6 +34,7 @@ pub fn channels(model: &Model) -> Vec<String> {
                     names.push(format!("{}.{c}{side}", j.name));
                 }
             }
+            names.extend(contacts.channel_names(model, k));
         }
     }
     for c in [
@@ -48,6 +53,7 @@ pub fn channels(model: &Model) -> Vec<String> {
 pub struct Scratch {
     phi: Vec<f64>,
     nu: Vec<f64>,
+    contacts: ContactForces,
 }
 
 impl Scratch {
@@ -55,6 +61,7 @@ impl Scratch {
         Scratch {
             phi: vec![0.0; s.m()],
             nu: vec![0.0; s.m()],
+            contacts: ContactForces::new(s.model),
         }
     }
 }
@@ -80,7 +87,8 @@ pub fn fill(
             out[k + 1] = p;
             k += 2;
         } else {
-            for r in reactions(model, asm, j, q, lambda, t) {
+            let rs = reactions(model, asm, j, q, lambda, t);
+            for r in rs {
                 out[k..k + 5].copy_from_slice(&[
                     r.force[0],
                     r.force[1],
@@ -89,6 +97,11 @@ pub fn fill(
                     r.force_local[1],
                 ]);
                 k += 5;
+            }
+            if w.contacts.has(j) {
+                let nt = w.contacts.resolve(model, asm, j, q, &rs);
+                out[k..k + 2].copy_from_slice(&nt);
+                k += 2;
             }
         }
     }
