@@ -189,12 +189,12 @@ pub fn circle_centre(c: &Curve) -> Option<(V2, f64)> {
     }
 }
 
-/// The follower of a contact joint and its guide, if it has one.
-fn follower(model: &Model, c: &Constraint) -> Option<Follower> {
+/// The follower body of a contact joint (see the module notes); `None`
+/// for other joints.
+pub fn follower_body(model: &Model, c: &Constraint) -> Option<BodyId> {
     let [bi, bj] = c.bodies();
-    // The follower body and, for a roller, its curve.
-    let (fb, curve): (BodyId, Option<&Curve>) = match c {
-        Constraint::CamFollower(cf) => {
+    Some(match c {
+        Constraint::CamFollower(_) => {
             let ti = translates(model, bi);
             let tj = translates(model, bj);
             let pick_i = if bj.is_ground() {
@@ -207,14 +207,38 @@ fn follower(model: &Model, c: &Constraint) -> Option<Follower> {
                 driven(model, bj) && !driven(model, bi)
             };
             if pick_i {
-                (bi, Some(&cf.curve_i))
+                bi
             } else {
-                (bj, Some(&cf.curve_j))
+                bj
             }
         }
-        Constraint::FlatFollower(_) => (if bj.is_ground() { bi } else { bj }, None),
-        Constraint::PointFollower(_) => (if bi.is_ground() { bj } else { bi }, None),
+        Constraint::FlatFollower(_) => {
+            if bj.is_ground() {
+                bi
+            } else {
+                bj
+            }
+        }
+        Constraint::PointFollower(_) => {
+            if bi.is_ground() {
+                bj
+            } else {
+                bi
+            }
+        }
         _ => return None,
+    })
+}
+
+/// The follower of a contact joint and its guide, if it has one.
+fn follower(model: &Model, c: &Constraint) -> Option<Follower> {
+    let [bi, bj] = c.bodies();
+    // The follower body and, for a roller, its curve.
+    let fb = follower_body(model, c)?;
+    let curve: Option<&Curve> = match c {
+        Constraint::CamFollower(cf) if fb == bi => Some(&cf.curve_i),
+        Constraint::CamFollower(cf) => Some(&cf.curve_j),
+        _ => None,
     };
     if fb.is_ground() {
         return None;

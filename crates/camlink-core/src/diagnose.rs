@@ -42,7 +42,15 @@ pub struct Diagnosis {
     pub residual: f64,
     /// σ_max / σ_min of the nonzero singular values.
     pub condition: f64,
+    /// False for a model too large for the dense rank analysis (more than
+    /// [`DENSE_MAX`] coordinates): rank and degrees of freedom then come from
+    /// counting, and no redundancy or free motion is reported.
+    pub exact: bool,
 }
+
+/// Largest model (coordinates) analysed by a dense singular value
+/// decomposition; its memory grows as n².
+pub const DENSE_MAX: usize = 2000;
 
 /// Relative size under which a singular value counts as zero.
 const RANK_TOL: f64 = 1e-9;
@@ -52,6 +60,19 @@ const RANK_TOL: f64 = 1e-9;
 pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
     let asm = Assembly::new(model);
     let (n, m) = (asm.n, asm.m);
+    if n > DENSE_MAX {
+        return Diagnosis {
+            coordinates: n,
+            equations: m,
+            rank: m.min(n),
+            dof: n - m.min(n),
+            redundant: Vec::new(),
+            free_motions: Vec::new(),
+            residual: f64::NAN,
+            condition: f64::NAN,
+            exact: false,
+        };
+    }
     let mut q = asm.initial_q(model);
     let residual = least_squares_assembly(model, &asm, &mut q, t, tol);
     let j = dense_jacobian(model, &asm, &q, t);
@@ -75,6 +96,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
         free_motions,
         residual,
         condition,
+        exact: true,
     }
 }
 
@@ -285,6 +307,30 @@ mod tests {
         assert!(d.redundant.is_empty(), "{:?}", d.redundant);
         assert_eq!(d.free_motions.len(), 1);
         assert!(d.residual < 1e-10);
+    }
+
+    #[test]
+    fn a_model_too_large_for_the_dense_analysis_is_counted() {
+        // A chain of pendulums: 3 coordinates and 2 equations per link.
+        let mut m = Model::new("chain");
+        let mut prev = BodyId::GROUND;
+        for k in 0..(DENSE_MAX / 3 + 1) {
+            let b = m.add_body(Body::new(format!("link{k}"), [k as f64, 0.0, 0.0]));
+            m.add_joint(
+                format!("j{k}"),
+                Revolute {
+                    body_i: prev,
+                    s_i: [if prev.is_ground() { 0.0 } else { 0.5 }, 0.0],
+                    body_j: b,
+                    s_j: [-0.5, 0.0],
+                },
+            );
+            prev = b;
+        }
+        let d = diagnose(&m, 0.0, 1e-10);
+        assert!(!d.exact);
+        assert_eq!(d.coordinates, 3 * (DENSE_MAX / 3 + 1));
+        assert_eq!(d.dof, d.coordinates / 3);
     }
 
     #[test]

@@ -289,6 +289,9 @@ impl<'m> Solver<'m> {
         if n == 0 {
             return Err(fail(0.0, "the model has no moving bodies"));
         }
+        model
+            .check_grounded()
+            .map_err(|e| fail(0.0, &e.to_string()))?;
         if m < n {
             return Err(fail(
                 0.0,
@@ -572,7 +575,9 @@ impl<'m> Solver<'m> {
         Err(self.failure(
             t,
             &format!(
-                "positions did not converge in {} Newton iterations",
+                "positions did not converge in {} Newton iterations: the drivers may ask \
+                 for a position the mechanism cannot reach (past a limit or dead-centre \
+                 position)",
                 self.settings.max_iter
             ),
         ))
@@ -680,35 +685,14 @@ impl<'m> Solver<'m> {
 
     /// Fills the output channels for the current state.
     pub fn outputs(&self, points: &[PointOutput], out: &mut [f64]) {
-        let mut k = 0;
-        for (id, _) in self.model.moving_bodies() {
-            let c = self.asm.body_col(id.0).expect("moving body");
-            for v in [&self.q, &self.qd, &self.qdd] {
-                out[k..k + 3].copy_from_slice(&v[c..c + 3]);
-                k += 3;
-            }
-        }
-        for p in points {
-            let (q, qd, qdd) = self.body_state(p.body);
-            let r = point(q, p.s);
-            let v = point_vel(q, qd, p.s);
-            // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
-            let a = [
-                qdd[0] + rot_d(q[2], p.s)[0] * qdd[2] - rot(q[2], p.s)[0] * qd[2] * qd[2],
-                qdd[1] + rot_d(q[2], p.s)[1] * qdd[2] - rot(q[2], p.s)[1] * qd[2] * qd[2],
-            ];
-            out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], a[0], a[1]]);
-            k += 6;
-        }
-        for (j, joint) in self.model.joints.iter().enumerate() {
-            let c = self.asm.own_col(j);
-            for o in 0..joint.constraint.own_count() {
-                out[k] = self.q[c + o];
-                k += 1;
-            }
-        }
-        self.contacts
-            .fill(self.model, &self.asm, &self.q, &mut out[k..]);
+        fill_outputs(
+            self.model,
+            &self.asm,
+            &self.contacts,
+            [&self.q, &self.qd, &self.qdd],
+            points,
+            out,
+        );
     }
 
     /// (q, q̇, q̈) of one body; zeros for the ground.
@@ -722,6 +706,52 @@ impl<'m> Solver<'m> {
             None => ([0.0; 3], [0.0; 3], [0.0; 3]),
         }
     }
+}
+
+/// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
+/// points, own coordinates, then contact outputs.
+pub fn fill_outputs(
+    model: &Model,
+    asm: &Assembly,
+    contacts: &Contacts,
+    state: [&[f64]; 3],
+    points: &[PointOutput],
+    out: &mut [f64],
+) {
+    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
+        match asm.body_col(id.0) {
+            Some(c) => [v[c], v[c + 1], v[c + 2]],
+            None => [0.0; 3],
+        }
+    };
+    let mut k = 0;
+    for (id, _) in model.moving_bodies() {
+        for v in state {
+            out[k..k + 3].copy_from_slice(&body(v, id));
+            k += 3;
+        }
+    }
+    for p in points {
+        let [q, qd, qdd] = state.map(|v| body(v, p.body));
+        let r = point(q, p.s);
+        let v = point_vel(q, qd, p.s);
+        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
+        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
+        let acc = [
+            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
+            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
+        ];
+        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
+        k += 6;
+    }
+    for (j, joint) in model.joints.iter().enumerate() {
+        let c = asm.own_col(j);
+        for o in 0..joint.constraint.own_count() {
+            out[k] = state[0][c + o];
+            k += 1;
+        }
+    }
+    contacts.fill(model, asm, state[0], &mut out[k..]);
 }
 
 /// Largest model (coordinates) whose Jacobian condition is computed for an

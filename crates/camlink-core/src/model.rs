@@ -108,6 +108,22 @@ pub enum ModelError {
     NotFinite { what: String, value: f64 },
     #[error("{0}")]
     Invalid(String),
+    #[error(
+        "body '{body}': {what} is {value}; dynamics needs a positive mass and \
+         moment of inertia for every moving body"
+    )]
+    MassProperty {
+        body: String,
+        what: &'static str,
+        value: f64,
+    },
+    #[error("{}", not_grounded(.bodies, *.none_grounded))]
+    NotGrounded {
+        /// The moving bodies that no chain of joints ties to the ground.
+        bodies: Vec<String>,
+        /// True when no joint or driver touches the ground at all.
+        none_grounded: bool,
+    },
 }
 
 impl Model {
@@ -247,5 +263,184 @@ fn finite(what: &str, v: &[f64]) -> Result<(), ModelError> {
             value,
         }),
         None => Ok(()),
+    }
+}
+
+/// The message of [`ModelError::NotGrounded`].
+fn not_grounded(bodies: &[String], none_grounded: bool) -> String {
+    const SHOWN: usize = 5;
+    let mut names: Vec<String> = bodies
+        .iter()
+        .take(SHOWN)
+        .map(|b| format!("'{b}'"))
+        .collect();
+    if bodies.len() > SHOWN {
+        names.push(format!("{} more", bodies.len() - SHOWN));
+    }
+    let list = names.join(", ");
+    if none_grounded {
+        format!(
+            "no joint or driver ties the mechanism to the ground (bodies {list}); \
+             join a body to a ground point or drive one of its coordinates"
+        )
+    } else {
+        format!(
+            "no chain of joints or drivers ties bodies {list} to the ground; \
+             join one of them to the mechanism or to a ground point"
+        )
+    }
+}
+
+impl Model {
+    /// Checks that every moving body has a finite, positive mass m and
+    /// moment of inertia J', as forward and inverse dynamics need; names the
+    /// first body that does not. Kinematics needs no mass.
+    pub fn check_mass_properties(&self) -> Result<(), ModelError> {
+        for (_, b) in self.moving_bodies() {
+            for (what, value) in [
+                ("mass m (kg)", b.mass),
+                ("moment of inertia J' (kg·m²)", b.inertia),
+            ] {
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(ModelError::MassProperty {
+                        body: b.name.clone(),
+                        what,
+                        value,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks that a chain of joints or drivers links every moving body to
+    /// the ground, as a kinematic analysis needs: a group of bodies joined
+    /// only among themselves can translate freely as a whole.
+    pub fn check_grounded(&self) -> Result<(), ModelError> {
+        // Union–find over bodies, one union per joint.
+        let mut parent: Vec<usize> = (0..self.bodies.len()).collect();
+        fn root(parent: &mut [usize], mut k: usize) -> usize {
+            while parent[k] != k {
+                parent[k] = parent[parent[k]];
+                k = parent[k];
+            }
+            k
+        }
+        for j in &self.joints {
+            let [bi, bj] = j.constraint.bodies();
+            if bi.0 >= parent.len() || bj.0 >= parent.len() {
+                continue;
+            }
+            let (ri, rj) = (root(&mut parent, bi.0), root(&mut parent, bj.0));
+            parent[ri.max(rj)] = ri.min(rj);
+        }
+        let loose: Vec<String> = (1..self.bodies.len())
+            .filter(|&k| root(&mut parent, k) != 0)
+            .map(|k| self.bodies[k].name.clone())
+            .collect();
+        if loose.is_empty() {
+            return Ok(());
+        }
+        Err(ModelError::NotGrounded {
+            none_grounded: loose.len() + 1 == self.bodies.len(),
+            bodies: loose,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::relative::{RelCoord, RelativeCoord};
+    use crate::constraint::revolute::Revolute;
+    use crate::function::TimeFn;
+
+    fn pin(bi: BodyId, bj: BodyId) -> Revolute {
+        Revolute {
+            body_i: bi,
+            s_i: [0.0, 0.0],
+            body_j: bj,
+            s_j: [0.0, 0.0],
+        }
+    }
+
+    #[test]
+    fn grounded_chain_passes() {
+        let mut m = Model::new("m");
+        let a = m.add_body(Body::new("a", [0.0; 3]));
+        let b = m.add_body(Body::new("b", [0.0; 3]));
+        m.add_joint("p0", pin(BodyId::GROUND, a));
+        m.add_joint("p1", pin(a, b));
+        assert_eq!(m.check_grounded(), Ok(()));
+    }
+
+    #[test]
+    fn no_ground_at_all_is_named() {
+        let mut m = Model::new("m");
+        let a = m.add_body(Body::new("a", [0.0; 3]));
+        let b = m.add_body(Body::new("b", [0.0; 3]));
+        m.add_joint("p1", pin(a, b));
+        m.add_driver(
+            "turn",
+            RelativeCoord {
+                body_i: a,
+                s_i: [0.0, 0.0],
+                body_j: b,
+                s_j: [0.0, 0.0],
+                coord: RelCoord::Phi,
+                f: TimeFn::Const(0.0),
+            },
+        );
+        let msg = m.check_grounded().unwrap_err().to_string();
+        assert!(
+            msg.starts_with("no joint or driver ties the mechanism to the ground"),
+            "{msg}"
+        );
+        assert!(msg.contains("'a', 'b'"), "{msg}");
+    }
+
+    #[test]
+    fn a_loose_group_is_named() {
+        let mut m = Model::new("m");
+        let a = m.add_body(Body::new("a", [0.0; 3]));
+        let b = m.add_body(Body::new("b", [0.0; 3]));
+        let c = m.add_body(Body::new("c", [0.0; 3]));
+        m.add_joint("p0", pin(BodyId::GROUND, a));
+        m.add_joint("p1", pin(b, c));
+        let err = m.check_grounded().unwrap_err();
+        assert_eq!(
+            err,
+            ModelError::NotGrounded {
+                bodies: vec!["b".into(), "c".into()],
+                none_grounded: false
+            }
+        );
+        assert!(
+            err.to_string().contains("bodies 'b', 'c' to the ground"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn mass_properties_name_the_body() {
+        let mut m = Model::new("m");
+        let mut a = Body::new("a", [0.0; 3]);
+        a.mass = 1.0;
+        a.inertia = 0.1;
+        m.add_body(a);
+        assert_eq!(m.check_mass_properties(), Ok(()));
+        let mut b = Body::new("coupler", [0.0; 3]);
+        b.mass = 2.0;
+        m.add_body(b);
+        let msg = m.check_mass_properties().unwrap_err().to_string();
+        assert!(
+            msg.starts_with("body 'coupler': moment of inertia J' (kg·m²) is 0;"),
+            "{msg}"
+        );
+        m.bodies[2].mass = -1.0;
+        let msg = m.check_mass_properties().unwrap_err().to_string();
+        assert!(msg.contains("mass m (kg) is -1"), "{msg}");
+        m.bodies[2].mass = f64::NAN;
+        assert!(m.check_mass_properties().is_err());
     }
 }

@@ -23,7 +23,9 @@ impl ParseError {
 
     /// The source line holding the problem, a line of carets (`^^^`) under
     /// it, then the message; the message starts with `line N: ` when the
-    /// source has several lines.
+    /// source has several lines. A line longer than [`RENDER_WIDTH`]
+    /// characters is cut to a window around the problem, with `...` where
+    /// text is left out.
     ///
     /// ```text
     /// 1 + coss(t)
@@ -39,19 +41,50 @@ impl ParseError {
             src,
             off.saturating_add(self.len).min(line_start + line.len()),
         );
-        let pad: String = src[line_start..off]
-            .chars()
-            .map(|c| if c == '\t' { '\t' } else { ' ' })
-            .collect();
-        let carets = "^".repeat(src[off..end.max(off)].chars().count().max(1));
+        // Characters of the line, and the span of the carets in them.
+        let chars: Vec<char> = line.chars().collect();
+        let start = src[line_start..off].chars().count();
+        let count = src[off..end.max(off)].chars().count().max(1);
+        let (from, to) = window(chars.len(), start);
+        let mut shown: String = chars[from..to].iter().collect();
+        let mut pad = String::new();
+        if from > 0 {
+            shown.insert_str(0, "...");
+            pad.push_str("   ");
+        }
+        if to < chars.len() {
+            shown.push_str("...");
+        }
+        pad.extend(
+            chars[from..start.min(to)]
+                .iter()
+                .map(|&c| if c == '\t' { '\t' } else { ' ' }),
+        );
+        let carets = "^".repeat(count.min(to.saturating_sub(start)).max(1));
         let prefix = if src.contains('\n') {
             let number = src[..line_start].matches('\n').count() + 1;
             format!("line {number}: ")
         } else {
             String::new()
         };
-        format!("{line}\n{pad}{carets}\n{prefix}{}", self.message)
+        format!("{shown}\n{pad}{carets}\n{prefix}{}", self.message)
     }
+}
+
+/// Longest source line [`ParseError::render`] shows whole (characters).
+pub const RENDER_WIDTH: usize = 80;
+
+/// The characters `from..to` of a line of `len` characters to show for a
+/// problem starting at character `start`: all of a short line, else a
+/// window of [`RENDER_WIDTH`] that starts a little before the problem.
+fn window(len: usize, start: usize) -> (usize, usize) {
+    if len <= RENDER_WIDTH {
+        return (0, len);
+    }
+    let from = start
+        .saturating_sub(RENDER_WIDTH / 4)
+        .min(len - RENDER_WIDTH);
+    (from, from + RENDER_WIDTH)
 }
 
 /// The largest char boundary of `s` at or before `i`.
@@ -110,5 +143,42 @@ mod tests {
         assert_eq!(e.render("αβ"), "αβ\n  ^\nbad");
         let e = ParseError::new("bad", 1, 99);
         assert_eq!(e.render("αβ"), "αβ\n^^\nbad");
+    }
+}
+
+#[cfg(test)]
+mod long_line_tests {
+    use super::*;
+
+    #[test]
+    fn long_line_error_is_cut_to_a_window() {
+        // A 120 kB expression used to be echoed whole, carets and all.
+        let src = format!("{}sinn(t){}", "1+".repeat(60_000), "+1".repeat(60_000));
+        let e = ParseError::new("unknown function 'sinn'", 120_000, 4);
+        let shown = e.render(&src);
+        let lines: Vec<&str> = shown.lines().collect();
+        assert_eq!(lines.len(), 3, "{shown}");
+        assert!(
+            lines[0].starts_with("...") && lines[0].ends_with("..."),
+            "{shown}"
+        );
+        assert_eq!(lines[0].chars().count(), RENDER_WIDTH + 6);
+        let caret = lines[1].find('^').unwrap();
+        assert_eq!(&lines[0][caret..caret + 4], "sinn", "{shown}");
+        assert_eq!(lines[1].trim(), "^^^^");
+
+        // The whole of a too-long source: carets to the end of the window.
+        let e = ParseError::new("expression too long", 0, src.len());
+        let shown = e.render(&src);
+        let lines: Vec<&str> = shown.lines().collect();
+        assert_eq!(lines[1], "^".repeat(RENDER_WIDTH), "{shown}");
+        assert!(!lines[0].starts_with("..."));
+
+        // Short lines are shown whole, as before.
+        let e = ParseError::new("unknown function 'coss'", 4, 4);
+        assert_eq!(
+            e.render("1 + coss(t)"),
+            "1 + coss(t)\n    ^^^^\nunknown function 'coss'"
+        );
     }
 }

@@ -111,7 +111,7 @@ use std::fmt;
 use compile::Span;
 use vm::{run, Fault, Op};
 
-pub use error::{EvalError, ParseError};
+pub use error::{EvalError, ParseError, RENDER_WIDTH};
 pub use function::functions;
 pub use jet::Jet;
 pub use motion::Law;

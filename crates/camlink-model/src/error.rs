@@ -1,5 +1,6 @@
 //! Load errors: where (file, line, column, field path) and what.
 
+use std::borrow::Cow;
 use std::fmt;
 
 /// Why a model file could not be loaded.
@@ -34,10 +35,32 @@ impl fmt::Display for LoadError {
         }
         f.write_str(": ")?;
         if let Some(field) = self.field.as_deref().filter(|s| !s.is_empty()) {
-            write!(f, "{field}: ")?;
+            write!(f, "{}: ", printable(field))?;
         }
-        f.write_str(&self.message)
+        f.write_str(&printable(&self.message))
     }
+}
+
+/// `s` with control characters (except newlines) and bidirectional
+/// overrides escaped, so that names quoted from a file cannot drive the
+/// terminal that shows the error.
+pub(crate) fn printable(s: &str) -> Cow<'_, str> {
+    let hostile = |c: char| {
+        (c.is_control() && c != '\n')
+            || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
+    };
+    if !s.chars().any(hostile) {
+        return Cow::Borrowed(s);
+    }
+    let mut out = String::with_capacity(s.len() + 8);
+    for c in s.chars() {
+        if hostile(c) {
+            out.extend(c.escape_unicode());
+        } else {
+            out.push(c);
+        }
+    }
+    Cow::Owned(out)
 }
 
 impl std::error::Error for LoadError {}

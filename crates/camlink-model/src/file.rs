@@ -156,6 +156,34 @@ fn pair<'de, A: SeqAccess<'de>>(mut seq: A) -> Result<[Num; 2], A::Error> {
     Ok([x, y])
 }
 
+/// A map of names that rejects a name given twice. TOML parsers do this
+/// themselves; JSON parsers keep the last value without a word.
+fn unique_keys<'de, D, V>(d: D) -> Result<BTreeMap<String, V>, D::Error>
+where
+    D: Deserializer<'de>,
+    V: Deserialize<'de>,
+{
+    struct Unique<V>(std::marker::PhantomData<V>);
+    impl<'de, V: Deserialize<'de>> Visitor<'de> for Unique<V> {
+        type Value = BTreeMap<String, V>;
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("a map")
+        }
+        fn visit_map<A: de::MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+            let mut out = BTreeMap::new();
+            while let Some(key) = map.next_key::<String>()? {
+                if out.contains_key(&key) {
+                    return Err(de::Error::custom(format_args!("duplicate key `{key}`")));
+                }
+                let value = map.next_value()?;
+                out.insert(key, value);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(Unique(std::marker::PhantomData))
+}
+
 /// A camlink model file.
 #[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -168,7 +196,7 @@ pub struct ModelFile {
     #[serde(default)]
     pub model: Option<ModelSection>,
     /// Named numbers usable in every numeric field and expression.
-    #[serde(default)]
+    #[serde(default, deserialize_with = "unique_keys")]
     pub parameters: BTreeMap<String, Num>,
     /// Points of the ground, the implicit fixed body named `ground`.
     #[serde(default)]
@@ -210,7 +238,7 @@ pub struct ModelSection {
 #[serde(deny_unknown_fields)]
 pub struct GroundSection {
     /// Named ground points, `name = [x, y]` in the global frame (m).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
 }
 
@@ -242,7 +270,7 @@ pub struct BodySpec {
     #[serde(default)]
     pub omega: Option<Num>,
     /// Named points, `name = [x, y]` in the body frame (m).
-    #[serde(default)]
+    #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
 }
 
@@ -769,7 +797,7 @@ pub struct AnalysisSection {
     /// Output step (s), > 0.
     #[serde(default)]
     pub step: Option<Num>,
-    /// Explicit output times (s), non-decreasing; instead of `t_end`/`step`.
+    /// Explicit output times (s), increasing; instead of `t_end`/`step`.
     #[serde(default)]
     pub times: Option<Vec<Num>>,
     /// Newton tolerance on the constraint residual; default 1e-10.

@@ -14,6 +14,7 @@ pub mod file;
 mod locate;
 mod resolve;
 
+use std::io::Read;
 use std::path::Path;
 
 pub use error::LoadError;
@@ -87,7 +88,7 @@ pub struct AnalysisSpec {
     pub t_end: Option<f64>,
     /// Output step (s).
     pub step: Option<f64>,
-    /// Explicit output times (s), non-decreasing; excludes `t_end`/`step`.
+    /// Explicit output times (s), increasing; excludes `t_end`/`step`.
     pub times: Option<Vec<f64>>,
     /// Newton tolerance on the constraint residual.
     pub tol: f64,
@@ -127,33 +128,49 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
     if meta.len() > MAX_FILE_SIZE {
-        return Err(too_large(&source, meta.len()));
+        return Err(too_large(&source, Some(meta.len())));
     }
-    let bytes =
-        std::fs::read(path).map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    // A device or a pipe reports no length: read at most one byte past the limit.
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(MAX_FILE_SIZE + 1).read_to_end(&mut bytes))
+        .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
+    if bytes.len() as u64 > MAX_FILE_SIZE {
+        return Err(too_large(&source, None));
+    }
     let text = String::from_utf8(bytes).map_err(|e| {
-        LoadError::file(
+        let valid = e.utf8_error().valid_up_to();
+        let before = String::from_utf8_lossy(&e.as_bytes()[..valid]);
+        at(
+            &before,
             &source,
-            format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),
+            Some(valid),
+            None,
+            format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
     load_str(&text, format, &source)
 }
 
-fn too_large(source: &str, len: u64) -> LoadError {
+fn too_large(source: &str, len: Option<u64>) -> LoadError {
+    let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,
-        format!("file is too large ({len} bytes; the limit is {MAX_FILE_SIZE} bytes)"),
+        format!("file is too large ({size}; the limit is {MAX_FILE_SIZE} bytes)"),
     )
 }
 
 /// Loads a model from text; `source` names it in errors (usually the file
 /// name), and data files it names (a spline's CSV points) are read relative
 /// to `source`'s directory.
+///
+/// A leading byte order mark (U+FEFF, written by some Windows editors) is
+/// skipped; positions in errors count from the character after it.
 pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
     if text.len() as u64 > MAX_FILE_SIZE {
-        return Err(too_large(source, text.len() as u64));
+        return Err(too_large(source, Some(text.len() as u64)));
     }
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let file = match format {
         Format::Toml => parse_toml(text, source)?,
         Format::Json => parse_json(text, source)?,
@@ -275,7 +292,8 @@ fn json_syntax(_text: &str, source: &str, e: &serde_json::Error) -> LoadError {
     LoadError {
         source: source.to_string(),
         line: known.then(|| e.line()),
-        column: known.then(|| e.column()),
+        // serde_json gives column 0 at the very start of a line.
+        column: known.then(|| e.column().max(1)),
         field: None,
         message,
     }

@@ -74,6 +74,8 @@ struct Ctx {
     curves: HashMap<String, curves::CurveEntry>,
     /// Directory that relative data file names are resolved against.
     base: PathBuf,
+    /// Body ids by name, ground included (a scan per reference is quadratic).
+    body_ids: HashMap<String, BodyId>,
 }
 
 /// Builds the model and analysis settings described by `file`.
@@ -91,6 +93,7 @@ pub(crate) fn resolve(
         joints: HashMap::new(),
         curves: HashMap::new(),
         base: base.to_path_buf(),
+        body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -204,6 +207,13 @@ fn is_identifier(s: &str) -> bool {
 fn check_name(name: &str, what: &str, path: &str) -> R<()> {
     if name.trim().is_empty() {
         return fail(path, format!("{what} name is empty"));
+    }
+    // Names become output channel names (CSV headers, column labels).
+    if name.chars().any(char::is_control) {
+        return fail(
+            path,
+            format!("{what} name '{name}' may not contain control characters (tabs, line breaks, escapes)"),
+        );
     }
     if name.contains('.') || name.contains('[') || name.contains(']') {
         return fail(
@@ -323,7 +333,8 @@ impl Ctx {
                 ],
                 points: self.points(&b.points, &format!("{path}.points"))?,
             };
-            self.model.add_body(body);
+            let id = self.model.add_body(body);
+            self.body_ids.insert(b.name.clone(), id);
         }
         if bodies.is_empty() {
             return fail(
@@ -336,8 +347,8 @@ impl Ctx {
 
     /// Resolves a body name.
     fn body(&self, name: &str, path: &str) -> R<BodyId> {
-        match self.model.body_id(name) {
-            Some(id) => Ok(id),
+        match self.body_ids.get(name) {
+            Some(&id) => Ok(id),
             None => fail(
                 path,
                 format!(
@@ -1032,8 +1043,11 @@ impl Ctx {
                 let mut out = Vec::with_capacity(list.len());
                 for (k, n) in list.iter().enumerate() {
                     let v = self.num(n, &format!("analysis.times[{k}]"))?;
-                    if out.last().is_some_and(|&last| v < last) {
-                        return fail(format!("analysis.times[{k}]"), "times must not decrease");
+                    if let Some(&last) = out.last().filter(|&&last| v <= last) {
+                        return fail(
+                            format!("analysis.times[{k}]"),
+                            format!("times must increase ({v} s follows {last} s)"),
+                        );
                     }
                     out.push(v);
                 }

@@ -585,7 +585,12 @@ fn cam_from_csv_points() {
 
 #[test]
 fn every_cam_and_slot_example_has_a_test() {
-    let this = include_str!("cam_examples.rs");
+    // The cam examples' dynamics are tested in cam_dynamics.rs.
+    let this = [
+        include_str!("cam_examples.rs"),
+        include_str!("cam_dynamics.rs"),
+    ]
+    .concat();
     for entry in std::fs::read_dir(examples()).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
         if (name.starts_with("cam_") || name.starts_with("slot_")) && name.ends_with(".toml") {

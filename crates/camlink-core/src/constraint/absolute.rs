@@ -71,6 +71,10 @@ impl Equations for AbsoluteCoord {
         [self.body, BodyId::GROUND]
     }
 
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        [self.s, x.on_j(self.s)]
+    }
+
     fn phi(&self, x: &Local, out: &mut Rows) {
         let value = match self.coord {
             Coord::X => point(x.q[0], self.s)[0],
@@ -107,6 +111,10 @@ impl Equations for AbsoluteCoord {
 }
 
 impl Equations for AbsoluteDistance {
+    fn driver_slope(&self, t: f64) -> f64 {
+        -2.0 * self.f.value(t)
+    }
+
     fn check_functions(&self, x: &Local) -> Result<(), String> {
         self.f.check(x.t)
     }
@@ -121,6 +129,10 @@ impl Equations for AbsoluteDistance {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body, BodyId::GROUND]
+    }
+
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s, self.ground_point]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

@@ -32,7 +32,7 @@
 
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::curve::{search, Carried, Curve};
-use crate::math::cross;
+use crate::math::{cross, V2};
 use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
@@ -69,6 +69,10 @@ impl Equations for CamFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        [self.curve_i.jet(x.own[0]).p, self.curve_j.jet(x.own[1]).p]
     }
 
     fn own_count(&self) -> usize {

@@ -253,6 +253,9 @@ mod tests {
         fn bodies(&self) -> [BodyId; 2] {
             self.0.bodies()
         }
+        fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
+            self.0.joint_points(x)
+        }
         fn phi(&self, x: &Local, out: &mut Rows) {
             self.0.phi(x, out)
         }

@@ -58,6 +58,10 @@ impl Equations for RevoluteRevolute {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
+    }
+
     fn phi(&self, x: &Local, out: &mut Rows) {
         let d = rel(x, self.s_i, self.s_j);
         *out = [dot(d, d) - self.length * self.length, 0.0, 0.0];
@@ -102,6 +106,10 @@ impl Equations for RevoluteTranslational {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        [self.s_i, x.on_j(self.s_i)]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

@@ -84,6 +84,11 @@ impl Equations for FlatFollower {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        let p = self.curve_i.jet(x.own[0]).p;
+        [p, x.on_j(p)]
+    }
+
     fn own_count(&self) -> usize {
         1
     }

@@ -113,6 +113,10 @@ impl Equations for Gear {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
+    }
+
     fn own_count(&self) -> usize {
         1
     }
@@ -208,6 +212,10 @@ impl Equations for RackPinion {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        [self.s_i, x.on_j(self.s_i)]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

@@ -12,6 +12,7 @@
 //!
 //! Adding a constraint is one new file and one line in [`constraints!`].
 
+use crate::math::{point, rot_t, sub, V2};
 use crate::model::BodyId;
 
 pub mod absolute;
@@ -50,6 +51,15 @@ pub struct Local {
     pub own_d: [f64; MAX_OWN],
 }
 
+impl Local {
+    /// A point of body i (`s_i`, body i frame) expressed in body j's frame,
+    /// at the current configuration (m).
+    pub fn on_j(&self, s_i: V2) -> V2 {
+        let (qi, qj) = (self.q[0], self.q[1]);
+        rot_t(qj[2], sub(point(qi, s_i), [qj[0], qj[1]]))
+    }
+}
+
 /// Jacobian blocks of one constraint: `body[k][r][c]` = ∂Φ_r/∂q_k,c for
 /// body k ∈ {i, j} and coordinate c ∈ {x, y, φ}; `own[r][c]` = ∂Φ_r/∂own_c.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -85,6 +95,15 @@ pub trait Equations {
     /// parameter) at `x`, naming the operation that fails.
     fn check_functions(&self, _x: &Local) -> Result<(), String> {
         Ok(())
+    }
+    /// Where the joint's reaction acts on bodies i and j, each in its own
+    /// body frame (m): the joint points, or the current contact point.
+    fn joint_points(&self, x: &Local) -> [V2; 2];
+    /// ∂Φ/∂f, how a driver's equation changes with the value of its
+    /// function f(t): −1 for Φ = g(q) − f(t), −2f for a distance driven
+    /// through Φ = dᵀd − f². Used to turn λ into a driver's effort.
+    fn driver_slope(&self, _t: f64) -> f64 {
+        -1.0
     }
     /// Φ.
     fn phi(&self, x: &Local, out: &mut Rows);
@@ -131,6 +150,12 @@ macro_rules! constraints {
             }
             fn check_functions(&self, x: &Local) -> Result<(), String> {
                 match self { $(Constraint::$variant(c) => c.check_functions(x),)* }
+            }
+            fn joint_points(&self, x: &Local) -> [V2; 2] {
+                match self { $(Constraint::$variant(c) => c.joint_points(x),)* }
+            }
+            fn driver_slope(&self, t: f64) -> f64 {
+                match self { $(Constraint::$variant(c) => c.driver_slope(t),)* }
             }
             fn own_names(&self) -> &'static [&'static str] {
                 match self { $(Constraint::$variant(c) => c.own_names(),)* }

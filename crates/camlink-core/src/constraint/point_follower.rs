@@ -79,6 +79,10 @@ impl Equations for PointFollower {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, x: &Local) -> [V2; 2] {
+        [self.s_i, x.on_j(self.s_i)]
+    }
+
     fn own_count(&self) -> usize {
         1
     }

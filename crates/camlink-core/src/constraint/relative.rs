@@ -157,6 +157,10 @@ impl Equations for RelativeCoord {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
+    }
+
     fn phi(&self, x: &Local, out: &mut Rows) {
         let f = self.f.value(x.t);
         let value = match self.coord {
@@ -209,6 +213,10 @@ impl Equations for RelativeCoord {
 }
 
 impl Equations for RelativeDistance {
+    fn driver_slope(&self, t: f64) -> f64 {
+        -2.0 * self.f.value(t)
+    }
+
     fn check_functions(&self, x: &Local) -> Result<(), String> {
         self.f.check(x.t)
     }
@@ -223,6 +231,10 @@ impl Equations for RelativeDistance {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

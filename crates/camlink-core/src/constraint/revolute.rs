@@ -32,6 +32,10 @@ impl Equations for Revolute {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
+    }
+
     fn phi(&self, x: &Local, out: &mut Rows) {
         let pi = point(x.q[0], self.s_i);
         let pj = point(x.q[1], self.s_j);

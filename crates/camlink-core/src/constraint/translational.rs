@@ -60,6 +60,10 @@ impl Equations for Translational {
         [self.body_i, self.body_j]
     }
 
+    fn joint_points(&self, _x: &Local) -> [V2; 2] {
+        [self.s_i, self.s_j]
+    }
+
     fn phi(&self, x: &Local, out: &mut Rows) {
         out[0] = projection_phi(x, 0, self.s_i, self.normal(), self.s_j);
         out[1] = x.q[1][2] - x.q[0][2] - self.angle;

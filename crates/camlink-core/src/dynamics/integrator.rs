@@ -37,6 +37,7 @@
 //! after a change of step would trigger needless rejections), rejects steps whose weighted norm exceeds 1 and
 //! changes h by (1/err)^{1/3}.
 
+use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project::{self, max_abs};
 use super::system::{Augmented, Coefficients, System};
@@ -156,6 +157,10 @@ impl<'m> Integrator<'m> {
             joints: Vec::new(),
             residual,
         };
+        // Forward dynamics inverts the mass matrix: every body needs mass.
+        if let Err(e) = model.check_mass_properties() {
+            return Err(fail(format!("{e}; forward dynamics needs it"), 0.0));
+        }
         if !(settings.step.is_finite() && settings.step > 0.0) {
             return Err(fail(
                 format!(
@@ -469,10 +474,12 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
+    let contacts = crate::contact::Contacts::new(model);
     let mut names = kinematics::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
+    let mut lift_off = LiftOffWatch::new(model, &names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&it.sys);
     let mut h_next = settings.step;
@@ -488,9 +495,10 @@ pub fn run(
             }
             it.advance_to(t, &mut h_next)?;
         }
-        output::kinematic(
+        kinematics::fill_outputs(
             model,
             &it.sys.asm,
+            &contacts,
             [&it.q, &it.qd, &it.qdd],
             points,
             &mut values[..nk],
@@ -505,6 +513,11 @@ pub fn run(
             &mut values[nk..],
         );
         sink.row(t, &values);
+        lift_off.observe(t, &values);
     }
-    Ok(it.summary.clone())
+    let mut summary = it.summary.clone();
+    for l in lift_off.finish() {
+        summary.warnings.push((l.start.time, l.message()));
+    }
+    Ok(summary)
 }

@@ -8,8 +8,11 @@
 //! Φ_qᵀ λ = Q(q, q̇, t) − M(q) q̈,
 //!
 //! one solve with the transposed Jacobian (Haug §6.5). Joint reactions and
-//! driver efforts follow from λ ([`super::reaction`]).
+//! driver efforts follow from λ ([`super::reaction`]), and so do the curve
+//! contacts' normal forces, whose negative intervals (lift-off) become
+//! warnings of the run summary ([`super::contact_force`]).
 
+use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::system::System;
 use crate::kinematics::{self, AnalysisError, PointOutput, Settings, Sink, Summary};
@@ -101,6 +104,7 @@ pub fn run(
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
+    let mut lift_off = LiftOffWatch::new(model, &names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&s.sys);
     let mut prev: Option<f64> = None;
@@ -127,7 +131,12 @@ pub fn run(
             &mut values[nk..],
         );
         sink.row(t, &values);
+        lift_off.observe(t, &values);
         prev = Some(t);
     }
-    Ok(s.kin.summary.clone())
+    let mut summary = s.kin.summary.clone();
+    for l in lift_off.finish() {
+        summary.warnings.push((l.start.time, l.message()));
+    }
+    Ok(summary)
 }

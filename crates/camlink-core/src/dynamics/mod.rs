@@ -10,12 +10,14 @@
 //! - point forces and torques, TSDA, RSDA, user callbacks, in [`force`];
 //! - assembly of M, Q and the augmented matrices, in [`system`];
 //! - consistent initial conditions, in [`project`];
-//! - joint reactions and driver efforts from λ, in [`reaction`], and the
-//!   output channels, in [`output`];
+//! - joint reactions and driver efforts from λ, in [`reaction`], the
+//!   normal force of curve contacts and follower lift-off, in
+//!   [`contact_force`], and the output channels, in [`output`];
 //! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
 //! - equilibrium, in [`statics`];
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
 
+pub mod contact_force;
 pub mod force;
 pub mod integrator;
 pub mod inverse;

@@ -5,24 +5,25 @@
 //! - per joint (not driver), the reaction on body i:
 //!   `<joint>.fx .fy .torque .fx_local .fy_local`, and on body j:
 //!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`
-//!   (see [`super::reaction`] for the conventions);
+//!   (see [`super::reaction`] for the conventions), then, for a curve
+//!   contact, `<joint>.normal_force .tangential_force` (see
+//!   [`super::contact_force`]);
 //! - per driver: `<driver>.effort .power`;
 //! - `energy.kinetic`, `energy.potential` (gravity and springs) and
 //!   `energy.total` (J);
 //! - `constraint.residual`, max |Φ| (m or rad), and
 //!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
 
+use super::contact_force::ContactForces;
 use super::reaction::{effort, reactions};
 use super::system::System;
-use crate::constraint::Equations;
-use crate::kinematics::PointOutput;
-use crate::math::{point, point_vel, rot, rot_d};
-use crate::model::{BodyId, Model};
+use crate::model::Model;
 
 /// Names of the dynamic channels (after the kinematic ones).
 pub fn channels(model: &Model) -> Vec<String> {
+    let contacts = ContactForces::new(model);
     let mut names = Vec::new();
-    for j in &model.joints {
+    for (k, j) in model.joints.iter().enumerate() {
         if j.driver {
             for c in ["effort", "power"] {
                 names.push(format!("{}.{c}", j.name));
@@ -33,6 +34,7 @@ pub fn channels(model: &Model) -> Vec<String> {
                     names.push(format!("{}.{c}{side}", j.name));
                 }
             }
+            names.extend(contacts.channel_names(model, k));
         }
     }
     for c in [
@@ -51,6 +53,7 @@ pub fn channels(model: &Model) -> Vec<String> {
 pub struct Scratch {
     phi: Vec<f64>,
     nu: Vec<f64>,
+    contacts: ContactForces,
 }
 
 impl Scratch {
@@ -58,6 +61,7 @@ impl Scratch {
         Scratch {
             phi: vec![0.0; s.m()],
             nu: vec![0.0; s.m()],
+            contacts: ContactForces::new(s.model),
         }
     }
 }
@@ -83,7 +87,8 @@ pub fn fill(
             out[k + 1] = p;
             k += 2;
         } else {
-            for r in reactions(model, asm, j, q, lambda, t) {
+            let rs = reactions(model, asm, j, q, lambda, t);
+            for r in rs {
                 out[k..k + 5].copy_from_slice(&[
                     r.force[0],
                     r.force[1],
@@ -92,6 +97,11 @@ pub fn fill(
                     r.force_local[1],
                 ]);
                 k += 5;
+            }
+            if w.contacts.has(j) {
+                let nt = w.contacts.resolve(model, asm, j, q, &rs);
+                out[k..k + 2].copy_from_slice(&nt);
+                k += 2;
             }
         }
     }
@@ -107,48 +117,4 @@ pub fn fill(
     asm.jacobian(model, q, t, |r, c, v| nu[r] += v * qd[c]);
     let vel = w.nu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     out[k..k + 5].copy_from_slice(&[kin, pot, kin + pot, res, vel]);
-}
-
-/// Fills the kinematic channels ([`crate::kinematics::channels`]) from
-/// (q, q̇, q̈).
-pub fn kinematic(
-    model: &Model,
-    asm: &crate::assembly::Assembly,
-    state: [&[f64]; 3],
-    points: &[PointOutput],
-    out: &mut [f64],
-) {
-    let mut k = 0;
-    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
-        match asm.body_col(id.0) {
-            Some(c) => [v[c], v[c + 1], v[c + 2]],
-            None => [0.0; 3],
-        }
-    };
-    for (id, _) in model.moving_bodies() {
-        for v in state {
-            out[k..k + 3].copy_from_slice(&body(v, id));
-            k += 3;
-        }
-    }
-    for p in points {
-        let [q, qd, qdd] = state.map(|v| body(v, p.body));
-        let r = point(q, p.s);
-        let v = point_vel(q, qd, p.s);
-        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
-        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
-        let acc = [
-            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
-            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
-        ];
-        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
-        k += 6;
-    }
-    for (j, joint) in model.joints.iter().enumerate() {
-        let c = asm.own_col(j);
-        for o in 0..joint.constraint.own_count() {
-            out[k] = state[0][c + o];
-            k += 1;
-        }
-    }
 }

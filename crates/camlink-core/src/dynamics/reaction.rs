@@ -29,9 +29,8 @@
 //! the force an actuator pushes with along its coordinate.
 
 use crate::assembly::Assembly;
-use crate::constraint::absolute::AbsoluteCoord;
-use crate::constraint::{Constraint, Equations, Jac, Local};
-use crate::math::{cross, point, rot, rot_t, sub, V2};
+use crate::constraint::{Equations, Jac};
+use crate::math::{cross, point, rot, rot_t, V2};
 use crate::model::Model;
 
 /// The load a joint exerts on one of its bodies.
@@ -45,31 +44,6 @@ pub struct Reaction {
     pub torque: f64,
     /// The joint point P in the global frame (m).
     pub point: V2,
-}
-
-/// The joint points s'_P on bodies i and j of a constraint, in their frames.
-pub fn joint_points(c: &Constraint, x: &Local) -> [V2; 2] {
-    use Constraint as C;
-    // The global point of body i's side expressed in body j's frame.
-    let on_j = |s_i: V2| rot_t(x.q[1][2], sub(point(x.q[0], s_i), [x.q[1][0], x.q[1][1]]));
-    match c {
-        C::Revolute(r) => [r.s_i, r.s_j],
-        C::AbsoluteCoord(AbsoluteCoord { s, .. }) => [*s, on_j(*s)],
-        C::AbsoluteDistance(a) => [a.s, a.ground_point],
-        C::RelativeCoord(r) => [r.s_i, r.s_j],
-        C::RelativeDistance(r) => [r.s_i, r.s_j],
-        C::Translational(r) => [r.s_i, r.s_j],
-        C::RevoluteRevolute(r) => [r.s_i, r.s_j],
-        C::RevoluteTranslational(r) => [r.s_i, on_j(r.s_i)],
-        C::Gear(g) => [g.s_i, g.s_j],
-        C::RackPinion(g) => [g.s_i, on_j(g.s_i)],
-        C::CamFollower(f) => [f.curve_i.jet(x.own[0]).p, f.curve_j.jet(x.own[1]).p],
-        C::FlatFollower(f) => {
-            let p = f.curve_i.jet(x.own[0]).p;
-            [p, on_j(p)]
-        }
-        C::PointFollower(f) => [f.s_i, on_j(f.s_i)],
-    }
 }
 
 /// The reactions of joint `j` on its bodies i and j at q, from its
@@ -87,7 +61,7 @@ pub fn reactions(
     let mut jac = Jac::default();
     c.jacobian(&x, &mut jac);
     let lam = &lambda[asm.rows_of(model, j)];
-    let pts = joint_points(c, &x);
+    let pts = c.joint_points(&x);
     let mut out = [Reaction::default(); 2];
     for (b, o) in out.iter_mut().enumerate() {
         // Q_b = −Φ_{q_b}ᵀ λ.
@@ -109,17 +83,8 @@ pub fn reactions(
     out
 }
 
-/// ∂Φ/∂f of a driver: −2f for a distance driver, −1 for the others.
-pub fn driver_slope(c: &Constraint, t: f64) -> f64 {
-    match c {
-        Constraint::AbsoluteDistance(d) => -2.0 * d.f.value(t),
-        Constraint::RelativeDistance(d) => -2.0 * d.f.value(t),
-        _ => -1.0,
-    }
-}
-
 /// (effort E, power P) of driver `j`, from its multiplier λ_j and ν_j.
 pub fn effort(model: &Model, j: usize, lambda_j: f64, nu_j: f64, t: f64) -> (f64, f64) {
     let c = &model.joints[j].constraint;
-    (lambda_j * driver_slope(c, t), -lambda_j * nu_j)
+    (lambda_j * c.driver_slope(t), -lambda_j * nu_j)
 }

@@ -179,15 +179,17 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let e = solve(model, t, settings)?;
     let s = System::new(model);
+    let contacts = crate::contact::Contacts::new(model);
     let mut names = kinematics::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let zeros = vec![0.0; s.n()];
-    output::kinematic(
+    kinematics::fill_outputs(
         model,
         &s.asm,
+        &contacts,
         [&e.q, &zeros, &zeros],
         points,
         &mut values[..nk],

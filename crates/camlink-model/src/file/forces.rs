@@ -85,4 +85,16 @@ pub enum ForceSpec {
         #[serde(default)]
         actuator: Option<Num>,
     },
+    /// Viscous friction in a revolute or translational joint, named by
+    /// `joint`: a torque −c θ̇ against the relative turning of a revolute
+    /// (an RSDA with only damping), a force −c ṡ against the sliding of a
+    /// translational joint, acting at its point on body j.
+    ViscousFriction {
+        #[serde(default)]
+        name: Option<String>,
+        /// The revolute or translational joint.
+        joint: String,
+        /// c, ≥ 0: N·m·s/rad for a revolute, N·s/m for a translational.
+        damping: Num,
+    },
 }

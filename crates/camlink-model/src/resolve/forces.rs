@@ -2,12 +2,14 @@
 
 use camlink_core::dynamics::force::point::{PointForce, Torque};
 use camlink_core::dynamics::force::rsda::Rsda;
+use camlink_core::dynamics::force::translational_damper::TranslationalDamper;
 use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::Force;
 use camlink_core::math::{norm, sub};
 use camlink_core::TimeFn;
 
-use super::{check_name, fail, Ctx, R};
+use super::{check_name, fail, Ctx, JointInfo, R};
+use crate::error::did_you_mean;
 use crate::file::{ForceSpec, Num};
 
 impl Ctx {
@@ -118,6 +120,52 @@ impl Ctx {
                 (
                     self.force_name(name.as_ref(), format!("rsda_{k}"), p)?,
                     kind.into(),
+                )
+            }
+            ForceSpec::ViscousFriction {
+                name,
+                joint,
+                damping,
+            } => {
+                let jp = format!("{p}.joint");
+                let Some(info) = self.joints.get(joint).cloned() else {
+                    return fail(
+                        jp,
+                        format!(
+                            "no joint named '{joint}'{}",
+                            did_you_mean(joint, self.joints.keys().map(String::as_str))
+                        ),
+                    );
+                };
+                let c = self.non_negative(Some(damping), 0.0, &format!("{p}.damping"))?;
+                let kind = match info {
+                    JointInfo::Revolute { bi, bj, .. } => Rsda {
+                        body_i: bi,
+                        body_j: bj,
+                        stiffness: 0.0,
+                        free_angle: 0.0,
+                        damping: c,
+                        actuator: TimeFn::Const(0.0),
+                    }
+                    .into(),
+                    JointInfo::Translational { bi, v_i, bj, s_j, .. } => {
+                        match TranslationalDamper::new(bi, v_i, bj, s_j, c) {
+                            Some(d) => d.into(),
+                            None => return fail(jp, "the joint's axis is zero"),
+                        }
+                    }
+                    JointInfo::Other(kind) => {
+                        return fail(
+                            jp,
+                            format!(
+                                "viscous friction acts in a revolute or translational joint;                                  '{joint}' is a {kind} joint"
+                            ),
+                        )
+                    }
+                };
+                (
+                    self.force_name(name.as_ref(), format!("viscous_friction_{k}"), p)?,
+                    kind,
                 )
             }
         };

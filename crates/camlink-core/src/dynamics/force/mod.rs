@@ -27,6 +27,7 @@ use crate::model::BodyId;
 pub mod callback;
 pub mod point;
 pub mod rsda;
+pub mod translational_damper;
 pub mod tsda;
 
 /// Generalized forces (F_x, F_y, n) on bodies i and j (N, N, N·m).
@@ -117,6 +118,7 @@ forces! {
     Torque(point::Torque),
     Tsda(tsda::Tsda),
     Rsda(rsda::Rsda),
+    TranslationalDamper(translational_damper::TranslationalDamper),
     Callback(callback::Callback),
 }
 

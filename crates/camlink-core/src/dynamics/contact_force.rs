@@ -1,0 +1,500 @@
+//! Contact forces of the curve contacts from λ, and follower lift-off.
+//!
+//! A curve contact's equations act on its bodies through −Φ_qᵀλ like any
+//! joint's ([`super::reaction`]); F_j, the force the contact exerts on
+//! body j (N, global frame), splits along the common normal and tangent at
+//! the contact point:
+//!
+//! - `<joint>.normal_force` N (N): positive when the bodies press on each
+//!   other (compression: the cam pushes the follower), negative when the
+//!   contact would have to pull them together;
+//! - `<joint>.tangential_force` T (N): along the unit tangent of C_i in the
+//!   direction of increasing α_i (of the face along u′_j for a flat-faced
+//!   follower, of the slot for a pin in a slot). The contacts are
+//!   frictionless, so T is zero up to rounding: a check of λ.
+//!
+//! Which side is "pressing" comes from the material side of the curves. A
+//! closed curve (every polar profile, a closed parametric curve) bounds its
+//! body's material, with outward unit normal n_k = σ_k (−g_k⊥)/|g_k|,
+//! σ_k = +1 for a counterclockwise curve, −1 for a clockwise one
+//! ([`crate::design::orientation`]). Then:
+//!
+//! - cam–follower, both curves closed, touching from outside
+//!   (n_i · n_j < 0): N = F_j · n_i, the force on j pointing out of i;
+//!   one inside the other (n_i · n_j > 0: a roller in a ring groove): the
+//!   curve of smaller |κ| encloses the other and is a hole in its body, and
+//!   N = F_j · n_j when C_j is that hole, −F_j · n_j when C_i is;
+//! - cam–follower with one closed curve: that curve is solid,
+//!   N = F_j · n_i or N = −F_j · n_j;
+//! - cam–flat-faced follower: N = F_j · n_i, the force on the face body
+//!   pointing out of the cam;
+//! - when no closed curve is present, the solid side of C_i is the side of
+//!   the mean of its sampled points (as the flat-faced follower's start
+//!   search assumes);
+//! - point–follower (pin in a slot): a slot has two walls and pushes either
+//!   way; N = F_i · n_s, the force on the pin along the slot's left normal
+//!   n_s = g_j⊥/|g_j|, so its sign tells which wall carries the pin.
+//!
+//! The contacts are bilateral: the equations hold the follower on its cam
+//! whatever the sign of N. A physical cam can only push, so where
+//! N < 0 a real follower would leave the cam (jump, or float): the motion
+//! computed past that point is not what the machine does. [`LiftOffWatch`]
+//! reports every interval of negative normal force of a cam contact (not of
+//! a pin in a slot), with its start and end times and the cam angle there.
+
+use super::reaction::Reaction;
+use crate::assembly::Assembly;
+use crate::constraint::{Constraint, Equations};
+use crate::curve::Curve;
+use crate::design::orientation;
+use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
+use crate::model::{BodyId, Model};
+
+/// Samples of a curve for the mean point of an open curve.
+const MEAN_SAMPLES: usize = 64;
+
+/// How one contact joint's normal is oriented.
+#[derive(Clone, Debug)]
+struct Item {
+    joint: usize,
+    /// σ_i, σ_j: orientations of closed C_i and C_j (`None`: open, or no
+    /// curve on that side).
+    sides: [Option<f64>; 2],
+    /// Mean of C_i's sampled points, in body i's frame.
+    mean_i: V2,
+    /// The cam body (the body whose angle lift-off reports), for a cam
+    /// contact; `None` for a pin in a slot.
+    cam: Option<BodyId>,
+}
+
+/// The curve contacts of a model (not driven), found once.
+#[derive(Clone, Debug, Default)]
+pub struct ContactForces {
+    items: Vec<Item>,
+}
+
+/// (normal N, tangential T) force of a contact (N).
+pub type NormalTangential = [f64; 2];
+
+impl ContactForces {
+    pub fn new(model: &Model) -> Self {
+        let items = model
+            .joints
+            .iter()
+            .enumerate()
+            .filter(|(_, j)| !j.driver)
+            .filter_map(|(k, j)| {
+                let mean = |c: &Curve| {
+                    let (s0, s1) = c.range();
+                    let n = MEAN_SAMPLES as f64;
+                    (0..MEAN_SAMPLES).fold([0.0; 2], |m, i| {
+                        let p = c.jet(s0 + (s1 - s0) * i as f64 / n).p;
+                        [m[0] + p[0] / n, m[1] + p[1] / n]
+                    })
+                };
+                let bi = j.constraint.bodies()[0];
+                let (sides, mean_i, cam) = match &j.constraint {
+                    Constraint::CamFollower(c) => (
+                        [orientation(&c.curve_i), orientation(&c.curve_j)],
+                        mean(&c.curve_i),
+                        Some(cam_body(model, &j.constraint)),
+                    ),
+                    Constraint::FlatFollower(c) => {
+                        ([orientation(&c.curve_i), None], mean(&c.curve_i), Some(bi))
+                    }
+                    Constraint::PointFollower(_) => ([None; 2], [0.0; 2], None),
+                    _ => return None,
+                };
+                Some(Item {
+                    joint: k,
+                    sides,
+                    mean_i,
+                    cam,
+                })
+            })
+            .collect();
+        ContactForces { items }
+    }
+
+    /// True when joint `j` is a curve contact with force channels.
+    pub fn has(&self, j: usize) -> bool {
+        self.items.iter().any(|it| it.joint == j)
+    }
+
+    /// The channel names of joint `j` (empty when it is not a contact).
+    pub fn channel_names(&self, model: &Model, j: usize) -> Vec<String> {
+        if !self.has(j) {
+            return Vec::new();
+        }
+        let name = &model.joints[j].name;
+        vec![
+            format!("{name}.normal_force"),
+            format!("{name}.tangential_force"),
+        ]
+    }
+
+    /// (N, T) of contact joint `j` at q from its reactions `r` (on bodies
+    /// i and j, [`super::reaction::reactions`]).
+    pub fn resolve(
+        &self,
+        model: &Model,
+        asm: &Assembly,
+        j: usize,
+        q: &[f64],
+        r: &[Reaction; 2],
+    ) -> NormalTangential {
+        let Some(it) = self.items.iter().find(|it| it.joint == j) else {
+            return [f64::NAN; 2];
+        };
+        let x = asm.local(model, j, q, &[], 0.0);
+        let fj = r[1].force;
+        let unit = |v: V2| scale(1.0 / norm(v), v);
+        // Outward normal of a closed curve with orientation σ, tangent g.
+        let outward = |sigma: f64, g: V2| scale(-sigma, unit(perp(g)));
+        match &model.joints[j].constraint {
+            Constraint::CamFollower(c) => {
+                let ji = c.curve_i.jet(x.own[0]);
+                let jj = c.curve_j.jet(x.own[1]);
+                let gi = rot(x.q[0][2], ji.d1);
+                let gj = rot(x.q[1][2], jj.d1);
+                let t = unit(gi);
+                let n = match it.sides {
+                    [Some(si), Some(sj)] => {
+                        let (ni, nj) = (outward(si, gi), outward(sj, gj));
+                        if dot(ni, nj) <= 0.0 {
+                            ni
+                        } else if c.curve_i.curvature(x.own[0]).abs()
+                            < c.curve_j.curvature(x.own[1]).abs()
+                        {
+                            // C_i is a hole around C_j.
+                            scale(-1.0, nj)
+                        } else {
+                            nj
+                        }
+                    }
+                    [Some(si), None] => outward(si, gi),
+                    [None, Some(sj)] => scale(-1.0, outward(sj, gj)),
+                    [None, None] => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
+                };
+                [dot(fj, n), dot(fj, t)]
+            }
+            Constraint::FlatFollower(c) => {
+                let ji = c.curve_i.jet(x.own[0]);
+                let gi = rot(x.q[0][2], ji.d1);
+                let n = match it.sides[0] {
+                    Some(si) => outward(si, gi),
+                    None => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
+                };
+                [dot(fj, n), dot(fj, rot(x.q[1][2], c.u_j))]
+            }
+            Constraint::PointFollower(c) => {
+                let g = unit(rot(x.q[1][2], c.curve_j.jet(x.own[0]).d1));
+                let fi = r[0].force;
+                [dot(fi, perp(g)), dot(fi, g)]
+            }
+            _ => [f64::NAN; 2],
+        }
+    }
+}
+
+/// The unit normal to tangent `g` at `p` pointing away from `inside`.
+fn away_from(inside: V2, p: V2, g: V2) -> V2 {
+    let n = perp(g);
+    let n = scale(1.0 / norm(n), n);
+    if dot(n, sub(p, inside)) < 0.0 {
+        scale(-1.0, n)
+    } else {
+        n
+    }
+}
+
+/// The cam of a cam–follower pair: the body that is not the follower
+/// ([`crate::contact::follower_body`]).
+fn cam_body(model: &Model, c: &Constraint) -> BodyId {
+    let [bi, bj] = c.bodies();
+    match crate::contact::follower_body(model, c) {
+        Some(f) if f == bi => bj,
+        _ => bi,
+    }
+}
+
+/// A time and the cam angle then.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// t (s).
+    pub time: f64,
+    /// φ of the cam body (rad); 0 for a cam fixed to the ground.
+    pub cam_angle: f64,
+}
+
+/// An interval where a cam contact's normal force is negative: the
+/// follower would leave the cam.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LiftOff {
+    pub joint: String,
+    /// The cam body's name.
+    pub cam: String,
+    /// Where N falls through zero: interpolated linearly between the last
+    /// output time with N ≥ 0 and the first with N < 0 (the first output
+    /// time when the run starts with N < 0).
+    pub start: Crossing,
+    /// Where N rises through zero again, interpolated likewise; `None`
+    /// when the run ends with N < 0.
+    pub end: Option<Crossing>,
+    /// The least normal force in the interval (N, negative) and where.
+    pub least: f64,
+    pub least_at: Crossing,
+}
+
+impl LiftOff {
+    /// The report, as the run summary's warning:
+    ///
+    /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
+    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
+    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
+    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
+    ///
+    /// The degrees are the cam angle folded into [0°, 360°).
+    pub fn message(&self) -> String {
+        let at = |c: &Crossing| {
+            format!(
+                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
+                c.time,
+                c.cam_angle,
+                c.cam_angle.to_degrees().rem_euclid(360.0)
+            )
+        };
+        let end = match &self.end {
+            Some(e) => format!("to {}", at(e)),
+            None => "to the end of the run".to_string(),
+        };
+        format!(
+            "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
+             least {:.4} N at {}",
+            self.joint,
+            self.cam,
+            at(&self.start),
+            end,
+            self.least,
+            at(&self.least_at)
+        )
+    }
+}
+
+/// Relative size, against the largest |N| seen so far, under which a
+/// negative normal force counts as zero (rounding, not lift-off).
+pub const LIFT_OFF_TOL: f64 = 1e-9;
+
+/// One watched cam contact.
+#[derive(Clone, Debug)]
+struct Watched {
+    joint: String,
+    cam: String,
+    /// Indices of `<joint>.normal_force` and of `<cam>.phi` in a row.
+    n: usize,
+    phi: Option<usize>,
+    /// The previous sample (t, N, φ).
+    prev: Option<(f64, f64, f64)>,
+    /// Largest |N| so far.
+    scale: f64,
+    open: Option<LiftOff>,
+}
+
+/// Finds the lift-off intervals of every cam contact (cam–follower and
+/// cam–flat-faced follower) in a stream of output rows.
+#[derive(Clone, Debug, Default)]
+pub struct LiftOffWatch {
+    watched: Vec<Watched>,
+    /// The intervals closed so far.
+    pub found: Vec<LiftOff>,
+}
+
+impl LiftOffWatch {
+    /// Watches the cam contacts of `model` in rows with channels `names`
+    /// (which hold `<joint>.normal_force` and the cam's `<body>.phi`).
+    pub fn new(model: &Model, names: &[String]) -> Self {
+        let cf = ContactForces::new(model);
+        let find = |s: String| names.iter().position(|c| *c == s);
+        let watched = cf
+            .items
+            .iter()
+            .filter_map(|it| {
+                let cam = it.cam?;
+                let joint = model.joints[it.joint].name.clone();
+                let cam_name = model.body(cam).name.clone();
+                let n = find(format!("{joint}.normal_force"))?;
+                let phi = find(format!("{cam_name}.phi"));
+                Some(Watched {
+                    joint,
+                    cam: cam_name,
+                    n,
+                    phi,
+                    prev: None,
+                    scale: 0.0,
+                    open: None,
+                })
+            })
+            .collect();
+        LiftOffWatch {
+            watched,
+            found: Vec::new(),
+        }
+    }
+
+    /// Takes one output row at time t.
+    pub fn observe(&mut self, t: f64, row: &[f64]) {
+        for w in &mut self.watched {
+            let n = row[w.n];
+            let phi = w.phi.map_or(0.0, |k| row[k]);
+            w.scale = w.scale.max(n.abs());
+            let negative = n < -LIFT_OFF_TOL * w.scale;
+            // The zero of N between the previous sample and this one.
+            let cross = |prev: Option<(f64, f64, f64)>| match prev {
+                Some((t0, n0, p0)) if n0 != n => {
+                    let s = (n0 / (n0 - n)).clamp(0.0, 1.0);
+                    Crossing {
+                        time: t0 + s * (t - t0),
+                        cam_angle: p0 + s * (phi - p0),
+                    }
+                }
+                _ => Crossing {
+                    time: t,
+                    cam_angle: phi,
+                },
+            };
+            let here = Crossing {
+                time: t,
+                cam_angle: phi,
+            };
+            match (&mut w.open, negative) {
+                (None, true) => {
+                    w.open = Some(LiftOff {
+                        joint: w.joint.clone(),
+                        cam: w.cam.clone(),
+                        start: cross(w.prev),
+                        end: None,
+                        least: n,
+                        least_at: here,
+                    });
+                }
+                (Some(l), true) => {
+                    if n < l.least {
+                        l.least = n;
+                        l.least_at = here;
+                    }
+                }
+                (Some(_), false) => {
+                    let mut l = w.open.take().expect("open interval");
+                    l.end = Some(cross(w.prev));
+                    self.found.push(l);
+                }
+                (None, false) => {}
+            }
+            w.prev = Some((t, n, phi));
+        }
+    }
+
+    /// Every interval found, those still open at the end of the run last
+    /// (with no end).
+    pub fn finish(mut self) -> Vec<LiftOff> {
+        for w in &mut self.watched {
+            if let Some(l) = w.open.take() {
+                self.found.push(l);
+            }
+        }
+        self.found
+    }
+}
+
+/// The lift-off intervals in a finished table of dynamic results.
+pub fn lift_off(model: &Model, table: &crate::kinematics::Table) -> Vec<LiftOff> {
+    let mut w = LiftOffWatch::new(model, &table.channels);
+    let width = table.channels.len().max(1);
+    for (t, row) in table.t.iter().zip(table.values.chunks(width)) {
+        w.observe(*t, row);
+    }
+    w.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A watch over rows (N, φ).
+    fn watch() -> LiftOffWatch {
+        LiftOffWatch {
+            watched: vec![Watched {
+                joint: "bucket".into(),
+                cam: "cam".into(),
+                n: 0,
+                phi: Some(1),
+                prev: None,
+                scale: 0.0,
+                open: None,
+            }],
+            found: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn intervals_start_and_end_at_interpolated_zeros() {
+        let mut w = watch();
+        // N = 1, −1, −3, 1, 2 at t = 0..4, φ = 10 t.
+        for (k, n) in [1.0, -1.0, -3.0, 1.0, 2.0].into_iter().enumerate() {
+            let t = k as f64;
+            w.observe(t, &[n, 10.0 * t]);
+        }
+        let found = w.finish();
+        assert_eq!(found.len(), 1);
+        let l = &found[0];
+        assert_eq!(
+            l.start,
+            Crossing {
+                time: 0.5,
+                cam_angle: 5.0
+            }
+        );
+        assert_eq!(
+            l.end,
+            Some(Crossing {
+                time: 2.75,
+                cam_angle: 27.5
+            })
+        );
+        assert_eq!((l.least, l.least_at.time), (-3.0, 2.0));
+        let m = l.message();
+        assert!(
+            m.starts_with("bucket: normal force < 0, the follower would leave cam 'cam'"),
+            "{m}"
+        );
+        assert!(
+            m.contains("from t = 0.500000 s (cam angle 5.0000 rad, 286.5°)"),
+            "{m}"
+        );
+        assert!(m.contains("to t = 2.750000 s"), "{m}");
+    }
+
+    #[test]
+    fn rounding_is_not_lift_off_and_an_open_interval_has_no_end() {
+        let mut w = watch();
+        w.observe(0.0, &[100.0, 0.0]);
+        w.observe(1.0, &[-1e-8, 0.0]);
+        w.observe(2.0, &[50.0, 0.0]);
+        assert!(w.found.is_empty());
+        // Starts negative: the interval starts at the first sample.
+        let mut w = watch();
+        w.observe(0.0, &[-2.0, 0.3]);
+        w.observe(1.0, &[-1.0, 0.4]);
+        let found = w.finish();
+        assert_eq!(found.len(), 1);
+        assert_eq!(
+            found[0].start,
+            Crossing {
+                time: 0.0,
+                cam_angle: 0.3
+            }
+        );
+        assert_eq!(found[0].end, None);
+        assert!(found[0].message().contains("to the end of the run"));
+    }
+}

@@ -1,0 +1,4 @@
+//! cargo-fuzz target: see [`camlink_fuzz::expr`] and fuzz/README.md.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz::expr(data));

@@ -1,0 +1,4 @@
+//! cargo-fuzz target: see [`camlink_fuzz::load_toml`] and fuzz/README.md.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz::load_toml(data));
