@@ -128,17 +128,16 @@ fn own_rates(s: &System, q: &[f64], qd: &mut [f64], t: f64) {
         // r = ν − Φ_bodies q̇_bodies, then the normal equations in α̇.
         let mut ata = [[0.0; MAX_OWN]; MAX_OWN];
         let mut atr = [0.0; MAX_OWN];
-        for r in 0..c.rows() {
-            let mut res = nu[r];
-            for b in 0..2 {
-                for d in 0..3 {
-                    res -= jac.body[b][r][d] * x.qd[b][d];
-                }
+        for (r, &nu_r) in nu.iter().enumerate().take(c.rows()) {
+            let mut res = nu_r;
+            for (block, qd_b) in jac.body.iter().zip(&x.qd) {
+                res -= block[r].iter().zip(qd_b).map(|(j, v)| j * v).sum::<f64>();
             }
-            for a in 0..k {
-                atr[a] += jac.own[r][a] * res;
-                for b in 0..k {
-                    ata[a][b] += jac.own[r][a] * jac.own[r][b];
+            let own = &jac.own[r][..k];
+            for (a, &ja) in own.iter().enumerate() {
+                atr[a] += ja * res;
+                for (b, &jb) in own.iter().enumerate() {
+                    ata[a][b] += ja * jb;
                 }
             }
         }
