@@ -208,9 +208,12 @@ def _cmd_check(args: argparse.Namespace) -> int:
         print(f"redundant    {red['equation']}" + (f" = {deps}" if deps else ""))
     dof = r["dof"]
     if dof == 0:
-        verdict = "fully driven: ready for kinematic analysis"
+        verdict = "fully driven: ready for kinematics and inverse dynamics"
     else:
-        verdict = f"{dof} free motion{'s' if dof != 1 else ''}: add {dof} driver{'s' if dof != 1 else ''} for kinematics"
+        verdict = (
+            f"{dof} free motion{'s' if dof != 1 else ''}: ready for dynamics and equilibrium; "
+            f"add {dof} driver{'s' if dof != 1 else ''} for kinematics"
+        )
     print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
