@@ -1014,7 +1014,12 @@ impl Ctx {
             ("h", a.h.is_some(), dynamics, "dynamics"),
             ("rho_inf", a.rho_inf.is_some(), dynamics, "dynamics"),
             ("adaptive", a.adaptive.is_some(), dynamics, "dynamics"),
-            ("projection_tol", a.projection_tol.is_some(), dynamics, "dynamics"),
+            (
+                "projection_tol",
+                a.projection_tol.is_some(),
+                dynamics,
+                "dynamics",
+            ),
             ("atol", a.atol.is_some(), adaptive, "dynamics"),
             ("rtol", a.rtol.is_some(), adaptive, "dynamics"),
             ("h_min", a.h_min.is_some(), adaptive, "dynamics"),
@@ -1161,7 +1166,10 @@ impl Ctx {
                 tols[k] = v;
             }
             if tols == [0.0, 0.0] {
-                return fail("analysis.atol", "atol and rtol are both 0: no step would pass");
+                return fail(
+                    "analysis.atol",
+                    "atol and rtol are both 0: no step would pass",
+                );
             }
             let h_min = positive(a.h_min.as_ref(), Some(DynamicsSpec::DEFAULT_H_MIN), "h_min")?
                 .unwrap_or(DynamicsSpec::DEFAULT_H_MIN);

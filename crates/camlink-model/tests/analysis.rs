@@ -47,7 +47,10 @@ fn dynamics_settings_and_defaults() {
     assert_eq!(a.kind, AnalysisType::Dynamics);
     // The integrator's own defaults; h follows the output step, at most 1 ms.
     let s = a.integrator_settings();
-    assert_eq!((s.step, s.rho_inf, s.tol, s.max_iter), (1e-3, 0.8, 1e-6, 12));
+    assert_eq!(
+        (s.step, s.rho_inf, s.tol, s.max_iter),
+        (1e-3, 0.8, 1e-6, 12)
+    );
     assert_eq!(s.adaptive, None);
     assert_eq!((a.tol, a.max_iter), (1e-6, 12));
 
@@ -75,7 +78,9 @@ fn dynamics_settings_and_defaults() {
 
 #[test]
 fn equilibrium_takes_a_time() {
-    let a = with_analysis("type = \"equilibrium\"\ntime = 0.5").unwrap().analysis;
+    let a = with_analysis("type = \"equilibrium\"\ntime = 0.5")
+        .unwrap()
+        .analysis;
     assert_eq!((a.kind, a.time), (AnalysisType::Equilibrium, 0.5));
     assert_eq!((a.tol, a.max_iter), (1e-10, 100));
     assert_eq!(AnalysisSpec::default().time, 0.0);
@@ -102,13 +107,19 @@ fn keys_that_do_not_fit_the_type_are_errors() {
         "{e}"
     );
     let e = error("type = \"statics\"");
-    assert!(e.contains("analysis.type") && e.contains("equilibrium"), "{e}");
+    assert!(
+        e.contains("analysis.type") && e.contains("equilibrium"),
+        "{e}"
+    );
 }
 
 #[test]
 fn bad_dynamics_values_are_errors() {
     let e = error("type = \"dynamics\"\nrho_inf = 1.5");
-    assert!(e.contains("analysis.rho_inf: rho_inf must be between 0 and 1 (1.5)"), "{e}");
+    assert!(
+        e.contains("analysis.rho_inf: rho_inf must be between 0 and 1 (1.5)"),
+        "{e}"
+    );
     let e = error("type = \"dynamics\"\nh = 0");
     assert!(e.contains("analysis.h: h must be positive (0)"), "{e}");
     let e = error("type = \"dynamics\"\nadaptive = true\natol = 0");

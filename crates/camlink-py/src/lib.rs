@@ -17,7 +17,9 @@ use camlink_core::diagnose::diagnose;
 use camlink_core::dynamics::force::callback::Callback;
 use camlink_core::dynamics::integrator::{self, Adaptive};
 use camlink_core::dynamics::{inverse, statics, Force};
-use camlink_core::kinematics::{self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary};
+use camlink_core::kinematics::{
+    self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
+};
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded};
 use numpy::ndarray::Array2;
@@ -260,11 +262,16 @@ impl Model {
     fn with_callback_force(&self, name: String, body: &str, f: Py<PyAny>) -> PyResult<Model> {
         guard(|| {
             let model = &self.loaded.model;
-            let id = model.body_id(body).filter(|id| !id.is_ground()).ok_or_else(|| {
-                ModelError::new_err(format!("force '{name}': no moving body named '{body}'"))
-            })?;
+            let id = model
+                .body_id(body)
+                .filter(|id| !id.is_ground())
+                .ok_or_else(|| {
+                    ModelError::new_err(format!("force '{name}': no moving body named '{body}'"))
+                })?;
             if model.forces.iter().any(|x| x.name == name) {
-                return Err(ModelError::new_err(format!("duplicate force name '{name}'")));
+                return Err(ModelError::new_err(format!(
+                    "duplicate force name '{name}'"
+                )));
             }
             let callback = Callback {
                 body: id,
@@ -411,10 +418,14 @@ impl Model {
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
         if !(h > 0.0 && h.is_finite()) {
-            return Err(ModelError::new_err(format!("h must be a positive time step ({h} s)")));
+            return Err(ModelError::new_err(format!(
+                "h must be a positive time step ({h} s)"
+            )));
         }
         if !(0.0..=1.0).contains(&rho_inf) {
-            return Err(ModelError::new_err(format!("rho_inf must be between 0 and 1 ({rho_inf})")));
+            return Err(ModelError::new_err(format!(
+                "rho_inf must be between 0 and 1 ({rho_inf})"
+            )));
         }
         let settings = integrator::Settings {
             step: h,
@@ -453,16 +464,19 @@ impl Model {
         analysis: F,
     ) -> PyResult<RunOutput<'py>>
     where
-        F: FnOnce(&camlink_core::Model, &[PointOutput], &mut ChunkSink) -> Result<Summary, CoreAnalysisError>
+        F: FnOnce(
+                &camlink_core::Model,
+                &[PointOutput],
+                &mut ChunkSink,
+            ) -> Result<Summary, CoreAnalysisError>
             + Send,
     {
         guard(|| {
             let points = resolve_points(&self.loaded.model, points)?;
             let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
             let model = &self.loaded.model;
-            let outcome = py.detach(|| {
-                catch_unwind(AssertUnwindSafe(|| analysis(model, &points, &mut sink)))
-            });
+            let outcome = py
+                .detach(|| catch_unwind(AssertUnwindSafe(|| analysis(model, &points, &mut sink))));
             sink.flush();
             let ChunkSink {
                 names,
