@@ -5,16 +5,19 @@ time series back::
 
     import camlink
     model = camlink.load("fourbar.toml")
-    res = model.run(t_end=2.0, step=0.01)
+    res = model.run(t_end=2.0, step=0.01)   # the file's [analysis] type
     res["crank.phi"], res.to_pandas()
+    model.inverse_dynamics()["motor.effort"]
+    model.simulate(t_end=1.0, h=1e-3)["energy.total"]
 """
 
 from camlink._core import AnalysisError, ModelError, __version__
 from camlink.builder import Mechanism
-from camlink.model import Model, json_schema, load, loads
+from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
 
 __all__ = [
+    "ANALYSES",
     "AnalysisError",
     "Mechanism",
     "Model",

@@ -11,6 +11,9 @@ from camlink.results import Results
 
 __version__: str
 
+OnChunk = Callable[[list[str], npt.NDArray[np.float64]], object]
+RunOutput = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
 
@@ -40,15 +43,59 @@ class Model:
     @property
     def analysis(self) -> dict[str, Any]: ...
     def check(self) -> dict[str, Any]: ...
+    @staticmethod
+    def analysis_defaults() -> dict[str, tuple[float, int]]: ...
+    @property
+    def gravity(self) -> tuple[float, float]: ...
+    @property
+    def forces(self) -> list[dict[str, Any]]: ...
+    def design_check(self) -> list[dict[str, Any]]: ...
+    def with_callback_force(
+        self,
+        name: str,
+        body: str,
+        f: Callable[[float, tuple[float, float, float], tuple[float, float, float]], Sequence[float]],
+    ) -> Model: ...
     def run_kinematics(
         self,
         times: npt.NDArray[np.float64],
         tol: float = 1e-10,
         max_iter: int = 25,
         points: Sequence[str] = ...,
-        on_chunk: Callable[[list[str], npt.NDArray[np.float64]], object] | None = None,
+        on_chunk: OnChunk | None = None,
         chunk_rows: int = 1024,
-    ) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]: ...
+    ) -> RunOutput: ...
+    def run_inverse_dynamics(
+        self,
+        times: npt.NDArray[np.float64],
+        tol: float = 1e-10,
+        max_iter: int = 25,
+        points: Sequence[str] = ...,
+        on_chunk: OnChunk | None = None,
+        chunk_rows: int = 1024,
+    ) -> RunOutput: ...
+    def run_equilibrium(
+        self,
+        time: float = 0.0,
+        tol: float = 1e-10,
+        max_iter: int = 100,
+        points: Sequence[str] = ...,
+        on_chunk: OnChunk | None = None,
+        chunk_rows: int = 1024,
+    ) -> RunOutput: ...
+    def run_dynamics(
+        self,
+        times: npt.NDArray[np.float64],
+        h: float = 1e-3,
+        rho_inf: float = 0.8,
+        tol: float = 1e-6,
+        max_iter: int = 12,
+        projection_tol: float = 1e-12,
+        adaptive: tuple[float, float, float] | None = None,
+        points: Sequence[str] = ...,
+        on_chunk: OnChunk | None = None,
+        chunk_rows: int = 1024,
+    ) -> RunOutput: ...
 
 def json_schema() -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...

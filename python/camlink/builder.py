@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
+from collections.abc import Callable, Sequence
 from typing import Any, Union
 
 from camlink.model import Model, loads
@@ -62,6 +63,8 @@ class Mechanism:
         self._bodies: list[dict[str, Any]] = []
         self._joints: list[dict[str, Any]] = []
         self._drivers: list[dict[str, Any]] = []
+        self._forces: list[dict[str, Any]] = []
+        self._python_forces: list[tuple[str, str, Callable[..., Any]]] = []
         self._analysis: dict[str, Any] = {}
 
     @property
@@ -206,19 +209,61 @@ class Mechanism:
 
     # -- analysis and output ------------------------------------------
 
+    # -- forces ---------------------------------------------------------
+
+    def force(self, type: str, name: str | None = None, **fields: Any) -> str | None:
+        """A ``[[forces]]`` entry: ``point_force``, ``torque``, ``tsda`` or
+        ``rsda`` with the fields of model-files.md."""
+        self._forces.append(_fields(type=type, name=name, **fields))
+        return name
+
+    def python_force(
+        self,
+        name: str,
+        body: str,
+        f: Callable[[float, tuple[float, float, float], tuple[float, float, float]],
+                    Sequence[float]],
+    ) -> str:
+        """A force computed in Python by ``f(t, q, qd) -> (fx, fy, torque)``
+        on `body` (the slow path; see `Model.with_force`). It is added by
+        `build()` and has no model-file form."""
+        self._python_forces.append((name, body, f))
+        return name
+
+    # -- analysis and output ------------------------------------------
+
     def analysis(
         self,
         t_end: Num | None = None,
         step: Num | None = None,
         *,
+        type: str | None = None,
         times: list[Num] | None = None,
+        time: Num | None = None,
         tol: Num | None = None,
         max_iter: int | None = None,
         points: list[str] | None = None,
+        **dynamics: Any,
     ) -> None:
-        """The default time grid, solver settings and output points."""
+        """The analysis type, time grid, solver settings and output points;
+        `dynamics` are the integrator keys of model-files.md (``h``,
+        ``rho_inf``, ``adaptive``, ``atol``, ``rtol``, ``h_min``,
+        ``projection_tol``). Each call adds to the table; a `type` other
+        than the current one starts it afresh."""
+        if type is not None and type != self._analysis.get("type", "kinematics"):
+            self._analysis.clear()
         self._analysis.update(
-            _fields(t_end=t_end, step=step, times=times, tol=tol, max_iter=max_iter, points=points)
+            _fields(
+                type=type,
+                t_end=t_end,
+                step=step,
+                times=times,
+                time=time,
+                tol=tol,
+                max_iter=max_iter,
+                points=points,
+                **dynamics,
+            )
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -232,6 +277,7 @@ class Mechanism:
             ("bodies", self._bodies),
             ("joints", self._joints),
             ("drivers", self._drivers),
+            ("forces", self._forces),
         ):
             if items:
                 d[key] = [dict(x) for x in items]
@@ -253,7 +299,7 @@ class Mechanism:
                 out.append("")
         if "ground" in d:
             out += ["[ground]", f"points = {_toml(d['ground']['points'])}", ""]
-        for key in ("bodies", "joints", "drivers"):
+        for key in ("bodies", "joints", "drivers", "forces"):
             for item in d.get(key, []):
                 out.append(f"[[{key}]]")
                 out += [f"{_key(k)} = {_toml(v)}" for k, v in item.items()]
@@ -266,7 +312,10 @@ class Mechanism:
 
     def build(self) -> Model:
         """Validates and loads the model (raises `ModelError` if invalid)."""
-        return loads(json.dumps(self.to_dict()), "json", f"<Mechanism '{self.name}'>")
+        model = loads(json.dumps(self.to_dict()), "json", f"<Mechanism '{self.name}'>")
+        for name, body, f in self._python_forces:
+            model = model.with_force(name, body, f)
+        return model
 
     def run(self, **kwargs: Any):
         """`build()` then `Model.run(**kwargs)`."""

@@ -15,6 +15,7 @@ from pathlib import Path
 
 import camlink
 from camlink._core import AnalysisError, ModelError
+from camlink.model import ANALYSES
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -22,18 +23,26 @@ EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 def _parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         prog="camlink",
-        description="Planar multibody kinematics: load a model file, check it, run it.",
+        description="Planar multibody kinematics and dynamics: load a model file, check it, run it.",
     )
     p.add_argument("--version", action="version", version=f"camlink {camlink.__version__}")
     sub = p.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
     run = sub.add_parser(
         "run",
-        help="run a kinematic analysis and write the results",
-        description="Run a kinematic analysis. Settings left out come from the "
-        "model file's [analysis] table.",
+        help="run the model's analysis and write the results",
+        description="Run the analysis the model file asks for ([analysis] type: "
+        "kinematics, inverse_dynamics, equilibrium or dynamics), or the one given "
+        "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
     run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument(
+        "-a",
+        "--analysis",
+        choices=ANALYSES,
+        metavar="TYPE",
+        help=f"analysis to run instead of the file's: {', '.join(ANALYSES)}",
+    )
     run.add_argument(
         "-o",
         "--output",
@@ -43,7 +52,19 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
     run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
-    run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance on |Φ|")
+    run.add_argument("--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)")
+    run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance")
+    run.add_argument("--max-iter", type=int, metavar="N", help="Newton iterations per step")
+    run.add_argument("--h", type=float, metavar="H", help="dynamics: integration step (s)")
+    run.add_argument(
+        "--rho-inf", type=float, metavar="R", help="dynamics: numerical damping ρ∞ in [0, 1]"
+    )
+    run.add_argument(
+        "--adaptive",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="dynamics: error-controlled steps (--no-adaptive: fixed steps)",
+    )
     run.add_argument(
         "-p",
         "--point",
@@ -53,6 +74,12 @@ def _parser() -> argparse.ArgumentParser:
         help="also output this body point (repeatable; replaces [analysis] points)",
     )
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    run.add_argument(
+        "-v",
+        "--verbose",
+        action="store_true",
+        help="also print how assembly moved the bodies and the solver counts",
+    )
 
     check = sub.add_parser(
         "check",
@@ -77,15 +104,23 @@ def _os_message(e: OSError) -> str:
 
 def _cmd_run(args: argparse.Namespace) -> int:
     model = camlink.load(args.model)
+    kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
+    settings = {
+        "t_end": args.t_end,
+        "step": args.step,
+        "time": args.time,
+        "tol": args.tol,
+        "max_iter": args.max_iter,
+        "points": args.points,
+        "h": args.h,
+        "rho_inf": args.rho_inf,
+        "adaptive": args.adaptive,
+    }
+    given = {k: v for k, v in settings.items() if v is not None}
+    _print_design(model)
     try:
-        res = model.run(
-            t_end=args.t_end,
-            step=args.step,
-            tol=args.tol,
-            points=args.points,
-            output=output,
-        )
+        res = model.run(analysis=kind, output=output, **given)
     except AnalysisError as e:
         _error(str(e))
         details = []
@@ -105,21 +140,53 @@ def _cmd_run(args: argparse.Namespace) -> int:
         else:
             print(f"camlink: no step completed; {output} holds only the header", file=sys.stderr)
         return EXIT_ANALYSIS
-    for t, message in res.summary.get("warnings", []):
+    summary = res.summary
+    if args.verbose:
+        for body, (dx, dy, dphi) in summary.get("assembly_moves", []):
+            print(
+                f"camlink: assembly moved '{body}' by Δx = {dx:.6g} m, Δy = {dy:.6g} m, "
+                f"Δφ = {dphi:.6g} rad",
+                file=sys.stderr,
+            )
+    for t, message in summary.get("warnings", []):
         print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
-    if not args.quiet:
-        print(
-            f"{model.name}: {len(res)} steps, t = {res.t[0]:g} … {res.t[-1]:g} s, "
-            f"{len(res.channels)} channels → {output}"
+    if args.verbose:
+        counts = ", ".join(
+            f"{k.replace('_', ' ')} {summary[k]}"
+            for k in ("steps", "newton_iterations", "factorizations", "halvings")
+            if k in summary
         )
+        print(f"camlink: {kind}: {counts}", file=sys.stderr)
+    if not args.quiet:
+        what = f"{kind} of {model.name}"
+        if kind == "equilibrium":
+            print(f"{what}: at t = {res.t[0]:g} s, {len(res.channels)} channels → {output}")
+        else:
+            print(
+                f"{what}: {len(res)} steps, t = {res.t[0]:g} … {res.t[-1]:g} s, "
+                f"{len(res.channels)} channels → {output}"
+            )
+        if "energy_drift" in summary:
+            print(
+                f"  energy drift {summary['energy_drift']:.3g} J, "
+                f"max |Φ| {summary['constraint_drift']:.3g}, "
+                f"max |Φ_q q̇ − ν| {summary['velocity_drift']:.3g}"
+            )
     return EXIT_OK
+
+
+def _print_design(model: camlink.Model) -> None:
+    """Prints the design findings of the curve contacts to stderr."""
+    for f in model.design_check():
+        print(f"camlink: {f['text']}", file=sys.stderr)
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
     model = camlink.load(args.model)
     r = model.check()
+    design = model.design_check()
     if args.json:
-        print(json.dumps({"model": model.name, **r}, indent=2))
+        print(json.dumps({"model": model.name, **r, "design": design}, indent=2))
         return EXIT_OK
     print(f"model        {model.name} ({args.model})")
     print(f"bodies       {r['bodies']} moving (plus ground)")
@@ -141,13 +208,18 @@ def _cmd_check(args: argparse.Namespace) -> int:
         print(f"redundant    {red['equation']}" + (f" = {deps}" if deps else ""))
     dof = r["dof"]
     if dof == 0:
-        verdict = "fully driven: ready for kinematic analysis"
+        verdict = "fully driven: ready for kinematics and inverse dynamics"
     else:
-        verdict = f"{dof} free motion{'s' if dof != 1 else ''}: add {dof} driver{'s' if dof != 1 else ''} for kinematics"
+        verdict = (
+            f"{dof} free motion{'s' if dof != 1 else ''}: ready for dynamics and equilibrium; "
+            f"add {dof} driver{'s' if dof != 1 else ''} for kinematics"
+        )
     print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
         print(f"  free motion {k}: {parts}")
+    for f in design:
+        print(f"design       {f['text']}")
     return EXIT_OK
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import errno
 import json
 import os
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -16,10 +16,27 @@ from camlink import _core
 from camlink._core import AnalysisError, ModelError
 from camlink.results import Results, open_writer
 
-__all__ = ["Model", "load", "loads", "json_schema"]
+__all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
 
 #: Rows computed between two writes of a run's ``output`` file.
 CHUNK_ROWS = 1024
+
+#: The analyses a model can run; ``[analysis] type`` names one.
+ANALYSES = ("kinematics", "inverse_dynamics", "equilibrium", "dynamics")
+
+#: Largest integration step (s) chosen when neither `h` nor a smaller
+#: output step is given.
+DEFAULT_H = 1e-3
+
+_GRID = {"t_end", "step", "times", "tol", "max_iter", "points"}
+#: The settings each analysis takes (besides `output`).
+_SETTINGS = {
+    "kinematics": _GRID,
+    "inverse_dynamics": _GRID,
+    "equilibrium": {"time", "tol", "max_iter", "points"},
+    "dynamics": _GRID
+    | {"h", "rho_inf", "adaptive", "atol", "rtol", "h_min", "projection_tol"},
+}
 
 
 def load(path: str | os.PathLike[str]) -> Model:
@@ -103,6 +120,50 @@ class Model:
             step = float(t_end) / 100 if t_end > 0 else 1.0
         return _core.time_grid(float(t_end), float(step))
 
+    @property
+    def analysis_type(self) -> str:
+        """The analysis the file asks for: one of `ANALYSES`."""
+        return self._core.analysis["type"]
+
+    @property
+    def gravity(self) -> tuple[float, float]:
+        """Gravity vector g (m/s²) in the global frame."""
+        gx, gy = self._core.gravity
+        return (gx, gy)
+
+    @property
+    def forces(self) -> list[dict[str, Any]]:
+        """Applied forces, with kind and bodies."""
+        return self._core.forces
+
+    def design_check(self) -> list[dict[str, Any]]:
+        """Design findings of the curve contacts (a flat follower on a
+        concave profile, an undercut roller): dicts with ``severity``,
+        ``joint``, ``message`` and ``text`` (one printable line)."""
+        return self._core.design_check()
+
+    def with_force(
+        self,
+        name: str,
+        body: str,
+        f: Callable[[float, tuple[float, float, float], tuple[float, float, float]],
+                    Sequence[float]],
+    ) -> Model:
+        """A copy of this model with a force computed in Python: the slow path.
+
+        ``f(t, q, qd)`` gets the time (s), q = (x, y, φ) and
+        qd = (ẋ, ẏ, φ̇) of `body`'s frame, and returns (fx, fy, torque):
+        a force (N, global frame) at the body-frame origin and a torque
+        (N·m, counter-clockwise); for a force F at a body point s′ add
+        (A s′) × F to the torque. `f` is called at every Newton iteration of
+        the dynamic analyses (kinematics ignores forces), so it costs far
+        more than a ``[[forces]]`` entry. An exception raised by `f` stops
+        the run and propagates.
+        """
+        if not callable(f):
+            raise ModelError(f"force '{name}': f must be callable, not {type(f).__name__}")
+        return Model(self._core.with_callback_force(name, body, f), source=self.source)
+
     def run(
         self,
         t_end: float | None = None,
@@ -112,6 +173,56 @@ class Model:
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
         max_iter: int | None = None,
+        *,
+        analysis: str | None = None,
+        **settings: Any,
+    ) -> Results:
+        """Runs the file's analysis (``[analysis] type``), or `analysis`.
+
+        `analysis` is one of ``"kinematics"``, ``"inverse_dynamics"``,
+        ``"equilibrium"``, ``"dynamics"``; the other arguments are those of
+        `kinematics`, `inverse_dynamics`, `equilibrium` or `simulate`, and
+        one that does not apply to the chosen analysis raises `ModelError`.
+        """
+        kind = self.analysis_type if analysis is None else analysis
+        if kind not in ANALYSES:
+            raise ModelError(
+                f"unknown analysis {kind!r} (expected one of {', '.join(ANALYSES)})"
+            )
+        given = {
+            "t_end": t_end,
+            "step": step,
+            "times": times,
+            "tol": tol,
+            "points": points,
+            "max_iter": max_iter,
+            **settings,
+        }
+        allowed = _SETTINGS[kind]
+        for key, value in given.items():
+            if key not in allowed and value is not None:
+                users = [k for k in ANALYSES if key in _SETTINGS[k]]
+                hint = f" (it is a setting of {', '.join(users)})" if users else ""
+                raise ModelError(f"`{key}` does not apply to the {kind} analysis{hint}")
+        kwargs = {k: v for k, v in given.items() if k in allowed}
+        method = {
+            "kinematics": self.kinematics,
+            "inverse_dynamics": self.inverse_dynamics,
+            "equilibrium": self.equilibrium,
+            "dynamics": self.simulate,
+        }[kind]
+        return method(output=output, **kwargs)
+
+    def kinematics(
+        self,
+        t_end: float | None = None,
+        step: float | None = None,
+        times: Sequence[float] | npt.ArrayLike | None = None,
+        *,
+        tol: float | None = None,
+        max_iter: int | None = None,
+        points: Sequence[str] | None = None,
+        output: str | os.PathLike[str] | None = None,
     ) -> Results:
         """Kinematic analysis: positions, velocities and accelerations.
 
@@ -123,12 +234,155 @@ class Model:
         Raises `AnalysisError` when the mechanism cannot follow its drivers;
         the exception's ``results`` holds the steps before the failure.
         """
+        grid = self.times(t_end, step, times)
+        tol, max_iter = self._solver("kinematics", tol, max_iter)
+        return self._run(
+            "kinematics",
+            output,
+            lambda **kw: self._core.run_kinematics(grid, tol=tol, max_iter=max_iter, **kw),
+            points,
+        )
+
+    def inverse_dynamics(
+        self,
+        t_end: float | None = None,
+        step: float | None = None,
+        times: Sequence[float] | npt.ArrayLike | None = None,
+        *,
+        tol: float | None = None,
+        max_iter: int | None = None,
+        points: Sequence[str] | None = None,
+        output: str | os.PathLike[str] | None = None,
+    ) -> Results:
+        """Inverse dynamics of a driven (zero-DOF) model: the kinematic
+        channels, then joint reactions (``<joint>.fx``, ``.fy``,
+        ``.torque`` …), driver efforts (``<driver>.effort``, ``.power``),
+        energy and constraint drift. Arguments as `kinematics`."""
+        grid = self.times(t_end, step, times)
+        tol, max_iter = self._solver("inverse_dynamics", tol, max_iter)
+        return self._run(
+            "inverse_dynamics",
+            output,
+            lambda **kw: self._core.run_inverse_dynamics(grid, tol=tol, max_iter=max_iter, **kw),
+            points,
+        )
+
+    def equilibrium(
+        self,
+        time: float | None = None,
+        *,
+        tol: float | None = None,
+        max_iter: int | None = None,
+        points: Sequence[str] | None = None,
+        output: str | os.PathLike[str] | None = None,
+    ) -> Results:
+        """The static equilibrium nearest the model's placement, with drivers
+        and forces evaluated at `time` (s, default ``[analysis] time`` or 0):
+        one row with the channels of `inverse_dynamics`."""
+        time = float(self.analysis["time"] if time is None else time)
+        tol, max_iter = self._solver("equilibrium", tol, max_iter)
+        return self._run(
+            "equilibrium",
+            output,
+            lambda **kw: self._core.run_equilibrium(time, tol=tol, max_iter=max_iter, **kw),
+            points,
+        )
+
+    def simulate(
+        self,
+        t_end: float | None = None,
+        step: float | None = None,
+        times: Sequence[float] | npt.ArrayLike | None = None,
+        *,
+        h: float | None = None,
+        rho_inf: float | None = None,
+        adaptive: bool | None = None,
+        atol: float | None = None,
+        rtol: float | None = None,
+        h_min: float | None = None,
+        projection_tol: float | None = None,
+        tol: float | None = None,
+        max_iter: int | None = None,
+        points: Sequence[str] | None = None,
+        output: str | os.PathLike[str] | None = None,
+    ) -> Results:
+        """Forward dynamics (implicit index-3 generalized-α) from the model's
+        placement and velocities, output at `times` or 0, `step`, … `t_end`.
+
+        `h` is the integration step (s; default ``[analysis] h``, else the
+        output step but at most 1 ms), the largest step when `adaptive`;
+        `rho_inf` ∈ [0, 1] the numerical damping (1: none; default 0.8);
+        `atol`, `rtol`, `h_min` the error control of the adaptive mode.
+        Channels as `inverse_dynamics`; ``summary`` adds ``energy_drift``
+        (J, largest change of ``energy.total``, which damping and
+        time-dependent forces change too) and ``constraint_drift`` and
+        ``velocity_drift`` (largest |Φ| and |Φ_q q̇ − ν|).
+        """
         a = self.analysis
         grid = self.times(t_end, step, times)
-        tol = a["tol"] if tol is None else float(tol)
-        max_iter = a["max_iter"] if max_iter is None else int(max_iter)
-        points = list(a["points"] if points is None else points)
+        if h is None:
+            h = a["h"]
+        if h is None:
+            out_step = step if step is not None else a["step"]
+            h = min(float(out_step), DEFAULT_H) if out_step is not None else DEFAULT_H
+        rho_inf = float(a["rho_inf"] if rho_inf is None else rho_inf)
+        adaptive = bool(a["adaptive"] if adaptive is None else adaptive)
+        if not adaptive and any(v is not None for v in (atol, rtol, h_min)):
+            raise ModelError("atol, rtol and h_min set the error control: pass adaptive=True")
+        control = (
+            (
+                float(a["atol"] if atol is None else atol),
+                float(a["rtol"] if rtol is None else rtol),
+                float(a["h_min"] if h_min is None else h_min),
+            )
+            if adaptive
+            else None
+        )
+        projection_tol = float(a["projection_tol"] if projection_tol is None else projection_tol)
+        tol, max_iter = self._solver("dynamics", tol, max_iter)
 
+        def core(**kw: Any) -> Any:
+            return self._core.run_dynamics(
+                grid,
+                h=float(h),
+                rho_inf=rho_inf,
+                tol=tol,
+                max_iter=max_iter,
+                projection_tol=projection_tol,
+                adaptive=control,
+                **kw,
+            )
+
+        res = self._run("dynamics", output, core, points)
+        s = res.summary
+        if len(res):
+            energy = res["energy.total"]
+            s["energy_drift"] = float(np.max(np.abs(energy - energy[0])))
+            s["constraint_drift"] = float(np.max(res["constraint.residual"]))
+            s["velocity_drift"] = float(np.max(res["constraint.velocity"]))
+        return res
+
+    def _solver(self, kind: str, tol: float | None, max_iter: int | None) -> tuple[float, int]:
+        """Newton settings: the arguments, else the file's, else the
+        analysis' defaults."""
+        a = self.analysis
+        d_tol, d_iter = _core.Model.analysis_defaults()[kind]
+        tol = tol if tol is not None else a["tol"] if a["tol"] is not None else d_tol
+        max_iter = (
+            max_iter if max_iter is not None else a["max_iter"] if a["max_iter"] is not None else d_iter
+        )
+        return float(tol), int(max_iter)
+
+    def _run(
+        self,
+        kind: str,
+        output: str | os.PathLike[str] | None,
+        core: Callable[..., tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]],
+        points: Sequence[str] | None,
+    ) -> Results:
+        """Calls a core run with the output points and a chunk writer; wraps
+        the outcome (or the partial results of a failure) as `Results`."""
+        points = list(self.analysis["points"] if points is None else points)
         writer = open_writer(output) if output is not None else None
         names: list[str] = []
 
@@ -138,23 +392,19 @@ class Model:
                 writer.write(chunk_names, rows)
 
         try:
-            names, data, summary = self._core.run_kinematics(
-                grid,
-                tol=tol,
-                max_iter=max_iter,
-                points=points,
-                on_chunk=on_chunk,
-                chunk_rows=CHUNK_ROWS,
-            )
+            names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
         except AnalysisError as e:
             names = list(e.names)
             partial = e.data if e.data is not None else np.empty((0, len(names)))
-            e.results = Results(names, partial, model=self.name, complete=False)
+            e.results = Results(
+                names, partial, model=self.name, complete=False, summary={"analysis": kind}
+            )
             e.output = writer.path if writer is not None else None
             raise
         finally:
             if writer is not None:
                 writer.close(names)
+        summary["analysis"] = kind
         return Results(names, data, model=self.name, summary=summary)
 
     def __repr__(self) -> str:

@@ -50,10 +50,12 @@ class Results:
         self._data = data
         self.model = model
         self.complete = complete
-        #: Solver counts (steps, newton_iterations, factorizations, halvings),
-        #: ``warnings`` as (t, message) pairs and ``assembly_moves`` as
-        #: (body, (Δx, Δy, Δφ)) for bodies that assembly moved; empty for
-        #: results read from a file.
+        #: The ``analysis`` run, solver counts (steps, newton_iterations,
+        #: factorizations, halvings), ``warnings`` as (t, message) pairs and
+        #: ``assembly_moves`` as (body, (Δx, Δy, Δφ)) for bodies that
+        #: assembly moved; forward dynamics adds ``energy_drift``,
+        #: ``constraint_drift`` and ``velocity_drift``. Empty for results
+        #: read from a file.
         self.summary = summary or {}
 
     @property

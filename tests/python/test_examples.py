@@ -19,10 +19,11 @@ MODELS = sorted((ROOT / "tests" / "models").glob("*.toml")) + sorted(
 @pytest.mark.parametrize("path", EXAMPLES + MODELS or [None], ids=lambda p: p and p.name)
 def test_example_runs_end_to_end(path, tmp_path):
     model = camlink.load(path)
-    assert model.check()["dof"] == 0
+    if model.analysis_type in ("kinematics", "inverse_dynamics"):
+        assert model.check()["dof"] == 0
     out = tmp_path / "out.parquet"
     res = model.run(output=out)
-    assert res.complete and len(res) > 1
+    assert res.complete and (len(res) > 1 or model.analysis_type == "equilibrium")
     assert res.t[0] == 0.0
     back = camlink.Results.load(out)
     assert back.channels == res.channels and len(back) == len(res)

@@ -1,5 +1,6 @@
-//! Forward dynamics refuses a body without mass or inertia, naming it,
-//! instead of failing on a singular mass matrix.
+//! A body without mass makes forward dynamics singular; the error names it.
+//! (A body without inertia is fine where joints fix its rotation, or where
+//! it hangs as a point mass, so neither is refused up front.)
 
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::dynamics::integrator;
@@ -7,11 +8,10 @@ use camlink_core::kinematics::Table;
 use camlink_core::{Body, BodyId, Model};
 
 #[test]
-fn massless_body_is_named_before_integrating() {
+fn massless_body_is_named_when_the_mass_matrix_is_singular() {
     let mut m = Model::new("pendulum");
-    let mut arm = Body::new("arm", [0.5, 0.0, 0.0]);
-    arm.mass = 1.0; // inertia left at zero
-    let arm = m.add_body(arm);
+    // No mass, no inertia: the pendulum's acceleration is undetermined.
+    let arm = m.add_body(Body::new("arm", [0.5, 0.0, 0.0]));
     m.add_joint(
         "pivot",
         Revolute {

@@ -787,26 +787,89 @@ pub struct JointDriver {
     pub f: Num,
 }
 
-/// `[analysis]`: the time grid, solver settings and output points.
+/// `[analysis]`: which analysis, its time grid, solver settings and output
+/// points.
 #[derive(Clone, Debug, Default, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AnalysisSection {
-    /// End time (s), ≥ 0; the run starts at t = 0.
+    /// The analysis to run; default "kinematics".
+    #[serde(default, rename = "type")]
+    pub kind: Option<AnalysisType>,
+    /// End time (s), ≥ 0; the run starts at t = 0. Not for "equilibrium".
     #[serde(default)]
     pub t_end: Option<Num>,
-    /// Output step (s), > 0.
+    /// Output step (s), > 0. Not for "equilibrium".
     #[serde(default)]
     pub step: Option<Num>,
     /// Explicit output times (s), increasing; instead of `t_end`/`step`.
+    /// Not for "equilibrium".
     #[serde(default)]
     pub times: Option<Vec<Num>>,
-    /// Newton tolerance on the constraint residual; default 1e-10.
+    /// "equilibrium" only: the time (s) at which drivers and forces are
+    /// evaluated; default 0.
+    #[serde(default)]
+    pub time: Option<Num>,
+    /// Newton tolerance; default 1e-10 (on |Φ|, or on the force balance for
+    /// "equilibrium"), 1e-6 for "dynamics" (on the corrections of q and q̇).
     #[serde(default)]
     pub tol: Option<Num>,
-    /// Most Newton iterations per step; default 25.
+    /// Most Newton iterations per step; default 25 (kinematics, inverse
+    /// dynamics), 100 (equilibrium), 12 (dynamics).
     #[serde(default)]
     pub max_iter: Option<u32>,
     /// Body points to output as "body.point" (x, y, vx, vy, ax, ay).
     #[serde(default)]
     pub points: Vec<String>,
+    /// "dynamics" only: integration time step h (s), > 0; the largest step
+    /// when `adaptive`. Default: the output `step`, but at most 1e-3.
+    #[serde(default)]
+    pub h: Option<Num>,
+    /// "dynamics" only: spectral radius at infinity ρ∞ ∈ [0, 1] of the
+    /// generalized-α method (1: no numerical damping); default 0.8.
+    #[serde(default)]
+    pub rho_inf: Option<Num>,
+    /// "dynamics" only: error-controlled variable steps; default false.
+    #[serde(default)]
+    pub adaptive: Option<bool>,
+    /// With `adaptive`: absolute local-error tolerance (m or rad), ≥ 0;
+    /// default 1e-6.
+    #[serde(default)]
+    pub atol: Option<Num>,
+    /// With `adaptive`: relative local-error tolerance, ≥ 0; default 0.
+    #[serde(default)]
+    pub rtol: Option<Num>,
+    /// With `adaptive`: smallest step (s), > 0; default 1e-8.
+    #[serde(default)]
+    pub h_min: Option<Num>,
+    /// "dynamics" only: tolerance of the initial position projection
+    /// (m or rad), > 0; default 1e-12.
+    #[serde(default)]
+    pub projection_tol: Option<Num>,
+}
+
+/// The analyses a model file can ask for.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum AnalysisType {
+    /// Positions, velocities and accelerations of a driven model.
+    #[default]
+    Kinematics,
+    /// Joint reactions and driver efforts along the driven motion.
+    InverseDynamics,
+    /// The configuration where the forces balance, and the reactions there.
+    Equilibrium,
+    /// Forward dynamics: the motion the forces produce.
+    Dynamics,
+}
+
+impl AnalysisType {
+    /// The name used in files, e.g. `"inverse_dynamics"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            AnalysisType::Kinematics => "kinematics",
+            AnalysisType::InverseDynamics => "inverse_dynamics",
+            AnalysisType::Equilibrium => "equilibrium",
+            AnalysisType::Dynamics => "dynamics",
+        }
+    }
 }

@@ -17,7 +17,11 @@ mod resolve;
 use std::io::Read;
 use std::path::Path;
 
+use camlink_core::dynamics::integrator::{Adaptive, Settings as IntegratorSettings};
+use camlink_core::dynamics::statics::Settings as StaticsSettings;
+
 pub use error::LoadError;
+pub use file::AnalysisType;
 
 /// Largest model file accepted (bytes).
 pub const MAX_FILE_SIZE: u64 = 16 * 1024 * 1024;
@@ -82,36 +86,147 @@ impl Loaded {
 }
 
 /// The `[analysis]` table, evaluated. Times in seconds.
+///
+/// `tol` and `max_iter` are those of the analysis `kind` (its default when
+/// the file gives none); `tol_set` and `max_iter_set` say whether the file
+/// gave them, so that a program running another analysis than `kind` can
+/// use that analysis' own defaults instead.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AnalysisSpec {
+    /// The analysis the file asks for (`type`).
+    pub kind: AnalysisType,
     /// End time (s); the run starts at t = 0.
     pub t_end: Option<f64>,
     /// Output step (s).
     pub step: Option<f64>,
     /// Explicit output times (s), increasing; excludes `t_end`/`step`.
     pub times: Option<Vec<f64>>,
-    /// Newton tolerance on the constraint residual.
+    /// Equilibrium: the time (s) at which drivers and forces are evaluated.
+    pub time: f64,
+    /// Newton tolerance (see [`AnalysisSpec::default_tol`] for its meaning).
     pub tol: f64,
     /// Most Newton iterations per time step.
     pub max_iter: usize,
+    pub tol_set: bool,
+    pub max_iter_set: bool,
     /// Output points as `"body.point"`; each names an existing point.
     pub points: Vec<String>,
+    /// Forward-dynamics settings (defaults unless `kind` is dynamics).
+    pub dynamics: DynamicsSpec,
+}
+
+/// The integrator settings of `[analysis]` for `type = "dynamics"`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DynamicsSpec {
+    /// Integration step h (s); `None`: the output step, but at most
+    /// [`DynamicsSpec::DEFAULT_H`].
+    pub h: Option<f64>,
+    /// Spectral radius at infinity ρ∞ ∈ [0, 1].
+    pub rho_inf: f64,
+    /// Tolerance of the initial position projection (m or rad).
+    pub projection_tol: f64,
+    /// `Some` for error-controlled steps.
+    pub adaptive: Option<Adaptive>,
+}
+
+impl DynamicsSpec {
+    /// Largest integration step chosen when `h` is not given (s).
+    pub const DEFAULT_H: f64 = 1e-3;
+    /// Default absolute local-error tolerance of the adaptive mode (m or rad).
+    pub const DEFAULT_ATOL: f64 = 1e-6;
+    /// Default relative local-error tolerance of the adaptive mode.
+    pub const DEFAULT_RTOL: f64 = 0.0;
+    /// Default smallest step of the adaptive mode (s).
+    pub const DEFAULT_H_MIN: f64 = 1e-8;
+}
+
+impl Default for DynamicsSpec {
+    fn default() -> Self {
+        let d = IntegratorSettings::default();
+        DynamicsSpec {
+            h: None,
+            rho_inf: d.rho_inf,
+            projection_tol: d.projection_tol,
+            adaptive: None,
+        }
+    }
 }
 
 impl AnalysisSpec {
     pub const DEFAULT_TOL: f64 = 1e-10;
     pub const DEFAULT_MAX_ITER: usize = 25;
+
+    /// The default Newton tolerance of an analysis: on |Φ| (m or rad) for
+    /// kinematics and inverse dynamics, on |Φ| and the force balance for
+    /// equilibrium, on the corrections of q and q̇ for dynamics.
+    pub fn default_tol(kind: AnalysisType) -> f64 {
+        match kind {
+            AnalysisType::Kinematics | AnalysisType::InverseDynamics => Self::DEFAULT_TOL,
+            AnalysisType::Equilibrium => StaticsSettings::default().tol,
+            AnalysisType::Dynamics => IntegratorSettings::default().tol,
+        }
+    }
+
+    /// The default Newton iterations per step of an analysis.
+    pub fn default_max_iter(kind: AnalysisType) -> usize {
+        match kind {
+            AnalysisType::Kinematics | AnalysisType::InverseDynamics => Self::DEFAULT_MAX_ITER,
+            AnalysisType::Equilibrium => StaticsSettings::default().max_iter,
+            AnalysisType::Dynamics => IntegratorSettings::default().max_iter,
+        }
+    }
+
+    /// The integrator settings: `h`, else the output `step` but at most
+    /// [`DynamicsSpec::DEFAULT_H`]; `tol` and `max_iter` as given, else the
+    /// integrator's defaults.
+    pub fn integrator_settings(&self) -> IntegratorSettings {
+        let d = &self.dynamics;
+        IntegratorSettings {
+            step: d.h.unwrap_or_else(|| {
+                self.step
+                    .map_or(DynamicsSpec::DEFAULT_H, |s| s.min(DynamicsSpec::DEFAULT_H))
+            }),
+            rho_inf: d.rho_inf,
+            tol: self.tol_for(AnalysisType::Dynamics),
+            max_iter: self.max_iter_for(AnalysisType::Dynamics),
+            projection_tol: d.projection_tol,
+            adaptive: d.adaptive.clone(),
+        }
+    }
+
+    /// `tol` if the file gave it, else the default of `kind`.
+    pub fn tol_for(&self, kind: AnalysisType) -> f64 {
+        if self.tol_set {
+            self.tol
+        } else {
+            Self::default_tol(kind)
+        }
+    }
+
+    /// `max_iter` if the file gave it, else the default of `kind`.
+    pub fn max_iter_for(&self, kind: AnalysisType) -> usize {
+        if self.max_iter_set {
+            self.max_iter
+        } else {
+            Self::default_max_iter(kind)
+        }
+    }
 }
 
 impl Default for AnalysisSpec {
     fn default() -> Self {
         AnalysisSpec {
+            kind: AnalysisType::Kinematics,
             t_end: None,
             step: None,
             times: None,
+            time: 0.0,
             tol: Self::DEFAULT_TOL,
             max_iter: Self::DEFAULT_MAX_ITER,
+            tol_set: false,
+            max_iter_set: false,
             points: Vec::new(),
+            dynamics: DynamicsSpec::default(),
         }
     }
 }

@@ -21,7 +21,9 @@ use camlink_core::{Body, BodyId, Constraint, Model, Point, TimeFn};
 use crate::error::did_you_mean;
 use crate::eval;
 use crate::file::*;
-use crate::AnalysisSpec;
+use camlink_core::dynamics::integrator::Adaptive;
+
+use crate::{AnalysisSpec, DynamicsSpec};
 
 mod curves;
 mod forces;
@@ -1009,6 +1011,43 @@ impl Ctx {
         let Some(a) = a else {
             return Ok(AnalysisSpec::default());
         };
+        let kind = a.kind.unwrap_or_default();
+        // Keys that only some analyses take.
+        let grid = kind != AnalysisType::Equilibrium;
+        let dynamics = kind == AnalysisType::Dynamics;
+        let adaptive = dynamics && a.adaptive == Some(true);
+        let timed = "kinematics, inverse_dynamics and dynamics";
+        let only = [
+            ("t_end", a.t_end.is_some(), grid, timed),
+            ("step", a.step.is_some(), grid, timed),
+            ("times", a.times.is_some(), grid, timed),
+            ("time", a.time.is_some(), !grid, "equilibrium"),
+            ("h", a.h.is_some(), dynamics, "dynamics"),
+            ("rho_inf", a.rho_inf.is_some(), dynamics, "dynamics"),
+            ("adaptive", a.adaptive.is_some(), dynamics, "dynamics"),
+            (
+                "projection_tol",
+                a.projection_tol.is_some(),
+                dynamics,
+                "dynamics",
+            ),
+            ("atol", a.atol.is_some(), adaptive, "dynamics"),
+            ("rtol", a.rtol.is_some(), adaptive, "dynamics"),
+            ("h_min", a.h_min.is_some(), adaptive, "dynamics"),
+        ];
+        for (key, given, fits, which) in only {
+            if given && !fits {
+                let message = if dynamics {
+                    format!("`{key}` sets the error control: it needs adaptive = true")
+                } else {
+                    format!(
+                        "`{key}` does not apply to type = \"{}\" (it is a setting of {which})",
+                        kind.name()
+                    )
+                };
+                return fail(format!("analysis.{key}"), message);
+            }
+        }
         let t_end = match &a.t_end {
             Some(n) => {
                 let v = self.num(n, "analysis.t_end")?;
@@ -1055,16 +1094,22 @@ impl Ctx {
             }
             None => None,
         };
-        let tol = self.opt(a.tol.as_ref(), AnalysisSpec::DEFAULT_TOL, "analysis.tol")?;
+        let tol = self.opt(
+            a.tol.as_ref(),
+            AnalysisSpec::default_tol(kind),
+            "analysis.tol",
+        )?;
         if tol <= 0.0 {
             return fail("analysis.tol", format!("tol must be positive ({tol})"));
         }
         let max_iter = a
             .max_iter
-            .map_or(AnalysisSpec::DEFAULT_MAX_ITER, |m| m as usize);
+            .map_or(AnalysisSpec::default_max_iter(kind), |m| m as usize);
         if max_iter == 0 {
             return fail("analysis.max_iter", "max_iter must be at least 1");
         }
+        let time = self.opt(a.time.as_ref(), 0.0, "analysis.time")?;
+        let dynamics = self.dynamics_spec(a)?;
         for (k, name) in a.points.iter().enumerate() {
             let path = format!("analysis.points[{k}]");
             let Some((b, pt)) = name.split_once('.') else {
@@ -1074,12 +1119,87 @@ impl Ctx {
             self.point(id, Some(&PointRef::Name(pt.to_string())), &path)?;
         }
         Ok(AnalysisSpec {
+            kind,
             t_end,
             step,
             times,
+            time,
             tol,
             max_iter,
+            tol_set: a.tol.is_some(),
+            max_iter_set: a.max_iter.is_some(),
             points: a.points.clone(),
+            dynamics,
+        })
+    }
+
+    /// The integrator keys of `[analysis]`, checked; defaults for the rest.
+    fn dynamics_spec(&self, a: &AnalysisSection) -> R<DynamicsSpec> {
+        let d = DynamicsSpec::default();
+        let positive = |n: Option<&Num>, default: Option<f64>, key: &str| -> R<Option<f64>> {
+            let path = format!("analysis.{key}");
+            match n {
+                Some(n) => {
+                    let v = self.num(n, &path)?;
+                    if v <= 0.0 {
+                        return fail(path, format!("{key} must be positive ({v})"));
+                    }
+                    Ok(Some(v))
+                }
+                None => Ok(default),
+            }
+        };
+        let h = positive(a.h.as_ref(), None, "h")?;
+        let projection_tol = positive(
+            a.projection_tol.as_ref(),
+            Some(d.projection_tol),
+            "projection_tol",
+        )?
+        .unwrap_or(d.projection_tol);
+        let rho_inf = self.opt(a.rho_inf.as_ref(), d.rho_inf, "analysis.rho_inf")?;
+        if !(0.0..=1.0).contains(&rho_inf) {
+            return fail(
+                "analysis.rho_inf",
+                format!("rho_inf must be between 0 and 1 ({rho_inf})"),
+            );
+        }
+        let adaptive = if a.adaptive == Some(true) {
+            let mut tols = [0.0; 2];
+            for (k, (n, default, key)) in [
+                (a.atol.as_ref(), DynamicsSpec::DEFAULT_ATOL, "atol"),
+                (a.rtol.as_ref(), DynamicsSpec::DEFAULT_RTOL, "rtol"),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                let path = format!("analysis.{key}");
+                let v = self.opt(n, default, &path)?;
+                if v < 0.0 {
+                    return fail(path, format!("{key} must not be negative ({v})"));
+                }
+                tols[k] = v;
+            }
+            if tols == [0.0, 0.0] {
+                return fail(
+                    "analysis.atol",
+                    "atol and rtol are both 0: no step would pass",
+                );
+            }
+            let h_min = positive(a.h_min.as_ref(), Some(DynamicsSpec::DEFAULT_H_MIN), "h_min")?
+                .unwrap_or(DynamicsSpec::DEFAULT_H_MIN);
+            Some(Adaptive {
+                atol: tols[0],
+                rtol: tols[1],
+                h_min,
+            })
+        } else {
+            None
+        };
+        Ok(DynamicsSpec {
+            h,
+            rho_inf,
+            projection_tol,
+            adaptive,
         })
     }
 }

@@ -625,7 +625,8 @@ fn tested_examples() -> Vec<String> {
 }
 
 /// Adding a model to `examples/` without a test here fails (cam and slot
-/// examples are held to the same rule by cam_examples.rs).
+/// examples are held to the same rule by cam_examples.rs, dynamics examples
+/// by `tests/python/test_dyn_examples.py`).
 #[test]
 fn every_example_has_a_test() {
     let tested = tested_examples();
@@ -639,8 +640,8 @@ fn every_example_has_a_test() {
             continue;
         }
         // Cam and slot examples are run, and checked for coverage, by
-        // cam_examples.rs.
-        if name.starts_with("cam_") || name.starts_with("slot_") {
+        // cam_examples.rs; dynamics examples by test_dyn_examples.py.
+        if name.starts_with("cam_") || name.starts_with("slot_") || name.starts_with("dyn_") {
             continue;
         }
         let Some(stem) = name.strip_suffix(".toml") else {

@@ -63,6 +63,7 @@ fn four_bar_contents() {
             tol: 1e-10,
             max_iter: 25,
             points: vec!["coupler.P".into(), "crank.A".into()],
+            ..AnalysisSpec::default()
         }
     );
 }

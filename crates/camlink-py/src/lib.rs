@@ -10,10 +10,18 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
+use std::sync::Arc;
+
+use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
-use camlink_core::kinematics::{self, PointOutput, Settings, Sink};
+use camlink_core::dynamics::force::callback::Callback;
+use camlink_core::dynamics::integrator::{self, Adaptive};
+use camlink_core::dynamics::{inverse, statics, Force};
+use camlink_core::kinematics::{
+    self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
+};
 use camlink_core::Equations;
-use camlink_model::{Format, Loaded};
+use camlink_model::{AnalysisType, Format, Loaded};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -146,18 +154,133 @@ impl Model {
         Ok(list)
     }
 
-    /// The file's `[analysis]` table as a dict.
+    /// The file's `[analysis]` table as a dict. `tol` and `max_iter` are
+    /// None unless the file gives them (each analysis has its own
+    /// defaults); `h` is None when it follows the output step.
     #[getter]
     fn analysis<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let a = &self.loaded.analysis;
         let d = PyDict::new(py);
+        d.set_item("type", a.kind.name())?;
         d.set_item("t_end", a.t_end)?;
         d.set_item("step", a.step)?;
         d.set_item("times", a.times.clone())?;
-        d.set_item("tol", a.tol)?;
-        d.set_item("max_iter", a.max_iter)?;
+        d.set_item("time", a.time)?;
+        d.set_item("tol", a.tol_set.then_some(a.tol))?;
+        d.set_item("max_iter", a.max_iter_set.then_some(a.max_iter))?;
         d.set_item("points", a.points.clone())?;
+        let dy = &a.dynamics;
+        d.set_item("h", dy.h)?;
+        d.set_item("rho_inf", dy.rho_inf)?;
+        d.set_item("projection_tol", dy.projection_tol)?;
+        d.set_item("adaptive", dy.adaptive.is_some())?;
+        let ad = dy.adaptive.clone().unwrap_or(Adaptive {
+            atol: camlink_model::DynamicsSpec::DEFAULT_ATOL,
+            rtol: camlink_model::DynamicsSpec::DEFAULT_RTOL,
+            h_min: camlink_model::DynamicsSpec::DEFAULT_H_MIN,
+        });
+        d.set_item("atol", ad.atol)?;
+        d.set_item("rtol", ad.rtol)?;
+        d.set_item("h_min", ad.h_min)?;
         Ok(d)
+    }
+
+    /// Default `tol` and `max_iter` of each analysis type, as
+    /// `{type: (tol, max_iter)}`.
+    #[staticmethod]
+    fn analysis_defaults<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let d = PyDict::new(py);
+        for kind in [
+            AnalysisType::Kinematics,
+            AnalysisType::InverseDynamics,
+            AnalysisType::Equilibrium,
+            AnalysisType::Dynamics,
+        ] {
+            d.set_item(
+                kind.name(),
+                (
+                    camlink_model::AnalysisSpec::default_tol(kind),
+                    camlink_model::AnalysisSpec::default_max_iter(kind),
+                ),
+            )?;
+        }
+        Ok(d)
+    }
+
+    /// Gravity vector g (m/s²), global frame.
+    #[getter]
+    fn gravity(&self) -> [f64; 2] {
+        self.loaded.model.gravity
+    }
+
+    /// Applied forces: a list of dicts with name, kind and bodies.
+    #[getter]
+    fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        use camlink_core::dynamics::Applied;
+        let model = &self.loaded.model;
+        let list = PyList::empty(py);
+        for f in &model.forces {
+            let d = PyDict::new(py);
+            let [bi, bj] = f.kind.bodies();
+            d.set_item("name", &f.name)?;
+            d.set_item("kind", f.kind.kind())?;
+            d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
+    /// The design checks of the curve contacts (flat follower on a concave
+    /// profile, undercut roller): a list of dicts with severity
+    /// (`"warning"` or `"error"`), joint, message and text (one line).
+    fn design_check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        guard(|| {
+            let findings = py.detach(|| design::check(&self.loaded.model));
+            let list = PyList::empty(py);
+            for f in &findings {
+                let d = PyDict::new(py);
+                let severity = match f.severity {
+                    Severity::Warning => "warning",
+                    Severity::Error => "error",
+                };
+                d.set_item("severity", severity)?;
+                d.set_item("joint", &f.joint)?;
+                d.set_item("message", &f.message)?;
+                d.set_item("text", f.to_string())?;
+                list.append(d)?;
+            }
+            Ok(list)
+        })
+    }
+
+    /// A copy of this model with a force computed by `f(t, q, qd)` acting
+    /// on `body`: q = (x, y, φ) and qd = (ẋ, ẏ, φ̇) of the body frame, and
+    /// the result (F_x, F_y, n) in N, N, N·m, n the moment about the
+    /// body-frame origin. The slow path: `f` runs at every Newton iteration
+    /// of the dynamic analyses, with the GIL held. An exception raised by
+    /// `f` stops the run and is re-raised.
+    fn with_callback_force(&self, name: String, body: &str, f: Py<PyAny>) -> PyResult<Model> {
+        guard(|| {
+            let model = &self.loaded.model;
+            let id = model
+                .body_id(body)
+                .filter(|id| !id.is_ground())
+                .ok_or_else(|| {
+                    ModelError::new_err(format!("force '{name}': no moving body named '{body}'"))
+                })?;
+            if model.forces.iter().any(|x| x.name == name) {
+                return Err(ModelError::new_err(format!(
+                    "duplicate force name '{name}'"
+                )));
+            }
+            let callback = Callback {
+                body: id,
+                f: Arc::new(move |t, q, qd| call_force(&f, t, q, qd)),
+            };
+            let mut loaded = self.loaded.clone();
+            loaded.model.add_force(Force::new(name, callback));
+            Ok(Model { loaded })
+        })
     }
 
     /// Counts of bodies, coordinates and equations, every constraint with
@@ -224,36 +347,96 @@ impl Model {
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
-        guard(|| {
-            let times = times.as_array().to_vec();
-            let points = resolve_points(&self.loaded.model, &points)?;
-            let settings = Settings { tol, max_iter };
-            let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
-            let model = &self.loaded.model;
-            let outcome = py.detach(|| {
-                catch_unwind(AssertUnwindSafe(|| {
-                    kinematics::run(model, &times, &settings, &points, &mut sink)
-                }))
-            });
-            sink.flush();
-            let ChunkSink {
-                names,
-                all,
-                callback_error,
-                ..
-            } = sink;
-            if let Some(e) = callback_error {
-                return Err(e);
-            }
-            let data = to_array(py, all, names.len())?;
-            match outcome {
-                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
-                    "internal error: run stopped without a Python error",
-                )),
-                Err(payload) => Err(internal_error(payload)),
-                Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
-                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
-            }
+        let times = times.as_array().to_vec();
+        let settings = Settings { tol, max_iter };
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            kinematics::run(model, &times, &settings, points, sink)
+        })
+    }
+
+    /// Inverse dynamics at `times` (s) of a driven (zero-DOF) model: the
+    /// kinematic channels, then joint reactions, driver efforts, energy and
+    /// drift. Arguments and return value as `run_kinematics`.
+    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[allow(clippy::too_many_arguments)]
+    fn run_inverse_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        times: PyReadonlyArray1<'py, f64>,
+        tol: f64,
+        max_iter: usize,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+    ) -> PyResult<RunOutput<'py>> {
+        let times = times.as_array().to_vec();
+        let settings = Settings { tol, max_iter };
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            inverse::run(model, &times, &settings, points, sink)
+        })
+    }
+
+    /// The equilibrium at `time` (s), as one row with the channels of
+    /// `run_inverse_dynamics` (velocities and accelerations zero).
+    #[pyo3(signature = (time = 0.0, tol = 1e-10, max_iter = 100, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[allow(clippy::too_many_arguments)]
+    fn run_equilibrium<'py>(
+        &self,
+        py: Python<'py>,
+        time: f64,
+        tol: f64,
+        max_iter: usize,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+    ) -> PyResult<RunOutput<'py>> {
+        let settings = statics::Settings { tol, max_iter };
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            statics::run(model, time, &settings, points, sink)
+        })
+    }
+
+    /// Forward dynamics with output at `times` (s; the first is the start
+    /// time), generalized-α with step `h` (s) and spectral radius `rho_inf`;
+    /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
+    /// `h` is the largest step). Channels as `run_inverse_dynamics`.
+    #[pyo3(signature = (times, h = 1e-3, rho_inf = 0.8, tol = 1e-6, max_iter = 12, projection_tol = 1e-12, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[allow(clippy::too_many_arguments)]
+    fn run_dynamics<'py>(
+        &self,
+        py: Python<'py>,
+        times: PyReadonlyArray1<'py, f64>,
+        h: f64,
+        rho_inf: f64,
+        tol: f64,
+        max_iter: usize,
+        projection_tol: f64,
+        adaptive: Option<(f64, f64, f64)>,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+    ) -> PyResult<RunOutput<'py>> {
+        let times = times.as_array().to_vec();
+        if !(h > 0.0 && h.is_finite()) {
+            return Err(ModelError::new_err(format!(
+                "h must be a positive time step ({h} s)"
+            )));
+        }
+        if !(0.0..=1.0).contains(&rho_inf) {
+            return Err(ModelError::new_err(format!(
+                "rho_inf must be between 0 and 1 ({rho_inf})"
+            )));
+        }
+        let settings = integrator::Settings {
+            step: h,
+            rho_inf,
+            tol,
+            max_iter,
+            projection_tol,
+            adaptive: adaptive.map(|(atol, rtol, h_min)| Adaptive { atol, rtol, h_min }),
+        };
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            integrator::run(model, &times, &settings, points, sink)
         })
     }
 
@@ -265,6 +448,88 @@ impl Model {
             m.bodies.len() - 1,
             m.joints.len()
         )
+    }
+}
+
+impl Model {
+    /// Runs `analysis` with the GIL released, rows going to a [`ChunkSink`];
+    /// turns its outcome, a panic, a failing `on_chunk` or a failing
+    /// callback force into the Python result or exception.
+    fn run_with<'py, F>(
+        &self,
+        py: Python<'py>,
+        points: &[String],
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+        analysis: F,
+    ) -> PyResult<RunOutput<'py>>
+    where
+        F: FnOnce(
+                &camlink_core::Model,
+                &[PointOutput],
+                &mut ChunkSink,
+            ) -> Result<Summary, CoreAnalysisError>
+            + Send,
+    {
+        guard(|| {
+            let points = resolve_points(&self.loaded.model, points)?;
+            let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
+            let model = &self.loaded.model;
+            let outcome = py
+                .detach(|| catch_unwind(AssertUnwindSafe(|| analysis(model, &points, &mut sink))));
+            sink.flush();
+            let ChunkSink {
+                names,
+                all,
+                callback_error,
+                ..
+            } = sink;
+            let data = to_array(py, all, names.len())?;
+            let outcome = match outcome {
+                Err(payload) => match payload.downcast::<ForceFailed>() {
+                    Ok(failed) => return Err(failed.0),
+                    Err(payload) => Err(payload),
+                },
+                Ok(result) => Ok(result),
+            };
+            if let Some(e) = callback_error {
+                return Err(e);
+            }
+            match outcome {
+                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
+                    "internal error: run stopped without a Python error",
+                )),
+                Err(payload) => Err(internal_error(payload)),
+                Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
+                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
+            }
+        })
+    }
+}
+
+/// Unwinding payload that stops a run when a Python force function raised:
+/// the exception travels with it to [`Model::run_with`].
+struct ForceFailed(PyErr);
+
+/// Calls a Python force function `f(t, q, qd) -> (fx, fy, n)`; on an
+/// exception or a bad return value, unwinds with [`ForceFailed`].
+fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
+    let result = Python::attach(|py| -> PyResult<[f64; 3]> {
+        let out = f.call1(py, (t, (q[0], q[1], q[2]), (qd[0], qd[1], qd[2])))?;
+        out.extract::<[f64; 3]>(py).map_err(|_| {
+            let got = out
+                .bind(py)
+                .repr()
+                .map(|r| r.to_string())
+                .unwrap_or_else(|_| "?".to_string());
+            ModelError::new_err(format!(
+                "a force function must return three numbers (fx, fy, torque), not {got}"
+            ))
+        })
+    });
+    match result {
+        Ok(v) => v,
+        Err(e) => std::panic::resume_unwind(Box::new(ForceFailed(e))),
     }
 }
 

@@ -157,10 +157,6 @@ impl<'m> Integrator<'m> {
             joints: Vec::new(),
             residual,
         };
-        // Forward dynamics inverts the mass matrix: every body needs mass.
-        if let Err(e) = model.check_mass_properties() {
-            return Err(fail(format!("{e}; forward dynamics needs it"), 0.0));
-        }
         if !(settings.step.is_finite() && settings.step > 0.0) {
             return Err(fail(
                 format!(
@@ -235,10 +231,13 @@ impl<'m> Integrator<'m> {
             .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
             .is_err()
         {
-            return Err(self.error(
-                "the mass matrix is singular on the constraints: give every moving body \
-                 a mass and an inertia, or constrain the massless ones",
-            ));
+            let mut message = "the mass matrix is singular on the constraints: give every \
+                 moving body a mass and an inertia, or constrain the massless ones"
+                .to_string();
+            if let Err(e) = s.model.check_mass_properties() {
+                message.push_str(&format!(" ({e})"));
+            }
+            return Err(self.error(&message));
         }
         self.h_factored = 0.0;
         s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);

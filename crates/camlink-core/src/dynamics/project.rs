@@ -14,6 +14,7 @@
 //! [ I  Φ_qᵀ ; Φ_q  0 ] [q̇ ; μ] = [q̇₀ ; ν].
 
 use super::system::{Augmented, Coefficients, System};
+use crate::constraint::{Equations, Jac, MAX_OWN};
 use crate::kinematics::MAX_ANGLE_STEP;
 
 /// The projection matrix's coefficients: D = I.
@@ -106,7 +107,58 @@ pub fn positions(
     unreachable!("the loop returns")
 }
 
-/// Projects `qd` onto Φ_q q̇ = ν at a consistent `q`.
+/// Sets the rates of the joints' own coordinates (contact parameters,
+/// centre-line angles) from the bodies' velocities in `qd`: for each joint,
+/// the least-squares solution of Φ_own α̇ = ν − Φ_bodies q̇_bodies. The
+/// model gives body velocities only, so this keeps a projection from
+/// sharing a given speed with the contact parameters.
+fn own_rates(s: &System, q: &[f64], qd: &mut [f64], t: f64) {
+    let mut jac = Jac::default();
+    let mut nu = [0.0; 3];
+    for (j, joint) in s.model.joints.iter().enumerate() {
+        let c = &joint.constraint;
+        let k = c.own_count();
+        if k == 0 {
+            continue;
+        }
+        let mut x = s.asm.local(s.model, j, q, qd, t);
+        x.own_d = [0.0; MAX_OWN];
+        c.jacobian(&x, &mut jac);
+        c.nu(&x, &mut nu);
+        // r = ν − Φ_bodies q̇_bodies, then the normal equations in α̇.
+        let mut ata = [[0.0; MAX_OWN]; MAX_OWN];
+        let mut atr = [0.0; MAX_OWN];
+        for (r, &nu_r) in nu.iter().enumerate().take(c.rows()) {
+            let mut res = nu_r;
+            for (block, qd_b) in jac.body.iter().zip(&x.qd) {
+                res -= block[r].iter().zip(qd_b).map(|(j, v)| j * v).sum::<f64>();
+            }
+            let own = &jac.own[r][..k];
+            for (a, &ja) in own.iter().enumerate() {
+                atr[a] += ja * res;
+                for (b, &jb) in own.iter().enumerate() {
+                    ata[a][b] += ja * jb;
+                }
+            }
+        }
+        let rates = if k == 1 {
+            [atr[0] / ata[0][0], 0.0]
+        } else {
+            let det = ata[0][0] * ata[1][1] - ata[0][1] * ata[1][0];
+            [
+                (atr[0] * ata[1][1] - ata[0][1] * atr[1]) / det,
+                (ata[0][0] * atr[1] - atr[0] * ata[1][0]) / det,
+            ]
+        };
+        if rates[..k].iter().all(|v| v.is_finite()) {
+            let o = s.asm.own_col(j);
+            qd[o..o + k].copy_from_slice(&rates[..k]);
+        }
+    }
+}
+
+/// Projects `qd` onto Φ_q q̇ = ν at a consistent `q`, after setting the
+/// own coordinates' rates from the bodies' velocities.
 pub fn velocities(
     s: &System,
     aug: &mut Augmented,
@@ -115,6 +167,7 @@ pub fn velocities(
     t: f64,
 ) -> Result<(), ProjectionError> {
     let (n, m) = (s.n(), s.m());
+    own_rates(s, q, qd, t);
     let zeros = vec![0.0; n];
     aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
         .map_err(|_| ProjectionError {

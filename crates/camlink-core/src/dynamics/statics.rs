@@ -110,7 +110,20 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         if !(rf.is_finite() && rp.is_finite()) {
             return Err(err("the equations are not finite numbers".into(), rp));
         }
+        let neutral = || {
+            err(
+                "the equilibrium equations are singular: a degree of freedom is neither \
+                 restrained by a spring or gravity nor driven (neutral equilibrium)"
+                    .into(),
+                rp,
+            )
+        };
         if rf <= settings.tol && rp <= settings.tol {
+            // A balance is an equilibrium only where the tangent stiffness
+            // holds every free motion (a free motion with no force on it
+            // balances everywhere).
+            aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
+                .map_err(|_| neutral())?;
             return Ok(Equilibrium {
                 q,
                 lambda,
@@ -126,15 +139,19 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
                 rp,
             ));
         }
-        aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
-            .map_err(|_| {
-                err(
-                    "the equilibrium equations are singular: a degree of freedom is neither \
-                     restrained by a spring or gravity nor driven (neutral equilibrium)"
-                        .into(),
-                    rp,
-                )
-            })?;
+        // Where the tangent stiffness is singular away from a balance (a
+        // pendulum lying horizontal), a regularised step K + μI leads on.
+        if aug
+            .refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
+            .is_err()
+        {
+            let regularised = Coefficients {
+                identity: 1e-3 * (1.0 + max_abs(&qf)),
+                ..newton
+            };
+            aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, regularised)
+                .map_err(|_| neutral())?;
+        }
         for v in res.iter_mut() {
             *v = -*v;
         }
