@@ -30,6 +30,7 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
+import camlink_models  # noqa: E402
 import divan  # noqa: E402
 import slider_crank as sc  # noqa: E402
 import textbook_four_bar as tb  # noqa: E402
@@ -166,16 +167,23 @@ def camlink_slider_error() -> float | None:
     return float(m.group(1)) if m else None
 
 
-def python_dynamics_note() -> None:
+def camlink_simulate(text: str, t_end: float, reps: int) -> tuple[float, float, Any] | None:
+    """(seconds with output every 1 ms, seconds with output at the end
+    only, the first run's results) of `Model.simulate` with h = 1 ms, or
+    None when this camlink has no Python forward dynamics."""
     import camlink
 
     if not hasattr(camlink.Model, "simulate"):
-        print("  camlink: forward dynamics has no Python entry yet; its figures come from cargo")
+        print("  camlink: forward dynamics has no Python entry here; its figures come from cargo")
+        return None
+    model = camlink.loads(text)
+    every, res = best_of(reps, lambda: model.simulate(t_end=t_end, step=1e-3, h=1e-3, rho_inf=0.8))
+    end, _ = best_of(reps, lambda: model.simulate(t_end=t_end, step=t_end, h=1e-3, rho_inf=0.8))
+    return every, end, res
 
 
 def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
     print("slider-crank forward dynamics, 1,000 steps of 1 ms")
-    python_dynamics_note()
     steps = 1000
     h_ref = 1e-3 if args.quick else 1e-4
     _, x_ref = sc.reference(1.0, h_ref)
@@ -193,6 +201,16 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
             )
         except (RuntimeError, KeyError, OSError) as e:
             print(f"  camlink core: failed ({e})")
+
+    py = camlink_simulate(camlink_models.slider_crank(), 1.0, 1 if args.quick else 3)
+    if py is not None:
+        every, end, res = py
+        x = float(res["slider.x"][-1])
+        rows.append(
+            Row("slider_crank", "camlink from Python (Model.simulate)", "index-3, Newton",
+                every / steps * 1e6,
+                note=f"slider error {abs(x - x_ref):.1e} m; output at the end only {end / steps * 1e6:.2f}")
+        )
 
     pe = peer("peer_exudyn")
     if pe is not None:
@@ -228,7 +246,6 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
     steps = 100
     print(f"pendulum chain, N = {', '.join(map(str, sizes))}; {steps} steps of 1 ms")
     unit = "µs/body/step"
-    python_dynamics_note()
 
     if not args.no_cargo:
         try:
@@ -242,6 +259,17 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
                 )
         except (RuntimeError, KeyError, OSError) as e:
             print(f"  camlink core: failed ({e})")
+
+    for n in sizes:
+        py = camlink_simulate(camlink_models.chain(n), steps * 1e-3, 1)
+        if py is None:
+            break
+        every, end, _ = py
+        rows.append(
+            Row(f"chain N={n}", "camlink from Python (Model.simulate)", "index-3, Newton",
+                every / (steps * n) * 1e6, unit,
+                note=f"output at the end only {end / (steps * n) * 1e6:.3g}")
+        )
 
     pe = peer("peer_exudyn")
     if pe is not None:
