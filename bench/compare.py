@@ -20,9 +20,10 @@ import re
 import subprocess
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Callable
+from typing import Any
 
 import numpy as np
 
@@ -30,10 +31,10 @@ HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
-import camlink_models  # noqa: E402
-import divan  # noqa: E402
-import slider_crank as sc  # noqa: E402
-import textbook_four_bar as tb  # noqa: E402
+import camlink_models
+import divan
+import slider_crank as sc
+import textbook_four_bar as tb
 
 BENCHES = ("four_bar", "slider_crank", "chain")
 
@@ -92,8 +93,14 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
         try:
             res = cargo("camlink-model", "examples", ["four_bar_10k_steps"])["four_bar_10k_steps"]
             rows.append(
-                Row("four_bar", "camlink core (Rust, divan)", "pos, vel, acc", res["median"] / 1e4 * 1e6,
-                    note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}", base=True)
+                Row(
+                    "four_bar",
+                    "camlink core (Rust, divan)",
+                    "pos, vel, acc",
+                    res["median"] / 1e4 * 1e6,
+                    note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}",
+                    base=True,
+                )
             )
         except (RuntimeError, KeyError, OSError) as e:
             print(f"  camlink core: failed ({e})")
@@ -105,8 +112,13 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
     elapsed, results = best_of(reps, lambda: model.run(t_end=t_end, step=1e-3))
     assert len(results.t) == n, len(results.t)
     rows.append(
-        Row("four_bar", "camlink from Python (Model.run)", "pos, vel, acc + 2 points",
-            elapsed / n * 1e6, note="whole call: set-up, solve, channels, Results")
+        Row(
+            "four_bar",
+            "camlink from Python (Model.run)",
+            "pos, vel, acc + 2 points",
+            elapsed / n * 1e6,
+            note="whole call: set-up, solve, channels, Results",
+        )
     )
     # The binding alone: no point channels, no chunk callback.
     tol, max_iter = camlink._core.Model.analysis_defaults()["kinematics"]
@@ -115,8 +127,13 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
         reps, lambda: model._core.run_kinematics(times, tol=tol, max_iter=max_iter, points=[])
     )
     rows.append(
-        Row("four_bar", "camlink binding (_core.run_kinematics)", "pos, vel, acc",
-            elapsed / n * 1e6, note="one call into Rust, arrays back")
+        Row(
+            "four_bar",
+            "camlink binding (_core.run_kinematics)",
+            "pos, vel, acc",
+            elapsed / n * 1e6,
+            note="one call into Rust, arrays back",
+        )
     )
 
     # Textbook NumPy: the same grid (fewer steps: it is slow), checked
@@ -134,20 +151,38 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
     agree = ", ".join(f"{k} {v:.1e}" for k, v in diff.items())
     print(f"  textbook NumPy vs camlink over {m} steps, max |difference|: {agree}")
     rows.append(
-        Row("four_bar", "textbook NumPy (bench/textbook_four_bar.py)", "pos, vel, acc",
-            elapsed / m * 1e6, note=f"{m} steps; max diff vs camlink {agree}")
+        Row(
+            "four_bar",
+            "textbook NumPy (bench/textbook_four_bar.py)",
+            "pos, vel, acc",
+            elapsed / m * 1e6,
+            note=f"{m} steps; max diff vs camlink {agree}",
+        )
     )
 
     pe = peer("peer_exudyn")
     if pe is not None:
         try:
             elapsed, q = pe.four_bar(times)
-            err = float(np.max(np.abs(q - np.concatenate(
-                [[results[f"{b}.{c}"][-1] for c in ("x", "y", "phi")] for b in names]))))
+            err = float(
+                np.max(
+                    np.abs(
+                        q
+                        - np.concatenate(
+                            [[results[f"{b}.{c}"][-1] for c in ("x", "y", "phi")] for b in names]
+                        )
+                    )
+                )
+            )
             rows.append(
-                Row("four_bar", f"Exudyn {pe.VERSION} SolveStatic", "pos only", elapsed / n * 1e6,
+                Row(
+                    "four_bar",
+                    f"Exudyn {pe.VERSION} SolveStatic",
+                    "pos only",
+                    elapsed / n * 1e6,
                     note=f"one load step per time, driver offset by Python user function; "
-                    f"final q vs camlink {err:.1e}")
+                    f"final q vs camlink {err:.1e}",
+                )
             )
         except Exception as e:  # a peer's failure is reported, not fatal
             print(f"  Exudyn: failed ({type(e).__name__}: {e})")
@@ -160,10 +195,21 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
 def camlink_slider_error() -> float | None:
     """camlink's slider error at t = 1 s from its accuracy test (same model,
     same RK4 reference), printed by the test."""
-    cmd = ["cargo", "test", "-q", "--release", "-p", "camlink-core", "--test", "dynamics_forward",
-           "slider_crank_matches_minimal_coordinates", "--", "--nocapture"]
+    cmd = [
+        "cargo",
+        "test",
+        "-q",
+        "--release",
+        "-p",
+        "camlink-core",
+        "--test",
+        "dynamics_forward",
+        "slider_crank_matches_minimal_coordinates",
+        "--",
+        "--nocapture",
+    ]
     print(f"  {' '.join(cmd)} …", flush=True)
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=False)
     m = re.search(r"\(error ([0-9.eE+-]+) m\)", proc.stderr + proc.stdout)
     return float(m.group(1)) if m else None
 
@@ -188,17 +234,26 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
     steps = 1000
     h_ref = 1e-3 if args.quick else 1e-4
     _, x_ref = sc.reference(1.0, h_ref)
-    print(f"  reference: RK4 on Lagrange's equation in θ, h = {h_ref:g} s: slider x(1 s) = {x_ref:.9f} m")
+    print(
+        f"  reference: RK4 on Lagrange's equation in θ, h = {h_ref:g} s: slider x(1 s) = {x_ref:.9f} m"
+    )
 
     if not args.no_cargo:
         try:
-            res = cargo("camlink-core", "dynamics", ["slider_crank_1000_steps"])["slider_crank_1000_steps"]
+            res = cargo("camlink-core", "dynamics", ["slider_crank_1000_steps"])[
+                "slider_crank_1000_steps"
+            ]
             err = camlink_slider_error()
             acc = f"slider error {err:.1e} m (its test)" if err is not None else "error not read"
             rows.append(
-                Row("slider_crank", "camlink core (Rust, divan) gen-α ρ∞=0.8", "index-3, Newton",
-                    res["median"] / steps * 1e6, base=True,
-                    note=f"{acc}; fastest {res['fastest'] / steps * 1e6:.2f}")
+                Row(
+                    "slider_crank",
+                    "camlink core (Rust, divan) gen-α ρ∞=0.8",
+                    "index-3, Newton",
+                    res["median"] / steps * 1e6,
+                    base=True,
+                    note=f"{acc}; fastest {res['fastest'] / steps * 1e6:.2f}",
+                )
             )
         except (RuntimeError, KeyError, OSError) as e:
             print(f"  camlink core: failed ({e})")
@@ -208,9 +263,13 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
         every, end, res = py
         x = float(res["slider.x"][-1])
         rows.append(
-            Row("slider_crank", "camlink from Python (Model.simulate)", "index-3, Newton",
+            Row(
+                "slider_crank",
+                "camlink from Python (Model.simulate)",
+                "index-3, Newton",
                 every / steps * 1e6,
-                note=f"slider error {abs(x - x_ref):.1e} m; output at the end only {end / steps * 1e6:.2f}")
+                note=f"slider error {abs(x - x_ref):.1e} m; output at the end only {end / steps * 1e6:.2f}",
+            )
         )
 
     pe = peer("peer_exudyn")
@@ -219,9 +278,13 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
             t1, x = pe.slider_crank(steps, 1.0)
             t2, _ = pe.slider_crank(2 * steps, 2.0)
             rows.append(
-                Row("slider_crank", f"Exudyn {pe.VERSION} gen-α ρ∞=0.8", "index-3, modified Newton",
+                Row(
+                    "slider_crank",
+                    f"Exudyn {pe.VERSION} gen-α ρ∞=0.8",
+                    "index-3, modified Newton",
                     t1 / steps * 1e6,
-                    note=f"slider error {abs(x - x_ref):.1e} m; marginal {(t2 - t1) / steps * 1e6:.1f}")
+                    note=f"slider error {abs(x - x_ref):.1e} m; marginal {(t2 - t1) / steps * 1e6:.1f}",
+                )
             )
         except Exception as e:
             print(f"  Exudyn: failed ({type(e).__name__}: {e})")
@@ -231,8 +294,13 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
         try:
             t, x = pm.slider_crank(steps)
             rows.append(
-                Row("slider_crank", f"MuJoCo {pm.VERSION} Euler", "joint coords, soft loop",
-                    t / steps * 1e6, note=f"slider error {abs(x - x_ref):.1e} m")
+                Row(
+                    "slider_crank",
+                    f"MuJoCo {pm.VERSION} Euler",
+                    "joint coords, soft loop",
+                    t / steps * 1e6,
+                    note=f"slider error {abs(x - x_ref):.1e} m",
+                )
             )
         except Exception as e:
             print(f"  MuJoCo: failed ({type(e).__name__}: {e})")
@@ -254,9 +322,15 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
             for n in sizes:
                 r = res[f"chain_100_steps/{n}"]
                 rows.append(
-                    Row(f"chain N={n}", "camlink core (Rust, divan) gen-α", "index-3, Newton",
-                        r["median"] / (steps * n) * 1e6, unit, base=True,
-                        note=f"fastest {r['fastest'] / (steps * n) * 1e6:.3f}")
+                    Row(
+                        f"chain N={n}",
+                        "camlink core (Rust, divan) gen-α",
+                        "index-3, Newton",
+                        r["median"] / (steps * n) * 1e6,
+                        unit,
+                        base=True,
+                        note=f"fastest {r['fastest'] / (steps * n) * 1e6:.3f}",
+                    )
                 )
         except (RuntimeError, KeyError, OSError) as e:
             print(f"  camlink core: failed ({e})")
@@ -267,9 +341,14 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
             break
         every, end, _ = py
         rows.append(
-            Row(f"chain N={n}", "camlink from Python (Model.simulate)", "index-3, Newton",
-                every / (steps * n) * 1e6, unit,
-                note=f"output at the end only {end / (steps * n) * 1e6:.3g}")
+            Row(
+                f"chain N={n}",
+                "camlink from Python (Model.simulate)",
+                "index-3, Newton",
+                every / (steps * n) * 1e6,
+                unit,
+                note=f"output at the end only {end / (steps * n) * 1e6:.3g}",
+            )
         )
 
     pe = peer("peer_exudyn")
@@ -280,9 +359,14 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
                 t2 = pe.chain(n, 2 * steps)
                 solver = "sparse" if n > 20 else "dense"
                 rows.append(
-                    Row(f"chain N={n}", f"Exudyn {pe.VERSION} gen-α ρ∞=0.8", "index-3, modified Newton",
-                        t1 / (steps * n) * 1e6, unit,
-                        note=f"{solver} solver; marginal {(t2 - t1) / (steps * n) * 1e6:.2g}")
+                    Row(
+                        f"chain N={n}",
+                        f"Exudyn {pe.VERSION} gen-α ρ∞=0.8",
+                        "index-3, modified Newton",
+                        t1 / (steps * n) * 1e6,
+                        unit,
+                        note=f"{solver} solver; marginal {(t2 - t1) / (steps * n) * 1e6:.2g}",
+                    )
                 )
             except Exception as e:
                 print(f"  Exudyn N={n}: failed ({type(e).__name__}: {e})")
@@ -293,8 +377,15 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
             for maximal, what in ((True, "maximal coords, soft connect"), (False, "hinge tree")):
                 try:
                     t = pm.chain(n, steps, maximal)
-                    rows.append(Row(f"chain N={n}", f"MuJoCo {pm.VERSION} Euler", what,
-                                    t / (steps * n) * 1e6, unit))
+                    rows.append(
+                        Row(
+                            f"chain N={n}",
+                            f"MuJoCo {pm.VERSION} Euler",
+                            what,
+                            t / (steps * n) * 1e6,
+                            unit,
+                        )
+                    )
                 except Exception as e:
                     print(f"  MuJoCo N={n} ({what}): failed ({type(e).__name__}: {e})")
 
@@ -316,10 +407,14 @@ def table(rows: list[Row]) -> None:
     rows = sorted(rows, key=lambda r: order[r.bench])
     head = ("benchmark", "engine", "computes", "time", "× camlink", "notes")
     lines = [
-        (r.bench, r.engine, r.computes,
-         f"{r.us:.3g} {r.unit}" if r.us is not None else "—",
-         ratio(r.us / base[r.bench]) if r.us is not None and r.bench in base else "—",
-         r.note)
+        (
+            r.bench,
+            r.engine,
+            r.computes,
+            f"{r.us:.3g} {r.unit}" if r.us is not None else "—",
+            ratio(r.us / base[r.bench]) if r.us is not None and r.bench in base else "—",
+            r.note,
+        )
         for r in rows
     ]
     widths = [max(len(h), *(len(l[i]) for l in lines)) for i, h in enumerate(head)]
@@ -331,16 +426,26 @@ def table(rows: list[Row]) -> None:
 
 
 def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     p.add_argument("--quick", action="store_true", help="fewer steps and repeats, N up to 100")
-    p.add_argument("--only", choices=BENCHES, action="append", help="run only this benchmark (repeatable)")
-    p.add_argument("--no-cargo", action="store_true", help="skip the cargo bench figures of the core")
+    p.add_argument(
+        "--only", choices=BENCHES, action="append", help="run only this benchmark (repeatable)"
+    )
+    p.add_argument(
+        "--no-cargo", action="store_true", help="skip the cargo bench figures of the core"
+    )
     args = p.parse_args()
 
     print(f"camlink benchmark comparison, {datetime.datetime.now().isoformat(timespec='minutes')}")
-    print(f"machine: {platform.machine()} {platform.processor() or ''}, Python {platform.python_version()}, NumPy {np.__version__}")
+    print(
+        f"machine: {platform.machine()} {platform.processor() or ''}, Python {platform.python_version()}, NumPy {np.__version__}"
+    )
     print(f"load average at start: {load_average()}")
-    print("(a shared machine: figures under load are slow and noisy; compare ratios within one run)")
+    print(
+        "(a shared machine: figures under load are slow and noisy; compare ratios within one run)"
+    )
     rows: list[Row] = []
     for name in args.only or BENCHES:
         globals()[name](args, rows)

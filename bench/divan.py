@@ -50,7 +50,7 @@ def run(package: str, bench: str, filters: list[str] | None = None) -> dict[str,
     cmd = ["cargo", "bench", "-q", "-p", package, "--bench", bench]
     if filters:
         cmd += ["--", *filters]
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, check=False)
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
     return parse(proc.stdout)

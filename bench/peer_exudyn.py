@@ -1,7 +1,6 @@
 """The benchmark mechanisms in Exudyn (planar rigid bodies, 2D joints).
 
-Each builder returns a ready system; the ``solve_*`` functions time only the
-solver call. Exudyn's node of a 2D rigid body sits at the centroid, so
+Each function builds its system, then times the solver call alone. Exudyn's node of a 2D rigid body sits at the centroid, so
 joint points are given relative to it.
 """
 
@@ -12,14 +11,13 @@ import warnings
 from typing import Any
 
 import numpy as np
-
 import slider_crank as sc
 import textbook_four_bar as tb
 
 warnings.filterwarnings("ignore", category=DeprecationWarning)
 
-import exudyn as exu  # noqa: E402
-from exudyn.itemInterface import (  # noqa: E402
+import exudyn as exu
+from exudyn.itemInterface import (
     CoordinateConstraint,
     LoadMassProportional,
     MarkerBodyMass,

@@ -12,7 +12,6 @@ import math
 import time
 
 import mujoco
-
 import slider_crank as sc
 
 VERSION = mujoco.__version__
@@ -26,10 +25,7 @@ _OPTION = """
 
 def _inertial(pos: tuple[float, float], mass: float, izz: float) -> str:
     # Out-of-plane inertias only need to be positive: the motion is planar.
-    return (
-        f'<inertial pos="{pos[0]} {pos[1]} 0" mass="{mass}" '
-        f'diaginertia="{izz} {izz} {izz}"/>'
-    )
+    return f'<inertial pos="{pos[0]} {pos[1]} 0" mass="{mass}" diaginertia="{izz} {izz} {izz}"/>'
 
 
 def slider_crank_xml() -> str:
@@ -100,8 +96,7 @@ def chain_xml(n: int, length: float = 0.1) -> str:
         for k in range(n)
     )
     eqs = [f'<connect body1="l0" anchor="{-length / 2} 0 0"/>'] + [
-        f'<connect body1="l{k - 1}" body2="l{k}" anchor="{length / 2} 0 0"/>'
-        for k in range(1, n)
+        f'<connect body1="l{k - 1}" body2="l{k}" anchor="{length / 2} 0 0"/>' for k in range(1, n)
     ]
     return f"""
 <mujoco model="chain">

@@ -31,7 +31,7 @@ W0 = 10.0
 class J2:
     """A value with its first two derivatives with respect to θ."""
 
-    __slots__ = ("v", "d1", "d2")
+    __slots__ = ("d1", "d2", "v")
 
     def __init__(self, v: float, d1: float = 0.0, d2: float = 0.0) -> None:
         self.v, self.d1, self.d2 = v, d1, d2

@@ -93,9 +93,7 @@ def gamma(q: np.ndarray, qd: np.ndarray) -> np.ndarray:
 
 def initial_guess() -> np.ndarray:
     """The placement in examples/four_bar.toml (a few degrees off)."""
-    return np.array(
-        [0.0, 0.0, THETA0, 0.11, 0.04, np.deg2rad(30.0), D, 0.0, np.deg2rad(80.0)]
-    )
+    return np.array([0.0, 0.0, THETA0, 0.11, 0.04, np.deg2rad(30.0), D, 0.0, np.deg2rad(80.0)])
 
 
 def run(times: np.ndarray, tol: float = 1e-10, max_iter: int = 25) -> np.ndarray:
