@@ -165,8 +165,9 @@ class _CsvWriter:
             self._file.write(",".join(names) + "\n")
             self._header = True
         if len(rows):
-            # %.17g keeps every bit of a double.
-            np.savetxt(self._file, rows, delimiter=",", fmt="%.17g")
+            # %.17g keeps every bit of a double; adding 0.0 turns −0.0 into
+            # 0.0, so a value at rest reads "0" rather than "-0".
+            np.savetxt(self._file, rows + 0.0, delimiter=",", fmt="%.17g")
         self._file.flush()
 
     def close(self, names: list[str]) -> None:

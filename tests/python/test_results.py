@@ -108,3 +108,12 @@ def test_callback_error_stops_the_run(four_bar_file):
             model.times(t_end=10.0, step=0.001), on_chunk=stop_at_second_chunk, chunk_rows=100
         )
     assert calls == [100, 100]
+
+
+def test_csv_writes_negative_zero_as_zero(tmp_path):
+    res = Results(["t", "v"], np.array([[0.0, -0.0], [1.0, -2.5]]))
+    path = tmp_path / "r.csv"
+    res.save(path)
+    fields = path.read_text().replace("\n", ",").split(",")
+    assert "-0" not in fields
+    assert "-2.5" in fields
