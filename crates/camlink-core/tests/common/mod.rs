@@ -53,30 +53,11 @@ pub fn four_bar() -> Model {
         &[("O4", [-c / 2.0, 0.0]), ("C", [c / 2.0, 0.0])],
     ));
     let g = BodyId::GROUND;
-    let rev = |bi, si, bj, sj| Revolute {
-        body_i: bi,
-        s_i: si,
-        body_j: bj,
-        s_j: sj,
-    };
     m.add_joint("O2", rev(g, [0.0, 0.0], crank, [-a / 2.0, 0.0]));
     m.add_joint("B", rev(crank, [a / 2.0, 0.0], coupler, [-b / 2.0, 0.0]));
     m.add_joint("C", rev(coupler, [b / 2.0, 0.0], rocker, [c / 2.0, 0.0]));
     m.add_joint("O4", rev(g, [d, 0.0], rocker, [-c / 2.0, 0.0]));
-    m.add_driver(
-        "motor",
-        RelativeCoord {
-            body_i: g,
-            s_i: [0.0, 0.0],
-            body_j: crank,
-            s_j: [0.0, 0.0],
-            coord: RelCoord::Phi,
-            f: TimeFn::Linear {
-                value: CRANK_START,
-                rate: CRANK_SPEED,
-            },
-        },
-    );
+    m.add_driver("motor", crank_motor(crank, CRANK_START, CRANK_SPEED));
     m
 }
 
@@ -108,6 +89,21 @@ pub fn freudenstein(l: [f64; 4], th2: f64, w2: f64, sign: f64) -> ([f64; 2], [f6
     ([th3, th4], [w3, w4], [al3, al4])
 }
 
+/// The crank's angle relative to the ground driven at θ = `start` + ω t.
+fn crank_motor(crank: BodyId, start: f64, omega: f64) -> RelativeCoord {
+    RelativeCoord {
+        body_i: BodyId::GROUND,
+        s_i: [0.0, 0.0],
+        body_j: crank,
+        s_j: [0.0, 0.0],
+        coord: RelCoord::Phi,
+        f: TimeFn::Linear {
+            value: start,
+            rate: omega,
+        },
+    }
+}
+
 fn rev(bi: BodyId, si: [f64; 2], bj: BodyId, sj: [f64; 2]) -> Revolute {
     Revolute {
         body_i: bi,
@@ -134,20 +130,7 @@ pub fn four_bar_with(l: [f64; 4], th2: f64, omega: f64) -> Model {
     m.add_joint("B", rev(crank, [a, 0.0], coupler, [0.0, 0.0]));
     m.add_joint("C", rev(coupler, [b, 0.0], rocker, [c, 0.0]));
     m.add_joint("O4", rev(g, [d, 0.0], rocker, [0.0, 0.0]));
-    m.add_driver(
-        "motor",
-        RelativeCoord {
-            body_i: g,
-            s_i: [0.0, 0.0],
-            body_j: crank,
-            s_j: [0.0, 0.0],
-            coord: RelCoord::Phi,
-            f: TimeFn::Linear {
-                value: th2,
-                rate: omega,
-            },
-        },
-    );
+    m.add_driver("motor", crank_motor(crank, th2, omega));
     m
 }
 
