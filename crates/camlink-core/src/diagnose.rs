@@ -12,6 +12,7 @@ use faer::Mat;
 
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
+use crate::math::norm2;
 use crate::model::Model;
 
 /// One equation that depends on others.
@@ -132,7 +133,7 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
             trial[k] = q[k] - dq[(k, 0)].clamp(-0.5, 0.5);
         }
         asm.phi(model, &trial, t, &mut trial_phi);
-        if norm(&trial_phi) < norm(&phi) {
+        if norm2(&trial_phi) < norm2(&phi) {
             q.copy_from_slice(&trial);
             phi.copy_from_slice(&trial_phi);
             mu = (mu * 0.3).max(1e-12);
@@ -144,10 +145,6 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
         }
     }
     phi.iter().fold(0.0f64, |a, x| a.max(x.abs()))
-}
-
-fn norm(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
 fn unit(n: usize, k: usize) -> Vec<f64> {
@@ -196,7 +193,7 @@ fn redundant_rows(model: &Model, asm: &Assembly, j: &Mat<f64>) -> Vec<Redundancy
                 v.iter_mut().zip(b).for_each(|(x, y)| *x -= d * y);
             }
         }
-        let len = norm(&v);
+        let len = norm2(&v);
         if len > 1e-8 * row_scale.max(1e-300) {
             basis.push(v.iter().map(|x| x / len).collect());
             independent.push(r);

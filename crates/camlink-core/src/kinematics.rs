@@ -23,7 +23,7 @@ use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{point, point_vel, rot, rot_d, V2};
+use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
 
 /// Solver settings.
@@ -792,10 +792,6 @@ fn levenberg_marquardt(j: &faer::Mat<f64>, phi: &[f64], out: &mut [f64]) {
     }
 }
 
-fn norm2(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
 fn fail(time: f64, message: &str) -> AnalysisError {
     AnalysisError {
         time,
@@ -803,16 +799,4 @@ fn fail(time: f64, message: &str) -> AnalysisError {
         joints: Vec::new(),
         residual: 0.0,
     }
-}
-
-/// max |v_k|, or NaN when any entry is NaN.
-fn max_abs(v: &[f64]) -> f64 {
-    let mut m = 0.0f64;
-    for &x in v {
-        if x.is_nan() {
-            return f64::NAN;
-        }
-        m = m.max(x.abs());
-    }
-    m
 }

@@ -64,6 +64,24 @@ pub fn norm(a: V2) -> f64 {
     a[0].hypot(a[1])
 }
 
+/// Euclidean norm ‖v‖₂ of a vector of any length.
+pub fn norm2(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// max |v_k| (the residual norm of the solvers), or NaN when any entry is
+/// NaN, so that a failed evaluation is never taken for convergence.
+pub fn max_abs(v: &[f64]) -> f64 {
+    let mut m = 0.0f64;
+    for &x in v {
+        if x.is_nan() {
+            return f64::NAN;
+        }
+        m = m.max(x.abs());
+    }
+    m
+}
+
 /// Position r + A(φ) s' of a body point, from body coordinates `q = (x, y, φ)`.
 #[inline]
 pub fn point(q: [f64; 3], s: V2) -> V2 {

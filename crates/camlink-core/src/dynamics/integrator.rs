@@ -39,9 +39,10 @@
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
-use super::project::{self, max_abs};
+use super::project;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
+use crate::math::max_abs;
 use crate::model::Model;
 
 /// Error control of the variable-step mode: the weighted local error

@@ -16,6 +16,7 @@
 use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Equations, Jac, MAX_OWN};
 use crate::kinematics::MAX_ANGLE_STEP;
+use crate::math::{max_abs, norm2};
 
 /// The projection matrix's coefficients: D = I.
 const IDENTITY: Coefficients = Coefficients {
@@ -181,20 +182,4 @@ pub fn velocities(
     aug.solve(&mut rhs);
     qd.copy_from_slice(&rhs[..n]);
     Ok(())
-}
-
-pub(crate) fn norm2(v: &[f64]) -> f64 {
-    v.iter().map(|x| x * x).sum::<f64>().sqrt()
-}
-
-/// max |v_k|, NaN when any entry is NaN.
-pub(crate) fn max_abs(v: &[f64]) -> f64 {
-    let mut m = 0.0f64;
-    for &x in v {
-        if x.is_nan() {
-            return f64::NAN;
-        }
-        m = m.max(x.abs());
-    }
-    m
 }

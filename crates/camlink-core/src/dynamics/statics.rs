@@ -20,9 +20,10 @@
 //! effort that does it.
 
 use super::output::{self, Scratch};
-use super::project::{self, max_abs, norm2};
+use super::project;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary, MAX_ANGLE_STEP};
+use crate::math::{max_abs, norm2};
 use crate::model::Model;
 
 /// Equilibrium solver settings.
