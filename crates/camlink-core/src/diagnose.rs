@@ -108,11 +108,28 @@ pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f
     j
 }
 
+/// The Levenberg–Marquardt step δ = (JᵀJ + μ s I)⁻¹ Jᵀ Φ into `out`, with
+/// μ relative to s, the largest diagonal entry of JᵀJ; q − δ lowers ‖Φ‖²
+/// where J is rank deficient or not square.
+pub fn levenberg_marquardt(j: &Mat<f64>, phi: &[f64], mu: f64, out: &mut [f64]) {
+    let jtj = j.transpose() * j;
+    let scale = (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
+    let a = Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
+        jtj[(r, c)] + if r == c { mu * scale } else { 0.0 }
+    });
+    let f = Mat::from_fn(phi.len(), 1, |r, _| phi[r]);
+    let x = a.partial_piv_lu().solve(j.transpose() * &f);
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = x[(k, 0)];
+    }
+}
+
 /// Levenberg–Marquardt on ‖Φ‖² from q; returns the final max |Φ|.
 fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, tol: f64) -> f64 {
     let mut phi = vec![0.0; asm.m];
     let mut trial = q.to_vec();
     let mut trial_phi = phi.clone();
+    let mut dq = vec![0.0; asm.n];
     let mut mu = 1e-6;
     asm.phi(model, q, t, &mut phi);
     for _ in 0..200 {
@@ -121,16 +138,9 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
             break;
         }
         let j = dense_jacobian(model, asm, q, t);
-        let jtj = j.transpose() * &j;
-        let f = Mat::from_fn(asm.m, 1, |r, _| phi[r]);
-        let g = j.transpose() * &f;
-        let scale = (0..asm.n).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
-        let a = Mat::from_fn(asm.n, asm.n, |r, c| {
-            jtj[(r, c)] + if r == c { mu * scale } else { 0.0 }
-        });
-        let dq = a.partial_piv_lu().solve(&g);
+        levenberg_marquardt(&j, &phi, mu, &mut dq);
         for k in 0..asm.n {
-            trial[k] = q[k] - dq[(k, 0)].clamp(-0.5, 0.5);
+            trial[k] = q[k] - dq[k].clamp(-0.5, 0.5);
         }
         asm.phi(model, &trial, t, &mut trial_phi);
         if norm2(&trial_phi) < norm2(&phi) {

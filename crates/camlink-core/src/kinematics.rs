@@ -22,6 +22,7 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
+use crate::diagnose::levenberg_marquardt;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
@@ -495,7 +496,7 @@ impl<'m> Solver<'m> {
             self.rhs.copy_from_slice(&phi);
             match self.refactor(t) {
                 Ok(()) => self.jac.solve(&mut self.rhs),
-                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, &mut self.rhs),
+                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
             }
             self.summary.newton_iterations += 1;
             let big = (0..self.q.len())
@@ -775,22 +776,6 @@ fn model_size(model: &Model) -> f64 {
 const ASSEMBLY_ITER: usize = 100;
 /// Largest change of an angle (rad) in one assembly iteration.
 pub const MAX_ANGLE_STEP: f64 = 0.5;
-
-/// The Levenberg–Marquardt step δ = (JᵀJ + μI)⁻¹ Jᵀ Φ into `out`, for a
-/// singular J, with μ scaled to JᵀJ.
-fn levenberg_marquardt(j: &faer::Mat<f64>, phi: &[f64], out: &mut [f64]) {
-    use faer::linalg::solvers::Solve;
-    let jtj = j.transpose() * j;
-    let mu = 1e-6 * (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
-    let a = faer::Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
-        jtj[(r, c)] + if r == c { mu } else { 0.0 }
-    });
-    let f = faer::Mat::from_fn(phi.len(), 1, |r, _| phi[r]);
-    let x = a.partial_piv_lu().solve(j.transpose() * &f);
-    for (k, o) in out.iter_mut().enumerate() {
-        *o = x[(k, 0)];
-    }
-}
 
 fn fail(time: f64, message: &str) -> AnalysisError {
     AnalysisError {
