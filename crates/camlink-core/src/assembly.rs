@@ -195,16 +195,21 @@ impl Assembly {
             c.jacobian(&x, &mut jac);
             let r0 = self.row[j];
             let bodies = c.bodies();
-            for r in 0..c.rows() {
+            let pattern = c.jacobian_pattern();
+            for (r, &row_pattern) in pattern.iter().enumerate().take(c.rows()) {
                 for (k, b) in bodies.iter().enumerate() {
                     if let Some(col) = self.body_col[b.0] {
                         for d in 0..3 {
-                            put(r0 + r, col + d, jac.body[k][r][d]);
+                            if row_pattern & (1 << (3 * k + d)) != 0 {
+                                put(r0 + r, col + d, jac.body[k][r][d]);
+                            }
                         }
                     }
                 }
                 for o in 0..c.own_count() {
-                    put(r0 + r, self.own_col[j] + o, jac.own[r][o]);
+                    if row_pattern & (1 << (6 + o)) != 0 {
+                        put(r0 + r, self.own_col[j] + o, jac.own[r][o]);
+                    }
                 }
             }
         }

@@ -15,7 +15,7 @@
 //!
 //! Body j of the [`Local`] view is the ground.
 
-use super::{Equations, Jac, Local, Rows};
+use super::{CoordMask, Equations, Jac, Local, Rows, MAX_ROWS};
 use crate::function::TimeFn;
 use crate::math::{dot, point, point_vel, rot, rot_d, sub, V2};
 use crate::model::BodyId;
@@ -73,6 +73,24 @@ impl Equations for AbsoluteCoord {
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
         [self.s, x.on_j(self.s)]
+    }
+
+    /// φ_i for a point coordinate; nothing for the angle.
+    fn nonlinear(&self) -> CoordMask {
+        match self.coord {
+            Coord::X | Coord::Y => 1 << 2,
+            Coord::Phi => 0,
+        }
+    }
+
+    /// The coordinate itself and φ_i.
+    fn jacobian_pattern(&self) -> [CoordMask; MAX_ROWS] {
+        let row = match self.coord {
+            Coord::X => 0b101,
+            Coord::Y => 0b110,
+            Coord::Phi => 0b100,
+        };
+        [row, 0, 0]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

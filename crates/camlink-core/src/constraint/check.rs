@@ -93,6 +93,16 @@ fn d1(f: impl Fn(f64) -> Rows, h: f64) -> Rows {
     [0, 1, 2].map(|r| (4.0 * b[r] - a[r]) / 3.0)
 }
 
+/// As [`d1`], for a function with one value per local coordinate.
+fn d1_vec(f: impl Fn(f64) -> [f64; NZ], h: f64) -> [f64; NZ] {
+    let c = |h: f64| {
+        let (p, m) = (f(h), f(-h));
+        std::array::from_fn(|k| (p[k] - m[k]) / (2.0 * h))
+    };
+    let (a, b): ([f64; NZ], [f64; NZ]) = (c(h), c(h / 2.0));
+    std::array::from_fn(|k| (4.0 * b[k] - a[k]) / 3.0)
+}
+
 /// Second derivative of `f` at 0 by Richardson-extrapolated central differences.
 fn d2(f: impl Fn(f64) -> Rows, h: f64) -> Rows {
     let f0 = f(0.0);
@@ -141,6 +151,70 @@ pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
         );
         for r in 0..m {
             close("Φ_q column", c.kind(), r, jac_row(&jac, r)[k], d[r], x);
+        }
+    }
+
+    // Φ_q is exactly zero outside its declared pattern.
+    let pattern = c.jacobian_pattern();
+    for r in 0..m {
+        let row = jac_row(&jac, r);
+        for k in 0..NZ {
+            assert!(
+                pattern[r] & (1 << k) != 0 || row[k] == 0.0,
+                "{}: Φ_q entry ({r}, {k}) is {:e}, outside the declared pattern",
+                c.kind(),
+                row[k]
+            );
+        }
+    }
+
+    // Φ_q does not change with the coordinates Φ is declared linear in.
+    let nonlinear = c.nonlinear();
+    for k in 0..NZ {
+        if !mask[k] || nonlinear & (1 << k) != 0 {
+            continue;
+        }
+        let jac_at = |h: f64| {
+            let mut z = z0;
+            z[k] += h;
+            let mut j = Jac::default();
+            c.jacobian(&from_z(&z, x.t, x), &mut j);
+            j
+        };
+        let (p, q) = (jac_at(1e-3), jac_at(-1e-3));
+        for r in 0..m {
+            let (rp, rq) = (jac_row(&p, r), jac_row(&q, r));
+            for col in 0..NZ {
+                let what = format!("Φ_q column {col} against linear coordinate {k}");
+                close(&what, c.kind(), r, (rp[col] - rq[col]) / 2e-3, 0.0, x);
+            }
+        }
+    }
+
+    // An analytic curvature against differences of λᵀΦ_q.
+    let lambda = [0.7, -1.3, 0.4];
+    let mut curv = [[0.0; NZ]; NZ];
+    if c.curvature(x, &lambda, &mut curv) {
+        for b in 0..NZ {
+            if !mask[b] {
+                continue;
+            }
+            let d = d1_vec(
+                |h| {
+                    let mut z = z0;
+                    z[b] += h;
+                    let mut j = Jac::default();
+                    c.jacobian(&from_z(&z, x.t, x), &mut j);
+                    std::array::from_fn(|a| (0..m).map(|r| lambda[r] * jac_row(&j, r)[a]).sum())
+                },
+                1e-4,
+            );
+            for a in 0..NZ {
+                if mask[a] && nonlinear & (1 << a) != 0 && nonlinear & (1 << b) != 0 {
+                    let what = format!("curvature ({a}, {b})");
+                    close(&what, c.kind(), 0, curv[a][b], d[a], x);
+                }
+            }
         }
     }
 
@@ -238,6 +312,12 @@ mod tests {
         JacobianSign,
         /// ν = 1 instead of 0.
         Nu,
+        /// Declared linear in φ_j.
+        Mask,
+        /// Declared without x_j in the x equation.
+        Pattern,
+        /// Curvature with the wrong sign at (φ_j, φ_j).
+        Curvature,
     }
 
     /// A revolute joint with one deliberate mistake.
@@ -255,6 +335,31 @@ mod tests {
         }
         fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
             self.0.joint_points(x)
+        }
+        fn nonlinear(&self) -> crate::constraint::CoordMask {
+            match self.1 {
+                Fault::Mask => 1 << 2,
+                _ => self.0.nonlinear(),
+            }
+        }
+        fn jacobian_pattern(&self) -> [crate::constraint::CoordMask; 3] {
+            let mut p = self.0.jacobian_pattern();
+            if let Fault::Pattern = self.1 {
+                p[0] &= !(1 << 3);
+            }
+            p
+        }
+        fn curvature(
+            &self,
+            x: &Local,
+            lambda: &Rows,
+            out: &mut crate::constraint::LocalBlock,
+        ) -> bool {
+            self.0.curvature(x, lambda, out);
+            if let Fault::Curvature = self.1 {
+                out[5][5] = -out[5][5];
+            }
+            true
         }
         fn phi(&self, x: &Local, out: &mut Rows) {
             self.0.phi(x, out)
@@ -302,6 +407,24 @@ mod tests {
     #[should_panic(expected = "Φ_q column of equation")]
     fn catches_a_wrong_jacobian_entry() {
         check_random(&broken(Fault::JacobianSign), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "against linear coordinate 5")]
+    fn catches_a_wrong_linearity_declaration() {
+        check_random(&broken(Fault::Mask), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "Φ_q entry (0, 3) is -1e0, outside the declared pattern")]
+    fn catches_a_wrong_pattern_declaration() {
+        check_random(&broken(Fault::Pattern), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "curvature (5, 5)")]
+    fn catches_a_wrong_curvature() {
+        check_random(&broken(Fault::Curvature), 10);
     }
 
     #[test]

@@ -33,6 +33,19 @@ pub const MAX_ROWS: usize = 3;
 /// Most own coordinates one constraint carries.
 pub const MAX_OWN: usize = 2;
 
+/// A set of a constraint's local coordinates, bit k for local coordinate k:
+/// 0–2 are (x, y, φ) of body i, 3–5 of body j, 6 and up its own.
+pub type CoordMask = u8;
+/// Every local coordinate.
+pub const ALL_COORDS: CoordMask = CoordMask::MAX;
+
+/// Number of local coordinates: (x, y, φ) of bodies i and j, then the
+/// constraint's own.
+pub const LOCAL_COORDS: usize = 6 + MAX_OWN;
+
+/// A square block over the local coordinates.
+pub type LocalBlock = [[f64; LOCAL_COORDS]; LOCAL_COORDS];
+
 /// Values of a constraint's equations; entries past `rows()` are unused.
 pub type Rows = [f64; MAX_ROWS];
 
@@ -105,6 +118,29 @@ pub trait Equations {
     fn driver_slope(&self, _t: f64) -> f64 {
         -1.0
     }
+    /// The local coordinates Φ depends on nonlinearly: Φ_q changes with
+    /// these only, so the curvature (Φ_qᵀλ)_q vanishes outside their rows
+    /// and columns. Every coordinate unless a constraint declares fewer;
+    /// the finite-difference check verifies a declaration.
+    fn nonlinear(&self) -> CoordMask {
+        ALL_COORDS
+    }
+    /// For each equation, the local coordinates its row of Φ_q may be
+    /// nonzero in; entries outside are exactly zero and are left out of
+    /// every matrix. Every coordinate unless a constraint declares fewer;
+    /// the finite-difference check verifies a declaration.
+    fn jacobian_pattern(&self) -> [CoordMask; MAX_ROWS] {
+        [ALL_COORDS; MAX_ROWS]
+    }
+    /// The curvature (Φ_qᵀλ)_q = Σ_r λ_r ∂²Φ_r/∂z∂z over the local
+    /// coordinates z, written into `out` (zeroed by the caller; only
+    /// entries between [`nonlinear`](Self::nonlinear) coordinates are
+    /// read). Returns false, the default, to have it differentiated
+    /// numerically from Φ_q instead; the finite-difference check verifies
+    /// an analytic one.
+    fn curvature(&self, _x: &Local, _lambda: &Rows, _out: &mut LocalBlock) -> bool {
+        false
+    }
     /// Φ.
     fn phi(&self, x: &Local, out: &mut Rows);
     /// Φ_q as per-body blocks (every entry of `out` is written).
@@ -156,6 +192,15 @@ macro_rules! constraints {
             }
             fn driver_slope(&self, t: f64) -> f64 {
                 match self { $(Constraint::$variant(c) => c.driver_slope(t),)* }
+            }
+            fn nonlinear(&self) -> CoordMask {
+                match self { $(Constraint::$variant(c) => c.nonlinear(),)* }
+            }
+            fn jacobian_pattern(&self) -> [CoordMask; MAX_ROWS] {
+                match self { $(Constraint::$variant(c) => c.jacobian_pattern(),)* }
+            }
+            fn curvature(&self, x: &Local, lambda: &Rows, out: &mut LocalBlock) -> bool {
+                match self { $(Constraint::$variant(c) => c.curvature(x, lambda, out),)* }
             }
             fn own_names(&self) -> &'static [&'static str] {
                 match self { $(Constraint::$variant(c) => c.own_names(),)* }

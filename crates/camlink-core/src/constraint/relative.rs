@@ -27,7 +27,7 @@
 //! ∂Φ/∂r_b = (A_a w')ᵀ, ∂Φ/∂φ_b = (A_a w')ᵀB_b s'_b, ν = 0,
 //! γ = (A_a w')ᵀe φ̇_a² − 2 φ̇_a (B_a w')ᵀė − (A_a w')ᵀ(A_a s'_a φ̇_a² − A_b s'_b φ̇_b²).
 
-use super::{Equations, Jac, Local, Rows};
+use super::{CoordMask, Equations, Jac, Local, Rows, ALL_COORDS, MAX_ROWS};
 use crate::function::TimeFn;
 use crate::math::{dot, norm, point, point_vel, rot, rot_d, scale, sub, V2};
 use crate::model::BodyId;
@@ -159,6 +159,26 @@ impl Equations for RelativeCoord {
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {
         [self.s_i, self.s_j]
+    }
+
+    /// φ_i and φ_j for a point coordinate, nothing for the angle.
+    fn nonlinear(&self) -> CoordMask {
+        match self.coord {
+            RelCoord::X | RelCoord::Y => 1 << 2 | 1 << 5,
+            RelCoord::Phi => 0,
+            RelCoord::Along(_) => ALL_COORDS,
+        }
+    }
+
+    /// The coordinate and the angle of each body.
+    fn jacobian_pattern(&self) -> [CoordMask; MAX_ROWS] {
+        let row = match self.coord {
+            RelCoord::X => 0b10_1101,
+            RelCoord::Y => 0b11_0110,
+            RelCoord::Phi => 0b10_0100,
+            RelCoord::Along(_) => ALL_COORDS,
+        };
+        [row, 0, 0]
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

@@ -4,8 +4,9 @@
 //! Φ_q = [I  B_i s'_i | −I  −B_j s'_j]
 //! ν = 0
 //! γ = A_i s'_i φ̇_i² − A_j s'_j φ̇_j²
+//! (Φ_qᵀλ)_q: −λᵀA_i s'_i at (φ_i, φ_i), λᵀA_j s'_j at (φ_j, φ_j)
 
-use super::{Equations, Jac, Local, Rows};
+use super::{CoordMask, Equations, Jac, Local, LocalBlock, Rows, MAX_ROWS};
 use crate::math::{point, rot, rot_d, V2};
 use crate::model::BodyId;
 
@@ -34,6 +35,25 @@ impl Equations for Revolute {
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {
         [self.s_i, self.s_j]
+    }
+
+    /// φ_i and φ_j only.
+    fn nonlinear(&self) -> CoordMask {
+        1 << 2 | 1 << 5
+    }
+
+    /// x: x_i, φ_i, x_j, φ_j; y: y_i, φ_i, y_j, φ_j.
+    fn jacobian_pattern(&self) -> [CoordMask; MAX_ROWS] {
+        [0b10_1101, 0b11_0110, 0]
+    }
+
+    /// ∂²Φ/∂φ_i² = −A_i s'_i and ∂²Φ/∂φ_j² = A_j s'_j; nothing else.
+    fn curvature(&self, x: &Local, lambda: &Rows, out: &mut LocalBlock) -> bool {
+        let ai = rot(x.q[0][2], self.s_i);
+        let aj = rot(x.q[1][2], self.s_j);
+        out[2][2] = -(lambda[0] * ai[0] + lambda[1] * ai[1]);
+        out[5][5] = lambda[0] * aj[0] + lambda[1] * aj[1];
+        true
     }
 
     fn phi(&self, x: &Local, out: &mut Rows) {

@@ -45,6 +45,10 @@ use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
 use crate::math::max_abs;
 use crate::model::Model;
 
+/// A Newton correction larger than this fraction of the one before means
+/// the chord iteration has stalled: the next iteration refactors.
+const STALL: f64 = 0.5;
+
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -400,7 +404,7 @@ impl<'m> Integrator<'m> {
                 return Ok(true);
             }
             // Chord iterations that stall get a fresh matrix.
-            if dmax > 0.25 * last {
+            if dmax > STALL * last {
                 self.aug.invalidate();
             }
             last = dmax;

@@ -25,7 +25,7 @@
 //! - ∂R/∂φ = [−m A s'_c φ̈ − m B s'_c φ̇² ; −m (A s'_c)ᵀ(r̈ − g)],
 //! - ∂R/∂φ̇ = [−2 m A s'_c φ̇ ; 0].
 
-use crate::math::{dot, rot, rot_d, V2};
+use crate::math::{dot, perp, rot, V2};
 use crate::model::Body;
 
 /// The inertia of one body.
@@ -50,11 +50,29 @@ impl From<&Body> for Inertia {
 }
 
 impl Inertia {
+    /// Whether the body frame is at the centroid (s'_c = 0): M is then
+    /// constant and diagonal, and no term below needs φ.
+    #[inline]
+    pub fn centred(&self) -> bool {
+        self.centroid == [0.0, 0.0]
+    }
+
+    /// A(φ) s'_c and B(φ) s'_c = (A(φ) s'_c)⊥ (m), without trigonometry for
+    /// a centred body.
+    #[inline]
+    fn arm(&self, phi: f64) -> (V2, V2) {
+        if self.centred() {
+            return ([0.0; 2], [0.0; 2]);
+        }
+        let a = rot(phi, self.centroid);
+        (a, perp(a))
+    }
+
     /// M(φ) (3 × 3, row-major).
     #[inline]
     pub fn matrix(&self, phi: f64) -> [[f64; 3]; 3] {
         let m = self.mass;
-        let b = rot_d(phi, self.centroid);
+        let (_, b) = self.arm(phi);
         let j = self.inertia + m * dot(self.centroid, self.centroid);
         [
             [m, 0.0, m * b[0]],
@@ -67,8 +85,7 @@ impl Inertia {
     #[inline]
     pub fn loads(&self, q: [f64; 3], qd: [f64; 3], g: V2) -> [f64; 3] {
         let m = self.mass;
-        let a = rot(q[2], self.centroid);
-        let b = rot_d(q[2], self.centroid);
+        let (a, b) = self.arm(q[2]);
         let w2 = qd[2] * qd[2];
         [
             m * (g[0] + a[0] * w2),
@@ -88,8 +105,7 @@ impl Inertia {
         g: V2,
     ) -> ([f64; 3], [f64; 3]) {
         let m = self.mass;
-        let a = rot(q[2], self.centroid);
-        let b = rot_d(q[2], self.centroid);
+        let (a, b) = self.arm(q[2]);
         let (w, al) = (qd[2], qdd[2]);
         let dphi = [
             -m * (a[0] * al + b[0] * w * w),
@@ -100,14 +116,12 @@ impl Inertia {
         (dphi, domega)
     }
 
-    /// R = M q̈ − Q_g − Q_v, with one evaluation of sin φ and cos φ.
+    /// R = M q̈ − Q_g − Q_v.
     #[inline]
     pub fn residual(&self, q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], g: V2) -> [f64; 3] {
         let m = self.mass;
-        let (sn, cs) = q[2].sin_cos();
+        let (a, b) = self.arm(q[2]);
         let c = self.centroid;
-        let a = [cs * c[0] - sn * c[1], sn * c[0] + cs * c[1]];
-        let b = [-a[1], a[0]];
         let j = self.inertia + m * dot(c, c);
         let w2 = qd[2] * qd[2];
         [
@@ -133,7 +147,7 @@ impl Inertia {
     /// Gravitational potential V = −m gᵀ r_c (J).
     #[inline]
     pub fn potential(&self, q: [f64; 3], g: V2) -> f64 {
-        let a = rot(q[2], self.centroid);
+        let (a, _) = self.arm(q[2]);
         -self.mass * (g[0] * (q[0] + a[0]) + g[1] * (q[1] + a[1]))
     }
 }
@@ -150,11 +164,25 @@ mod tests {
         }
     }
 
+    /// A body whose frame is at its centroid.
+    fn centred() -> Inertia {
+        Inertia {
+            centroid: [0.0, 0.0],
+            ..body()
+        }
+    }
+
     /// Lagrange's equations by finite differences of T and V:
     /// d/dt(∂T/∂q̇) − ∂T/∂q + ∂V/∂q = M q̈ − Q_g − Q_v.
     #[test]
     fn loads_follow_from_lagrange() {
-        let (b, g) = (body(), [0.3, -9.81]);
+        for b in [body(), centred()] {
+            loads_follow_from_lagrange_for(b);
+        }
+    }
+
+    fn loads_follow_from_lagrange_for(b: Inertia) {
+        let g = [0.3, -9.81];
         let q = [0.1, 0.2, 0.7];
         let qd = [0.5, -0.4, 1.3];
         let qdd = [0.2, 0.9, -2.0];
@@ -188,7 +216,13 @@ mod tests {
 
     #[test]
     fn derivatives_match_finite_differences() {
-        let (b, g) = (body(), [0.3, -9.81]);
+        for b in [body(), centred()] {
+            derivatives_match_finite_differences_for(b);
+        }
+    }
+
+    fn derivatives_match_finite_differences_for(b: Inertia) {
+        let g = [0.3, -9.81];
         let q = [0.1, 0.2, 0.7];
         let qd = [0.5, -0.4, 1.3];
         let qdd = [0.2, 0.9, -2.0];

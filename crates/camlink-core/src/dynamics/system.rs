@@ -25,7 +25,7 @@ use std::collections::HashMap;
 use super::force::{Applied, BodyJac, BodyQ};
 use super::mass::Inertia;
 use crate::assembly::Assembly;
-use crate::constraint::{Equations, Jac, Local};
+use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::model::Model;
 
@@ -188,6 +188,8 @@ pub struct Augmented {
     m: usize,
     sys: SystemMatrix,
     pattern: Vec<(usize, usize)>,
+    /// Values of the pattern's entries, then one trash slot that takes
+    /// entries known to be zero.
     vals: Vec<f64>,
     /// Slots of each moving body's 3 × 3 block, row-major.
     body_slots: Vec<[usize; 9]>,
@@ -195,8 +197,9 @@ pub struct Augmented {
     own_slots: Vec<usize>,
     /// Per force, per (a, b) body pair, the 3 × 3 block's slots (None for ground).
     force_slots: Vec<[[Option<[usize; 9]>; 2]; 2]>,
-    /// Per joint: its local coordinates (local index, global column) and
-    /// the slots of the L × L coupling block, row-major.
+    /// Per joint: the local coordinates its Φ is nonlinear in (local
+    /// index, global column) and the slots of their L × L curvature block,
+    /// row-major.
     joint_slots: Vec<JointSlots>,
     /// Slots (lower Φ_q, upper Φ_qᵀ) of each Jacobian entry, in fill order.
     jac_slots: Vec<(usize, usize)>,
@@ -204,9 +207,12 @@ pub struct Augmented {
     jac: [Jac; 2],
 }
 
-/// A joint's local coordinates (local index, global column) and the slots
-/// of its coupling block.
+/// A joint's nonlinear local coordinates (local index, global column) and
+/// the slots of its curvature block.
 type JointSlots = (Vec<(usize, usize)>, Vec<usize>);
+
+/// Marks a block entry known to be zero, until the trash slot exists.
+const TRASH: usize = usize::MAX;
 
 /// Local coordinate index k of a joint: 0–2 body i, 3–5 body j, 6+ own.
 const OWN0: usize = 6;
@@ -231,10 +237,25 @@ impl Augmented {
             }
             b
         };
-        let body_slots: Vec<[usize; 9]> = s
+        // A centred body's block is diagonal; its off-diagonal entries,
+        // always zero, go to the trash slot.
+        let mut body_slots: Vec<[usize; 9]> = s
             .bodies
             .iter()
-            .map(|&(c, _)| block(&mut slot, c, c))
+            .map(|&(c, inertia)| {
+                if inertia.centred() {
+                    std::array::from_fn(|k| {
+                        let (r, col) = (k / 3, k % 3);
+                        if r == col {
+                            slot(c + r, c + r)
+                        } else {
+                            TRASH
+                        }
+                    })
+                } else {
+                    block(&mut slot, c, c)
+                }
+            })
             .collect();
         let mut own_slots = Vec::new();
         for j in 0..s.model.joints.len() {
@@ -263,6 +284,7 @@ impl Augmented {
         let joint_slots = (0..s.model.joints.len())
             .map(|j| {
                 let c = &s.model.joints[j].constraint;
+                let nonlinear = c.nonlinear();
                 let mut local = Vec::new();
                 for (k, b) in c.bodies().iter().enumerate() {
                     if let Some(col) = s.asm.body_col(b.0) {
@@ -274,6 +296,7 @@ impl Augmented {
                 for o in 0..c.own_count() {
                     local.push((OWN0 + o, s.asm.own_col(j) + o));
                 }
+                local.retain(|&(k, _)| nonlinear & (1 << k) != 0);
                 let mut slots = Vec::with_capacity(local.len() * local.len());
                 for &(_, r) in &local {
                     for &(_, col) in &local {
@@ -292,10 +315,17 @@ impl Augmented {
             slot(n + r, n + r);
         }
         let sys = SystemMatrix::new(n + m, &pattern);
+        let vals = vec![0.0; pattern.len() + 1];
+        let trash = vals.len() - 1;
+        for b in &mut body_slots {
+            for k in b.iter_mut().filter(|k| **k == TRASH) {
+                *k = trash;
+            }
+        }
         Augmented {
             n,
             m,
-            vals: vec![0.0; pattern.len()],
+            vals,
             sys,
             pattern,
             body_slots,
@@ -386,7 +416,9 @@ impl Augmented {
         self.sys.factor()
     }
 
-    /// Adds `w (Φ^jᵀ λ_j)_q` of joint `j` to its coupling block.
+    /// Adds `w (Φ^jᵀ λ_j)_q` of joint `j` to its curvature block: the
+    /// constraint's own when it has one, else central differences of its
+    /// analytic Jacobian.
     fn curvature(&mut self, s: &System, j: usize, q: &[f64], lambda: &[f64], t: f64, w: f64) {
         let c = &s.model.joints[j].constraint;
         let rows = s.asm.rows_of(s.model, j);
@@ -394,6 +426,17 @@ impl Augmented {
         let x0 = s.asm.local(s.model, j, q, &[], t);
         let (local, slots) = &self.joint_slots[j];
         let l = local.len();
+        let mut lam_rows: Rows = [0.0; MAX_ROWS];
+        lam_rows[..lam.len()].copy_from_slice(lam);
+        let mut block = [[0.0; LOCAL_COORDS]; LOCAL_COORDS];
+        if c.curvature(&x0, &lam_rows, &mut block) {
+            for (ka, &(a, _)) in local.iter().enumerate() {
+                for (kb, &(b, _)) in local.iter().enumerate() {
+                    self.vals[slots[ka * l + kb]] += w * block[a][b];
+                }
+            }
+            return;
+        }
         let h = 1e-6;
         for (kb, &(kk, _)) in local.iter().enumerate() {
             for (sign, jac) in [(1.0, 0), (-1.0, 1)] {
