@@ -46,6 +46,13 @@ pub struct SmallLu {
     lu: Vec<f64>,
     /// Row k of the factors is row `perm[k]` of the matrix.
     perm: Vec<usize>,
+    /// The nonzeros of the factors, row by row, for the solves (a
+    /// mechanism's factors are mostly zeros): (column, value) of L's
+    /// strictly lower part and of U's strictly upper part, with the start
+    /// of each row in `starts` (L rows, then U rows), and 1/U_kk.
+    nonzeros: Vec<(usize, f64)>,
+    starts: Vec<usize>,
+    inv_diag: Vec<f64>,
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
@@ -58,6 +65,9 @@ impl SmallLu {
             a: vec![0.0; n * n],
             lu: vec![0.0; n * n],
             perm: (0..n).collect(),
+            nonzeros: vec![(0, 0.0); n * n],
+            starts: vec![0; 2 * n + 1],
+            inv_diag: vec![0.0; n],
             valid: false,
             min_pivot: 0.0,
         }
@@ -130,28 +140,58 @@ impl SmallLu {
             }
         }
         self.min_pivot = min_pivot;
+        self.compress();
         self.valid = true;
         Ok(())
+    }
+
+    /// Gathers the nonzeros of the factors for [`solve`](Self::solve);
+    /// every entry is written and the end advances past nonzeros only,
+    /// without a branch on the value.
+    fn compress(&mut self) {
+        let n = self.n;
+        let (lu, nz) = (&self.lu, &mut self.nonzeros);
+        let mut len = 0;
+        for i in 0..n {
+            self.starts[i] = len;
+            for (j, &v) in lu[i * n..i * n + i].iter().enumerate() {
+                nz[len] = (j, v);
+                len += usize::from(v != 0.0);
+            }
+        }
+        for i in 0..n {
+            self.starts[n + i] = len;
+            for (j, &v) in lu[i * n + i + 1..i * n + n].iter().enumerate() {
+                nz[len] = (i + 1 + j, v);
+                len += usize::from(v != 0.0);
+            }
+            self.inv_diag[i] = 1.0 / lu[i * n + i];
+        }
+        self.starts[2 * n] = len;
     }
 
     /// Solves A x = b in place with the last factorization.
     pub fn solve(&self, b: &mut [f64], work: &mut [f64]) {
         let n = self.n;
-        let lu = &self.lu;
+        let (nz, starts) = (&self.nonzeros, &self.starts);
         for (w, &p) in work.iter_mut().zip(&self.perm) {
             *w = b[p];
         }
         // L y = P b (unit diagonal).
         for i in 1..n {
-            let row = &lu[i * n..i * n + i];
-            let s: f64 = row.iter().zip(&work[..i]).map(|(l, y)| l * y).sum();
-            work[i] -= s;
+            let mut s = work[i];
+            for &(j, l) in &nz[starts[i]..starts[i + 1]] {
+                s -= l * work[j];
+            }
+            work[i] = s;
         }
         // U x = y.
         for i in (0..n).rev() {
-            let row = &lu[i * n + i + 1..i * n + n];
-            let s: f64 = row.iter().zip(&work[i + 1..n]).map(|(u, x)| u * x).sum();
-            work[i] = (work[i] - s) / lu[i * n + i];
+            let mut s = work[i];
+            for &(j, u) in &nz[starts[n + i]..starts[n + i + 1]] {
+                s -= u * work[j];
+            }
+            work[i] = s * self.inv_diag[i];
         }
         b.copy_from_slice(&work[..n]);
     }
@@ -498,6 +538,38 @@ mod tests {
                 assert!((xd[i] - x[i]).abs() < 1e-12, "dense n={n} {i}");
                 assert!((xp[i] - x[i]).abs() < 1e-12, "sparse n={n} {i}");
             }
+        }
+    }
+
+    /// A sparse saddle-point matrix (zero diagonal block, pivoting needed):
+    /// the small kernel's solve uses only the factors' nonzeros.
+    #[test]
+    fn small_kernel_solves_a_sparse_saddle_point_system() {
+        let n = 11;
+        let mut lu = SmallLu::new(n);
+        let mut a = vec![0.0; n * n];
+        for i in 0..7 {
+            a[i * n + i] = 2.0 + i as f64;
+        }
+        for r in 0..4 {
+            for c in [r, r + 2, r + 3] {
+                a[(7 + r) * n + c] = 1.0 + 0.1 * (r + c) as f64;
+                a[c * n + 7 + r] = 1.0 + 0.1 * (r + c) as f64;
+            }
+        }
+        for (k, &v) in a.iter().enumerate() {
+            lu.set(k / n, k % n, v);
+        }
+        lu.factor().unwrap();
+        assert!(lu.nonzeros[..lu.starts[2 * n]].iter().all(|e| e.1 != 0.0));
+        assert!(lu.starts[2 * n] < n * (n - 1), "the factors have zeros to skip");
+        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.9).cos()).collect();
+        let mut b: Vec<f64> = (0..n)
+            .map(|i| (0..n).map(|j| a[i * n + j] * x[j]).sum())
+            .collect();
+        lu.solve(&mut b, &mut vec![0.0; n]);
+        for i in 0..n {
+            assert!((b[i] - x[i]).abs() < 1e-13, "{i}: {} vs {}", b[i], x[i]);
         }
     }
 

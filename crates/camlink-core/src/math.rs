@@ -7,17 +7,51 @@
 /// A planar vector `[x, y]`.
 pub type V2 = [f64; 2];
 
+/// Entries of the [`sin_cos`] memo (a power of two).
+const MEMO: usize = 8;
+
+std::thread_local! {
+    /// Recent (φ bits, sin φ, cos φ), by a hash of the bits; NaN entries
+    /// to start with, which give NaN for a NaN angle as the functions do.
+    static SIN_COS: [std::cell::Cell<(u64, f64, f64)>; MEMO] = const {
+        [const { std::cell::Cell::new((f64::NAN.to_bits(), f64::NAN, f64::NAN)) }; MEMO]
+    };
+}
+
+/// (sin φ, cos φ), remembered for the last few angles of this thread.
+///
+/// One pass over a mechanism's joints rotates the same few body angles
+/// many times (each revolute joint turns two points, every equation and
+/// its Jacobian at the same q); the memo answers the repeats without
+/// evaluating the functions again. The values are exactly those of
+/// `f64::sin_cos`.
+#[inline]
+pub fn sin_cos(phi: f64) -> (f64, f64) {
+    let bits = phi.to_bits();
+    let slot = ((bits ^ (bits >> 32)).wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 61) as usize;
+    SIN_COS.with(|memo| {
+        let entry = &memo[slot % MEMO];
+        let (b, sn, cs) = entry.get();
+        if b == bits {
+            return (sn, cs);
+        }
+        let (sn, cs) = phi.sin_cos();
+        entry.set((bits, sn, cs));
+        (sn, cs)
+    })
+}
+
 /// A(φ) s: rotate `s` by `phi` (radians).
 #[inline]
 pub fn rot(phi: f64, s: V2) -> V2 {
-    let (sn, cs) = phi.sin_cos();
+    let (sn, cs) = sin_cos(phi);
     [cs * s[0] - sn * s[1], sn * s[0] + cs * s[1]]
 }
 
 /// B(φ) s = dA/dφ s = A(φ) s⊥.
 #[inline]
 pub fn rot_d(phi: f64, s: V2) -> V2 {
-    let (sn, cs) = phi.sin_cos();
+    let (sn, cs) = sin_cos(phi);
     [-sn * s[0] - cs * s[1], cs * s[0] - sn * s[1]]
 }
 
@@ -97,6 +131,22 @@ pub fn point_vel(q: [f64; 3], qd: [f64; 3], s: V2) -> V2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn remembered_sin_cos_is_exactly_the_function() {
+        // More angles than memo entries, repeated, so entries are both
+        // reused and evicted; signed zeros and NaN included.
+        let mut angles: Vec<f64> = (0..40).map(|k| (k as f64 * 0.731).sin() * 7.0).collect();
+        angles.extend([0.0, -0.0, f64::NAN, 1e-300, -3.5]);
+        for _ in 0..3 {
+            for &a in &angles {
+                let (s, c) = sin_cos(a);
+                let (s0, c0) = a.sin_cos();
+                assert_eq!(s.to_bits(), s0.to_bits(), "sin {a}");
+                assert_eq!(c.to_bits(), c0.to_bits(), "cos {a}");
+            }
+        }
+    }
 
     #[test]
     fn b_is_derivative_of_a() {
