@@ -181,19 +181,44 @@ impl Assembly {
     /// Φ_q(q, t): calls `put(row, col, value)` for every structural entry, in
     /// the same order every time.
     #[inline]
-    pub fn jacobian(
+    pub fn jacobian(&self, model: &Model, q: &[f64], t: f64, put: impl FnMut(usize, usize, f64)) {
+        self.jacobian_pass(model, q, t, None, put);
+    }
+
+    /// Φ(q, t) into `phi` (length m) and Φ_q as [`jacobian`](Self::jacobian)
+    /// does, in one pass over the joints.
+    #[inline]
+    pub fn phi_and_jacobian(
         &self,
         model: &Model,
         q: &[f64],
         t: f64,
+        phi: &mut [f64],
+        put: impl FnMut(usize, usize, f64),
+    ) {
+        self.jacobian_pass(model, q, t, Some(phi), put);
+    }
+
+    #[inline]
+    fn jacobian_pass(
+        &self,
+        model: &Model,
+        q: &[f64],
+        t: f64,
+        mut phi: Option<&mut [f64]>,
         mut put: impl FnMut(usize, usize, f64),
     ) {
         let mut jac = Jac::default();
+        let mut rows: Rows = [0.0; 3];
         for (j, joint) in model.joints.iter().enumerate() {
             let c = &joint.constraint;
             let x = self.local(model, j, q, &[], t);
-            c.jacobian(&x, &mut jac);
             let r0 = self.row[j];
+            if let Some(out) = phi.as_deref_mut() {
+                c.phi(&x, &mut rows);
+                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
+            }
+            c.jacobian(&x, &mut jac);
             let bodies = c.bodies();
             let pattern = c.jacobian_pattern();
             for (r, &row_pattern) in pattern.iter().enumerate().take(c.rows()) {

@@ -562,7 +562,10 @@ mod tests {
         }
         lu.factor().unwrap();
         assert!(lu.nonzeros[..lu.starts[2 * n]].iter().all(|e| e.1 != 0.0));
-        assert!(lu.starts[2 * n] < n * (n - 1), "the factors have zeros to skip");
+        assert!(
+            lu.starts[2 * n] < n * (n - 1),
+            "the factors have zeros to skip"
+        );
         let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.9).cos()).collect();
         let mut b: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| a[i * n + j] * x[j]).sum())

@@ -337,19 +337,20 @@ impl<'m> Integrator<'m> {
         for _ in 0..self.settings.max_iter {
             // r = [s R ; Φ].
             let sys = &self.sys;
-            sys.residual(
+            let (r_motion, r_phi) = self.rhs.split_at_mut(n);
+            sys.residual_and_phi(
                 &self.q,
                 &self.qd,
                 &self.qdd,
                 &self.lambda,
                 t1,
-                &mut self.rhs[..n],
+                r_motion,
+                r_phi,
             );
-            for v in &mut self.rhs[..n] {
+            for v in r_motion {
                 *v *= -s;
             }
-            sys.asm.phi(sys.model, &self.q, t1, &mut self.rhs[n..]);
-            for v in &mut self.rhs[n..] {
+            for v in r_phi {
                 *v = -*v;
             }
             // The factorization serves steps within rounding of its own.

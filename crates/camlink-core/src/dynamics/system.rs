@@ -127,6 +127,30 @@ impl<'m> System<'m> {
         t: f64,
         out: &mut [f64],
     ) {
+        self.motion_residual(q, qd, qdd, t, out);
+        self.add_jt_lambda(q, t, lambda, out);
+    }
+
+    /// R as [`residual`](Self::residual) into `out` (length n), and Φ(q, t)
+    /// into `phi` (length m), in one pass over the joints.
+    #[allow(clippy::too_many_arguments)]
+    pub fn residual_and_phi(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        lambda: &[f64],
+        t: f64,
+        out: &mut [f64],
+        phi: &mut [f64],
+    ) {
+        self.motion_residual(q, qd, qdd, t, out);
+        self.asm
+            .phi_and_jacobian(self.model, q, t, phi, |r, c, v| out[c] += v * lambda[r]);
+    }
+
+    /// M q̈ − Q into `out`.
+    fn motion_residual(&self, q: &[f64], qd: &[f64], qdd: &[f64], t: f64, out: &mut [f64]) {
         out.fill(0.0);
         let g = self.model.gravity;
         for &(c, inertia) in &self.bodies {
@@ -134,7 +158,6 @@ impl<'m> System<'m> {
             out[c..c + 3].copy_from_slice(&r);
         }
         self.add_applied(q, qd, t, -1.0, out);
-        self.add_jt_lambda(q, t, lambda, out);
     }
 
     /// Kinetic energy T = ½ q̇ᵀ M q̇ (J).
