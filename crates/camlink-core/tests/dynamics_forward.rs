@@ -269,6 +269,13 @@ fn slider_crank_matches_minimal_coordinates() {
         it.summary.steps, it.rejected
     );
     assert!(err < 1e-6, "adaptive slider error {err}");
+    // The step controller does not hover at the rejection limit.
+    assert!(
+        it.rejected * 10 < it.summary.steps,
+        "{} of {} steps rejected",
+        it.rejected,
+        it.summary.steps
+    );
 }
 
 /// Errors at t = 0.5 s against the minimal-coordinate reference for

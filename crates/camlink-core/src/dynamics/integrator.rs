@@ -34,8 +34,9 @@
 //! The error-controlled mode estimates the local error of a step as
 //! h² |β − 1/6| |q̈_{n+1} − q̈_n| per coordinate, the leading term of the
 //! Newmark truncation error (with q̈ for a, whose parasitic oscillation
-//! after a change of step would trigger needless rejections), rejects steps whose weighted norm exceeds 1 and
-//! changes h by (1/err)^{1/3}.
+//! after a change of step would trigger needless rejections), rejects steps
+//! whose weighted norm exceeds 1 and changes h by a PI controller on the
+//! errors of the last two accepted steps.
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
@@ -142,6 +143,8 @@ pub struct Integrator<'m> {
     pub summary: Summary,
     /// Steps rejected by the error control.
     pub rejected: usize,
+    /// The weighted error of the last accepted error-controlled step.
+    err_prev: Option<f64>,
 }
 
 impl<'m> Integrator<'m> {
@@ -217,6 +220,7 @@ impl<'m> Integrator<'m> {
             sys,
             summary: Summary::default(),
             rejected: 0,
+            err_prev: None,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
@@ -444,8 +448,17 @@ impl<'m> Integrator<'m> {
                 Some(ad) => {
                     let h = h_next.min(h_max).min(left);
                     self.step(h)?;
-                    let err = self.local_error(h, &ad);
-                    let factor = (0.9 * err.max(1e-10).powf(-1.0 / 3.0)).clamp(0.2, 2.0);
+                    let err = self.local_error(h, &ad).max(1e-10);
+                    // A PI controller on accepted steps (Gustafsson; Hairer
+                    // & Wanner IV.2): the last accepted error damps the
+                    // proposal, so h does not oscillate around rejection.
+                    let factor = match self.err_prev {
+                        Some(prev) if err <= 1.0 => {
+                            0.9 * err.powf(-0.7 / 3.0) * prev.powf(0.4 / 3.0)
+                        }
+                        _ => 0.9 * err.powf(-1.0 / 3.0),
+                    }
+                    .clamp(0.2, 2.0);
                     if err > 1.0 && h > ad.h_min {
                         self.restore();
                         self.h_prev = 0.0;
@@ -455,6 +468,7 @@ impl<'m> Integrator<'m> {
                         *h_next = (h * factor).max(ad.h_min);
                         continue;
                     }
+                    self.err_prev = Some(err);
                     if h < left {
                         *h_next = (h * factor).max(ad.h_min);
                     }
