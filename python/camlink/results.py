@@ -16,10 +16,24 @@ from camlink._core import ModelError
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["Results", "open_writer", "SUFFIXES"]
+__all__ = ["Results", "open_writer", "SUFFIXES", "LIFT_OFF_COLUMNS"]
 
 #: File name suffixes `Results.save` and the `output=` of a run understand.
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
+
+#: Columns of `Results.lift_off`: names, then times (s), cam angles (rad)
+#: and the least normal force (N).
+LIFT_OFF_COLUMNS = [
+    "joint",
+    "cam",
+    "start_time",
+    "start_cam_angle",
+    "end_time",
+    "end_cam_angle",
+    "least_force",
+    "least_time",
+    "least_cam_angle",
+]
 
 
 class Results:
@@ -28,7 +42,8 @@ class Results:
     ``results["crank.phi"]`` is a NumPy array over the time steps;
     ``results.channels`` lists the channel names (without ``t``).
     A run that stopped early has ``complete == False`` and keeps every step
-    it computed. ``summary`` holds the solver's counts and warnings.
+    it computed. ``summary`` holds the solver's counts and warnings;
+    ``lift_off`` the intervals where a cam follower would leave its cam.
     """
 
     def __init__(
@@ -53,7 +68,8 @@ class Results:
         #: The ``analysis`` run, solver counts (steps, newton_iterations,
         #: factorizations, halvings), ``warnings`` as (t, message) pairs and
         #: ``assembly_moves`` as (body, (Δx, Δy, Δφ)) for bodies that
-        #: assembly moved; forward dynamics adds ``energy_drift``,
+        #: assembly moved, ``lift_off`` as a list of dicts (the rows of
+        #: `lift_off`); forward dynamics adds ``energy_drift``,
         #: ``constraint_drift`` and ``velocity_drift``. Empty for results
         #: read from a file.
         self.summary = summary or {}
@@ -74,6 +90,31 @@ class Results:
     def data(self) -> npt.NDArray[np.float64]:
         """All values, one row per step, columns ``["t", *channels]``."""
         return self._data
+
+    @property
+    def lift_off(self) -> pd.DataFrame:
+        """Intervals where a cam contact's normal force is negative: the
+        follower would leave the cam (jump). One row per interval, by start
+        time, each also one of the summary's warnings.
+
+        Columns (`LIFT_OFF_COLUMNS`): ``joint`` and ``cam`` (names);
+        ``start_time`` (s) and ``start_cam_angle`` (rad) where the normal
+        force falls through zero; ``end_time`` (s) and ``end_cam_angle``
+        (rad) where it rises again, NaN when the run ends in lift-off;
+        ``least_force`` (N, negative) and where it is, ``least_time`` (s)
+        and ``least_cam_angle`` (rad). The cam angle is φ of the cam body,
+        not folded into one turn. Zeros are interpolated linearly between
+        output times.
+
+        Inverse and forward dynamics find these; the frame is empty (with
+        the same columns) when the follower stays on its cam, for the other
+        analyses, for a run that stopped early and for results read from a
+        file.
+        """
+        import pandas as pd
+
+        frame = pd.DataFrame(self.summary.get("lift_off", []), columns=LIFT_OFF_COLUMNS)
+        return frame.astype({c: "float64" for c in LIFT_OFF_COLUMNS[2:]})
 
     def __getitem__(self, name: str) -> npt.NDArray[np.float64]:
         try:

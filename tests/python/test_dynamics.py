@@ -1,5 +1,6 @@
 """The dynamic analyses from Python: choosing the analysis, settings that do
-not fit it, energy conservation, the Python force callback, design checks."""
+not fit it, energy conservation, the Python force callback, design checks,
+follower lift-off as data."""
 
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import numpy as np
 import pytest
 
 import camlink
+from camlink.results import LIFT_OFF_COLUMNS
 from conftest import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -230,3 +232,79 @@ def test_mechanism_builder_with_forces_and_a_dynamic_analysis():
     assert model.analysis["rho_inf"] == 0.9
     assert [f["name"] for f in model.forces] == ["spring", "push"]
     assert len(model.run()) == 51
+
+
+# The spring-loaded valve follower of "cam_valve_spring.toml" and its closed
+# form (docs/dynamics.md, "When does the valve jump?"): N(θ) = k (R − y_f)
+# + m g + (k e − m e ω²) sin θ, negative around full lift (θ = 90°) above
+# ω_jump = √((k (R + e − y_f) + m g) / (m e)).
+VALVE = EXAMPLES / "cam_valve_spring.toml"
+R, E, M, K, PRELOAD, G = 0.02, 0.004, 0.1, 5000.0, 50.0, 9.81
+Y_FREE = R - E - PRELOAD / K
+OMEGA_JUMP = math.sqrt((K * (R + E - Y_FREE) + M * G) / (M * E))
+#: Output steps per camshaft turn: θ on every ½°.
+STEPS_PER_TURN = 720
+
+
+def valve_turn(omega: float, turns: float = 1.0) -> camlink.Results:
+    """Inverse dynamics of the valve example at camshaft speed ω (rad/s)."""
+    text = VALVE.read_text()
+    assert text.count("rpm = 3000 ") == 1
+    rpm = omega * 60 / (2 * math.pi)
+    model = camlink.loads(text.replace("rpm = 3000 ", f"rpm = {rpm!r} "), "toml", str(VALVE))
+    steps = round(STEPS_PER_TURN * turns)
+    return model.inverse_dynamics(times=np.linspace(0.0, turns * 2 * math.pi / omega, steps + 1))
+
+
+def lift_off_warnings(res: camlink.Results) -> list[tuple[float, str]]:
+    return [(t, m) for t, m in res.summary["warnings"] if "would leave cam" in m]
+
+
+def test_valve_lift_off_above_the_jump_speed_brackets_full_lift():
+    w = 1.01 * OMEGA_JUMP
+    res = valve_turn(w)
+    frame = res.lift_off
+    assert list(frame.columns) == LIFT_OFF_COLUMNS
+    assert len(frame) == 1, res.summary["warnings"]
+    row = frame.iloc[0]
+    assert (row["joint"], row["cam"]) == ("bucket", "cam")
+    # Closed form: N(θ) = 0 at sin θ = (k (R − y_f) + m g) / (m e ω² − k e).
+    th0 = math.asin((K * (R - Y_FREE) + M * G) / (M * E * w * w - K * E))
+    th1 = math.pi - th0
+    half_step = math.pi / STEPS_PER_TURN
+    assert row["start_cam_angle"] < math.pi / 2 < row["end_cam_angle"]
+    assert abs(row["start_cam_angle"] - th0) < half_step, (row["start_cam_angle"], th0)
+    assert abs(row["end_cam_angle"] - th1) < half_step, (row["end_cam_angle"], th1)
+    # The cam turns at ω from θ = 0 at t = 0.
+    assert abs(row["start_time"] - th0 / w) < half_step / w
+    assert abs(row["end_time"] - th1 / w) < half_step / w
+    # The least force is at full lift, N(90°).
+    assert abs(row["least_cam_angle"] - math.pi / 2) < 1e-9
+    assert abs(row["least_time"] - math.pi / 2 / w) < 1e-12
+    n90 = K * (R + E - Y_FREE) + M * G - M * E * w * w
+    assert n90 < 0
+    assert abs(row["least_force"] - n90) < 1e-8 * K * E, (row["least_force"], n90)
+    # The same interval is the run's lift-off warning, at its start time.
+    warnings = lift_off_warnings(res)
+    assert len(warnings) == 1 and warnings[0][0] == row["start_time"]
+    assert res.summary["lift_off"][0]["end_time"] == row["end_time"]
+
+
+def test_valve_lift_off_open_at_the_end_of_the_run():
+    # A quarter turn, ending at full lift: inside the interval.
+    res = valve_turn(1.01 * OMEGA_JUMP, turns=0.25)
+    frame = res.lift_off
+    assert len(frame) == 1
+    assert frame["start_cam_angle"].iloc[0] < math.pi / 2
+    assert np.isnan(frame["end_time"].iloc[0]) and np.isnan(frame["end_cam_angle"].iloc[0])
+    record = res.summary["lift_off"][0]
+    assert record["end_time"] is None and record["end_cam_angle"] is None
+    assert "to the end of the run" in lift_off_warnings(res)[0][1]
+
+
+def test_valve_stays_on_the_cam_below_the_jump_speed():
+    res = valve_turn(0.99 * OMEGA_JUMP)
+    assert np.min(res["bucket.normal_force"]) > 0
+    frame = res.lift_off
+    assert frame.empty and list(frame.columns) == LIFT_OFF_COLUMNS
+    assert res.summary["lift_off"] == [] and lift_off_warnings(res) == []

@@ -8,7 +8,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import camlink
-from camlink.results import Results
+from camlink.results import LIFT_OFF_COLUMNS, Results
 
 
 def synthetic() -> Results:
@@ -37,6 +37,38 @@ def test_to_pandas_is_indexed_by_time():
     assert df.index.name == "t"
     assert list(df.columns) == ["arm.phi", "arm.omega"]
     assert df.loc[0.5, "arm.phi"] == pytest.approx(np.sin(0.5))
+
+
+def test_lift_off_is_a_frame_with_one_row_per_interval():
+    closed = dict(
+        joint="bucket",
+        cam="cam",
+        start_time=0.1,
+        start_cam_angle=1.3,
+        end_time=0.2,
+        end_cam_angle=1.8,
+        least_force=-2.0,
+        least_time=0.15,
+        least_cam_angle=1.57,
+    )
+    still_open = {**closed, "start_time": 0.9, "end_time": None, "end_cam_angle": None}
+    res = synthetic()
+    res.summary = {"lift_off": [closed, still_open]}
+    df = res.lift_off
+    assert list(df.columns) == LIFT_OFF_COLUMNS
+    assert df["start_time"].tolist() == [0.1, 0.9]
+    assert df["end_time"].iloc[0] == 0.2 and np.isnan(df["end_time"].iloc[1])
+    assert all(df[c].dtype == np.float64 for c in LIFT_OFF_COLUMNS[2:])
+    assert df["joint"].tolist() == ["bucket", "bucket"]
+
+
+def test_lift_off_without_intervals_is_an_empty_frame_with_the_columns():
+    for summary in ({}, {"lift_off": []}):
+        res = synthetic()
+        res.summary = summary
+        df = res.lift_off
+        assert df.empty and list(df.columns) == LIFT_OFF_COLUMNS
+        assert all(df[c].dtype == np.float64 for c in LIFT_OFF_COLUMNS[2:])
 
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])

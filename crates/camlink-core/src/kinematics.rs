@@ -23,6 +23,7 @@ use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::levenberg_marquardt;
+use crate::dynamics::contact_force::LiftOff;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
@@ -105,6 +106,10 @@ pub struct Summary {
     /// How assembly moved each body from its given placement:
     /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
     pub assembly_moves: Vec<(String, [f64; 3])>,
+    /// Intervals where a cam contact's normal force is negative (the
+    /// follower would leave the cam), by start time; each is also a
+    /// warning. Filled by inverse and forward dynamics.
+    pub lift_off: Vec<LiftOff>,
 }
 
 /// Times an output step may be halved when Newton fails or a jump is seen.

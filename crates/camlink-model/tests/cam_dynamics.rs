@@ -83,6 +83,24 @@ fn lift_off_warnings(s: &Summary) -> Vec<&String> {
         .collect()
 }
 
+/// The run's lift-off records are the intervals in its table, and its
+/// lift-off warnings are their messages at their start times, in order.
+fn assert_lift_off_data_matches_warnings(l: &Loaded, t: &Table, s: &Summary) {
+    assert_eq!(s.lift_off, lift_off(&l.model, t));
+    let warnings: Vec<(f64, String)> = s
+        .warnings
+        .iter()
+        .filter(|(_, m)| m.contains("would leave cam"))
+        .cloned()
+        .collect();
+    let records: Vec<(f64, String)> = s
+        .lift_off
+        .iter()
+        .map(|r| (r.start.time, r.message()))
+        .collect();
+    assert_eq!(warnings, records);
+}
+
 #[test]
 fn valve_spring_example_runs_in_contact() {
     let l = load_path(&path()).unwrap_or_else(|e| panic!("{e}"));
@@ -93,6 +111,7 @@ fn valve_spring_example_runs_in_contact() {
     assert!(least > 20.0, "{least}");
     assert!(lift_off_warnings(&s).is_empty(), "{:?}", s.warnings);
     assert!(lift_off(&l.model, &t).is_empty());
+    assert!(s.lift_off.is_empty());
 }
 
 /// camlink's normal force is the closed form to 1e-8 of its largest value,
@@ -201,6 +220,7 @@ fn valve_spring_jump_speed() {
         s.warnings
     );
     assert!(lift_off(&at_rpm(rpm_j).model, &t).is_empty());
+    assert!(s.lift_off.is_empty());
     // Just above: one interval around full lift.
     for eps in [1e-4, 1e-2] {
         let rpm = rpm_j * (1.0 + eps);
@@ -211,6 +231,7 @@ fn valve_spring_jump_speed() {
         eprintln!("{rpm:.3} rpm: {}", warnings[0]);
         let found = lift_off(&l.model, &t);
         assert_eq!(found.len(), 1);
+        assert_lift_off_data_matches_warnings(&l, &t, &s);
         let LiftOff {
             joint,
             cam,
@@ -294,6 +315,8 @@ fn valve_spring_forward_dynamics_reports_lift_off() {
         assert!(w.iter().all(|&v| (v > omega_jump()) == jumps));
         assert_eq!(!warnings.is_empty(), jumps, "{:?}", s.warnings);
         assert_eq!(least < 0.0, jumps);
+        assert_lift_off_data_matches_warnings(&l, &t, &s);
+        assert_eq!(s.lift_off.is_empty(), !jumps);
         if jumps {
             // Around full lift, θ = 90°.
             let l0 = &lift_off(&l.model, &t)[0];

@@ -14,6 +14,7 @@ use std::sync::Arc;
 
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
+use camlink_core::dynamics::contact_force::LiftOff;
 use camlink_core::dynamics::force::callback::Callback;
 use camlink_core::dynamics::integrator::{self, Adaptive};
 use camlink_core::dynamics::{inverse, statics, Force};
@@ -328,7 +329,8 @@ impl Model {
 
     /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
     /// channel names starting with `"t"`, a `steps × len(names)` array and
-    /// a dict of solver counts, warnings and assembly moves.
+    /// a dict of solver counts, warnings, assembly moves and `lift_off`
+    /// (empty here; see `run_inverse_dynamics`).
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
@@ -357,6 +359,15 @@ impl Model {
     /// Inverse dynamics at `times` (s) of a driven (zero-DOF) model: the
     /// kinematic channels, then joint reactions, driver efforts, energy and
     /// drift. Arguments and return value as `run_kinematics`.
+    ///
+    /// The summary's `lift_off` lists the intervals where a cam contact's
+    /// normal force is negative (the follower would leave the cam), by
+    /// start time, each also a warning. Each is a dict: `joint` and `cam`
+    /// (names), `start_time` (s) and `start_cam_angle` (rad) where the
+    /// force falls through zero, `end_time` (s) and `end_cam_angle` (rad)
+    /// where it rises again (None when the run ends in lift-off),
+    /// `least_force` (N, negative) and where it is, `least_time` (s) and
+    /// `least_cam_angle` (rad). The cam angle is φ of the cam body.
     #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_inverse_dynamics<'py>(
@@ -399,7 +410,8 @@ impl Model {
     /// Forward dynamics with output at `times` (s; the first is the start
     /// time), generalized-α with step `h` (s) and spectral radius `rho_inf`;
     /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
-    /// `h` is the largest step). Channels as `run_inverse_dynamics`.
+    /// `h` is the largest step). Channels and the summary's `lift_off` as
+    /// `run_inverse_dynamics`.
     #[pyo3(signature = (times, h = 1e-3, rho_inf = 0.8, tol = 1e-6, max_iter = 12, projection_tol = 1e-12, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_dynamics<'py>(
@@ -565,8 +577,9 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .collect()
 }
 
-/// The run summary as a dict: counts, `warnings` as (t, message) pairs and
-/// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs.
+/// The run summary as a dict: counts, `warnings` as (t, message) pairs,
+/// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
+/// of [`lift_off_dict`]s.
 fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
@@ -575,6 +588,29 @@ fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound
     d.set_item("halvings", s.halvings)?;
     d.set_item("warnings", s.warnings.clone())?;
     d.set_item("assembly_moves", s.assembly_moves.clone())?;
+    let lift_off = PyList::empty(py);
+    for l in &s.lift_off {
+        lift_off.append(lift_off_dict(py, l)?)?;
+    }
+    d.set_item("lift_off", lift_off)?;
+    Ok(d)
+}
+
+/// A lift-off interval as a dict: `joint`, `cam`, `start_time` (s),
+/// `start_cam_angle` (rad), `end_time` (s) and `end_cam_angle` (rad), None
+/// when the run ends in lift-off, `least_force` (N), `least_time` (s),
+/// `least_cam_angle` (rad).
+fn lift_off_dict<'py>(py: Python<'py>, l: &LiftOff) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("joint", &l.joint)?;
+    d.set_item("cam", &l.cam)?;
+    d.set_item("start_time", l.start.time)?;
+    d.set_item("start_cam_angle", l.start.cam_angle)?;
+    d.set_item("end_time", l.end.map(|e| e.time))?;
+    d.set_item("end_cam_angle", l.end.map(|e| e.cam_angle))?;
+    d.set_item("least_force", l.least)?;
+    d.set_item("least_time", l.least_at.time)?;
+    d.set_item("least_cam_angle", l.least_at.cam_angle)?;
     Ok(d)
 }
 

@@ -40,13 +40,15 @@
 //! N < 0 a real follower would leave the cam (jump, or float): the motion
 //! computed past that point is not what the machine does. [`LiftOffWatch`]
 //! reports every interval of negative normal force of a cam contact (not of
-//! a pin in a slot), with its start and end times and the cam angle there.
+//! a pin in a slot), with its start and end times and the cam angle there,
+//! as a [`LiftOff`] record in the run's [`Summary`] and as a warning.
 
 use super::reaction::Reaction;
 use crate::assembly::Assembly;
 use crate::constraint::{Constraint, Equations};
 use crate::curve::Curve;
 use crate::design::orientation;
+use crate::kinematics::Summary;
 use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
 
@@ -394,8 +396,8 @@ impl LiftOffWatch {
         }
     }
 
-    /// Every interval found, those still open at the end of the run last
-    /// (with no end).
+    /// Every interval found, by start time; those still open at the end
+    /// of the run have no end.
     pub fn finish(mut self) -> Vec<LiftOff> {
         for w in &mut self.watched {
             if let Some(l) = w.open.take() {
@@ -403,6 +405,18 @@ impl LiftOffWatch {
             }
         }
         self.found
+            .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
+        self.found
+    }
+
+    /// Finishes the watch into a run's summary: each interval as a warning
+    /// at its start time ([`LiftOff::message`]) and, in the same order, as
+    /// data in `summary.lift_off`.
+    pub fn report(self, summary: &mut Summary) {
+        for l in self.finish() {
+            summary.warnings.push((l.start.time, l.message()));
+            summary.lift_off.push(l);
+        }
     }
 }
 
@@ -420,18 +434,23 @@ pub fn lift_off(model: &Model, table: &crate::kinematics::Table) -> Vec<LiftOff>
 mod tests {
     use super::*;
 
+    /// A watch of contact `joint` on `cam` whose N and φ are row[n], row[n + 1].
+    fn watched(joint: &str, cam: &str, n: usize) -> Watched {
+        Watched {
+            joint: joint.into(),
+            cam: cam.into(),
+            n,
+            phi: Some(n + 1),
+            prev: None,
+            scale: 0.0,
+            open: None,
+        }
+    }
+
     /// A watch over rows (N, φ).
     fn watch() -> LiftOffWatch {
         LiftOffWatch {
-            watched: vec![Watched {
-                joint: "bucket".into(),
-                cam: "cam".into(),
-                n: 0,
-                phi: Some(1),
-                prev: None,
-                scale: 0.0,
-                open: None,
-            }],
+            watched: vec![watched("bucket", "cam", 0)],
             found: Vec::new(),
         }
     }
@@ -496,5 +515,42 @@ mod tests {
         );
         assert_eq!(found[0].end, None);
         assert!(found[0].message().contains("to the end of the run"));
+    }
+
+    #[test]
+    fn report_adds_each_interval_to_the_summary_as_data_and_as_a_warning() {
+        // Rows (N_a, φ_a, N_b, φ_b): contact "a" leaves its cam from
+        // t = 0.5 to 1.5; "b" from the start to the end of the run.
+        let mut w = LiftOffWatch {
+            watched: vec![watched("a", "cam_a", 0), watched("b", "cam_b", 2)],
+            found: Vec::new(),
+        };
+        for (t, na, nb) in [(0.0, 1.0, -1.0), (1.0, -1.0, -2.0), (2.0, 1.0, -1.0)] {
+            w.observe(t, &[na, t, nb, 2.0 * t]);
+        }
+        let mut summary = Summary {
+            warnings: vec![(0.25, "an earlier warning".into())],
+            ..Summary::default()
+        };
+        w.report(&mut summary);
+        // By start time: "b" (t = 0) before "a" (t = 0.5), though "a" ends
+        // first.
+        let starts: Vec<(&str, f64)> = summary
+            .lift_off
+            .iter()
+            .map(|l| (l.joint.as_str(), l.start.time))
+            .collect();
+        assert_eq!(starts, [("b", 0.0), ("a", 0.5)]);
+        assert_eq!(summary.lift_off[0].end, None);
+        assert_eq!(
+            summary.lift_off[1].end,
+            Some(Crossing {
+                time: 1.5,
+                cam_angle: 1.5
+            })
+        );
+        let mut want = vec![(0.25, "an earlier warning".to_string())];
+        want.extend(summary.lift_off.iter().map(|l| (l.start.time, l.message())));
+        assert_eq!(summary.warnings, want);
     }
 }

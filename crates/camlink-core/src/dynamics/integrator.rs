@@ -535,8 +535,6 @@ pub fn run(
         lift_off.observe(t, &values);
     }
     let mut summary = it.summary.clone();
-    for l in lift_off.finish() {
-        summary.warnings.push((l.start.time, l.message()));
-    }
+    lift_off.report(&mut summary);
     Ok(summary)
 }

@@ -10,7 +10,8 @@
 //! one solve with the transposed Jacobian (Haug §6.5). Joint reactions and
 //! driver efforts follow from λ ([`super::reaction`]), and so do the curve
 //! contacts' normal forces, whose negative intervals (lift-off) become
-//! warnings of the run summary ([`super::contact_force`]).
+//! warnings and `lift_off` records of the run summary
+//! ([`super::contact_force`]).
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
@@ -135,8 +136,6 @@ pub fn run(
         prev = Some(t);
     }
     let mut summary = s.kin.summary.clone();
-    for l in lift_off.finish() {
-        summary.warnings.push((l.start.time, l.message()));
-    }
+    lift_off.report(&mut summary);
     Ok(summary)
 }
