@@ -160,7 +160,7 @@ impl Assembly {
             }
             let mut x = self.local(model, j, &q, &[], 0.0);
             x.own = joint.own0.unwrap_or([0.0; MAX_OWN]);
-            let own = joint.constraint.initial_own(&x);
+            let own = joint.constraint.initial_own(&x, joint.own0);
             q[self.own_col[j]..self.own_col[j] + k].copy_from_slice(&own[..k]);
         }
         q

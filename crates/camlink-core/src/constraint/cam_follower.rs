@@ -83,10 +83,9 @@ impl Equations for CamFollower {
         &["alpha_i", "alpha_j"]
     }
 
-    /// The contact pair from [`search::contact_pair`]: refined from
-    /// `x.own` when it is not all zeros, else searched from samples.
-    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
-        let guess = (x.own != [0.0; MAX_OWN]).then_some([x.own[0], x.own[1]]);
+    /// The contact pair from [`search::contact_pair`]: refined from the
+    /// guess when there is one, else searched from samples.
+    fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         search::contact_pair(&self.curve_i, x.q[0], &self.curve_j, x.q[1], guess)
     }
 
@@ -194,7 +193,7 @@ mod tests {
         let (y, phi) = (0.9, 0.7);
         let mut x = Local::default();
         x.q[1] = [1.5, y, phi];
-        x.own = c.initial_own(&x);
+        x.own = c.initial_own(&x, None);
         for _ in 0..30 {
             let (mut f, mut jac) = ([0.0; 3], Jac::default());
             c.phi(&x, &mut f);
@@ -226,7 +225,7 @@ mod tests {
         let mut x = Local::default();
         x.q[0] = [0.0, 0.0, 0.5];
         x.q[1] = [0.0, 1.5, 0.0];
-        let own = c.initial_own(&x);
+        let own = c.initial_own(&x, None);
         // Contact at global (0, 1): α_i = π/2 − 0.5; on the roller, angle
         // −π/2 from its centre, arc length 0.5·3π/2.
         assert!((own[0] - (PI / 2.0 - 0.5)).abs() < 1e-9, "{own:?}");
@@ -235,10 +234,7 @@ mod tests {
         c.phi(&Local { own, ..x }, &mut f);
         assert!(f.iter().all(|v| v.abs() < 1e-9));
         // A guess is refined, not replaced.
-        let own2 = c.initial_own(&Local {
-            own: [PI / 2.0 - 0.5 + TAU + 0.1, 0.75 * PI - 0.05],
-            ..x
-        });
+        let own2 = c.initial_own(&x, Some([PI / 2.0 - 0.5 + TAU + 0.1, 0.75 * PI - 0.05]));
         assert!((own2[0] - (PI / 2.0 - 0.5 + TAU)).abs() < 1e-9, "{own2:?}");
         let n = [0.0, 1.0];
         let a = point(x.q[0], c.curve_i.jet(own2[0]).p);

@@ -100,11 +100,11 @@ impl Equations for FlatFollower {
     /// The support point of C_i toward the face: the cam point extreme in
     /// the direction of the face normal pointing from the cam's side (the
     /// side of the mean of its sampled points) to the face. Refined from
-    /// `x.own[0]` when it is nonzero.
-    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+    /// the guess when there is one.
+    fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         let n = perp(rot(x.q[1][2], self.u_j));
         let face = Carried::fixed(x.q[1], [0.0; 3], self.s_j).p;
-        let guess = (x.own[0] != 0.0).then_some(x.own[0]);
+        let guess = guess.map(|g| g[0]);
         // The cam's side of the face.
         let (s0, s1) = self.curve_i.range();
         let mean = (0..64).fold([0.0; 2], |m, k| {
@@ -226,7 +226,7 @@ mod tests {
             let mut x = Local::default();
             x.q[0] = [0.0, 0.0, phi];
             x.q[1] = [0.4, 1.5, 0.0];
-            let own = c.initial_own(&x);
+            let own = c.initial_own(&x, None);
             let want = (FRAC_PI_2 - phi).rem_euclid(TAU);
             assert!((own[0] - want).abs() < 1e-8, "{phi}: {own:?} vs {want}");
             let p = point(x.q[0], c.curve_i.jet(own[0]).p);
@@ -238,7 +238,7 @@ mod tests {
         // A face below the cam touches its bottom.
         let mut x = Local::default();
         x.q[1] = [0.0, -2.0, 0.0];
-        let own = c.initial_own(&x);
+        let own = c.initial_own(&x, None);
         assert!((own[0] - 1.5 * PI).abs() < 1e-8, "{own:?}");
     }
 
@@ -260,12 +260,9 @@ mod tests {
         let mut x = Local::default();
         x.q[0] = [0.0, 0.0, FRAC_PI_2];
         x.q[1] = [0.0, 1.5, 0.0];
-        let own = c.initial_own(&x)[0];
+        let own = c.initial_own(&x, None)[0];
         assert!(own.abs() < 1e-9 || (own - TAU).abs() < 1e-9, "{own}");
-        let own = c.initial_own(&Local {
-            own: [TAU + 0.3, 0.0],
-            ..x
-        });
+        let own = c.initial_own(&x, Some([TAU + 0.3, 0.0]));
         assert!((own[0] - TAU).abs() < 1e-9, "{own:?}");
     }
 

@@ -128,7 +128,7 @@ impl Equations for Gear {
     /// θ from the current centre line, on the branch θ + 2πk nearest the
     /// guess in `x.own[0]`, so θ stays continuous; the guess is kept when
     /// the centres coincide.
-    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+    fn initial_own(&self, x: &Local, _guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         let d = rel(x, self.s_i, self.s_j);
         let mut own = x.own;
         if d != [0.0, 0.0] {
@@ -506,11 +506,11 @@ mod tests {
             ci[1] + (-3.1_f64).sin() - g.s_j[1],
             0.0,
         ];
-        assert!((g.initial_own(&x)[0] + 3.1).abs() < 1e-12);
+        assert!((g.initial_own(&x, None)[0] + 3.1).abs() < 1e-12);
         x.own[0] = 3.0;
-        assert!((g.initial_own(&x)[0] - (TAU - 3.1)).abs() < 1e-12);
+        assert!((g.initial_own(&x, None)[0] - (TAU - 3.1)).abs() < 1e-12);
         x.own[0] = -3.1 + 2.0 * TAU + 0.5;
-        assert!((g.initial_own(&x)[0] - (-3.1 + 2.0 * TAU)).abs() < 1e-12);
+        assert!((g.initial_own(&x, None)[0] - (-3.1 + 2.0 * TAU)).abs() < 1e-12);
     }
 
     fn rack(body_i: BodyId, body_j: BodyId) -> RackPinion {

@@ -100,8 +100,9 @@ pub trait Equations {
         &[]
     }
     /// A starting value for the own coordinates from the current body
-    /// coordinates (`x.own` holds a guess or zeros).
-    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+    /// coordinates, refined from `guess` when there is one (`x.own` holds
+    /// the guess, or zeros).
+    fn initial_own(&self, x: &Local, _guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         x.own
     }
     /// Checks the functions the constraint evaluates (of time, of a curve
@@ -205,8 +206,8 @@ macro_rules! constraints {
             fn own_names(&self) -> &'static [&'static str] {
                 match self { $(Constraint::$variant(c) => c.own_names(),)* }
             }
-            fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
-                match self { $(Constraint::$variant(c) => c.initial_own(x),)* }
+            fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
+                match self { $(Constraint::$variant(c) => c.initial_own(x, guess),)* }
             }
             #[inline]
             fn phi(&self, x: &Local, out: &mut Rows) {

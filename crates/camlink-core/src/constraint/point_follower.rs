@@ -91,9 +91,9 @@ impl Equations for PointFollower {
         &["alpha_j"]
     }
 
-    /// The point of C_j nearest to the pin; refined from `x.own[0]` when it
-    /// is nonzero. A driven pin starts at α_j = f(0).
-    fn initial_own(&self, x: &Local) -> [f64; MAX_OWN] {
+    /// The point of C_j nearest to the pin; refined from the guess when
+    /// there is one. A driven pin starts at α_j = f(0).
+    fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         if let Some(f) = &self.travel {
             let mut own = x.own;
             own[0] = f.value(x.t);
@@ -101,7 +101,7 @@ impl Equations for PointFollower {
         }
         let pin = Carried::fixed(x.q[0], [0.0; 3], self.s_i).p;
         let local = rot_t(x.q[1][2], sub(pin, [x.q[1][0], x.q[1][1]]));
-        let guess = (x.own[0] != 0.0).then_some(x.own[0]);
+        let guess = guess.map(|g| g[0]);
         let mut own = x.own;
         own[0] = search::closest(&self.curve_j, local, guess);
         own
@@ -241,7 +241,7 @@ mod tests {
             rate: 1.0,
         });
         let x = Local::default();
-        assert_eq!(c.initial_own(&x)[0], 0.5);
+        assert_eq!(c.initial_own(&x, None)[0], 0.5);
         let mut f = [0.0; 3];
         c.phi(
             &Local {
@@ -269,7 +269,7 @@ mod tests {
         let y = 0.9;
         let mut x = Local::default();
         x.q[0] = [1.5, y, 0.4];
-        x.own = c.initial_own(&x);
+        x.own = c.initial_own(&x, None);
         for _ in 0..30 {
             let (mut f, mut jac) = ([0.0; 3], Jac::default());
             c.phi(&x, &mut f);
@@ -300,15 +300,12 @@ mod tests {
         let mut x = Local::default();
         x.q[0] = [-2.0, 0.0, 0.0];
         x.q[1] = [0.0, 0.0, 0.5];
-        let own = c.initial_own(&x);
+        let own = c.initial_own(&x, None);
         let pin = point(x.q[0], c.s_i);
         let want = (pin[1].atan2(pin[0]) - 0.5).rem_euclid(TAU);
         assert!((own[0] - want).abs() < 1e-9, "{own:?} {want}");
         // From a guess one turn on: the same point, one turn on.
-        let own = c.initial_own(&Local {
-            own: [want + TAU + 0.2, 0.0],
-            ..x
-        });
+        let own = c.initial_own(&x, Some([want + TAU + 0.2, 0.0]));
         assert!((own[0] - want - TAU).abs() < 1e-9, "{own:?}");
         // Open slot: beyond its end, the end.
         let c = PointFollower {
@@ -317,7 +314,7 @@ mod tests {
                 .into(),
             ..c
         };
-        let own = c.initial_own(&x);
+        let own = c.initial_own(&x, None);
         assert!(
             (own[0] - PI / 2.0).abs() < 1e-12 || own[0].abs() < 1e-12,
             "{own:?}"
