@@ -321,28 +321,3 @@ fn fused_residual_and_phi_match_the_separate_ones() {
         "an inconsistent state: {phi1:?}"
     );
 }
-
-/// Newton measures a body angle's correction by the motion of the body's
-/// points: the links of a chain (joint points 0.05 m from the centroid,
-/// radius of gyration 0.1/√12 m) weigh Δφ by 0.05 m; x and y by 1.
-#[test]
-fn angle_corrections_count_as_the_motion_of_the_body() {
-    use camlink_core::dynamics::integrator::motion_scale;
-    use camlink_core::dynamics::system::System;
-    let model = chain(3, 0.1);
-    let sys = System::new(&model);
-    let q = sys.asm.initial_q(&model);
-    let scale = motion_scale(&model, &sys.asm, &q);
-    assert_eq!(scale.len(), 9);
-    for b in 0..3 {
-        assert_eq!(&scale[3 * b..3 * b + 2], &[1.0, 1.0]);
-        assert!((scale[3 * b + 2] - 0.05).abs() < 1e-15, "{scale:?}");
-    }
-    // A pendulum whose frame is at the pivot: its centroid, 0.5 m away.
-    let model = pendulum(0.5, 1.2, 0.02, 0.1, true);
-    let sys = System::new(&model);
-    let q = sys.asm.initial_q(&model);
-    let scale = motion_scale(&model, &sys.asm, &q);
-    let r_g = ((0.02 + 1.2 * 0.25) / 1.2f64).sqrt();
-    assert!((scale[2] - r_g).abs() < 1e-12, "{scale:?} vs {r_g}");
-}

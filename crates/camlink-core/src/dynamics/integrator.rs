@@ -71,8 +71,7 @@ pub struct Settings {
     pub rho_inf: f64,
     /// Newton stops when the last corrections of positions and of
     /// velocities, max |Δq| and max |Δq̇| = γ' max |Δq|, are both ≤ tol
-    /// (m; m/s), a body angle's correction Δφ counting as the motion L Δφ
-    /// of the body's points ([`motion_scale`]).
+    /// (m or rad; m/s or rad/s).
     pub tol: f64,
     /// Newton iterations per step.
     pub max_iter: usize,
@@ -146,9 +145,6 @@ pub struct Integrator<'m> {
     pub rejected: usize,
     /// The weighted error of the last accepted error-controlled step.
     err_prev: Option<f64>,
-    /// Per coordinate, the length that turns its correction into a motion
-    /// (m): 1 for x, y and own coordinates, L of [`motion_scale`] for φ.
-    scale: Vec<f64>,
 }
 
 impl<'m> Integrator<'m> {
@@ -200,7 +196,6 @@ impl<'m> Integrator<'m> {
             .map_err(|e| fail(e.message, e.residual))?;
         project::velocities(&sys, &mut aug, &q, &mut qd, t0)
             .map_err(|e| fail(e.message, e.residual))?;
-        let scale = motion_scale(model, &sys.asm, &q);
         let mut it = Integrator {
             c: Coeffs::new(settings.rho_inf),
             aug,
@@ -226,7 +221,6 @@ impl<'m> Integrator<'m> {
             summary: Summary::default(),
             rejected: 0,
             err_prev: None,
-            scale,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
@@ -392,7 +386,7 @@ impl<'m> Integrator<'m> {
                 self.q[k] += d;
                 self.qd[k] += gp * d;
                 self.qdd[k] += bp * d;
-                dmax = dmax.max(d.abs() * self.scale[k]);
+                dmax = dmax.max(d.abs());
             }
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
@@ -484,41 +478,6 @@ impl<'m> Integrator<'m> {
         self.t = t_end.max(self.t);
         Ok(())
     }
-}
-
-/// Per coordinate, the length L (m) by which Newton's convergence test
-/// multiplies a correction: 1 for x, y and own coordinates; for a body's
-/// angle φ, the body's size — the largest of the distances from its frame
-/// origin to its joint points (at the start) and to its centroid, and its
-/// radius of gyration about the origin — so that L Δφ is how far its points
-/// move; 1 m when all of these are zero.
-pub fn motion_scale(model: &Model, asm: &crate::assembly::Assembly, q: &[f64]) -> Vec<f64> {
-    use crate::constraint::Equations;
-    use crate::math::norm;
-    let mut size = vec![0.0f64; model.bodies.len()];
-    for (id, b) in model.moving_bodies() {
-        let r_g = if b.mass > 0.0 {
-            ((b.inertia + b.mass * crate::math::dot(b.centroid, b.centroid)) / b.mass).sqrt()
-        } else {
-            0.0
-        };
-        size[id.0] = r_g.max(norm(b.centroid));
-    }
-    for (j, joint) in model.joints.iter().enumerate() {
-        let c = &joint.constraint;
-        let x = asm.local(model, j, q, &[], 0.0);
-        for (b, s) in c.bodies().iter().zip(c.joint_points(&x)) {
-            size[b.0] = size[b.0].max(norm(s));
-        }
-    }
-    let mut scale = vec![1.0; asm.n];
-    for (id, _) in model.moving_bodies() {
-        let c = asm.body_col(id.0).expect("moving body");
-        if size[id.0] > 0.0 && size[id.0].is_finite() {
-            scale[c + 2] = size[id.0];
-        }
-    }
-    scale
 }
 
 /// Forward dynamics with output at `times` (increasing; the first is the
