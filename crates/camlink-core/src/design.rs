@@ -82,8 +82,10 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                 let Some(o) = orientation(&ff.curve_i) else {
                     continue;
                 };
-                let tol = FLAT * max_curvature(&ff.curve_i);
-                let r = ranges_where(&ff.curve_i, |s| o * ff.curve_i.curvature(s) < -tol);
+                let tol = FLAT * ff.curve_i.max_curvature(SAMPLES);
+                let r = ff
+                    .curve_i
+                    .ranges_where(SAMPLES, |s| o * ff.curve_i.curvature(s) < -tol);
                 if !r.is_empty() {
                     out.push((
                         k,
@@ -119,7 +121,7 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                         _ => Some(v),
                     });
                 if let Some((rho, at)) = min.filter(|m| m.0 < r) {
-                    let bad = ranges_where(cam, |s| o * cam.curvature(s) < -1.0 / r);
+                    let bad = cam.ranges_where(SAMPLES, |s| o * cam.curvature(s) < -1.0 / r);
                     let name = if which == 0 { "α_i" } else { "α_j" };
                     out.push((
                         k,
@@ -191,7 +193,7 @@ impl StepGuard {
                 Constraint::FlatFollower(ff) => {
                     ends(0, &ff.curve_i);
                     if let Some(o) = orientation(&ff.curve_i) {
-                        let tol = STEP_TOL * max_curvature(&ff.curve_i);
+                        let tol = STEP_TOL * ff.curve_i.max_curvature(SAMPLES);
                         items.push(Item {
                             joint: k,
                             own: 0,
@@ -348,67 +350,6 @@ pub fn orientation(c: &Curve) -> Option<f64> {
     Some(if area < 0.0 { -1.0 } else { 1.0 })
 }
 
-/// Largest |κ| over the samples (1/m).
-fn max_curvature(c: &Curve) -> f64 {
-    let (s0, s1) = c.range();
-    (0..SAMPLES)
-        .map(|k| {
-            c.curvature(s0 + (s1 - s0) * k as f64 / SAMPLES as f64)
-                .abs()
-        })
-        .fold(0.0, f64::max)
-}
-
-/// Parameter intervals (a, b) of the range where `inside` holds, sampled at
-/// [`SAMPLES`] points and each edge located by bisection. On a closed curve
-/// an interval across the start of the range is returned once, as (a, b)
-/// with b beyond s₁.
-pub fn ranges_where(c: &Curve, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
-    let (s0, s1) = c.range();
-    let at = |k: usize| s0 + (s1 - s0) * k as f64 / SAMPLES as f64;
-    let edge = |mut a: f64, mut b: f64| {
-        let sa = inside(a);
-        for _ in 0..60 {
-            let m = 0.5 * (a + b);
-            if inside(m) == sa {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        0.5 * (a + b)
-    };
-    let mut out = Vec::new();
-    let mut start = inside(s0).then_some(s0);
-    let mut prev = start.is_some();
-    for k in 0..SAMPLES {
-        let (a, b) = (at(k), at(k + 1));
-        let now = if k + 1 == SAMPLES && c.closed() {
-            inside(s0)
-        } else {
-            inside(b)
-        };
-        if now != prev {
-            let e = edge(a, b);
-            if now {
-                start = Some(e);
-            } else if let Some(st) = start.take() {
-                out.push((st, e));
-            }
-        }
-        prev = now;
-    }
-    if let Some(st) = start {
-        if c.closed() && !out.is_empty() && out[0].0 == s0 && st != s0 {
-            let first = out.remove(0);
-            out.push((st, first.1 + (s1 - s0)));
-        } else {
-            out.push((st, s1));
-        }
-    }
-    out
-}
-
 /// A parameter value with its unit: rad and degrees for a polar profile,
 /// the curve's own parameter otherwise.
 fn value(c: &Curve, s: f64) -> String {
@@ -510,7 +451,7 @@ mod tests {
     #[test]
     fn ranges_across_the_start_come_back_whole() {
         let c: Curve = Polar::circle([0.0, 0.0], 1.0).unwrap().into();
-        let r = ranges_where(&c, |s| !(0.5..=6.0).contains(&s));
+        let r = c.ranges_where(SAMPLES, |s| !(0.5..=6.0).contains(&s));
         assert_eq!(r.len(), 1, "{r:?}");
         assert!((r[0].0 - 6.0).abs() < 1e-9 && (r[0].1 - (0.5 + 2.0 * PI)).abs() < 1e-9);
     }

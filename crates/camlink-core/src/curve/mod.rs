@@ -155,20 +155,35 @@ impl Curve {
     /// interval.
     pub fn concave_ranges(&self, samples: usize) -> Vec<(f64, f64)> {
         let n = samples.max(8);
+        let tol = 1e-9 * self.max_curvature(n);
+        self.ranges_where(n, |s| self.curvature(s) < -tol)
+    }
+
+    /// Largest |κ| (1/m) over `samples` points spread over the range.
+    pub fn max_curvature(&self, samples: usize) -> f64 {
         let (s0, s1) = self.range();
-        let closed = self.closed();
-        let at = |k: usize| s0 + (s1 - s0) * k as f64 / n as f64;
-        let kmax = (0..n)
-            .map(|k| self.curvature(at(k)).abs())
-            .fold(0.0, f64::max);
-        let tol = 1e-9 * kmax;
-        let concave = |s: f64| self.curvature(s) < -tol;
-        // Locate the sign change between a (in state sa) and b by bisection.
+        (0..samples)
+            .map(|k| {
+                self.curvature(s0 + (s1 - s0) * k as f64 / samples as f64)
+                    .abs()
+            })
+            .fold(0.0, f64::max)
+    }
+
+    /// Parameter intervals (a, b) of the range where `inside` holds, sampled
+    /// at `samples` points and each edge located by bisection. On a closed
+    /// curve an interval across the start of the range is returned once, as
+    /// (a, b) with s₀ ≤ a < s₁ < b; a jump of the predicate at the seam is
+    /// not an edge.
+    pub fn ranges_where(&self, samples: usize, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
+        let (s0, s1) = self.range();
+        let at = |k: usize| s0 + (s1 - s0) * k as f64 / samples as f64;
+        // Locate the change between a and b by bisection.
         let edge = |mut a: f64, mut b: f64| {
-            let sa = concave(a);
+            let sa = inside(a);
             for _ in 0..60 {
                 let m = 0.5 * (a + b);
-                if concave(m) == sa {
+                if inside(m) == sa {
                     a = m;
                 } else {
                     b = m;
@@ -177,11 +192,15 @@ impl Curve {
             0.5 * (a + b)
         };
         let mut out = Vec::new();
-        let mut start = concave(s0).then_some(s0);
+        let mut start = inside(s0).then_some(s0);
         let mut prev = start.is_some();
-        for k in 0..n {
+        for k in 0..samples {
             let (a, b) = (at(k), at(k + 1));
-            let now = concave(b);
+            let now = if k + 1 == samples && self.closed() {
+                inside(s0)
+            } else {
+                inside(b)
+            };
             if now != prev {
                 let e = edge(a, b);
                 if now {
@@ -193,11 +212,10 @@ impl Curve {
             prev = now;
         }
         if let Some(st) = start {
-            if closed && !out.is_empty() && out[0].0 == s0 {
+            if self.closed() && !out.is_empty() && out[0].0 == s0 {
                 // An interval running over the end joins the one that
-                // started at s₀.
-                // An edge found within rounding of s₁ is the start itself
-                // (the curvature jumps there).
+                // started at s₀; an edge found within rounding of s₁ is
+                // that start itself (the predicate jumps at the seam).
                 if s1 - st > 1e-9 * (s1 - s0) {
                     let first = out.remove(0);
                     out.push((st, first.1 + (s1 - s0)));
