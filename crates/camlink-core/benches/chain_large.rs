@@ -6,7 +6,8 @@
 #[path = "../tests/mechanisms/mod.rs"]
 mod mechanisms;
 
-use camlink_core::dynamics::integrator::{Integrator, Settings};
+#[path = "shared/mod.rs"]
+mod shared;
 
 fn main() {
     if std::env::var_os("CAMLINK_BENCH_LARGE").is_none() {
@@ -20,17 +21,5 @@ fn main() {
 /// as for the smaller chains.
 #[divan::bench(sample_count = 3)]
 fn chain_10000_links_100_steps(bencher: divan::Bencher) {
-    let model = mechanisms::chain(10_000, 0.1);
-    let settings = Settings {
-        step: 1e-3,
-        ..Settings::default()
-    };
-    bencher
-        .with_inputs(|| Integrator::new(&model, settings.clone()).unwrap())
-        .bench_local_values(|mut it| {
-            let mut h = 1e-3;
-            it.advance_to(0.1, &mut h).unwrap();
-            assert_eq!(it.summary.steps, 100);
-            it.q[0]
-        });
+    shared::fixed_steps(bencher, &mechanisms::chain(10_000, 0.1), 100);
 }

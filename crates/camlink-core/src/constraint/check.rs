@@ -12,7 +12,7 @@
 // Rows, coordinates and own coordinates are indexed in parallel arrays.
 #![allow(clippy::needless_range_loop)]
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use super::{Equations, Jac, Local, LocalBlock, Rows, LOCAL_COORDS, MAX_OWN};
 use crate::model::BodyId;
 
 /// Deterministic pseudo-random numbers (SplitMix64) for reproducible checks.
@@ -39,8 +39,8 @@ impl Rng {
     }
 }
 
-/// The full local coordinate vector z = (q_i, q_j, own) as 6 + MAX_OWN numbers.
-const NZ: usize = 6 + MAX_OWN;
+/// The full local coordinate vector z = (q_i, q_j, own) has this many numbers.
+const NZ: usize = LOCAL_COORDS;
 
 fn to_z(x: &Local) -> [f64; NZ] {
     let mut z = [0.0; NZ];
@@ -193,7 +193,7 @@ pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
 
     // An analytic curvature against differences of λᵀΦ_q.
     let lambda = [0.7, -1.3, 0.4];
-    let mut curv = [[0.0; NZ]; NZ];
+    let mut curv: LocalBlock = [[0.0; NZ]; NZ];
     if c.curvature(x, &lambda, &mut curv) {
         for b in 0..NZ {
             if !mask[b] {
