@@ -4,7 +4,7 @@
 //! stacked joint by joint in model order. Only this module knows global
 //! indices; constraints see a [`Local`] view and write per-body blocks.
 
-use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::{Equations, Jac, Local, Rows};
 use crate::model::Model;
 
 /// Where each body's and joint's coordinates and equations sit.
@@ -158,8 +158,7 @@ impl Assembly {
             if k == 0 {
                 continue;
             }
-            let mut x = self.local(model, j, &q, &[], 0.0);
-            x.own = joint.own0.unwrap_or([0.0; MAX_OWN]);
+            let x = self.local(model, j, &q, &[], 0.0);
             let own = joint.constraint.initial_own(&x, joint.own0);
             q[self.own_col[j]..self.own_col[j] + k].copy_from_slice(&own[..k]);
         }

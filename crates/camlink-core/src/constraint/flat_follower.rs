@@ -118,7 +118,7 @@ impl Equations for FlatFollower {
             1.0
         };
         let dir = rot_t(x.q[0][2], scale(-side, n));
-        let mut own = x.own;
+        let mut own = [0.0; MAX_OWN];
         own[0] = search::support(&self.curve_i, dir, guess);
         own
     }

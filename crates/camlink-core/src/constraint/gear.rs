@@ -126,14 +126,14 @@ impl Equations for Gear {
     }
 
     /// θ from the current centre line, on the branch θ + 2πk nearest the
-    /// guess in `x.own[0]`, so θ stays continuous; the guess is kept when
+    /// guess (0 without one), so θ stays continuous; the guess is kept when
     /// the centres coincide.
-    fn initial_own(&self, x: &Local, _guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
+    fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         let d = rel(x, self.s_i, self.s_j);
-        let mut own = x.own;
+        let mut own = guess.unwrap_or_default();
         if d != [0.0, 0.0] {
             let theta = d[1].atan2(d[0]);
-            own[0] = theta + TAU * ((x.own[0] - theta) / TAU).round_ties_even();
+            own[0] = theta + TAU * ((own[0] - theta) / TAU).round_ties_even();
         }
         own
     }
@@ -507,10 +507,10 @@ mod tests {
             0.0,
         ];
         assert!((g.initial_own(&x, None)[0] + 3.1).abs() < 1e-12);
-        x.own[0] = 3.0;
-        assert!((g.initial_own(&x, None)[0] - (TAU - 3.1)).abs() < 1e-12);
-        x.own[0] = -3.1 + 2.0 * TAU + 0.5;
-        assert!((g.initial_own(&x, None)[0] - (-3.1 + 2.0 * TAU)).abs() < 1e-12);
+        let guess = |a: f64| Some([a, 0.0]);
+        assert!((g.initial_own(&x, guess(3.0))[0] - (TAU - 3.1)).abs() < 1e-12);
+        let near = -3.1 + 2.0 * TAU;
+        assert!((g.initial_own(&x, guess(near + 0.5))[0] - near).abs() < 1e-12);
     }
 
     fn rack(body_i: BodyId, body_j: BodyId) -> RackPinion {

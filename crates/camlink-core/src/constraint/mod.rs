@@ -99,11 +99,10 @@ pub trait Equations {
     fn own_names(&self) -> &'static [&'static str] {
         &[]
     }
-    /// A starting value for the own coordinates from the current body
-    /// coordinates, refined from `guess` when there is one (`x.own` holds
-    /// the guess, or zeros).
-    fn initial_own(&self, x: &Local, _guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
-        x.own
+    /// A starting value for the own coordinates from the body coordinates
+    /// in `x`, refined from `guess` when there is one.
+    fn initial_own(&self, _x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
+        guess.unwrap_or_default()
     }
     /// Checks the functions the constraint evaluates (of time, of a curve
     /// parameter) at `x`, naming the operation that fails.

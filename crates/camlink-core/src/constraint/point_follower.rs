@@ -95,14 +95,14 @@ impl Equations for PointFollower {
     /// there is one. A driven pin starts at α_j = f(0).
     fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
         if let Some(f) = &self.travel {
-            let mut own = x.own;
+            let mut own = [0.0; MAX_OWN];
             own[0] = f.value(x.t);
             return own;
         }
         let pin = Carried::fixed(x.q[0], [0.0; 3], self.s_i).p;
         let local = rot_t(x.q[1][2], sub(pin, [x.q[1][0], x.q[1][1]]));
         let guess = guess.map(|g| g[0]);
-        let mut own = x.own;
+        let mut own = [0.0; MAX_OWN];
         own[0] = search::closest(&self.curve_j, local, guess);
         own
     }
