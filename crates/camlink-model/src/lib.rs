@@ -8,6 +8,7 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
+mod data_file;
 mod error;
 mod eval;
 pub mod file;
@@ -15,11 +16,12 @@ mod locate;
 mod resolve;
 
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use camlink_core::dynamics::integrator::{Adaptive, Settings as IntegratorSettings};
 use camlink_core::dynamics::statics::Settings as StaticsSettings;
 
+pub use data_file::LoadOptions;
 pub use error::LoadError;
 pub use file::AnalysisType;
 
@@ -50,6 +52,9 @@ impl Format {
 pub struct Loaded {
     pub model: camlink_core::Model,
     pub analysis: AnalysisSpec,
+    /// The data files read (canonical paths), so that a run can refuse to
+    /// write its output over one of them.
+    pub data_files: Vec<PathBuf>,
 }
 
 impl Loaded {
@@ -232,7 +237,14 @@ impl Default for AnalysisSpec {
 }
 
 /// Loads a model file; the format comes from the extension (`.toml`, `.json`).
+/// Data files must lie in the model file's folder or below.
 pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
+    load_path_with(path, &LoadOptions::default())
+}
+
+/// [`load_path`] with options: where data files resolve and whether they
+/// may lie outside that folder.
+pub fn load_path_with(path: &Path, options: &LoadOptions) -> Result<Loaded, LoadError> {
     let source = path.display().to_string();
     let Some(format) = Format::from_path(path) else {
         return Err(LoadError::file(
@@ -264,7 +276,7 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
-    load_str(&text, format, &source)
+    load_str_with(&text, format, &source, options)
 }
 
 fn too_large(source: &str, len: Option<u64>) -> LoadError {
@@ -277,11 +289,23 @@ fn too_large(source: &str, len: Option<u64>) -> LoadError {
 
 /// Loads a model from text; `source` names it in errors (usually the file
 /// name), and data files it names (a spline's CSV points) are read relative
-/// to `source`'s directory.
+/// to `source`'s directory, and only from there and below.
 ///
 /// A leading byte order mark (U+FEFF, written by some Windows editors) is
 /// skipped; positions in errors count from the character after it.
 pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, LoadError> {
+    load_str_with(text, format, source, &LoadOptions::default())
+}
+
+/// [`load_str`] with options: where data files resolve
+/// ([`LoadOptions::base_dir`], else `source`'s directory) and whether they
+/// may lie outside that folder.
+pub fn load_str_with(
+    text: &str,
+    format: Format,
+    source: &str,
+    options: &LoadOptions,
+) -> Result<Loaded, LoadError> {
     if text.len() as u64 > MAX_FILE_SIZE {
         return Err(too_large(source, Some(text.len() as u64)));
     }
@@ -295,15 +319,23 @@ pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, Load
         .and_then(|s| s.to_str())
         .filter(|s| !s.is_empty())
         .unwrap_or("model");
-    let base = Path::new(source).parent().unwrap_or(Path::new(""));
-    let (model, analysis) = resolve::resolve(&file, stem, base).map_err(|f| {
+    let base = match &options.base_dir {
+        Some(dir) => dir.as_path(),
+        None => Path::new(source).parent().unwrap_or(Path::new("")),
+    };
+    let data = data_file::DataFiles::new(base, options.allow_outside_data);
+    let (model, analysis, data) = resolve::resolve(&file, stem, data).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),
         };
         at(text, source, span.map(|s| s.start), Some(f.path), f.message)
     })?;
-    Ok(Loaded { model, analysis })
+    Ok(Loaded {
+        model,
+        analysis,
+        data_files: data.into_read(),
+    })
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.

@@ -7,7 +7,7 @@
 //! Every failure carries the field path of the value at fault.
 
 use std::collections::{BTreeMap, HashMap};
-use std::path::{Path, PathBuf};
+use crate::data_file::DataFiles;
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
 use camlink_core::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
@@ -74,19 +74,19 @@ struct Ctx {
     joints: HashMap<String, JointInfo>,
     /// Named curves (`[[curves]]`).
     curves: HashMap<String, curves::CurveEntry>,
-    /// Directory that relative data file names are resolved against.
-    base: PathBuf,
+    /// Where data files resolve, and those read.
+    data: DataFiles,
     /// Body ids by name, ground included (a scan per reference is quadratic).
     body_ids: HashMap<String, BodyId>,
 }
 
 /// Builds the model and analysis settings described by `file`.
-/// Data files named in the model (CSV points) are read relative to `base`.
+/// Data files named in the model (CSV points) are read through `data`.
 pub(crate) fn resolve(
     file: &ModelFile,
     default_name: &str,
-    base: &Path,
-) -> R<(Model, AnalysisSpec)> {
+    data: DataFiles,
+) -> R<(Model, AnalysisSpec, DataFiles)> {
     let params = parameters(&file.parameters)?;
     let mut cx = Ctx {
         params,
@@ -94,7 +94,7 @@ pub(crate) fn resolve(
         names: HashMap::new(),
         joints: HashMap::new(),
         curves: HashMap::new(),
-        base: base.to_path_buf(),
+        data,
         body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
     };
     if let Some(m) = &file.model {
@@ -123,7 +123,7 @@ pub(crate) fn resolve(
     }
     let analysis = cx.analysis(file.analysis.as_ref())?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
-    Ok((cx.model, analysis))
+    Ok((cx.model, analysis, cx.data))
 }
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.

@@ -340,3 +340,124 @@ fn docs_errors_page_matches_real_output() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
     assert!(checked >= 20, "only {checked} examples checked");
 }
+
+/// A fresh folder under the system's temporary folder.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("camlink-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A cam whose polar spline reads its points from `file`.
+fn cam_with_file(file: &str) -> String {
+    format!(
+        "[[bodies]]\nname = \"cam\"\n\n[[curves]]\nname = \"p\"\nbody = \"cam\"\n\
+         source = \"spline\"\nkind = \"polar\"\nfile = \"{file}\"\n"
+    )
+}
+
+const CIRCLE_CSV: &str = "alpha,rho\n0,1\n1.5,1\n3,1\n4.5,1\n";
+
+#[test]
+fn data_files_outside_the_model_folder_are_refused() {
+    // `file = "../../etc/shadow"` read any file and printed a line of it.
+    let root = scratch("outside");
+    let models = root.join("models");
+    std::fs::create_dir_all(models.join("data")).unwrap();
+    std::fs::write(root.join("secret.csv"), "root:x:0:0:secret line\n").unwrap();
+    std::fs::write(models.join("data/ok.csv"), CIRCLE_CSV).unwrap();
+    let secret = root.join("secret.csv").display().to_string();
+    for file in ["../secret.csv", "data/../../secret.csv", secret.as_str()] {
+        let model = models.join("m.toml");
+        std::fs::write(&model, cam_with_file(file)).unwrap();
+        let err = load_path(&model).unwrap_err().to_string();
+        assert!(err.contains("is outside the model's folder"), "{file}: {err}");
+        assert!(!err.contains("secret line"), "{err}");
+        assert!(err.contains("curves[0].file"), "{err}");
+        // Opting in reads it (and finds it is no points file).
+        let opts = camlink_model::LoadOptions {
+            allow_outside_data: true,
+            ..Default::default()
+        };
+        let err = camlink_model::load_path_with(&model, &opts)
+            .unwrap_err()
+            .to_string();
+        assert!(!err.contains("is outside"), "{err}");
+    }
+    // Inside the folder, also through `..` that stays inside.
+    for file in ["data/ok.csv", "data/../data/ok.csv"] {
+        let model = models.join("m.toml");
+        std::fs::write(&model, cam_with_file(file)).unwrap();
+        let loaded = load_path(&model).unwrap();
+        assert_eq!(
+            loaded.data_files,
+            vec![std::fs::canonicalize(models.join("data/ok.csv")).unwrap()]
+        );
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+fn symlinks_that_leave_the_model_folder_are_refused() {
+    let root = scratch("symlink");
+    let models = root.join("models");
+    std::fs::create_dir_all(&models).unwrap();
+    std::fs::write(root.join("outside.csv"), CIRCLE_CSV).unwrap();
+    std::fs::write(models.join("inside.csv"), CIRCLE_CSV).unwrap();
+    std::os::unix::fs::symlink(root.join("outside.csv"), models.join("away.csv")).unwrap();
+    std::os::unix::fs::symlink(models.join("inside.csv"), models.join("here.csv")).unwrap();
+    std::os::unix::fs::symlink(&root, models.join("up")).unwrap();
+    let model = models.join("m.toml");
+    for (file, ok) in [("away.csv", false), ("up/outside.csv", false), ("here.csv", true)] {
+        std::fs::write(&model, cam_with_file(file)).unwrap();
+        let got = load_path(&model);
+        assert_eq!(got.is_ok(), ok, "{file}: {:?}", got.err());
+    }
+    std::fs::remove_dir_all(&root).unwrap();
+}
+
+#[test]
+fn load_str_resolves_data_files_against_base_dir() {
+    let dir = scratch("base-dir");
+    std::fs::write(dir.join("cam.csv"), CIRCLE_CSV).unwrap();
+    let opts = camlink_model::LoadOptions {
+        base_dir: Some(dir.clone()),
+        ..Default::default()
+    };
+    let text = cam_with_file("cam.csv");
+    assert!(camlink_model::load_str_with(&text, Format::Toml, "<string>", &opts).is_ok());
+    let err = load_toml(&text).unwrap_err();
+    assert!(err.contains("cam.csv"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[cfg(unix)]
+#[test]
+fn data_file_that_is_a_device_or_fifo_is_refused_at_once() {
+    // `file = "/dev/zero"` ate memory; a FIFO blocked for ever.
+    let dir = scratch("device");
+    std::os::unix::fs::symlink("/dev/zero", dir.join("zero.csv")).unwrap();
+    let fifo = dir.join("fifo.csv");
+    let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+    let opts = camlink_model::LoadOptions {
+        allow_outside_data: true,
+        ..Default::default()
+    };
+    let model = dir.join("m.toml");
+    let mut names = vec!["zero.csv"];
+    if made.map(|s| s.success()).unwrap_or(false) {
+        names.push("fifo.csv");
+    }
+    for name in names {
+        std::fs::write(&model, cam_with_file(name)).unwrap();
+        let start = Instant::now();
+        let err = camlink_model::load_path_with(&model, &opts)
+            .unwrap_err()
+            .to_string();
+        assert!(start.elapsed() < Duration::from_secs(5));
+        assert!(err.contains("not a regular file"), "{name}: {err}");
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

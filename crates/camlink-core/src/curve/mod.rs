@@ -47,7 +47,7 @@ pub mod spline;
 pub use carried::Carried;
 pub use fourier::Fourier;
 pub use parametric::Parametric;
-pub use points::{parse_points_csv, read_points_csv};
+pub use points::{excerpt, parse_points_csv, read_points_csv, MAX_POINTS_FILE_SIZE};
 pub use polar::{Polar, Radius};
 pub use spline::{PlanarSpline, Spline};
 

@@ -256,7 +256,10 @@ impl Ctx {
                         (pts, "points")
                     }
                     (None, Some(f)) => {
-                        let path = self.base.join(f);
+                        let path = self
+                            .data
+                            .resolve(f)
+                            .or_else(|e| fail(format!("{p}.file"), e))?;
                         let pts = read_points_csv(&path)
                             .or_else(|e| fail(format!("{p}.file"), e.to_string()))?;
                         (pts, "file")
