@@ -2,6 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -31,11 +32,19 @@ class AnalysisError(RuntimeError):
 
 class Model:
     @staticmethod
-    def load(path: str | PathLike[str]) -> Model: ...
+    def load(path: str | PathLike[str], allow_outside: bool = False) -> Model: ...
     @staticmethod
-    def from_str(text: str, format: str, source: str = "<string>") -> Model: ...
+    def from_str(
+        text: str,
+        format: str,
+        source: str = "<string>",
+        base_dir: str | PathLike[str] | None = None,
+        allow_outside: bool = False,
+    ) -> Model: ...
     @property
     def name(self) -> str: ...
+    @property
+    def data_files(self) -> list[Path]: ...
     @property
     def bodies(self) -> list[dict[str, Any]]: ...
     @property
@@ -99,3 +108,5 @@ class Model:
 
 def json_schema() -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
+
+def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...

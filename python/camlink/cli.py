@@ -50,6 +50,12 @@ def _parser() -> argparse.ArgumentParser:
         help="results file, .csv or .parquet (default: MODEL's name with .csv, "
         "in the current directory)",
     )
+    run.add_argument(
+        "--force",
+        action="store_true",
+        help="replace an existing file at the default output path",
+    )
+    _data_option(run)
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
     run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
     run.add_argument("--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)")
@@ -87,9 +93,18 @@ def _parser() -> argparse.ArgumentParser:
     )
     check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
     check.add_argument("--json", action="store_true", help="print the report as JSON")
+    _data_option(check)
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
     return p
+
+
+def _data_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument(
+        "--allow-outside-data",
+        action="store_true",
+        help="let the model read data files outside its folder",
+    )
 
 
 def _error(message: str) -> None:
@@ -103,9 +118,14 @@ def _os_message(e: OSError) -> str:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, allow_outside=args.allow_outside_data)
     kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
+    if not args.output and not args.force and output.exists():
+        _error(
+            f"{output} exists; pass --force to replace it, or -o to name another output"
+        )
+        return EXIT_INPUT
     settings = {
         "t_end": args.t_end,
         "step": args.step,
@@ -131,14 +151,15 @@ def _cmd_run(args: argparse.Namespace) -> int:
         if details:
             print(f"camlink: {'; '.join(details)}", file=sys.stderr)
         partial = e.results
+        where = getattr(e, "output", None) or output
         if len(partial):
             print(
                 f"camlink: {len(partial)} steps (t = {partial.t[0]:g} … {partial.t[-1]:g} s) "
-                f"written to {output}",
+                f"written to {where}",
                 file=sys.stderr,
             )
         else:
-            print(f"camlink: no step completed; {output} holds only the header", file=sys.stderr)
+            print(f"camlink: no step completed; {where} holds only the header", file=sys.stderr)
         return EXIT_ANALYSIS
     summary = res.summary
     if args.verbose:
@@ -182,7 +203,7 @@ def _print_design(model: camlink.Model) -> None:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, allow_outside=args.allow_outside_data)
     r = model.check()
     design = model.design_check()
     if args.json:

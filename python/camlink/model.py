@@ -14,7 +14,8 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import AnalysisError, ModelError
-from camlink.results import Results, open_writer
+from camlink.output import check_not_input, open_writer
+from camlink.results import Results
 
 __all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
 
@@ -39,8 +40,13 @@ _SETTINGS = {
 }
 
 
-def load(path: str | os.PathLike[str]) -> Model:
+def load(path: str | os.PathLike[str], *, allow_outside: bool = False) -> Model:
     """Loads a TOML or JSON model file (the format follows the suffix).
+
+    Data files the model names (a spline's CSV points) resolve against the
+    model file's folder and must lie in it or below, symbolic links
+    followed, unless `allow_outside`: opening a model from someone else
+    cannot read your other files.
 
     Raises `FileNotFoundError` for a missing file and `ModelError` (a
     `ValueError`) naming the file, line and field for a file that is not a
@@ -51,12 +57,24 @@ def load(path: str | os.PathLike[str]) -> Model:
         if path.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(path))
         raise FileNotFoundError(errno.ENOENT, "no such model file", str(path))
-    return Model(_core.Model.load(path), source=path)
+    return Model(_core.Model.load(path, allow_outside), source=path)
 
 
-def loads(text: str, format: str = "toml", source: str = "<string>") -> Model:
-    """Loads a model from TOML or JSON text; `source` names it in errors."""
-    return Model(_core.Model.from_str(text, format, source))
+def loads(
+    text: str,
+    format: str = "toml",
+    source: str = "<string>",
+    *,
+    base_dir: str | os.PathLike[str] | None = None,
+    allow_outside: bool = False,
+) -> Model:
+    """Loads a model from TOML or JSON text; `source` names it in errors.
+
+    Data files resolve against `base_dir`, else the folder of `source`
+    (the current folder for the default ``"<string>"``), and must lie in
+    it or below unless `allow_outside`.
+    """
+    return Model(_core.Model.from_str(text, format, source, base_dir, allow_outside))
 
 
 def json_schema() -> dict[str, Any]:
@@ -75,6 +93,13 @@ class Model:
     @property
     def name(self) -> str:
         return self._core.name
+
+    @property
+    def inputs(self) -> list[Path]:
+        """The files the model was read from: its model file (if any) and
+        the data files it names. A run refuses to write its output over one."""
+        files = [self.source] if self.source is not None else []
+        return files + list(self._core.data_files)
 
     @property
     def bodies(self) -> list[dict[str, Any]]:
@@ -383,8 +408,12 @@ class Model:
         """Calls a core run with the output points and a chunk writer; wraps
         the outcome (or the partial results of a failure) as `Results`."""
         points = list(self.analysis["points"] if points is None else points)
-        writer = open_writer(output) if output is not None else None
+        writer = None
+        if output is not None:
+            check_not_input(Path(output), self.inputs)
+            writer = open_writer(output)
         names: list[str] = []
+        complete = False
 
         def on_chunk(chunk_names: list[str], rows: npt.NDArray[np.float64]) -> None:
             names[:] = chunk_names
@@ -393,17 +422,22 @@ class Model:
 
         try:
             names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
+            complete = True
         except AnalysisError as e:
             names = list(e.names)
             partial = e.data if e.data is not None else np.empty((0, len(names)))
             e.results = Results(
                 names, partial, model=self.name, complete=False, summary={"analysis": kind}
             )
-            e.output = writer.path if writer is not None else None
+            if writer is not None:
+                e.output = writer.close(names, complete=False)
+                writer = None
+            else:
+                e.output = None
             raise
         finally:
             if writer is not None:
-                writer.close(names)
+                writer.close(names, complete=complete)
         summary["analysis"] = kind
         return Results(names, data, model=self.name, summary=summary)
 

@@ -3,7 +3,9 @@ as the run goes."""
 
 from __future__ import annotations
 
+import csv
 import difflib
+import io
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -12,14 +14,12 @@ import numpy as np
 import numpy.typing as npt
 
 from camlink._core import ModelError
+from camlink.output import READ_SUFFIXES, SUFFIXES, kind_of, open_writer, read_arrow_stream
 
 if TYPE_CHECKING:
     import pandas as pd
 
 __all__ = ["Results", "open_writer", "SUFFIXES", "LIFT_OFF_COLUMNS"]
-
-#: File name suffixes `Results.save` and the `output=` of a run understand.
-SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
 
 #: Columns of `Results.lift_off`: names, then times (s), cam angles (rad)
 #: and the least normal force (N).
@@ -151,105 +151,67 @@ class Results:
         )
 
     def save(self, path: str | os.PathLike[str]) -> Path:
-        """Writes the results as CSV or Parquet, chosen by the suffix."""
+        """Writes the results as CSV or Parquet, chosen by the suffix, to a
+        temporary file renamed over `path` once complete."""
         writer = open_writer(path)
+        complete = False
         try:
             writer.write(self._names, self._data)
+            complete = True
         finally:
-            writer.close(self._names)
+            writer.close(self._names, complete)
         return writer.path
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Results:
-        """Reads results written by `save` or by a run with ``output=``."""
+        """Reads results written by `save` or by a run with ``output=``,
+        also the temporary file of a run that was killed (up to its last
+        complete chunk). Raises `ModelError` for a file that is not
+        results."""
         path = Path(path)
-        kind = _kind(path)
-        if kind == "csv":
-            with path.open(newline="") as f:
-                header = f.readline().strip()
-                names = header.split(",") if header else []
-                data = np.loadtxt(f, delimiter=",", ndmin=2)
-            if data.size == 0:
-                data = np.empty((0, len(names)))
-        else:
-            import pyarrow.parquet as pq
-
-            table = pq.read_table(path)
-            names = table.column_names
-            data = np.column_stack(
-                [table.column(n).to_numpy() for n in names]
-            ) if table.num_rows else np.empty((0, len(names)))
+        kind = kind_of(path, "read", READ_SUFFIXES)
+        try:
+            if kind == "csv":
+                names, data = _read_csv(path)
+            else:
+                names, data = _read_arrow(path, kind)
+        except (ValueError, OSError, ImportError) as e:
+            if isinstance(e, ModelError):
+                raise
+            raise ModelError(f"cannot read results from '{path}': {e}") from None
         return cls(names, data, model=path.stem)
 
 
-def _kind(path: Path) -> str:
-    try:
-        return SUFFIXES[path.suffix.lower()]
-    except KeyError:
-        known = ", ".join(sorted(SUFFIXES))
+def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64]]:
+    """Names and rows of a results CSV; an unfinished last line (a run
+    killed while writing) is dropped."""
+    text = path.read_bytes().decode()
+    if text and not text.endswith("\n"):
+        text = text[: text.rfind("\n") + 1]
+    lines = io.StringIO(text)
+    header = next(csv.reader([lines.readline()]), [])
+    rest = lines.read()
+    if not rest.strip():
+        return header, np.empty((0, len(header)))
+    data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2)
+    if data.shape[1] != len(header):
         raise ModelError(
-            f"cannot write results to '{path}': unknown file type "
-            f"'{path.suffix or '(none)'}' (use one of {known})"
-        ) from None
+            f"cannot read results from '{path}': {data.shape[1]} columns but "
+            f"{len(header)} names"
+        )
+    return header, data
 
 
-class _CsvWriter:
-    """Appends rows to a CSV file with a header line, flushing each chunk."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self._file = path.open("w", newline="")
-        self._header = False
-
-    def write(self, names: list[str], rows: npt.NDArray[np.float64]) -> None:
-        if not self._header:
-            self._file.write(",".join(names) + "\n")
-            self._header = True
-        if len(rows):
-            # %.17g keeps every bit of a double; adding 0.0 turns −0.0 into
-            # 0.0, so a value at rest reads "0" rather than "-0".
-            np.savetxt(self._file, rows + 0.0, delimiter=",", fmt="%.17g")
-        self._file.flush()
-
-    def close(self, names: list[str]) -> None:
-        if not self._header and names:
-            self.write(names, np.empty((0, len(names))))
-        self._file.close()
-
-
-class _ParquetWriter:
-    """Writes one Parquet row group per chunk; `close` leaves a valid file."""
-
-    def __init__(self, path: Path) -> None:
-        self.path = path
-        self._writer = None
-        # Fail now, not after the run, if the file cannot be written.
-        path.open("wb").close()
-
-    def _table(self, names: list[str], rows: npt.NDArray[np.float64]):
-        import pyarrow as pa
-
-        return pa.table({n: rows[:, k] for k, n in enumerate(names)})
-
-    def write(self, names: list[str], rows: npt.NDArray[np.float64]) -> None:
+def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64]]:
+    """Names and rows of a results Parquet file or Arrow journal."""
+    if kind == "parquet":
         import pyarrow.parquet as pq
 
-        table = self._table(names, rows)
-        if self._writer is None:
-            self._writer = pq.ParquetWriter(self.path, table.schema)
-        self._writer.write_table(table)
-
-    def close(self, names: list[str]) -> None:
-        if self._writer is None and names:
-            self.write(names, np.empty((0, len(names))))
-        if self._writer is not None:
-            self._writer.close()
-            self._writer = None
-
-
-def open_writer(path: str | os.PathLike[str]) -> _CsvWriter | _ParquetWriter:
-    """A writer for `path` (CSV or Parquet by suffix), created now so that an
-    unwritable path fails before any work is done."""
-    path = Path(path)
-    kind = _kind(path)
-    return _CsvWriter(path) if kind == "csv" else _ParquetWriter(path)
+        table = pq.read_table(path)
+    else:
+        table = read_arrow_stream(path)
+    names = list(table.column_names)  # type: ignore[attr-defined]
+    if not table.num_rows:  # type: ignore[attr-defined]
+        return names, np.empty((0, len(names)))
+    data = np.column_stack([table.column(n).to_numpy() for n in names])  # type: ignore[attr-defined]
+    return names, data

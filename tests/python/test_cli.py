@@ -38,14 +38,16 @@ def test_run_with_options(four_bar_file, tmp_path):
 
 
 def test_analysis_failure_exits_1_and_keeps_results(stuck_file, tmp_path):
-    out = tmp_path / "partial.csv"
+    out = tmp_path / "run.csv"
     proc = run_cli("run", stuck_file, "-o", out, "--t-end", "0.5")
     assert proc.returncode == 1
     assert_clean(proc)
     assert proc.stderr.startswith("camlink: error: at t = ")
     assert "residual" in proc.stderr and "joints involved: " in proc.stderr
-    assert "written to" in proc.stderr
-    assert len(Results.load(out)) > 5
+    partial = tmp_path / "run.partial.csv"
+    assert f"written to {partial}" in proc.stderr
+    assert len(Results.load(partial)) > 5
+    assert not out.exists()
 
 
 @pytest.mark.parametrize(

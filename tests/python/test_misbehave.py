@@ -56,8 +56,10 @@ def test_driver_past_reach_stops_with_time_joints_and_residual(name, t_fail, joi
     for j in joints:
         assert f"'{j}'" in err, err
     assert "largest residual" in err and "condition of Φ_q" in err
-    # The output file is complete and valid up to the failure.
-    res = Results.load(out)
+    # The partial file is complete and valid up to the failure; the output
+    # name holds no failed run.
+    assert not out.exists()
+    res = Results.load(out.with_name(f"{name}.partial.parquet"))
     assert len(res) > 10
     assert res.t[-1] < time <= res.t[-1] + 0.01 + 1e-12
 

@@ -95,20 +95,24 @@ def test_run_writes_output_as_it_goes(four_bar_file, tmp_path, suffix, monkeypat
     back = Results.load(out)
     np.testing.assert_array_equal(back.data, res.data)
     if suffix == ".parquet":
-        assert pq.ParquetFile(out).num_row_groups == 8  # 51 rows in chunks of 7
+        # The chunks are gathered into row groups of ROW_GROUP_ROWS rows.
+        assert pq.ParquetFile(out).num_row_groups == 1
 
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
 def test_failed_run_leaves_a_valid_file_with_every_step(stuck_file, tmp_path, suffix, monkeypatch):
     monkeypatch.setattr(camlink.model, "CHUNK_ROWS", 4)
-    out = tmp_path / f"partial{suffix}"
+    out = tmp_path / f"run{suffix}"
     with pytest.raises(camlink.AnalysisError) as e:
         camlink.load(stuck_file).run(t_end=0.5, step=0.01, output=out)
     partial = e.value.results
-    back = Results.load(out)
+    back = Results.load(tmp_path / f"run.partial{suffix}")
     assert len(back) == len(partial) > 5
     np.testing.assert_array_equal(back.data, partial.data)
-    assert e.value.output == out
+    assert e.value.output == tmp_path / f"run.partial{suffix}"
+    assert not out.exists()
+    # No temporary file is left behind.
+    assert sorted(p.name for p in tmp_path.glob("run*")) == [f"run.partial{suffix}"]
 
 
 def test_output_to_a_missing_directory_fails_before_running(four_bar_file, tmp_path):

@@ -7,6 +7,8 @@
 //! No Rust panic crosses into Python: every entry point runs under
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
+mod csv_text;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
@@ -79,11 +81,17 @@ struct Model {
 
 #[pymethods]
 impl Model {
-    /// Loads a TOML or JSON model file (format from the extension).
+    /// Loads a TOML or JSON model file (format from the extension); data
+    /// files must lie in its folder or below unless `allow_outside`.
     #[staticmethod]
-    fn load(py: Python<'_>, path: PathBuf) -> PyResult<Model> {
+    #[pyo3(signature = (path, allow_outside = false))]
+    fn load(py: Python<'_>, path: PathBuf, allow_outside: bool) -> PyResult<Model> {
         guard(|| {
-            let loaded = py.detach(|| camlink_model::load_path(&path));
+            let options = camlink_model::LoadOptions {
+                base_dir: None,
+                allow_outside_data: allow_outside,
+            };
+            let loaded = py.detach(|| camlink_model::load_path_with(&path, &options));
             Ok(Model {
                 loaded: loaded.map_err(model_error)?,
             })
@@ -91,10 +99,18 @@ impl Model {
     }
 
     /// Loads a model from text; `format` is `"toml"` or `"json"`; `source`
-    /// names the text in error messages.
+    /// names the text in error messages; data files resolve against
+    /// `base_dir` (default: `source`'s folder) and must lie in it or below
+    /// unless `allow_outside`.
     #[staticmethod]
-    #[pyo3(signature = (text, format, source = "<string>"))]
-    fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
+    #[pyo3(signature = (text, format, source = "<string>", base_dir = None, allow_outside = false))]
+    fn from_str(
+        text: &str,
+        format: &str,
+        source: &str,
+        base_dir: Option<PathBuf>,
+        allow_outside: bool,
+    ) -> PyResult<Model> {
         guard(|| {
             let format = match format.to_ascii_lowercase().as_str() {
                 "toml" => Format::Toml,
@@ -105,7 +121,12 @@ impl Model {
                     )))
                 }
             };
-            let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
+            let options = camlink_model::LoadOptions {
+                base_dir,
+                allow_outside_data: allow_outside,
+            };
+            let loaded = camlink_model::load_str_with(text, format, source, &options)
+                .map_err(model_error)?;
             Ok(Model { loaded })
         })
     }
@@ -113,6 +134,12 @@ impl Model {
     #[getter]
     fn name(&self) -> &str {
         &self.loaded.model.name
+    }
+
+    /// The data files the model read (canonical paths).
+    #[getter]
+    fn data_files(&self) -> Vec<PathBuf> {
+        self.loaded.data_files.clone()
     }
 
     /// Moving bodies (the ground is implicit): a list of dicts.
@@ -749,6 +776,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Model>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -1,0 +1,44 @@
+//! Rows of numbers as CSV text: the shortest decimal that reads back to the
+//! same double (`0.3`, not `0.29999999999999999`), written by `zmij`.
+
+use numpy::PyReadonlyArray2;
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+/// Appends the shortest text of `v` that parses back to `v`: `-0.0` as
+/// `0`, whole numbers without `.0`, `nan`, `inf` and `-inf` as NumPy and
+/// Python read them.
+pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
+    if v.is_nan() {
+        out.extend_from_slice(b"nan");
+    } else if v.is_infinite() {
+        out.extend_from_slice(if v > 0.0 { b"inf" } else { b"-inf" });
+    } else if v == 0.0 {
+        out.push(b'0');
+    } else {
+        let s = buf.format_finite(v);
+        out.extend_from_slice(s.strip_suffix(".0").unwrap_or(s).as_bytes());
+    }
+}
+
+/// The rows of a 2-D array as CSV lines (comma-separated, `\n`-ended),
+/// formatted with the GIL released.
+#[pyfunction]
+pub fn csv_rows<'py>(py: Python<'py>, rows: PyReadonlyArray2<'py, f64>) -> PyResult<Bound<'py, PyBytes>> {
+    let view = rows.as_array();
+    let text = py.detach(|| {
+        let mut out = Vec::with_capacity(view.len() * 20);
+        let mut buf = zmij::Buffer::new();
+        for row in view.rows() {
+            for (k, &v) in row.iter().enumerate() {
+                if k > 0 {
+                    out.push(b',');
+                }
+                push_number(&mut out, &mut buf, v);
+            }
+            out.push(b'\n');
+        }
+        out
+    });
+    Ok(PyBytes::new(py, &text))
+}
