@@ -10,12 +10,16 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import signal
 import sys
+import threading
 from pathlib import Path
+from typing import Any
 
 import camlink
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
+from camlink.output import check_not_input
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -121,6 +125,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
     model = camlink.load(args.model, allow_outside=args.allow_outside_data)
     kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
+    check_not_input(output, model.inputs)
     if not args.output and not args.force and output.exists():
         _error(
             f"{output} exists; pass --force to replace it, or -o to name another output"
@@ -249,8 +254,42 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM or SIGHUP, stopping a run as Ctrl-C does."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
+def _terminate(signum: int, _frame: object) -> None:
+    raise Terminated(signum)
+
+
+def _handle_signals() -> dict[int, Any]:
+    """SIGTERM and SIGHUP stop a run as Ctrl-C does: the steps computed are
+    kept under the output's partial name. Returns the handlers replaced."""
+    old: dict[int, Any] = {}
+    if threading.current_thread() is not threading.main_thread():
+        return old
+    for name in ("SIGTERM", "SIGHUP"):
+        sig = getattr(signal, name, None)
+        if sig is not None:
+            old[sig] = signal.signal(sig, _terminate)
+    return old
+
+
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
+    old = _handle_signals()
+    try:
+        return _main(args)
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, handler)
+
+
+def _main(args: argparse.Namespace) -> int:
     command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
     try:
         return command(args)
@@ -265,9 +304,11 @@ def main(argv: list[str] | None = None) -> int:
     except OSError as e:
         _error(_os_message(e))
         return EXIT_INPUT
-    except KeyboardInterrupt:
-        print("camlink: interrupted", file=sys.stderr)
-        return 130
+    except KeyboardInterrupt as e:
+        output = getattr(e, "output", None)
+        kept = f"; the steps computed are in {output}" if output is not None else ""
+        print(f"camlink: interrupted{kept}", file=sys.stderr)
+        return 128 + (e.signum if isinstance(e, Terminated) else signal.SIGINT)
     except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
         if os.environ.get("CAMLINK_TRACEBACK"):
             raise

@@ -435,6 +435,12 @@ class Model:
             else:
                 e.output = None
             raise
+        except KeyboardInterrupt as e:
+            # Ctrl-C, or SIGTERM/SIGHUP under the CLI: keep what was computed.
+            if writer is not None:
+                e.output = writer.close(names, complete=False)  # type: ignore[attr-defined]
+                writer = None
+            raise
         finally:
             if writer is not None:
                 writer.close(names, complete=complete)

@@ -63,6 +63,10 @@ pub trait Sink {
     fn begin(&mut self, channels: &[String]);
     /// One time step: time t (s) and the values, in channel order.
     fn row(&mut self, t: f64, values: &[f64]);
+    /// Called at every step of an analysis between two rows (each
+    /// integration step of forward dynamics), so that a sink can watch the
+    /// clock and stop a run whose rows are far apart in wall time.
+    fn tick(&mut self) {}
 }
 
 /// A sink that keeps everything in memory, row by row.

@@ -686,7 +686,14 @@ struct ChunkSink {
     chunk_rows: usize,
     on_chunk: Option<Py<PyAny>>,
     callback_error: Option<PyErr>,
+    /// When Python's signal handlers last ran.
+    checked: std::time::Instant,
+    /// Ticks since the clock was last read.
+    ticks: u32,
 }
+
+/// Longest wall time between two checks for Ctrl-C and other signals.
+const SIGNAL_INTERVAL: std::time::Duration = std::time::Duration::from_millis(50);
 
 impl ChunkSink {
     fn new(on_chunk: Option<Py<PyAny>>, chunk_rows: usize) -> Self {
@@ -697,6 +704,28 @@ impl ChunkSink {
             chunk_rows,
             on_chunk,
             callback_error: None,
+            checked: std::time::Instant::now(),
+            ticks: 0,
+        }
+    }
+
+    /// Runs Python's signal handlers when [`SIGNAL_INTERVAL`] has passed
+    /// since they last ran; stops the run if one raised (Ctrl-C).
+    fn watch_signals(&mut self) {
+        self.ticks += 1;
+        // Reading the clock costs about as much as a small step: every 16th.
+        if self.ticks < 16 {
+            return;
+        }
+        self.ticks = 0;
+        if self.checked.elapsed() < SIGNAL_INTERVAL {
+            return;
+        }
+        self.checked = std::time::Instant::now();
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            // `on_chunk` stays: the rows buffered so far still reach it.
+            self.callback_error.get_or_insert(e);
+            std::panic::resume_unwind(Box::new(StopRun));
         }
     }
 
@@ -749,6 +778,11 @@ impl Sink for ChunkSink {
                 std::panic::resume_unwind(Box::new(StopRun));
             }
         }
+        self.watch_signals();
+    }
+
+    fn tick(&mut self) {
+        self.watch_signals();
     }
 }
 

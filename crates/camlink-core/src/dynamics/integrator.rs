@@ -432,8 +432,19 @@ impl<'m> Integrator<'m> {
     /// Advances to `t_end`: fixed steps of `settings.step` (the last one
     /// shortened to land on `t_end`), or error-controlled steps.
     pub fn advance_to(&mut self, t_end: f64, h_next: &mut f64) -> Result<(), AnalysisError> {
+        self.advance_watching(t_end, h_next, &mut || {})
+    }
+
+    /// [`Integrator::advance_to`], calling `tick` before every step.
+    pub fn advance_watching(
+        &mut self,
+        t_end: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut(),
+    ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
         while t_end - self.t > 1e-12 * h_max.max(t_end.abs()) {
+            tick();
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
                 None => {
@@ -512,7 +523,7 @@ pub fn run(
                     residual: 0.0,
                 });
             }
-            it.advance_to(t, &mut h_next)?;
+            it.advance_watching(t, &mut h_next, &mut || sink.tick())?;
         }
         kinematics::fill_outputs(
             model,

@@ -1,0 +1,263 @@
+"""What camlink defends at the file system: a model cannot read files outside
+its folder, data files are capped and regular, a run never writes over its
+inputs or a good earlier output, and a file being written stays readable
+whatever stops the process (SIGKILL, SIGTERM, SIGHUP, Ctrl-C)."""
+
+from __future__ import annotations
+
+import os
+import random
+import shutil
+import signal
+import subprocess
+import sys
+import threading
+import time
+import _thread
+from pathlib import Path
+
+import numpy as np
+import pyarrow.parquet as pq
+import pytest
+from conftest import ROOT, four_bar_toml, run_cli
+
+import camlink
+from camlink import ModelError, Results
+
+EXAMPLES = ROOT / "examples"
+
+
+def cam_model(folder: Path, file: str, name: str = "cam.toml") -> Path:
+    """The CSV-profile cam example in `folder`, reading its points from `file`."""
+    text = (EXAMPLES / "cam_csv_profile.toml").read_text()
+    text = text.replace('file = "data/cam_profile.csv"', f'file = "{file}"')
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / name
+    path.write_text(text)
+    return path
+
+
+PROFILE = EXAMPLES / "data" / "cam_profile.csv"
+
+
+# -- reading: confined, capped, quoted briefly --------------------------------
+
+
+def test_data_file_outside_the_model_folder_is_refused(tmp_path):
+    secret = tmp_path / "secret.csv"
+    secret.write_text("user,hash\nroot,$6$secret-hash$\n")
+    model = cam_model(tmp_path / "shared", "../secret.csv")
+    with pytest.raises(ModelError, match="outside the model's folder") as e:
+        camlink.load(model)
+    assert "secret-hash" not in str(e.value)
+    proc = run_cli("check", model)
+    assert proc.returncode == 2, proc.stderr
+    assert "outside the model's folder" in proc.stderr and "secret-hash" not in proc.stderr
+    # Opted in, the file is read (and is no points file).
+    with pytest.raises(ModelError) as e:
+        camlink.load(model, allow_outside=True)
+    assert "outside" not in str(e.value).replace(str(tmp_path), "")
+    shutil.copy(PROFILE, secret)
+    assert run_cli("check", "--allow-outside-data", model).returncode == 0
+
+
+def test_symlink_leaving_the_model_folder_is_refused(tmp_path):
+    shutil.copy(PROFILE, tmp_path / "profile.csv")
+    folder = tmp_path / "shared"
+    model = cam_model(folder, "link.csv")
+    (folder / "link.csv").symlink_to(tmp_path / "profile.csv")
+    with pytest.raises(ModelError, match="outside the model's folder"):
+        camlink.load(model)
+    assert camlink.load(model, allow_outside=True).inputs[-1] == (tmp_path / "profile.csv").resolve()
+
+
+def test_loads_resolves_data_files_against_base_dir(tmp_path):
+    shutil.copy(PROFILE, tmp_path / "p.csv")
+    text = cam_model(tmp_path, "p.csv").read_text()
+    model = camlink.loads(text, base_dir=tmp_path)
+    assert model.inputs == [(tmp_path / "p.csv").resolve()]
+    with pytest.raises(ModelError, match="outside the model's folder"):
+        (tmp_path / "sub").mkdir()
+        camlink.loads(text.replace('"p.csv"', '"../p.csv"'), base_dir=tmp_path / "sub")
+
+
+def test_bad_line_is_quoted_briefly_and_escaped(tmp_path):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("alpha,rho\n0,1\n" + "\x1b[2J" + "z" * 5_000_000 + "\n")
+    with pytest.raises(ModelError) as e:
+        camlink.load(cam_model(tmp_path, "bad.csv"))
+    message = str(e.value)
+    assert len(message) < 400, len(message)
+    assert "bad.csv:3:" in message and "\x1b" not in message
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs")
+def test_devices_and_fifos_are_refused_at_once(tmp_path):
+    (tmp_path / "zero.csv").symlink_to("/dev/zero")
+    os.mkfifo(tmp_path / "fifo.csv")
+    for name in ("zero.csv", "fifo.csv"):
+        start = time.monotonic()
+        with pytest.raises(ModelError, match="not a regular file"):
+            camlink.load(cam_model(tmp_path, name), allow_outside=True)
+        assert time.monotonic() - start < 5
+
+
+# -- writing: never over an input, never over a good file ----------------------
+
+
+def test_default_output_named_like_a_data_file_is_refused(tmp_path):
+    # cam.toml reading cam.csv: `camlink run cam.toml` wrote cam.csv.
+    shutil.copy(PROFILE, tmp_path / "cam.csv")
+    cam_model(tmp_path, "cam.csv")
+    before = (tmp_path / "cam.csv").read_bytes()
+    proc = run_cli("run", "cam.toml", cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert "is an input of the model" in proc.stderr
+    assert (tmp_path / "cam.csv").read_bytes() == before
+    # --force does not make an input writable either.
+    assert run_cli("run", "cam.toml", "--force", cwd=tmp_path).returncode == 2
+    assert (tmp_path / "cam.csv").read_bytes() == before
+
+
+def test_output_naming_an_input_or_a_link_to_one_is_refused(tmp_path, four_bar_file):
+    shutil.copy(PROFILE, tmp_path / "profile.csv")
+    model = cam_model(tmp_path, "profile.csv")
+    (tmp_path / "link.csv").symlink_to(tmp_path / "profile.csv")
+    os.link(four_bar_file, tmp_path / "hard.csv")
+    for out, m in [("profile.csv", model), ("link.csv", model), ("hard.csv", four_bar_file)]:
+        before = (tmp_path / out).read_bytes()
+        proc = run_cli("run", m, "-o", out, cwd=tmp_path)
+        assert proc.returncode == 2, (out, proc.stderr)
+        assert "is an input of the model" in proc.stderr
+        assert (tmp_path / out).read_bytes() == before
+    with pytest.raises(ModelError, match="is an input"):
+        camlink.load(model).run(output=tmp_path / "link.csv")
+
+
+def test_default_output_is_not_replaced_without_force(tmp_path, four_bar_file):
+    assert run_cli("run", four_bar_file, cwd=tmp_path).returncode == 0
+    proc = run_cli("run", four_bar_file, cwd=tmp_path)
+    assert proc.returncode == 2
+    assert "four_bar.csv exists; pass --force" in proc.stderr
+    assert run_cli("run", four_bar_file, "--force", cwd=tmp_path).returncode == 0
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_failed_rerun_keeps_the_good_output(tmp_path, four_bar_file, stuck_file, suffix):
+    out = tmp_path / f"out{suffix}"
+    assert run_cli("run", four_bar_file, "-o", out).returncode == 0
+    good = out.read_bytes()
+    # A re-run that fails at its first step wrote a header over it.
+    proc = run_cli("run", stuck_file, "-o", out, "--t-end", "0.5")
+    assert proc.returncode == 1
+    assert out.read_bytes() == good
+    assert len(Results.load(tmp_path / f"out.partial{suffix}")) > 0
+
+
+def test_concurrent_runs_on_one_output_leave_one_whole_file(tmp_path, four_bar_file):
+    # Two runs with different widths wrote interleaved rows and both exited 0.
+    out = tmp_path / "same.csv"
+    args = [sys.executable, "-m", "camlink", "run", str(four_bar_file), "-o", str(out),
+            "--t-end", "20", "--step", "0.0005"]
+    procs = [
+        subprocess.Popen(args, stderr=subprocess.PIPE, text=True),
+        subprocess.Popen([*args, "-p", "coupler.P"], stderr=subprocess.PIPE, text=True),
+    ]
+    for p in procs:
+        _, err = p.communicate(timeout=120)
+        assert p.returncode == 0, err
+    # Either run's file, whole: every row as wide as the header.
+    res = Results.load(out)
+    assert len(res) == 40001
+    assert [p.name for p in tmp_path.glob("same*")] == ["same.csv"]
+
+
+# -- stopping: SIGKILL, SIGTERM, SIGHUP, Ctrl-C --------------------------------
+
+
+def wait_for_rows(folder: Path, pattern: str, size: int = 4096) -> None:
+    """Waits (on a busy machine, long) until a run's temporary file holds
+    more than `size` bytes."""
+    deadline = time.monotonic() + 90
+    while time.monotonic() < deadline:
+        if any(p.stat().st_size > size for p in folder.glob(pattern)):
+            return
+        time.sleep(0.05)
+    raise AssertionError(f"no {pattern} grew in {folder}")
+
+LONG_RUN = """
+import sys, camlink
+camlink.model.CHUNK_ROWS = 64
+camlink.load(sys.argv[1]).simulate(t_end=1000, step=0.001, h=0.001, output=sys.argv[2])
+"""
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_sigkill_at_random_times_leaves_a_readable_file(tmp_path, suffix):
+    model = tmp_path / "fb.toml"
+    model.write_text(four_bar_toml())
+    rng = random.Random(15)
+    for k in range(3):
+        out = tmp_path / f"k{k}{suffix}"
+        proc = subprocess.Popen([sys.executable, "-c", LONG_RUN, str(model), str(out)])
+        wait_for_rows(tmp_path, f"k{k}.partial-*")
+        time.sleep(rng.uniform(0.0, 1.0))
+        proc.kill()
+        proc.wait()
+        assert not out.exists()
+        (temp,) = tmp_path.glob(f"k{k}.partial-*")
+        res = Results.load(temp)
+        assert len(res) >= 64, len(res)
+        t = res.t
+        np.testing.assert_allclose(t, 0.001 * np.arange(len(t)), rtol=0, atol=1e-9)
+        assert np.all(np.isfinite(res.data))
+
+
+@pytest.mark.parametrize("signame", ["SIGTERM", "SIGHUP"])
+def test_sigterm_and_sighup_stop_like_ctrl_c(tmp_path, four_bar_file, signame):
+    # SIGTERM left a Parquet file without a footer.
+    out = tmp_path / "out.parquet"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "camlink", "run", str(four_bar_file), "-a", "dynamics",
+         "--t-end", "100", "--step", "1e-4", "-o", str(out)],
+        stderr=subprocess.PIPE, text=True,
+    )
+    wait_for_rows(tmp_path, "out.partial-*")
+    sig = getattr(signal, signame)
+    proc.send_signal(sig)
+    _, err = proc.communicate(timeout=30)
+    assert proc.returncode == 128 + sig, err
+    partial = tmp_path / "out.partial.parquet"
+    assert f"interrupted; the steps computed are in {partial}" in err
+    assert "Traceback" not in err
+    table = pq.read_table(partial)
+    assert table.num_rows > 0
+    assert not out.exists()
+
+
+def test_ctrl_c_is_answered_quickly_when_rows_are_far_apart(four_bar_file):
+    # Signals were checked every 1024 rows: this run ignored Ctrl-C for minutes.
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "camlink", "run", str(four_bar_file), "-a", "dynamics",
+         "--t-end", "1000", "--step", "100", "--h", "1e-6", "-o",
+         str(four_bar_file.with_name("x.csv"))],
+        stderr=subprocess.PIPE, text=True,
+    )
+    wait_for_rows(four_bar_file.parent, "x.partial-*", size=-1)
+    time.sleep(1.0)
+    proc.send_signal(signal.SIGINT)
+    sent = time.monotonic()
+    _, err = proc.communicate(timeout=30)
+    assert time.monotonic() - sent < 2.0
+    assert proc.returncode == 130, err
+    assert "interrupted" in err
+
+
+def test_keyboard_interrupt_reaches_python_during_a_run(four_bar_file):
+    model = camlink.load(four_bar_file)
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        model.simulate(t_end=1000, step=100, h=1e-6)
+    assert time.monotonic() - start < 2.5
