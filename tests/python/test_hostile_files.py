@@ -261,3 +261,30 @@ def test_keyboard_interrupt_reaches_python_during_a_run(four_bar_file):
     with pytest.raises(KeyboardInterrupt):
         model.simulate(t_end=1000, step=100, h=1e-6)
     assert time.monotonic() - start < 2.5
+
+
+# -- names and channels that break outputs -------------------------------------
+
+
+def test_duplicate_output_points_are_refused(four_bar_file, tmp_path):
+    # `-p coupler.P -p coupler.P` gave 40 CSV columns but 34 in Parquet.
+    proc = run_cli("run", four_bar_file, "-p", "coupler.P", "-p", "coupler.P", cwd=tmp_path)
+    assert proc.returncode == 2
+    assert "point 'coupler.P' is listed twice" in proc.stderr
+    with pytest.raises(ModelError, match="listed twice"):
+        camlink.load(four_bar_file).run(points=["coupler.P", "coupler.P"])
+
+
+def test_csv_header_is_quoted_and_numbers_are_shortest(tmp_path):
+    # A channel name with a comma split the header; %.17g wrote 0.3 as
+    # 0.29999999999999999.
+    res = Results(["t", "a,b", 'say "hi"'], np.array([[0.3, 0.1 + 0.2, -0.0]]))
+    out = res.save(tmp_path / "r.csv")
+    text = out.read_text()
+    assert text == 't,"a,b","say ""hi"""\n0.3,0.30000000000000004,0\n'
+    back = Results.load(out)
+    assert back.channels == ["a,b", 'say "hi"']
+    rng = np.random.default_rng(9)
+    data = np.column_stack([np.arange(200.0), rng.standard_normal(200) * 10.0 ** rng.integers(-300, 300, 200)])
+    again = Results.load(Results(["t", "x"], data).save(tmp_path / "x.csv"))
+    np.testing.assert_array_equal(again.data, data)

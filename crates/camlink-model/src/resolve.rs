@@ -6,8 +6,8 @@
 //! a gear's phase) are computed from the bodies' initial coordinates.
 //! Every failure carries the field path of the value at fault.
 
-use std::collections::{BTreeMap, HashMap};
 use crate::data_file::DataFiles;
+use std::collections::{BTreeMap, HashMap};
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
 use camlink_core::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
@@ -205,23 +205,35 @@ fn is_identifier(s: &str) -> bool {
         && c.all(|ch| ch.is_ascii_alphanumeric() || ch == '_')
 }
 
-/// Checks a body, point or joint name: not empty, no `.` (used in `body.point`).
+/// Checks a body, point, curve, joint or force name: letters (any
+/// script), digits, `_` and `-`, not starting with `-`. Names become output
+/// channels, so this keeps CSV headers whole (no `,` or quotes), keeps
+/// spreadsheets from reading a name as a formula (`=`, `+`, `-`, `@`),
+/// keeps `.` for `body.point`, and keeps control characters and
+/// bidirectional overrides out of terminals.
 fn check_name(name: &str, what: &str, path: &str) -> R<()> {
     if name.trim().is_empty() {
         return fail(path, format!("{what} name is empty"));
     }
-    // Names become output channel names (CSV headers, column labels).
-    if name.chars().any(char::is_control) {
+    let bad = name
+        .chars()
+        .find(|&c| !(c.is_alphanumeric() || c == '_' || c == '-'));
+    if let Some(c) = bad {
+        let shown = if c.is_ascii_graphic() {
+            c.to_string()
+        } else {
+            c.escape_unicode().to_string()
+        };
         return fail(
             path,
-            format!("{what} name '{name}' may not contain control characters (tabs, line breaks, escapes)"),
+            format!(
+                "{what} name '{name}' may contain only letters, digits, '_' and '-' \
+                 (found '{shown}')"
+            ),
         );
     }
-    if name.contains('.') || name.contains('[') || name.contains(']') {
-        return fail(
-            path,
-            format!("{what} name '{name}' may not contain '.', '[' or ']'"),
-        );
+    if name.starts_with('-') {
+        return fail(path, format!("{what} name '{name}' may not start with '-'"));
     }
     Ok(())
 }
@@ -1112,6 +1124,12 @@ impl Ctx {
         let dynamics = self.dynamics_spec(a)?;
         for (k, name) in a.points.iter().enumerate() {
             let path = format!("analysis.points[{k}]");
+            if let Some(first) = a.points[..k].iter().position(|n| n == name) {
+                return fail(
+                    path,
+                    format!("'{name}' is listed twice (also analysis.points[{first}])"),
+                );
+            }
             let Some((b, pt)) = name.split_once('.') else {
                 return fail(path, format!("expected \"body.point\", found '{name}'"));
             };

@@ -24,7 +24,10 @@ pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
 /// The rows of a 2-D array as CSV lines (comma-separated, `\n`-ended),
 /// formatted with the GIL released.
 #[pyfunction]
-pub fn csv_rows<'py>(py: Python<'py>, rows: PyReadonlyArray2<'py, f64>) -> PyResult<Bound<'py, PyBytes>> {
+pub fn csv_rows<'py>(
+    py: Python<'py>,
+    rows: PyReadonlyArray2<'py, f64>,
+) -> PyResult<Bound<'py, PyBytes>> {
     let view = rows.as_array();
     let text = py.detach(|| {
         let mut out = Vec::with_capacity(view.len() * 20);

@@ -572,11 +572,18 @@ fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
     }
 }
 
-/// `"body.point"` names to core point outputs.
+/// `"body.point"` names to core point outputs; a name given twice is an
+/// error (it would give two sets of identical channels).
 fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec<PointOutput>> {
     names
         .iter()
-        .map(|full| {
+        .enumerate()
+        .map(|(k, full)| {
+            if names[..k].contains(full) {
+                return Err(ModelError::new_err(format!(
+                    "point '{full}' is listed twice"
+                )));
+            }
             let (body, point) = full.split_once('.').ok_or_else(|| {
                 ModelError::new_err(format!("point '{full}' should be written as 'body.point'"))
             })?;

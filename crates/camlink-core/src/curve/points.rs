@@ -50,7 +50,10 @@ pub fn read_points_csv(path: &Path) -> Result<Vec<V2>, CurveError> {
     }
     let text = String::from_utf8(bytes).map_err(|e| {
         let valid = e.utf8_error().valid_up_to();
-        let line = 1 + e.as_bytes()[..valid].iter().filter(|&&b| b == b'\n').count();
+        let line = 1 + e.as_bytes()[..valid]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count();
         CurveError::Csv {
             file: name.clone(),
             line,
@@ -206,7 +209,9 @@ mod tests {
     #[test]
     fn refuses_devices_and_pipes_without_reading_them() {
         // /dev/zero was read until memory ran out.
-        let e = read_points_csv(Path::new("/dev/zero")).unwrap_err().to_string();
+        let e = read_points_csv(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("not a regular file"), "{e}");
         let e = read_points_csv(Path::new("/tmp")).unwrap_err().to_string();
         assert!(e.contains("not a regular file"), "{e}");
