@@ -20,6 +20,7 @@ import camlink
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
+from camlink.settings import check_settings
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -67,6 +68,15 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("--max-iter", type=int, metavar="N", help="Newton iterations per step")
     run.add_argument("--h", type=float, metavar="H", help="dynamics: integration step (s)")
     run.add_argument(
+        "--atol", type=float, metavar="A", help="adaptive dynamics: absolute error tolerance (m or rad)"
+    )
+    run.add_argument(
+        "--rtol", type=float, metavar="R", help="adaptive dynamics: relative error tolerance"
+    )
+    run.add_argument(
+        "--h-min", type=float, metavar="H", help="adaptive dynamics: smallest step (s)"
+    )
+    run.add_argument(
         "--rho-inf", type=float, metavar="R", help="dynamics: numerical damping ρ∞ in [0, 1]"
     )
     run.add_argument(
@@ -81,7 +91,8 @@ def _parser() -> argparse.ArgumentParser:
         action="append",
         dest="points",
         metavar="BODY.POINT",
-        help="also output this body point (repeatable; replaces [analysis] points)",
+        help="output this body point (repeatable); the points given replace "
+        "[analysis] points",
     )
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     run.add_argument(
@@ -141,8 +152,17 @@ def _cmd_run(args: argparse.Namespace) -> int:
         "h": args.h,
         "rho_inf": args.rho_inf,
         "adaptive": args.adaptive,
+        "atol": args.atol,
+        "rtol": args.rtol,
+        "h_min": args.h_min,
     }
     given = {k: v for k, v in settings.items() if v is not None}
+    for key, value in given.items():
+        try:
+            check_settings({key: value})
+        except ModelError as e:
+            _error(f"--{key.replace('_', '-')}: {e}")
+            return EXIT_INPUT
     _print_design(model)
     try:
         res = model.run(analysis=kind, output=output, **given)

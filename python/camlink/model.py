@@ -16,6 +16,7 @@ from camlink import _core
 from camlink._core import AnalysisError, ModelError
 from camlink.output import check_not_input, open_writer
 from camlink.results import Results
+from camlink.settings import check_settings
 
 __all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
 
@@ -74,6 +75,14 @@ def loads(
     (the current folder for the default ``"<string>"``), and must lie in
     it or below unless `allow_outside`.
     """
+    try:
+        text.encode("utf-8")
+    except UnicodeEncodeError as e:
+        line = text.count("\n", 0, e.start) + 1
+        raise ModelError(
+            f"{source}:{line}: the text holds a lone surrogate "
+            f"({text[e.start]!a}), which is not a character; fix how it was decoded"
+        ) from None
     return Model(_core.Model.from_str(text, format, source, base_dir, allow_outside))
 
 
@@ -259,6 +268,7 @@ class Model:
         Raises `AnalysisError` when the mechanism cannot follow its drivers;
         the exception's ``results`` holds the steps before the failure.
         """
+        check_settings(locals())
         grid = self.times(t_end, step, times)
         tol, max_iter = self._solver("kinematics", tol, max_iter)
         return self._run(
@@ -283,6 +293,7 @@ class Model:
         channels, then joint reactions (``<joint>.fx``, ``.fy``,
         ``.torque`` …), driver efforts (``<driver>.effort``, ``.power``),
         energy and constraint drift. Arguments as `kinematics`."""
+        check_settings(locals())
         grid = self.times(t_end, step, times)
         tol, max_iter = self._solver("inverse_dynamics", tol, max_iter)
         return self._run(
@@ -304,6 +315,7 @@ class Model:
         """The static equilibrium nearest the model's placement, with drivers
         and forces evaluated at `time` (s, default ``[analysis] time`` or 0):
         one row with the channels of `inverse_dynamics`."""
+        check_settings(locals())
         time = float(self.analysis["time"] if time is None else time)
         tol, max_iter = self._solver("equilibrium", tol, max_iter)
         return self._run(
@@ -343,6 +355,7 @@ class Model:
         time-dependent forces change too) and ``constraint_drift`` and
         ``velocity_drift`` (largest |Φ| and |Φ_q q̇ − ν|).
         """
+        check_settings(locals())
         a = self.analysis
         grid = self.times(t_end, step, times)
         if h is None:
@@ -407,7 +420,10 @@ class Model:
     ) -> Results:
         """Calls a core run with the output points and a chunk writer; wraps
         the outcome (or the partial results of a failure) as `Results`."""
-        points = list(self.analysis["points"] if points is None else points)
+        if points is None:
+            points = self.analysis["points"]
+        # One name is one point, not a sequence of characters.
+        points = [points] if isinstance(points, str) else list(points)
         writer = None
         if output is not None:
             check_not_input(Path(output), self.inputs)

@@ -288,3 +288,61 @@ def test_csv_header_is_quoted_and_numbers_are_shortest(tmp_path):
     data = np.column_stack([np.arange(200.0), rng.standard_normal(200) * 10.0 ** rng.integers(-300, 300, 200)])
     again = Results.load(Results(["t", "x"], data).save(tmp_path / "x.csv"))
     np.testing.assert_array_equal(again.data, data)
+
+
+# -- settings: one validation for file, CLI and Python -------------------------
+
+
+@pytest.mark.parametrize(
+    "args, option",
+    [
+        (["--max-iter", "-5"], "--max-iter: max_iter must be a whole number of at least 1 (-5)"),
+        (["--max-iter", "0"], "--max-iter: max_iter must be"),
+        (["--tol", "-1"], "--tol: tol must be a positive finite number (-1)"),
+        (["--tol", "0"], "--tol: tol must be a positive"),
+        (["--tol", "nan"], "--tol: tol must be a positive finite number (NaN)"),
+        (["-a", "dynamics", "--h", "-1"], "--h: h must be"),
+        (["-a", "dynamics", "--rho-inf", "2"], "--rho-inf: rho_inf must be between 0 and 1"),
+        (["-a", "dynamics", "--adaptive", "--atol", "-1"], "--atol: atol must be"),
+        (["-a", "dynamics", "--adaptive", "--h-min", "nan"], "--h-min: h_min must be"),
+    ],
+)
+def test_cli_settings_exit_2_naming_the_option(four_bar_file, tmp_path, args, option):
+    proc = run_cli("run", four_bar_file, "-o", "x.csv", *args, cwd=tmp_path)
+    assert proc.returncode == 2, proc.stderr
+    assert option in proc.stderr, proc.stderr
+    assert "Traceback" not in proc.stderr
+
+
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda m: m.kinematics(max_iter=1.5), "max_iter must be a whole number"),
+        (lambda m: m.kinematics(max_iter=0), "max_iter must be"),
+        (lambda m: m.kinematics(tol=float("nan")), "tol must be a positive finite number"),
+        (lambda m: m.simulate(adaptive=True, atol=-1), "atol must be"),
+        (lambda m: m.simulate(adaptive=True, h_min=float("nan")), "h_min must be"),
+        (lambda m: m.simulate(adaptive="no"), "adaptive must be True or False"),
+        (lambda m: m.equilibrium(time=float("nan")), "time must be a finite number"),
+        (lambda m: m.kinematics(tol="1e-9"), "tol must be a number"),
+    ],
+)
+def test_python_settings_are_checked_like_the_file(four_bar_file, call, fragment):
+    with pytest.raises(ModelError, match=fragment):
+        call(camlink.load(four_bar_file))
+
+
+def test_file_settings_follow_the_same_rules(tmp_path):
+    text = four_bar_toml().replace("[analysis]", "[analysis]\ntol = nan")
+    with pytest.raises(ModelError, match="tol must be a positive finite number"):
+        camlink.loads(text)
+
+
+def test_lone_surrogate_in_loads_is_a_model_error():
+    with pytest.raises(ModelError, match="lone surrogate"):
+        camlink.loads('[model]\nname = "a\udc80"\n')
+
+
+def test_points_may_be_one_string(four_bar_file):
+    res = camlink.load(four_bar_file).run(points="coupler.P", t_end=0.1)
+    assert "coupler.P.x" in res.channels and "c.x" not in " ".join(res.channels)

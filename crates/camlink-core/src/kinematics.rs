@@ -176,20 +176,29 @@ pub fn check(model: &Model) -> Report {
 
 /// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
 pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
+    use crate::fmt_num::{count, num};
     if !(step.is_finite() && step > 0.0) {
         return Err(format!(
-            "the time step must be a positive number, not {step}"
+            "the time step must be a positive number, not {}",
+            num(step)
         ));
     }
     if !(t_end.is_finite() && t_end >= 0.0) {
-        return Err(format!("the end time must be a number ≥ 0, not {t_end}"));
-    }
-    let n = (t_end / step + 1e-9).floor() as usize;
-    if n > 100_000_000 {
         return Err(format!(
-            "{n} steps ({t_end} s at {step} s) is more than 100 million; use a larger step"
+            "the end time must be a number ≥ 0, not {}",
+            num(t_end)
         ));
     }
+    let steps = (t_end / step + 1e-9).floor();
+    if steps > 100_000_000.0 {
+        return Err(format!(
+            "{} steps ({} s at {} s) is more than 100 million; use a larger step",
+            count(steps),
+            num(t_end),
+            num(step)
+        ));
+    }
+    let n = steps as usize;
     Ok((0..=n).map(|k| k as f64 * step).collect())
 }
 

@@ -9,9 +9,11 @@
 
 pub mod constraint;
 pub mod curve;
+pub mod fmt_num;
 pub mod function;
 pub mod math;
 pub mod model;
+pub mod setting;
 
 pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;

@@ -258,6 +258,16 @@ impl Ctx {
         n.map_or(Ok(default), |n| self.num(n, path))
     }
 
+    /// The run setting `analysis.<key>`, if given, checked by the rule every
+    /// way of giving it shares ([`camlink_core::setting`]).
+    fn setting(&self, n: Option<&Num>, key: &str) -> R<Option<f64>> {
+        let path = format!("analysis.{key}");
+        let Some(n) = n else { return Ok(None) };
+        let v = self.num(n, &path)?;
+        camlink_core::setting::check(key, v).or_else(|e| fail(path, e))?;
+        Ok(Some(v))
+    }
+
     fn vec2(&self, v: &Vec2, path: &str) -> R<V2> {
         Ok([
             self.num(&v.0[0], &format!("{path}[0]"))?,
@@ -1060,29 +1070,8 @@ impl Ctx {
                 return fail(format!("analysis.{key}"), message);
             }
         }
-        let t_end = match &a.t_end {
-            Some(n) => {
-                let v = self.num(n, "analysis.t_end")?;
-                if v < 0.0 {
-                    return fail(
-                        "analysis.t_end",
-                        format!("t_end must not be negative ({v} s)"),
-                    );
-                }
-                Some(v)
-            }
-            None => None,
-        };
-        let step = match &a.step {
-            Some(n) => {
-                let v = self.num(n, "analysis.step")?;
-                if v <= 0.0 {
-                    return fail("analysis.step", format!("step must be positive ({v} s)"));
-                }
-                Some(v)
-            }
-            None => None,
-        };
+        let t_end = self.setting(a.t_end.as_ref(), "t_end")?;
+        let step = self.setting(a.step.as_ref(), "step")?;
         let times = match &a.times {
             Some(list) => {
                 if t_end.is_some() || step.is_some() {
@@ -1106,21 +1095,17 @@ impl Ctx {
             }
             None => None,
         };
-        let tol = self.opt(
-            a.tol.as_ref(),
-            AnalysisSpec::default_tol(kind),
-            "analysis.tol",
-        )?;
-        if tol <= 0.0 {
-            return fail("analysis.tol", format!("tol must be positive ({tol})"));
+        let tol = self
+            .setting(a.tol.as_ref(), "tol")?
+            .unwrap_or(AnalysisSpec::default_tol(kind));
+        if let Some(m) = a.max_iter {
+            camlink_core::setting::check("max_iter", f64::from(m))
+                .or_else(|e| fail("analysis.max_iter", e))?;
         }
         let max_iter = a
             .max_iter
             .map_or(AnalysisSpec::default_max_iter(kind), |m| m as usize);
-        if max_iter == 0 {
-            return fail("analysis.max_iter", "max_iter must be at least 1");
-        }
-        let time = self.opt(a.time.as_ref(), 0.0, "analysis.time")?;
+        let time = self.setting(a.time.as_ref(), "time")?.unwrap_or(0.0);
         let dynamics = self.dynamics_spec(a)?;
         for (k, name) in a.points.iter().enumerate() {
             let path = format!("analysis.points[{k}]");
@@ -1155,17 +1140,7 @@ impl Ctx {
     fn dynamics_spec(&self, a: &AnalysisSection) -> R<DynamicsSpec> {
         let d = DynamicsSpec::default();
         let positive = |n: Option<&Num>, default: Option<f64>, key: &str| -> R<Option<f64>> {
-            let path = format!("analysis.{key}");
-            match n {
-                Some(n) => {
-                    let v = self.num(n, &path)?;
-                    if v <= 0.0 {
-                        return fail(path, format!("{key} must be positive ({v})"));
-                    }
-                    Ok(Some(v))
-                }
-                None => Ok(default),
-            }
+            Ok(self.setting(n, key)?.or(default))
         };
         let h = positive(a.h.as_ref(), None, "h")?;
         let projection_tol = positive(
@@ -1174,13 +1149,9 @@ impl Ctx {
             "projection_tol",
         )?
         .unwrap_or(d.projection_tol);
-        let rho_inf = self.opt(a.rho_inf.as_ref(), d.rho_inf, "analysis.rho_inf")?;
-        if !(0.0..=1.0).contains(&rho_inf) {
-            return fail(
-                "analysis.rho_inf",
-                format!("rho_inf must be between 0 and 1 ({rho_inf})"),
-            );
-        }
+        let rho_inf = self
+            .setting(a.rho_inf.as_ref(), "rho_inf")?
+            .unwrap_or(d.rho_inf);
         let adaptive = if a.adaptive == Some(true) {
             let mut tols = [0.0; 2];
             for (k, (n, default, key)) in [
@@ -1190,12 +1161,7 @@ impl Ctx {
             .into_iter()
             .enumerate()
             {
-                let path = format!("analysis.{key}");
-                let v = self.opt(n, default, &path)?;
-                if v < 0.0 {
-                    return fail(path, format!("{key} must not be negative ({v})"));
-                }
-                tols[k] = v;
+                tols[k] = self.setting(n, key)?.unwrap_or(default);
             }
             if tols == [0.0, 0.0] {
                 return fail(

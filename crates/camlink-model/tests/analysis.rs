@@ -121,9 +121,15 @@ fn bad_dynamics_values_are_errors() {
         "{e}"
     );
     let e = error("type = \"dynamics\"\nh = 0");
-    assert!(e.contains("analysis.h: h must be positive (0)"), "{e}");
+    assert!(
+        e.contains("analysis.h: h must be a positive finite number (0)"),
+        "{e}"
+    );
     let e = error("type = \"dynamics\"\nadaptive = true\natol = 0");
     assert!(e.contains("atol and rtol are both 0"), "{e}");
     let e = error("type = \"dynamics\"\nadaptive = true\nh_min = -1");
-    assert!(e.contains("analysis.h_min: h_min must be positive"), "{e}");
+    assert!(
+        e.contains("analysis.h_min: h_min must be a positive"),
+        "{e}"
+    );
 }

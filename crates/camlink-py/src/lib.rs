@@ -802,6 +802,13 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
     })
 }
 
+/// Checks the run setting `key` = `value` by the rule a model file's
+/// `[analysis]` key follows; raises `ModelError` naming the setting.
+#[pyfunction]
+fn check_setting(key: &str, value: f64) -> PyResult<()> {
+    camlink_core::setting::check(key, value).map_err(ModelError::new_err)
+}
+
 /// The JSON Schema of model files, as JSON text.
 #[pyfunction]
 fn json_schema() -> PyResult<String> {
@@ -818,6 +825,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
+    m.add_function(wrap_pyfunction!(check_setting, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
