@@ -333,8 +333,8 @@ def test_python_settings_are_checked_like_the_file(four_bar_file, call, fragment
 
 
 def test_file_settings_follow_the_same_rules(tmp_path):
-    text = four_bar_toml().replace("[analysis]", "[analysis]\ntol = nan")
-    with pytest.raises(ModelError, match="tol must be a positive finite number"):
+    text = four_bar_toml().replace("[analysis]", "[analysis]\ntol = -1")
+    with pytest.raises(ModelError, match=r"analysis.tol: tol must be a positive finite number \(-1\)"):
         camlink.loads(text)
 
 
