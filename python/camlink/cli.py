@@ -171,7 +171,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
         details = []
         if e.joints:
             details.append(f"joints involved: {', '.join(e.joints)}")
-        if "residual" not in str(e):
+        # A residual of 0 means the error is not about residuals.
+        if "residual" not in str(e) and e.residual > 0:
             details.append(f"largest residual: {e.residual:.3g}")
         if details:
             print(f"camlink: {'; '.join(details)}", file=sys.stderr)

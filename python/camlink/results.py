@@ -8,6 +8,7 @@ import difflib
 import io
 import os
 from pathlib import Path
+from collections.abc import Iterator
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -117,12 +118,24 @@ class Results:
         return frame.astype({c: "float64" for c in LIFT_OFF_COLUMNS[2:]})
 
     def __getitem__(self, name: str) -> npt.NDArray[np.float64]:
+        if not isinstance(name, str):
+            raise TypeError(
+                f"Results are indexed by channel name (res['crank.phi']), not by "
+                f"{type(name).__name__}; for rows use res.data[{name!r}] "
+                "(columns 't' and res.channels) or res.to_pandas()"
+            )
         try:
             return self._data[:, self._index[name]]
         except KeyError:
             close = difflib.get_close_matches(name, self._names, n=3)
             hint = f" (did you mean {', '.join(repr(c) for c in close)}?)" if close else ""
             raise KeyError(f"no channel named {name!r}{hint}") from None
+
+    def __iter__(self) -> Iterator[str]:
+        raise TypeError(
+            "Results are not iterable: loop over res.channels for the channel "
+            "names, over res.data for the rows, or use res.to_pandas()"
+        )
 
     def __contains__(self, name: object) -> bool:
         return name in self._index

@@ -346,3 +346,50 @@ def test_lone_surrogate_in_loads_is_a_model_error():
 def test_points_may_be_one_string(four_bar_file):
     res = camlink.load(four_bar_file).run(points="coupler.P", t_end=0.1)
     assert "coupler.P.x" in res.channels and "c.x" not in " ".join(res.channels)
+
+
+# -- small edges ----------------------------------------------------------------
+
+
+def test_results_say_how_to_get_rows(four_bar_file):
+    res = camlink.load(four_bar_file).run(t_end=0.1)
+    for bad in (lambda: list(res), lambda: res[0], lambda: res[0:10]):
+        with pytest.raises(TypeError, match="res.data"):
+            bad()
+
+
+def test_results_load_of_a_bad_file_says_read(tmp_path):
+    bad = tmp_path / "r.xlsx"
+    bad.write_text("x")
+    with pytest.raises(ModelError, match="cannot read results from"):
+        Results.load(bad)
+    broken = tmp_path / "r.parquet"
+    broken.write_text("not parquet")
+    with pytest.raises(ModelError, match="cannot read results from"):
+        Results.load(broken)
+
+
+def test_error_unrelated_to_residuals_prints_no_zero_residual(four_bar_file, tmp_path,
+                                                             monkeypatch, capsys):
+    # Errors with nothing to do with residuals ended "largest residual: 0".
+    from camlink import cli
+
+    def fail(self, **kwargs):
+        e = camlink.AnalysisError("at t = 0 s: times must increase")
+        e.time, e.joints, e.residual = 0.0, [], 0.0
+        e.results = Results(["t"], np.empty((0, 1)), complete=False)
+        e.output = None
+        raise e
+
+    monkeypatch.setattr(camlink.Model, "run", fail)
+    monkeypatch.chdir(tmp_path)
+    assert cli.main(["run", str(four_bar_file), "-o", "o.csv"]) == 1
+    assert "largest residual" not in capsys.readouterr().err
+
+
+def test_numbers_in_messages_are_readable(four_bar_file, tmp_path):
+    # `step = 1e-300` printed a 300-digit step and "18446744073709551615 steps".
+    proc = run_cli("run", four_bar_file, "--step", "1e-300", "-o", "o.csv", cwd=tmp_path)
+    assert proc.returncode == 2
+    assert "2e+300 steps (2 s at 1e-300 s)" in proc.stderr or "1e+300 steps" in proc.stderr, proc.stderr
+    assert max(len(w) for w in proc.stderr.split()) < 40
