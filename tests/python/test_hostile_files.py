@@ -393,3 +393,25 @@ def test_numbers_in_messages_are_readable(four_bar_file, tmp_path):
     assert proc.returncode == 2
     assert "2e+300 steps (2 s at 1e-300 s)" in proc.stderr or "1e+300 steps" in proc.stderr, proc.stderr
     assert max(len(w) for w in proc.stderr.split()) < 40
+
+
+# -- extreme steps ----------------------------------------------------------------
+
+
+def _pendulum() -> camlink.Model:
+    return camlink.loads((EXAMPLES / "dyn_pendulum.toml").read_text())
+
+
+def test_huge_step_still_reaches_every_output_time():
+    # simulate(h=1e15) took no step: a frozen pendulum, exit 0.
+    m = _pendulum()
+    a = m.simulate(t_end=0.5, step=0.01, h=1e15)
+    b = m.simulate(t_end=0.5, step=0.01, h=0.01)
+    np.testing.assert_array_equal(a.data, b.data)
+    assert np.ptp(a.data[:, 3]) > 1e-3  # the first body's angle moved
+
+
+def test_adaptive_step_below_rounding_fails_clearly():
+    # atol=1e-300 with h_min=1e-300 took steps where t + h == t, for ever.
+    with pytest.raises(camlink.AnalysisError, match="below the rounding of t"):
+        _pendulum().simulate(t_end=0.5, step=0.1, adaptive=True, atol=1e-300, h_min=1e-300)

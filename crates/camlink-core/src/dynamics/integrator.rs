@@ -443,7 +443,12 @@ impl<'m> Integrator<'m> {
         tick: &mut dyn FnMut(),
     ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
-        while t_end - self.t > 1e-12 * h_max.max(t_end.abs()) {
+        // Done when what is left is below a few ulps of t_end, or a
+        // trillionth of the step (a step larger than the interval counts
+        // as the interval, so a huge h still steps).
+        let scale = h_max.min(t_end.abs()).max(f64::MIN_POSITIVE);
+        let done = (4.0 * f64::EPSILON * t_end.abs()).max(1e-12 * scale);
+        while t_end - self.t > done {
             tick();
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
@@ -458,6 +463,15 @@ impl<'m> Integrator<'m> {
                 }
                 Some(ad) => {
                     let h = h_next.min(h_max).min(left);
+                    // A step below the rounding of t leaves t unchanged.
+                    if h < 4.0 * f64::EPSILON * self.t.abs() || self.t + h == self.t {
+                        return Err(self.error(&format!(
+                            "the step fell to {} s, below the rounding of t = {} s; \
+                             raise h_min or loosen atol/rtol",
+                            crate::fmt_num::num(h),
+                            crate::fmt_num::num(self.t)
+                        )));
+                    }
                     self.step(h)?;
                     let err = self.local_error(h, &ad).max(1e-10);
                     // A PI controller on accepted steps (Gustafsson; Hairer
