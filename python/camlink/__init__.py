@@ -15,10 +15,15 @@ from camlink._core import AnalysisError, ModelError, __version__
 from camlink.builder import Mechanism
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
+from camlink.warn import CamlinkWarning, DesignWarning, LiftOffWarning, NearSingularWarning
 
 __all__ = [
     "ANALYSES",
     "AnalysisError",
+    "CamlinkWarning",
+    "DesignWarning",
+    "LiftOffWarning",
+    "NearSingularWarning",
     "Mechanism",
     "Model",
     "ModelError",

@@ -13,6 +13,7 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -304,7 +305,10 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     old = _handle_signals()
     try:
-        return _main(args)
+        # The CLI prints camlink's warnings in its own words.
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", camlink.CamlinkWarning)
+            return _main(args)
     finally:
         for sig, handler in old.items():
             signal.signal(sig, handler)

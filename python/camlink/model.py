@@ -17,6 +17,7 @@ from camlink._core import AnalysisError, ModelError
 from camlink.output import check_not_input, open_writer
 from camlink.results import Results
 from camlink.settings import check_settings
+from camlink.warn import issue_design_warnings, issue_run_warnings
 
 __all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
 
@@ -174,7 +175,9 @@ class Model:
         """Design findings of the curve contacts (a flat follower on a
         concave profile, an undercut roller): dicts with ``severity``,
         ``joint``, ``message`` and ``text`` (one printable line)."""
-        return self._core.design_check()
+        findings = self._core.design_check()
+        issue_design_warnings(findings)
+        return findings
 
     def with_force(
         self,
@@ -461,6 +464,7 @@ class Model:
             if writer is not None:
                 writer.close(names, complete=complete)
         summary["analysis"] = kind
+        issue_run_warnings(summary)
         return Results(names, data, model=self.name, summary=summary)
 
     def __repr__(self) -> str:

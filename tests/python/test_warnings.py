@@ -1,0 +1,43 @@
+"""camlink's warnings reach Python's `warnings`, one category per kind."""
+
+from __future__ import annotations
+
+import warnings
+
+import pytest
+from conftest import ROOT
+from test_dynamics import OMEGA_JUMP, valve_turn
+
+import camlink
+
+EXAMPLES = ROOT / "examples"
+MISBEHAVE = ROOT / "tests" / "models" / "misbehave"
+
+
+def test_near_singular_position_warns():
+    model = camlink.load(MISBEHAVE / "parallelogram_change_point.toml")
+    with pytest.warns(camlink.NearSingularWarning, match="near-singular configuration"):
+        res = model.run()
+    assert res.summary["warnings"]
+
+
+def test_lift_off_warns():
+    with pytest.warns(camlink.LiftOffWarning, match="would leave cam"):
+        valve_turn(1.01 * OMEGA_JUMP)
+
+
+def test_design_finding_warns():
+    text = (EXAMPLES / "cam_seed_example_3_4_3.toml").read_text()
+    flat = text.replace(
+        'type = "cam_follower"\nname = "contact"\ncurve_i = "lobe"\ncurve_j = "roller"',
+        'type = "flat_follower"\nname = "contact"\ncurve_i = "lobe"\nbody_j = "follower"\n'
+        "axis = [1, 0]",
+    )
+    with pytest.warns(camlink.DesignWarning, match="concave"):
+        camlink.loads(flat, "toml", "flat.toml").design_check()
+
+
+def test_a_quiet_run_issues_no_warning():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", camlink.CamlinkWarning)
+        camlink.load(EXAMPLES / "four_bar.toml").run()
