@@ -59,7 +59,11 @@ def load(path: str | os.PathLike[str], *, allow_outside: bool = False) -> Model:
         if path.is_dir():
             raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(path))
         raise FileNotFoundError(errno.ENOENT, "no such model file", str(path))
-    return Model(_core.Model.load(path, allow_outside), source=path)
+    model = Model(_core.Model.load(path, allow_outside), source=path)
+    text = path.read_bytes().decode("utf-8", errors="surrogateescape").removeprefix("\ufeff")
+    fmt = "json" if path.suffix.lower() == ".json" else "toml"
+    model._recipe = (text, fmt, str(path), str(path.parent), allow_outside)
+    return model
 
 
 def loads(
@@ -84,7 +88,15 @@ def loads(
             f"{source}:{line}: the text holds a lone surrogate "
             f"({text[e.start]!a}), which is not a character; fix how it was decoded"
         ) from None
-    return Model(_core.Model.from_str(text, format, source, base_dir, allow_outside))
+    model = Model(_core.Model.from_str(text, format, source, base_dir, allow_outside))
+    model._recipe = (
+        text,
+        format,
+        source,
+        None if base_dir is None else os.fspath(base_dir),
+        allow_outside,
+    )
+    return model
 
 
 def json_schema() -> dict[str, Any]:
@@ -99,6 +111,21 @@ class Model:
         self._core = core
         #: The file the model came from, if any.
         self.source = source
+        #: How to load the model again (text, format, source, base_dir,
+        #: allow_outside), which is how it pickles; None for a model with a
+        #: Python force, which cannot be pickled.
+        self._recipe: tuple[str, str, str, str | None, bool] | None = None
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickles through the model's text (multiprocessing, joblib):
+        the copy is loaded again from it, data files included."""
+        if self._recipe is None:
+            raise TypeError(
+                f"model '{self.name}' cannot be pickled: it has a force computed "
+                "in Python (with_force); pickle the model without it and add the "
+                "force in the worker"
+            )
+        return (_unpickle, (*self._recipe, self.source))
 
     @property
     def name(self) -> str:
@@ -469,6 +496,19 @@ class Model:
 
     def __repr__(self) -> str:
         return repr(self._core)
+
+
+def _unpickle(
+    text: str,
+    format: str,
+    source: str,
+    base_dir: str | None,
+    allow_outside: bool,
+    path: Path | None,
+) -> Model:
+    model = loads(text, format, source, base_dir=base_dir, allow_outside=allow_outside)
+    model.source = path
+    return model
 
 
 def _as_times(times: Any) -> npt.NDArray[np.float64]:

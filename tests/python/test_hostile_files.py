@@ -415,3 +415,23 @@ def test_adaptive_step_below_rounding_fails_clearly():
     # atol=1e-300 with h_min=1e-300 took steps where t + h == t, for ever.
     with pytest.raises(camlink.AnalysisError, match="below the rounding of t"):
         _pendulum().simulate(t_end=0.5, step=0.1, adaptive=True, atol=1e-300, h_min=1e-300)
+
+
+def test_models_pickle_through_their_text(tmp_path):
+    # multiprocessing and joblib failed: Model could not be pickled.
+    import pickle
+
+    shutil.copy(PROFILE, tmp_path / "p.csv")
+    for model in (
+        camlink.load(EXAMPLES / "four_bar.toml"),
+        camlink.load(cam_model(tmp_path, "p.csv")),
+        camlink.loads((EXAMPLES / "pendulum.toml").read_text()),
+    ):
+        copy = pickle.loads(pickle.dumps(model))
+        assert copy.name == model.name and copy.source == model.source
+        np.testing.assert_array_equal(copy.run(t_end=0.1).data, model.run(t_end=0.1).data)
+    forced = camlink.load(EXAMPLES / "dyn_pendulum.toml").with_force(
+        "push", "arm", lambda t, q, qd: (0.0, 0.0, 0.0)
+    )
+    with pytest.raises(TypeError, match="cannot be pickled"):
+        pickle.dumps(forced)
