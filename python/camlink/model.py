@@ -14,7 +14,7 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import AnalysisError, ModelError
-from camlink.output import check_not_input, open_writer
+from camlink.output import BackgroundWriter, check_not_input, open_writer
 from camlink.results import Results
 from camlink.settings import check_settings
 from camlink.warn import issue_design_warnings, issue_run_warnings
@@ -457,7 +457,7 @@ class Model:
         writer = None
         if output is not None:
             check_not_input(Path(output), self.inputs)
-            writer = open_writer(output)
+            writer = BackgroundWriter(open_writer(output))
         names: list[str] = []
         complete = False
 
