@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import math
 import numbers
+import os
 from collections.abc import Callable, Sequence
 from typing import Any, Union
 
@@ -56,8 +57,18 @@ def _fields(**kw: Any) -> dict[str, Any]:
 class Mechanism:
     """A model under construction, with one method per model-file table."""
 
-    def __init__(self, name: str, gravity: Vec2 | None = None) -> None:
+    def __init__(
+        self,
+        name: str,
+        gravity: Vec2 | None = None,
+        *,
+        base_dir: str | os.PathLike[str] | None = None,
+    ) -> None:
+        """`base_dir`: the folder data files (a spline's ``file``) resolve
+        against, and must lie in; default: the current folder."""
         self._model: dict[str, Any] = _fields(name=name, gravity=gravity)
+        self._base_dir = base_dir
+        self._curves: list[dict[str, Any]] = []
         self._parameters: dict[str, Any] = {}
         self._ground_points: dict[str, Any] = {}
         self._bodies: list[dict[str, Any]] = []
@@ -126,6 +137,18 @@ class Mechanism:
                 return f"{body}.{name}"
         known = ", ".join(b["name"] for b in self._bodies) or "none yet"
         raise KeyError(f"no body named {body!r} (bodies: {known})")
+
+    # -- curves ---------------------------------------------------------
+
+    def curve(self, name: str, body: str, source: str, **fields: Any) -> str:
+        """A ``[[curves]]`` entry: a curve on `body` from `source`
+        (``circle``, ``line``, ``arc``, ``expression``, ``fourier``,
+        ``spline``) with the fields of model-files.md, e.g.
+        ``curve("lobe", "cam", "expression", kind="polar", rho="1 + 0.2*cos(a)")``
+        or ``curve("slot", "rocker", "spline", kind="parametric", file="slot.csv")``.
+        Returns its name, for ``curve_i`` / ``curve_j`` of a contact joint."""
+        self._curves.append({"name": name, "body": body, "source": source, **_fields(**fields)})
+        return name
 
     # -- joints ---------------------------------------------------------
 
@@ -275,6 +298,7 @@ class Mechanism:
             d["ground"] = {"points": dict(self._ground_points)}
         for key, items in (
             ("bodies", self._bodies),
+            ("curves", self._curves),
             ("joints", self._joints),
             ("drivers", self._drivers),
             ("forces", self._forces),
@@ -299,7 +323,7 @@ class Mechanism:
                 out.append("")
         if "ground" in d:
             out += ["[ground]", f"points = {_toml(d['ground']['points'])}", ""]
-        for key in ("bodies", "joints", "drivers", "forces"):
+        for key in ("bodies", "curves", "joints", "drivers", "forces"):
             for item in d.get(key, []):
                 out.append(f"[[{key}]]")
                 out += [f"{_key(k)} = {_toml(v)}" for k, v in item.items()]
@@ -312,7 +336,12 @@ class Mechanism:
 
     def build(self) -> Model:
         """Validates and loads the model (raises `ModelError` if invalid)."""
-        model = loads(json.dumps(self.to_dict()), "json", f"<Mechanism '{self.name}'>")
+        model = loads(
+            json.dumps(self.to_dict()),
+            "json",
+            f"<Mechanism '{self.name}'>",
+            base_dir=self._base_dir,
+        )
         for name, body, f in self._python_forces:
             model = model.with_force(name, body, f)
         return model
