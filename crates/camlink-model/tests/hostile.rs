@@ -357,7 +357,7 @@ fn cam_with_file(file: &str) -> String {
     )
 }
 
-const CIRCLE_CSV: &str = "alpha,rho\n0,1\n1.5,1\n3,1\n4.5,1\n";
+const CIRCLE_CSV: &str = "alpha,rho\n0,1\n1,1\n2,1\n3,1\n4,1\n5,1\n";
 
 #[test]
 fn data_files_outside_the_model_folder_are_refused() {
@@ -521,4 +521,49 @@ fn duplicate_output_points_are_refused() {
         err.contains("analysis.points[1]: 'arm.P' is listed twice"),
         "{err}"
     );
+}
+
+/// A cam body with one curve of the given TOML fields.
+fn cam_curve(fields: &str) -> Result<Loaded, String> {
+    load_toml(&format!(
+        "[[bodies]]\nname = \"cam\"\n\n[[curves]]\nname = \"p\"\nbody = \"cam\"\n{fields}\n"
+    ))
+}
+
+#[test]
+fn curves_that_do_not_close_jump_or_cover_are_refused_when_built() {
+    // These loaded without a word and failed mid-run with a misleading message.
+    let open_ends = "source = \"expression\"\nkind = \"parametric\"\nx = \"cos(s)\"\n\
+                     y = \"sin(s)\"\nrange = [0, 6]\nclosed = true";
+    let err = cam_curve(open_ends).unwrap_err();
+    assert!(
+        err.contains("curves[0]: curve 'p': the closed curve does not close"),
+        "{err}"
+    );
+    let jump = "source = \"expression\"\nrho = \"if(a < pi, 0.5, 0.6)\"";
+    let err = cam_curve(jump).unwrap_err();
+    assert!(err.contains("curve 'p': the curve jumps by 0.1"), "{err}");
+    assert!(err.contains("and 3.14159 (not continuous)"), "{err}");
+    let corner = "source = \"expression\"\nrho = \"1 + 0.2*abs(a - pi)\"";
+    let err = cam_curve(corner).unwrap_err();
+    assert!(err.contains("curve 'p': the tangent turns by"), "{err}");
+    let not_periodic = "source = \"expression\"\nrho = \"1 + a/10\"";
+    let err = cam_curve(not_periodic).unwrap_err();
+    assert!(err.contains("does not close"), "{err}");
+    // 20° of points: the spline made up the other 340°.
+    let narrow = "source = \"spline\"\nkind = \"polar\"\n\
+                  points = [[0, 1], [0.1, 1.01], [0.2, 1.02], [0.349, 1.0]]";
+    let err = cam_curve(narrow).unwrap_err();
+    assert!(
+        err.contains("curves[0].points: the points leave a gap of 340"),
+        "{err}"
+    );
+    // Smooth closed curves still load.
+    for ok in [
+        "source = \"expression\"\nrho = \"1 + 0.2*cos(a)\"",
+        "source = \"expression\"\nkind = \"parametric\"\nx = \"cos(s)\"\ny = \"sin(s)\"\n\
+         range = [0, 6.283185307179586]\nclosed = true",
+    ] {
+        assert!(cam_curve(ok).is_ok(), "{ok}: {:?}", cam_curve(ok).err());
+    }
 }

@@ -34,7 +34,7 @@
 
 use std::f64::consts::TAU;
 
-use crate::math::{cross, norm, V2};
+use crate::math::{cross, norm, sub, V2};
 
 pub mod carried;
 pub mod fourier;
@@ -253,6 +253,85 @@ impl Curve {
                         "the polar profile has ρ = {rho} ≤ 0 at α = {s}"
                     )));
                 }
+            }
+        }
+        self.check_continuity(n)
+    }
+
+    /// Checks that the curve has no jump in position or tangent direction
+    /// between `samples` grid points (a jump is a change far beyond what
+    /// p′ and p″ allow over the spacing), and that a closed curve closes:
+    /// p and the tangent direction at the end of the range meet those at
+    /// its start. Errors name the parameter.
+    fn check_continuity(&self, samples: usize) -> Result<(), CurveError> {
+        use crate::fmt_num::num;
+        let (s0, s1) = self.range();
+        let h = (s1 - s0) / samples as f64;
+        let jets: Vec<(f64, CurveJet)> = (0..=samples)
+            .map(|k| {
+                // The end of a closed range wraps to its start: approach it.
+                let s = if k == samples && self.closed() {
+                    s1 - 1e-9 * (s1 - s0)
+                } else {
+                    s0 + h * k as f64
+                };
+                (s, self.jet(s))
+            })
+            .collect();
+        let size = jets
+            .iter()
+            .map(|(_, j)| norm(j.p))
+            .fold(0.0_f64, f64::max)
+            .max(1e-300);
+        let angle = |a: V2, b: V2| (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]);
+        for w in jets.windows(2) {
+            let ((sa, a), (sb, b)) = (w[0], w[1]);
+            let ds = sb - sa;
+            let dp = norm(sub(b.p, a.p));
+            // Taylor: |Δp| ≤ |p′|Δs + |p″|Δs²/2; far beyond it is a jump.
+            let speed = norm(a.d1).max(norm(b.d1));
+            let bend = norm(a.d2).max(norm(b.d2));
+            if dp > 4.0 * (speed * ds + bend * ds * ds) + 1e-9 * size {
+                return Err(CurveError::Invalid(format!(
+                    "the curve jumps by {} between parameter {} and {} (not continuous)",
+                    num(dp),
+                    num(sa),
+                    num(sb)
+                )));
+            }
+            let turn = angle(a.d1, b.d1).abs();
+            let rate = |j: &CurveJet| {
+                let v = norm(j.d1);
+                (j.d1[0] * j.d2[1] - j.d1[1] * j.d2[0]).abs() / (v * v)
+            };
+            let third = norm(a.d3).max(norm(b.d3)) / speed.max(1e-300);
+            if turn > 0.1 && turn > 4.0 * (rate(&a).max(rate(&b)) * ds + third * ds * ds) {
+                return Err(CurveError::Invalid(format!(
+                    "the tangent turns by {} rad between parameter {} and {} (a corner)",
+                    num(turn),
+                    num(sa),
+                    num(sb)
+                )));
+            }
+        }
+        if self.closed() {
+            let (start, end) = (&jets[0].1, &jets[samples].1);
+            let gap = norm(sub(end.p, start.p));
+            if gap > 1e-6 * size + 1e-6 * norm(end.d1) * (s1 - s0) {
+                return Err(CurveError::Invalid(format!(
+                    "the closed curve does not close: its ends at parameter {} and {} are {} apart",
+                    num(s0),
+                    num(s1),
+                    num(gap)
+                )));
+            }
+            let turn = angle(end.d1, start.d1).abs();
+            if turn > 1e-3 {
+                return Err(CurveError::Invalid(format!(
+                    "the closed curve has a corner where it closes (parameter {}): the tangent turns by {} rad",
+                    num(s0),
+                    num(turn)
+                )));
             }
         }
         Ok(())

@@ -19,6 +19,9 @@ use camlink_expr::Expr;
 use super::{CurveError, CurveJet, Fourier, Spline};
 use crate::math::V2;
 
+/// Largest angle between neighbouring points of a polar spline (rad): 90°.
+pub const MAX_GAP: f64 = std::f64::consts::FRAC_PI_2;
+
 /// The radius function ρ(α) (m) of a polar profile.
 #[derive(Clone, Debug)]
 pub enum Radius {
@@ -93,7 +96,34 @@ impl Polar {
     /// ρ the periodic spline through points (α_k, ρ_k) (rad, m), α strictly
     /// increasing over less than one turn (a last point at α₀ + 2π repeating
     /// the first is accepted).
+    ///
+    /// The points must go all round: a gap of more than [`MAX_GAP`] between
+    /// neighbouring angles (the last to the first across 2π included) is an
+    /// error, as the spline would invent the profile there.
     pub fn spline(q: V2, points: &[V2]) -> Result<Self, CurveError> {
+        let mut angles: Vec<f64> = points.iter().map(|p| p[0]).collect();
+        angles.sort_by(f64::total_cmp);
+        if let (Some(&first), Some(&last)) = (angles.first(), angles.last()) {
+            let wrap = (first + TAU - last, last, first + TAU);
+            let gap = angles
+                .windows(2)
+                .map(|w| (w[1] - w[0], w[0], w[1]))
+                .chain(std::iter::once(wrap))
+                .fold(
+                    (0.0, 0.0, 0.0),
+                    |best, g| if g.0 > best.0 { g } else { best },
+                );
+            if gap.0 > MAX_GAP {
+                return Err(CurveError::Invalid(format!(
+                    "the points leave a gap of {}° between α = {} and {} rad; \
+                     a polar profile needs points all round (gaps of at most {}°)",
+                    crate::fmt_num::num(gap.0.to_degrees()),
+                    crate::fmt_num::num(gap.1),
+                    crate::fmt_num::num(gap.2),
+                    crate::fmt_num::num(MAX_GAP.to_degrees())
+                )));
+            }
+        }
         Ok(Polar {
             q,
             rho: Radius::Spline(Spline::periodic(points, TAU)?),
