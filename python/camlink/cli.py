@@ -41,7 +41,9 @@ def _parser() -> argparse.ArgumentParser:
         "kinematics, inverse_dynamics, equilibrium or dynamics), or the one given "
         "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
-    run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument(
+        "model", metavar="MODEL", help="model file (.toml or .json); - reads standard input"
+    )
     run.add_argument(
         "-a",
         "--analysis",
@@ -53,8 +55,8 @@ def _parser() -> argparse.ArgumentParser:
         "-o",
         "--output",
         metavar="FILE",
-        help="results file, .csv or .parquet (default: MODEL's name with .csv, "
-        "in the current directory)",
+        help="results file, .csv or .parquet; - writes CSV to standard output "
+        "(default: MODEL's name with .csv, in the current directory)",
     )
     run.add_argument(
         "--force",
@@ -134,10 +136,13 @@ def _os_message(e: OSError) -> str:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model, allow_outside=args.allow_outside_data)
+    model = _load(args)
     kind = args.analysis or model.analysis_type
-    output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
-    check_not_input(output, model.inputs)
+    to_stdout = args.output == "-"
+    stem = "stdin" if args.model == "-" else Path(args.model).stem
+    output = Path(args.output) if args.output else Path(stem + ".csv")
+    if not to_stdout:
+        check_not_input(output, model.inputs)
     if not args.output and not args.force and output.exists():
         _error(
             f"{output} exists; pass --force to replace it, or -o to name another output"
@@ -166,7 +171,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
             return EXIT_INPUT
     _print_design(model)
     try:
-        res = model.run(analysis=kind, output=output, **given)
+        res = model.run(analysis=kind, output=None if to_stdout else output, **given)
     except AnalysisError as e:
         _error(str(e))
         details = []
@@ -205,6 +210,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
             if k in summary
         )
         print(f"camlink: {kind}: {counts}", file=sys.stderr)
+    if to_stdout:
+        _write_csv_to_stdout(res)
+        return EXIT_OK
     if not args.quiet:
         what = f"{kind} of {model.name}"
         if kind == "equilibrium":
@@ -223,6 +231,31 @@ def _cmd_run(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _load(args: argparse.Namespace) -> camlink.Model:
+    """The model of `args.model`; ``-`` reads TOML (or JSON, if it starts
+    with ``{``) from standard input, with data files in the current folder."""
+    if args.model != "-":
+        return camlink.load(args.model, allow_outside=args.allow_outside_data)
+    text = sys.stdin.read()
+    fmt = "json" if text.lstrip().startswith("{") else "toml"
+    return camlink.loads(
+        text, fmt, "<stdin>", base_dir=Path.cwd(), allow_outside=args.allow_outside_data
+    )
+
+
+def _write_csv_to_stdout(res: camlink.Results) -> None:
+    """The results as CSV on standard output (``-o -``)."""
+    import csv as _csv
+    import io
+
+    header = io.StringIO()
+    _csv.writer(header, lineterminator="\n").writerow(["t", *res.channels])
+    out = sys.stdout.buffer
+    out.write(header.getvalue().encode())
+    out.write(camlink._core.csv_rows(res.data))
+    out.flush()
+
+
 def _print_design(model: camlink.Model) -> None:
     """Prints the design findings of the curve contacts to stderr."""
     for f in model.design_check():
@@ -230,7 +263,7 @@ def _print_design(model: camlink.Model) -> None:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model, allow_outside=args.allow_outside_data)
+    model = _load(args)
     r = model.check()
     design = model.design_check()
     if args.json:

@@ -435,3 +435,17 @@ def test_models_pickle_through_their_text(tmp_path):
     )
     with pytest.raises(TypeError, match="cannot be pickled"):
         pickle.dumps(forced)
+
+
+def test_stdin_model_and_stdout_csv(tmp_path):
+    text = four_bar_toml()
+    proc = subprocess.run(
+        [sys.executable, "-m", "camlink", "run", "-", "-o", "-", "--t-end", "0.1"],
+        input=text, capture_output=True, text=True, cwd=tmp_path, timeout=120,
+    )
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stdout.splitlines()
+    assert lines[0].startswith("t,crank.x") and len(lines) == 12
+    assert list(tmp_path.iterdir()) == []
+    back = camlink.loads(text).run(t_end=0.1)
+    assert lines[1].split(",")[0] == "0" and float(lines[-1].split(",")[0]) == back.t[-1]
