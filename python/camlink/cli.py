@@ -288,6 +288,19 @@ def _cmd_check(args: argparse.Namespace) -> int:
         deps = " + ".join(f"{c:.3g}·{n}" for n, c in red["depends_on"])
         print(f"redundant    {red['equation']}" + (f" = {deps}" if deps else ""))
     dof = r["dof"]
+    open_joints = r.get("open_joints", [])
+    if open_joints:
+        print(f"assembly     failed: largest |Φ| {r['residual']:.3g} after assembly")
+        for name, worst in open_joints:
+            print(f"  {name} stays open by {worst:.3g} (m or rad)")
+        verdict = (
+            "the placement cannot close the loops: check the dimensions and the "
+            "joints above before adding drivers"
+        )
+        print(f"degrees of freedom  {dof} at the placement (rank of Φ_q {r['rank']}; {verdict})")
+        for f in design:
+            print(f"design       {f['text']}")
+        return EXIT_OK
     if dof == 0:
         verdict = "fully driven: ready for kinematics and inverse dynamics"
     else:

@@ -449,3 +449,20 @@ def test_stdin_model_and_stdout_csv(tmp_path):
     assert list(tmp_path.iterdir()) == []
     back = camlink.loads(text).run(t_end=0.1)
     assert lines[1].split(",")[0] == "0" and float(lines[-1].split(",")[0]) == back.t[-1]
+
+
+def test_check_reports_an_assembly_failure_with_the_open_joints(tmp_path):
+    # `check` said "add 1 driver" for a loop that cannot close, and never
+    # printed the residual it found.
+    text = four_bar_toml(r=1.0, L=0.5, b=0.5, d=3.0)
+    start = text.index("[[drivers]]")
+    end = text.index("[analysis]")
+    model = tmp_path / "open.toml"
+    model.write_text(text[:start] + text[end:])
+    proc = run_cli("check", model)
+    assert proc.returncode == 0, proc.stderr
+    assert "assembly     failed: largest |Φ|" in proc.stdout, proc.stdout
+    assert "stays open by" in proc.stdout
+    assert "add 1 driver" not in proc.stdout
+    report = camlink.load(model).check()
+    assert report["open_joints"] and report["residual"] > 0.1

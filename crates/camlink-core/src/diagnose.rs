@@ -43,6 +43,10 @@ pub struct Diagnosis {
     pub residual: f64,
     /// σ_max / σ_min of the nonzero singular values.
     pub condition: f64,
+    /// When assembly failed (`residual` above the tolerance): each joint
+    /// whose equations stay open, with its largest |Φ| (m or rad), largest
+    /// first.
+    pub open_joints: Vec<(String, f64)>,
     /// False for a model too large for the dense rank analysis (more than
     /// [`DENSE_MAX`] coordinates): rank and degrees of freedom then come from
     /// counting, and no redundancy or free motion is reported.
@@ -71,11 +75,17 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
             free_motions: Vec::new(),
             residual: f64::NAN,
             condition: f64::NAN,
+            open_joints: Vec::new(),
             exact: false,
         };
     }
     let mut q = asm.initial_q(model);
     let residual = least_squares_assembly(model, &asm, &mut q, t, tol);
+    let open_joints = if residual > tol {
+        open_joints(model, &asm, &q, t, tol)
+    } else {
+        Vec::new()
+    };
     let j = dense_jacobian(model, &asm, &q, t);
 
     let (rank, condition, null) = if m == 0 || n == 0 {
@@ -97,6 +107,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
         free_motions,
         residual,
         condition,
+        open_joints,
         exact: true,
     }
 }
@@ -186,6 +197,24 @@ fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
 
 /// Equations (in model order) that are combinations of earlier independent
 /// ones, found by Gram–Schmidt on the rows of Φ_q.
+/// The joints with an equation |Φ| above `tol` at `q`, with their largest
+/// |Φ|, largest first.
+fn open_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64, tol: f64) -> Vec<(String, f64)> {
+    let mut phi = vec![0.0; asm.m];
+    asm.phi(model, q, t, &mut phi);
+    let mut out: Vec<(String, f64)> = (0..model.joints.len())
+        .filter_map(|j| {
+            let worst = asm
+                .rows_of(model, j)
+                .map(|r| phi[r].abs())
+                .fold(0.0, f64::max);
+            (worst > tol).then(|| (model.joints[j].name.clone(), worst))
+        })
+        .collect();
+    out.sort_by(|a, b| b.1.total_cmp(&a.1));
+    out
+}
+
 fn redundant_rows(model: &Model, asm: &Assembly, j: &Mat<f64>) -> Vec<Redundancy> {
     let (m, n) = (j.nrows(), j.ncols());
     let mut basis: Vec<Vec<f64>> = Vec::new();

@@ -40,8 +40,14 @@ fn every_function_is_documented_and_nothing_else() {
     let implemented: BTreeSet<String> = camlink_expr::functions().map(|(_, sig)| sig).collect();
     let missing: Vec<_> = implemented.difference(&documented).collect();
     let unknown: Vec<_> = documented.difference(&implemented).collect();
-    assert!(missing.is_empty(), "not in docs/expressions.md: {missing:?}");
-    assert!(unknown.is_empty(), "documented but not implemented: {unknown:?}");
+    assert!(
+        missing.is_empty(),
+        "not in docs/expressions.md: {missing:?}"
+    );
+    assert!(
+        unknown.is_empty(),
+        "documented but not implemented: {unknown:?}"
+    );
 }
 
 #[test]

@@ -350,6 +350,7 @@ impl Model {
             d.set_item("free_motions", diagnosis.free_motions.clone())?;
             d.set_item("residual", diagnosis.residual)?;
             d.set_item("condition", diagnosis.condition)?;
+            d.set_item("open_joints", diagnosis.open_joints.clone())?;
             Ok(d)
         })
     }
