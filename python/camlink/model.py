@@ -466,9 +466,16 @@ class Model:
             if writer is not None:
                 writer.write(chunk_names, rows)
 
+        metadata: dict[str, Any] | None = None
         try:
             names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
             complete = True
+            metadata = {
+                "camlink": _core.__version__,
+                "model": self.name,
+                "analysis": kind,
+                "summary": {**summary, "analysis": kind},
+            }
         except AnalysisError as e:
             names = list(e.names)
             partial = e.data if e.data is not None else np.empty((0, len(names)))
@@ -489,7 +496,7 @@ class Model:
             raise
         finally:
             if writer is not None:
-                writer.close(names, complete=complete)
+                writer.close(names, complete=complete, metadata=metadata)
         summary["analysis"] = kind
         issue_run_warnings(summary)
         return Results(names, data, model=self.name, summary=summary)

@@ -23,10 +23,12 @@ from __future__ import annotations
 
 import csv
 import io
+import json
 import os
 import tempfile
 from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -142,9 +144,11 @@ class CsvWriter:
             self._file.write(_core.csv_rows(np.ascontiguousarray(rows, dtype=np.float64)))
         self._file.flush()
 
-    def close(self, names: Sequence[str], complete: bool = True) -> Path:
+    def close(
+        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+    ) -> Path:
         """Finishes the file; returns where it is (the output, or its
-        partial name when not `complete`)."""
+        partial name when not `complete`). `metadata` is not written to CSV."""
         if not self._header and names:
             self.write(names, np.empty((0, len(names))))
         self._file.close()
@@ -172,9 +176,12 @@ class ParquetWriter:
         self._writer.write_batch(batch)  # type: ignore[attr-defined]
         self._sink.flush()  # type: ignore[attr-defined]
 
-    def close(self, names: Sequence[str], complete: bool = True) -> Path:
-        """Writes the Parquet file from the journal; returns where it is
-        (the output, or its partial name when not `complete`)."""
+    def close(
+        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+    ) -> Path:
+        """Writes the Parquet file from the journal, with `metadata` as JSON
+        under the schema metadata key ``camlink``; returns where it is (the
+        output, or its partial name when not `complete`)."""
         import pyarrow.parquet as pq
 
         if self._writer is None:
@@ -182,6 +189,9 @@ class ParquetWriter:
         self._writer.close()  # type: ignore[union-attr]
         self._sink.close()  # type: ignore[union-attr]
         table = read_arrow_stream(self._target.temp)
+        if metadata is not None:
+            text = json.dumps(metadata, default=str)
+            table = table.replace_schema_metadata({"camlink": text})  # type: ignore[attr-defined]
         parquet = self._target.temp.with_suffix(self.path.suffix)
         # Simulated doubles seldom repeat: dictionary encoding costs time
         # and saves nothing.
@@ -253,13 +263,17 @@ class BackgroundWriter:
         self._raise()
         self._queue.put((list(names), rows))
 
-    def close(self, names: Sequence[str], complete: bool = True) -> Path:
+    def close(
+        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+    ) -> Path:
         """Waits for the queued chunks, then closes the file as
         `CsvWriter.close` / `ParquetWriter.close` do."""
         self._queue.put(None)
         self._thread.join()
         failed = self._error is not None
-        self.path = self._writer.close(names, complete=complete and not failed)
+        self.path = self._writer.close(
+            names, complete=complete and not failed, metadata=metadata
+        )
         self._raise()
         return self.path
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import csv
 import difflib
 import io
+import json
 import os
 from pathlib import Path
 from collections.abc import Iterator
@@ -184,15 +185,18 @@ class Results:
         path = Path(path)
         kind = kind_of(path, "read", READ_SUFFIXES)
         try:
+            meta: dict = {}
             if kind == "csv":
                 names, data = _read_csv(path)
             else:
-                names, data = _read_arrow(path, kind)
+                names, data, meta = _read_arrow(path, kind)
         except (ValueError, OSError, ImportError) as e:
             if isinstance(e, ModelError):
                 raise
             raise ModelError(f"cannot read results from '{path}': {e}") from None
-        return cls(names, data, model=path.stem)
+        return cls(
+            names, data, model=meta.get("model", path.stem), summary=meta.get("summary")
+        )
 
 
 def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64]]:
@@ -215,16 +219,19 @@ def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64]]:
     return header, data
 
 
-def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64]]:
-    """Names and rows of a results Parquet file or Arrow journal."""
+def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64], dict]:
+    """Names, rows and camlink metadata (model name, camlink version,
+    analysis, summary) of a results Parquet file or Arrow journal."""
     if kind == "parquet":
         import pyarrow.parquet as pq
 
         table = pq.read_table(path)
     else:
         table = read_arrow_stream(path)
+    raw = (table.schema.metadata or {}).get(b"camlink")  # type: ignore[attr-defined]
+    meta = json.loads(raw) if raw else {}
     names = list(table.column_names)  # type: ignore[attr-defined]
     if not table.num_rows:  # type: ignore[attr-defined]
-        return names, np.empty((0, len(names)))
+        return names, np.empty((0, len(names))), meta
     data = np.column_stack([table.column(n).to_numpy() for n in names])  # type: ignore[attr-defined]
-    return names, data
+    return names, data, meta

@@ -466,3 +466,16 @@ def test_check_reports_an_assembly_failure_with_the_open_joints(tmp_path):
     assert "add 1 driver" not in proc.stdout
     report = camlink.load(model).check()
     assert report["open_joints"] and report["residual"] > 0.1
+
+
+def test_parquet_output_carries_its_metadata(four_bar_file, tmp_path):
+    out = tmp_path / "m.parquet"
+    res = camlink.load(four_bar_file).run(t_end=0.1, output=out)
+    back = Results.load(out)
+    assert back.model == res.model == "four_bar"
+    assert back.summary["analysis"] == "kinematics"
+    assert back.summary["steps"] == res.summary["steps"]
+    import json as _json
+
+    meta = _json.loads(pq.read_schema(out).metadata[b"camlink"])
+    assert meta["camlink"] == camlink.__version__ and meta["analysis"] == "kinematics"
