@@ -2,7 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 import numpy.typing as npt
@@ -11,8 +11,8 @@ from camlink.results import Results
 
 __version__: str
 
-OnChunk = Callable[[list[str], npt.NDArray[np.float64]], object]
-RunOutput = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
+RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
@@ -32,6 +32,8 @@ class AnalysisError(RuntimeError):
 class Model:
     @staticmethod
     def load(path: str | PathLike[str]) -> Model: ...
+    @staticmethod
+    def load_adm(path: str | PathLike[str], acf: str | PathLike[str] | None = None) -> Model: ...
     @staticmethod
     def from_str(text: str, format: str, source: str = "<string>") -> Model: ...
     @property
@@ -98,4 +100,7 @@ class Model:
     ) -> RunOutput: ...
 
 def json_schema() -> str: ...
+def convert_adm(
+    path: str | PathLike[str], format: str, acf: str | PathLike[str] | None = None
+) -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
