@@ -2,7 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any, TypeAlias
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -11,8 +11,8 @@ from camlink.results import Results
 
 __version__: str
 
-OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
-RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+OnChunk = Callable[[list[str], npt.NDArray[np.float64]], object]
+RunOutput = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""

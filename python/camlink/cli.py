@@ -260,7 +260,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("camlink: interrupted", file=sys.stderr)
         return 130
-    except Exception as e:
+    except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
         if os.environ.get("CAMLINK_TRACEBACK"):
             raise
         _error(f"{e}" if str(e).startswith("internal error") else f"internal error: {e!r}")
