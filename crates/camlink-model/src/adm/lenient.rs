@@ -34,7 +34,14 @@ pub fn relax(text: &str) -> Relaxed {
             let start = k;
             k += 1;
             while k < b.len() && b[k] != b'"' {
-                k += if b[k] == b'\\' { 2 } else { 1 };
+                if b[k] == b'\\' {
+                    k += 1;
+                }
+                // Step over one whole character (escaped or not).
+                k += text[k.min(b.len())..]
+                    .chars()
+                    .next()
+                    .map_or(1, char::len_utf8);
             }
             k = (k + 1).min(b.len());
             out.push_str(&text[start..k]);
@@ -147,6 +154,14 @@ mod tests {
         assert_eq!(r.original(in_relaxed), src.find("\"b\"").unwrap());
         let x = r.text.find('x').unwrap();
         assert_eq!(r.original(x), src.find('x').unwrap());
+    }
+
+    #[test]
+    fn an_escape_before_a_wide_character_does_not_split_it() {
+        let src = "{\"a\": \"\\é\", \"b\": 1/2}";
+        assert_eq!(relax(src).text, "{\"a\": \"\\é\", \"b\": \"1/2\"}");
+        let src = "\"\\é";
+        assert_eq!(relax(src).text, src);
     }
 
     #[test]

@@ -50,6 +50,7 @@ pub fn translate(src: &str, allow_t: bool) -> Result<Translated, String> {
     let mut p = Parser {
         tokens,
         pos: 0,
+        depth: 0,
         allow_t,
         uses_t: false,
     };
@@ -177,6 +178,12 @@ fn lex(src: &str) -> Result<Vec<Token>, String> {
     if out.is_empty() {
         return Err("empty function".to_string());
     }
+    if out.len() > MAX_TOKENS {
+        return Err(format!(
+            "the expression is too long ({} tokens; at most {MAX_TOKENS})",
+            out.len()
+        ));
+    }
     Ok(out)
 }
 
@@ -197,9 +204,17 @@ enum Node {
     Call(&'static str, Vec<Node>),
 }
 
+/// Most tokens in one expression (course functions are a line long); this
+/// also bounds the depth of the tree that is printed.
+const MAX_TOKENS: usize = 2000;
+
+/// Deepest nesting of parentheses, calls and signs accepted.
+const MAX_DEPTH: usize = 64;
+
 struct Parser {
     tokens: Vec<Token>,
     pos: usize,
+    depth: usize,
     allow_t: bool,
     uses_t: bool,
 }
@@ -227,6 +242,18 @@ impl Parser {
 
     /// Parses operators binding tighter than `min` (all operators are left-associative).
     fn expr(&mut self, min: u8) -> Result<Node, String> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(format!(
+                "the expression nests deeper than {MAX_DEPTH} levels"
+            ));
+        }
+        let e = self.binary(min);
+        self.depth -= 1;
+        e
+    }
+
+    fn binary(&mut self, min: u8) -> Result<Node, String> {
         let mut lhs = self.prefix()?;
         while let Some(Kind::Op(op)) = self.peek() {
             let op = *op;
@@ -248,13 +275,19 @@ impl Parser {
 
     fn power_operand(&mut self) -> Result<Node, String> {
         match self.peek() {
-            Some(Kind::Op('-')) => {
+            Some(Kind::Op('-' | '+')) => {
+                let minus = self.peek() == Some(&Kind::Op('-'));
                 self.pos += 1;
-                Ok(Node::Neg(Box::new(self.power_operand()?)))
-            }
-            Some(Kind::Op('+')) => {
-                self.pos += 1;
-                self.power_operand()
+                self.depth += 1;
+                if self.depth > MAX_DEPTH {
+                    return Err(format!(
+                        "the expression nests deeper than {MAX_DEPTH} levels"
+                    ));
+                }
+                let x = self.power_operand();
+                self.depth -= 1;
+                let x = x?;
+                Ok(if minus { Node::Neg(Box::new(x)) } else { x })
             }
             _ => self.atom(),
         }
@@ -447,5 +480,17 @@ mod tests {
             .unwrap_err()
             .contains("unexpected 't'"));
         assert!(translate("", true).is_err());
+        let deep = format!("{}t{}", "(".repeat(500), ")".repeat(500));
+        assert!(translate(&deep, true).unwrap_err().contains("nests deeper"));
+        let signs = format!("2^{}t", "-".repeat(1000));
+        assert!(translate(&signs, true)
+            .unwrap_err()
+            .contains("nests deeper"));
+        let long = vec!["t"; 100_000].join("+");
+        assert!(translate(&long, true).unwrap_err().contains("too long"));
+        let minus = format!("{}t", "-".repeat(1000));
+        assert!(translate(&minus, true)
+            .unwrap_err()
+            .contains("nests deeper"));
     }
 }
