@@ -157,6 +157,7 @@ fn converted_files_give_the_same_results() {
     converted_files_agree(&example(), false);
     converted_files_agree(&fixture("rack_pinion.adm"), false);
     converted_files_agree(&fixture("forces.adm"), true);
+    converted_files_agree(&fixture("translational.adm"), false);
 }
 
 /// The course's rack-and-pinion equations, evaluated on camlink's results,
@@ -217,6 +218,45 @@ fn rack_pinion_obeys_the_course_equations_and_rolls() {
         assert!(slip < 1e-9, "t = {time}: slip {slip}");
     }
     assert!(turned > 1.0, "the pinion hardly turned ({turned} rad)");
+}
+
+/// Haug's translational joint between two moving bodies: the course's
+/// v₁⊥·d = 0 and v₁⊥·v₂ = 0 hold on camlink's results, on the root chosen
+/// nearest the initial angles: v′₂ = (0, −3) and v′₁ at 0.2 rad are parallel
+/// for φ₂ − φ₁ = 0.2 + π/2 + kπ, and the initial −1.37 rad picks k = −1.
+#[test]
+fn translational_obeys_the_course_equations() {
+    let l = load_adm(&fixture("translational.adm"), None).unwrap();
+    let t = kin(&l);
+    let (x1, y1, p1) = (ch(&t, "arm.x"), ch(&t, "arm.y"), ch(&t, "arm.phi"));
+    let (x2, y2, p2) = (ch(&t, "block.x"), ch(&t, "block.y"), ch(&t, "block.phi"));
+    let rot = |phi: f64, v: [f64; 2]| {
+        let (c, s) = (phi.cos(), phi.sin());
+        [c * v[0] - s * v[1], s * v[0] + c * v[1]]
+    };
+    for k in 0..t.t.len() {
+        let time = t.t[k];
+        assert!((p1[k] - (0.5 + 0.3 * time)).abs() < 1e-12);
+        assert!(
+            (p2[k] - p1[k] - (0.2 - PI / 2.0)).abs() < 1e-10,
+            "t = {time}"
+        );
+        let v1 = rot(p1[k], [0.2f64.cos(), 0.2f64.sin()]);
+        let v2 = rot(p2[k], [0.0, -3.0]);
+        let r1 = rot(p1[k], [0.1, 0.05]);
+        let r2 = rot(p2[k], [0.05, -0.1]);
+        let d = [x2[k] + r2[0] - x1[k] - r1[0], y2[k] + r2[1] - y1[k] - r1[1]];
+        let perp = [-v1[1], v1[0]];
+        assert!(
+            (perp[0] * d[0] + perp[1] * d[1]).abs() < 1e-10,
+            "t = {time}"
+        );
+        assert!(
+            (perp[0] * v2[0] + perp[1] * v2[1]).abs() < 1e-10,
+            "t = {time}"
+        );
+        assert!((x2[k] + r2[0] - (1.0 + 0.2 * time)).abs() < 1e-10);
+    }
 }
 
 /// Initial accelerations by hand: α = T/J and a = F/m + g for every force type.
