@@ -482,3 +482,36 @@ fn a_resolver_error_is_placed_at_the_adm_field() {
     assert!(e.message.contains("constraint 'x' (id 5)"), "{e}");
     assert_eq!(e.field.as_deref(), Some("constraints[0].fun"), "{e}");
 }
+
+#[test]
+fn constant_absolutes_are_joints_and_a_pair_at_one_point_a_revolute() {
+    use camlink_core::Equations;
+    let adm = r#"{"bodies": [{"name": "a", "id": 1, "q0": [0, 0, 0]}, {"name": "b", "id": 2, "q0": [1, 0, 0]}],
+      "constraints": [
+        {"name": "ax", "id": 1, "type": "AbsoluteX", "body1": 1, "sP1": [0.5, 0], "fun": "0.5"},
+        {"name": "ay", "id": 2, "type": "AbsoluteY", "body1": 1, "sP1": [0.1, 0], "fun": "0"},
+        {"name": "aphi", "id": 3, "type": "AbsoluteAngle", "body1": 1, "fun": "pi/2 - pi/2"},
+        {"name": "by", "id": 4, "type": "AbsoluteY", "body1": 2, "sP1": [0, 0], "fun": "0"},
+        {"name": "bx", "id": 5, "type": "AbsoluteX", "body1": 2, "sP1": [0, 0], "fun": "2/2"},
+        {"name": "bphi", "id": 6, "type": "AbsoluteAngle", "body1": 2, "fun": "2*t"}
+      ]}"#;
+    let l = load_adm_text(adm, None).unwrap();
+    let kinds: Vec<(&str, &str, bool)> = l
+        .model
+        .joints
+        .iter()
+        .map(|j| (j.name.as_str(), j.constraint.kind(), j.driver))
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("aphi", "absolute_coordinate", false),
+            ("ax", "absolute_coordinate", false),
+            ("ay", "absolute_coordinate", false),
+            ("b", "revolute", false),
+            ("bphi", "absolute_coordinate", true),
+        ]
+    );
+    let ground = &l.model.bodies[0];
+    assert_eq!(ground.point("b_pin"), Some([1.0, 0.0]));
+}

@@ -85,7 +85,8 @@ struct Pin {
     path: String,
     label: String,
     name: String,
-    id: String,
+    /// The camlink joint type: `absolute_x` or `absolute_y`.
+    axis: &'static str,
     body: usize,
     s: [f64; 2],
     value: f64,
@@ -567,18 +568,18 @@ impl Builder {
                     );
                 } else {
                     let value = match &f {
-                        Item::Num(v) => *v,
                         Item::Str(text) => {
                             camlink_expr::eval_constant(text, &Default::default())
                                 .or_else(|e| fail(format!("{p}.fun"), Some(&lab), e.message))?
                         }
-                        _ => 0.0,
+                        Item::Num(v) => *v,
+                        _ => f64::NAN,
                     };
                     pins.push(Pin {
                         path: path.clone(),
                         label: lab.clone(),
                         name,
-                        id: format!("{kind}:{}", id.unwrap_or_default()),
+                        axis,
                         body,
                         s,
                         value,
@@ -815,7 +816,7 @@ impl Builder {
                 !used[c]
                     && y.body == x.body
                     && y.s == x.s
-                    && x.id.starts_with("AbsoluteX") != y.id.starts_with("AbsoluteX")
+                    && x.axis != y.axis
                     && x.value.is_finite()
                     && y.value.is_finite()
             });
@@ -824,7 +825,7 @@ impl Builder {
             match partner {
                 Some(c) => {
                     used[c] = true;
-                    let (px, py) = if x.id.starts_with("AbsoluteX") {
+                    let (px, py) = if x.axis == "absolute_x" {
                         (x, &pins[c])
                     } else {
                         (&pins[c], x)
@@ -851,15 +852,10 @@ impl Builder {
                     }
                 }
                 None => {
-                    let axis = if x.id.starts_with("AbsoluteX") {
-                        "absolute_x"
-                    } else {
-                        "absolute_y"
-                    };
                     let point = self.point(Some(x.body), x.s, &x.name);
                     self.joints.push(Item::table([
                         ("name", Item::Str(x.name.clone())),
-                        ("type", Item::Str(axis.into())),
+                        ("type", Item::Str(x.axis.into())),
                         ("body", self.body_name(Some(x.body))),
                         ("point", point),
                         ("value", x.text.clone()),
