@@ -515,3 +515,15 @@ fn constant_absolutes_are_joints_and_a_pair_at_one_point_a_revolute() {
     let ground = &l.model.bodies[0];
     assert_eq!(ground.point("b_pin"), Some([1.0, 0.0]));
 }
+
+/// Every file in `examples/simengine2d/` is checked by a test of this file:
+/// adding one without a test fails here.
+#[test]
+fn every_simengine2d_example_has_a_test() {
+    let mut files: Vec<String> = std::fs::read_dir(root().join("examples/simengine2d"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    assert_eq!(files, ["slider_crank.acf", "slider_crank.adm"]);
+}
