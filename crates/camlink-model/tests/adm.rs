@@ -527,3 +527,26 @@ fn every_simengine2d_example_has_a_test() {
     files.sort();
     assert_eq!(files, ["slider_crank.acf", "slider_crank.adm"]);
 }
+
+/// MATLAB's JSON writer gives `[]` for an empty body and may leave a
+/// constant `fun` as a number: both are read as the course engine reads them.
+#[test]
+fn empty_body_is_the_ground_and_a_numeric_fun_a_constant() {
+    let adm = r#"{"bodies": [{"name": "a", "id": 1, "q0": [0.5, 0, 0]}],
+      "constraints": [
+        {"name": "pin", "id": 1, "type": "RevoluteJoint", "body1": [], "sP1": [0, 0], "body2": 1, "sP2": [-0.5, 0], "fun": null},
+        {"name": "hold", "id": 2, "type": "AbsoluteAngle", "body1": 1, "fun": 0.25}
+      ]}"#;
+    let l = load_adm_text(adm, None).unwrap();
+    assert_eq!(l.model.joints.len(), 2);
+    assert_eq!(l.model.bodies[0].point("pin"), Some([0.0, 0.0]));
+    let e = load_adm_text(
+        &one_constraint(
+            r#"{"name": "d", "id": 3, "type": "AbsoluteAngle", "body1": 1, "fun": [1, 2]}"#,
+        ),
+        None,
+    )
+    .unwrap_err();
+    assert_eq!(e.field.as_deref(), Some("constraints[0].fun"), "{e}");
+    assert!(e.message.contains("function of t"), "{e}");
+}

@@ -71,6 +71,39 @@ impl<'de> Deserialize<'de> for Id {
     }
 }
 
+/// A body reference: an id, or `null` or `[]` (MATLAB's empty value) for
+/// the ground, as is leaving the key out.
+fn ground_or_id<'de, D: Deserializer<'de>>(d: D) -> Result<Option<Id>, D::Error> {
+    match serde_json::Value::deserialize(d)? {
+        serde_json::Value::Null => Ok(None),
+        serde_json::Value::Array(a) if a.is_empty() => Ok(None),
+        v => Id::deserialize(v).map(Some).map_err(de::Error::custom),
+    }
+}
+
+/// A function of time: text, or a bare number (a constant).
+fn fun_text<'de, D: Deserializer<'de>>(d: D) -> Result<String, D::Error> {
+    fun_from(serde_json::Value::deserialize(d)?).map_err(de::Error::custom)
+}
+
+/// An optional function of time; `null` is none.
+fn opt_fun_text<'de, D: Deserializer<'de>>(d: D) -> Result<Option<String>, D::Error> {
+    match serde_json::Value::deserialize(d)? {
+        serde_json::Value::Null => Ok(None),
+        v => fun_from(v).map(Some).map_err(de::Error::custom),
+    }
+}
+
+fn fun_from(v: serde_json::Value) -> Result<String, String> {
+    match v {
+        serde_json::Value::String(s) => Ok(s),
+        serde_json::Value::Number(n) => Ok(n.to_string()),
+        other => Err(format!(
+            "expected a function of t as text (\"sin(t)\") or a number, found {other}"
+        )),
+    }
+}
+
 /// The top level of a `.adm` file; `bodies`, `constraints` and `forces` are
 /// read one entry at a time, so that an error can name the entry.
 #[derive(Debug, Deserialize)]
@@ -103,6 +136,7 @@ pub struct Body {
 pub struct AbsoluteCoord {
     pub body1: Id,
     pub sP1: [Number; 2],
+    #[serde(deserialize_with = "fun_text")]
     pub fun: String,
 }
 
@@ -110,6 +144,7 @@ pub struct AbsoluteCoord {
 #[derive(Debug, Deserialize)]
 pub struct AbsoluteAngle {
     pub body1: Id,
+    #[serde(deserialize_with = "fun_text")]
     pub fun: String,
 }
 
@@ -117,13 +152,13 @@ pub struct AbsoluteAngle {
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
 pub struct Revolute {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body2: Option<Id>,
     pub sP2: [Number; 2],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub fun: Option<String>,
 }
 
@@ -131,15 +166,15 @@ pub struct Revolute {
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
 pub struct Translational {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
     pub vP1: [Number; 2],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body2: Option<Id>,
     pub sP2: [Number; 2],
     pub vP2: [Number; 2],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub fun: Option<String>,
 }
 
@@ -148,17 +183,17 @@ pub struct Translational {
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
 pub struct RackPinion {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
     pub sQ1: [Number; 2],
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body2: Option<Id>,
     pub sP2: [Number; 2],
     pub R2: Number,
     pub theta1: Number,
     pub theta2: Number,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub fun: Option<String>,
 }
 
@@ -170,9 +205,9 @@ pub struct PointForce {
     pub body1: Id,
     pub sP1: [Number; 2],
     pub frame: String,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub funX: Option<String>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub funY: Option<String>,
 }
 
@@ -180,20 +215,21 @@ pub struct PointForce {
 #[derive(Debug, Deserialize)]
 pub struct Torque {
     pub body1: Id,
+    #[serde(deserialize_with = "fun_text")]
     pub fun: String,
 }
 
 /// `RSDA1` (body to ground) and `RSDA2` (between two bodies).
 #[derive(Debug, Deserialize)]
 pub struct Rsda {
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "ground_or_id")]
     pub body2: Option<Id>,
     pub theta0: Number,
     pub k: Number,
     pub c: Number,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "opt_fun_text")]
     pub fun: Option<String>,
 }
 
