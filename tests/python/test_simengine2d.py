@@ -149,3 +149,32 @@ def test_dynamics_acf_runs_forward_dynamics() -> None:
         res["disc.phi"], (2.5 * t**2 / 2 + t**3 / 6) / 0.25, rtol=0, atol=1e-6
     )
     assert math.isclose(res["disc.alpha"][0], 10.0, abs_tol=1e-9)
+
+
+def test_equilibrium_acf_balances_an_rsda1_against_gravity(tmp_path: Path) -> None:
+    """A rod (m = 2 kg, L = 1 m) pinned at one end to the ground, held by an
+    RSDA1 (k = 50 N·m/rad, θ0 = 0.3): at equilibrium the spring torque
+    −k(φ − θ0) balances gravity's −m g (L/2) cos φ about the pin."""
+    adm = tmp_path / "rod.adm"
+    adm.write_text(
+        json.dumps(
+            {
+                "gravity": [0, -9.81],
+                "bodies": [{"name": "rod", "id": 1, "mass": 2, "jbar": 2 / 12, "q0": [0.5, 0, 0]}],
+                "constraints": [
+                    {"name": "pin", "id": 1, "type": "RevoluteJoint", "sP1": [0, 0],
+                     "body2": 1, "sP2": [-0.5, 0], "fun": "NONE"}
+                ],
+                "forces": [
+                    {"name": "spring", "id": 1, "type": "RSDA1", "body1": 1,
+                     "theta0": 0.3, "k": 50, "c": 0, "fun": "NONE"}
+                ],
+            }
+        )
+    )
+    (tmp_path / "rod.acf").write_text(json.dumps({"simulation": "Equilibrium"}))
+    model = camlink.load(adm)
+    assert model.analysis_type == "equilibrium"
+    phi = float(model.run()["rod.phi"][0])
+    assert abs(-50 * (phi - 0.3) - 2 * 9.81 * 0.5 * math.cos(phi)) < 1e-8
+    assert 0.0 < phi < 0.3
