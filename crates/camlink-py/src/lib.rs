@@ -68,6 +68,17 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
+/// A model file format by name: `"toml"` or `"json"`, any case.
+fn model_format(name: &str) -> PyResult<Format> {
+    match name.to_ascii_lowercase().as_str() {
+        "toml" => Ok(Format::Toml),
+        "json" => Ok(Format::Json),
+        other => Err(ModelError::new_err(format!(
+            "unknown model format '{other}' (expected 'toml' or 'json')"
+        ))),
+    }
+}
+
 /// What `run_kinematics` returns: channel names, data, summary.
 type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
 
@@ -109,15 +120,7 @@ impl Model {
     #[pyo3(signature = (text, format, source = "<string>"))]
     fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
         guard(|| {
-            let format = match format.to_ascii_lowercase().as_str() {
-                "toml" => Format::Toml,
-                "json" => Format::Json,
-                other => {
-                    return Err(ModelError::new_err(format!(
-                        "unknown model format '{other}' (expected 'toml' or 'json')"
-                    )))
-                }
-            };
+            let format = model_format(format)?;
             let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
             Ok(Model { loaded })
         })
@@ -754,15 +757,7 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
 #[pyo3(signature = (path, format, acf = None))]
 fn convert_adm(path: PathBuf, format: &str, acf: Option<PathBuf>) -> PyResult<String> {
     guard(|| {
-        let format = match format.to_ascii_lowercase().as_str() {
-            "toml" => Format::Toml,
-            "json" => Format::Json,
-            other => {
-                return Err(ModelError::new_err(format!(
-                    "unknown model format '{other}' (expected 'toml' or 'json')"
-                )))
-            }
-        };
+        let format = model_format(format)?;
         camlink_model::adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
     })
 }

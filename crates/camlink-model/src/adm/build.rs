@@ -613,9 +613,7 @@ impl Builder {
                 }
             }
             "RevoluteJoint" => {
-                let c: format::Revolute = parse(v, p, Some(&lab))?;
-                self.no_fun(c.fun.as_deref(), p, &lab, kind)?;
-                let (b1, b2) = self.two_bodies(c.body1, c.body2, p, &lab)?;
+                let (c, b1, b2) = self.joint_of::<format::Revolute>(v, p, &lab, kind)?;
                 let name = self.unique(name.as_deref(), &fallback, id.as_deref());
                 let p1 = self.point(b1, pair(c.sP1), &name);
                 let p2 = self.point(b2, pair(c.sP2), &name);
@@ -640,9 +638,7 @@ impl Builder {
                 );
             }
             "TranslationalJoint" => {
-                let c: format::Translational = parse(v, p, Some(&lab))?;
-                self.no_fun(c.fun.as_deref(), p, &lab, kind)?;
-                let (b1, b2) = self.two_bodies(c.body1, c.body2, p, &lab)?;
+                let (c, b1, b2) = self.joint_of::<format::Translational>(v, p, &lab, kind)?;
                 let (v1, v2) = (pair(c.vP1), pair(c.vP2));
                 for (field, v) in [("vP1", v1), ("vP2", v2)] {
                     if v[0] == 0.0 && v[1] == 0.0 {
@@ -686,9 +682,7 @@ impl Builder {
                 );
             }
             "RackPinion" => {
-                let c: format::RackPinion = parse(v, p, Some(&lab))?;
-                self.no_fun(c.fun.as_deref(), p, &lab, kind)?;
-                let (rack, pinion) = self.two_bodies(c.body1, c.body2, p, &lab)?;
+                let (c, rack, pinion) = self.joint_of::<format::RackPinion>(v, p, &lab, kind)?;
                 let (sp, sq) = (pair(c.sP1), pair(c.sQ1));
                 let axis = [sq[0] - sp[0], sq[1] - sp[1]];
                 let length = axis[0].hypot(axis[1]);
@@ -768,16 +762,26 @@ impl Builder {
         Ok(())
     }
 
-    /// Joints take no function: `fun` is left out or `NONE`.
-    fn no_fun(&self, fun: Option<&str>, p: &str, lab: &str, kind: &str) -> R<()> {
-        if is_none(fun) {
-            return Ok(());
+    /// A joint between `body1` and `body2` read from `v`, with its bodies;
+    /// joints take no function (`fun` left out or `NONE`).
+    fn joint_of<T: DeserializeOwned + format::TwoBodies>(
+        &self,
+        v: &Value,
+        p: &str,
+        lab: &str,
+        kind: &str,
+    ) -> R<(T, Option<usize>, Option<usize>)> {
+        let c: T = parse(v, p, Some(lab))?;
+        if !is_none(c.fun()) {
+            return fail(
+                format!("{p}.fun"),
+                Some(lab),
+                format!("a {kind} takes no function; write \"NONE\" or leave fun out"),
+            );
         }
-        fail(
-            format!("{p}.fun"),
-            Some(lab),
-            format!("a {kind} takes no function; write \"NONE\" or leave fun out"),
-        )
+        let (b1, b2) = c.bodies();
+        let (k1, k2) = self.two_bodies(b1, b2, p, lab)?;
+        Ok((c, k1, k2))
     }
 
     /// body1 and body2 (either may be the ground, not both, not the same).

@@ -5,12 +5,11 @@
 //! arithmetic in MATLAB syntax (`187/255`, `pi/2`); they are parsed as
 //! constant expressions, never evaluated as code.
 
-use std::fmt;
-
-use serde::de::{self, Deserializer, Visitor};
+use serde::de::{self, Deserializer};
 use serde::Deserialize;
 
 use super::matlab;
+use crate::file::Num;
 
 /// A number: a JSON number, or constant arithmetic in MATLAB syntax.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -18,33 +17,16 @@ pub struct Number(pub f64);
 
 impl<'de> Deserialize<'de> for Number {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V;
-        impl Visitor<'_> for V {
-            type Value = Number;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a number")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Number, E> {
-                Ok(Number(v))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Number, E> {
-                Ok(Number(v as f64))
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Number, E> {
-                Ok(Number(v as f64))
-            }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<Number, E> {
-                constant(v).map(Number).map_err(E::custom)
-            }
-        }
-        let n = d.deserialize_any(V)?;
-        if !n.0.is_finite() {
+        let v = match Num::deserialize(d)? {
+            Num::Value(v) => v,
+            Num::Expr(src) => constant(&src).map_err(de::Error::custom)?,
+        };
+        if !v.is_finite() {
             return Err(de::Error::custom(format_args!(
-                "value is not a finite number ({})",
-                n.0
+                "value is not a finite number ({v})"
             )));
         }
-        Ok(n)
+        Ok(Number(v))
     }
 }
 
@@ -196,6 +178,27 @@ pub struct RackPinion {
     #[serde(default, deserialize_with = "opt_fun_text")]
     pub fun: Option<String>,
 }
+
+/// A joint between `body1` and `body2` that takes no function.
+pub trait TwoBodies {
+    fn bodies(&self) -> (Option<Id>, Option<Id>);
+    fn fun(&self) -> Option<&str>;
+}
+
+macro_rules! two_bodies {
+    ($($t:ty),*) => {$(
+        impl TwoBodies for $t {
+            fn bodies(&self) -> (Option<Id>, Option<Id>) {
+                (self.body1, self.body2)
+            }
+            fn fun(&self) -> Option<&str> {
+                self.fun.as_deref()
+            }
+        }
+    )*};
+}
+
+two_bodies!(Revolute, Translational, RackPinion);
 
 /// `PointForce`: (funX, funY) at `sP1` of `body1`, global (`GRF`) or body
 /// (`LRF`) components.
