@@ -93,6 +93,14 @@ struct Pin {
     text: Item,
 }
 
+/// The lists of the description that the reader appends to.
+#[derive(Clone, Copy)]
+enum Section {
+    Joints,
+    Drivers,
+    Forces,
+}
+
 struct Builder {
     bodies: Vec<BodyOut>,
     by_id: HashMap<i64, usize>,
@@ -486,27 +494,23 @@ impl Builder {
         });
     }
 
-    fn add_joint(
+    /// Appends `item` to the description's `joints`, `drivers` or `forces`
+    /// and records where it came from.
+    fn add(
         &mut self,
+        section: Section,
         item: Item,
         path: &str,
         lab: &str,
         fields: Vec<(&'static str, &'static str)>,
     ) {
-        let prefix = format!("joints[{}]", self.joints.len());
-        self.joints.push(item);
-        self.origin(prefix, path, lab, fields);
-    }
-
-    fn add_driver(
-        &mut self,
-        item: Item,
-        path: &str,
-        lab: &str,
-        fields: Vec<(&'static str, &'static str)>,
-    ) {
-        let prefix = format!("drivers[{}]", self.drivers.len());
-        self.drivers.push(item);
+        let (key, list) = match section {
+            Section::Joints => ("joints", &mut self.joints),
+            Section::Drivers => ("drivers", &mut self.drivers),
+            Section::Forces => ("forces", &mut self.forces),
+        };
+        let prefix = format!("{key}[{}]", list.len());
+        list.push(item);
         self.origin(prefix, path, lab, fields);
     }
 
@@ -560,7 +564,8 @@ impl Builder {
                         ("point", point),
                         ("f", f),
                     ]);
-                    self.add_driver(
+                    self.add(
+                        Section::Drivers,
                         item,
                         p,
                         &lab,
@@ -606,10 +611,22 @@ impl Builder {
                 ]);
                 if uses_t {
                     item.push("f", f);
-                    self.add_driver(item, p, &lab, vec![("body", "body1"), ("f", "fun")]);
+                    self.add(
+                        Section::Drivers,
+                        item,
+                        p,
+                        &lab,
+                        vec![("body", "body1"), ("f", "fun")],
+                    );
                 } else {
                     item.push("value", f);
-                    self.add_joint(item, p, &lab, vec![("body", "body1"), ("value", "fun")]);
+                    self.add(
+                        Section::Joints,
+                        item,
+                        p,
+                        &lab,
+                        vec![("body", "body1"), ("value", "fun")],
+                    );
                 }
             }
             "RevoluteJoint" => {
@@ -625,7 +642,8 @@ impl Builder {
                     ("body_j", self.body_name(b2)),
                     ("point_j", p2),
                 ]);
-                self.add_joint(
+                self.add(
+                    Section::Joints,
                     item,
                     p,
                     &lab,
@@ -667,7 +685,8 @@ impl Builder {
                     ("point_j", p2),
                     ("angle", Item::Num(angle)),
                 ]);
-                self.add_joint(
+                self.add(
+                    Section::Joints,
                     item,
                     p,
                     &lab,
@@ -727,7 +746,7 @@ impl Builder {
                     ("axis", "sQ1"),
                     ("phase", "theta1"),
                 ];
-                self.add_joint(rolling, p, &lab, fields);
+                self.add(Section::Joints, rolling, p, &lab, fields);
                 let on_line = Item::table([
                     ("name", Item::Str(centre_name)),
                     ("type", Item::Str("revolute_translational".into())),
@@ -746,7 +765,7 @@ impl Builder {
                     ("axis", "sQ1"),
                     ("offset", "R2"),
                 ];
-                self.add_joint(on_line, p, &lab, fields);
+                self.add(Section::Joints, on_line, p, &lab, fields);
             }
             other => {
                 return fail(
@@ -871,18 +890,6 @@ impl Builder {
         }
     }
 
-    fn add_force(
-        &mut self,
-        item: Item,
-        path: &str,
-        lab: &str,
-        fields: Vec<(&'static str, &'static str)>,
-    ) {
-        let prefix = format!("forces[{}]", self.forces.len());
-        self.forces.push(item);
-        self.origin(prefix, path, lab, fields);
-    }
-
     fn force(&mut self, v: &Value, k: usize) -> R<()> {
         let path = format!("forces[{k}]");
         let (name, id) = name_and_id(v);
@@ -929,7 +936,8 @@ impl Builder {
                     ("fy", fy),
                     ("local", Item::Bool(local)),
                 ]);
-                self.add_force(
+                self.add(
+                    Section::Forces,
                     item,
                     p,
                     &lab,
@@ -952,7 +960,13 @@ impl Builder {
                     ("body", self.body_name(body)),
                     ("torque", t),
                 ]);
-                self.add_force(item, p, &lab, vec![("body", "body1"), ("torque", "fun")]);
+                self.add(
+                    Section::Forces,
+                    item,
+                    p,
+                    &lab,
+                    vec![("body", "body1"), ("torque", "fun")],
+                );
             }
             "RSDA1" | "RSDA2" => {
                 let f: format::Rsda = parse(v, p, Some(&lab))?;
@@ -1004,7 +1018,7 @@ impl Builder {
                         ("actuator", "fun"),
                     ]
                 };
-                self.add_force(item, p, &lab, fields);
+                self.add(Section::Forces, item, p, &lab, fields);
             }
             "PointForceFile" => {
                 let f: format::PointForceFile = parse(v, p, Some(&lab))?;
