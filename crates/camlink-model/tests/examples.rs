@@ -10,7 +10,8 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
-use camlink_core::kinematics::{run, time_grid, Settings, Table};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_model::{load_path, Loaded};
 
 /// Position tolerance (m or rad).
