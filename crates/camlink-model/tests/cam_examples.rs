@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use camlink_core::constraint::Constraint;
 use camlink_core::design::{self, Severity};
-use camlink_core::kinematics::{self, AnalysisError, PointOutput, Settings, Table};
+use camlink_core::kinematics;
+use camlink_core::run::{AnalysisError, PointOutput, Settings, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 fn examples() -> PathBuf {
@@ -28,11 +29,11 @@ fn variant(name: &str, from: &str, to: &str) -> Loaded {
 }
 
 /// Runs the `[analysis]` of a loaded model.
-fn try_run(l: &Loaded) -> (Table, Result<kinematics::Summary, AnalysisError>) {
+fn try_run(l: &Loaded) -> (Table, Result<camlink_core::run::Summary, AnalysisError>) {
     let a = &l.analysis;
     let times = match &a.times {
         Some(t) => t.clone(),
-        None => kinematics::time_grid(a.t_end.unwrap(), a.step.unwrap()).unwrap(),
+        None => camlink_core::run::time_grid(a.t_end.unwrap(), a.step.unwrap()).unwrap(),
     };
     let points: Vec<PointOutput> = a
         .points

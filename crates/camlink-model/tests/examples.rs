@@ -3,9 +3,9 @@
 //!
 //! Tolerances, from the solver's settings and the model's conditioning:
 //! - positions within `POS_TOL` = 1e-11 (m or rad, absolute): Newton stops
-//!   when its correction is below `tol` = 1e-10 and converges quadratically,
-//!   so the last correction leaves an error far below tol; 1e-11 holds the
-//!   solution to a tenth of the stopping test.
+//!   once max |Φ| ≤ `tol` = 1e-10 and then applies that residual's
+//!   correction, which with quadratic convergence leaves an error far below
+//!   tol; 1e-11 holds the solution to a tenth of the stopping test.
 //! - velocities and accelerations solve Φ_q q̇ = ν and Φ_q q̈ = γ at the
 //!   computed positions. A linear solve's relative error is at most the
 //!   condition number κ(Φ_q) times the relative error of its data: the
@@ -21,7 +21,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use camlink_core::diagnose::dense_jacobian;
-use camlink_core::kinematics::{run, time_grid, Settings, Solver, Table};
+use camlink_core::kinematics::{run, Solver};
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_model::{load_path, Loaded};
 
 /// Position tolerance (m or rad).

@@ -183,7 +183,8 @@ fn hundred_thousand_bodies_load_quickly() {
 /// What happens to a model that loads, at `stage`: the error or warning
 /// text, or a description of the diagnosis.
 fn outcome(loaded: &Loaded, stage: &str) -> String {
-    use camlink_core::kinematics::{run, time_grid, Settings, Table};
+    use camlink_core::kinematics::run;
+    use camlink_core::run::{time_grid, Settings, Table};
     let a = &loaded.analysis;
     match stage {
         "run" | "warning" => {
