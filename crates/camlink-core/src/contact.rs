@@ -30,7 +30,7 @@
 
 use crate::assembly::Assembly;
 use crate::constraint::{Constraint, Equations};
-use crate::curve::{Curve, Parametric, Radius};
+use crate::curve::Curve;
 use crate::math::{cross, dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
 
@@ -176,19 +176,6 @@ pub fn contact(c: &Constraint, q: &[[f64; 3]; 2], own: &[f64]) -> (V2, V2) {
     }
 }
 
-/// The centre of a circular curve (a roller) in its body frame.
-pub fn circle_centre(c: &Curve) -> Option<(V2, f64)> {
-    match c {
-        Curve::Polar(p) => match p.rho {
-            Radius::Const(r) => Some((p.q, r)),
-            _ => None,
-        },
-        Curve::Parametric(Parametric::Circle { c, r, .. })
-        | Curve::Parametric(Parametric::Arc { c, r, .. }) => Some((*c, *r)),
-        _ => None,
-    }
-}
-
 /// The follower body of a contact joint (see the module notes); `None`
 /// for other joints.
 pub fn follower_body(model: &Model, c: &Constraint) -> Option<BodyId> {
@@ -243,7 +230,9 @@ fn follower(model: &Model, c: &Constraint) -> Option<Follower> {
     if fb.is_ground() {
         return None;
     }
-    let roller = curve.and_then(circle_centre).map(|(centre, _)| centre);
+    let roller = curve
+        .and_then(Curve::circle_centre)
+        .map(|(centre, _)| centre);
     if let Some(guide) = guide(model, fb) {
         return Some(Follower {
             guide,

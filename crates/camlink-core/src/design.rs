@@ -27,11 +27,9 @@ use std::fmt;
 
 use crate::assembly::Assembly;
 use crate::constraint::Constraint;
-use crate::contact::circle_centre;
 use crate::curve::Curve;
-use crate::kinematics::AnalysisError;
-use crate::math::cross;
 use crate::model::Model;
+use crate::run::AnalysisError;
 
 /// Samples per curve for the pre-run checks.
 const SAMPLES: usize = 720;
@@ -79,7 +77,7 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
     for (k, j) in model.joints.iter().enumerate() {
         match &j.constraint {
             Constraint::FlatFollower(ff) => {
-                let Some(o) = orientation(&ff.curve_i) else {
+                let Some(o) = ff.curve_i.orientation() else {
                     continue;
                 };
                 let tol = FLAT * ff.curve_i.max_curvature(SAMPLES);
@@ -106,7 +104,7 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                 let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) else {
                     continue;
                 };
-                let Some(o) = orientation(cam) else {
+                let Some(o) = cam.orientation() else {
                     continue;
                 };
                 // Smallest concave radius of curvature, sampled.
@@ -192,7 +190,7 @@ impl StepGuard {
                 Constraint::PointFollower(pf) => ends(0, &pf.curve_j),
                 Constraint::FlatFollower(ff) => {
                     ends(0, &ff.curve_i);
-                    if let Some(o) = orientation(&ff.curve_i) {
+                    if let Some(o) = ff.curve_i.orientation() {
                         let tol = STEP_TOL * ff.curve_i.max_curvature(SAMPLES);
                         items.push(Item {
                             joint: k,
@@ -205,7 +203,7 @@ impl StepGuard {
                     ends(0, &cf.curve_i);
                     ends(1, &cf.curve_j);
                     if let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) {
-                        if let Some(o) = orientation(cam) {
+                        if let Some(o) = cam.orientation() {
                             items.push(Item {
                                 joint: k,
                                 own: which,
@@ -259,9 +257,10 @@ impl StepGuard {
                     if a >= s0 - tol && a <= s1 + tol {
                         continue;
                     }
+                    let (end, at) = if a > s1 { ("upper", s1) } else { ("lower", s0) };
                     format!(
-                        "the contact ran off the end of the open curve of joint '{}': \
-                         {name} = {a} is outside its range [{s0}, {s1}]",
+                        "the contact ran off the {end} end ({at}) of the open curve of joint \
+                         '{}': {name} = {a} is outside its range [{s0}, {s1}]",
                         joint.name
                     )
                 }
@@ -326,28 +325,11 @@ fn joint_own_name(c: &Constraint, own: usize) -> &'static str {
 /// (cam, roller radius, which own coordinate runs on the cam) when exactly
 /// one of the two curves is a circle and the other is closed.
 fn roller_pair<'a>(ci: &'a Curve, cj: &'a Curve) -> Option<(&'a Curve, f64, usize)> {
-    match (circle_centre(ci), circle_centre(cj)) {
+    match (ci.circle_centre(), cj.circle_centre()) {
         (None, Some((_, r))) if ci.closed() => Some((ci, r, 0)),
         (Some((_, r)), None) if cj.closed() => Some((cj, r, 1)),
         _ => None,
     }
-}
-
-/// +1 for a counterclockwise closed curve, −1 for a clockwise one (the sign
-/// of its enclosed area ½∮ p × p′ ds); `None` for an open curve.
-pub fn orientation(c: &Curve) -> Option<f64> {
-    if !c.closed() {
-        return None;
-    }
-    let (s0, s1) = c.range();
-    let h = (s1 - s0) / SAMPLES as f64;
-    let area: f64 = (0..SAMPLES)
-        .map(|k| {
-            let j = c.jet(s0 + (k as f64 + 0.5) * h);
-            cross(j.p, j.d1)
-        })
-        .sum();
-    Some(if area < 0.0 { -1.0 } else { 1.0 })
 }
 
 /// A parameter value with its unit: rad and degrees for a polar profile,
@@ -443,7 +425,7 @@ mod tests {
             })
             .collect();
         let c: Curve = Parametric::spline(&pts, true).unwrap().into();
-        assert_eq!(orientation(&c), Some(-1.0));
+        assert_eq!(c.orientation(), Some(-1.0));
         let ff = FlatFollower::new(BodyId(1), c, BodyId(2), [0.0; 2], [1.0, 0.0]);
         assert!(check(&model_with(ff.unwrap())).is_empty());
     }

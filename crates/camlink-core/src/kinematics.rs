@@ -23,94 +23,10 @@ use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::levenberg_marquardt;
-use crate::dynamics::contact_force::LiftOff;
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
+use crate::math::{max_abs, norm2};
 use crate::model::{BodyId, Model};
-
-/// Solver settings.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// Newton stops when max |Φ| ≤ tol (m or rad).
-    pub tol: f64,
-    /// Newton iterations allowed per time step.
-    pub max_iter: usize,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            tol: 1e-10,
-            max_iter: 25,
-        }
-    }
-}
-
-/// A body point whose motion is output, as channels
-/// `<name>.x .y .vx .vy .ax .ay`.
-#[derive(Clone, Debug)]
-pub struct PointOutput {
-    pub body: BodyId,
-    /// Channel prefix, e.g. `coupler.P`.
-    pub name: String,
-    /// The point in the body frame (m).
-    pub s: V2,
-}
-
-/// Receives results as the run goes.
-pub trait Sink {
-    /// Called once before the first row with the channel names (not `t`).
-    fn begin(&mut self, channels: &[String]);
-    /// One time step: time t (s) and the values, in channel order.
-    fn row(&mut self, t: f64, values: &[f64]);
-}
-
-/// A sink that keeps everything in memory, row by row.
-#[derive(Clone, Debug, Default)]
-pub struct Table {
-    pub channels: Vec<String>,
-    pub t: Vec<f64>,
-    /// Row-major values, `channels.len()` per step.
-    pub values: Vec<f64>,
-}
-
-impl Table {
-    /// The series of one channel.
-    pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
-        let k = self.channels.iter().position(|c| c == name)?;
-        let w = self.channels.len();
-        Some(self.values.chunks(w).map(|row| row[k]).collect())
-    }
-}
-
-impl Sink for Table {
-    fn begin(&mut self, channels: &[String]) {
-        self.channels = channels.to_vec();
-    }
-    fn row(&mut self, t: f64, values: &[f64]) {
-        self.t.push(t);
-        self.values.extend_from_slice(values);
-    }
-}
-
-/// How a run went.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Summary {
-    pub steps: usize,
-    pub newton_iterations: usize,
-    pub factorizations: usize,
-    /// Steps retried as two half steps.
-    pub halvings: usize,
-    /// (time in s, message) of each warning.
-    pub warnings: Vec<(f64, String)>,
-    /// How assembly moved each body from its given placement:
-    /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
-    pub assembly_moves: Vec<(String, [f64; 3])>,
-    /// Intervals where a cam contact's normal force is negative (the
-    /// follower would leave the cam), by start time; each is also a
-    /// warning. Filled by inverse and forward dynamics.
-    pub lift_off: Vec<LiftOff>,
-}
+use crate::run::{channels, fill_outputs, AnalysisError, PointOutput, Settings, Sink, Summary};
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
 pub const MAX_HALVINGS: u32 = 8;
@@ -121,19 +37,6 @@ pub const NEAR_SINGULAR: f64 = 1e-3;
 /// Largest correction of an angle (rad) from the predicted position that
 /// still counts as continuous motion; a larger one is treated as a jump.
 pub const JUMP_ANGLE: f64 = 0.2;
-
-/// An analysis that cannot proceed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("at t = {time} s: {message}")]
-pub struct AnalysisError {
-    /// Time (s) of the step that failed.
-    pub time: f64,
-    pub message: String,
-    /// Joints whose equations are involved.
-    pub joints: Vec<String>,
-    /// Largest |Φ| at failure (m or rad).
-    pub residual: f64,
-}
 
 /// What `check` reports about a model.
 #[derive(Clone, Debug, PartialEq)]
@@ -168,48 +71,6 @@ pub fn check(model: &Model) -> Report {
             })
             .collect(),
     }
-}
-
-/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
-pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
-    if !(step.is_finite() && step > 0.0) {
-        return Err(format!(
-            "the time step must be a positive number, not {step}"
-        ));
-    }
-    if !(t_end.is_finite() && t_end >= 0.0) {
-        return Err(format!("the end time must be a number ≥ 0, not {t_end}"));
-    }
-    let n = (t_end / step + 1e-9).floor() as usize;
-    if n > 100_000_000 {
-        return Err(format!(
-            "{n} steps ({t_end} s at {step} s) is more than 100 million; use a larger step"
-        ));
-    }
-    Ok((0..=n).map(|k| k as f64 * step).collect())
-}
-
-/// The output channel names of a run.
-pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
-    for (_, b) in model.moving_bodies() {
-        for c in ["x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha"] {
-            names.push(format!("{}.{c}", b.name));
-        }
-    }
-    for p in points {
-        for c in ["x", "y", "vx", "vy", "ax", "ay"] {
-            names.push(format!("{}.{c}", p.name));
-        }
-    }
-    for j in &model.joints {
-        for k in 0..j.constraint.own_count() {
-            let n = j.constraint.own_names().get(k).copied().unwrap_or("own");
-            names.push(format!("{}.{n}", j.name));
-        }
-    }
-    names.extend(Contacts::new(model).channels(model));
-    names
 }
 
 /// Position, velocity and acceleration analysis over `times`.
@@ -712,52 +573,6 @@ impl<'m> Solver<'m> {
             None => ([0.0; 3], [0.0; 3], [0.0; 3]),
         }
     }
-}
-
-/// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
-/// points, own coordinates, then contact outputs.
-pub fn fill_outputs(
-    model: &Model,
-    asm: &Assembly,
-    contacts: &Contacts,
-    state: [&[f64]; 3],
-    points: &[PointOutput],
-    out: &mut [f64],
-) {
-    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
-        match asm.body_col(id.0) {
-            Some(c) => [v[c], v[c + 1], v[c + 2]],
-            None => [0.0; 3],
-        }
-    };
-    let mut k = 0;
-    for (id, _) in model.moving_bodies() {
-        for v in state {
-            out[k..k + 3].copy_from_slice(&body(v, id));
-            k += 3;
-        }
-    }
-    for p in points {
-        let [q, qd, qdd] = state.map(|v| body(v, p.body));
-        let r = point(q, p.s);
-        let v = point_vel(q, qd, p.s);
-        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
-        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
-        let acc = [
-            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
-            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
-        ];
-        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
-        k += 6;
-    }
-    for (j, joint) in model.joints.iter().enumerate() {
-        let c = asm.own_col(j);
-        for o in 0..joint.constraint.own_count() {
-            out[k] = state[0][c + o];
-            k += 1;
-        }
-    }
-    contacts.fill(model, asm, state[0], &mut out[k..]);
 }
 
 /// Largest model (coordinates) whose Jacobian condition is computed for an

@@ -4,7 +4,7 @@
 
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::dynamics::integrator;
-use camlink_core::kinematics::Table;
+use camlink_core::run::Table;
 use camlink_core::{Body, BodyId, Model};
 
 #[test]

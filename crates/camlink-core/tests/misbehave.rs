@@ -5,7 +5,8 @@ mod common;
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, Coord};
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
-use camlink_core::kinematics::{run, time_grid, Settings, Table};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_core::{BodyId, TimeFn};
 use common::{four_bar_with, slider_crank};
 

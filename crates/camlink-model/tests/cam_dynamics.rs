@@ -6,9 +6,10 @@
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::path::{Path, PathBuf};
 
-use camlink_core::dynamics::contact_force::{lift_off, LiftOff};
+use camlink_core::dynamics::contact_force::lift_off;
 use camlink_core::dynamics::{integrator, inverse};
-use camlink_core::kinematics::{self, Settings, Summary, Table};
+use camlink_core::run::LiftOff;
+use camlink_core::run::{Settings, Summary, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 const EXAMPLE: &str = "cam_valve_spring.toml";
@@ -285,7 +286,7 @@ fn valve_spring_forward_dynamics_reports_lift_off() {
         ]);
         // A turn at half the given speed.
         let period = 120.0 / rpm;
-        let times = kinematics::time_grid(period, period / 360.0).unwrap();
+        let times = camlink_core::run::time_grid(period, period / 360.0).unwrap();
         let settings = integrator::Settings {
             step: period / 2880.0,
             tol: 1e-8,

@@ -14,12 +14,13 @@ use std::sync::Arc;
 
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
-use camlink_core::dynamics::contact_force::LiftOff;
-use camlink_core::dynamics::force::callback::Callback;
 use camlink_core::dynamics::integrator::{self, Adaptive};
-use camlink_core::dynamics::{inverse, statics, Force};
-use camlink_core::kinematics::{
-    self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
+use camlink_core::dynamics::{inverse, statics};
+use camlink_core::force::callback::Callback;
+use camlink_core::force::Force;
+use camlink_core::kinematics;
+use camlink_core::run::{
+    self, AnalysisError as CoreAnalysisError, LiftOff, PointOutput, Settings, Sink, Summary,
 };
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded};
@@ -233,7 +234,7 @@ impl Model {
     /// Applied forces: a list of dicts with name, kind and bodies.
     #[getter]
     fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        use camlink_core::dynamics::Applied;
+        use camlink_core::force::Applied;
         let model = &self.loaded.model;
         let list = PyList::empty(py);
         for f in &model.forces {
@@ -596,7 +597,7 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
 /// The run summary as a dict: counts, `warnings` as (t, message) pairs,
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
-fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
+fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
     d.set_item("newton_iterations", s.newton_iterations)?;
@@ -642,7 +643,7 @@ fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_
 /// results attached.
 fn analysis_error(
     py: Python<'_>,
-    e: &kinematics::AnalysisError,
+    e: &CoreAnalysisError,
     names: Vec<String>,
     data: Option<Bound<'_, PyArray2<f64>>>,
 ) -> PyErr {
@@ -745,7 +746,7 @@ impl Sink for ChunkSink {
 #[pyfunction]
 fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
     guard(|| {
-        let times = kinematics::time_grid(t_end, step).map_err(ModelError::new_err)?;
+        let times = run::time_grid(t_end, step).map_err(ModelError::new_err)?;
         Ok(times.into_pyarray(py))
     })
 }

@@ -16,9 +16,9 @@
 //! Body j of the [`Local`] view is the ground.
 
 use super::{CoordMask, Equations, Jac, Local, Rows, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, point, point_vel, rot, rot_d, sub, V2};
-use crate::model::BodyId;
 
 /// Which coordinate a coordinate constraint holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -31,9 +31,9 @@
 //! g̈* = A(−p′ φ̇² + 2 p″⊥ φ̇ α̇ + p‴ α̇²).
 
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{search, Carried, Curve};
 use crate::math::{cross, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct CamFollower {

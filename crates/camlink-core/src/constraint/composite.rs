@@ -17,8 +17,8 @@ use super::relative::{
     projection_gamma, projection_jac, projection_phi, rel, rel_centripetal, rel_vel, unit,
 };
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, rot_d, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct RevoluteRevolute {

@@ -31,9 +31,9 @@
 //! [`Curve::concave_ranges`](crate::curve::Curve::concave_ranges).
 
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{search, Carried, Curve};
 use crate::math::{dot, norm, perp, rot, rot_t, scale, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct FlatFollower {

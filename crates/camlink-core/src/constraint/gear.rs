@@ -29,8 +29,8 @@ use std::f64::consts::TAU;
 
 use super::relative::{projection_gamma, projection_jac, projection_phi, rel, rel_vel, unit};
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, point, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GearKind {

@@ -13,7 +13,6 @@
 //! Adding a constraint is one new file and one line in [`constraints!`].
 
 use crate::math::{point, rot_t, sub, V2};
-use crate::model::BodyId;
 
 pub mod absolute;
 pub mod cam_follower;
@@ -27,6 +26,19 @@ pub mod translational;
 
 #[cfg(any(test, feature = "check"))]
 pub mod check;
+
+/// Index of a body in [`Model::bodies`](crate::model::Model::bodies); body
+/// 0 is the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyId(pub usize);
+
+impl BodyId {
+    pub const GROUND: BodyId = BodyId(0);
+
+    pub fn is_ground(self) -> bool {
+        self == Self::GROUND
+    }
+}
 
 /// Most equations one constraint contributes.
 pub const MAX_ROWS: usize = 3;

@@ -22,10 +22,10 @@
 //! circle or spline slot, the user's parameter on an expression slot).
 
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{search, Carried, Curve};
 use crate::function::TimeFn;
 use crate::math::{rot_t, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct PointFollower {

@@ -17,8 +17,8 @@
 
 use super::relative::{projection_gamma, projection_jac, projection_phi, unit};
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{perp, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct Translational {

@@ -17,7 +17,7 @@
 //! closed curve (every polar profile, a closed parametric curve) bounds its
 //! body's material, with outward unit normal n_k = σ_k (−g_k⊥)/|g_k|,
 //! σ_k = +1 for a counterclockwise curve, −1 for a clockwise one
-//! ([`crate::design::orientation`]). Then:
+//! ([`Curve::orientation`]). Then:
 //!
 //! - cam–follower, both curves closed, touching from outside
 //!   (n_i · n_j < 0): N = F_j · n_i, the force on j pointing out of i;
@@ -47,10 +47,9 @@ use super::reaction::Reaction;
 use crate::assembly::Assembly;
 use crate::constraint::{Constraint, Equations};
 use crate::curve::Curve;
-use crate::design::orientation;
-use crate::kinematics::Summary;
 use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
+use crate::run::{Crossing, LiftOff, Summary};
 
 /// Samples of a curve for the mean point of an open curve.
 const MEAN_SAMPLES: usize = 64;
@@ -97,12 +96,12 @@ impl ContactForces {
                 let bi = j.constraint.bodies()[0];
                 let (sides, mean_i, cam) = match &j.constraint {
                     Constraint::CamFollower(c) => (
-                        [orientation(&c.curve_i), orientation(&c.curve_j)],
+                        [c.curve_i.orientation(), c.curve_j.orientation()],
                         mean(&c.curve_i),
                         Some(cam_body(model, &j.constraint)),
                     ),
                     Constraint::FlatFollower(c) => {
-                        ([orientation(&c.curve_i), None], mean(&c.curve_i), Some(bi))
+                        ([c.curve_i.orientation(), None], mean(&c.curve_i), Some(bi))
                     }
                     Constraint::PointFollower(_) => ([None; 2], [0.0; 2], None),
                     _ => return None,
@@ -217,69 +216,6 @@ fn cam_body(model: &Model, c: &Constraint) -> BodyId {
     match crate::contact::follower_body(model, c) {
         Some(f) if f == bi => bj,
         _ => bi,
-    }
-}
-
-/// A time and the cam angle then.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Crossing {
-    /// t (s).
-    pub time: f64,
-    /// φ of the cam body (rad); 0 for a cam fixed to the ground.
-    pub cam_angle: f64,
-}
-
-/// An interval where a cam contact's normal force is negative: the
-/// follower would leave the cam.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LiftOff {
-    pub joint: String,
-    /// The cam body's name.
-    pub cam: String,
-    /// Where N falls through zero: interpolated linearly between the last
-    /// output time with N ≥ 0 and the first with N < 0 (the first output
-    /// time when the run starts with N < 0).
-    pub start: Crossing,
-    /// Where N rises through zero again, interpolated likewise; `None`
-    /// when the run ends with N < 0.
-    pub end: Option<Crossing>,
-    /// The least normal force in the interval (N, negative) and where.
-    pub least: f64,
-    pub least_at: Crossing,
-}
-
-impl LiftOff {
-    /// The report, as the run summary's warning:
-    ///
-    /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
-    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
-    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
-    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
-    ///
-    /// The degrees are the cam angle folded into [0°, 360°).
-    pub fn message(&self) -> String {
-        let at = |c: &Crossing| {
-            format!(
-                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
-                c.time,
-                c.cam_angle,
-                c.cam_angle.to_degrees().rem_euclid(360.0)
-            )
-        };
-        let end = match &self.end {
-            Some(e) => format!("to {}", at(e)),
-            None => "to the end of the run".to_string(),
-        };
-        format!(
-            "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
-             least {:.4} N at {}",
-            self.joint,
-            self.cam,
-            at(&self.start),
-            end,
-            self.least,
-            at(&self.least_at)
-        )
     }
 }
 
@@ -421,7 +357,7 @@ impl LiftOffWatch {
 }
 
 /// The lift-off intervals in a finished table of dynamic results.
-pub fn lift_off(model: &Model, table: &crate::kinematics::Table) -> Vec<LiftOff> {
+pub fn lift_off(model: &Model, table: &crate::run::Table) -> Vec<LiftOff> {
     let mut w = LiftOffWatch::new(model, &table.channels);
     let width = table.channels.len().max(1);
     for (t, row) in table.t.iter().zip(table.values.chunks(width)) {

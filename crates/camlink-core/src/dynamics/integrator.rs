@@ -42,9 +42,9 @@ use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project;
 use super::system::{Augmented, Coefficients, System};
-use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
 use crate::math::max_abs;
 use crate::model::Model;
+use crate::run::{self, AnalysisError, PointOutput, Sink, Summary};
 
 /// A Newton correction larger than this fraction of the one before means
 /// the chord iteration has stalled: the next iteration refactors.
@@ -494,7 +494,7 @@ pub fn run(
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
     let contacts = crate::contact::Contacts::new(model);
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
@@ -514,7 +514,7 @@ pub fn run(
             }
             it.advance_to(t, &mut h_next)?;
         }
-        kinematics::fill_outputs(
+        run::fill_outputs(
             model,
             &it.sys.asm,
             &contacts,

@@ -16,9 +16,10 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::system::System;
-use crate::kinematics::{self, AnalysisError, PointOutput, Settings, Sink, Summary};
+use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
+use crate::run::{self, AnalysisError, PointOutput, Settings, Sink, Summary};
 
 /// The state and scratch of an inverse-dynamics run; allocated once.
 pub struct InverseSolver<'m> {
@@ -101,7 +102,7 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let mut s = InverseSolver::new(model, settings.clone())?;
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);

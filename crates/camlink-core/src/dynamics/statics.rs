@@ -22,9 +22,10 @@
 use super::output::{self, Scratch};
 use super::project;
 use super::system::{Augmented, Coefficients, System};
-use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary, MAX_ANGLE_STEP};
+use crate::kinematics::MAX_ANGLE_STEP;
 use crate::math::{max_abs, norm2};
 use crate::model::Model;
+use crate::run::{self, AnalysisError, PointOutput, Sink, Summary};
 
 /// Equilibrium solver settings.
 #[derive(Clone, Debug)]
@@ -198,13 +199,13 @@ pub fn run(
     let e = solve(model, t, settings)?;
     let s = System::new(model);
     let contacts = crate::contact::Contacts::new(model);
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let zeros = vec![0.0; s.n()];
-    kinematics::fill_outputs(
+    run::fill_outputs(
         model,
         &s.asm,
         &contacts,

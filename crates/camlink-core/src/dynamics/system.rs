@@ -22,10 +22,10 @@
 
 use std::collections::HashMap;
 
-use super::force::{Applied, BodyJac, BodyQ};
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
+use crate::force::{Applied, BodyJac, BodyQ};
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::model::Model;
 
