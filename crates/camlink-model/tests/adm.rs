@@ -7,7 +7,8 @@ use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use camlink_core::dynamics::integrator;
-use camlink_core::kinematics::{self, time_grid, Settings, Table};
+use camlink_core::kinematics;
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_model::adm::{convert_adm, describe_str, load_adm};
 use camlink_model::{load_path, load_str, Format, LoadError, Loaded};
 
