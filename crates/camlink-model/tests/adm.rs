@@ -551,3 +551,77 @@ fn empty_body_is_the_ground_and_a_numeric_fun_a_constant() {
     assert_eq!(e.field.as_deref(), Some("constraints[0].fun"), "{e}");
     assert!(e.message.contains("function of t"), "{e}");
 }
+
+/// Each kind of mistake names its entry and field.
+#[test]
+fn mistakes_by_kind_name_the_entry_and_field() {
+    let cases: &[(&str, &str, &str)] = &[
+        (
+            r#"{"bodies": [{"name": "a", "id": 1, "q0": [0, 0, 0]}, {"name": "b", "id": 1, "q0": [0, 0, 0]}]}"#,
+            "bodies[1].id",
+            "body 'b' (id 1): id 1 is also the id of bodies[0]",
+        ),
+        (
+            r#"{"bodies": [{"name": "a", "id": 1, "mass": -2, "q0": [0, 0, 0]}]}"#,
+            "bodies[0].mass",
+            "body 'a' (id 1): mass must not be negative",
+        ),
+        (
+            r#"{"bodies": [{"name": "a", "id": 1, "q0": [0, 0]}]}"#,
+            "bodies[0].q0",
+            "body 'a' (id 1): invalid length 2",
+        ),
+        (
+            &one_constraint(r#"{"name": "j", "id": 2, "type": "RevoluteJoint", "sP1": [0, 0], "sP2": [0, 0]}"#),
+            "constraints[0].body2",
+            "constraint 'j' (id 2): both bodies are the ground",
+        ),
+        (
+            &one_constraint(r#"{"name": "j", "id": 2, "type": "RevoluteJoint", "body1": 1, "sP1": [0, 0], "body2": 1, "sP2": [0, 0]}"#),
+            "constraints[0].body2",
+            "constraint 'j' (id 2): body1 and body2 are the same body",
+        ),
+        (
+            &one_constraint(r#"{"name": "j", "id": 2, "type": "RevoluteJoint", "sP1": [0, 0], "body2": 1, "sP2": [0, 0], "fun": "t"}"#),
+            "constraints[0].fun",
+            "constraint 'j' (id 2): a RevoluteJoint takes no function",
+        ),
+        (
+            &one_constraint(r#"{"name": "s", "id": 3, "type": "TranslationalJoint", "sP1": [0, 0], "vP1": [0, 0], "body2": 1, "sP2": [0, 0], "vP2": [1, 0]}"#),
+            "constraints[0].vP1",
+            "constraint 's' (id 3): the direction vector is zero",
+        ),
+        (
+            &one_constraint(r#"{"name": "r", "id": 4, "type": "RackPinion", "sP1": [0, 0], "sQ1": [1, 0], "body2": 1, "sP2": [0, 0], "R2": 0, "theta1": 0, "theta2": 0}"#),
+            "constraints[0].R2",
+            "constraint 'r' (id 4): the pitch radius R2 must be positive",
+        ),
+        (
+            &one_constraint(r#"{"name": "r", "id": 4, "type": "RackPinion", "sP1": [1, 0], "sQ1": [1, 0], "body2": 1, "sP2": [0, 0], "R2": 1, "theta1": 0, "theta2": 0}"#),
+            "constraints[0].sQ1",
+            "constraint 'r' (id 4): sQ1 equals sP1",
+        ),
+        (
+            &format!("{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"p\", \"id\": 5, \"type\": \"PointForce\", \"body1\": 1, \"sP1\": [0, 0], \"frame\": \"XYZ\"}}]}}"),
+            "forces[0].frame",
+            "force 'p' (id 5): unknown frame 'XYZ'",
+        ),
+        (
+            &format!("{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"k\", \"id\": 6, \"type\": \"RSDA1\", \"body1\": 1, \"theta0\": 0, \"k\": -1, \"c\": 0}}]}}"),
+            "forces[0].k",
+            "force 'k' (id 6): k must not be negative",
+        ),
+        (
+            &format!("{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"k\", \"id\": 6, \"type\": \"RSDA1\", \"theta0\": 0, \"k\": 1, \"c\": 0}}]}}"),
+            "forces[0].body1",
+            "force 'k' (id 6): missing field `body1`",
+        ),
+    ];
+    for (adm, field, message) in cases {
+        let e = load_adm_text(adm, None).unwrap_err();
+        assert_eq!(e.source, "bad.adm");
+        assert_eq!(e.field.as_deref(), Some(*field), "{e}");
+        assert!(e.message.starts_with(message), "{e}\nexpected: {message}");
+        assert!(e.line.is_some(), "{e}");
+    }
+}
