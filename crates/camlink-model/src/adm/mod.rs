@@ -215,10 +215,15 @@ impl Described {
     /// A resolver error at description path `path`, placed in the `.adm`
     /// (or the `.acf` for `analysis.*`).
     fn locate(&self, path: &str, message: &str) -> LoadError {
-        if path.starts_with("analysis") {
-            if let Some(acf) = &self.acf {
-                return acf.error("", None, &format!("{message} ({path})"));
-            }
+        if let (Some(key), Some(acf)) = (path.strip_prefix("analysis"), &self.acf) {
+            // The [analysis] keys come from these .acf fields.
+            let field = match key.trim_start_matches('.') {
+                "t_end" => "tend",
+                "step" => "outputSteps",
+                "h" => "stepSize",
+                _ => "simulation",
+            };
+            return acf.error(field, None, message);
         }
         let entry = self.origins.iter().find(|o| {
             path.strip_prefix(o.prefix.as_str()).is_some_and(|rest| {
