@@ -276,7 +276,7 @@ pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
     Ok(text)
 }
 
-fn too_large(source: &str, len: Option<u64>) -> LoadError {
+pub(crate) fn too_large(source: &str, len: Option<u64>) -> LoadError {
     let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,

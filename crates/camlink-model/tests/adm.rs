@@ -627,3 +627,13 @@ fn mistakes_by_kind_name_the_entry_and_field() {
         assert!(e.line.is_some(), "{e}");
     }
 }
+
+#[test]
+fn a_text_over_the_size_limit_is_refused() {
+    let big = format!(
+        "{{\"pad\": \"{}\"}}",
+        " ".repeat(camlink_model::MAX_FILE_SIZE as usize)
+    );
+    let e = load_adm_text(&big, None).unwrap_err();
+    assert!(e.message.contains("too large"), "{e}");
+}

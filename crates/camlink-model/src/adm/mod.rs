@@ -40,6 +40,9 @@ impl Json {
     }
 
     fn parse(text: String, source: String) -> Result<Json, LoadError> {
+        if text.len() as u64 > crate::MAX_FILE_SIZE {
+            return Err(crate::too_large(&source, Some(text.len() as u64)));
+        }
         let text = text
             .strip_prefix('\u{feff}')
             .map(str::to_string)
