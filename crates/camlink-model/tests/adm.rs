@@ -421,6 +421,13 @@ fn arithmetic_is_accepted_where_a_number_is_expected() {
     .unwrap_err();
     assert_eq!(e.field.as_deref(), Some("bodies[0].mass"), "{e}");
     assert!(e.message.contains("unknown function 'system'"), "{e}");
+    let e = load_adm_text(
+        r#"{"bodies": [{"id": 1, "jbar": 1/0, "q0": [0, 0, 0]}]}"#,
+        None,
+    )
+    .unwrap_err();
+    assert_eq!(e.field.as_deref(), Some("bodies[0].jbar"), "{e}");
+    assert!(e.message.contains("division by zero"), "{e}");
 }
 
 #[test]
