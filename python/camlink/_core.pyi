@@ -20,6 +20,7 @@ class ModelError(ValueError):
 class AnalysisError(RuntimeError):
     """An analysis could not proceed; carries the results computed so far."""
 
+    kind: str
     time: float
     joints: list[str]
     residual: float

@@ -148,8 +148,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"Δφ = {dphi:.6g} rad",
                 file=sys.stderr,
             )
-    for t, message in summary.get("warnings", []):
-        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
+    for w in summary.get("warnings", []):
+        print(f"camlink: warning: {w}", file=sys.stderr)
     if args.verbose:
         counts = ", ".join(
             f"{k.replace('_', ' ')} {summary[k]}"

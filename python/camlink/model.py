@@ -14,6 +14,7 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import AnalysisError, ModelError
+from camlink.errors import warnings_from
 from camlink.results import Results, open_writer
 
 __all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
@@ -405,6 +406,7 @@ class Model:
             if writer is not None:
                 writer.close(names)
         summary["analysis"] = kind
+        summary["warnings"] = warnings_from(summary["warnings"])
         return Results(names, data, model=self.name, summary=summary)
 
     def __repr__(self) -> str:

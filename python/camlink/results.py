@@ -66,7 +66,7 @@ class Results:
         self.model = model
         self.complete = complete
         #: The ``analysis`` run, solver counts (steps, newton_iterations,
-        #: factorizations, halvings), ``warnings`` as (t, message) pairs and
+        #: factorizations, halvings), ``warnings`` as `camlink.RunWarning` records and
         #: ``assembly_moves`` as (body, (Δx, Δy, Δφ)) for bodies that
         #: assembly moved, ``lift_off`` as a list of dicts (the rows of
         #: `lift_off`); forward dynamics adds ``energy_drift``,

@@ -30,7 +30,7 @@ use crate::constraint::Feature;
 use crate::contact::ContactView;
 use crate::curve::Curve;
 use crate::model::Model;
-use crate::run::AnalysisError;
+use crate::run::{AnalysisError, Kind};
 
 /// Samples per curve for the pre-run checks.
 const SAMPLES: usize = 720;
@@ -266,16 +266,19 @@ impl StepGuard {
                 continue;
             };
             let name = view.own_name(it.own);
-            let message = match it.watch {
+            let (kind, message) = match it.watch {
                 Watch::Ends { s0, s1 } => {
                     let tol = 1e-9 * (s1 - s0);
                     if a >= s0 - tol && a <= s1 + tol {
                         continue;
                     }
-                    format!(
-                        "the contact ran off the end of the open curve of joint '{}': \
+                    (
+                        Kind::OffCurve,
+                        format!(
+                            "the contact ran off the end of the open curve of joint '{}': \
                          {name} = {a} is outside its range [{s0}, {s1}]",
-                        joint.name
+                            joint.name
+                        ),
                     )
                 }
                 Watch::Convex { o, tol } => {
@@ -283,13 +286,16 @@ impl StepGuard {
                     if k >= -tol {
                         continue;
                     }
-                    format!(
-                        "the flat-faced follower of joint '{}' touches the cam where it is \
+                    (
+                        Kind::Undercut,
+                        format!(
+                            "the flat-faced follower of joint '{}' touches the cam where it is \
                          concave ({name} = {}, radius of curvature {:.6} m): a flat face \
                          cannot follow this profile",
-                        joint.name,
-                        value(curve, a),
-                        -1.0 / k
+                            joint.name,
+                            value(curve, a),
+                            -1.0 / k
+                        ),
                     )
                 }
                 Watch::Roller { o, r } => {
@@ -297,22 +303,22 @@ impl StepGuard {
                     if k >= -(1.0 + STEP_TOL) / r {
                         continue;
                     }
-                    format!(
-                        "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
+                    (
+                        Kind::Undercut,
+                        format!(
+                            "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
                          with a smaller radius of curvature ({:.6} m at {name} = {}): the cam \
                          is undercut there",
-                        joint.name,
-                        -1.0 / k,
-                        value(curve, a)
+                            joint.name,
+                            -1.0 / k,
+                            value(curve, a)
+                        ),
                     )
                 }
             };
-            return Err(AnalysisError {
-                time: t,
-                message,
-                joints: vec![joint.name.clone()],
-                residual: 0.0,
-            });
+            return Err(
+                AnalysisError::new(kind, t, message).at_joints(vec![joint.name.clone()], 0.0)
+            );
         }
         Ok(())
     }

@@ -578,7 +578,8 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .collect()
 }
 
-/// The run summary as a dict: counts, `warnings` as (t, message) pairs,
+/// The run summary as a dict: counts, `warnings` as dicts (`kind`, `time`,
+/// `joints`, `message`),
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
 fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
@@ -587,7 +588,16 @@ fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict
     d.set_item("newton_iterations", s.newton_iterations)?;
     d.set_item("factorizations", s.factorizations)?;
     d.set_item("halvings", s.halvings)?;
-    d.set_item("warnings", s.warnings.clone())?;
+    let warnings = PyList::empty(py);
+    for w in &s.warnings {
+        let wd = PyDict::new(py);
+        wd.set_item("kind", w.kind.name())?;
+        wd.set_item("time", w.time)?;
+        wd.set_item("joints", w.joints.clone())?;
+        wd.set_item("message", &w.message)?;
+        warnings.append(wd)?;
+    }
+    d.set_item("warnings", warnings)?;
     d.set_item("assembly_moves", s.assembly_moves.clone())?;
     let lift_off = PyList::empty(py);
     for l in &s.lift_off {
@@ -634,6 +644,7 @@ fn analysis_error(
     let err = AnalysisError::new_err(e.to_string());
     let value = err.value(py);
     let set = || -> PyResult<()> {
+        value.setattr("kind", e.kind.name())?;
         value.setattr("time", e.time)?;
         value.setattr("joints", e.joints.clone())?;
         value.setattr("residual", e.residual)?;

@@ -50,7 +50,7 @@ use crate::contact::ContactView;
 use crate::curve::Curve;
 use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
-use crate::run::{Crossing, LiftOff, Summary};
+use crate::run::{Crossing, Kind, LiftOff, Summary, Warning};
 
 /// Samples of a curve for the mean point of an open curve.
 const MEAN_SAMPLES: usize = 64;
@@ -320,7 +320,12 @@ impl LiftOffWatch {
     /// data in `summary.lift_off`.
     pub fn report(self, summary: &mut Summary) {
         for l in self.finish() {
-            summary.warnings.push((l.start.time, l.message()));
+            summary.warnings.push(Warning {
+                kind: Kind::LiftOff,
+                time: l.start.time,
+                joints: vec![l.joint.clone()],
+                message: l.message(),
+            });
             summary.lift_off.push(l);
         }
     }
@@ -435,7 +440,12 @@ mod tests {
             w.observe(t, &[na, t, nb, 2.0 * t]);
         }
         let mut summary = Summary {
-            warnings: vec![(0.25, "an earlier warning".into())],
+            warnings: vec![Warning {
+                kind: Kind::NearSingular,
+                time: 0.25,
+                joints: Vec::new(),
+                message: "an earlier warning".into(),
+            }],
             ..Summary::default()
         };
         w.report(&mut summary);
@@ -455,8 +465,20 @@ mod tests {
                 cam_angle: 1.5
             })
         );
-        let mut want = vec![(0.25, "an earlier warning".to_string())];
-        want.extend(summary.lift_off.iter().map(|l| (l.start.time, l.message())));
-        assert_eq!(summary.warnings, want);
+        let mut want = vec![(Kind::NearSingular, 0.25, "an earlier warning".to_string())];
+        want.extend(
+            summary
+                .lift_off
+                .iter()
+                .map(|l| (Kind::LiftOff, l.start.time, l.message())),
+        );
+        let got: Vec<_> = summary
+            .warnings
+            .iter()
+            .map(|w| (w.kind, w.time, w.message.clone()))
+            .collect();
+        assert_eq!(got, want);
+        // A lift-off warning names its joint.
+        assert_eq!(summary.warnings[1].joints, ["b"]);
     }
 }
