@@ -17,7 +17,7 @@ from camlink._core import AnalysisError, ModelError
 from camlink.errors import warnings_from
 from camlink.results import Results, open_writer
 
-__all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
+__all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 
 #: Rows computed between two writes of a run's ``output`` file.
 CHUNK_ROWS = 1024
@@ -206,12 +206,13 @@ class Model:
                 hint = f" (it is a setting of {', '.join(users)})" if users else ""
                 raise ModelError(f"`{key}` does not apply to the {kind} analysis{hint}")
         kwargs = {k: v for k, v in given.items() if k in allowed}
-        method = {
+        methods: dict[str, Callable[..., Results]] = {
             "kinematics": self.kinematics,
             "inverse_dynamics": self.inverse_dynamics,
             "equilibrium": self.equilibrium,
             "dynamics": self.simulate,
-        }[kind]
+        }
+        method = methods[kind]
         return method(output=output, **kwargs)
 
     def kinematics(

@@ -6,7 +6,7 @@ from __future__ import annotations
 import difflib
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -16,7 +16,7 @@ from camlink._core import ModelError
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["Results", "open_writer", "SUFFIXES", "LIFT_OFF_COLUMNS"]
+__all__ = ["LIFT_OFF_COLUMNS", "SUFFIXES", "Results", "open_writer"]
 
 #: File name suffixes `Results.save` and the `output=` of a run understand.
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
@@ -53,7 +53,7 @@ class Results:
         *,
         model: str = "",
         complete: bool = True,
-        summary: dict | None = None,
+        summary: dict[str, Any] | None = None,
     ) -> None:
         data = np.asarray(data, dtype=np.float64)
         if data.ndim != 2 or (names and data.shape[1] != len(names)):
@@ -222,11 +222,11 @@ class _ParquetWriter:
 
     def __init__(self, path: Path) -> None:
         self.path = path
-        self._writer = None
+        self._writer: Any = None
         # Fail now, not after the run, if the file cannot be written.
         path.open("wb").close()
 
-    def _table(self, names: list[str], rows: npt.NDArray[np.float64]):
+    def _table(self, names: list[str], rows: npt.NDArray[np.float64]) -> Any:
         import pyarrow as pa
 
         return pa.table({n: rows[:, k] for k, n in enumerate(names)})

@@ -174,7 +174,7 @@ def test_an_exception_in_a_python_force_stops_the_run():
     with pytest.raises(camlink.ModelError, match="no moving body named 'ground'"):
         pendulum().with_force("f", "ground", broken)
     with pytest.raises(camlink.ModelError, match="must be callable"):
-        pendulum().with_force("f", "arm", 3.0)
+        pendulum().with_force("f", "arm", 3.0)  # type: ignore[arg-type]
 
 
 def test_equilibrium_at_a_time_and_output_file(tmp_path):

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
@@ -27,7 +29,7 @@ def test_columns_by_name():
 
 
 def test_unknown_channel_suggests_close_names():
-    with pytest.raises(KeyError, match="did you mean 'arm.phi'"):
+    with pytest.raises(KeyError, match=r"did you mean 'arm\.phi'"):
         synthetic()["arm.ph"]
 
 
@@ -36,7 +38,7 @@ def test_to_pandas_is_indexed_by_time():
     assert isinstance(df, pd.DataFrame)
     assert df.index.name == "t"
     assert list(df.columns) == ["arm.phi", "arm.omega"]
-    assert df.loc[0.5, "arm.phi"] == pytest.approx(np.sin(0.5))
+    assert df["arm.phi"].loc[0.5] == pytest.approx(np.sin(0.5))
 
 
 def test_lift_off_is_a_frame_with_one_row_per_interval():
@@ -63,7 +65,8 @@ def test_lift_off_is_a_frame_with_one_row_per_interval():
 
 
 def test_lift_off_without_intervals_is_an_empty_frame_with_the_columns():
-    for summary in ({}, {"lift_off": []}):
+    summaries: tuple[dict[str, Any], ...] = ({}, {"lift_off": []})
+    for summary in summaries:
         res = synthetic()
         res.summary = summary
         df = res.lift_off
