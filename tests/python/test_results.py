@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 import pytest
 
 import camlink
-from camlink.results import LIFT_OFF_COLUMNS, Results
+from camlink.results import LIFT_OFF_COLUMNS, LiftOffRecord, Results, RunSummary
 
 
 def synthetic() -> Results:
@@ -42,7 +40,7 @@ def test_to_pandas_is_indexed_by_time():
 
 
 def test_lift_off_is_a_frame_with_one_row_per_interval():
-    closed = dict(
+    closed = LiftOffRecord(
         joint="bucket",
         cam="cam",
         start_time=0.1,
@@ -53,7 +51,9 @@ def test_lift_off_is_a_frame_with_one_row_per_interval():
         least_time=0.15,
         least_cam_angle=1.57,
     )
-    still_open = {**closed, "start_time": 0.9, "end_time": None, "end_cam_angle": None}
+    still_open = LiftOffRecord(
+        {**closed, "start_time": 0.9, "end_time": None, "end_cam_angle": None}
+    )
     res = synthetic()
     res.summary = {"lift_off": [closed, still_open]}
     df = res.lift_off
@@ -65,7 +65,7 @@ def test_lift_off_is_a_frame_with_one_row_per_interval():
 
 
 def test_lift_off_without_intervals_is_an_empty_frame_with_the_columns():
-    summaries: tuple[dict[str, Any], ...] = ({}, {"lift_off": []})
+    summaries: tuple[RunSummary, ...] = ({}, {"lift_off": []})
     for summary in summaries:
         res = synthetic()
         res.summary = summary
