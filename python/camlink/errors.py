@@ -27,6 +27,7 @@ ERROR_KINDS: Final = (
     "singular_mass",
     "off_curve",
     "undercut",
+    "internal",
 )
 
 #: The kinds a `RunWarning` may have.

@@ -22,7 +22,7 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
-use crate::diagnose::levenberg_marquardt;
+use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2};
 use crate::model::{BodyId, Model};
@@ -187,7 +187,8 @@ impl<'m> Solver<'m> {
         Ok(Solver {
             model,
             settings,
-            jac: SystemMatrix::new(n, &pattern),
+            jac: SystemMatrix::try_new(n, &pattern)
+                .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             rhs: vec![0.0; n],
@@ -352,7 +353,8 @@ impl<'m> Solver<'m> {
     /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
     /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
     /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
-    /// singular.
+    /// singular (for models of at most [`DENSE_MAX`] coordinates; a larger
+    /// one stops with the singular joint named).
     pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
         let angles = self.asm.angle_mask(self.model);
         let mut trial = self.q.clone();
@@ -372,8 +374,10 @@ impl<'m> Solver<'m> {
             }
             // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
             self.rhs.copy_from_slice(&phi);
+            // Levenberg–Marquardt is dense: up to the diagnosis' size only.
             match self.refactor(t) {
                 Ok(()) => self.jac.solve(&mut self.rhs),
+                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
                 Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
             }
             self.summary.newton_iterations += 1;

@@ -126,6 +126,9 @@ pub enum Kind {
     /// A flat face touches a concave part of its cam, or a roller a hollow
     /// narrower than itself.
     Undercut,
+    /// A solver could not be set up (a matrix pattern faer refuses, or no
+    /// memory for it): a bug to report.
+    Internal,
     /// Warning: Φ_q is close to singular (a toggle or dead-centre position).
     NearSingular,
     /// Warning: a cam contact's normal force is negative; the follower
@@ -135,7 +138,7 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 13] = [
+    pub const ALL: [Kind; 14] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -147,6 +150,7 @@ impl Kind {
         Kind::SingularMass,
         Kind::OffCurve,
         Kind::Undercut,
+        Kind::Internal,
         Kind::NearSingular,
         Kind::LiftOff,
     ];
@@ -165,6 +169,7 @@ impl Kind {
             Kind::SingularMass => "singular_mass",
             Kind::OffCurve => "off_curve",
             Kind::Undercut => "undercut",
+            Kind::Internal => "internal",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
         }

@@ -194,7 +194,8 @@ impl<'m> Integrator<'m> {
             let c = sys.asm.body_col(id.0).expect("moving body");
             qd[c..c + 3].copy_from_slice(&b.qd0);
         }
-        let mut aug = Augmented::new(&sys, &q);
+        let mut aug =
+            Augmented::new(&sys, &q).map_err(|e| fail(Kind::Internal, e.to_string(), 0.0))?;
         // The joints furthest from Φ = 0 at q when a projection fails.
         let named = |e: project::ProjectionError, q: &[f64]| {
             let mut phi = vec![0.0; m];

@@ -42,7 +42,8 @@ impl<'m> InverseSolver<'m> {
             .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
         let n = sys.n();
         Ok(InverseSolver {
-            jt: SystemMatrix::new(n, &pattern),
+            jt: SystemMatrix::try_new(n, &pattern)
+                .map_err(|e| AnalysisError::new(Kind::Internal, 0.0, e.to_string()))?,
             lambda: vec![0.0; n],
             rhs: vec![0.0; n],
             kin,

@@ -67,7 +67,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         ));
     }
     let mut q = s.asm.initial_q(model);
-    let mut aug = Augmented::new(&s, &q);
+    let mut aug = Augmented::new(&s, &q).map_err(|e| err(Kind::Internal, e.to_string(), 0.0))?;
     project::positions(&s, &mut aug, &mut q, t, settings.tol, settings.max_iter)
         .map_err(|e| err(e.kind, e.message, e.residual))?;
     let zeros = vec![0.0; n];
