@@ -22,11 +22,14 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
-use crate::diagnose::levenberg_marquardt;
+use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2};
 use crate::model::{BodyId, Model};
-use crate::run::{channels, fill_outputs, AnalysisError, PointOutput, Settings, Sink, Summary};
+use crate::run::{
+    channels, fill_outputs, worst_joints, AnalysisError, Kind, PointOutput, Settings, Sink,
+    Summary, Warning,
+};
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
 pub const MAX_HALVINGS: u32 = 8;
@@ -97,12 +100,11 @@ pub fn run(
     for &t in times {
         if let Some(p) = prev_t {
             if t <= p || t.is_nan() {
-                return Err(AnalysisError {
-                    time: t,
-                    message: format!("times must increase, but {t} follows {p}"),
-                    joints: Vec::new(),
-                    residual: 0.0,
-                });
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {p}"),
+                ));
             }
         }
         match prev_t {
@@ -154,14 +156,14 @@ impl<'m> Solver<'m> {
         let asm = Assembly::new(model);
         let (n, m) = (asm.n, asm.m);
         if n == 0 {
-            return Err(fail(0.0, "the model has no moving bodies"));
+            return Err(fail(Kind::InvalidInput, "the model has no moving bodies"));
         }
         model
             .check_grounded()
-            .map_err(|e| fail(0.0, &e.to_string()))?;
+            .map_err(|e| fail(Kind::InvalidInput, &e.to_string()))?;
         if m < n {
             return Err(fail(
-                0.0,
+                Kind::NotDriven,
                 &format!(
                     "{n} coordinates but {m} equations: {} degree(s) of freedom are not driven; \
                      add as many drivers (or run a dynamic analysis)",
@@ -171,7 +173,7 @@ impl<'m> Solver<'m> {
         }
         if m > n {
             return Err(fail(
-                0.0,
+                Kind::Redundant,
                 &format!(
                     "{n} coordinates but {m} equations: {} equation(s) too many; \
                      remove redundant joints or drivers (`camlink check` names them)",
@@ -185,7 +187,8 @@ impl<'m> Solver<'m> {
         Ok(Solver {
             model,
             settings,
-            jac: SystemMatrix::new(n, &pattern),
+            jac: SystemMatrix::try_new(n, &pattern)
+                .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             rhs: vec![0.0; n],
@@ -216,7 +219,7 @@ impl<'m> Solver<'m> {
         }
         let h_prev = self.h_prev;
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
-            Some(what) => Err(self.failure(t, &what)),
+            Some(what) => Err(self.failure(Kind::BranchJump, t, &what)),
             None => Ok(()),
         });
         match outcome {
@@ -273,7 +276,11 @@ impl<'m> Solver<'m> {
             .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
-            return Err(self.failure(t, "velocities or accelerations are not finite numbers"));
+            return Err(self.failure(
+                Kind::NotFinite,
+                t,
+                "velocities or accelerations are not finite numbers",
+            ));
         }
         self.watch_singularity(t);
         self.summary.steps += 1;
@@ -327,15 +334,17 @@ impl<'m> Solver<'m> {
         };
         let near = pivot < NEAR_SINGULAR;
         if near && !self.near_singular {
-            self.summary.warnings.push((
-                t,
-                format!(
+            self.summary.warnings.push(Warning {
+                kind: Kind::NearSingular,
+                time: t,
+                joints: Vec::new(),
+                message: format!(
                     "near-singular configuration (relative pivot {pivot:.1e}, \
                      condition about {:.1e}): a toggle or dead-centre position; \
                      accuracy of velocities and accelerations may suffer here",
                     1.0 / pivot
                 ),
-            ));
+            });
         }
         self.near_singular = near;
     }
@@ -344,7 +353,8 @@ impl<'m> Solver<'m> {
     /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
     /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
     /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
-    /// singular.
+    /// singular (for models of at most [`DENSE_MAX`] coordinates; a larger
+    /// one stops with the singular joint named).
     pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
         let angles = self.asm.angle_mask(self.model);
         let mut trial = self.q.clone();
@@ -353,15 +363,21 @@ impl<'m> Solver<'m> {
             self.asm.phi(self.model, &self.q, t, &mut phi);
             let r = max_abs(&phi);
             if !r.is_finite() {
-                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+                return Err(self.failure(
+                    Kind::NotFinite,
+                    t,
+                    "the constraint equations are not finite numbers",
+                ));
             }
             if r <= self.settings.tol {
                 return Ok(());
             }
             // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
             self.rhs.copy_from_slice(&phi);
+            // Levenberg–Marquardt is dense: up to the diagnosis' size only.
             match self.refactor(t) {
                 Ok(()) => self.jac.solve(&mut self.rhs),
+                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
                 Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
             }
             self.summary.newton_iterations += 1;
@@ -387,6 +403,7 @@ impl<'m> Solver<'m> {
                 s *= 0.5;
                 if s < 1e-6 {
                     return Err(self.failure(
+                        Kind::NotAssembled,
                         t,
                         "the mechanism cannot be assembled from the given placement: \
                          no step reduces the constraint residual (check the joints \
@@ -397,6 +414,7 @@ impl<'m> Solver<'m> {
             self.q.copy_from_slice(&trial);
         }
         Err(self.failure(
+            Kind::NotAssembled,
             t,
             &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
         ))
@@ -413,7 +431,11 @@ impl<'m> Solver<'m> {
             self.asm.phi(self.model, &self.q, t, &mut self.rhs);
             let r = max_abs(&self.rhs);
             if !r.is_finite() {
-                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+                return Err(self.failure(
+                    Kind::NotFinite,
+                    t,
+                    "the constraint equations are not finite numbers",
+                ));
             }
             if r <= self.settings.tol {
                 // Converged: still apply the correction this residual gives,
@@ -440,6 +462,7 @@ impl<'m> Solver<'m> {
             }
         }
         Err(self.failure(
+            Kind::NotConverged,
             t,
             &format!(
                 "positions did not converge in {} Newton iterations: the drivers may ask \
@@ -468,6 +491,7 @@ impl<'m> Solver<'m> {
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
         let (j, _) = self.asm.joint_of_row(s.row);
         let mut e = self.failure(
+            Kind::LockUp,
             t,
             &format!(
                 "the constraint Jacobian is singular (relative pivot {:.1e}): \
@@ -483,36 +507,10 @@ impl<'m> Solver<'m> {
     }
 
     /// An error at `t` naming the joints with the largest residuals.
-    fn failure(&self, t: f64, what: &str) -> AnalysisError {
+    fn failure(&self, kind: Kind, t: f64, what: &str) -> AnalysisError {
         let mut phi = vec![0.0; self.asm.m];
         self.asm.phi(self.model, &self.q, t, &mut phi);
-        let mut worst: Vec<(f64, usize)> = Vec::new();
-        for (j, _) in self.model.joints.iter().enumerate() {
-            let r = self
-                .asm
-                .rows_of(self.model, j)
-                .map(|k| phi[k].abs())
-                .fold(
-                    0.0,
-                    |a: f64, b| {
-                        if b.is_nan() {
-                            f64::INFINITY
-                        } else {
-                            a.max(b)
-                        }
-                    },
-                );
-            if r > self.settings.tol {
-                worst.push((r, j));
-            }
-        }
-        worst.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let joints: Vec<String> = worst
-            .iter()
-            .take(5)
-            .map(|&(_, j)| self.model.joints[j].name.clone())
-            .collect();
-        let residual = worst.first().map_or(0.0, |w| w.0);
+        let (joints, residual) = worst_joints(self.model, &self.asm, &phi, self.settings.tol);
         let mut message = what.to_string();
         // A function of time or of a curve parameter that cannot be evaluated.
         for (j, joint) in self.model.joints.iter().enumerate() {
@@ -542,12 +540,7 @@ impl<'m> Solver<'m> {
                 message.push_str(&format!("; condition of Φ_q {:.1e}", hi / lo));
             }
         }
-        AnalysisError {
-            time: t,
-            message,
-            joints,
-            residual,
-        }
+        AnalysisError::new(kind, t, message).at_joints(joints, residual)
     }
 
     /// Fills the output channels for the current state.
@@ -597,11 +590,7 @@ const ASSEMBLY_ITER: usize = 100;
 /// Largest change of an angle (rad) in one assembly iteration.
 pub const MAX_ANGLE_STEP: f64 = 0.5;
 
-fn fail(time: f64, message: &str) -> AnalysisError {
-    AnalysisError {
-        time,
-        message: message.to_string(),
-        joints: Vec::new(),
-        residual: 0.0,
-    }
+/// An error before the first step (t = 0).
+fn fail(kind: Kind, message: &str) -> AnalysisError {
+    AnalysisError::new(kind, 0.0, message)
 }

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use camlink_core::constraint::Constraint;
 use camlink_core::design::{self, Severity};
 use camlink_core::kinematics;
-use camlink_core::run::{AnalysisError, PointOutput, Settings, Table};
+use camlink_core::run::{AnalysisError, Kind, PointOutput, Settings, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 fn examples() -> PathBuf {
@@ -245,6 +245,8 @@ fn flat_follower_on_the_seed_cam_warns_then_stops_in_a_hollow() {
     let (table, r) = try_run(&l);
     let e = r.unwrap_err();
     assert!(e.joints == ["contact"], "{e:?}");
+    // Newton stops at the edge; the design finding explains why.
+    assert_eq!(e.kind, Kind::NotConverged, "{e:?}");
     assert!(
         e.to_string().contains("possible cause: joint 'contact'"),
         "{e}"
@@ -539,6 +541,7 @@ fn a_pin_driven_off_the_end_of_its_slot_stops_the_run() {
     // s = 1 + 0.3 sin 2πt passes 1.2 at t = asin(2/3)/2π = 0.1161 s.
     assert!((e.time - 0.12).abs() < 1e-12, "{e}");
     assert_eq!(e.joints, ["slider"]);
+    assert_eq!(e.kind, Kind::OffCurve, "{e}");
     let text = e.to_string();
     assert!(
         text.contains("ran off the upper end (1.2)") && text.contains("α_j = 1.2"),

@@ -203,7 +203,7 @@ fn outcome(loaded: &Loaded, stage: &str) -> String {
                 Ok(s) => s
                     .warnings
                     .iter()
-                    .map(|(t, w)| format!("warning at t = {t} s: {w}"))
+                    .map(|w| format!("warning at t = {} s: {}", w.time, w.message))
                     .collect::<Vec<_>>()
                     .join("\n"),
             }

@@ -30,7 +30,7 @@
 //! ([`Carried`]): r̈^P* = A(−p φ̇² + 2 p′⊥ φ̇ α̇ + p″ α̇²),
 //! g̈* = A(−p′ φ̇² + 2 p″⊥ φ̇ α̇ + p‴ α̇²).
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::curve::{search, Carried, Curve};
 use crate::math::{cross, V2};
@@ -69,6 +69,10 @@ impl Equations for CamFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Curve(&self.curve_i), Feature::Curve(&self.curve_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
