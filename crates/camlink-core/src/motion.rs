@@ -174,7 +174,10 @@ mod tests {
         let f = [1.3, -0.4, 2.2, 0.7];
         let p = [[f[0], 0.0], [f[1], 0.0], [f[2], 0.0], [f[3], 0.0]];
         let (a, b) = (square(f), dot(&p, &p));
-        assert!((0..4).all(|k| (a[k] - b[k]).abs() < 1e-14), "{a:?} vs {b:?}");
+        assert!(
+            (0..4).all(|k| (a[k] - b[k]).abs() < 1e-14),
+            "{a:?} vs {b:?}"
+        );
         // (f²)‴ = 2ff‴ + 6f′f″ in numbers.
         assert!((a[3] - (2.0 * 1.3 * 0.7 + 6.0 * -0.4 * 2.2)).abs() < 1e-14);
     }
