@@ -69,6 +69,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
+        jerk: bool = False,
     ) -> _RunOutput: ...
     def run_inverse_dynamics(
         self,

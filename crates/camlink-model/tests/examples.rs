@@ -52,6 +52,7 @@ fn run_example(name: &str) -> (Loaded, Table) {
     let settings = Settings {
         tol: a.tol,
         max_iter: a.max_iter,
+        ..Settings::default()
     };
     let points = loaded.point_outputs().unwrap();
     let mut table = Table::default();
@@ -69,6 +70,7 @@ fn largest_condition(loaded: &Loaded, times: &[f64]) -> f64 {
     let settings = Settings {
         tol: a.tol,
         max_iter: a.max_iter,
+        jerk: false,
     };
     let mut solver = Solver::new(&loaded.model, settings).unwrap();
     let mut worst: f64 = 1.0;
