@@ -15,6 +15,8 @@ pub struct Settings {
     pub tol: f64,
     /// Newton iterations allowed per time step.
     pub max_iter: usize,
+    /// Also solve Φ_q q⃛ = η for the jerk and output it ([`jerk_channels`]).
+    pub jerk: bool,
 }
 
 impl Default for Settings {
@@ -22,6 +24,7 @@ impl Default for Settings {
         Settings {
             tol: 1e-10,
             max_iter: 25,
+            jerk: false,
         }
     }
 }
@@ -81,8 +84,8 @@ pub struct Summary {
     pub factorizations: usize,
     /// Steps retried as two half steps.
     pub halvings: usize,
-    /// (time in s, message) of each warning.
-    pub warnings: Vec<(f64, String)>,
+    /// The warnings, in the order they arose.
+    pub warnings: Vec<Warning>,
     /// How assembly moved each body from its given placement:
     /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
     pub assembly_moves: Vec<(String, [f64; 3])>,
@@ -92,10 +95,113 @@ pub struct Summary {
     pub lift_off: Vec<LiftOff>,
 }
 
+/// What kind of error or warning a run reports: a stable name that
+/// programs match instead of the message (`docs/errors.md` lists them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// Settings or times an analysis cannot use (a step ≤ 0, times that do
+    /// not increase), or a model it cannot run (no moving body, a body not
+    /// connected to the ground).
+    InvalidInput,
+    /// Fewer equations than coordinates in an analysis that needs every
+    /// degree of freedom driven (kinematics, inverse dynamics).
+    NotDriven,
+    /// More equations than coordinates, or equations that depend on each
+    /// other where the analysis needs them independent.
+    Redundant,
+    /// The mechanism cannot be assembled from the given placement.
+    NotAssembled,
+    /// Newton's method did not converge within its iterations.
+    NotConverged,
+    /// The constraint Jacobian (or the matrix of a Newton step) is singular:
+    /// the mechanism is locked, at a singular position, or a driver pushes
+    /// it past its reach.
+    LockUp,
+    /// The solution jumped away from continuous motion: a singular position
+    /// was crossed or the assembly branch changed.
+    BranchJump,
+    /// Equations, velocities, accelerations or forces are not finite.
+    NotFinite,
+    /// The mass matrix is singular on the constraints.
+    SingularMass,
+    /// A contact ran off the end of an open curve.
+    OffCurve,
+    /// A flat face touches a concave part of its cam, or a roller a hollow
+    /// narrower than itself.
+    Undercut,
+    /// A solver could not be set up (a matrix pattern faer refuses, or no
+    /// memory for it): a bug to report.
+    Internal,
+    /// Warning: Φ_q is close to singular (a toggle or dead-centre position).
+    NearSingular,
+    /// Warning: a cam contact's normal force is negative; the follower
+    /// would leave the cam.
+    LiftOff,
+}
+
+impl Kind {
+    /// Every kind, in declaration order.
+    pub const ALL: [Kind; 14] = [
+        Kind::InvalidInput,
+        Kind::NotDriven,
+        Kind::Redundant,
+        Kind::NotAssembled,
+        Kind::NotConverged,
+        Kind::LockUp,
+        Kind::BranchJump,
+        Kind::NotFinite,
+        Kind::SingularMass,
+        Kind::OffCurve,
+        Kind::Undercut,
+        Kind::Internal,
+        Kind::NearSingular,
+        Kind::LiftOff,
+    ];
+
+    /// The stable name, e.g. `not_converged`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::InvalidInput => "invalid_input",
+            Kind::NotDriven => "not_driven",
+            Kind::Redundant => "redundant",
+            Kind::NotAssembled => "not_assembled",
+            Kind::NotConverged => "not_converged",
+            Kind::LockUp => "lock_up",
+            Kind::BranchJump => "branch_jump",
+            Kind::NotFinite => "not_finite",
+            Kind::SingularMass => "singular_mass",
+            Kind::OffCurve => "off_curve",
+            Kind::Undercut => "undercut",
+            Kind::Internal => "internal",
+            Kind::NearSingular => "near_singular",
+            Kind::LiftOff => "lift_off",
+        }
+    }
+}
+
+impl std::fmt::Display for Kind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A warning of a run: the run went on, but a result may need care.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    pub kind: Kind,
+    /// Time (s) where it arose.
+    pub time: f64,
+    /// Joints involved (may be empty).
+    pub joints: Vec<String>,
+    pub message: String,
+}
+
 /// An analysis that cannot proceed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[error("at t = {time} s: {message}")]
 pub struct AnalysisError {
+    /// What went wrong, as a stable name (`docs/errors.md`).
+    pub kind: Kind,
     /// Time (s) of the step that failed.
     pub time: f64,
     pub message: String,
@@ -103,6 +209,53 @@ pub struct AnalysisError {
     pub joints: Vec<String>,
     /// Largest |Φ| at failure (m or rad).
     pub residual: f64,
+}
+
+impl AnalysisError {
+    /// An error of `kind` at `time` (s) with no joint named and no residual.
+    pub fn new(kind: Kind, time: f64, message: impl Into<String>) -> Self {
+        AnalysisError {
+            kind,
+            time,
+            message: message.into(),
+            joints: Vec::new(),
+            residual: 0.0,
+        }
+    }
+
+    /// The same error with the joints involved and the largest |Φ| (m or
+    /// rad).
+    pub fn at_joints(mut self, joints: Vec<String>, residual: f64) -> Self {
+        self.joints = joints;
+        self.residual = residual;
+        self
+    }
+}
+
+/// The joints whose equations have the largest residuals |Φ| above `tol`,
+/// worst first and at most five, with the largest residual (m or rad); a
+/// NaN residual counts as infinite. `phi` is Φ at the failure.
+pub fn worst_joints(model: &Model, asm: &Assembly, phi: &[f64], tol: f64) -> (Vec<String>, f64) {
+    let mut worst: Vec<(f64, usize)> = Vec::new();
+    for j in 0..model.joints.len() {
+        let r = asm
+            .rows_of(model, j)
+            .map(|k| phi[k].abs())
+            .fold(
+                0.0,
+                |a: f64, b| if b.is_nan() { f64::INFINITY } else { a.max(b) },
+            );
+        if r > tol {
+            worst.push((r, j));
+        }
+    }
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let joints = worst
+        .iter()
+        .take(5)
+        .map(|&(_, j)| model.joints[j].name.clone())
+        .collect();
+    (joints, worst.first().map_or(0.0, |w| w.0))
 }
 
 /// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
@@ -144,6 +297,24 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
         }
     }
     names.extend(Contacts::new(model).channels(model));
+    names
+}
+
+/// The jerk channels of a run with [`Settings::jerk`], after those of
+/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
+/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
+pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["jx", "jy", "jphi"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["jx", "jy"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
     names
 }
 
@@ -253,5 +424,44 @@ impl LiftOff {
             self.least,
             at(&self.least_at)
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds listed in `docs/errors.md`, between `<!-- kinds -->` and
+    /// `<!-- /kinds -->`, as (name, "error" or "warning").
+    fn documented_kinds() -> Vec<(String, String)> {
+        let page = include_str!("../../../docs/errors.md");
+        let table = page
+            .split("<!-- kinds -->")
+            .nth(1)
+            .and_then(|rest| rest.split("<!-- /kinds -->").next())
+            .expect("docs/errors.md has a table of kinds");
+        table
+            .lines()
+            .filter_map(|line| {
+                let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+                let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+                Some((name.to_string(), cells.get(2)?.to_string()))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_kind_is_documented_once_as_error_or_warning() {
+        let want: Vec<(String, String)> = Kind::ALL
+            .iter()
+            .map(|k| {
+                let level = match k {
+                    Kind::NearSingular | Kind::LiftOff => "warning",
+                    _ => "error",
+                };
+                (k.name().to_string(), level.to_string())
+            })
+            .collect();
+        assert_eq!(documented_kinds(), want);
     }
 }

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "curve", "function"],
+    &["math", "curve", "function", "motion"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
@@ -242,4 +242,22 @@ fn crate_paths_are_read_from_code_only() {
         ["diagnose"]
     );
     assert!(crate_paths("use camlink_core::kinematics;").is_empty());
+}
+
+/// The readers of curve contacts see them through `contact::ContactView`
+/// only: none of them names a contact joint's kind outside its tests, so a
+/// new contact joint is one file and one line in `constraints!`.
+#[test]
+fn contact_readers_name_no_contact_joint() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    for file in ["contact.rs", "design.rs", "dynamics/contact_force.rs"] {
+        let text = fs::read_to_string(src.join(file)).expect("readable source file");
+        let code = text.split("#[cfg(test)]").next().unwrap_or("");
+        for kind in ["CamFollower", "FlatFollower", "PointFollower"] {
+            assert!(
+                !code.contains(kind),
+                "{file} names {kind}: read the contact through ContactView"
+            );
+        }
+    }
 }

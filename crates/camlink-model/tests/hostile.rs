@@ -196,6 +196,7 @@ fn outcome(loaded: &Loaded, stage: &str) -> String {
             let settings = Settings {
                 tol: a.tol,
                 max_iter: a.max_iter,
+                ..Settings::default()
             };
             let mut table = Table::default();
             match run(&loaded.model, &times, &settings, &[], &mut table) {
@@ -203,7 +204,7 @@ fn outcome(loaded: &Loaded, stage: &str) -> String {
                 Ok(s) => s
                     .warnings
                     .iter()
-                    .map(|(t, w)| format!("warning at t = {t} s: {w}"))
+                    .map(|w| format!("warning at t = {} s: {}", w.time, w.message))
                     .collect::<Vec<_>>()
                     .join("\n"),
             }
