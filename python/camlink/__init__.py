@@ -13,12 +13,15 @@ time series back::
 
 from camlink._core import AnalysisError, ModelError, __version__
 from camlink.builder import Mechanism
+from camlink.errors import ERROR_KINDS, WARNING_KINDS, RunWarning
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
 from camlink.warn import CamlinkWarning, DesignWarning, LiftOffWarning, NearSingularWarning
 
 __all__ = [
     "ANALYSES",
+    "ERROR_KINDS",
+    "WARNING_KINDS",
     "AnalysisError",
     "CamlinkWarning",
     "DesignWarning",
@@ -28,6 +31,7 @@ __all__ = [
     "Model",
     "ModelError",
     "Results",
+    "RunWarning",
     "__version__",
     "json_schema",
     "load",

@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 import camlink
+from camlink import cli_convert
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
@@ -42,7 +43,12 @@ def _parser() -> argparse.ArgumentParser:
         "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
     run.add_argument(
-        "model", metavar="MODEL", help="model file (.toml or .json); - reads standard input"
+        "model",
+        metavar="MODEL",
+        help="model file (.toml, .json or simEngine2D .adm); - reads standard input",
+    )
+    run.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
     )
     run.add_argument(
         "-a",
@@ -66,7 +72,9 @@ def _parser() -> argparse.ArgumentParser:
     _data_option(run)
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
     run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
-    run.add_argument("--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)")
+    run.add_argument(
+        "--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)"
+    )
     run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance")
     run.add_argument("--max-iter", type=int, metavar="N", help="Newton iterations per step")
     run.add_argument("--h", type=float, metavar="H", help="dynamics: integration step (s)")
@@ -89,6 +97,13 @@ def _parser() -> argparse.ArgumentParser:
         help="dynamics: error-controlled steps (--no-adaptive: fixed steps)",
     )
     run.add_argument(
+        "--jerk",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="kinematics: also output the exact jerk, <body>.jx .jy .jphi and "
+        "<point>.jx .jy (default: [analysis] jerk)",
+    )
+    run.add_argument(
         "-p",
         "--point",
         action="append",
@@ -109,11 +124,15 @@ def _parser() -> argparse.ArgumentParser:
         "check",
         help="count bodies, coordinates and constraints; find the degrees of freedom",
     )
-    check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    check.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    check.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     check.add_argument("--json", action="store_true", help="print the report as JSON")
     _data_option(check)
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    cli_convert.add_parser(sub)
     return p
 
 
@@ -161,6 +180,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         "atol": args.atol,
         "rtol": args.rtol,
         "h_min": args.h_min,
+        "jerk": args.jerk,
     }
     given = {k: v for k, v in settings.items() if v is not None}
     for key, value in given.items():
@@ -201,8 +221,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"Δφ = {dphi:.6g} rad",
                 file=sys.stderr,
             )
-    for t, message in summary.get("warnings", []):
-        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
+    for w in summary.get("warnings", []):
+        print(f"camlink: warning: {w}", file=sys.stderr)
     if args.verbose:
         counts = ", ".join(
             f"{k.replace('_', ' ')} {summary[k]}"
@@ -235,7 +255,7 @@ def _load(args: argparse.Namespace) -> camlink.Model:
     """The model of `args.model`; ``-`` reads TOML (or JSON, if it starts
     with ``{``) from standard input, with data files in the current folder."""
     if args.model != "-":
-        return camlink.load(args.model, allow_outside=args.allow_outside_data)
+        return camlink.load(args.model, acf=args.acf, allow_outside=args.allow_outside_data)
     text = sys.stdin.read()
     fmt = "json" if text.lstrip().startswith("{") else "toml"
     return camlink.loads(
@@ -361,7 +381,12 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _main(args: argparse.Namespace) -> int:
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    command = {
+        "run": _cmd_run,
+        "check": _cmd_check,
+        "schema": _cmd_schema,
+        "convert": cli_convert.run,
+    }[args.command]
     try:
         return command(args)
     except ModelError as e:
@@ -380,7 +405,7 @@ def _main(args: argparse.Namespace) -> int:
         kept = f"; the steps computed are in {output}" if output is not None else ""
         print(f"camlink: interrupted{kept}", file=sys.stderr)
         return 128 + (e.signum if isinstance(e, Terminated) else signal.SIGINT)
-    except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
+    except Exception as e:
         if os.environ.get("CAMLINK_TRACEBACK"):
             raise
         _error(f"{e}" if str(e).startswith("internal error") else f"internal error: {e!r}")

@@ -16,6 +16,9 @@ __all__ = ["check_settings"]
 #: Arguments that are not numbers checked by a rule.
 _OTHER = {"self", "points", "times", "output", "analysis"}
 
+#: Settings that are True or False.
+_FLAGS = {"adaptive", "jerk"}
+
 
 def check_settings(settings: Mapping[str, object]) -> None:
     """Raises `ModelError` naming the first setting whose value breaks its
@@ -23,9 +26,9 @@ def check_settings(settings: Mapping[str, object]) -> None:
     for key, value in settings.items():
         if value is None or key in _OTHER:
             continue
-        if key == "adaptive":
+        if key in _FLAGS:
             if not isinstance(value, (bool, np.bool_)):
-                raise ModelError(f"adaptive must be True or False, not {value!r}")
+                raise ModelError(f"{key} must be True or False, not {value!r}")
             continue
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
             raise ModelError(f"{key} must be a number, not {value!r}")

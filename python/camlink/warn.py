@@ -37,21 +37,18 @@ class DesignWarning(CamlinkWarning):
     """A design finding of a curve contact (see `Model.design_check`)."""
 
 
-def _category(message: str, lift_off_joints: set[str]) -> type[CamlinkWarning]:
-    if message.startswith("near-singular"):
-        return NearSingularWarning
-    if any(message.startswith(f"{j}: normal force < 0") for j in lift_off_joints):
-        return LiftOffWarning
-    return CamlinkWarning
+#: The category of each warning kind of `camlink.WARNING_KINDS`.
+CATEGORIES: dict[str, type[CamlinkWarning]] = {
+    "near_singular": NearSingularWarning,
+    "lift_off": LiftOffWarning,
+}
 
 
 def issue_run_warnings(summary: Mapping[str, Any], stacklevel: int = 4) -> None:
-    """Issues each of a run summary's ``warnings`` as a Python warning."""
-    joints = {str(row["joint"]) for row in summary.get("lift_off", [])}
-    for t, message in summary.get("warnings", []):
-        warnings.warn(
-            f"at t = {t:g} s: {message}", _category(message, joints), stacklevel=stacklevel
-        )
+    """Issues each of a run summary's ``warnings`` (`camlink.RunWarning`
+    records) as a Python warning of its kind's category."""
+    for w in summary.get("warnings", []):
+        warnings.warn(str(w), CATEGORIES.get(w.kind, CamlinkWarning), stacklevel=stacklevel)
 
 
 def issue_design_warnings(findings: Iterable[Mapping[str, Any]], stacklevel: int = 3) -> None:
