@@ -476,12 +476,15 @@ impl<'m> Integrator<'m> {
                     let h = h_next.min(h_max).min(left);
                     // A step below the rounding of t leaves t unchanged.
                     if h < 4.0 * f64::EPSILON * self.t.abs() || self.t + h == self.t {
-                        return Err(self.error(Kind::NotConverged, &format!(
-                            "the step fell to {} s, below the rounding of t = {} s; \
+                        return Err(self.error(
+                            Kind::NotConverged,
+                            &format!(
+                                "the step fell to {} s, below the rounding of t = {} s; \
                              raise h_min or loosen atol/rtol",
-                            crate::fmt_num::num(h),
-                            crate::fmt_num::num(self.t)
-                        )));
+                                crate::fmt_num::num(h),
+                                crate::fmt_num::num(self.t)
+                            ),
+                        ));
                     }
                     self.step(h)?;
                     let err = self.local_error(h, &ad).max(1e-10);
