@@ -95,11 +95,11 @@ def test_bad_line_is_quoted_briefly_and_escaped(tmp_path):
 def test_devices_and_fifos_are_refused_at_once(tmp_path):
     (tmp_path / "zero.csv").symlink_to("/dev/zero")
     os.mkfifo(tmp_path / "fifo.csv")
+    # Refused from their metadata: reading /dev/zero never ends, and
+    # opening a FIFO blocks until a writer comes.
     for name in ("zero.csv", "fifo.csv"):
-        start = time.monotonic()
         with pytest.raises(ModelError, match="not a regular file"):
             camlink.load(cam_model(tmp_path, name), allow_outside=True)
-        assert time.monotonic() - start < 5
 
 
 # -- writing: never over an input, never over a good file ----------------------

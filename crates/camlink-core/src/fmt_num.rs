@@ -32,7 +32,7 @@ pub fn num(v: f64) -> String {
             s
         };
         // Rounding can carry into a new digit (999999.5 → 1000000).
-        if s.parse::<f64>().map_or(false, |r| r.abs() < 1e6) {
+        if s.parse::<f64>().is_ok_and(|r| r.abs() < 1e6) {
             return s;
         }
     }

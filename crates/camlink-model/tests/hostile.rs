@@ -458,11 +458,10 @@ fn data_file_that_is_a_device_or_fifo_is_refused_at_once() {
     }
     for name in names {
         std::fs::write(&model, cam_with_file(name)).unwrap();
-        let start = Instant::now();
+        // Refused from its metadata: a FIFO opened for reading would block.
         let err = camlink_model::load_path_with(&model, &opts)
             .unwrap_err()
             .to_string();
-        assert!(start.elapsed() < Duration::from_secs(5));
         assert!(err.contains("not a regular file"), "{name}: {err}");
     }
     std::fs::remove_dir_all(&dir).unwrap();
