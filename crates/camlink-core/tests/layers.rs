@@ -12,12 +12,12 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "curve", "function", "motion"],
+    &["math", "fmt_num", "curve", "function", "motion"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
     &["contact"],
-    &["run"],
+    &["run", "setting"],
     &["design", "diagnose"],
     &["kinematics"],
     &["dynamics"],
