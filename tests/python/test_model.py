@@ -85,7 +85,7 @@ def test_channel_order_bodies_then_points(four_bar_file):
     "kwargs, fragment",
     [
         (dict(t_end=1.0, step=0.0), "step"),
-        (dict(t_end=-1.0, step=0.1), "end time"),
+        (dict(t_end=-1.0, step=0.1), "t_end must be"),
         (dict(times=[0.0, 0.2, 0.1]), "increase"),
         (dict(times=[]), "non-empty"),
         (dict(points=["coupler.Q"]), "no point 'Q'"),
