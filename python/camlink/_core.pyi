@@ -18,6 +18,7 @@ __all__ = [
     "ModelError",
     "__version__",
     "check_setting",
+    "convert_adm",
     "csv_rows",
     "json_schema",
     "time_grid",

@@ -37,14 +37,14 @@ from camlink import _core
 from camlink._core import ModelError
 
 __all__ = [
-    "SUFFIXES",
     "ROW_GROUP_ROWS",
+    "SUFFIXES",
     "CsvWriter",
     "ParquetWriter",
-    "open_writer",
     "check_not_input",
-    "partial_path",
     "kind_of",
+    "open_writer",
+    "partial_path",
 ]
 
 #: File name suffixes results are written as.
@@ -163,8 +163,8 @@ class ParquetWriter:
     def __init__(self, path: Path) -> None:
         self.path = path
         self._target = _Target(path, ".arrows")
-        self._sink: object | None = None
-        self._writer: object | None = None
+        self._sink: Any = None
+        self._writer: Any = None
 
     def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
         import pyarrow as pa
@@ -173,8 +173,8 @@ class ParquetWriter:
         if self._writer is None:
             self._sink = pa.OSFile(str(self._target.temp), "wb")
             self._writer = pa.ipc.new_stream(self._sink, batch.schema)
-        self._writer.write_batch(batch)  # type: ignore[attr-defined]
-        self._sink.flush()  # type: ignore[attr-defined]
+        self._writer.write_batch(batch)
+        self._sink.flush()
 
     def close(
         self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
@@ -186,12 +186,12 @@ class ParquetWriter:
 
         if self._writer is None:
             self.write(names, np.empty((0, len(names))))
-        self._writer.close()  # type: ignore[union-attr]
-        self._sink.close()  # type: ignore[union-attr]
+        self._writer.close()
+        self._sink.close()
         table = read_arrow_stream(self._target.temp)
         if metadata is not None:
             text = json.dumps(metadata, default=str)
-            table = table.replace_schema_metadata({"camlink": text})  # type: ignore[attr-defined]
+            table = table.replace_schema_metadata({"camlink": text})
         parquet = self._target.temp.with_suffix(self.path.suffix)
         # Simulated doubles seldom repeat: dictionary encoding costs time
         # and saves nothing.
@@ -202,7 +202,7 @@ class ParquetWriter:
         return self.path
 
 
-def read_arrow_stream(path: Path) -> object:
+def read_arrow_stream(path: Path) -> Any:
     """The record batches of an Arrow IPC stream as one table, up to the
     last complete batch (a journal cut short by a crash)."""
     import pyarrow as pa
@@ -251,7 +251,7 @@ class BackgroundWriter:
             if self._error is None:
                 try:
                     self._writer.write(*item)
-                except BaseException as e:  # noqa: BLE001 - re-raised in the caller's thread
+                except BaseException as e:
                     self._error = e
 
     def _raise(self) -> None:

@@ -8,8 +8,8 @@ import difflib
 import io
 import json
 import os
-from pathlib import Path
 from collections.abc import Iterator
+from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
@@ -230,7 +230,7 @@ class Results:
         path = Path(path)
         kind = kind_of(path, "read", READ_SUFFIXES)
         try:
-            meta: dict = {}
+            meta: dict[str, Any] = {}
             if kind == "csv":
                 names, data = _read_csv(path)
             else:
@@ -265,7 +265,7 @@ def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64]]:
     return header, data
 
 
-def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64], dict]:
+def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:
     """Names, rows and camlink metadata (model name, camlink version,
     analysis, summary) of a results Parquet file or Arrow journal."""
     if kind == "parquet":
@@ -274,10 +274,10 @@ def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float6
         table = pq.read_table(path)
     else:
         table = read_arrow_stream(path)
-    raw = (table.schema.metadata or {}).get(b"camlink")  # type: ignore[attr-defined]
+    raw = (table.schema.metadata or {}).get(b"camlink")
     meta = json.loads(raw) if raw else {}
-    names = list(table.column_names)  # type: ignore[attr-defined]
-    if not table.num_rows:  # type: ignore[attr-defined]
+    names = list(table.column_names)
+    if not table.num_rows:
         return names, np.empty((0, len(names))), meta
-    data = np.column_stack([table.column(n).to_numpy() for n in names])  # type: ignore[attr-defined]
+    data = np.column_stack([table.column(n).to_numpy() for n in names])
     return names, data, meta

@@ -11,11 +11,11 @@ from typing import Any
 
 __all__ = [
     "CamlinkWarning",
-    "NearSingularWarning",
-    "LiftOffWarning",
     "DesignWarning",
-    "issue_run_warnings",
+    "LiftOffWarning",
+    "NearSingularWarning",
     "issue_design_warnings",
+    "issue_run_warnings",
 ]
 
 

@@ -10,9 +10,9 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import ROOT
 
 import camlink
+from conftest import ROOT
 
 EXAMPLES = sorted((ROOT / "examples").glob("*.toml"))
 

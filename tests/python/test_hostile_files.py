@@ -5,6 +5,7 @@ whatever stops the process (SIGKILL, SIGTERM, SIGHUP, Ctrl-C)."""
 
 from __future__ import annotations
 
+import _thread
 import os
 import random
 import shutil
@@ -13,16 +14,15 @@ import subprocess
 import sys
 import threading
 import time
-import _thread
 from pathlib import Path
 
 import numpy as np
 import pyarrow.parquet as pq
 import pytest
-from conftest import ROOT, four_bar_toml, run_cli
 
 import camlink
 from camlink import ModelError, Results
+from conftest import ROOT, four_bar_toml, run_cli
 
 EXAMPLES = ROOT / "examples"
 
@@ -285,7 +285,8 @@ def test_csv_header_is_quoted_and_numbers_are_shortest(tmp_path):
     back = Results.load(out)
     assert back.channels == ["a,b", 'say "hi"']
     rng = np.random.default_rng(9)
-    data = np.column_stack([np.arange(200.0), rng.standard_normal(200) * 10.0 ** rng.integers(-300, 300, 200)])
+    values = rng.standard_normal(200) * 10.0 ** rng.integers(-300, 300, 200)
+    data = np.column_stack([np.arange(200.0), values])
     again = Results.load(Results(["t", "x"], data).save(tmp_path / "x.csv"))
     np.testing.assert_array_equal(again.data, data)
 
@@ -353,8 +354,8 @@ def test_points_may_be_one_string(four_bar_file):
 
 def test_results_say_how_to_get_rows(four_bar_file):
     res = camlink.load(four_bar_file).run(t_end=0.1)
-    for bad in (lambda: list(res), lambda: res[0], lambda: res[0:10]):
-        with pytest.raises(TypeError, match="res.data"):
+    for bad in (lambda: list(res), lambda: res[0], lambda: res[0:10]):  # type: ignore[index]
+        with pytest.raises(TypeError, match=r"res\.data"):
             bad()
 
 

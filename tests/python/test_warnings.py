@@ -5,10 +5,10 @@ from __future__ import annotations
 import warnings
 
 import pytest
-from conftest import ROOT
 from test_dynamics import OMEGA_JUMP, valve_turn
 
 import camlink
+from conftest import ROOT
 
 EXAMPLES = ROOT / "examples"
 MISBEHAVE = ROOT / "tests" / "models" / "misbehave"
