@@ -458,7 +458,11 @@ fn analysis_file_errors_name_the_acf() {
     .unwrap_err();
     assert_eq!(e.source, "bad.acf", "{e}");
     assert_eq!(e.field.as_deref(), Some("tend"), "{e}");
-    assert!(e.message.contains("t_end must be a finite number of at least 0"), "{e}");
+    assert!(
+        e.message
+            .contains("t_end must be a finite number of at least 0"),
+        "{e}"
+    );
     let l = load_adm_text(&adm, Some(r#"{"simulation": "Equilibrium"}"#)).unwrap();
     assert_eq!(l.analysis.kind, camlink_model::AnalysisType::Equilibrium);
     let l = load_adm_text(
