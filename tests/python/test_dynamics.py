@@ -186,7 +186,8 @@ def test_equilibrium_at_a_time_and_output_file(tmp_path):
     assert back.channels == res.channels and len(back) == 1
 
 
-def test_design_check_of_a_flat_follower_on_a_concave_cam():
+def flat_follower_on_the_seed_cam() -> str:
+    """The seed example with a flat-faced follower on its concave lobe."""
     text = (EXAMPLES / "cam_seed_example_3_4_3.toml").read_text()
     flat = text.replace(
         'type = "cam_follower"\nname = "contact"\ncurve_i = "lobe"\ncurve_j = "roller"',
@@ -194,6 +195,11 @@ def test_design_check_of_a_flat_follower_on_a_concave_cam():
         "axis = [1, 0]",
     )
     assert flat != text
+    return flat
+
+
+def test_design_check_of_a_flat_follower_on_a_concave_cam():
+    flat = flat_follower_on_the_seed_cam()
     findings = camlink.loads(flat, "toml", "flat.toml").design_check()
     assert len(findings) == 1
     f = findings[0]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import warnings
 
 import pytest
-from test_dynamics import OMEGA_JUMP, valve_turn
+from test_dynamics import OMEGA_JUMP, flat_follower_on_the_seed_cam, valve_turn
 
 import camlink
 from conftest import ROOT
@@ -27,12 +27,7 @@ def test_lift_off_warns():
 
 
 def test_design_finding_warns():
-    text = (EXAMPLES / "cam_seed_example_3_4_3.toml").read_text()
-    flat = text.replace(
-        'type = "cam_follower"\nname = "contact"\ncurve_i = "lobe"\ncurve_j = "roller"',
-        'type = "flat_follower"\nname = "contact"\ncurve_i = "lobe"\nbody_j = "follower"\n'
-        "axis = [1, 0]",
-    )
+    flat = flat_follower_on_the_seed_cam()
     with pytest.warns(camlink.DesignWarning, match="concave"):
         camlink.loads(flat, "toml", "flat.toml").design_check()
 
