@@ -272,11 +272,12 @@ impl StepGuard {
                     if a >= s0 - tol && a <= s1 + tol {
                         continue;
                     }
+                    let (end, at) = if a > s1 { ("upper", s1) } else { ("lower", s0) };
                     (
                         Kind::OffCurve,
                         format!(
-                            "the contact ran off the end of the open curve of joint '{}': \
-                         {name} = {a} is outside its range [{s0}, {s1}]",
+                            "the contact ran off the {end} end ({at}) of the open curve of joint \
+                             '{}': {name} = {a} is outside its range [{s0}, {s1}]",
                             joint.name
                         ),
                     )

@@ -693,10 +693,20 @@ mod tests {
         let mut b: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| a[(i, j)] * x[j]).sum())
             .collect();
+        let mut dense = DenseLu::new(n);
+        dense.factor(a.as_ref()).unwrap();
+        let mut xd = b.clone();
+        dense.solve(&mut xd);
         sys.factor().unwrap();
         sys.solve(&mut b);
         for i in 0..n {
             assert!((b[i] - x[i]).abs() < 1e-12, "{i}: {} vs {}", b[i], x[i]);
+            assert!(
+                (b[i] - xd[i]).abs() < 1e-13,
+                "{i}: sparse {} vs dense {}",
+                b[i],
+                xd[i]
+            );
         }
     }
 

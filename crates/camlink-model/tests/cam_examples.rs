@@ -544,10 +544,30 @@ fn a_pin_driven_off_the_end_of_its_slot_stops_the_run() {
     assert_eq!(e.kind, Kind::OffCurve, "{e}");
     let text = e.to_string();
     assert!(
-        text.contains("ran off the end") && text.contains("[0.2, 1.2]"),
+        text.contains("ran off the upper end (1.2)") && text.contains("α_j = 1.2"),
         "{text}"
     );
     assert_eq!(table.t.len(), 24, "the steps before the error are kept");
+}
+
+#[test]
+fn a_pin_driven_off_the_start_of_its_slot_names_the_lower_end() {
+    // Slot starting at x = 0.75; the drive comes down to 0.7.
+    let l = variant(
+        "slot_curved_driven.toml",
+        "range = [0.2, 1.6]",
+        "range = [0.75, 1.6]",
+    );
+    let (_, r) = try_run(&l);
+    let e = r.unwrap_err();
+    // s = 1 + 0.3 sin 2πt falls below 0.75 at t = 1/2 + asin(5/6)/2π = 0.6568 s, first
+    // seen at the next output time.
+    assert!((e.time - 0.66).abs() < 1e-12, "{e}");
+    let text = e.to_string();
+    assert!(
+        text.contains("ran off the lower end (0.75)") && text.contains("α_j = 0.7"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -595,12 +615,15 @@ fn every_cam_and_slot_example_has_a_test() {
         include_str!("cam_dynamics.rs"),
     ]
     .concat();
+    let mut found = 0;
     for entry in std::fs::read_dir(examples()).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
         if (name.starts_with("cam_") || name.starts_with("slot_")) && name.ends_with(".toml") {
             assert!(this.contains(&format!("\"{name}\"")), "{name} has no test");
+            found += 1;
         }
     }
+    assert!(found >= 9, "only {found} cam and slot examples found");
 }
 
 /// A small cam model with `curves` and `joint` spliced in, loaded as
