@@ -114,7 +114,7 @@ pub fn run(
         .map_err(|e| guard.explain(model, e))?;
         guard.check(model, solver.assembly(), &solver.q, t)?;
         solver.outputs(points, &mut values);
-        sink.row(t, &values);
+        sink.row(t, &values).map_err(|s| s.at(t))?;
         prev_t = Some(t);
     }
     Ok(solver.summary.clone())

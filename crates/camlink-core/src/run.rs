@@ -41,8 +41,21 @@ pub struct PointOutput {
 pub trait Sink {
     /// Called once before the first row with the channel names (not `t`).
     fn begin(&mut self, channels: &[String]);
-    /// One time step: time t (s) and the values, in channel order.
-    fn row(&mut self, t: f64, values: &[f64]);
+    /// One time step: time t (s) and the values, in channel order. An error
+    /// stops the run, which returns an [`AnalysisError`] of kind
+    /// [`Kind::Stopped`] at `t`.
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop>;
+}
+
+/// Why a [`Sink`] stopped the run (its receiver failed or was interrupted).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stop(pub String);
+
+impl Stop {
+    /// The run's error at time `t` (s).
+    pub fn at(self, t: f64) -> AnalysisError {
+        AnalysisError::new(Kind::Stopped, t, self.0)
+    }
 }
 
 /// A sink that keeps everything in memory, row by row.
@@ -67,9 +80,10 @@ impl Sink for Table {
     fn begin(&mut self, channels: &[String]) {
         self.channels = channels.to_vec();
     }
-    fn row(&mut self, t: f64, values: &[f64]) {
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
         self.t.push(t);
         self.values.extend_from_slice(values);
+        Ok(())
     }
 }
 
@@ -129,6 +143,9 @@ pub enum Kind {
     /// A solver could not be set up (a matrix pattern faer refuses, or no
     /// memory for it): a bug to report.
     Internal,
+    /// The receiver of the results stopped the run (an interrupt, a failing
+    /// callback that takes the rows).
+    Stopped,
     /// Warning: Φ_q is close to singular (a toggle or dead-centre position).
     NearSingular,
     /// Warning: a cam contact's normal force is negative; the follower
@@ -138,7 +155,7 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 14] = [
+    pub const ALL: [Kind; 15] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -151,6 +168,7 @@ impl Kind {
         Kind::OffCurve,
         Kind::Undercut,
         Kind::Internal,
+        Kind::Stopped,
         Kind::NearSingular,
         Kind::LiftOff,
     ];
@@ -170,6 +188,7 @@ impl Kind {
             Kind::OffCurve => "off_curve",
             Kind::Undercut => "undercut",
             Kind::Internal => "internal",
+            Kind::Stopped => "stopped",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
         }

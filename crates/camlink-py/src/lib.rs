@@ -20,7 +20,8 @@ use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
 use camlink_core::kinematics;
 use camlink_core::run::{
-    self, AnalysisError as CoreAnalysisError, LiftOff, PointOutput, Settings, Sink, Summary,
+    self, AnalysisError as CoreAnalysisError, Kind, LiftOff, PointOutput, Settings, Sink, Stop,
+    Summary,
 };
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded};
@@ -509,10 +510,10 @@ impl Model {
                 return Err(e);
             }
             match outcome {
-                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
-                    "internal error: run stopped without a Python error",
-                )),
                 Err(payload) => Err(internal_error(payload)),
+                Ok(Err(e)) if e.kind == Kind::Stopped => Err(PyRuntimeError::new_err(format!(
+                    "internal error: run stopped without a Python error ({e})"
+                ))),
                 Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
                 Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
             }
@@ -711,11 +712,6 @@ impl ChunkSink {
     }
 }
 
-/// Unwinding payload that stops a run from inside the sink once Python has
-/// raised (an interrupt, a failing callback). `resume_unwind` does not call
-/// the panic hook, so nothing is printed; `run_kinematics` catches it.
-struct StopRun;
-
 impl Sink for ChunkSink {
     fn begin(&mut self, channels: &[String]) {
         self.names = std::iter::once("t".to_string())
@@ -725,15 +721,16 @@ impl Sink for ChunkSink {
         self.chunk.reserve(self.chunk_rows * width);
     }
 
-    fn row(&mut self, t: f64, values: &[f64]) {
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
         self.chunk.push(t);
         self.chunk.extend_from_slice(values);
         if self.chunk.len() >= self.chunk_rows * self.width() {
             self.flush();
             if self.callback_error.is_some() {
-                std::panic::resume_unwind(Box::new(StopRun));
+                return Err(Stop("on_chunk raised an exception".into()));
             }
         }
+        Ok(())
     }
 }
 
