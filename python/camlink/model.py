@@ -170,11 +170,11 @@ class Model:
         t_end: float | None = None,
         step: float | None = None,
         times: Sequence[float] | npt.ArrayLike | None = None,
+        *,
         tol: float | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
         max_iter: int | None = None,
-        *,
         analysis: str | None = None,
         **settings: Any,
     ) -> Results:

@@ -37,6 +37,36 @@ pub struct PointOutput {
     pub s: V2,
 }
 
+impl PointOutput {
+    /// The output of the point named `"body.point"` in `model`; an error
+    /// says what is wrong with the name.
+    pub fn named(model: &Model, full: &str) -> Result<Self, String> {
+        let (body, point) = full
+            .split_once('.')
+            .ok_or_else(|| format!("point '{full}' should be written as 'body.point'"))?;
+        let id = model
+            .body_id(body)
+            .ok_or_else(|| format!("point '{full}': no body named '{body}'"))?;
+        let b = model.body(id);
+        let s = b.point(point).ok_or_else(|| {
+            let known: Vec<&str> = b.points.iter().map(|p| p.name.as_str()).collect();
+            format!(
+                "point '{full}': body '{body}' has no point '{point}' (it has: {})",
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            )
+        })?;
+        Ok(PointOutput {
+            body: id,
+            name: full.to_string(),
+            s,
+        })
+    }
+}
+
 /// Receives results as the run goes.
 pub trait Sink {
     /// Called once before the first row with the channel names (not `t`).
@@ -446,6 +476,27 @@ mod tests {
                 Some((name.to_string(), cells.get(2)?.to_string()))
             })
             .collect()
+    }
+
+    #[test]
+    fn points_are_resolved_by_name_with_a_reason_when_they_are_not() {
+        use crate::model::{Body, Point};
+        let mut m = Model::new("m");
+        let mut arm = Body::new("arm", [0.0; 3]);
+        arm.points.push(Point {
+            name: "tip".into(),
+            s: [1.0, 0.5],
+        });
+        let id = m.add_body(arm);
+        let p = PointOutput::named(&m, "arm.tip").unwrap();
+        assert_eq!((p.body, p.name.as_str(), p.s), (id, "arm.tip", [1.0, 0.5]));
+        let err = |full: &str| PointOutput::named(&m, full).unwrap_err();
+        assert_eq!(err("tip"), "point 'tip' should be written as 'body.point'");
+        assert_eq!(err("leg.tip"), "point 'leg.tip': no body named 'leg'");
+        assert_eq!(
+            err("arm.toe"),
+            "point 'arm.toe': body 'arm' has no point 'toe' (it has: tip)"
+        );
     }
 
     #[test]

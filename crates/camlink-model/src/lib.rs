@@ -62,25 +62,7 @@ impl Loaded {
         self.analysis
             .points
             .iter()
-            .map(|full| {
-                let (body, point) = full
-                    .split_once('.')
-                    .ok_or_else(|| format!("expected \"body.point\", found '{full}'"))?;
-                let id = self
-                    .model
-                    .body_id(body)
-                    .ok_or_else(|| format!("'{full}': no body named '{body}'"))?;
-                let s = self
-                    .model
-                    .body(id)
-                    .point(point)
-                    .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::run::PointOutput {
-                    body: id,
-                    name: full.clone(),
-                    s,
-                })
-            })
+            .map(|full| camlink_core::run::PointOutput::named(&self.model, full))
             .collect()
     }
 }

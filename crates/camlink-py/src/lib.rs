@@ -551,31 +551,7 @@ fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
 fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec<PointOutput>> {
     names
         .iter()
-        .map(|full| {
-            let (body, point) = full.split_once('.').ok_or_else(|| {
-                ModelError::new_err(format!("point '{full}' should be written as 'body.point'"))
-            })?;
-            let id = model.body_id(body).ok_or_else(|| {
-                ModelError::new_err(format!("point '{full}': no body named '{body}'"))
-            })?;
-            let b = model.body(id);
-            let s = b.point(point).ok_or_else(|| {
-                let known: Vec<&str> = b.points.iter().map(|p| p.name.as_str()).collect();
-                ModelError::new_err(format!(
-                    "point '{full}': body '{body}' has no point '{point}' (it has: {})",
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                ))
-            })?;
-            Ok(PointOutput {
-                body: id,
-                name: full.clone(),
-                s,
-            })
-        })
+        .map(|full| PointOutput::named(model, full).map_err(ModelError::new_err))
         .collect()
 }
 
