@@ -32,7 +32,7 @@ DEFAULT_H = 1e-3
 _GRID = {"t_end", "step", "times", "tol", "max_iter", "points"}
 #: The settings each analysis takes (besides `output`).
 _SETTINGS = {
-    "kinematics": _GRID,
+    "kinematics": _GRID | {"jerk"},
     "inverse_dynamics": _GRID,
     "equilibrium": {"time", "tol", "max_iter", "points"},
     "dynamics": _GRID
@@ -40,18 +40,25 @@ _SETTINGS = {
 }
 
 
-def load(path: str | os.PathLike[str]) -> Model:
-    """Loads a TOML or JSON model file (the format follows the suffix).
+def load(path: str | os.PathLike[str], acf: str | os.PathLike[str] | None = None) -> Model:
+    """Loads a TOML or JSON model file (the format follows the suffix), or a
+    simEngine2D ``.adm`` model with the analysis of `acf` (default: the
+    ``.acf`` file beside it, if any; see docs/simengine2d.md).
 
     Raises `FileNotFoundError` for a missing file and `ModelError` (a
     `ValueError`) naming the file, line and field for a file that is not a
     valid model.
     """
     path = Path(path)
-    if not path.is_file():
-        if path.is_dir():
-            raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(path))
-        raise FileNotFoundError(errno.ENOENT, "no such model file", str(path))
+    for p in (path, None if acf is None else Path(acf)):
+        if p is not None and not p.is_file():
+            if p.is_dir():
+                raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(p))
+            raise FileNotFoundError(errno.ENOENT, "no such model file", str(p))
+    if path.suffix.lower() == ".adm":
+        return Model(_core.Model.load_adm(path, acf), source=path)
+    if acf is not None:
+        raise ModelError(f"{path}: an .acf analysis file goes with a simEngine2D .adm model only")
     return Model(_core.Model.load(path), source=path)
 
 
@@ -225,8 +232,13 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        jerk: bool | None = None,
     ) -> Results:
         """Kinematic analysis: positions, velocities and accelerations.
+
+        With `jerk` (default: the file's ``[analysis] jerk``), also the exact
+        jerk from Φ_q q⃛ = η: channels ``<body>.jx``, ``.jy`` (m/s³),
+        ``.jphi`` (rad/s³) and ``<point>.jx``, ``.jy`` for output points.
 
         Arguments left as None come from the file's ``[analysis]``. With
         `output` (``.csv`` or ``.parquet``), results are written as the run
@@ -238,10 +250,13 @@ class Model:
         """
         grid = self.times(t_end, step, times)
         tol, max_iter = self._solver("kinematics", tol, max_iter)
+        with_jerk = bool(self.analysis.get("jerk", False) if jerk is None else jerk)
         return self._run(
             "kinematics",
             output,
-            lambda **kw: self._core.run_kinematics(grid, tol=tol, max_iter=max_iter, **kw),
+            lambda **kw: self._core.run_kinematics(
+                grid, tol=tol, max_iter=max_iter, jerk=with_jerk, **kw
+            ),
             points,
         )
 

@@ -276,8 +276,8 @@ impl StepGuard {
                     (
                         Kind::OffCurve,
                         format!(
-                            "the contact ran off the {end} end ({at}) of the open curve of joint \
-                             '{}': {name} = {a} is outside its range [{s0}, {s1}]",
+                            "the contact ran off the {end} end ({at}) of the open curve of \
+                             joint '{}': {name} = {a} is outside its range [{s0}, {s1}]",
                             joint.name
                         ),
                     )

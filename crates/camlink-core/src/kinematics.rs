@@ -5,7 +5,9 @@
 //!    with the jerk q⃛ estimated from the last two accelerations;
 //! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
 //!    Φ_q while it keeps converging fast, refreshing it when it does not;
-//! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ.
+//! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ;
+//! 4. when the jerk is asked for ([`Settings::jerk`]), solve Φ_q q⃛ = η with
+//!    the same factorization (η from [`Equations::eta`]).
 //!
 //! The factorization of step 3 is the one step 2 reuses at the next time,
 //! so a smooth run factors the Jacobian once per step.
@@ -24,11 +26,12 @@ use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{max_abs, norm2};
+use crate::math::{max_abs, norm2, rot_d};
 use crate::model::{BodyId, Model};
+use crate::motion;
 use crate::run::{
-    channels, fill_outputs, worst_joints, AnalysisError, Kind, PointOutput, Settings, Sink,
-    Summary, Warning,
+    channels, fill_outputs, jerk_channels, worst_joints, AnalysisError, Kind, PointOutput,
+    Settings, Sink, Summary, Warning,
 };
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
@@ -93,7 +96,11 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let mut solver = Solver::new(model, settings.clone())?;
     let guard = StepGuard::new(model);
-    let names = channels(model, points);
+    let mut names = channels(model, points);
+    let plain = names.len();
+    if settings.jerk {
+        names.extend(jerk_channels(model, points));
+    }
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut prev_t = None;
@@ -113,7 +120,11 @@ pub fn run(
         }
         .map_err(|e| guard.explain(model, e))?;
         guard.check(model, solver.assembly(), &solver.q, t)?;
-        solver.outputs(points, &mut values);
+        solver.outputs(points, &mut values[..plain]);
+        if settings.jerk {
+            solver.jerk(t)?;
+            solver.jerk_outputs(points, &mut values[plain..]);
+        }
         sink.row(t, &values).map_err(|s| s.at(t))?;
         prev_t = Some(t);
     }
@@ -130,6 +141,8 @@ pub struct Solver<'m> {
     pub q: Vec<f64>,
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
+    /// q⃛, solved by [`jerk`](Self::jerk) only.
+    pub qddd: Vec<f64>,
     rhs: Vec<f64>,
     /// The predicted q of the current step.
     predicted: Vec<f64>,
@@ -191,6 +204,7 @@ impl<'m> Solver<'m> {
                 .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
+            qddd: vec![0.0; n],
             rhs: vec![0.0; n],
             predicted: vec![0.0; n],
             qdd_prev: vec![0.0; n],
@@ -553,6 +567,43 @@ impl<'m> Solver<'m> {
             points,
             out,
         );
+    }
+
+    /// Solves Φ_q q⃛ = η at the solved state of time `t`, with the
+    /// factorization of its acceleration step.
+    pub fn jerk(&mut self, t: f64) -> Result<(), AnalysisError> {
+        self.asm
+            .eta(self.model, &self.q, &self.qd, &self.qdd, t, &mut self.qddd);
+        self.jac.solve(&mut self.qddd);
+        if self.qddd.iter().any(|v| !v.is_finite()) {
+            return Err(self.failure(Kind::NotFinite, t, "jerks are not finite numbers"));
+        }
+        Ok(())
+    }
+
+    /// Fills the channels of [`jerk_channels`] from the solved jerk.
+    pub fn jerk_outputs(&self, points: &[PointOutput], out: &mut [f64]) {
+        let body = |v: &[f64], id: BodyId| -> [f64; 3] {
+            match self.asm.body_col(id.0) {
+                Some(c) => [v[c], v[c + 1], v[c + 2]],
+                None => [0.0; 3],
+            }
+        };
+        let mut k = 0;
+        for (id, _) in self.model.moving_bodies() {
+            out[k..k + 3].copy_from_slice(&body(&self.qddd, id));
+            k += 3;
+        }
+        for p in points {
+            let [q, qd, qdd, qddd] =
+                [&self.q, &self.qd, &self.qdd, &self.qddd].map(|v| body(v, p.body));
+            // r⃛^P = r⃛ + B s' φ⃛ + (the terms without jerk).
+            let rest = motion::body_point(q, qd, qdd, p.s)[3];
+            let b = rot_d(q[2], p.s);
+            out[k] = qddd[0] + b[0] * qddd[2] + rest[0];
+            out[k + 1] = qddd[1] + b[1] * qddd[2] + rest[1];
+            k += 2;
+        }
     }
 
     /// (q, q̇, q̈) of one body; zeros for the ground.

@@ -70,6 +70,17 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
+/// A model file format by name: `"toml"` or `"json"`, any case.
+fn model_format(name: &str) -> PyResult<Format> {
+    match name.to_ascii_lowercase().as_str() {
+        "toml" => Ok(Format::Toml),
+        "json" => Ok(Format::Json),
+        other => Err(ModelError::new_err(format!(
+            "unknown model format '{other}' (expected 'toml' or 'json')"
+        ))),
+    }
+}
+
 /// What `run_kinematics` returns: channel names, data, summary.
 type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
 
@@ -92,21 +103,26 @@ impl Model {
         })
     }
 
+    /// Loads a simEngine2D `.adm` model with the analysis of `acf` (default:
+    /// the `.acf` beside it, if any).
+    #[staticmethod]
+    #[pyo3(signature = (path, acf = None))]
+    fn load_adm(py: Python<'_>, path: PathBuf, acf: Option<PathBuf>) -> PyResult<Model> {
+        guard(|| {
+            let loaded = py.detach(|| camlink_model::adm::load_adm(&path, acf.as_deref()));
+            Ok(Model {
+                loaded: loaded.map_err(model_error)?,
+            })
+        })
+    }
+
     /// Loads a model from text; `format` is `"toml"` or `"json"`; `source`
     /// names the text in error messages.
     #[staticmethod]
     #[pyo3(signature = (text, format, source = "<string>"))]
     fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
         guard(|| {
-            let format = match format.to_ascii_lowercase().as_str() {
-                "toml" => Format::Toml,
-                "json" => Format::Json,
-                other => {
-                    return Err(ModelError::new_err(format!(
-                        "unknown model format '{other}' (expected 'toml' or 'json')"
-                    )))
-                }
-            };
+            let format = model_format(format)?;
             let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
             Ok(Model { loaded })
         })
@@ -172,6 +188,7 @@ impl Model {
         d.set_item("tol", a.tol_set.then_some(a.tol))?;
         d.set_item("max_iter", a.max_iter_set.then_some(a.max_iter))?;
         d.set_item("points", a.points.clone())?;
+        d.set_item("jerk", a.jerk)?;
         let dy = &a.dynamics;
         d.set_item("h", dy.h)?;
         d.set_item("rho_inf", dy.rho_inf)?;
@@ -332,14 +349,16 @@ impl Model {
     /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
     /// channel names starting with `"t"`, a `steps × len(names)` array and
     /// a dict of solver counts, warnings, assembly moves and `lift_off`
-    /// (empty here; see `run_inverse_dynamics`).
+    /// (empty here; see `run_inverse_dynamics`). With `jerk`, Φ_q q⃛ = η is
+    /// solved too and the jerk channels `<body>.jx .jy .jphi` and
+    /// `<point>.jx .jy` follow the others.
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
     /// as the run goes. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -350,9 +369,14 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            jerk,
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             kinematics::run(model, &times, &settings, points, sink)
         })
@@ -383,7 +407,11 @@ impl Model {
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            ..Settings::default()
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             inverse::run(model, &times, &settings, points, sink)
         })
@@ -719,6 +747,18 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
     })
 }
 
+/// A simEngine2D `.adm` model (with the analysis of `acf`, default the
+/// `.acf` beside it) written as a camlink model file; `format` is `"toml"`
+/// or `"json"`.
+#[pyfunction]
+#[pyo3(signature = (path, format, acf = None))]
+fn convert_adm(path: PathBuf, format: &str, acf: Option<PathBuf>) -> PyResult<String> {
+    guard(|| {
+        let format = model_format(format)?;
+        camlink_model::adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
+    })
+}
+
 /// The JSON Schema of model files, as JSON text.
 #[pyfunction]
 fn json_schema() -> PyResult<String> {
@@ -733,6 +773,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
