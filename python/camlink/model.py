@@ -399,13 +399,16 @@ class Model:
             e.results = Results(
                 names, partial, model=self.name, complete=False, summary={"analysis": kind}
             )
+            e.results.mechanism = self
             e.output = writer.path if writer is not None else None
             raise
         finally:
             if writer is not None:
                 writer.close(names)
         summary["analysis"] = kind
-        return Results(names, data, model=self.name, summary=summary)
+        results = Results(names, data, model=self.name, summary=summary)
+        results.mechanism = self
+        return results
 
     def __repr__(self) -> str:
         return repr(self._core)

@@ -16,6 +16,8 @@ from camlink._core import ModelError
 if TYPE_CHECKING:
     import pandas as pd
 
+    from camlink.model import Model
+
 __all__ = ["Results", "open_writer", "SUFFIXES", "LIFT_OFF_COLUMNS"]
 
 #: File name suffixes `Results.save` and the `output=` of a run understand.
@@ -73,6 +75,9 @@ class Results:
         #: ``constraint_drift`` and ``velocity_drift``. Empty for results
         #: read from a file.
         self.summary = summary or {}
+        #: The model that produced these results (None when read from a
+        #: file); drawings and animations take their geometry from it.
+        self.mechanism: Model | None = None
 
     @property
     def t(self) -> npt.NDArray[np.float64]:
