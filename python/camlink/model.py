@@ -410,6 +410,18 @@ class Model:
         results.mechanism = self
         return results
 
+    def draw(self, t: float | None = None, *, traces: Sequence[str] = ()) -> Any:
+        """The mechanism at time `t` (s) as a matplotlib figure; see
+        `camlink.draw`."""
+        from camlink.drawing import draw
+
+        return draw(self, t, traces=traces)
+
+    def _repr_html_(self) -> str:
+        from camlink.notebook import model_html
+
+        return model_html(self)
+
     def __repr__(self) -> str:
         return repr(self._core)
 

@@ -14,7 +14,10 @@ import numpy.typing as npt
 from camlink._core import ModelError
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     import pandas as pd
+    from matplotlib.figure import Figure
 
     from camlink.model import Model
 
@@ -154,6 +157,57 @@ class Results:
             index=pd.Index(self.t, name="t"),
             columns=self.channels,
         )
+
+    def plot(self, y: str | Sequence[str], x: str = "t") -> Figure:
+        """Channels `y` against time or the channel `x`; see `camlink.plot`."""
+        from camlink.plots import plot
+
+        return plot(self, y, x)
+
+    def svaj(self, joint: str | None = None) -> Figure:
+        """The SVAJ diagram of a cam contact; see `camlink.plots.svaj`."""
+        from camlink.plots import svaj
+
+        return svaj(self, joint)
+
+    def draw(
+        self, t: float | None = None, *, traces: Sequence[str] = (), forces: Sequence[str] = ()
+    ) -> Figure:
+        """The mechanism at time `t` (s); see `camlink.draw`."""
+        from camlink.drawing import draw
+
+        return draw(self, t, traces=traces, forces=forces)
+
+    def animate(
+        self,
+        path: str | os.PathLike[str] | None = None,
+        *,
+        fps: float = 20.0,
+        speed: float = 1.0,
+        traces: Sequence[str] = (),
+        width: float = 6.4,
+        dpi: int = 80,
+    ) -> Path | str:
+        """An animation of the run: a GIF or MP4 file at `path` (by suffix),
+        or, with no path, HTML of an inline animation for a notebook. See
+        `camlink.animate.animate`."""
+        from camlink.animate import animate
+
+        return animate(self, path, fps=fps, speed=speed, traces=traces, width=width, dpi=dpi)
+
+    def to_html(
+        self, path: str | os.PathLike[str] | None = None, *, plots: Sequence[str] | None = None
+    ) -> Path | str:
+        """The self-contained browser viewer of the run, written to `path`
+        (or returned as text); see `camlink.viewer.to_html`."""
+        from camlink.viewer import to_html
+
+        return to_html(self, path, plots=plots)
+
+    def _repr_html_(self) -> str:
+        from camlink.notebook import results_html
+
+        return results_html(self)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Writes the results as CSV or Parquet, chosen by the suffix."""

@@ -11,7 +11,7 @@ import pytest
 from PIL import Image
 
 import camlink
-from camlink.draw import Drawing, draw
+from camlink.drawing import Drawing, draw
 from camlink.results import Results
 
 ROOT = Path(__file__).resolve().parents[2]
