@@ -14,10 +14,14 @@ import sys
 from pathlib import Path
 
 import camlink
+from camlink import cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+#: Subcommands registered from their own modules.
+COMMANDS: dict[str, cli_visuals.Command] = {}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -89,6 +93,7 @@ def _parser() -> argparse.ArgumentParser:
     check.add_argument("--json", action="store_true", help="print the report as JSON")
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    COMMANDS.update(cli_visuals.add_parsers(sub))
     return p
 
 
@@ -230,7 +235,9 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema, **COMMANDS}[
+        args.command
+    ]
     try:
         return command(args)
     except ModelError as e:

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
+from matplotlib.artist import Artist
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch, Polygon
@@ -32,7 +33,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["draw", "Drawing", "Frame", "resolve"]
+__all__ = ["draw", "Drawing", "Frame", "Shape", "resolve"]
 
 Array = npt.NDArray[np.float64]
 
@@ -44,6 +45,55 @@ TRACE_COLOR = "#b03a2e"
 FORCE_COLOR = "#1f5f99"
 #: Rows over which the frame is fitted to the motion (evenly spaced).
 FRAMING_ROWS = 240
+
+
+@dataclass(frozen=True)
+class Shape:
+    """One drawn polygon or polyline: `points` (k × 2, m) in `body`'s
+    frame; colours as CSS strings (None: not filled / not stroked); line
+    width in points; `dash` a dash pattern in points (empty: solid); `dot`
+    the radius (points) of a marker at each point (0: none); `gid` names
+    what it shows (``"pin:A"``, ``"link:crank"`` …)."""
+
+    body: str
+    points: Array
+    closed: bool
+    fill: str | None
+    stroke: str | None
+    width: float
+    dash: tuple[float, ...]
+    dot: float
+    z: float
+    gid: str
+
+
+def _css(rgba: Sequence[float]) -> str | None:
+    r, g, b, a = (float(v) for v in rgba)
+    if a == 0:
+        return None
+    return f"rgba({round(r * 255)},{round(g * 255)},{round(b * 255)},{a:.3g})"
+
+
+def _shape(artist: Artist, body: str, local: Array) -> Shape:
+    gid = artist.get_gid() or ""
+    z = float(artist.get_zorder())
+    if isinstance(artist, Polygon):
+        _, dashes = artist._dash_pattern  # type: ignore[attr-defined]
+        return Shape(body, local, True, _css(artist.get_facecolor()), _css(artist.get_edgecolor()),
+                     float(artist.get_linewidth()), tuple(dashes or ()), 0.0, z, gid)
+    assert isinstance(artist, Line2D)
+    from matplotlib.colors import to_rgba
+
+    color = _css(to_rgba(artist.get_color()))
+    marker = artist.get_marker() not in (None, "None", "none", "")
+    solid = artist.get_linestyle() in ("-", "solid")
+    dashes = () if solid or artist.get_linestyle() in ("None", "none", "") else tuple(
+        float(d) for d in (artist._dash_pattern[1] or ())  # type: ignore[attr-defined]
+    )
+    stroke = None if artist.get_linestyle() in ("None", "none", "") else color
+    return Shape(body, local, False, color if marker else None, stroke,
+                 float(artist.get_linewidth()), dashes,
+                 float(artist.get_markersize()) / 2 if marker else 0.0, z, gid)
 
 
 @dataclass(frozen=True)
@@ -125,6 +175,8 @@ class Drawing:
         self.scene = Scene.of(model, tol=tol)
         self.poses = self.scene.poses(results)
         self._movers: list[tuple[str, Array, Callable[[Array], None]]] = []
+        #: The artists that move, by id, with their body and local points.
+        self._moving: dict[int, tuple[str, Array, Artist]] = {}
         self._growing: list[tuple[Line2D, Array]] = []
         self._arrows: list[tuple[FancyArrowPatch, Array, Array, object, str]] = []
         self._static: list[Array] = []
@@ -176,12 +228,36 @@ class Drawing:
         patch = Polygon(local, closed=True, zorder=z, **kw)  # type: ignore[arg-type]
         self.ax.add_patch(patch)
         self._mover(body, local, patch.set_xy)
+        self._moving[id(patch)] = (body, np.asarray(local, dtype=np.float64), patch)
         return patch
 
     def _line(self, body: str, local: Array, z: float, **kw: object) -> Line2D:
         (line,) = self.ax.plot(local[:, 0], local[:, 1], zorder=z, **kw)  # type: ignore[arg-type]
         self._mover(body, local, lambda xy: line.set_data(xy[:, 0], xy[:, 1]))
+        self._moving[id(line)] = (body, np.asarray(local, dtype=np.float64), line)
         return line
+
+    def shapes(self) -> list[Shape]:
+        """Every drawn polygon and line as a `Shape` in its body's frame
+        (static ones on the ground), by drawing order: what the browser
+        viewer draws."""
+        out: list[Shape] = []
+        for artist in [*self.ax.patches, *self.ax.lines]:
+            if isinstance(artist, FancyArrowPatch):
+                continue
+            moving = self._moving.get(id(artist))
+            if moving is not None:
+                body, local, _ = moving
+            elif isinstance(artist, Polygon):
+                body, local = GROUND, np.asarray(artist.get_xy(), dtype=np.float64)
+            elif isinstance(artist, Line2D):
+                body = GROUND
+                local = np.column_stack([artist.get_xdata(), artist.get_ydata()]).astype(np.float64)
+            else:
+                continue
+            out.append(_shape(artist, body, local))
+        out.sort(key=lambda sh: sh.z)
+        return out
 
     def _draw_static(self, traces: Sequence[str], forces: Sequence[str]) -> None:
         scene, ax = self.scene, self.ax
