@@ -593,7 +593,8 @@ def _style(ax: Axes) -> None:
 
 def _layout(fig: Figure, ax: Axes, lo: Array, hi: Array, width: float, dpi: int) -> Frame:
     """Sizes the figure and its axes box to the aspect of the data limits
-    `lo`–`hi` (m), so that one metre is as many pixels across as up."""
+    `lo`–`hi` (m), so that one metre is as many pixels across as up. The
+    pixel size truncates as the Agg canvas does."""
     left, right, bottom, top = 0.75, 0.15, 0.5, 0.15
     aw = width - left - right
     w, h = float(hi[0] - lo[0]), float(hi[1] - lo[1])
@@ -616,7 +617,7 @@ def _layout(fig: Figure, ax: Axes, lo: Array, hi: Array, width: float, dpi: int)
         (float(lo[0]), float(hi[0])),
         (float(lo[1]), float(hi[1])),
         aw * dpi / float(hi[0] - lo[0]),
-        (int(round(width * dpi)), int(round(height * dpi))),
+        (int(width * dpi), int(height * dpi)),
     )
 
 
