@@ -67,6 +67,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: OnChunk | None = None,
         chunk_rows: int = 1024,
+        jerk: bool = False,
     ) -> RunOutput: ...
     def run_inverse_dynamics(
         self,

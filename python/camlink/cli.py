@@ -70,6 +70,13 @@ def _parser() -> argparse.ArgumentParser:
         help="dynamics: error-controlled steps (--no-adaptive: fixed steps)",
     )
     run.add_argument(
+        "--jerk",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="kinematics: also output the exact jerk, <body>.jx .jy .jphi and "
+        "<point>.jx .jy (default: [analysis] jerk)",
+    )
+    run.add_argument(
         "-p",
         "--point",
         action="append",
@@ -121,6 +128,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         "h": args.h,
         "rho_inf": args.rho_inf,
         "adaptive": args.adaptive,
+        "jerk": args.jerk,
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)

@@ -31,7 +31,7 @@ DEFAULT_H = 1e-3
 _GRID = {"t_end", "step", "times", "tol", "max_iter", "points"}
 #: The settings each analysis takes (besides `output`).
 _SETTINGS = {
-    "kinematics": _GRID,
+    "kinematics": _GRID | {"jerk"},
     "inverse_dynamics": _GRID,
     "equilibrium": {"time", "tol", "max_iter", "points"},
     "dynamics": _GRID
@@ -223,8 +223,13 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        jerk: bool | None = None,
     ) -> Results:
         """Kinematic analysis: positions, velocities and accelerations.
+
+        With `jerk` (default: the file's ``[analysis] jerk``), also the exact
+        jerk from Φ_q q⃛ = η: channels ``<body>.jx``, ``.jy`` (m/s³),
+        ``.jphi`` (rad/s³) and ``<point>.jx``, ``.jy`` for output points.
 
         Arguments left as None come from the file's ``[analysis]``. With
         `output` (``.csv`` or ``.parquet``), results are written as the run
@@ -236,10 +241,13 @@ class Model:
         """
         grid = self.times(t_end, step, times)
         tol, max_iter = self._solver("kinematics", tol, max_iter)
+        with_jerk = bool(self.analysis.get("jerk", False) if jerk is None else jerk)
         return self._run(
             "kinematics",
             output,
-            lambda **kw: self._core.run_kinematics(grid, tol=tol, max_iter=max_iter, **kw),
+            lambda **kw: self._core.run_kinematics(
+                grid, tol=tol, max_iter=max_iter, jerk=with_jerk, **kw
+            ),
             points,
         )
 

@@ -5,7 +5,9 @@
 //!    with the jerk q⃛ estimated from the last two accelerations;
 //! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
 //!    Φ_q while it keeps converging fast, refreshing it when it does not;
-//! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ.
+//! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ;
+//! 4. when the jerk is asked for ([`Settings::jerk`]), solve Φ_q q⃛ = η with
+//!    the same factorization (η from [`Equations::eta`]).
 //!
 //! The factorization of step 3 is the one step 2 reuses at the next time,
 //! so a smooth run factors the Jacobian once per step.
@@ -27,6 +29,7 @@ use crate::dynamics::contact_force::LiftOff;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
+use crate::motion;
 
 /// Solver settings.
 #[derive(Clone, Debug)]
@@ -35,6 +38,8 @@ pub struct Settings {
     pub tol: f64,
     /// Newton iterations allowed per time step.
     pub max_iter: usize,
+    /// Also solve Φ_q q⃛ = η for the jerk and output it ([`jerk_channels`]).
+    pub jerk: bool,
 }
 
 impl Default for Settings {
@@ -42,6 +47,7 @@ impl Default for Settings {
         Settings {
             tol: 1e-10,
             max_iter: 25,
+            jerk: false,
         }
     }
 }
@@ -212,6 +218,24 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
     names
 }
 
+/// The jerk channels of a run with [`Settings::jerk`], after those of
+/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
+/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
+pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["jx", "jy", "jphi"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["jx", "jy"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
+    names
+}
+
 /// Position, velocity and acceleration analysis over `times`.
 ///
 /// Rows reach `sink` as each step completes, so a run that fails keeps every
@@ -229,7 +253,11 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let mut solver = Solver::new(model, settings.clone())?;
     let guard = StepGuard::new(model);
-    let names = channels(model, points);
+    let mut names = channels(model, points);
+    let plain = names.len();
+    if settings.jerk {
+        names.extend(jerk_channels(model, points));
+    }
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut prev_t = None;
@@ -250,7 +278,11 @@ pub fn run(
         }
         .map_err(|e| guard.explain(model, e))?;
         guard.check(model, solver.assembly(), &solver.q, t)?;
-        solver.outputs(points, &mut values);
+        solver.outputs(points, &mut values[..plain]);
+        if settings.jerk {
+            solver.jerk(t)?;
+            solver.jerk_outputs(points, &mut values[plain..]);
+        }
         sink.row(t, &values);
         prev_t = Some(t);
     }
@@ -267,6 +299,8 @@ pub struct Solver<'m> {
     pub q: Vec<f64>,
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
+    /// q⃛, solved by [`jerk`](Self::jerk) only.
+    pub qddd: Vec<f64>,
     rhs: Vec<f64>,
     /// The predicted q of the current step.
     predicted: Vec<f64>,
@@ -327,6 +361,7 @@ impl<'m> Solver<'m> {
             jac: SystemMatrix::new(n, &pattern),
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
+            qddd: vec![0.0; n],
             rhs: vec![0.0; n],
             predicted: vec![0.0; n],
             qdd_prev: vec![0.0; n],
@@ -699,6 +734,43 @@ impl<'m> Solver<'m> {
             points,
             out,
         );
+    }
+
+    /// Solves Φ_q q⃛ = η at the solved state of time `t`, with the
+    /// factorization of its acceleration step.
+    pub fn jerk(&mut self, t: f64) -> Result<(), AnalysisError> {
+        self.asm
+            .eta(self.model, &self.q, &self.qd, &self.qdd, t, &mut self.qddd);
+        self.jac.solve(&mut self.qddd);
+        if self.qddd.iter().any(|v| !v.is_finite()) {
+            return Err(self.failure(t, "jerks are not finite numbers"));
+        }
+        Ok(())
+    }
+
+    /// Fills the channels of [`jerk_channels`] from the solved jerk.
+    pub fn jerk_outputs(&self, points: &[PointOutput], out: &mut [f64]) {
+        let body = |v: &[f64], id: BodyId| -> [f64; 3] {
+            match self.asm.body_col(id.0) {
+                Some(c) => [v[c], v[c + 1], v[c + 2]],
+                None => [0.0; 3],
+            }
+        };
+        let mut k = 0;
+        for (id, _) in self.model.moving_bodies() {
+            out[k..k + 3].copy_from_slice(&body(&self.qddd, id));
+            k += 3;
+        }
+        for p in points {
+            let [q, qd, qdd, qddd] =
+                [&self.q, &self.qd, &self.qdd, &self.qddd].map(|v| body(v, p.body));
+            // r⃛^P = r⃛ + B s' φ⃛ + (the terms without jerk).
+            let rest = motion::body_point(q, qd, qdd, p.s)[3];
+            let b = rot_d(q[2], p.s);
+            out[k] = qddd[0] + b[0] * qddd[2] + rest[0];
+            out[k + 1] = qddd[1] + b[1] * qddd[2] + rest[1];
+            k += 2;
+        }
     }
 
     /// (q, q̇, q̈) of one body; zeros for the ground.

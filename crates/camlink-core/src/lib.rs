@@ -12,6 +12,7 @@ pub mod curve;
 pub mod function;
 pub mod math;
 pub mod model;
+pub mod motion;
 
 pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;

@@ -100,6 +100,7 @@ mod compile;
 mod error;
 mod function;
 mod jet;
+mod jet4;
 mod lexer;
 mod motion;
 mod parser;
@@ -114,6 +115,7 @@ use vm::{run, Fault, Op};
 pub use error::{EvalError, ParseError, RENDER_WIDTH};
 pub use function::functions;
 pub use jet::Jet;
+pub use jet4::Jet4;
 pub use motion::Law;
 pub use parser::{MAX_LEN, MAX_NESTING};
 
@@ -175,6 +177,22 @@ impl Expr {
             9..=32 => self.jet_on::<32>(x),
             _ => self.jet_on::<{ parser::MAX_STACK }>(x),
         }
+    }
+
+    /// `[f, f', f'', f''', f'''']` at x: [`jet`](Self::jet) one order
+    /// further ([`Jet4`]), for the jerk analysis.
+    pub fn jet4(&self, x: f64) -> [f64; 5] {
+        match self.depth {
+            0..=4 => self.jet4_on::<4>(x),
+            5..=8 => self.jet4_on::<8>(x),
+            9..=32 => self.jet4_on::<32>(x),
+            _ => self.jet4_on::<{ parser::MAX_STACK }>(x),
+        }
+    }
+
+    fn jet4_on<const N: usize>(&self, x: f64) -> [f64; 5] {
+        let mut stack = [Jet4::ZERO; N];
+        run::<Jet4, false>(&self.code, x, &mut stack).map_or([f64::NAN; 5], |j| j.0)
     }
 
     #[inline]

@@ -32,6 +32,7 @@ fn bench_file(bencher: divan::Bencher, name: &str) {
     let settings = Settings {
         tol: loaded.analysis.tol,
         max_iter: loaded.analysis.max_iter,
+        ..Settings::default()
     };
     bencher.bench_local(|| run(&loaded.model, &times, &settings, &[], &mut Discard).unwrap());
 }

@@ -111,6 +111,8 @@ pub struct AnalysisSpec {
     pub max_iter_set: bool,
     /// Output points as `"body.point"`; each names an existing point.
     pub points: Vec<String>,
+    /// Kinematics: also solve and output the jerk.
+    pub jerk: bool,
     /// Forward-dynamics settings (defaults unless `kind` is dynamics).
     pub dynamics: DynamicsSpec,
 }
@@ -226,6 +228,7 @@ impl Default for AnalysisSpec {
             tol_set: false,
             max_iter_set: false,
             points: Vec::new(),
+            jerk: false,
             dynamics: DynamicsSpec::default(),
         }
     }

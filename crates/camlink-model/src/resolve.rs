@@ -1110,6 +1110,16 @@ impl Ctx {
         }
         let time = self.opt(a.time.as_ref(), 0.0, "analysis.time")?;
         let dynamics = self.dynamics_spec(a)?;
+        let jerk = a.jerk.unwrap_or(false);
+        if jerk && kind != AnalysisType::Kinematics {
+            return fail(
+                "analysis.jerk",
+                format!(
+                    "jerk is an option of kinematic analysis (type = \"kinematics\"), not of \"{}\"",
+                    kind.name()
+                ),
+            );
+        }
         for (k, name) in a.points.iter().enumerate() {
             let path = format!("analysis.points[{k}]");
             let Some((b, pt)) = name.split_once('.') else {
@@ -1129,6 +1139,7 @@ impl Ctx {
             tol_set: a.tol.is_some(),
             max_iter_set: a.max_iter.is_some(),
             points: a.points.clone(),
+            jerk,
             dynamics,
         })
     }

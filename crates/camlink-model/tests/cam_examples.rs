@@ -50,6 +50,7 @@ fn try_run(l: &Loaded) -> (Table, Result<kinematics::Summary, AnalysisError>) {
     let settings = Settings {
         tol: a.tol,
         max_iter: a.max_iter,
+        ..Settings::default()
     };
     let mut table = Table::default();
     let r = kinematics::run(&l.model, &times, &settings, &points, &mut table);

@@ -39,6 +39,7 @@ fn run_example(name: &str) -> (Loaded, Table) {
     let settings = Settings {
         tol: a.tol,
         max_iter: a.max_iter,
+        ..Settings::default()
     };
     let points = loaded.point_outputs().unwrap();
     let mut table = Table::default();

@@ -198,6 +198,7 @@ fn outcome(loaded: &Loaded, stage: &str) -> String {
             let settings = Settings {
                 tol: a.tol,
                 max_iter: a.max_iter,
+                ..Settings::default()
             };
             let mut table = Table::default();
             match run(&loaded.model, &times, &settings, &[], &mut table) {

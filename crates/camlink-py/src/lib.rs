@@ -170,6 +170,7 @@ impl Model {
         d.set_item("tol", a.tol_set.then_some(a.tol))?;
         d.set_item("max_iter", a.max_iter_set.then_some(a.max_iter))?;
         d.set_item("points", a.points.clone())?;
+        d.set_item("jerk", a.jerk)?;
         let dy = &a.dynamics;
         d.set_item("h", dy.h)?;
         d.set_item("rho_inf", dy.rho_inf)?;
@@ -416,14 +417,16 @@ impl Model {
     /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
     /// channel names starting with `"t"`, a `steps × len(names)` array and
     /// a dict of solver counts, warnings, assembly moves and `lift_off`
-    /// (empty here; see `run_inverse_dynamics`).
+    /// (empty here; see `run_inverse_dynamics`). With `jerk`, Φ_q q⃛ = η is
+    /// solved too and the jerk channels `<body>.jx .jy .jphi` and
+    /// `<point>.jx .jy` follow the others.
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
     /// as the run goes. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -434,9 +437,14 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            jerk,
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             kinematics::run(model, &times, &settings, points, sink)
         })
@@ -467,7 +475,11 @@ impl Model {
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            ..Settings::default()
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             inverse::run(model, &times, &settings, points, sink)
         })

@@ -5,7 +5,10 @@
 //! - ν against −Φ_t by central differences in t;
 //! - γ against the second time derivative of Φ along the trajectory
 //!   z(τ) = z₀ + v τ + a τ²/2, t = t₀ + τ, using
-//!   d²Φ/dτ² = Φ_q a − γ.
+//!   d²Φ/dτ² = Φ_q a − γ;
+//! - η against the time derivative of γ − Φ_q q̈ along the trajectory
+//!   z(τ) = z₀ + v τ + a τ²/2 + j τ³/6 with a random jerk j, using
+//!   d/dτ (γ − Φ_q z̈) = η − Φ_q j (γ itself being checked against Φ).
 //!
 //! Differences use Richardson extrapolation, so the tolerance can stay tight.
 
@@ -122,9 +125,10 @@ fn close(what: &str, kind: &str, r: usize, got: f64, want: f64, x: &Local) {
     );
 }
 
-/// Checks Φ_q, ν and γ of `c` at the configuration `x` (velocities in
-/// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`).
-pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
+/// Checks Φ_q, ν, γ and η of `c` at the configuration `x` (velocities in
+/// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`, which
+/// η reads from `x.qdd`, `x.own_dd` too; its jerk is `jerk`).
+pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[f64; NZ]) {
     let m = c.rows();
     let mask = moving(c);
     let z0 = to_z(x);
@@ -245,15 +249,45 @@ pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
         let jac_a: f64 = (0..NZ).map(|k| row[k] * acc[k]).sum();
         close("γ", c.kind(), r, gamma[r], jac_a - dd[r], x);
     }
+
+    // η = d/dτ (γ − Φ_q z̈) + Φ_q j along z(τ) = z₀ + v τ + a τ²/2 + j τ³/6.
+    let mut eta = [0.0; 3];
+    c.eta(x, &mut eta);
+    let residual = d1(
+        |h| {
+            let z = std::array::from_fn(|k| {
+                z0[k] + v[k] * h + 0.5 * acc[k] * h * h + jerk[k] * h * h * h / 6.0
+            });
+            let zd: [f64; NZ] = std::array::from_fn(|k| v[k] + acc[k] * h + 0.5 * jerk[k] * h * h);
+            let zdd: [f64; NZ] = std::array::from_fn(|k| acc[k] + jerk[k] * h);
+            let mut y = from_z(&z, x.t + h, x);
+            y.qd = [[zd[0], zd[1], zd[2]], [zd[3], zd[4], zd[5]]];
+            y.own_d.copy_from_slice(&zd[6..]);
+            let (mut g, mut j) = ([0.0; 3], Jac::default());
+            c.gamma(&y, &mut g);
+            c.jacobian(&y, &mut j);
+            [0, 1, 2].map(|r| {
+                let row = jac_row(&j, r);
+                g[r] - (0..NZ).map(|k| row[k] * zdd[k]).sum::<f64>()
+            })
+        },
+        1e-4,
+    );
+    for r in 0..m {
+        let row = jac_row(&jac, r);
+        let jac_j: f64 = (0..NZ).map(|k| row[k] * jerk[k]).sum();
+        close("η", c.kind(), r, eta[r], residual[r] + jac_j, x);
+    }
 }
 
-/// A random configuration for `c`: ground bodies at rest at the origin,
-/// own coordinates drawn from `own_range`.
+/// A random configuration for `c` with its acceleration and jerk: ground
+/// bodies at rest at the origin, own coordinates drawn from `own_range`;
+/// the acceleration is also in the configuration's `qdd`, `own_dd`.
 pub fn random_local<C: Equations>(
     c: &C,
     rng: &mut Rng,
     own_range: [(f64, f64); MAX_OWN],
-) -> (Local, [f64; NZ]) {
+) -> (Local, [f64; NZ], [f64; NZ]) {
     let mask = moving(c);
     let mut x = Local {
         t: rng.range(0.0, 2.0),
@@ -277,8 +311,11 @@ pub fn random_local<C: Equations>(
         x.own[o] = rng.range(own_range[o].0, own_range[o].1);
         x.own_d[o] = rng.range(-2.0, 2.0);
     }
-    let acc = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
-    (x, acc)
+    let acc: [f64; NZ] = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
+    x.qdd = [[acc[0], acc[1], acc[2]], [acc[3], acc[4], acc[5]]];
+    x.own_dd.copy_from_slice(&acc[6..]);
+    let jerk = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
+    (x, acc, jerk)
 }
 
 /// Checks `c` on `n` random configurations, own coordinates in [−π, π].
@@ -292,8 +329,8 @@ pub fn check_random<C: Equations>(c: &C, n: usize) {
 pub fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); MAX_OWN]) {
     let mut rng = Rng::new(0x5EED ^ n as u64);
     for _ in 0..n {
-        let (x, acc) = random_local(c, &mut rng, own_range);
-        check_at(c, &x, &acc);
+        let (x, acc, jerk) = random_local(c, &mut rng, own_range);
+        check_at(c, &x, &acc, &jerk);
     }
 }
 
@@ -318,6 +355,8 @@ mod tests {
         Pattern,
         /// Curvature with the wrong sign at (φ_j, φ_j).
         Curvature,
+        /// η without the −B_j s'_j φ̇_j³ term.
+        EtaTerm,
     }
 
     /// A revolute joint with one deliberate mistake.
@@ -376,6 +415,15 @@ mod tests {
                 out[0] = 1.0;
             }
         }
+        fn eta(&self, x: &Local, out: &mut Rows) {
+            self.0.eta(x, out);
+            if let Fault::EtaTerm = self.1 {
+                let wj = x.qd[1][2];
+                let bj = crate::math::rot_d(x.q[1][2], self.0.s_j);
+                out[0] -= bj[0] * wj * wj * wj;
+                out[1] -= bj[1] * wj * wj * wj;
+            }
+        }
         fn gamma(&self, x: &Local, out: &mut Rows) {
             self.0.gamma(x, out);
             if let Fault::GammaTerm = self.1 {
@@ -425,6 +473,54 @@ mod tests {
     #[should_panic(expected = "curvature (5, 5)")]
     fn catches_a_wrong_curvature() {
         check_random(&broken(Fault::Curvature), 10);
+    }
+
+    #[test]
+    #[should_panic(expected = "η of equation")]
+    fn catches_a_missing_eta_term() {
+        check_random(&broken(Fault::EtaTerm), 10);
+    }
+
+    /// η is checked at the trajectory's acceleration: an η that ignores q̈
+    /// (the φ̈ terms of a revolute's) is caught too.
+    #[test]
+    #[should_panic(expected = "η of equation")]
+    fn catches_an_eta_that_ignores_the_acceleration() {
+        struct NoAcc(Revolute);
+        impl Equations for NoAcc {
+            fn kind(&self) -> &'static str {
+                "revolute_without_acceleration"
+            }
+            fn equations(&self) -> &'static [&'static str] {
+                self.0.equations()
+            }
+            fn bodies(&self) -> [BodyId; 2] {
+                self.0.bodies()
+            }
+            fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
+                self.0.joint_points(x)
+            }
+            fn phi(&self, x: &Local, out: &mut Rows) {
+                self.0.phi(x, out)
+            }
+            fn jacobian(&self, x: &Local, out: &mut Jac) {
+                self.0.jacobian(x, out)
+            }
+            fn nu(&self, x: &Local, out: &mut Rows) {
+                self.0.nu(x, out)
+            }
+            fn gamma(&self, x: &Local, out: &mut Rows) {
+                self.0.gamma(x, out)
+            }
+            fn eta(&self, x: &Local, out: &mut Rows) {
+                let y = Local {
+                    qdd: [[0.0; 3]; 2],
+                    ..*x
+                };
+                self.0.eta(&y, out)
+            }
+        }
+        check_random(&NoAcc(broken(Fault::Nu).0), 10);
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! The constraint library.
 //!
 //! Every constraint provides, analytically and in this order, its residual
-//! Φ, its Jacobian Φ_q, ν = −Φ_t and
-//! γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
+//! Φ, its Jacobian Φ_q, ν = −Φ_t,
+//! γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt and, for the jerk analysis,
+//! η = γ̇ − Φ̇_q q̈ (total time derivatives along the motion), the right side
+//! of Φ_q q⃛ = η.
 //!
 //! A constraint sees only its own coordinates (a [`Local`] view): the two
 //! bodies it joins, `i` and `j` (either may be ground, whose coordinates are
@@ -14,6 +16,7 @@
 
 use crate::math::{point, rot_t, sub, V2};
 use crate::model::BodyId;
+use crate::motion;
 
 pub mod absolute;
 pub mod cam_follower;
@@ -62,9 +65,36 @@ pub struct Local {
     pub own: [f64; MAX_OWN],
     /// Their time derivatives.
     pub own_d: [f64; MAX_OWN],
+    /// Accelerations (ẍ, ÿ, φ̈) of bodies i and j (m/s², m/s², rad/s²),
+    /// read by η only.
+    pub qdd: [[f64; 3]; 2],
+    /// Second time derivatives of the own coordinates, read by η only.
+    pub own_dd: [f64; MAX_OWN],
 }
 
 impl Local {
+    /// The body point s′ of body k (0 for i, 1 for j) with its time
+    /// derivatives, for η.
+    #[inline]
+    pub fn point_path(&self, k: usize, s: V2) -> motion::Path {
+        motion::body_point(self.q[k], self.qd[k], self.qdd[k], s)
+    }
+
+    /// A vector w′ fixed in body k, A_k w′, with its time derivatives.
+    #[inline]
+    pub fn vector_path(&self, k: usize, w: V2) -> motion::Path {
+        motion::rotated(
+            [self.q[k][2], self.qd[k][2], self.qdd[k][2]],
+            &motion::constant(w),
+        )
+    }
+
+    /// Own coordinate o's `[value, rate, second derivative]`.
+    #[inline]
+    pub fn own_path(&self, o: usize) -> [f64; 3] {
+        [self.own[o], self.own_d[o], self.own_dd[o]]
+    }
+
     /// A point of body i (`s_i`, body i frame) expressed in body j's frame,
     /// at the current configuration (m).
     pub fn on_j(&self, s_i: V2) -> V2 {
@@ -149,6 +179,10 @@ pub trait Equations {
     fn nu(&self, x: &Local, out: &mut Rows);
     /// γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
     fn gamma(&self, x: &Local, out: &mut Rows);
+    /// η, the right side of Φ_q q⃛ = η: η = −d³Φ/dt³ along the motion with
+    /// the jerks q⃛ set to zero (= γ̇ − Φ̇_q q̈); reads q̈ from `x.qdd` and
+    /// `x.own_dd`. See [`motion`](crate::motion).
+    fn eta(&self, x: &Local, out: &mut Rows);
     /// Number of equations m.
     fn rows(&self) -> usize {
         self.equations().len()
@@ -223,6 +257,10 @@ macro_rules! constraints {
             #[inline]
             fn gamma(&self, x: &Local, out: &mut Rows) {
                 match self { $(Constraint::$variant(c) => c.gamma(x, out),)* }
+            }
+            #[inline]
+            fn eta(&self, x: &Local, out: &mut Rows) {
+                match self { $(Constraint::$variant(c) => c.eta(x, out),)* }
             }
         }
     };
