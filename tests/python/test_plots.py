@@ -101,3 +101,24 @@ def test_pressure_angle_in_degrees() -> None:
     assert ax.get_ylabel() == "pressure angle (deg)"
     with pytest.raises(camlink.ModelError, match="no cam contact named 'x'"):
         svaj_data(res, "x")
+
+
+def test_svaj_jerk_of_the_eccentric_cam_is_the_closed_form(tmp_path: Path) -> None:
+    res = camlink.load(EXAMPLES / "cam_eccentric_flat.toml").run(jerk=True)
+    d = svaj_data(res)
+    e, w = 0.01, 2 * np.pi * 600 / 60
+    theta = np.radians(d.angle)
+    assert d.j is not None and d.units[3] == "m/s³"
+    # y = R + e sin θ, θ = ω t: the jerk is −e ω³ cos θ (about 2.5e3 m/s³).
+    assert np.allclose(d.j, -e * w**3 * np.cos(theta), rtol=0, atol=1e-6 * e * w**3)
+    fig = svaj(res)
+    (line,) = (ln for ln in fig.axes[3].lines if ln.get_gid() == "svaj:J")
+    assert np.array_equal(line.get_ydata(), d.j)
+    fig.savefig(tmp_path / "svaj_jerk.png")
+
+
+def test_svaj_without_jerk_channels_says_how_to_get_them() -> None:
+    res = camlink.load(EXAMPLES / "cam_eccentric_flat.toml").run()
+    assert svaj_data(res).j is None
+    fig = svaj(res)
+    assert "jerk=True" in fig.axes[3].texts[0].get_text()
