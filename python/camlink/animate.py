@@ -29,7 +29,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["animate", "frame_rows", "FORMATS", "Interrupted"]
+__all__ = ["FORMATS", "Interrupted", "animate", "frame_rows"]
 
 #: File suffixes `animate` writes.
 FORMATS = {".gif": "gif", ".mp4": "mp4"}
@@ -145,7 +145,7 @@ def _write_gif(target: Path | io.BytesIO, frames, fps: float) -> int:  # type: i
         pass
     if not images:
         raise ModelError("no frame was drawn")
-    duration = max(20, int(round(1000.0 / fps)))
+    duration = max(20, round(1000.0 / fps))
     images[0].save(target, format="GIF", save_all=True, append_images=images[1:],
                    duration=duration, loop=0, disposal=1)
     return len(images)

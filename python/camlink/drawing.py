@@ -25,7 +25,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch, Polygon
 
 from camlink._core import AnalysisError, ModelError
-from camlink.scene import GROUND, Scene, place
+from camlink.scene import GROUND, Guide, Scene, place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -33,7 +33,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["draw", "Drawing", "Frame", "Shape", "resolve"]
+__all__ = ["Drawing", "Frame", "Shape", "draw", "resolve"]
 
 Array = npt.NDArray[np.float64]
 
@@ -79,7 +79,10 @@ def _shape(artist: Artist, body: str, local: Array) -> Shape:
     z = float(artist.get_zorder())
     if isinstance(artist, Polygon):
         _, dashes = artist._dash_pattern  # type: ignore[attr-defined]
-        return Shape(body, local, True, _css(artist.get_facecolor()), _css(artist.get_edgecolor()),
+        from matplotlib.colors import to_rgba
+
+        return Shape(body, local, True, _css(to_rgba(artist.get_facecolor())),
+                     _css(to_rgba(artist.get_edgecolor())),
                      float(artist.get_linewidth()), tuple(dashes or ()), 0.0, z, gid)
     assert isinstance(artist, Line2D)
     from matplotlib.colors import to_rgba
@@ -309,8 +312,8 @@ class Drawing:
             seg = np.array([np.asarray(f.s) - half * u, np.asarray(f.s) + half * u])
             self._line(f.body, seg, 4, color=EDGE, linewidth=2.4, solid_capstyle="butt",
                        gid=f"face:{f.joint}")
-        for g in scene.guides:
-            self._draw_guide(g, colors)
+        for guide in scene.guides:
+            self._draw_guide(guide, colors)
         for p in scene.pins:
             self._draw_pin(p.body_i, p.s_i, f"pin:{p.joint}")
             if p.grounded:
@@ -337,10 +340,7 @@ class Drawing:
         self._line(body, np.array([s]), 6.5, marker="o", markersize=1.8, color=EDGE,
                    linestyle="none")
 
-    def _draw_guide(self, g: object, colors: dict[str, str]) -> None:
-        from camlink.scene import Guide
-
-        assert isinstance(g, Guide)
+    def _draw_guide(self, g: Guide, colors: dict[str, str]) -> None:
         scene, size = self.scene, self.size
         v = np.asarray(g.v_i) / np.hypot(*g.v_i)
         n = np.array([-v[1], v[0]])
@@ -552,9 +552,9 @@ def _extent(scene: Scene, poses: dict[str, Array]) -> tuple[Array, Array]:
     n = len(next(iter(poses.values())))
     rows = np.unique(np.linspace(0, n - 1, min(n, FRAMING_ROWS)).astype(int))
     local: dict[str, list[Array]] = {}
-    for body, pts in scene.points.items():
-        if pts:
-            local.setdefault(body, []).append(np.array(list(pts.values())))
+    for body, named in scene.points.items():
+        if named:
+            local.setdefault(body, []).append(np.array(list(named.values())))
     for link in scene.links:
         local.setdefault(link.body, []).append(link.points)
     for c in scene.curves:

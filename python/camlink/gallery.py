@@ -22,7 +22,7 @@ from camlink.plots import cam_contacts, plot, svaj
 from camlink.progress import Progress
 from camlink.viewer import default_plots
 
-__all__ = ["build", "Entry", "main"]
+__all__ = ["Entry", "build", "main"]
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -41,8 +41,7 @@ class Entry:
 def _entry(path: Path, pictures: Path, dpi: int) -> Entry:
     model = load(path)
     kind = model.analysis_type
-    jerk = {"jerk": True} if kind == "kinematics" else {}
-    res = model.run(**jerk)
+    res = model.run(jerk=True) if kind == "kinematics" else model.run()
     traces = list(model.analysis["points"])
     stem = path.stem
     t = None if len(res) < 2 else float(res.t[0] + 0.25 * (res.t[-1] - res.t[0]))

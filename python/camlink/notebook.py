@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["model_html", "results_html", "png"]
+__all__ = ["model_html", "png", "results_html"]
 
 #: Channels shown in the head of a results table.
 HEAD_COLUMNS = 8

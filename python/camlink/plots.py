@@ -19,7 +19,7 @@ from matplotlib.figure import Figure
 from camlink._core import ModelError
 from camlink.results import Results
 
-__all__ = ["plot", "unit", "reactions", "svaj", "svaj_data", "pressure_angle", "Svaj", "cam_contacts"]
+__all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj", "svaj_data", "unit"]
 
 Array = npt.NDArray[np.float64]
 

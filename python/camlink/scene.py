@@ -21,7 +21,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["Scene", "Link", "Pin", "Guide", "CurveShape", "GearCircle", "Face", "Rod", "place"]
+__all__ = ["CurveShape", "Face", "GearCircle", "Guide", "Link", "Pin", "Rod", "Scene", "place"]
 
 Array = npt.NDArray[np.float64]
 

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["to_html", "default_plots", "STAGE", "PLOT"]
+__all__ = ["PLOT", "STAGE", "default_plots", "to_html"]
 
 #: Stage canvas size (CSS px).
 STAGE = (640, 480)

@@ -5,19 +5,19 @@ from __future__ import annotations
 
 import base64
 import io
+import itertools
 import re
 from pathlib import Path
 
+import camlink
 import numpy as np
 import pytest
-from PIL import Image
-
-import camlink
 from camlink import animate as animate_module
 from camlink.animate import Interrupted, animate, frame_rows
 from camlink.cli import main
 from camlink.drawing import Drawing
 from camlink.progress import Progress, wanted
+from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -28,10 +28,10 @@ def four_bar() -> camlink.Results:
     return camlink.load(EXAMPLES / "four_bar.toml").run(t_end=0.5, step=0.01)
 
 
-def _gif_frames(source: Path | io.BytesIO) -> list[np.ndarray]:
+def _gif_frames(source: Path | str | io.BytesIO) -> list[np.ndarray]:
     im = Image.open(source)
     frames = []
-    for k in range(im.n_frames):
+    for k in range(getattr(im, "n_frames", 1)):
         im.seek(k)
         frames.append(np.asarray(im.convert("RGB")))
     return frames
@@ -51,7 +51,7 @@ def test_gif_has_the_frames_and_they_move(four_bar: camlink.Results, tmp_path: P
     frames = _gif_frames(path)
     assert len(frames) == 6
     assert all(f.shape == frames[0].shape for f in frames)
-    for a, b in zip(frames, frames[1:], strict=False):
+    for a, b in itertools.pairwise(frames):
         assert np.any(a != b)
     assert Image.open(path).info["duration"] == 100
 

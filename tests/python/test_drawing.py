@@ -5,14 +5,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import camlink
 import numpy as np
 import numpy.typing as npt
 import pytest
-from PIL import Image
-
-import camlink
 from camlink.drawing import Drawing, draw
 from camlink.results import Results
+from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -48,16 +47,16 @@ def test_four_bar_pins_land_at_their_pixels(tmp_path: Path) -> None:
             (u, v), = drawing.pixel([xy])
             # The pin's patch is centred there ...
             patch = next(p for p in drawing.ax.patches if p.get_gid() == f"pin:{joint}")
-            verts = patch.get_verts()
+            verts = np.asarray(patch.get_verts())
             centre = verts[:-1].mean(axis=0)
             assert np.allclose([centre[0], drawing.figure.bbox.height - centre[1]], [u, v], atol=1e-6)
             # ... and the image shows it: a dark centre dot, white fill, a dark ring.
-            i, j = int(round(v)), int(round(u))
+            i, j = round(v), round(u)
             assert image[i, j] < 110, (joint, k, image[i, j])
-            fill = [image[int(round(v + 0.55 * r_px * s)), int(round(u + 0.55 * r_px * c))]
+            fill = [image[round(v + 0.55 * r_px * s), round(u + 0.55 * r_px * c)]
                     for c, s in ((1, 0), (0, 1), (-1, 0), (0, -1))]
             assert min(fill) > 200, (joint, k, fill)
-            ring = [image[int(round(v + r_px * np.sin(a))), int(round(u + r_px * np.cos(a)))]
+            ring = [image[round(v + r_px * np.sin(a)), round(u + r_px * np.cos(a))]
                     for a in np.linspace(0, 2 * np.pi, 16, endpoint=False)]
             assert np.median(ring) < 150, (joint, k, ring)
 
@@ -100,7 +99,7 @@ def test_seed_cam_outline_on_the_exact_curve_within_half_a_pixel(tmp_path: Path)
     drawing.show(k)
     drawing.figure.savefig(tmp_path / "cam.png")
     patch = next(p for p in drawing.ax.patches if p.get_gid() == "curve:contact:cam")
-    drawn = patch.get_verts()
+    drawn = np.asarray(patch.get_verts(), dtype=np.float64)
     # The lecture's profile ρ(α) on the cam turned by φ.
     alpha = np.linspace(0.0, 2 * np.pi, 40001)
     rho = np.where(alpha <= 2 * np.pi / 3, 1.25 - np.cos(3 * alpha) / 4, 1.0)

@@ -5,9 +5,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from PIL import Image
-
 from camlink.gallery import build
+from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import camlink
 import numpy as np
 import pytest
-
-import camlink
 from camlink.plots import plot, pressure_angle, reactions, svaj, svaj_data, unit
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -31,7 +30,9 @@ def test_channels_overlays_and_xy(tmp_path: Path) -> None:
     assert np.array_equal(ax.lines[0].get_ydata(), fast["crank.omega"])
     fig = plot([fast, slow], ["rocker.phi", "coupler.phi"], labels=["2 s", "1 s"])
     ax = fig.axes[0]
-    assert [t.get_text() for t in ax.get_legend().get_texts()] == [
+    legend = ax.get_legend()
+    assert legend is not None
+    assert [t.get_text() for t in legend.get_texts()] == [
         "2 s, rocker.phi", "2 s, coupler.phi", "1 s, rocker.phi", "1 s, coupler.phi"]
     assert ax.get_ylabel() == "(rad)"
     fig = fast.plot("coupler.P.y", x="coupler.P.x")

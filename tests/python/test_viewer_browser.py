@@ -12,14 +12,13 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+import camlink
 import numpy as np
 import numpy.typing as npt
 import pytest
-from PIL import Image
-
-import camlink
 from camlink.results import Results
 from camlink.viewer import PLOT, page_data, view_pixel
+from PIL import Image
 
 pytestmark = pytest.mark.browser
 
@@ -32,7 +31,9 @@ def _chromium() -> str:
         found = shutil.which(name)
         if found:
             return found
-    pytest.fail("no chromium on PATH: apt-get install -y chromium (or deselect with -m 'not browser')")
+    raise pytest.fail.Exception(
+        "no chromium on PATH: apt-get install -y chromium (or deselect with -m 'not browser')"
+    )
 
 
 @pytest.fixture(scope="module")
@@ -112,9 +113,9 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
             assert page.evaluate(f"camlinkViewer.pixel({x}, {y})") == pytest.approx([u, v], abs=1e-6)
             # The centre dot is about two pixels across: the darkest of the
             # 3 × 3 pixels round the centre.
-            i, j = int(round(v)), int(round(u))
+            i, j = round(v), round(u)
             assert image[i - 1:i + 2, j - 1:j + 2].min() < 110, (joint, k, image[i, j])
-            fill = [image[int(round(v + 0.55 * r_px * s)), int(round(u + 0.55 * r_px * c))]
+            fill = [image[round(v + 0.55 * r_px * s), round(u + 0.55 * r_px * c)]
                     for c, s in ((1, 0), (0, 1), (-1, 0), (0, -1))]
             assert min(fill) > 200, (joint, k, fill)
         # The plot cursors stand at the time of row k, in red.
@@ -123,7 +124,7 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
             plot = page.locator("canvas.plot").nth(n).bounding_box()
             expect = plot["x"] + 8 + (res.t[k] - res.t[0]) / (res.t[-1] - res.t[0]) * (PLOT[0] - 16)
             assert cx == pytest.approx(expect, abs=1e-6)
-            r, g, b = shot[int(plot["y"]) + 4, int(round(expect - 0.5))]
+            r, g, b = shot[int(plot["y"]) + 4, round(expect - 0.5)]
             assert r > 180 and g < 120 and b < 120, (n, k, (r, g, b))
 
     # Clicking a plot sets the time.
