@@ -132,8 +132,15 @@ def _cmd_run(args: argparse.Namespace) -> int:
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)
+    from camlink.progress import Progress
+
+    total = 1 if kind == "equilibrium" else len(model.times(args.t_end, args.step))
     try:
-        res = model.run(analysis=kind, output=output, **given)
+        with Progress(total, f"{kind} of {model.name}", quiet=args.quiet) as bar:
+            res = model.run(analysis=kind, output=output, on_rows=bar.update, **given)
+    except KeyboardInterrupt:
+        print(f"camlink: interrupted; the steps computed so far are in {output}", file=sys.stderr)
+        return 130
     except AnalysisError as e:
         _error(str(e))
         details = []
