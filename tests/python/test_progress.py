@@ -4,9 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 import camlink
+import pytest
 from camlink.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]
