@@ -291,6 +291,9 @@ class Drawing:
             self._polygon(link.body, _rounded_hull(link.points, hw), 3,
                           facecolor=colors[link.body], edgecolor=EDGE, linewidth=1.0,
                           gid=f"link:{link.body}")
+        for body, outline in scene.outlines.items():
+            self._polygon(body, outline, 3, facecolor=colors[body], edgecolor=EDGE, linewidth=1.0,
+                          gid=f"outline:{body}")
         for rod in scene.rods:
             line = Line2D([], [], color="#555555", linewidth=3, zorder=3, solid_capstyle="round")
             ax.add_line(line)
@@ -557,6 +560,8 @@ def _extent(scene: Scene, poses: dict[str, Array]) -> tuple[Array, Array]:
             local.setdefault(body, []).append(np.array(list(named.values())))
     for link in scene.links:
         local.setdefault(link.body, []).append(link.points)
+    for body, outline in scene.outlines.items():
+        local.setdefault(body, []).append(outline)
     for c in scene.curves:
         local.setdefault(c.body, []).append(c.points)
     for g in scene.gears:

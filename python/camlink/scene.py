@@ -128,6 +128,9 @@ class Scene:
     gears: list[GearCircle] = field(default_factory=list)
     faces: list[Face] = field(default_factory=list)
     rods: list[Rod] = field(default_factory=list)
+    #: Outlines the model file gives (``outline``), by body: closed
+    #: polylines (n × 2, body frame, m) drawn instead of the derived link.
+    outlines: dict[str, Array] = field(default_factory=dict)
     #: Bodies and placements (x, y, φ) of the model file (m, m, rad).
     placement: dict[str, tuple[float, float, float]] = field(default_factory=dict)
 
@@ -142,7 +145,8 @@ class Scene:
         for b in model.bodies:
             points[b["name"]] = {k: (float(v[0]), float(v[1])) for k, v in b["points"].items()}
             placement[b["name"]] = (float(b["position"][0]), float(b["position"][1]), float(b["angle"]))
-        scene = cls(model.name, [b["name"] for b in model.bodies], points, placement=placement)
+        scene = cls(model.name, [b["name"] for b in model.bodies], points, placement=placement,
+                    outlines={k: np.asarray(v, dtype=np.float64) for k, v in core.outlines(tol).items()})
         attach: dict[str, list[tuple[float, float]]] = {
             name: list(p.values()) for name, p in points.items()
         }
@@ -200,7 +204,7 @@ class Scene:
                 attach[bi].append(pt(j["s_i"]))
         for body in scene.bodies:
             unique = _unique(attach[body])
-            if len(unique) >= 2:
+            if len(unique) >= 2 and body not in scene.outlines:
                 scene.links.append(Link(body, np.asarray(unique)))
         return scene
 

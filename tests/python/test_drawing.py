@@ -131,3 +131,31 @@ def test_every_example_draws() -> None:
         model = camlink.load(path)
         fig = draw(model, width=3.0, dpi=40)
         assert fig.axes, path.name
+
+
+def _coupler_outline(outline: str) -> str:
+    return (EXAMPLES / "four_bar.toml").read_text().replace(
+        'points = { A = [0, 0], B = ["b", 0], P = ["b/2", "p"] }',
+        'points = { A = [0, 0], B = ["b", 0], P = ["b/2", "p"] }\n' + f"outline = {outline}",
+    )
+
+
+def test_outline_from_the_model_file_replaces_the_derived_link() -> None:
+    text = _coupler_outline('[[0, -0.01], ["b", -0.01], ["b", 0.01], ["b/2", "p + 0.02"], [0, 0.01]]')
+    model = camlink.loads(text)
+    res = model.run()
+    drawing = Drawing(model, res)
+    k = 40
+    drawing.show(k)
+    gids = {p.get_gid() for p in drawing.ax.patches}
+    assert "outline:coupler" in gids and "link:coupler" not in gids and "link:crank" in gids
+    patch = next(p for p in drawing.ax.patches if p.get_gid() == "outline:coupler")
+    corners = np.array([[0, -0.01], [0.38, -0.01], [0.38, 0.01], [0.19, 0.12], [0, 0.01]])
+    phi = res["coupler.phi"][k]
+    c, s = np.cos(phi), np.sin(phi)
+    world = np.column_stack([res["coupler.x"][k] + c * corners[:, 0] - s * corners[:, 1],
+                             res["coupler.y"][k] + s * corners[:, 0] + c * corners[:, 1]])
+    drawn = np.asarray(patch.get_verts())[:-1]
+    assert np.allclose(drawn, drawing.ax.transData.transform(world), atol=1e-6)
+    with pytest.raises(camlink.ModelError, match=r"bodies\[1\]\.outline.*at least three corners"):
+        camlink.loads(_coupler_outline("[[0, 0], [1, 0]]"))

@@ -22,7 +22,7 @@ use camlink_core::kinematics::{
     self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
 };
 use camlink_core::Equations;
-use camlink_model::{AnalysisType, Format, Loaded};
+use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -358,6 +358,28 @@ impl Model {
                 list.append(d)?;
             }
             Ok(list)
+        })
+    }
+
+    /// The bodies' drawn outlines from the model file: body name → corners
+    /// (n × 2, body frame, m) of a closed polyline; a curve outline is
+    /// sampled within `tol` (m).
+    #[pyo3(signature = (tol = 1e-4))]
+    fn outlines<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| {
+            let d = PyDict::new(py);
+            for o in &self.loaded.outlines {
+                let flat: Vec<f64> = match &o.shape {
+                    OutlineShape::Polyline(p) => p.iter().flat_map(|v| [v[0], v[1]]).collect(),
+                    OutlineShape::Curve(c) => c
+                        .sample(tol)
+                        .iter()
+                        .flat_map(|(_, v)| [v[0], v[1]])
+                        .collect(),
+                };
+                d.set_item(&o.body, to_array(py, flat, 2)?)?;
+            }
+            Ok(d)
         })
     }
 
