@@ -10,6 +10,7 @@ from pathlib import Path
 
 import camlink
 from camlink._core import AnalysisError
+from camlink.progress import Progress
 
 Command = Callable[[argparse.Namespace], int]
 
@@ -64,8 +65,10 @@ def _results(args: argparse.Namespace) -> camlink.Results:
     kind = model.analysis_type
     if kind == "equilibrium":
         kind = "kinematics"
+    total = len(model.times(args.t_end, args.step))
     try:
-        return model.run(analysis=kind, **settings)
+        with Progress(total, f"{kind} of {model.name}", quiet=args.quiet) as bar:
+            return model.run(analysis=kind, on_rows=bar.update, **settings)
     except AnalysisError as e:
         partial = e.results
         if len(partial) < 2:

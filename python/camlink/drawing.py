@@ -190,7 +190,8 @@ class Drawing:
         self.cams = self.scene.cam_bodies()
         self.label = self.ax.text(
             0.015, 0.985, "", transform=self.ax.transAxes, va="top", ha="left",
-            fontsize=9, family="monospace", color="#333333",
+            fontsize=9, family="monospace", color="#333333", zorder=10,
+            bbox={"facecolor": "white", "edgecolor": "none", "pad": 1.5, "alpha": 0.85},
         )
         if title:
             self.ax.set_title(title, fontsize=10)
@@ -674,9 +675,9 @@ def _circle_count(r: float, tol: float) -> int:
 def _hatch(ax: Axes, a: Array, b: Array, side: Array, size: float) -> Array:
     """Short slanted strokes along the segment a–b on its `side`: the
     textbook sign of the ground."""
-    length = 0.018 * size
+    length = 0.014 * size
     d = b - a
-    count = max(2, int(np.hypot(*d) / (0.022 * size)))
+    count = max(3, int(np.hypot(*d) / (0.012 * size)) + 1)
     u = d / (np.hypot(*d) or 1.0)
     slant = (side + u) / np.sqrt(2)
     ends = []
