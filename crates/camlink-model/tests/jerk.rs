@@ -208,3 +208,217 @@ fn jerk_is_refused_outside_kinematics() {
         "{e}"
     );
 }
+
+/// Runs a model given as TOML text with the jerk and returns the table.
+fn run_text(text: &str) -> Table {
+    let loaded = load_str(text, Format::Toml, "test.toml").unwrap_or_else(|e| panic!("{e}"));
+    assert!(loaded.analysis.jerk);
+    run_with_jerk(&loaded)
+}
+
+/// Compares `got` with `want(t)` at every step, to 1e-7 of the larger of
+/// |want| and `scale`.
+fn compare(table: &Table, name: &str, want: impl Fn(f64) -> f64, scale: f64) {
+    let got = channel(table, name);
+    for (k, &t) in table.t.iter().enumerate() {
+        let w = want(t);
+        assert!(
+            (got[k] - w).abs() <= 1e-7 * w.abs().max(scale),
+            "{name} at t = {t}: {} vs closed form {w}",
+            got[k]
+        );
+    }
+}
+
+/// A knife-edge follower (a point follower: the tip rides the profile) on a
+/// polar cam ρ(α) = R_b + s(α), translating on the vertical line through
+/// the cam's pivot; the cam turns clockwise at ω, so the tip meets the
+/// profile at α = π/2 + ωt and the follower's height is y = R_b + s(ωt)
+/// over the rise. With the cycloidal rise of h over β,
+/// s(θ) = h(θ/β − sin(2πθ/β)/2π), the jerk is y‴ = ω³ h (4π²/β³) cos(2πθ/β).
+#[test]
+fn knife_edge_on_a_cycloidal_cam_has_the_closed_form_jerk() {
+    let (rb, h, beta, w) = (
+        1.0,
+        0.2,
+        std::f64::consts::FRAC_PI_2,
+        2.0 * std::f64::consts::PI,
+    );
+    let text = format!(
+        r#"
+[model]
+name = "cycloidal knife edge"
+
+[parameters]
+Rb = {rb}
+h = {h}
+w = {w}
+
+[[bodies]]
+name = "cam"
+
+[[bodies]]
+name = "follower"
+position = [0, {rb}]
+points = {{ tip = [0, 0] }}
+
+[[curves]]
+name = "profile"
+body = "cam"
+source = "expression"
+rho = "Rb + cycloidal(a, pi/2, 0, pi, h) - cycloidal(a, 3*pi/2, 0, 2*pi, h)"
+
+[[joints]]
+type = "revolute"
+name = "shaft"
+body_i = "ground"
+body_j = "cam"
+
+[[joints]]
+type = "translational"
+name = "guide"
+body_i = "ground"
+axis = [0, 1]
+body_j = "follower"
+
+[[joints]]
+type = "point_follower"
+name = "tip"
+body_i = "follower"
+point_i = "tip"
+curve_j = "profile"
+
+[[drivers]]
+type = "revolute_angle"
+name = "motor"
+joint = "shaft"
+f = "-w*t"
+
+[analysis]
+t_end = 0.24
+step = 0.001
+jerk = true
+"#
+    );
+    let table = run_text(&text);
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let s = |t: f64| {
+        let th = w * t;
+        rb + h * (th / beta - (two_pi * th / beta).sin() / two_pi)
+    };
+    // At t = 0 the rise starts: the cycloidal law's jerk jumps there, and
+    // the law takes the dwell's value (0) at the start itself.
+    let jerk = |t: f64| {
+        if t == 0.0 {
+            0.0
+        } else {
+            w.powi(3) * h * two_pi * two_pi / beta.powi(3) * (two_pi * w * t / beta).cos()
+        }
+    };
+    let scale = w.powi(3) * h * two_pi * two_pi / beta.powi(3);
+    compare(&table, "follower.y", s, 1.0);
+    compare(&table, "follower.jy", jerk, scale);
+    compare(&table, "follower.jx", |_| 0.0, scale);
+    compare(&table, "cam.jphi", |_| 0.0, scale);
+}
+
+/// A roller of radius r on an eccentric circular cam (radius R, centre at e
+/// from the pivot), the roller centre translating on the vertical line
+/// through the pivot: |(0, y) − e(cos φ, sin φ)| = R + r gives
+/// y = e sin φ + √((R + r)² − e² cos² φ), differentiated three times by the
+/// expression jets (φ = ωt).
+#[test]
+fn roller_on_an_eccentric_cam_matches_the_closed_form() {
+    let text = r#"
+[model]
+name = "eccentric cam, in-line roller"
+
+[parameters]
+R = 0.5
+e = 0.2
+r = 0.15
+
+[[bodies]]
+name = "cam"
+
+[[bodies]]
+name = "follower"
+position = [0, 0.7]
+
+[[curves]]
+name = "disc"
+body = "cam"
+source = "circle"
+centre = ["e", 0]
+radius = "R"
+
+[[curves]]
+name = "roller"
+body = "follower"
+source = "circle"
+radius = "r"
+
+[[joints]]
+type = "revolute"
+name = "shaft"
+body_i = "ground"
+body_j = "cam"
+
+[[joints]]
+type = "translational"
+name = "guide"
+body_i = "ground"
+axis = [0, 1]
+body_j = "follower"
+
+[[joints]]
+type = "cam_follower"
+name = "contact"
+curve_i = "disc"
+curve_j = "roller"
+
+[[drivers]]
+type = "revolute_angle"
+name = "motor"
+joint = "shaft"
+f = "3*t + 0.5*t^2"
+
+[analysis]
+t_end = 2.5
+step = 0.005
+jerk = true
+"#;
+    let table = run_text(text);
+    let p: HashMap<String, f64> = [("R", 0.5), ("e", 0.2), ("r", 0.15)]
+        .into_iter()
+        .map(|(k, v)| (k.to_string(), v))
+        .collect();
+    let phi = "(3*t + 0.5*t^2)";
+    let y = Expr::parse_with(
+        &format!("e*sin({phi}) + sqrt((R + r)^2 - e^2*cos({phi})^2)"),
+        Some("t"),
+        &p,
+    )
+    .unwrap();
+    let scale = channel(&table, "follower.jy")
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(scale > 1.0, "{scale}");
+    compare(&table, "follower.y", |t| y.jet(t)[0], 1.0);
+    compare(&table, "follower.jy", |t| y.jet(t)[3], scale);
+    compare(&table, "cam.jphi", |_| 0.0, scale);
+}
+
+/// The flat-faced follower example: the face height over an eccentric
+/// circle is y = e sin ωt + R, so y‴ = −e ω³ cos ωt.
+#[test]
+fn flat_follower_example_jerk_matches_the_closed_form() {
+    let mut loaded = load_path(&examples_dir().join("cam_eccentric_flat.toml")).unwrap();
+    loaded.analysis.jerk = true;
+    let table = run_with_jerk(&loaded);
+    let (e, r, w) = (0.01, 0.04, 2.0 * std::f64::consts::PI * 600.0 / 60.0);
+    compare(&table, "tappet.y", |t| e * (w * t).sin() + r, 0.05);
+    let scale = e * w.powi(3);
+    compare(&table, "tappet.jy", |t| -scale * (w * t).cos(), scale);
+    compare(&table, "tappet.jphi", |_| 0.0, scale);
+}

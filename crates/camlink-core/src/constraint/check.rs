@@ -475,6 +475,213 @@ mod tests {
         check_random(&broken(Fault::Curvature), 10);
     }
 
+    /// Φ_q, ν, γ and η of every constraint kind, each with a moving body on
+    /// both sides and with the ground as body i and as body j, curve
+    /// contacts on polar (expression, Fourier) and parametric (open spline,
+    /// closed circle, expression) curves, drivers on every coordinate and
+    /// on curve travel.
+    #[test]
+    fn every_kind_with_ground_on_either_side() {
+        use crate::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
+        use crate::constraint::cam_follower::CamFollower;
+        use crate::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
+        use crate::constraint::flat_follower::FlatFollower;
+        use crate::constraint::gear::{Gear, GearKind, RackPinion};
+        use crate::constraint::point_follower::PointFollower;
+        use crate::constraint::relative::{RelCoord, RelativeCoord, RelativeDistance};
+        use crate::constraint::translational::Translational;
+        use crate::constraint::Constraint;
+        use crate::curve::{Curve, Parametric, Polar};
+        use crate::function::TimeFn;
+        use std::sync::Arc;
+
+        let f = || TimeFn::Sine {
+            amplitude: 0.4,
+            omega: 1.7,
+            phase: 0.3,
+            offset: 1.2,
+        };
+        let expr_f = || {
+            TimeFn::Expr(Arc::new(
+                camlink_expr::Expr::parse("0.3 + t^2/4 + sin(2*t)/5", "t").unwrap(),
+            ))
+        };
+        let lobe: Curve = Polar::expr([0.05, 0.0], "1 + 0.15*cos(2*a) + 0.05*sin(3*a)")
+            .unwrap()
+            .into();
+        let fourier: Curve = Polar::fourier([0.1, -0.05], 1.0, &[0.2, 0.0, 0.05], &[0.1])
+            .unwrap()
+            .into();
+        let open: Curve =
+            Parametric::spline(&[[0.0, 0.0], [0.4, 0.2], [0.9, 0.1], [1.3, 0.5]], false)
+                .unwrap()
+                .into();
+        let closed: Curve = Parametric::circle([0.2, 0.0], 0.3, 0.4).unwrap().into();
+        let pexpr: Curve = Parametric::expr(
+            "0.3*cos(s) + s^3/10",
+            "0.2*sin(s) + 0.1*s",
+            -1.0,
+            2.0,
+            false,
+        )
+        .unwrap()
+        .into();
+        let (si, sj) = ([0.4, -0.2], [-0.3, 0.7]);
+        let pi = std::f64::consts::PI;
+        let mut cases: Vec<(Constraint, [(f64, f64); MAX_OWN])> = Vec::new();
+        let any = [(-pi, pi); MAX_OWN];
+        for (bi, bj) in [
+            (BodyId(1), BodyId(2)),
+            (BodyId::GROUND, BodyId(2)),
+            (BodyId(1), BodyId::GROUND),
+        ] {
+            cases.push((
+                Revolute {
+                    body_i: bi,
+                    s_i: si,
+                    body_j: bj,
+                    s_j: sj,
+                }
+                .into(),
+                any,
+            ));
+            for coord in [
+                RelCoord::X,
+                RelCoord::Y,
+                RelCoord::Phi,
+                RelCoord::Along([0.6, -1.1]),
+            ] {
+                let c = RelativeCoord {
+                    body_i: bi,
+                    s_i: si,
+                    body_j: bj,
+                    s_j: sj,
+                    coord,
+                    f: f(),
+                };
+                cases.push((c.into(), any));
+            }
+            let d = RelativeDistance {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                f: expr_f(),
+            };
+            cases.push((d.into(), any));
+            let t = Translational {
+                body_i: bi,
+                s_i: si,
+                v_i: [0.8, 0.3],
+                body_j: bj,
+                s_j: sj,
+                angle: 0.25,
+            };
+            cases.push((t.into(), any));
+            let rr = RevoluteRevolute {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                length: 1.3,
+            };
+            cases.push((rr.into(), any));
+            let rt = RevoluteTranslational {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                v_j: [0.5, -1.2],
+                offset: 0.15,
+            };
+            cases.push((rt.into(), any));
+            for kind in [GearKind::External, GearKind::Internal] {
+                let g = Gear {
+                    body_i: bi,
+                    s_i: si,
+                    radius_i: 0.5,
+                    body_j: bj,
+                    s_j: sj,
+                    radius_j: 1.25,
+                    kind,
+                    phase: 0.2,
+                };
+                cases.push((g.into(), any));
+            }
+            let rp = RackPinion {
+                body_i: bi,
+                s_i: si,
+                radius: 0.4,
+                body_j: bj,
+                s_j: sj,
+                u_j: [1.0, 0.3],
+                phase: 0.1,
+            };
+            cases.push((rp.into(), any));
+            for (ci, cj, range) in [
+                (&lobe, &closed, [(-pi, 3.0 * pi), (-2.0, 4.0)]),
+                (&fourier, &open, [(-pi, pi), (0.1, 1.4)]),
+                (&closed, &pexpr, [(-1.0, 3.0), (-0.9, 1.9)]),
+            ] {
+                let cf = CamFollower {
+                    body_i: bi,
+                    curve_i: ci.clone(),
+                    body_j: bj,
+                    curve_j: cj.clone(),
+                };
+                cases.push((cf.into(), range));
+            }
+            for (cam, range) in [
+                (&lobe, (-pi, 3.0 * pi)),
+                (&open, (0.1, 1.4)),
+                (&pexpr, (-0.9, 1.9)),
+            ] {
+                let ff = FlatFollower::new(bi, cam.clone(), bj, [0.2, -0.3], [1.0, 0.4]).unwrap();
+                cases.push((ff.into(), [range; MAX_OWN]));
+            }
+            for (slot, range) in [
+                (&fourier, (-pi, 3.0 * pi)),
+                (&open, (0.1, 1.4)),
+                (&closed, (-1.0, 3.0)),
+                (&pexpr, (-0.9, 1.9)),
+            ] {
+                cases.push((
+                    PointFollower::new(bi, si, bj, slot.clone()).into(),
+                    [range; MAX_OWN],
+                ));
+                let driven = PointFollower {
+                    travel: Some(expr_f()),
+                    ..PointFollower::new(bi, si, bj, slot.clone())
+                };
+                cases.push((driven.into(), [range; MAX_OWN]));
+            }
+        }
+        // Absolute constraints hold a body against the ground (body j).
+        for coord in [Coord::X, Coord::Y, Coord::Phi] {
+            let c = AbsoluteCoord {
+                body: BodyId(1),
+                s: si,
+                coord,
+                f: expr_f(),
+            };
+            cases.push((c.into(), any));
+        }
+        let d = AbsoluteDistance {
+            body: BodyId(1),
+            s: si,
+            ground_point: [0.3, 1.1],
+            f: f(),
+        };
+        cases.push((d.into(), any));
+        let kinds: std::collections::BTreeSet<&str> = cases.iter().map(|(c, _)| c.kind()).collect();
+        // The 13 variants of `Constraint`, the point–follower with and without
+        // its travel driver.
+        assert_eq!(kinds.len(), 14, "{kinds:?}");
+        for (c, range) in &cases {
+            check_random_own(c, 12, *range);
+        }
+    }
+
     #[test]
     #[should_panic(expected = "η of equation")]
     fn catches_a_missing_eta_term() {
