@@ -159,3 +159,14 @@ def test_outline_from_the_model_file_replaces_the_derived_link() -> None:
     assert np.allclose(drawn, drawing.ax.transData.transform(world), atol=1e-6)
     with pytest.raises(camlink.ModelError, match=r"bodies\[1\]\.outline.*at least three corners"):
         camlink.loads(_coupler_outline("[[0, 0], [1, 0]]"))
+
+
+def test_time_and_cam_angle_are_written_on_the_frame() -> None:
+    model = camlink.load(EXAMPLES / "cam_seed_example_3_4_3.toml")
+    res = model.run()
+    drawing = Drawing(model, res)
+    for k in (0, 57, 399):
+        drawing.show(k)
+        theta = np.degrees(res["cam.phi"][k]) % 360.0
+        assert drawing.label.get_text() == f"t = {res.t[k]:.3f} s   θ = {theta:.1f}°"
+    assert drawing.row(0.2501) == 100

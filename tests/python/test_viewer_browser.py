@@ -149,6 +149,17 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
     assert page.evaluate("camlinkViewer.frame()") > 10
     assert page.locator("#time").text_content() != before
     pg.shot(tmp_path / "four_bar_viewer.png")
+
+    # At 2× the motion runs two seconds per second of wall time.
+    page.select_option("#speed", "2")
+    page.eval_on_selector("#slider", "(el) => { el.value = 0; el.dispatchEvent(new Event('input')); }")
+    start = time.perf_counter()
+    page.click("#play")
+    page.wait_for_timeout(300)
+    page.click("#play")
+    wall = time.perf_counter() - start
+    played = page.evaluate("camlinkViewer.time()")
+    assert 2 * 0.15 < played <= 2 * wall + res.t[1]
     assert pg.errors == [] and pg.blocked == []
 
 
