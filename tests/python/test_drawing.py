@@ -11,6 +11,7 @@ import numpy.typing as npt
 import pytest
 from camlink.drawing import Drawing, draw
 from camlink.results import Results
+from four_bar_pins import four_bar_pins
 from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -22,18 +23,6 @@ def _render(drawing: Drawing, path: Path) -> npt.NDArray[np.float64]:
     return np.asarray(Image.open(path).convert("L"), dtype=np.float64)
 
 
-def _four_bar_pins(res: Results, k: int) -> dict[str, tuple[float, float]]:
-    """Pin centres (m) from the body coordinates and the file's lengths."""
-    a, d = 0.12, 0.4
-    cx, cy, cphi = res["crank.x"][k], res["crank.y"][k], res["crank.phi"][k]
-    return {
-        "O2": (0.0, 0.0),
-        "A": (cx + a * np.cos(cphi), cy + a * np.sin(cphi)),
-        "B": (res["rocker.B.x"][k], res["rocker.B.y"][k]),
-        "O4": (d, 0.0),
-    }
-
-
 def test_four_bar_pins_land_at_their_pixels(tmp_path: Path) -> None:
     model = camlink.load(EXAMPLES / "four_bar.toml")
     res = model.run()
@@ -43,7 +32,7 @@ def test_four_bar_pins_land_at_their_pixels(tmp_path: Path) -> None:
         image = _render(drawing, tmp_path / f"four_bar_{k}.png")
         r_px = drawing.pin_radius * drawing.frame.px_per_m
         assert r_px > 4
-        for joint, xy in _four_bar_pins(res, k).items():
+        for joint, xy in four_bar_pins(res, k).items():
             (u, v), = drawing.pixel([xy])
             # The pin's patch is centred there ...
             patch = next(p for p in drawing.ax.patches if p.get_gid() == f"pin:{joint}")

@@ -18,6 +18,7 @@ import numpy.typing as npt
 import pytest
 from camlink.results import Results
 from camlink.viewer import PLOT, page_data, view_pixel
+from four_bar_pins import four_bar_pins
 from PIL import Image
 
 pytestmark = pytest.mark.browser
@@ -72,17 +73,6 @@ class Page:
         return np.asarray(Image.open(path).convert("RGB"))
 
 
-def _four_bar_pins(res: Results, k: int) -> dict[str, tuple[float, float]]:
-    a, d = 0.12, 0.4
-    cx, cy, cphi = res["crank.x"][k], res["crank.y"][k], res["crank.phi"][k]
-    return {
-        "O2": (0.0, 0.0),
-        "A": (cx + a * np.cos(cphi), cy + a * np.sin(cphi)),
-        "B": (res["rocker.B.x"][k], res["rocker.B.y"][k]),
-        "O4": (d, 0.0),
-    }
-
-
 def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
     model = camlink.load(EXAMPLES / "four_bar.toml")
     res = model.run()
@@ -107,7 +97,7 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
         )
         assert page.evaluate("camlinkViewer.frame()") == k
         image = pg.shot(tmp_path / f"four_bar_{k}.png").astype(float).mean(axis=2)
-        for joint, (x, y) in _four_bar_pins(res, k).items():
+        for joint, (x, y) in four_bar_pins(res, k).items():
             u, v = view_pixel(box, x, y)
             u, v = u + stage["x"], v + stage["y"]
             assert page.evaluate(f"camlinkViewer.pixel({x}, {y})") == pytest.approx([u, v], abs=1e-6)
