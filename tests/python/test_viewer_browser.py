@@ -185,17 +185,22 @@ def test_200_bodies_10000_rows_play_at_30_fps(browser: Any, tmp_path: Path) -> N
     pg = Page(browser, out.as_uri())
     page = pg.page
     assert page.evaluate("camlinkViewer.rows") == 10_000
-    page.evaluate("camlinkViewer.stats.frames = 0; camlinkViewer.stats.renderMs = 0")
+    # Three one-second windows of playing; the machine is shared, so the
+    # median window is the measure.
     page.click("#play")
-    start = time.perf_counter()
-    page.wait_for_timeout(3000)
-    frames, render_ms = page.evaluate("[camlinkViewer.stats.frames, camlinkViewer.stats.renderMs]")
-    elapsed = time.perf_counter() - start
+    windows = []
+    for _ in range(3):
+        page.evaluate("camlinkViewer.stats.frames = 0; camlinkViewer.stats.renderMs = 0")
+        start = time.perf_counter()
+        page.wait_for_timeout(1000)
+        frames, render_ms = page.evaluate("[camlinkViewer.stats.frames, camlinkViewer.stats.renderMs]")
+        elapsed = time.perf_counter() - start
+        windows.append((frames / elapsed, render_ms / max(frames, 1)))
     page.click("#play")
-    fps = frames / elapsed
-    report = (f"viewer, 200 bodies x 10000 rows: {fps:.1f} frames/s over {elapsed:.2f} s, "
-              f"mean render {render_ms / max(frames, 1):.2f} ms/frame, "
-              f"page {out.stat().st_size / 1e6:.1f} MB")
+    fps = sorted(w[0] for w in windows)[1]
+    report = (f"viewer, 200 bodies x 10000 rows: median {fps:.1f} frames/s over three 1 s windows "
+              f"({', '.join(f'{w[0]:.1f}' for w in windows)}), mean render "
+              f"{np.mean([w[1] for w in windows]):.2f} ms/frame, page {out.stat().st_size / 1e6:.1f} MB")
     (tmp_path / "fps.txt").write_text(report + "\n")
     print(report)
     pg.shot(tmp_path / "cranks_viewer.png")
