@@ -11,7 +11,7 @@ from __future__ import annotations
 import base64
 import io
 import os
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -66,7 +66,9 @@ def frame_rows(t: npt.NDArray[np.float64], fps: float, speed: float) -> npt.NDAr
     return np.asarray(idx, dtype=np.intp)
 
 
-def _frames(drawing: Drawing, rows: npt.NDArray[np.intp], progress: Progress):  # type: ignore[no-untyped-def]
+def _frames(
+    drawing: Drawing, rows: npt.NDArray[np.intp], progress: Progress
+) -> Iterator[npt.NDArray[np.uint8]]:
     """RGB frames (h × w × 3, uint8) of the drawing at `rows`."""
     canvas = FigureCanvasAgg(drawing.figure)
     for k in rows:
@@ -134,7 +136,7 @@ def animate(
     return path
 
 
-def _write_gif(target: Path | io.BytesIO, frames, fps: float) -> int:  # type: ignore[no-untyped-def]
+def _write_gif(target: Path | io.BytesIO, frames: Iterable[npt.NDArray[np.uint8]], fps: float) -> int:
     """Writes the frames as a looping GIF; stops early (keeping what is
     drawn) on Ctrl-C. Returns the frame count."""
     images: list[Image.Image] = []
@@ -151,7 +153,7 @@ def _write_gif(target: Path | io.BytesIO, frames, fps: float) -> int:  # type: i
     return len(images)
 
 
-def _write_mp4(path: Path, frames, fps: float) -> int:  # type: ignore[no-untyped-def]
+def _write_mp4(path: Path, frames: Iterable[npt.NDArray[np.uint8]], fps: float) -> int:
     """Writes the frames as H.264 MP4 (even width and height); stops early
     on Ctrl-C and closes the file so that it plays. Returns the count."""
     import imageio_ffmpeg

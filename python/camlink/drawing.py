@@ -25,7 +25,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch, Polygon
 
 from camlink._core import AnalysisError, ModelError
-from camlink.scene import GROUND, Guide, Scene, place
+from camlink.scene import GROUND, Guide, Rod, Scene, place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -183,6 +183,7 @@ class Drawing:
         self._growing: list[tuple[Line2D, Array]] = []
         self._arrows: list[tuple[FancyArrowPatch, Array, Array, object, str]] = []
         self._static: list[Array] = []
+        self._rods: list[tuple[Rod, Line2D]] = []
         self._width, self._dpi = width, dpi
         self.pin_radius = 0.012 * size
         self.half_width = 0.022 * size
@@ -298,7 +299,7 @@ class Drawing:
         for rod in scene.rods:
             line = Line2D([], [], color="#555555", linewidth=3, zorder=3, solid_capstyle="round")
             ax.add_line(line)
-            self._rods = getattr(self, "_rods", []) + [(rod, line)]
+            self._rods.append((rod, line))
         # Gears: dash-dot pitch circles with a radius line showing the turn.
         for g in scene.gears:
             n = _circle_count(g.radius, 0.25 / self.frame.px_per_m)
@@ -470,7 +471,7 @@ class Drawing:
         there."""
         for body, local, set_xy in self._movers:
             set_xy(place(local, self.poses[body][k]))
-        for rod, line in getattr(self, "_rods", []):
+        for rod, line in self._rods:
             a = place(np.asarray(rod.s_i)[None, :], self.poses[rod.body_i][k])[0]
             b = place(np.asarray(rod.s_j)[None, :], self.poses[rod.body_j][k])[0]
             line.set_data([a[0], b[0]], [a[1], b[1]])
