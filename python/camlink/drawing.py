@@ -221,7 +221,7 @@ class Drawing:
         pad = 0.05 * self.size
         lo, hi = lo - pad, hi + pad
         # Room above for the time read-out.
-        hi = hi + [0.0, 0.06 * float(hi[1] - lo[1])]
+        hi = hi + np.array([0.0, 0.06 * float(hi[1] - lo[1])])
         self.frame = _layout(self.figure, self.ax, lo, hi, self._width, self._dpi)
 
     # -- building -------------------------------------------------------------
@@ -230,7 +230,7 @@ class Drawing:
         self._movers.append((body, np.asarray(local, dtype=np.float64).reshape(-1, 2), set_xy))
 
     def _polygon(self, body: str, local: Array, z: float, **kw: object) -> Polygon:
-        patch = Polygon(local, closed=True, zorder=z, **kw)  # type: ignore[arg-type]
+        patch = Polygon(local, closed=True, zorder=z, **kw)
         self.ax.add_patch(patch)
         self._mover(body, local, patch.set_xy)
         self._moving[id(patch)] = (body, np.asarray(local, dtype=np.float64), patch)
@@ -610,10 +610,10 @@ def _layout(fig: Figure, ax: Axes, lo: Array, hi: Array, width: float, dpi: int)
     # Widen the shorter side so that the scale is the same on both axes.
     if h / w < ah / aw:
         extra = (ah / aw * w - h) / 2
-        lo, hi = lo - [0, extra], hi + [0, extra]
+        lo, hi = lo - np.array([0.0, extra]), hi + np.array([0.0, extra])
     else:
         extra = (h * aw / ah - w) / 2
-        lo, hi = lo - [extra, 0], hi + [extra, 0]
+        lo, hi = lo - np.array([extra, 0.0]), hi + np.array([extra, 0.0])
     height = ah + bottom + top
     fig.set_size_inches(width, height)
     ax.set_position((left / width, bottom / height, aw / width, ah / height))
@@ -693,9 +693,9 @@ def _hatch(ax: Axes, a: Array, b: Array, side: Array, size: float) -> Array:
 def _ground_anchor(ax: Axes, s: Array, r: float, size: float) -> Array:
     """A fixed pivot: a triangle under the pin on a hatched base."""
     h = 3.2 * r
-    tri = np.array([s, s + [-1.6 * r, -h], s + [1.6 * r, -h]])
+    tri = np.array([s, s + np.array([-1.6 * r, -h]), s + np.array([1.6 * r, -h])])
     ax.add_patch(Polygon(tri, closed=True, facecolor="white", edgecolor=EDGE, linewidth=1.0,
                          zorder=1.2))
-    base = np.array([s + [-2.6 * r, -h], s + [2.6 * r, -h]])
+    base = np.array([s + np.array([-2.6 * r, -h]), s + np.array([2.6 * r, -h])])
     ax.plot(base[:, 0], base[:, 1], color=EDGE, linewidth=1.2, zorder=1.3)
     return np.vstack([base, _hatch(ax, base[0], base[1], np.array([0.0, -1.0]), size)])

@@ -41,7 +41,8 @@ PLOT = (420, 170)
 
 
 def _b64(a: npt.ArrayLike, dtype: type) -> str:
-    return base64.b64encode(np.ascontiguousarray(a, dtype=dtype).astype("<" + np.dtype(dtype).str[1:]).tobytes()).decode("ascii")
+    little = np.ascontiguousarray(a, dtype=dtype).astype("<" + np.dtype(dtype).str[1:])
+    return base64.b64encode(little.tobytes()).decode("ascii")
 
 
 def default_plots(results: Results) -> list[str]:

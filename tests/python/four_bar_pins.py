@@ -4,6 +4,7 @@ and the file's lengths: what the picture tests expect to see."""
 from __future__ import annotations
 
 import numpy as np
+
 from camlink.results import Results
 
 #: Crank O2–A and ground O2–O4 (m), as in examples/four_bar.toml.

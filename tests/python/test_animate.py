@@ -9,15 +9,16 @@ import itertools
 import re
 from pathlib import Path
 
-import camlink
 import numpy as np
 import pytest
+from PIL import Image
+
+import camlink
 from camlink import animate as animate_module
 from camlink.animate import Interrupted, animate, frame_rows
 from camlink.cli import main
 from camlink.drawing import Drawing
 from camlink.progress import Progress, wanted
-from PIL import Image
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

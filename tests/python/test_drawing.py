@@ -5,14 +5,15 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import camlink
 import numpy as np
 import numpy.typing as npt
 import pytest
-from camlink.drawing import Drawing, draw
-from camlink.results import Results
 from four_bar_pins import four_bar_pins
 from PIL import Image
+
+import camlink
+from camlink.drawing import Drawing, draw
+from camlink.results import Results
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -67,7 +68,9 @@ def test_frame_holds_the_whole_motion_on_one_scale() -> None:
     assert np.allclose(trace.get_ydata(), res["coupler.P.y"], atol=1e-12)
 
 
-def _distance_to_polyline(p: npt.NDArray[np.float64], poly: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+def _distance_to_polyline(
+    p: npt.NDArray[np.float64], poly: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
     a, b = poly[:-1], poly[1:]
     d = b - a
     out = np.full(len(p), np.inf)
@@ -109,7 +112,7 @@ def test_draw_accepts_model_or_results_and_names_missing_pieces() -> None:
     from_file = Results(res._names, res.data)
     with pytest.raises(camlink.ModelError, match="carry no model"):
         draw(from_file)
-    with pytest.raises(KeyError, match="no body point 'crank.Q'"):
+    with pytest.raises(KeyError, match=r"no body point 'crank\.Q'"):
         draw(res, traces=["crank.Q"])
     with pytest.raises(camlink.ModelError, match="force channels"):
         draw(res, forces=["crank_pivot"])

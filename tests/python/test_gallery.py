@@ -5,8 +5,9 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from camlink.gallery import build
 from PIL import Image
+
+from camlink.gallery import build
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -7,10 +7,11 @@ import base64
 import re
 from pathlib import Path
 
-import camlink
 import nbformat
 import pytest
 from nbclient import NotebookClient
+
+import camlink
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

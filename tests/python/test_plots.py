@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import camlink
 import numpy as np
 import pytest
+
+import camlink
 from camlink.plots import plot, pressure_angle, reactions, svaj, svaj_data, unit
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -42,7 +43,7 @@ def test_channels_overlays_and_xy(tmp_path: Path) -> None:
     fig.savefig(tmp_path / "coupler_curve.png")
     with pytest.raises(camlink.ModelError, match="2 labels for 1 runs"):
         plot(fast, "crank.phi", labels=["a", "b"])
-    with pytest.raises(KeyError, match="crank.omega"):
+    with pytest.raises(KeyError, match=r"crank\.omega"):
         plot(fast, "crank.omegaa")
 
 

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import camlink
 import pytest
+
+import camlink
 from camlink.cli import main
 
 ROOT = Path(__file__).resolve().parents[2]

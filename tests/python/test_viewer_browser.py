@@ -12,14 +12,15 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-import camlink
 import numpy as np
 import numpy.typing as npt
 import pytest
-from camlink.results import Results
-from camlink.viewer import PLOT, page_data, view_pixel
 from four_bar_pins import four_bar_pins
 from PIL import Image
+
+import camlink
+from camlink.results import Results
+from camlink.viewer import PLOT, page_data, view_pixel
 
 pytestmark = pytest.mark.browser
 
@@ -110,7 +111,7 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
             assert min(fill) > 200, (joint, k, fill)
         # The plot cursors stand at the time of row k, in red.
         shot = np.asarray(Image.open(tmp_path / f"four_bar_{k}.png").convert("RGB")).astype(int)
-        for n, (cx, cy) in enumerate(page.evaluate("camlinkViewer.cursors()")):
+        for n, (cx, _) in enumerate(page.evaluate("camlinkViewer.cursors()")):
             plot = page.locator("canvas.plot").nth(n).bounding_box()
             expect = plot["x"] + 8 + (res.t[k] - res.t[0]) / (res.t[-1] - res.t[0]) * (PLOT[0] - 16)
             assert cx == pytest.approx(expect, abs=1e-6)
@@ -124,7 +125,8 @@ def test_four_bar_viewer(browser: Any, tmp_path: Path) -> None:
 
     # Hovering the coupler reads out its coordinates.
     k = page.evaluate("camlinkViewer.frame()")
-    cx, cy = res["coupler.x"][k] + 0.19 * np.cos(res["coupler.phi"][k]), res["coupler.y"][k] + 0.19 * np.sin(res["coupler.phi"][k])
+    phi = res["coupler.phi"][k]
+    cx, cy = res["coupler.x"][k] + 0.19 * np.cos(phi), res["coupler.y"][k] + 0.19 * np.sin(phi)
     u, v = page.evaluate(f"camlinkViewer.pixel({cx}, {cy})")
     page.mouse.move(u, v)
     assert page.locator("#readout").text_content().startswith(
@@ -165,7 +167,8 @@ def _many_cranks(n: int, rows: int) -> Results:
         joints.append(f'[[joints]]\nname = "p{k}"\ntype = "revolute"\nbody_i = "ground"\n'
                       f'point_i = "G{k}"\nbody_j = "c{k}"\npoint_j = "O"\n')
     ground = ", ".join(f"G{k} = [{0.3 * (k % side)}, {0.3 * (k // side)}]" for k in range(n))
-    text = f'[model]\nname = "cranks"\n[ground]\npoints = {{ {ground} }}\n' + "".join(bodies) + "".join(joints)
+    text = (f'[model]\nname = "cranks"\n[ground]\npoints = {{ {ground} }}\n'
+            + "".join(bodies) + "".join(joints))
     model = camlink.loads(text)
     t = np.linspace(0.0, 10.0, rows)
     cols, names = [t], ["t"]
