@@ -62,7 +62,7 @@ pub fn analyse(model: &Model, tol: f64) {
     let settings = Settings {
         tol: tol.max(1e-12),
         max_iter: 4,
-        jerk: false,
+        ..Settings::default()
     };
     let mut table = Table::default();
     let result = kinematics::run(model, &RUN_TIMES, &settings, &[], &mut table);

@@ -89,3 +89,17 @@ def test_cli_run_with_jerk(tmp_path: Path) -> None:
     )
     assert proc.returncode == 0, proc.stderr
     assert "rocker.jphi" not in Results.load(out).channels
+
+
+def test_file_option_and_its_override(tmp_path: Path) -> None:
+    text = (EXAMPLES / "four_bar.toml").read_text()
+    path = tmp_path / "fb_jerk.toml"
+    path.write_text(text.replace("step = 0.005", "step = 0.005\njerk = true"))
+    model = camlink.load(path)
+    assert model.analysis["jerk"] is True
+    assert "rocker.jphi" in model.run(t_end=0.05).channels
+    assert "rocker.jphi" not in model.run(t_end=0.05, jerk=False).channels
+    out = tmp_path / "r.csv"
+    proc = run_cli("run", str(path), "-o", str(out), "--t-end", "0.05", "--no-jerk")
+    assert proc.returncode == 0, proc.stderr
+    assert "rocker.jphi" not in Results.load(out).channels

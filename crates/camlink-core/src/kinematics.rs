@@ -30,8 +30,8 @@ use crate::math::{max_abs, norm2, rot_d};
 use crate::model::{BodyId, Model};
 use crate::motion;
 use crate::run::{
-    channels, fill_outputs, worst_joints, AnalysisError, Kind, PointOutput, Settings, Sink,
-    Summary, Warning,
+    channels, fill_outputs, jerk_channels, worst_joints, AnalysisError, Kind, PointOutput,
+    Settings, Sink, Summary, Warning,
 };
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
@@ -77,24 +77,6 @@ pub fn check(model: &Model) -> Report {
             })
             .collect(),
     }
-}
-
-/// The jerk channels of a run with [`Settings::jerk`], after those of
-/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
-/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
-pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
-    for (_, b) in model.moving_bodies() {
-        for c in ["jx", "jy", "jphi"] {
-            names.push(format!("{}.{c}", b.name));
-        }
-    }
-    for p in points {
-        for c in ["jx", "jy"] {
-            names.push(format!("{}.{c}", p.name));
-        }
-    }
-    names
 }
 
 /// Position, velocity and acceleration analysis over `times`.

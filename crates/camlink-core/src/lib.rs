@@ -10,7 +10,8 @@
 //! The modules are layered; each imports only modules of its own or an
 //! earlier line, with no cycle (`tests/layers.rs` checks it):
 //!
-//! 1. [`math`], [`curve`], [`function`]: geometry and functions of time;
+//! 1. [`math`], [`curve`], [`function`], [`motion`]: geometry, functions of
+//!    time, and time derivatives of points along a motion;
 //! 2. [`constraint`], [`force`]: Φ, Φ_q, ν, γ and applied forces Q;
 //! 3. [`model`]: the validated, immutable description;
 //! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
@@ -23,12 +24,12 @@
 pub mod curve;
 pub mod function;
 pub mod math;
+pub mod motion;
 
 pub mod constraint;
 pub mod force;
 
 pub mod model;
-pub mod motion;
 
 pub mod assembly;
 pub mod linsolve;

@@ -15,8 +15,7 @@ pub struct Settings {
     pub tol: f64,
     /// Newton iterations allowed per time step.
     pub max_iter: usize,
-    /// Also solve Φ_q q⃛ = η for the jerk and output it
-    /// ([`jerk_channels`](crate::kinematics::jerk_channels)).
+    /// Also solve Φ_q q⃛ = η for the jerk and output it ([`jerk_channels`]).
     pub jerk: bool,
 }
 
@@ -298,6 +297,24 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
         }
     }
     names.extend(Contacts::new(model).channels(model));
+    names
+}
+
+/// The jerk channels of a run with [`Settings::jerk`], after those of
+/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
+/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
+pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["jx", "jy", "jphi"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["jx", "jy"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
     names
 }
 

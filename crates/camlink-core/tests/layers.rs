@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "curve", "function"],
+    &["math", "curve", "function", "motion"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
