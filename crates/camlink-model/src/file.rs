@@ -272,6 +272,20 @@ pub struct BodySpec {
     /// Named points, `name = [x, y]` in the body frame (m).
     #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
+    /// The body's shape in drawings, instead of the one derived from its
+    /// points: a closed polyline `[[x, y], …]` in the body frame (m, at
+    /// least three corners) or the name of a closed curve on this body.
+    #[serde(default)]
+    pub outline: Option<OutlineSpec>,
+}
+
+/// A body's drawn outline: corners of a closed polyline (body frame, m), or
+/// the name of a closed curve carried by the body.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum OutlineSpec {
+    Polyline(Vec<Vec2>),
+    Curve(String),
 }
 
 /// Gear pair kind.
