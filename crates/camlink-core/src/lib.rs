@@ -7,6 +7,7 @@
 //! Data flows down: [`model`] (immutable) → [`assembly`] (layout and
 //! buffers) → analyses such as [`kinematics`].
 
+pub mod cam;
 pub mod constraint;
 pub mod curve;
 pub mod function;
