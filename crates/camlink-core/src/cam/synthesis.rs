@@ -8,8 +8,10 @@
 //! below is parametrised by θ over [0, 2π) and is closed.
 //!
 //! Followers (ground frame, s from the [`Program`]):
-//! - translating roller: roller centre at C = (ε, y₀ + s), y₀ = √(R_p² − ε²),
-//!   prime circle R_p = R_b + R_r, moving along +y with offset ε;
+//! - translating roller: roller centre at C = (σε, y₀ + s),
+//!   y₀ = √(R_p² − ε²), prime circle R_p = R_b + R_r, moving along +y; a
+//!   positive offset ε puts the stem where the cam surface moves in the
+//!   rise direction, which lowers the pressure angle on the rise;
 //! - translating flat-faced: face y = R_b + s, perpendicular to its +y
 //!   motion; the envelope gives the contact at x = σ s′ on the face, so
 //!   the surface is p = A(−σθ) (σ s′, R_b + s) and its radius of curvature
@@ -36,9 +38,9 @@
 //!
 //! Pressure angle φ (Norton ch. 7.4): the angle between the contact normal
 //! and the direction w in which the follower's point at the contact (a
-//! roller's centre) moves as s grows, signed positive when the normal leans
-//! against the cam's turning direction so that a plain rise has φ > 0;
-//! for a centred translating roller tan φ = s′/(R_p + s).
+//! roller's centre) moves as s grows: φ = σ atan2(w × n, w · n), with n the
+//! outward contact normal; a centred translating roller has
+//! tan φ = s′/(R_p + s), positive on a rise.
 
 use std::f64::consts::TAU;
 
@@ -49,7 +51,8 @@ use crate::math::{cross, dot, norm, rot, sub, V2};
 /// The follower and its dimensions (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Follower {
-    /// Roller of radius `roller` on a translating stem at offset ε.
+    /// Roller of radius `roller` on a translating stem at offset ε (the
+    /// stem on x = σε).
     TranslatingRoller { offset: f64, roller: f64 },
     /// Flat face perpendicular to a translating stem.
     TranslatingFlat,
@@ -250,7 +253,10 @@ impl Cam {
         };
         match self.follower {
             Follower::TranslatingRoller { offset, roller: r } => {
-                roller(TV(T::constant(offset), s + T::constant(self.start)), r)
+                roller(
+                    TV(T::constant(self.sigma * offset), s + T::constant(self.start)),
+                    r,
+                )
             }
             Follower::TranslatingFlat => {
                 let s1 = T::from_derivatives([d[1], d[2], d[3], d[4], 0.0]);
@@ -342,7 +348,7 @@ impl Cam {
             let l = norm(w);
             [w[0] / l, w[1] / l]
         };
-        let pressure_angle = -self.sigma * cross(w, normal).atan2(dot(w, normal));
+        let pressure_angle = self.sigma * cross(w, normal).atan2(dot(w, normal));
         Contact {
             theta,
             motion: [d[0], d[1], d[2], d[3]],
@@ -393,4 +399,174 @@ fn outward(sigma: f64, d1: V2) -> V2 {
 /// Radius of curvature, positive where convex: −σ |p′|³/(p′ × p″).
 fn radius(sigma: f64, j: &ProfileJet) -> f64 {
     -sigma * norm(j.d1).powi(3) / cross(j.d1, j.d2)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cam::{LawKind, SegmentSpec};
+
+    fn program(lift: f64) -> Program {
+        let d = |x: f64| x.to_radians();
+        Program::new(&[
+            SegmentSpec::new(LawKind::Dwell, d(30.0), 0.0),
+            SegmentSpec::new(LawKind::Cycloidal, d(120.0), lift),
+            SegmentSpec::new(LawKind::Dwell, d(30.0), 0.0),
+            SegmentSpec::new(LawKind::Poly345, d(180.0), -lift),
+        ])
+        .unwrap()
+    }
+
+    fn cams() -> Vec<Cam> {
+        let mut out = Vec::new();
+        for ccw in [true, false] {
+            let tr = Follower::TranslatingRoller {
+                offset: 0.005,
+                roller: 0.01,
+            };
+            out.push(Cam::new(program(0.015), tr, 0.04, ccw).unwrap());
+            out.push(Cam::new(program(0.015), Follower::TranslatingFlat, 0.04, ccw).unwrap());
+            let or = Follower::OscillatingRoller {
+                pivot: 0.1,
+                arm: 0.07,
+                roller: 0.01,
+            };
+            out.push(Cam::new(program(0.25), or, 0.04, ccw).unwrap());
+            let of = Follower::OscillatingFlat {
+                pivot: 0.1,
+                face_offset: 0.01,
+            };
+            out.push(Cam::new(program(0.15), of, 0.04, ccw).unwrap());
+        }
+        out
+    }
+
+    /// p′, p″, p‴ of the surface and pitch curve against central
+    /// differences of the order below.
+    #[test]
+    fn surface_derivatives_match_differences() {
+        let h = 1e-5;
+        for cam in cams() {
+            for &th in &[0.3, 0.9, 1.7, 2.4, 3.9, 5.0] {
+                let curves: Vec<Box<dyn Fn(f64) -> ProfileJet>> = vec![
+                    Box::new(|t| cam.surface(t)),
+                    Box::new(|t| cam.pitch(t).unwrap_or_else(|| cam.surface(t))),
+                ];
+                for f in &curves {
+                    let (p, m, j) = (f(th + h), f(th - h), f(th));
+                    let pairs = [(p.p, m.p, j.d1), (p.d1, m.d1, j.d2), (p.d2, m.d2, j.d3)];
+                    for (k, (a, b, d)) in pairs.into_iter().enumerate() {
+                        for i in 0..2 {
+                            let fd = (a[i] - b[i]) / (2.0 * h);
+                            assert!(
+                                (fd - d[i]).abs() < 1e-6 * (1.0 + d[i].abs()),
+                                "{} order {} at {th}: {} vs {fd}",
+                                cam.follower.name(),
+                                k + 1,
+                                d[i]
+                            );
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Flat-faced translating follower: the contact lies on the face
+    /// y = R_b + s at x = σ s′ (Norton eq. 7.25), and the cam's radius of
+    /// curvature is R_b + s + s″ (eq. 7.29).
+    #[test]
+    fn flat_faced_profile_and_radius_match_closed_form() {
+        for ccw in [true, false] {
+            let rb = 0.04;
+            let cam = Cam::new(program(0.015), Follower::TranslatingFlat, rb, ccw).unwrap();
+            for k in 0..72 {
+                let th = 0.05 + k as f64 * TAU / 72.0;
+                let [s, s1, s2, _] = cam.contact(th).motion;
+                let c = cam.contact(th);
+                let sigma = if ccw { 1.0 } else { -1.0 };
+                assert!((c.point[1] - (rb + s)).abs() < 1e-15);
+                assert!((c.point[0] - sigma * s1).abs() < 1e-15);
+                let rho = rb + s + s2;
+                assert!((c.rho - rho).abs() < 1e-12 * rho.abs(), "{} vs {rho}", c.rho);
+                assert_eq!(c.pressure_angle, 0.0);
+            }
+        }
+    }
+
+    /// Offset translating roller: tan φ = (s′ − ε)/(s + √(R_p² − ε²))
+    /// (Norton eq. 7.2), the stem at x = σε.
+    #[test]
+    fn offset_roller_pressure_angle_matches_closed_form() {
+        for ccw in [true, false] {
+            for eps in [0.0, 0.008, -0.012] {
+                let (rb, rr) = (0.04, 0.01);
+                let sigma = if ccw { 1.0 } else { -1.0 };
+                let f = Follower::TranslatingRoller {
+                    offset: eps,
+                    roller: rr,
+                };
+                let cam = Cam::new(program(0.015), f, rb, ccw).unwrap();
+                let rp: f64 = rb + rr;
+                for k in 0..72 {
+                    let th = 0.05 + k as f64 * TAU / 72.0;
+                    let c = cam.contact(th);
+                    let [s, s1, _, _] = c.motion;
+                    let want = ((s1 - eps) / (s + (rp * rp - eps * eps).sqrt())).atan();
+                    assert!(
+                        (c.pressure_angle - want).abs() < 1e-12,
+                        "ε {eps} ccw {ccw} at {th}: {} vs {want}",
+                        c.pressure_angle
+                    );
+                    // The roller centre is on its stem at the programmed height.
+                    let p = rot(sigma * th, cam.pitch(th).unwrap().p);
+                    assert!((p[0] - sigma * eps).abs() < 1e-15);
+                    assert!((p[1] - s - (rp * rp - eps * eps).sqrt()).abs() < 1e-15);
+                }
+            }
+        }
+    }
+
+    /// Oscillating roller: the roller centre stays on its arm's circle and
+    /// at the programmed angle; the surface is a roller radius away.
+    #[test]
+    fn oscillating_roller_centre_follows_the_arm() {
+        let (d, l, rr) = (0.1, 0.07, 0.01);
+        for ccw in [true, false] {
+            let f = Follower::OscillatingRoller {
+                pivot: d,
+                arm: l,
+                roller: rr,
+            };
+            let cam = Cam::new(program(0.25), f, 0.04, ccw).unwrap();
+            let sigma = if ccw { 1.0 } else { -1.0 };
+            let psi0 = ((0.05f64.powi(2) - d * d - l * l) / (2.0 * d * l)).acos();
+            for k in 0..36 {
+                let th = 0.05 + k as f64 * TAU / 36.0;
+                let s = cam.program.eval(th)[0];
+                let c = rot(sigma * th, cam.pitch(th).unwrap().p);
+                let psi = psi0 - s;
+                assert!((c[0] - d - l * psi.cos()).abs() < 1e-15);
+                assert!((c[1] - l * psi.sin()).abs() < 1e-15);
+                let q = rot(sigma * th, cam.surface(th).p);
+                assert!((norm(sub(c, q)) - rr).abs() < 1e-15);
+            }
+        }
+    }
+
+    /// A plain rise pushes a centred translating roller: φ > 0 where
+    /// s′ > 0, φ < 0 on the return, in both senses of rotation.
+    #[test]
+    fn pressure_angle_is_positive_on_the_rise() {
+        for ccw in [true, false] {
+            let f = Follower::TranslatingRoller {
+                offset: 0.0,
+                roller: 0.01,
+            };
+            let cam = Cam::new(program(0.015), f, 0.04, ccw).unwrap();
+            let (rise, back) = (cam.contact(1.5), cam.contact(4.5));
+            assert!(rise.motion[1] > 0.0 && back.motion[1] < 0.0);
+            assert!(rise.pressure_angle > 0.0 && back.pressure_angle < 0.0);
+        }
+    }
 }
