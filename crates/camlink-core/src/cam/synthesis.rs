@@ -316,8 +316,8 @@ impl Cam {
         let (normal, rho_pitch, centre) = match pitch {
             Some(p) => {
                 let pj = jet(p);
-                let n = rot(ang, outward(self.sigma, pj.d1));
-                (n, Some(radius(self.sigma, &pj)), rot(ang, pj.p))
+                let n = outward(self.sigma, pj.d1);
+                (rot(ang, n), Some(radius(self.sigma, &pj, n)), rot(ang, pj.p))
             }
             None => {
                 let n = match self.follower {
@@ -355,7 +355,7 @@ impl Cam {
             point,
             normal,
             pressure_angle,
-            rho: radius(self.sigma, &q),
+            rho: radius(self.sigma, &q, rot(-ang, normal)),
             rho_pitch,
             face_position,
         }
@@ -396,9 +396,15 @@ fn outward(sigma: f64, d1: V2) -> V2 {
     [-sigma * d1[1] / l, sigma * d1[0] / l]
 }
 
-/// Radius of curvature, positive where convex: −σ |p′|³/(p′ × p″).
-fn radius(sigma: f64, j: &ProfileJet) -> f64 {
-    -sigma * norm(j.d1).powi(3) / cross(j.d1, j.d2)
+/// Radius of curvature, positive where convex: −σ |p′|³/(p′ × p″), with
+/// the sign of p′ · t, t = −σ n⊥ the direction the curve runs where it is
+/// sound (`n` the physical outward normal, cam frame). The second factor
+/// makes a cusp's swallowtail, where the envelope runs backwards, count as
+/// negative radius although it turns the same way.
+fn radius(sigma: f64, j: &ProfileJet, n: V2) -> f64 {
+    let t = [sigma * n[1], -sigma * n[0]];
+    let forward = if dot(j.d1, t) < 0.0 { -1.0 } else { 1.0 };
+    -sigma * forward * norm(j.d1).powi(3) / cross(j.d1, j.d2)
 }
 
 #[cfg(test)]
