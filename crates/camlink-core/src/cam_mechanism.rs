@@ -29,6 +29,7 @@ use crate::constraint::revolute::Revolute;
 use crate::constraint::translational::Translational;
 use crate::curve::{Curve, Parametric};
 use crate::function::TimeFn;
+use crate::kinematics::{run, AnalysisError, Settings, Table};
 use crate::math::rot_t;
 use crate::model::{Body, BodyId, Model};
 
@@ -134,4 +135,62 @@ pub fn mechanism(cam: &Arc<Cam>, omega: f64) -> Model {
         },
     );
     m
+}
+
+/// Largest errors of a round trip: camlink's kinematic analysis of
+/// [`mechanism`] against the motion program over one turn.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoundTrip {
+    /// Largest |x − x_program| over the turn, relative to the largest |s|
+    /// (x the stem's y or the arm's angle).
+    pub displacement: f64,
+    /// Largest velocity and acceleration errors relative to their peaks
+    /// ω max|s′| and ω² max|s″|.
+    pub velocity: f64,
+    pub acceleration: f64,
+    /// Analysis steps run.
+    pub steps: usize,
+}
+
+/// Runs the kinematics of [`mechanism`] at ω (rad/s) over one turn in `n`
+/// steps (shifted by 0.3 of a step off the start, so that samples miss the
+/// segment boundaries) and compares the follower's coordinate and its
+/// rates with the program.
+pub fn round_trip(cam: &Arc<Cam>, omega: f64, n: usize) -> Result<RoundTrip, AnalysisError> {
+    let model = mechanism(cam, omega);
+    let times: Vec<f64> = (0..=n)
+        .map(|k| (k as f64 + 0.3) / n as f64 * TAU / omega)
+        .collect();
+    let settings = Settings {
+        tol: 1e-13,
+        ..Settings::default()
+    };
+    let mut table = Table::default();
+    run(&model, &times, &settings, &[], &mut table)?;
+    let (c, r) = if cam.follower.oscillating() {
+        ("phi", ["omega", "alpha"])
+    } else {
+        ("y", ["vy", "ay"])
+    };
+    let get = |name: &str| table.channel(&format!("follower.{name}")).unwrap_or_default();
+    let (x, v, a) = (get(c), get(r[0]), get(r[1]));
+    let peak = |k: usize| {
+        (0..3600)
+            .map(|i| cam.program.eval(i as f64 * TAU / 3600.0)[k].abs())
+            .fold(0.0, f64::max)
+    };
+    let (sx, sv, sa) = (peak(0), peak(1) * omega, peak(2) * omega * omega);
+    let mut out = RoundTrip {
+        displacement: 0.0,
+        velocity: 0.0,
+        acceleration: 0.0,
+        steps: times.len(),
+    };
+    for (k, &t) in times.iter().enumerate() {
+        let want = cam.follower_coordinate(omega * t);
+        out.displacement = out.displacement.max((x[k] - want[0]).abs() / sx);
+        out.velocity = out.velocity.max((v[k] - omega * want[1]).abs() / sv);
+        out.acceleration = out.acceleration.max((a[k] - omega * omega * want[2]).abs() / sa);
+    }
+    Ok(out)
 }
