@@ -416,11 +416,10 @@ def analyse(design: Design) -> Report:
     if g["min_pitch_radius"] is not None:
         rp, at = g["min_pitch_radius"]
         rr = design.dims[-1]
-        checks.append(Check("least pitch-curve radius vs roller radius", rp, rr, rp - rr if rp > 0 else None,
-                            "m", deg(at), rp < 0 or rp > rr,
-                            "concave there" if rp < 0 else ""))
+        checks.append(Check("least convex pitch-curve radius vs roller radius", rp, rr, rp - rr, "m",
+                            deg(at), rp > rr))
     und = g["undercut"]
-    checks.append(Check("undercut ranges", float(len(und)), 0.0, -float(len(und)), "count", None, not und))
+    checks.append(Check("undercut ranges", float(len(und)), None, None, "", None, not und))
     if design.follower.endswith("flat"):
         (lo, _), (hi, _) = g["face_travel"]
         width = hi - lo
@@ -431,7 +430,7 @@ def analyse(design: Design) -> Report:
                             f"contact travels from {lo:.6g} to {hi:.6g} m along the face"))
         conc = g["concave"]
         if conc:
-            checks.append(Check("concave ranges under a flat face", float(len(conc)), 0.0, None, "count",
+            checks.append(Check("concave ranges under a flat face", float(len(conc)), None, None, "",
                                 None, False))
     if design.dynamics is not None:
         d = design.dynamics

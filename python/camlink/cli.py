@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import camlink
+from camlink import cam_cli
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
@@ -89,6 +90,7 @@ def _parser() -> argparse.ArgumentParser:
     check.add_argument("--json", action="store_true", help="print the report as JSON")
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    cam_cli.add_parser(sub)
     return p
 
 
@@ -230,7 +232,7 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema, "cam": cam_cli.run}[args.command]
     try:
         return command(args)
     except ModelError as e:

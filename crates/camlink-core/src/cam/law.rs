@@ -81,7 +81,7 @@ impl LawKind {
             LawKind::ModifiedTrapezoid => Some([2.0, 4.888, 61.43]),
             LawKind::ModifiedSine => Some([1.760, 5.528, 69.47]),
             LawKind::Poly345 => Some([1.875, 5.7735, 60.0]),
-            LawKind::Poly4567 => Some([2.1875, 7.5107, 52.5]),
+            LawKind::Poly4567 => Some([2.1875, 7.5132, 52.5]),
             LawKind::Dwell | LawKind::Polynomial => None,
         }
     }

@@ -50,7 +50,8 @@ pub struct Geometry {
     pub min_convex_radius: Extreme,
     /// Least |ρ| of the surface where it is concave (m); `None` if convex.
     pub min_concave_radius: Option<Extreme>,
-    /// Least radius of curvature of a roller's pitch curve (m, signed).
+    /// Least radius of curvature of a roller's pitch curve where it is
+    /// convex (m); below the roller radius the cam is undercut.
     pub min_pitch_radius: Option<Extreme>,
     /// θ ranges (rad) where the surface is concave.
     pub concave: Vec<(f64, f64)>,
@@ -253,7 +254,7 @@ pub fn geometry(cam: &Cam) -> Geometry {
             theta: 0.0,
         }),
         min_concave_radius: min_over(&concave),
-        min_pitch_radius: min_over(&|c: &Contact| c.rho_pitch),
+        min_pitch_radius: min_over(&|c: &Contact| c.rho_pitch.filter(|r| *r > 0.0)),
         concave: ranges(n, |t| cam.contact(t).rho_pitch.is_some_and(|rp| rp < 0.0)),
         undercut: ranges(n, undercut),
         face_travel,
@@ -359,8 +360,12 @@ pub fn force(cam: &Cam, train: &Train, omega: f64) -> Result<Force, CamError> {
 /// The smallest base circle radius in [`lo`, `hi`] (m) for which every
 /// pressure angle stays within `max_pressure` (rad) and the surface's least
 /// convex radius of curvature is at least `min_radius` (m) with no
-/// undercut; `None` when even `hi` fails. Bisection to 1e-6 relative,
-/// assuming that a larger base circle only helps.
+/// undercut (and, under a flat face, no concave part); `None` when no
+/// radius on the search grid passes. The range is scanned at
+/// [`BASE_GRID`] radii and the first passing one refined by bisection
+/// against its failing neighbour to 1e-6 relative; the follower's other
+/// dimensions stay as given (an oscillating arm that cannot reach a
+/// radius fails there).
 pub fn smallest_base_radius(
     cam: &Cam,
     max_pressure: Option<f64>,
@@ -368,10 +373,14 @@ pub fn smallest_base_radius(
     lo: f64,
     hi: f64,
 ) -> Result<Option<f64>, CamError> {
-    let ok = |rb: f64| -> Result<bool, CamError> {
-        let c = match cam.with_base_radius(rb) {
-            Ok(c) => c,
-            Err(_) => return Ok(false),
+    if !(lo > 0.0 && hi > lo && hi.is_finite()) {
+        return Err(CamError(format!(
+            "the base circle search needs 0 < lo < hi, got {lo} and {hi} m"
+        )));
+    }
+    let ok = |rb: f64| {
+        let Ok(c) = cam.with_base_radius(rb) else {
+            return false;
         };
         let g = geometry(&c);
         let phi = [g.pressure_rise, g.pressure_return]
@@ -383,18 +392,19 @@ pub fn smallest_base_radius(
         let radius_ok = g.undercut.is_empty()
             && min_radius.is_none_or(|m| g.min_convex_radius.value >= m)
             && (cam.follower.roller().is_some() || g.concave.is_empty());
-        Ok(pressure_ok && radius_ok)
+        pressure_ok && radius_ok
     };
-    if !ok(hi)? {
+    let at = |k: usize| lo + (hi - lo) * k as f64 / BASE_GRID as f64;
+    let Some(k) = (0..=BASE_GRID).find(|&k| ok(at(k))) else {
         return Ok(None);
-    }
-    if ok(lo)? {
+    };
+    if k == 0 {
         return Ok(Some(lo));
     }
-    let (mut a, mut b) = (lo, hi);
+    let (mut a, mut b) = (at(k - 1), at(k));
     while b - a > 1e-6 * b {
         let m = 0.5 * (a + b);
-        if ok(m)? {
+        if ok(m) {
             b = m;
         } else {
             a = m;
@@ -402,6 +412,9 @@ pub fn smallest_base_radius(
     }
     Ok(Some(b))
 }
+
+/// Radii scanned by [`smallest_base_radius`].
+pub const BASE_GRID: usize = 40;
 
 #[cfg(test)]
 mod tests {
