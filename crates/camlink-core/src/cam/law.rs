@@ -5,8 +5,8 @@
 //! lift h follows s(θ) = s₀ + h S(u), u = (θ − θ₀)/β, so
 //! s⁽ᵏ⁾ = h S⁽ᵏ⁾(u)/βᵏ. The peak factors Cv = max|S′|, Ca = max|S″|,
 //! Cj = max|S‴| are the dimensionless velocity, acceleration and jerk
-//! (Norton, *Cam Design and Manufacturing Handbook*, 2nd ed., table 3-2;
-//! Rothbart, *Cam Design Handbook*, ch. 3).
+//! (Norton, *Cam Design and Manufacturing Handbook*, 2nd ed.;
+//! Rothbart, *Cam Design Handbook*).
 //!
 //! Two kinds of shape are exact in closed form:
 //! - polynomials in u (constant velocity, 3-4-5, 4-5-6-7 and the fitted
@@ -70,7 +70,7 @@ impl LawKind {
         LawKind::ALL.into_iter().find(|k| k.name() == name)
     }
 
-    /// Textbook (Cv, Ca, Cj) of a rise by this law (Norton table 3-2):
+    /// Textbook (Cv, Ca, Cj) of a rise by this law (Norton ch. 3):
     /// peaks of |S′|, |S″|, |S‴| inside the segment. `None` for a dwell and
     /// a fitted polynomial, whose factors depend on the segment.
     pub fn textbook(self) -> Option<[f64; 3]> {

@@ -10,14 +10,14 @@
 //!   ρ_pitch < R_r (the surface loops), for a flat face where ρ < 0 (a cusp;
 //!   the face cannot touch there);
 //! - flat face: the contact's travel along the face, hence the least face
-//!   width (Norton eq. 7.27: from min s′ to max s′ for a translating face);
+//!   width (Norton ch. 7: from min s′ to max s′ for a translating face);
 //! - base circle sizing ([`smallest_base_radius`]): the least R_b meeting a
 //!   pressure angle limit and a least radius of curvature, by bisection;
 //! - follower dynamics ([`force`]): the follower (mass m, or inertia about
 //!   its pivot) held on by a spring of rate k with preload F₀ at s = 0 and
 //!   a viscous damper c; the cam must supply the generalised force
 //!   Q = m ω² s″ + c ω s′ + F₀ + k s (inverse dynamics of the follower at
-//!   constant cam speed ω; Norton ch. 10.2, gravity neglected), and the
+//!   constant cam speed ω; Norton ch. 10, gravity neglected), and the
 //!   normal contact force F = Q/(|∂c/∂s| cos φ), c the follower's point at
 //!   the contact. The follower leaves the cam where Q < 0: the jump speed
 //!   is the least ω at which that happens anywhere in the turn, the

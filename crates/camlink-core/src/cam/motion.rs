@@ -16,7 +16,7 @@
 //! A fitted polynomial segment takes boundary conditions
 //! s(θ₀) = s₀, s(θ₀ + β) = s₀ + h and any of s′, s″, s‴ at either end, and
 //! is the polynomial of least degree that meets them (MechDesigner's
-//! "flexible polynomial"; Norton ch. 3.7).
+//! "flexible polynomial"; Norton ch. 3).
 
 use std::f64::consts::TAU;
 use std::fmt;

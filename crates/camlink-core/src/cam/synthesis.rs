@@ -15,7 +15,7 @@
 //! - translating flat-faced: face y = R_b + s, perpendicular to its +y
 //!   motion; the envelope gives the contact at x = σ s′ on the face, so
 //!   the surface is p = A(−σθ) (σ s′, R_b + s) and its radius of curvature
-//!   ρ = R_b + s + s″ (Norton eq. 7.29);
+//!   ρ = R_b + s + s″;
 //! - oscillating roller: arm pivoted at P = (d, 0), length L, at angle
 //!   ψ = ψ₀ − s (s is the swing, rad), roller centre C = P + L (cos ψ, sin ψ),
 //!   cos ψ₀ = (R_p² − d² − L²)/(2dL), ψ₀ in (0, π): a positive swing moves
@@ -36,7 +36,7 @@
 //! Everything is computed as truncated Taylor series in θ ([`T`]) from the
 //! program's exact derivatives, so the surface's p, p′, p″, p‴ are exact.
 //!
-//! Pressure angle φ (Norton ch. 7.4): the angle between the contact normal
+//! Pressure angle φ (Norton ch. 7): the angle between the contact normal
 //! and the direction w in which the follower's point at the contact (a
 //! roller's centre) moves as s grows: φ = σ atan2(w × n, w · n), with n the
 //! outward contact normal; a centred translating roller has
@@ -479,7 +479,7 @@ mod tests {
     }
 
     /// Flat-faced translating follower: the contact lies on the face
-    /// y = R_b + s at x = σ s′ (Norton eq. 7.25), and the cam's radius of
+    /// y = R_b + s at x = σ s′, and the cam's radius of
     /// curvature is R_b + s + s″ (eq. 7.29).
     #[test]
     fn flat_faced_profile_and_radius_match_closed_form() {
@@ -501,7 +501,7 @@ mod tests {
     }
 
     /// Offset translating roller: tan φ = (s′ − ε)/(s + √(R_p² − ε²))
-    /// (Norton eq. 7.2), the stem at x = σε.
+    ///, the stem at x = σε.
     #[test]
     fn offset_roller_pressure_angle_matches_closed_form() {
         for ccw in [true, false] {
