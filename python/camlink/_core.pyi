@@ -2,7 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any
+from typing import Any, TypeAlias
 
 import numpy as np
 import numpy.typing as npt
@@ -11,8 +11,8 @@ from camlink.results import Results
 
 __version__: str
 
-OnChunk = Callable[[list[str], npt.NDArray[np.float64]], object]
-RunOutput = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
+RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
@@ -99,3 +99,35 @@ class Model:
 
 def json_schema() -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
+
+# One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
+CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]
+# (value, cam angle θ in rad)
+CamExtreme: TypeAlias = tuple[float, float]
+
+class CamCore:
+    """A cam synthesised from a motion program (the Rust core's `cam::Cam`)."""
+
+    def __init__(
+        self,
+        segments: Sequence[CamSegment],
+        follower: str,
+        dims: Sequence[float],
+        base_radius: float,
+        ccw: bool,
+    ) -> None: ...
+    def motion(self, theta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
+    def starts(self) -> list[float]: ...
+    def boundaries(self) -> list[tuple[float, int, int, int, tuple[float, float, float], str]]: ...
+    def factors(self) -> list[tuple[int, str, tuple[float, float, float], tuple[float, float, float] | None]]: ...
+    def surface(self, theta: npt.NDArray[np.float64], offset: float = 0.0) -> npt.NDArray[np.float64]: ...
+    def pitch(self, theta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64] | None: ...
+    def contact(self, theta: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[np.float64]]: ...
+    def geometry(self) -> dict[str, Any]: ...
+    def force(
+        self, mass: float, spring_rate: float, preload: float, damping: float, omega: float
+    ) -> dict[str, Any]: ...
+    def smallest_base_radius(
+        self, max_pressure: float | None, min_radius: float | None, lo: float, hi: float
+    ) -> float | None: ...
+    def round_trip(self, omega: float, steps: int) -> tuple[float, float, float]: ...

@@ -29,9 +29,15 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None
     p.add_argument("design", metavar="DESIGN", help="cam design file (.toml)")
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     p.add_argument(
-        "-o", "--out", metavar="DIR", default=".", help="directory for the files written (default: .)"
+        "-o",
+        "--out",
+        metavar="DIR",
+        default=".",
+        help="directory for the files written (default: .)",
     )
-    p.add_argument("--no-files", action="store_true", help="write no pictures or exports")
+    p.add_argument(
+        "--no-files", action="store_true", help="write no pictures or exports"
+    )
 
 
 def _write_files(design: cam_design.Design, out: Path) -> list[str]:
@@ -40,13 +46,18 @@ def _write_files(design: cam_design.Design, out: Path) -> list[str]:
     out.mkdir(parents=True, exist_ok=True)
     written: list[str] = []
     if ex.svaj:
-        fig = cam_plots.svaj(core, oscillating=design.oscillating, title=f"{design.name}: SVAJ")
+        fig = cam_plots.svaj(
+            core, oscillating=design.oscillating, title=f"{design.name}: SVAJ"
+        )
         cam_plots.save(fig, out / ex.svaj)
         written.append(str(out / ex.svaj))
     if ex.profile:
         colour = "rho" if design.follower.endswith("flat") else "pressure_angle"
         fig = cam_plots.profile(
-            core, base_radius=design.base_radius, colour_by=colour, title=f"{design.name}: profile"
+            core,
+            base_radius=design.base_radius,
+            colour_by=colour,
+            title=f"{design.name}: profile",
         )
         cam_plots.save(fig, out / ex.profile)
         written.append(str(out / ex.profile))
@@ -59,7 +70,9 @@ def _write_files(design: cam_design.Design, out: Path) -> list[str]:
         cam_export.write_csv(core, out / ex.csv, th, ex.tool_radius)
         written.append(str(out / ex.csv))
     if ex.dxf:
-        cam_export.write_dxf(core, out / ex.dxf, ex.tolerance, ex.dxf_mode, ex.tool_radius)
+        cam_export.write_dxf(
+            core, out / ex.dxf, ex.tolerance, ex.dxf_mode, ex.tool_radius
+        )
         written.append(str(out / ex.dxf))
     if ex.svg:
         cam_export.write_svg(core, out / ex.svg, ex.tolerance, ex.tool_radius)

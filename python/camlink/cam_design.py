@@ -126,7 +126,9 @@ class Design:
 
     def core(self, base_radius: float | None = None) -> CamCore:
         """The synthesised cam (in the Rust core)."""
-        segs = [(s.law, s.span, s.lift, list(s.start), list(s.end)) for s in self.segments]
+        segs = [
+            (s.law, s.span, s.lift, list(s.start), list(s.end)) for s in self.segments
+        ]
         try:
             return CamCore(
                 segs,
@@ -151,12 +153,18 @@ class _Table:
     def fail(self, key: str, message: str) -> CamDesignError:
         return CamDesignError(f"{self.path}: {self.where}.{key}: {message}")
 
-    def number(self, key: str, default: float | None = None, *, positive: bool = False) -> float:
+    def number(
+        self, key: str, default: float | None = None, *, positive: bool = False
+    ) -> float:
         self.used.add(key)
         v = self.data.get(key, default)
         if v is None:
             raise self.fail(key, "is required")
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float))
+            or not math.isfinite(v)
+        ):
             raise self.fail(key, f"must be a number, got {v!r}")
         if positive and v <= 0:
             raise self.fail(key, f"must be positive, got {v}")
@@ -168,11 +176,15 @@ class _Table:
             return None
         return self.number(key, positive=positive)
 
-    def text(self, key: str, default: str | None = None, choices: tuple[str, ...] = ()) -> str:
+    def text(
+        self, key: str, default: str | None = None, choices: tuple[str, ...] = ()
+    ) -> str:
         self.used.add(key)
         v = self.data.get(key, default)
         if not isinstance(v, str):
-            raise self.fail(key, "is required" if v is None else f"must be a string, got {v!r}")
+            raise self.fail(
+                key, "is required" if v is None else f"must be a string, got {v!r}"
+            )
         if choices and v not in choices:
             raise self.fail(key, f"'{v}' is not one of {', '.join(choices)}")
         return v
@@ -183,13 +195,16 @@ class _Table:
             raise self.fail(extra[0], "unknown key")
 
 
-def _ends(t: _Table, key: str, scale: float) -> tuple[float | None, float | None, float | None]:
+def _ends(
+    t: _Table, key: str, scale: float
+) -> tuple[float | None, float | None, float | None]:
     t.used.add(key)
     if key not in t.data:
         return (None, None, None)
     e = _Table(t.path, f"{t.where}.{key}", t.data[key])
     out = tuple(
-        None if k not in e.data else e.number(k) * scale for k in ("velocity", "acceleration", "jerk")
+        None if k not in e.data else e.number(k) * scale
+        for k in ("velocity", "acceleration", "jerk")
     )
     e.used.update(("velocity", "acceleration", "jerk"))
     e.finish()
@@ -216,14 +231,21 @@ def load(path: str | Path) -> Design:
     kind = fol.text("type", None, tuple(FOLLOWERS))
     dims = []
     for k in FOLLOWERS[kind]:
-        dims.append(fol.number(k, 0.0 if k in ("offset", "face_offset") else None,
-                               positive=k not in ("offset", "face_offset")))
+        dims.append(
+            fol.number(
+                k,
+                0.0 if k in ("offset", "face_offset") else None,
+                positive=k not in ("offset", "face_offset"),
+            )
+        )
     fol.finish()
     oscillating = kind.startswith("oscillating")
     raw = doc.get("segments")
     top.used.add("segments")
     if not isinstance(raw, list) or not raw:
-        raise CamDesignError(f"{p}: [[segments]]: the motion program needs at least one segment")
+        raise CamDesignError(
+            f"{p}: [[segments]]: the motion program needs at least one segment"
+        )
     segments = []
     for i, r in enumerate(raw):
         s = _Table(p, f"segments[{i}]", r)
@@ -245,9 +267,16 @@ def load(path: str | Path) -> Design:
     if "base_radius_search" in lim.data:
         lim.used.add("base_radius_search")
         v = lim.data["base_radius_search"]
-        if not (isinstance(v, list) and len(v) == 2 and all(isinstance(x, (int, float)) for x in v)
-                and 0 < v[0] < v[1]):
-            raise lim.fail("base_radius_search", f"must be [lo, hi] with 0 < lo < hi (m), got {v!r}")
+        if not (
+            isinstance(v, list)
+            and len(v) == 2
+            and all(isinstance(x, (int, float)) for x in v)
+            and 0 < v[0] < v[1]
+        ):
+            raise lim.fail(
+                "base_radius_search",
+                f"must be [lo, hi] with 0 < lo < hi (m), got {v!r}",
+            )
         rng = (float(v[0]), float(v[1]))
     limits = Limits(
         max_pressure_angle=None if phi is None else math.radians(phi),
@@ -289,10 +318,14 @@ def load(path: str | Path) -> Design:
     chord = ex.optional("csv_chord_tolerance", positive=True)
     export = Export(
         csv=out("csv", f"{stem}.csv"),
-        csv_step=0.0 if chord is not None else math.radians(ex.number("csv_step_deg", 1.0, positive=True)),
+        csv_step=0.0
+        if chord is not None
+        else math.radians(ex.number("csv_step_deg", 1.0, positive=True)),
         csv_chord=chord,
         dxf=out("dxf", f"{stem}.dxf"),
-        dxf_mode="arcs" if ex.text("dxf_mode", "polyline", ("polyline", "arcs")) == "arcs" else "polyline",
+        dxf_mode="arcs"
+        if ex.text("dxf_mode", "polyline", ("polyline", "arcs")) == "arcs"
+        else "polyline",
         tolerance=ex.number("tolerance", 1e-5, positive=True),
         svg=out("svg", f"{stem}.svg"),
         tool_radius=ex.optional("tool_radius", positive=True),
@@ -301,8 +334,18 @@ def load(path: str | Path) -> Design:
     )
     ex.finish()
     top.finish()
-    design = Design(p, name, kind, tuple(dims), base, rotation == "ccw", tuple(segments),
-                    limits, dynamics, export)
+    design = Design(
+        p,
+        name,
+        kind,
+        tuple(dims),
+        base,
+        rotation == "ccw",
+        tuple(segments),
+        limits,
+        dynamics,
+        export,
+    )
     design.core()  # checks the program and the follower's geometry
     return design
 
@@ -373,7 +416,9 @@ def _deg_ranges(r: list[tuple[float, float]]) -> tuple[tuple[float, float], ...]
     return tuple((math.degrees(a), math.degrees(b)) for a, b in r)
 
 
-def tool_undercut(core: CamCore, tool_radius: float, n: int = 3600) -> list[tuple[float, float]]:
+def tool_undercut(
+    core: CamCore, tool_radius: float, n: int = 3600
+) -> list[tuple[float, float]]:
     """θ ranges (rad) a tool of `tool_radius` (m) cannot cut: where the
     surface is concave tighter than the tool, or already cusped."""
     th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
@@ -400,72 +445,167 @@ def analyse(design: Design) -> Report:
     checks: list[Check] = []
     deg = math.degrees
     lim = design.limits
-    for key, label in (("pressure_rise", "pressure angle, rise"), ("pressure_return", "pressure angle, return")):
+    for key, label in (
+        ("pressure_rise", "pressure angle, rise"),
+        ("pressure_return", "pressure angle, return"),
+    ):
         e = g[key]
         if e is None or design.follower == "translating-flat":
             continue
         value, at = e
         limit = lim.max_pressure_angle
         margin = None if limit is None else deg(limit - abs(value))
-        checks.append(Check(label, deg(value), None if limit is None else deg(limit), margin, "deg",
-                            deg(at), margin is None or margin >= 0))
+        checks.append(
+            Check(
+                label,
+                deg(value),
+                None if limit is None else deg(limit),
+                margin,
+                "deg",
+                deg(at),
+                margin is None or margin >= 0,
+            )
+        )
     rmin, at = g["min_convex_radius"]
     margin = None if lim.min_radius is None else rmin - lim.min_radius
-    checks.append(Check("least radius of curvature (convex)", rmin, lim.min_radius, margin, "m",
-                        deg(at), margin is None or margin >= 0))
+    checks.append(
+        Check(
+            "least radius of curvature (convex)",
+            rmin,
+            lim.min_radius,
+            margin,
+            "m",
+            deg(at),
+            margin is None or margin >= 0,
+        )
+    )
     if g["min_pitch_radius"] is not None:
         rp, at = g["min_pitch_radius"]
         rr = design.dims[-1]
-        checks.append(Check("least convex pitch-curve radius vs roller radius", rp, rr, rp - rr, "m",
-                            deg(at), rp > rr))
+        checks.append(
+            Check(
+                "least convex pitch-curve radius vs roller radius",
+                rp,
+                rr,
+                rp - rr,
+                "m",
+                deg(at),
+                rp > rr,
+            )
+        )
     und = g["undercut"]
-    checks.append(Check("undercut ranges", float(len(und)), None, None, "", None, not und))
+    checks.append(
+        Check("undercut ranges", float(len(und)), None, None, "", None, not und)
+    )
     if design.follower.endswith("flat"):
         (lo, _), (hi, _) = g["face_travel"]
         width = hi - lo
         limit = lim.max_face_width
         margin = None if limit is None else limit - width
-        checks.append(Check("face width needed", width, limit, margin, "m", None,
-                            margin is None or margin >= 0,
-                            f"contact travels from {lo:.6g} to {hi:.6g} m along the face"))
+        checks.append(
+            Check(
+                "face width needed",
+                width,
+                limit,
+                margin,
+                "m",
+                None,
+                margin is None or margin >= 0,
+                f"contact travels from {lo:.6g} to {hi:.6g} m along the face",
+            )
+        )
         conc = g["concave"]
         if conc:
-            checks.append(Check("concave ranges under a flat face", float(len(conc)), None, None, "",
-                                None, False))
+            checks.append(
+                Check(
+                    "concave ranges under a flat face",
+                    float(len(conc)),
+                    None,
+                    None,
+                    "",
+                    None,
+                    False,
+                )
+            )
     if design.dynamics is not None:
         d = design.dynamics
         f = core.force(d.mass, d.spring_rate, d.preload, d.damping, d.speed)
         fmin, at = f["min_normal"]
-        checks.append(Check(f"least contact force at {d.speed / RPM:.0f} rpm", fmin, 0.0, fmin, "N", deg(at),
-                            fmin > 0))
+        checks.append(
+            Check(
+                f"least contact force at {d.speed / RPM:.0f} rpm",
+                fmin,
+                0.0,
+                fmin,
+                "N",
+                deg(at),
+                fmin > 0,
+            )
+        )
         jump = f["jump"]
         jump_rpm = math.inf if jump is None else jump[0] / RPM
         if d.redline is not None:
             red = d.redline / RPM
-            checks.append(Check("jump speed vs redline", jump_rpm, red, jump_rpm - red, "rpm",
-                                None if jump is None else deg(jump[1]), jump_rpm > red))
+            checks.append(
+                Check(
+                    "jump speed vs redline",
+                    jump_rpm,
+                    red,
+                    jump_rpm - red,
+                    "rpm",
+                    None if jump is None else deg(jump[1]),
+                    jump_rpm > red,
+                )
+            )
         else:
-            checks.append(Check("jump speed", jump_rpm, None, None, "rpm",
-                                None if jump is None else deg(jump[1]), jump_rpm > d.speed / RPM))
+            checks.append(
+                Check(
+                    "jump speed",
+                    jump_rpm,
+                    None,
+                    None,
+                    "rpm",
+                    None if jump is None else deg(jump[1]),
+                    jump_rpm > d.speed / RPM,
+                )
+            )
     tool = []
     if design.export.tool_radius is not None:
         tool = tool_undercut(core, design.export.tool_radius)
     smallest = None
     if lim.base_radius_range is not None:
-        smallest = core.smallest_base_radius(lim.max_pressure_angle, lim.min_radius, *lim.base_radius_range)
+        smallest = core.smallest_base_radius(
+            lim.max_pressure_angle, lim.min_radius, *lim.base_radius_range
+        )
         limit = design.base_radius
-        checks.append(Check("smallest base circle meeting the limits", math.nan if smallest is None else smallest,
-                            limit, None if smallest is None else limit - smallest, "m", None,
-                            smallest is not None and smallest <= limit))
+        checks.append(
+            Check(
+                "smallest base circle meeting the limits",
+                math.nan if smallest is None else smallest,
+                limit,
+                None if smallest is None else limit - smallest,
+                "m",
+                None,
+                smallest is not None and smallest <= limit,
+            )
+        )
     rt = core.round_trip(1.0, 720)
     return Report(
         name=design.name,
         follower=design.follower,
         base_radius=design.base_radius,
-        boundaries=tuple(BoundaryReport(deg(b[0]), b[1], b[2], b[3], (b[4][0], b[4][1], b[4][2]), b[5])
-                         for b in core.boundaries()),
-        factors=tuple(FactorReport(k, law, (c[0], c[1], c[2]), None if t is None else (t[0], t[1], t[2]))
-                      for k, law, c, t in core.factors()),
+        boundaries=tuple(
+            BoundaryReport(
+                deg(b[0]), b[1], b[2], b[3], (b[4][0], b[4][1], b[4][2]), b[5]
+            )
+            for b in core.boundaries()
+        ),
+        factors=tuple(
+            FactorReport(
+                k, law, (c[0], c[1], c[2]), None if t is None else (t[0], t[1], t[2])
+            )
+            for k, law, c, t in core.factors()
+        ),
         checks=tuple(checks),
         concave_deg=_deg_ranges(g["concave"]),
         undercut_deg=_deg_ranges(und),
@@ -477,27 +617,41 @@ def analyse(design: Design) -> Report:
 
 def format_report(r: Report) -> str:
     """The report as text."""
-    lines = [f"cam design '{r.name}': {r.follower} follower, base circle {r.base_radius:g} m", ""]
+    lines = [
+        f"cam design '{r.name}': {r.follower} follower, base circle {r.base_radius:g} m",
+        "",
+    ]
     lines.append("motion program boundaries:")
     for b in r.boundaries:
         lines.append(f"  segment {b.before} -> {b.after}: {b.text}")
     lines.append("")
     lines.append("segment factors   Cv       Ca       Cj      (textbook Cv, Ca, Cj)")
     for f in r.factors:
-        tb = "" if f.textbook is None else "(" + ", ".join(f"{v:.4g}" for v in f.textbook) + ")"
-        lines.append(f"  {f.segment:2d} {f.law:18s} {f.computed[0]:7.4f} {f.computed[1]:8.4f} {f.computed[2]:8.3f}  {tb}")
+        tb = (
+            ""
+            if f.textbook is None
+            else "(" + ", ".join(f"{v:.4g}" for v in f.textbook) + ")"
+        )
+        lines.append(
+            f"  {f.segment:2d} {f.law:18s} {f.computed[0]:7.4f} {f.computed[1]:8.4f} {f.computed[2]:8.3f}  {tb}"
+        )
     lines.append("")
     lines.append("design limits:")
     for c in r.checks:
         mark = "ok  " if c.ok else "FAIL"
         where = "" if c.at_deg is None else f" at {c.at_deg:.2f}°"
         lim = "" if c.limit is None else f" (limit {c.limit:.6g} {c.unit}"
-        lim += "" if c.margin is None or c.limit is None else f", margin {c.margin:.6g})"
+        lim += (
+            "" if c.margin is None or c.limit is None else f", margin {c.margin:.6g})"
+        )
         lim += ")" if c.limit is not None and c.margin is None else ""
         note = f"; {c.note}" if c.note else ""
         lines.append(f"  {mark} {c.name}: {c.value:.6g} {c.unit}{where}{lim}{note}")
-    for label, ranges in (("concave", r.concave_deg), ("undercut", r.undercut_deg),
-                          ("tool cannot cut", r.tool_undercut_deg)):
+    for label, ranges in (
+        ("concave", r.concave_deg),
+        ("undercut", r.undercut_deg),
+        ("tool cannot cut", r.tool_undercut_deg),
+    ):
         if ranges:
             txt = ", ".join(f"{a:.2f}°–{b:.2f}°" for a, b in ranges)
             lines.append(f"  {label}: {txt}")
@@ -505,16 +659,22 @@ def format_report(r: Report) -> str:
         lines.append(f"  smallest base circle: {r.smallest_base_radius:.6g} m")
     lines.append("")
     d, v, a = r.round_trip
-    lines.append("round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):")
-    lines.append(f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)")
-    for f in r.files:
-        lines.append(f"wrote {f}")
+    lines.append(
+        "round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):"
+    )
+    lines.append(
+        f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)"
+    )
+    for path in r.files:
+        lines.append(f"wrote {path}")
     lines.append("")
     lines.append("all limits hold" if r.ok else "some limits fail")
     return "\n".join(lines)
 
 
-def sample(core: CamCore, n: int = 1441) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def sample(
+    core: CamCore, n: int = 1441
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(θ over a turn, [s, s′, s″, s‴] at each) for plots and exports."""
     th = np.linspace(0.0, 2.0 * math.pi, n)
     return th, np.asarray(core.motion(th))

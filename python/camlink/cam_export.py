@@ -11,6 +11,7 @@ import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TypeAlias
 
 import ezdxf
 import numpy as np
@@ -18,16 +19,18 @@ from numpy.typing import NDArray
 
 from camlink._core import CamCore
 
-Points = NDArray[np.float64]
+Points: TypeAlias = NDArray[np.float64]
 
 
 def angles_by_step(step: float) -> NDArray[np.float64]:
     """Cam angles θ (rad) over one turn at `step` (rad), the end excluded."""
-    n = max(3, int(math.ceil(2.0 * math.pi / step - 1e-9)))
+    n = max(3, math.ceil(2.0 * math.pi / step - 1e-9))
     return np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
 
 
-def angles_by_chord(core: CamCore, tolerance: float, offset: float = 0.0) -> NDArray[np.float64]:
+def angles_by_chord(
+    core: CamCore, tolerance: float, offset: float = 0.0
+) -> NDArray[np.float64]:
     """Cam angles θ (rad) such that no curve point between two neighbours
     lies farther than `tolerance` (m) from their chord (checked at the
     middle and quarter points of every interval, halving where it fails)."""
@@ -43,7 +46,12 @@ def angles_by_chord(core: CamCore, tolerance: float, offset: float = 0.0) -> NDA
         dev = 0.0
         for q in p[2:]:
             r = q - p[0]
-            dev = max(dev, abs(float(d[0] * r[1] - d[1] * r[0])) / ln if ln > 0 else float(np.hypot(*r)))
+            dev = max(
+                dev,
+                abs(float(d[0] * r[1] - d[1] * r[0])) / ln
+                if ln > 0
+                else float(np.hypot(*r)),
+            )
         if dev > tolerance and b - a > 1e-9:
             m = 0.5 * (a + b)
             stack.append((m, b))
@@ -53,7 +61,12 @@ def angles_by_chord(core: CamCore, tolerance: float, offset: float = 0.0) -> NDA
     return np.array(out[:-1])
 
 
-def write_csv(core: CamCore, path: str | Path, theta: NDArray[np.float64], tool_radius: float | None = None) -> None:
+def write_csv(
+    core: CamCore,
+    path: str | Path,
+    theta: NDArray[np.float64],
+    tool_radius: float | None = None,
+) -> None:
     """Writes θ (deg), the surface x, y (m) and, for a roller, the pitch
     curve; with `tool_radius`, the tool centre path too."""
     surf = np.asarray(core.surface(theta))
@@ -120,7 +133,9 @@ def fit_arcs(points: Points, tolerance: float) -> list[Arc]:
             else:
                 centre, r = c
                 ok = r < 1e6 * tolerance and bool(
-                    np.all(np.abs(np.linalg.norm(run - centre, axis=1) - r) <= tolerance)
+                    np.all(
+                        np.abs(np.linalg.norm(run - centre, axis=1) - r) <= tolerance
+                    )
                 )
             if not ok:
                 break
@@ -135,10 +150,14 @@ def fit_arcs(points: Points, tolerance: float) -> list[Arc]:
         else:
             centre, r = c
             a0 = math.degrees(math.atan2(run[0][1] - centre[1], run[0][0] - centre[0]))
-            a1 = math.degrees(math.atan2(run[-1][1] - centre[1], run[-1][0] - centre[0]))
+            a1 = math.degrees(
+                math.atan2(run[-1][1] - centre[1], run[-1][0] - centre[0])
+            )
             mid = run[len(run) // 2]
             # Orientation of the run: ezdxf arcs run counterclockwise.
-            cross = (mid[0] - run[0][0]) * (run[-1][1] - run[0][1]) - (mid[1] - run[0][1]) * (run[-1][0] - run[0][0])
+            cross = (mid[0] - run[0][0]) * (run[-1][1] - run[0][1]) - (
+                mid[1] - run[0][1]
+            ) * (run[-1][0] - run[0][0])
             if cross < 0:  # clockwise run: swap ends
                 a0, a1 = a1, a0
             arcs.append(Arc((float(centre[0]), float(centre[1])), r, a0, a1, p0, p1))
@@ -168,38 +187,57 @@ def write_dxf(
             if math.isinf(a.radius):
                 msp.add_line(a.p0, a.p1, dxfattribs={"layer": "CAM"})
             else:
-                msp.add_arc(a.centre, a.radius, a.start, a.end, dxfattribs={"layer": "CAM"})
+                msp.add_arc(
+                    a.centre, a.radius, a.start, a.end, dxfattribs={"layer": "CAM"}
+                )
             count += 1
     else:
-        msp.add_lwpolyline([tuple(p) for p in pts], close=True, dxfattribs={"layer": "CAM"})
+        msp.add_lwpolyline(
+            [tuple(p) for p in pts], close=True, dxfattribs={"layer": "CAM"}
+        )
         count = 1
     if tool_radius is not None:
         doc.layers.add("TOOL", color=1)
-        tp = np.asarray(core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius))
-        msp.add_lwpolyline([tuple(p) for p in tp], close=True, dxfattribs={"layer": "TOOL"})
+        tp = np.asarray(
+            core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius)
+        )
+        msp.add_lwpolyline(
+            [tuple(p) for p in tp], close=True, dxfattribs={"layer": "TOOL"}
+        )
     doc.saveas(path)
     return count
 
 
-def write_svg(core: CamCore, path: str | Path, tolerance: float, tool_radius: float | None = None) -> None:
+def write_svg(
+    core: CamCore, path: str | Path, tolerance: float, tool_radius: float | None = None
+) -> None:
     """Writes the cam surface as one closed SVG path, in millimetres, y up
     (the drawing's y axis is flipped), centre marked."""
     th = angles_by_chord(core, tolerance)
     pts = np.asarray(core.surface(th)) * 1000.0
     paths = [pts]
     if tool_radius is not None:
-        paths.append(np.asarray(core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius)) * 1000.0)
+        paths.append(
+            np.asarray(
+                core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius)
+            )
+            * 1000.0
+        )
     r = max(float(np.max(np.abs(p))) for p in paths) * 1.05
     out = [
         '<?xml version="1.0" encoding="UTF-8"?>',
-        f'<svg xmlns="http://www.w3.org/2000/svg" width="{2 * r:.4f}mm" height="{2 * r:.4f}mm" '
-        f'viewBox="{-r:.6f} {-r:.6f} {2 * r:.6f} {2 * r:.6f}">',
+        (
+            f'<svg xmlns="http://www.w3.org/2000/svg" width="{2 * r:.4f}mm" height="{2 * r:.4f}mm" '
+            f'viewBox="{-r:.6f} {-r:.6f} {2 * r:.6f} {2 * r:.6f}">'
+        ),
         '<g transform="scale(1,-1)" fill="none" stroke-width="0.2">',
     ]
     for k, p in enumerate(paths):
         d = "M " + " L ".join(f"{x:.6f} {y:.6f}" for x, y in p) + " Z"
         colour = "black" if k == 0 else "red"
-        out.append(f'<path id="{"cam" if k == 0 else "tool"}" stroke="{colour}" d="{d}"/>')
+        out.append(
+            f'<path id="{"cam" if k == 0 else "tool"}" stroke="{colour}" d="{d}"/>'
+        )
     out.append('<path stroke="blue" d="M -2 0 L 2 0 M 0 -2 L 0 2"/>')
     out += ["</g>", "</svg>", ""]
     Path(path).write_text("\n".join(out))

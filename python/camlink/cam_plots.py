@@ -12,22 +12,29 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.collections import LineCollection  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-from matplotlib.patches import Circle  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle
 
-from camlink._core import CamCore  # noqa: E402
+from camlink._core import CamCore
 
 
-def svaj(core: CamCore, *, oscillating: bool = False, title: str = "", n: int = 1441) -> Figure:
+def svaj(
+    core: CamCore, *, oscillating: bool = False, title: str = "", n: int = 1441
+) -> Figure:
     """S, V, A, J against cam angle θ (deg), derivatives per radian of cam
     angle, with the segment boundaries marked by vertical lines."""
     th = np.linspace(0.0, 2.0 * math.pi, n)
     m = np.asarray(core.motion(th))
     unit = "rad" if oscillating else "m"
-    labels = [f"s ({unit})", f"v = s′ ({unit}/rad)", f"a = s″ ({unit}/rad²)", f"j = s‴ ({unit}/rad³)"]
+    labels = [
+        f"s ({unit})",
+        f"v = s′ ({unit}/rad)",
+        f"a = s″ ({unit}/rad²)",
+        f"j = s‴ ({unit}/rad³)",
+    ]
     fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9), layout="constrained")
     deg = np.degrees(th)
     for k, ax in enumerate(axes):
@@ -69,10 +76,17 @@ def profile(
         label = "radius of curvature ρ (m)"
     fig, ax = plt.subplots(figsize=(7, 7), layout="constrained")
     seg = np.stack([surf[:-1], surf[1:]], axis=1)
-    lc = LineCollection(list(seg), array=0.5 * (values[:-1] + values[1:]), cmap="viridis", linewidths=2.5)
+    lc = LineCollection(
+        list(seg),
+        array=0.5 * (values[:-1] + values[1:]),
+        cmap="viridis",
+        linewidths=2.5,
+    )
     ax.add_collection(lc)
     fig.colorbar(lc, ax=ax, label=label, shrink=0.8)
-    ax.add_patch(Circle((0.0, 0.0), base_radius, fill=False, ls="--", color="0.5", lw=0.8))
+    ax.add_patch(
+        Circle((0.0, 0.0), base_radius, fill=False, ls="--", color="0.5", lw=0.8)
+    )
     pitch = core.pitch(th)
     if pitch is not None:
         p = np.asarray(pitch)
@@ -94,7 +108,12 @@ def profile(
             ca, sa = math.cos(a), math.sin(a)
             nn = np.array([ca * nrm[0] - sa * nrm[1], sa * nrm[0] + ca * nrm[1]])
             d = np.array([-nn[1], nn[0]]) * 0.6 * base_radius
-            ax.plot([q[0] - d[0], q[0] + d[0]], [q[1] - d[1], q[1] + d[1]], color="C3", lw=1.2)
+            ax.plot(
+                [q[0] - d[0], q[0] + d[0]],
+                [q[1] - d[1], q[1] + d[1]],
+                color="C3",
+                lw=1.2,
+            )
     r = float(np.max(np.linalg.norm(surf, axis=1)))
     pad = 0.25 * r
     ax.set_xlim(-r - pad, r + pad)
