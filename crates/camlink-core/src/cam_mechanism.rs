@@ -172,7 +172,11 @@ pub fn round_trip(cam: &Arc<Cam>, omega: f64, n: usize) -> Result<RoundTrip, Ana
     } else {
         ("y", ["vy", "ay"])
     };
-    let get = |name: &str| table.channel(&format!("follower.{name}")).unwrap_or_default();
+    let get = |name: &str| {
+        table
+            .channel(&format!("follower.{name}"))
+            .unwrap_or_default()
+    };
     let (x, v, a) = (get(c), get(r[0]), get(r[1]));
     let peak = |k: usize| {
         (0..3600)
@@ -190,7 +194,9 @@ pub fn round_trip(cam: &Arc<Cam>, omega: f64, n: usize) -> Result<RoundTrip, Ana
         let want = cam.follower_coordinate(omega * t);
         out.displacement = out.displacement.max((x[k] - want[0]).abs() / sx);
         out.velocity = out.velocity.max((v[k] - omega * want[1]).abs() / sv);
-        out.acceleration = out.acceleration.max((a[k] - omega * omega * want[2]).abs() / sa);
+        out.acceleration = out
+            .acceleration
+            .max((a[k] - omega * omega * want[2]).abs() / sa);
     }
     Ok(out)
 }

@@ -27,23 +27,43 @@ fn program(rise: LawKind, ret: LawKind, lift: f64) -> Program {
 /// of their peaks.
 fn round_trip(cam: Cam, lift: f64) {
     let cam = Arc::new(cam);
-    let r = camlink_core::cam_mechanism::round_trip(&cam, OMEGA, 720).unwrap_or_else(|e| panic!("{e}"));
+    let r =
+        camlink_core::cam_mechanism::round_trip(&cam, OMEGA, 720).unwrap_or_else(|e| panic!("{e}"));
     let name = cam.follower.name();
     assert_eq!(r.steps, 721);
-    assert!(r.displacement < 1e-9, "{name}: displacement error {:e} of the lift {lift}", r.displacement);
+    assert!(
+        r.displacement < 1e-9,
+        "{name}: displacement error {:e} of the lift {lift}",
+        r.displacement
+    );
     assert!(r.velocity < 1e-7, "{name}: velocity error {:e}", r.velocity);
-    assert!(r.acceleration < 1e-7, "{name}: acceleration error {:e}", r.acceleration);
+    assert!(
+        r.acceleration < 1e-7,
+        "{name}: acceleration error {:e}",
+        r.acceleration
+    );
 }
 
 #[test]
 fn translating_roller_with_offset_reproduces_the_program() {
     for (rise, ret, ccw, offset) in [
         (LawKind::Cycloidal, LawKind::Poly345, true, 0.004),
-        (LawKind::ModifiedSine, LawKind::ModifiedTrapezoid, false, -0.006),
+        (
+            LawKind::ModifiedSine,
+            LawKind::ModifiedTrapezoid,
+            false,
+            -0.006,
+        ),
         (LawKind::Poly4567, LawKind::SimpleHarmonic, true, 0.0),
     ] {
-        let f = Follower::TranslatingRoller { offset, roller: 0.008 };
-        round_trip(Cam::new(program(rise, ret, 0.012), f, 0.03, ccw).unwrap(), 0.012);
+        let f = Follower::TranslatingRoller {
+            offset,
+            roller: 0.008,
+        };
+        round_trip(
+            Cam::new(program(rise, ret, 0.012), f, 0.03, ccw).unwrap(),
+            0.012,
+        );
     }
 }
 
@@ -54,7 +74,10 @@ fn translating_flat_faced_reproduces_the_program() {
         (LawKind::ModifiedTrapezoid, LawKind::Poly345, false),
     ] {
         let f = Follower::TranslatingFlat;
-        round_trip(Cam::new(program(rise, ret, 0.008), f, 0.03, ccw).unwrap(), 0.008);
+        round_trip(
+            Cam::new(program(rise, ret, 0.008), f, 0.03, ccw).unwrap(),
+            0.008,
+        );
     }
 }
 
@@ -70,7 +93,10 @@ fn oscillating_roller_reproduces_the_program() {
             roller: 0.008,
         };
         let lift = 15f64.to_radians();
-        round_trip(Cam::new(program(rise, ret, lift), f, 0.03, ccw).unwrap(), lift);
+        round_trip(
+            Cam::new(program(rise, ret, lift), f, 0.03, ccw).unwrap(),
+            lift,
+        );
     }
 }
 
@@ -85,6 +111,9 @@ fn oscillating_flat_faced_reproduces_the_program() {
             face_offset: e,
         };
         let lift = 8f64.to_radians();
-        round_trip(Cam::new(program(rise, ret, lift), f, 0.04, ccw).unwrap(), lift);
+        round_trip(
+            Cam::new(program(rise, ret, lift), f, 0.04, ccw).unwrap(),
+            lift,
+        );
     }
 }

@@ -782,10 +782,22 @@ fn motion_curve_reproduces_its_program() {
 #[test]
 fn motion_curve_errors_name_the_field() {
     for (from, to, want) in [
-        ("law = \"cycloidal\"", "law = \"cycloid\"", "curves[0].segments[1].law"),
-        ("span = \"pi/3\" },\n    { law = \"3-4-5\"", "span = \"pi/4\" },\n    { law = \"3-4-5\"", "curves[0].segments"),
+        (
+            "law = \"cycloidal\"",
+            "law = \"cycloid\"",
+            "curves[0].segments[1].law",
+        ),
+        (
+            "span = \"pi/3\" },\n    { law = \"3-4-5\"",
+            "span = \"pi/4\" },\n    { law = \"3-4-5\"",
+            "curves[0].segments",
+        ),
         ("offset = \"e\"", "arm_length = 0.1", "curves[0].arm_length"),
-        ("follower = \"translating-roller\"", "follower = \"rolling\"", "curves[0].follower"),
+        (
+            "follower = \"translating-roller\"",
+            "follower = \"rolling\"",
+            "curves[0].follower",
+        ),
     ] {
         let text = std::fs::read_to_string(examples().join("cam_motion_roller.toml")).unwrap();
         assert_eq!(text.matches(from).count(), 1, "{from}");

@@ -19,6 +19,9 @@ use crate::to_array;
 /// conditions `[s′, s″, s‴]` (None where free).
 type SegmentArg = (String, f64, f64, [Option<f64>; 3], [Option<f64>; 3]);
 
+/// One segment's factors: (segment, law, [Cv, Ca, Cj], textbook values).
+type FactorRow = (usize, String, [f64; 3], Option<[f64; 3]>);
+
 /// A synthesised cam.
 #[pyclass(frozen, module = "camlink._core")]
 pub struct CamCore {
@@ -141,7 +144,7 @@ impl CamCore {
     }
 
     /// Factors: (segment, law, [Cv, Ca, Cj], textbook or None).
-    fn factors(&self) -> Vec<(usize, String, [f64; 3], Option<[f64; 3]>)> {
+    fn factors(&self) -> Vec<FactorRow> {
         self.cam
             .program
             .factors()
@@ -225,7 +228,10 @@ impl CamCore {
         d.set_item("pressure_rise", g.pressure_rise.as_ref().map(extreme))?;
         d.set_item("pressure_return", g.pressure_return.as_ref().map(extreme))?;
         d.set_item("min_convex_radius", extreme(&g.min_convex_radius))?;
-        d.set_item("min_concave_radius", g.min_concave_radius.as_ref().map(extreme))?;
+        d.set_item(
+            "min_concave_radius",
+            g.min_concave_radius.as_ref().map(extreme),
+        )?;
         d.set_item("min_pitch_radius", g.min_pitch_radius.as_ref().map(extreme))?;
         d.set_item("concave", g.concave)?;
         d.set_item("undercut", g.undercut)?;

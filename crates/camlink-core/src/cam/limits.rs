@@ -149,7 +149,10 @@ pub fn ranges(n: usize, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
         return vec![(0.0, TAU)];
     }
     // Start from a sample outside so that no range is split at θ = 0.
-    let first = flags.iter().position(|&f| !f).expect("some sample is outside");
+    let first = flags
+        .iter()
+        .position(|&f| !f)
+        .expect("some sample is outside");
     let mut out = Vec::new();
     let mut start = None;
     for i in 1..=n {
@@ -205,7 +208,11 @@ pub fn geometry(cam: &Cam) -> Geometry {
             .iter()
             .filter_map(|c| f(c).map(|v| (c.theta, v)))
             .min_by(|a, b| a.1.total_cmp(&b.1))?;
-        let e = refine_max(|t| f(&cam.contact(t)).map_or(f64::NEG_INFINITY, |v| -v), best.0, h);
+        let e = refine_max(
+            |t| f(&cam.contact(t)).map_or(f64::NEG_INFINITY, |v| -v),
+            best.0,
+            h,
+        );
         Some(Extreme {
             value: -e.value,
             theta: e.theta,
@@ -230,11 +237,19 @@ pub fn geometry(cam: &Cam) -> Geometry {
         let pos = |t: f64| cam.contact(t).face_position.unwrap_or(0.0);
         let lo = contacts
             .iter()
-            .min_by(|a, b| a.face_position.partial_cmp(&b.face_position).expect("finite"))
+            .min_by(|a, b| {
+                a.face_position
+                    .partial_cmp(&b.face_position)
+                    .expect("finite")
+            })
             .expect("samples");
         let hi = contacts
             .iter()
-            .max_by(|a, b| a.face_position.partial_cmp(&b.face_position).expect("finite"))
+            .max_by(|a, b| {
+                a.face_position
+                    .partial_cmp(&b.face_position)
+                    .expect("finite")
+            })
             .expect("samples");
         let lo = refine_max(|t| -pos(t), lo.theta, h);
         let hi = refine_max(pos, hi.theta, h);
@@ -287,16 +302,23 @@ pub fn force(cam: &Cam, train: &Train, omega: f64) -> Result<Force, CamError> {
         ("damping", train.damping),
     ] {
         if !(v >= 0.0 && v.is_finite()) {
-            return Err(CamError(format!("{what} must be zero or positive, got {v}")));
+            return Err(CamError(format!(
+                "{what} must be zero or positive, got {v}"
+            )));
         }
     }
     if !(omega > 0.0 && omega.is_finite()) {
-        return Err(CamError(format!("the cam speed must be positive, got {omega} rad/s")));
+        return Err(CamError(format!(
+            "the cam speed must be positive, got {omega} rad/s"
+        )));
     }
     let n = SAMPLES;
     let q = |c: &Contact| {
         let [s, s1, s2, _] = c.motion;
-        train.mass * omega * omega * s2 + train.damping * omega * s1 + train.preload + train.spring_rate * s
+        train.mass * omega * omega * s2
+            + train.damping * omega * s1
+            + train.preload
+            + train.spring_rate * s
     };
     let normal = |c: &Contact| q(c) / (lever(cam, c) * c.pressure_angle.cos());
     let contacts: Vec<Contact> = angles(n).map(|t| cam.contact(t)).collect();
@@ -317,7 +339,11 @@ pub fn force(cam: &Cam, train: &Train, omega: f64) -> Result<Force, CamError> {
     // The smallest positive root of m s″ ω² + c s′ ω + F₀ + k s at θ.
     let root = |t: f64| {
         let [s, s1, s2, _] = cam.program.eval(t)[..4].try_into().expect("four");
-        let (a, b, c) = (train.mass * s2, train.damping * s1, train.preload + train.spring_rate * s);
+        let (a, b, c) = (
+            train.mass * s2,
+            train.damping * s1,
+            train.preload + train.spring_rate * s,
+        );
         if c <= 0.0 {
             return Some(0.0);
         }
@@ -450,7 +476,11 @@ mod tests {
                 rb + d[0] + d[2]
             })
             .fold(f64::INFINITY, f64::min);
-        assert!((g.min_convex_radius.value - rho).abs() < 1e-9, "{} vs {rho}", g.min_convex_radius.value);
+        assert!(
+            (g.min_convex_radius.value - rho).abs() < 1e-9,
+            "{} vs {rho}",
+            g.min_convex_radius.value
+        );
         // Cycloidal: s′ peaks at 2h/β.
         let (lo, hi) = g.face_travel.unwrap();
         assert!((hi.value - 2.0 * h / b).abs() < 1e-12, "{}", hi.value);
@@ -458,7 +488,10 @@ mod tests {
         assert!(g.undercut.is_empty() && g.concave.is_empty());
         // Centred cycloidal rise of a translating roller: the largest
         // pressure angle against the fine grid of atan(s′/(R_p + s)).
-        let f = Follower::TranslatingRoller { offset: 0.0, roller: 0.005 };
+        let f = Follower::TranslatingRoller {
+            offset: 0.0,
+            roller: 0.005,
+        };
         let cam = Cam::new(program(h, 90.0), f, rb, true).unwrap();
         let g = geometry(&cam);
         let want = grid
@@ -484,7 +517,11 @@ mod tests {
         for &(a, b) in &g.undercut {
             for t in [a, b] {
                 let d = cam.program.eval(t);
-                assert!((rb + d[0] + d[2]).abs() < 1e-9, "ρ at an edge: {}", rb + d[0] + d[2]);
+                assert!(
+                    (rb + d[0] + d[2]).abs() < 1e-9,
+                    "ρ at an edge: {}",
+                    rb + d[0] + d[2]
+                );
             }
             let d = cam.program.eval(0.5 * (a + b));
             assert!(rb + d[0] + d[2] < 0.0);
@@ -525,10 +562,15 @@ mod tests {
     /// pressure angle at the limit (checked at the answer and just below).
     #[test]
     fn smallest_base_radius_meets_the_pressure_limit() {
-        let f = Follower::TranslatingRoller { offset: 0.0, roller: 0.005 };
+        let f = Follower::TranslatingRoller {
+            offset: 0.0,
+            roller: 0.005,
+        };
         let cam = Cam::new(program(0.01, 60.0), f, 0.05, true).unwrap();
         let limit = deg(30.0);
-        let rb = smallest_base_radius(&cam, Some(limit), None, 0.001, 0.2).unwrap().unwrap();
+        let rb = smallest_base_radius(&cam, Some(limit), None, 0.001, 0.2)
+            .unwrap()
+            .unwrap();
         let phi = |rb: f64| {
             let g = geometry(&cam.with_base_radius(rb).unwrap());
             g.pressure_rise.unwrap().value.abs()

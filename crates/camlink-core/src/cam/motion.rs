@@ -94,20 +94,11 @@ pub struct Boundary {
 
 impl fmt::Display for Boundary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "C{} at {:.3}°",
-            self.continuity,
-            self.theta.to_degrees()
-        )?;
+        write!(f, "C{} at {:.3}°", self.continuity, self.theta.to_degrees())?;
         let names = ["velocity", "acceleration", "jerk"];
         if self.continuity < 3 {
             let k = self.continuity;
-            write!(
-                f,
-                ": {} jumps by {:.6e}",
-                names[k], self.jumps[k]
-            )?;
+            write!(f, ": {} jumps by {:.6e}", names[k], self.jumps[k])?;
             if k + 1 < 3 {
                 write!(f, " (infinite {} there)", names[k + 1])?;
             }
@@ -348,8 +339,9 @@ fn solve(mut a: Vec<Vec<f64>>) -> Option<Vec<f64>> {
         for r in 0..n {
             if r != col {
                 let f = a[r][col] / a[col][col];
-                for c in col..=n {
-                    a[r][c] -= f * a[col][c];
+                let pivot = a[col].clone();
+                for (x, p) in a[r].iter_mut().zip(&pivot).skip(col) {
+                    *x -= f * p;
                 }
             }
         }
@@ -392,7 +384,10 @@ mod tests {
             ];
             let got = p.eval(th);
             for k in 0..4 {
-                assert!((got[k] - want[k]).abs() < 1e-12 * (1.0 + want[k].abs()), "order {k}");
+                assert!(
+                    (got[k] - want[k]).abs() < 1e-12 * (1.0 + want[k].abs()),
+                    "order {k}"
+                );
             }
         }
         assert!((p.eval(deg(200.0))[0] - h).abs() < 1e-15);
@@ -463,7 +458,10 @@ mod tests {
                 let th = i as f64 * 0.125;
                 let (x, y) = (a.eval(th), b.eval(th));
                 for k in 0..5 {
-                    assert!((x[k] - y[k]).abs() < 1e-9 * (1.0 + y[k].abs()), "{law:?} {k}");
+                    assert!(
+                        (x[k] - y[k]).abs() < 1e-9 * (1.0 + y[k].abs()),
+                        "{law:?} {k}"
+                    );
                 }
             }
         }

@@ -248,23 +248,26 @@ impl Cam {
             let p = c.rot(back);
             let t = p.diff();
             let inv = t.dot(t).sqrt().recip();
-            let n = t.perp().mul(inv.scale(self.sigma));
-            (p.sub(n.mul(T::constant(r))), Some(p))
+            let n = t.perp().times(inv.scale(self.sigma));
+            (p.minus(n.times(T::constant(r))), Some(p))
         };
         match self.follower {
-            Follower::TranslatingRoller { offset, roller: r } => {
-                roller(
-                    TV(T::constant(self.sigma * offset), s + T::constant(self.start)),
-                    r,
-                )
-            }
+            Follower::TranslatingRoller { offset, roller: r } => roller(
+                TV(
+                    T::constant(self.sigma * offset),
+                    s + T::constant(self.start),
+                ),
+                r,
+            ),
             Follower::TranslatingFlat => {
                 let s1 = T::from_derivatives([d[1], d[2], d[3], d[4], 0.0]);
                 let r = TV(s1.scale(self.sigma), s + T::constant(self.base_radius));
                 (r.rot(back), None)
             }
             Follower::OscillatingRoller {
-                pivot, arm, roller: r,
+                pivot,
+                arm,
+                roller: r,
             } => {
                 let psi = T::constant(self.start) - s;
                 let (sn, cs) = psi.sin_cos();
@@ -279,7 +282,7 @@ impl Cam {
                 let pc = TV(T::constant(pivot), T::constant(0.0)).rot(back);
                 let h = m.dot(pc) + T::constant(face_offset);
                 let beta_d = psi.diff() - T::constant(self.sigma);
-                let q = m.mul(h).sub(t.mul(h.diff() * beta_d.recip()));
+                let q = m.times(h).minus(t.times(h.diff() * beta_d.recip()));
                 (q, None)
             }
         }
@@ -317,7 +320,11 @@ impl Cam {
             Some(p) => {
                 let pj = jet(p);
                 let n = outward(self.sigma, pj.d1);
-                (rot(ang, n), Some(radius(self.sigma, &pj, n)), rot(ang, pj.p))
+                (
+                    rot(ang, n),
+                    Some(radius(self.sigma, &pj, n)),
+                    rot(ang, pj.p),
+                )
             }
             None => {
                 let n = match self.follower {
@@ -494,7 +501,11 @@ mod tests {
                 assert!((c.point[1] - (rb + s)).abs() < 1e-15);
                 assert!((c.point[0] - sigma * s1).abs() < 1e-15);
                 let rho = rb + s + s2;
-                assert!((c.rho - rho).abs() < 1e-12 * rho.abs(), "{} vs {rho}", c.rho);
+                assert!(
+                    (c.rho - rho).abs() < 1e-12 * rho.abs(),
+                    "{} vs {rho}",
+                    c.rho
+                );
                 assert_eq!(c.pressure_angle, 0.0);
             }
         }

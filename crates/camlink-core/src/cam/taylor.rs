@@ -6,6 +6,9 @@
 //! c_k = f⁽ᵏ⁾(θ)/k!, k = 0…4, so that products are convolutions and the
 //! elementary functions follow from their differential equations.
 
+// Series arithmetic reads as the formulas with explicit indices.
+#![allow(clippy::needless_range_loop)]
+
 use std::ops::{Add, Mul, Neg, Sub};
 
 /// Terms kept: degree 4.
@@ -148,14 +151,16 @@ impl Mul for T {
 pub struct TV(pub T, pub T);
 
 impl TV {
-    pub fn add(self, o: TV) -> TV {
+    /// The sum of two vectors.
+    pub fn plus(self, o: TV) -> TV {
         TV(self.0 + o.0, self.1 + o.1)
     }
-    pub fn sub(self, o: TV) -> TV {
+    /// The difference of two vectors.
+    pub fn minus(self, o: TV) -> TV {
         TV(self.0 - o.0, self.1 - o.1)
     }
     /// Multiplied by a scalar series.
-    pub fn mul(self, k: T) -> TV {
+    pub fn times(self, k: T) -> TV {
         TV(self.0 * k, self.1 * k)
     }
     pub fn dot(self, o: TV) -> T {
@@ -204,7 +209,12 @@ mod tests {
             16.0 * s * x - 32.0 * c,
         ];
         for k in 0..N {
-            assert!((f[k] - want[k]).abs() < 1e-12, "order {k}: {} vs {}", f[k], want[k]);
+            assert!(
+                (f[k] - want[k]).abs() < 1e-12,
+                "order {k}: {} vs {}",
+                f[k],
+                want[k]
+            );
         }
         // 1/θ and √θ: (−1)^k k!/θ^(k+1) and the falling powers of 1/2.
         let r = th.recip().derivatives();
@@ -213,9 +223,15 @@ mod tests {
         for k in 0..N {
             let kf = k as f64;
             let want_r = (-1f64).powi(k as i32) * FACT[k] / x.powi(k as i32 + 1);
-            assert!((r[k] - want_r).abs() < 1e-10 * want_r.abs(), "1/θ order {k}");
+            assert!(
+                (r[k] - want_r).abs() < 1e-10 * want_r.abs(),
+                "1/θ order {k}"
+            );
             let want_q = fall * x.powf(0.5 - kf);
-            assert!((q[k] - want_q).abs() < 1e-12 * (1.0 + want_q.abs()), "√θ order {k}");
+            assert!(
+                (q[k] - want_q).abs() < 1e-12 * (1.0 + want_q.abs()),
+                "√θ order {k}"
+            );
             fall *= 0.5 - kf;
         }
     }

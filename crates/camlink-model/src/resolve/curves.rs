@@ -327,9 +327,7 @@ impl Ctx {
                 let pitch = match curve.as_deref().unwrap_or("surface") {
                     "surface" => false,
                     "pitch" if f.roller().is_some() => true,
-                    "pitch" => {
-                        return fail(format!("{p}.curve"), "a flat face has no pitch curve")
-                    }
+                    "pitch" => return fail(format!("{p}.curve"), "a flat face has no pitch curve"),
                     other => {
                         return fail(
                             format!("{p}.curve"),
