@@ -446,6 +446,7 @@ pub const BASE_GRID: usize = 40;
 mod tests {
     use super::*;
     use crate::cam::{LawKind, Program, SegmentSpec};
+    use std::f64::consts::PI;
 
     fn deg(x: f64) -> f64 {
         x.to_radians()
@@ -504,6 +505,36 @@ mod tests {
         assert!((got.value - want).abs() < 1e-10, "{} vs {want}", got.value);
         assert!(got.theta > 0.0 && got.theta < deg(90.0));
         assert!(g.pressure_return.unwrap().value < 0.0);
+    }
+
+    /// A published problem (Shigley & Uicker, *Theory of Machines and
+    /// Mechanisms*, disk cam chapter): a disk cam drives a radial
+    /// flat-faced follower with simple harmonic motion, out and back in one
+    /// revolution, total displacement 50 mm, minimum radius 25 mm. Its
+    /// answer: s = 25(1 − cos θ) mm, the contour is a circle of radius
+    /// 50 mm whose centre lies 25 mm from the cam centre (an eccentric), and
+    /// the face needs 50 mm (contact ±25 mm from the stem axis).
+    #[test]
+    fn published_harmonic_flat_face_cam_is_an_eccentric_circle() {
+        let program = Program::new(&[
+            SegmentSpec::new(LawKind::SimpleHarmonic, PI, 0.05),
+            SegmentSpec::new(LawKind::SimpleHarmonic, PI, -0.05),
+        ])
+        .unwrap();
+        for ccw in [true, false] {
+            let cam = Cam::new(program.clone(), Follower::TranslatingFlat, 0.025, ccw).unwrap();
+            for k in 0..360 {
+                let th = TAU * k as f64 / 360.0;
+                let p = cam.surface(th).p;
+                assert!((norm(sub(p, [0.0, -0.025])) - 0.05).abs() < 1e-15, "{p:?}");
+                assert!((cam.contact(th).rho - 0.05).abs() < 1e-14);
+                assert!((cam.program.eval(th)[0] - 0.025 * (1.0 - th.cos())).abs() < 1e-15);
+            }
+            let g = geometry(&cam);
+            let (lo, hi) = g.face_travel.unwrap();
+            assert!((hi.value - lo.value - 0.05).abs() < 1e-12);
+            assert!((g.min_convex_radius.value - 0.05).abs() < 1e-12);
+        }
     }
 
     /// A flat face on a small base circle with a steep rise has a cusp
