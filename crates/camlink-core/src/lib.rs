@@ -18,6 +18,7 @@ pub use constraint::{Constraint, Equations};
 pub use function::TimeFn;
 pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
 pub mod assembly;
+pub mod cam_limits;
 pub mod cam_mechanism;
 pub mod contact;
 pub mod design;

@@ -6,8 +6,8 @@
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
-use camlink_core::cam::limits::{force, Train};
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
+use camlink_core::cam_limits::{force, Train};
 use camlink_core::cam_mechanism::mechanism;
 use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::inverse::run;
@@ -98,13 +98,7 @@ fn contact_force_matches_multibody_inverse_dynamics() {
         }
         for (k, &t) in times.iter().enumerate() {
             let th = omega * t;
-            let c = cam.contact(th);
-            let [s, s1, s2, _] = c.motion;
-            let q = train.mass * omega * omega * s2
-                + train.damping * omega * s1
-                + train.preload
-                + train.spring_rate * s;
-            let want = q / c.pressure_angle.cos();
+            let want = q_of(th);
             assert!(
                 (got[k] - want).abs() < 1e-7 * peak,
                 "{} at θ = {th}: camlink {} vs {want}",

@@ -4,9 +4,9 @@
 
 use std::sync::Arc;
 
-use camlink_core::cam::limits::{self, Extreme, Train};
 use camlink_core::cam::motion::EndConditions;
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
+use camlink_core::cam_limits::{self, Extreme, Train};
 use camlink_core::cam_mechanism::round_trip;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
@@ -223,7 +223,7 @@ impl CamCore {
     /// The geometric limits over a turn, as a dict (angles in rad,
     /// lengths in m; extremes as (value, θ)).
     fn geometry<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let g = py.detach(|| limits::geometry(&self.cam));
+        let g = py.detach(|| cam_limits::geometry(&self.cam));
         let d = PyDict::new(py);
         d.set_item("pressure_rise", g.pressure_rise.as_ref().map(extreme))?;
         d.set_item("pressure_return", g.pressure_return.as_ref().map(extreme))?;
@@ -260,7 +260,7 @@ impl CamCore {
             damping,
         };
         let f = py
-            .detach(|| limits::force(&self.cam, &train, omega))
+            .detach(|| cam_limits::force(&self.cam, &train, omega))
             .map_err(value_error)?;
         let d = PyDict::new(py);
         d.set_item("omega", f.omega)?;
@@ -283,7 +283,7 @@ impl CamCore {
         lo: f64,
         hi: f64,
     ) -> PyResult<Option<f64>> {
-        py.detach(|| limits::smallest_base_radius(&self.cam, max_pressure, min_radius, lo, hi))
+        py.detach(|| cam_limits::smallest_base_radius(&self.cam, max_pressure, min_radius, lo, hi))
             .map_err(value_error)
     }
 

@@ -226,6 +226,21 @@ pub fn poly_eval(c: &[f64], u: f64) -> Shape5 {
     d
 }
 
+/// The argument of the maximum of a unimodal f on [a, b], by golden-section
+/// search (60 steps: the bracket shrinks by 0.618⁶⁰ ≈ 3e-13).
+pub fn golden_max(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64) -> f64 {
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..60 {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if f(c) > f(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    0.5 * (a + b)
+}
+
 /// Peak |S′|, |S″|, |S‴| of a shape, sampled at `n` points and refined.
 pub fn peaks(eval: impl Fn(f64) -> Shape5, n: usize) -> [f64; 3] {
     let mut out = [0.0f64; 3];
@@ -241,17 +256,8 @@ pub fn peaks(eval: impl Fn(f64) -> Shape5, n: usize) -> [f64; 3] {
         }
         // Golden-section refinement around the best sample.
         let h = 1.0 / n as f64;
-        let (mut a, mut b) = ((best.0 - h).max(0.0), (best.0 + h).min(1.0));
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        for _ in 0..80 {
-            let (c, d) = (b - g * (b - a), a + g * (b - a));
-            if f(c) > f(d) {
-                b = d;
-            } else {
-                a = c;
-            }
-        }
-        *o = best.1.max(f(0.5 * (a + b)));
+        let u = golden_max(f, (best.0 - h).max(0.0), (best.0 + h).min(1.0));
+        *o = best.1.max(f(u));
     }
     out
 }

@@ -3,15 +3,16 @@
 //! - [`motion`]: the follower motion over one revolution as segments of
 //!   standard laws ([`law`]), checked for closure and continuity;
 //! - [`synthesis`]: the cam surface (and a roller's pitch curve) for four
-//!   follower types, exact to the third derivative;
-//! - [`limits`]: pressure angle, radius of curvature, undercut, face width,
-//!   base circle sizing, contact force and jump speed over a turn.
+//!   follower types, exact to the third derivative.
 //!
-//! This module reads only [`crate::math`]; the curves use it to turn a synthesised cam into a profile
-//! ([`crate::curve::Parametric::Cam`]).
+//! The design limits over a turn (pressure angle, radius of curvature,
+//! undercut, face width, base circle sizing, contact force and jump speed)
+//! are in [`crate::cam_limits`], and the mechanism that runs a cam in
+//! [`crate::cam_mechanism`]: both read the curves, which read this module.
+//! This module reads only [`crate::math`]; the curves use it to turn a
+//! synthesised cam into a profile ([`crate::curve::Parametric::Cam`]).
 
 pub mod law;
-pub mod limits;
 pub mod motion;
 pub mod synthesis;
 pub mod taylor;

@@ -1,7 +1,8 @@
-//! Design limits of a synthesised cam over one turn.
+//! Design limits of a synthesised cam ([`crate::cam`]) over one turn.
 //!
 //! Sampled at [`SAMPLES`] cam angles, each extreme refined by golden-section
-//! search and each range edge by bisection:
+//! search and each range edge by bisection ([`Curve::ranges_where`] on the
+//! surface as a curve over θ):
 //! - pressure angle φ ([`Contact::pressure_angle`]): the largest |φ| on the
 //!   rise segments and on the return segments, signed, with its angle;
 //! - radius of curvature ρ of the cam surface (positive convex): the least
@@ -26,7 +27,11 @@
 
 use std::f64::consts::TAU;
 
-use super::synthesis::{Cam, CamError, Contact, Follower};
+use std::sync::Arc;
+
+use crate::cam::law::golden_max;
+use crate::cam::{Cam, CamError, Contact, Follower};
+use crate::curve::{Curve, Parametric};
 use crate::math::{norm, sub};
 
 /// Samples per turn.
@@ -102,19 +107,10 @@ fn angles(n: usize) -> impl Iterator<Item = f64> {
     (0..n).map(move |k| TAU * k as f64 / n as f64)
 }
 
-/// Maximum of f near θ by golden-section search on [θ − h, θ + h].
+/// Maximum of f near θ by golden-section search on [θ − h, θ + h]; the
+/// sample itself when it is higher.
 fn refine_max(f: impl Fn(f64) -> f64, theta: f64, h: f64) -> Extreme {
-    let (mut a, mut b) = (theta - h, theta + h);
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..60 {
-        let (c, d) = (b - g * (b - a), a + g * (b - a));
-        if f(c) > f(d) {
-            b = d;
-        } else {
-            a = c;
-        }
-    }
-    let m = 0.5 * (a + b);
+    let m = golden_max(&f, theta - h, theta + h);
     if f(m) >= f(theta) {
         Extreme {
             value: f(m),
@@ -128,56 +124,14 @@ fn refine_max(f: impl Fn(f64) -> f64, theta: f64, h: f64) -> Extreme {
     }
 }
 
-/// θ ranges where `inside` holds, each edge found by bisection; a range
-/// across θ = 0 is returned once as (a, b) with b > 2π.
-pub fn ranges(n: usize, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
-    let at = |k: usize| TAU * k as f64 / n as f64;
-    let edge = |mut a: f64, mut b: f64| {
-        let sa = inside(a);
-        for _ in 0..60 {
-            let m = 0.5 * (a + b);
-            if inside(m) == sa {
-                a = m;
-            } else {
-                b = m;
-            }
-        }
-        0.5 * (a + b)
-    };
-    let flags: Vec<bool> = (0..n).map(|k| inside(at(k))).collect();
-    if flags.iter().all(|&f| f) {
-        return vec![(0.0, TAU)];
-    }
-    // Start from a sample outside so that no range is split at θ = 0.
-    let first = flags
-        .iter()
-        .position(|&f| !f)
-        .expect("some sample is outside");
-    let mut out = Vec::new();
-    let mut start = None;
-    for i in 1..=n {
-        let (k0, k1) = (first + i - 1, first + i);
-        let (f0, f1) = (flags[k0 % n], flags[k1 % n]);
-        if f0 != f1 {
-            let e = edge(at(k0), at(k1));
-            if f1 {
-                start = Some(e);
-            } else if let Some(s) = start.take() {
-                let (a, mut b) = (s.rem_euclid(TAU), e.rem_euclid(TAU));
-                if b < a {
-                    b += TAU;
-                }
-                out.push((a, b));
-            }
-        }
-    }
-    out.sort_by(|x, y| x.0.total_cmp(&y.0));
-    out
-}
-
 /// The geometric limits of `cam` over one turn.
 pub fn geometry(cam: &Cam) -> Geometry {
     let n = SAMPLES;
+    // The surface as a curve over θ, for its range search.
+    let curve = Curve::Parametric(Parametric::Cam {
+        cam: Arc::new(cam.clone()),
+        pitch: false,
+    });
     let h = TAU / n as f64;
     let contacts: Vec<Contact> = angles(n).map(|t| cam.contact(t)).collect();
     // Largest |φ| over the samples of rise (lift > 0) or return segments.
@@ -270,8 +224,8 @@ pub fn geometry(cam: &Cam) -> Geometry {
         }),
         min_concave_radius: min_over(&concave),
         min_pitch_radius: min_over(&|c: &Contact| c.rho_pitch.filter(|r| *r > 0.0)),
-        concave: ranges(n, |t| cam.contact(t).rho_pitch.is_some_and(|rp| rp < 0.0)),
-        undercut: ranges(n, undercut),
+        concave: curve.ranges_where(n, |t| cam.contact(t).rho_pitch.is_some_and(|rp| rp < 0.0)),
+        undercut: curve.ranges_where(n, undercut),
         face_travel,
         max_radius: contacts.iter().map(|c| norm(c.point)).fold(0.0, f64::max),
     }
