@@ -2,7 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any, TypeAlias
+from typing import Any, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -11,8 +11,10 @@ from camlink.results import Results
 
 __version__: str
 
-OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
-RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+__all__ = ["AnalysisError", "CamCore", "Model", "ModelError", "__version__", "json_schema", "time_grid"]
+
+_OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
+_RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
@@ -20,6 +22,7 @@ class ModelError(ValueError):
 class AnalysisError(RuntimeError):
     """An analysis could not proceed; carries the results computed so far."""
 
+    kind: str
     time: float
     joints: list[str]
     residual: float
@@ -29,9 +32,12 @@ class AnalysisError(RuntimeError):
     results: Results
     output: PathLike[str] | None
 
+@final
 class Model:
     @staticmethod
     def load(path: str | PathLike[str]) -> Model: ...
+    @staticmethod
+    def load_adm(path: str | PathLike[str], acf: str | PathLike[str] | None = None) -> Model: ...
     @staticmethod
     def from_str(text: str, format: str, source: str = "<string>") -> Model: ...
     @property
@@ -59,67 +65,76 @@ class Model:
     def run_kinematics(
         self,
         times: npt.NDArray[np.float64],
-        tol: float = 1e-10,
-        max_iter: int = 25,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+        jerk: bool = False,
+    ) -> _RunOutput: ...
     def run_inverse_dynamics(
         self,
         times: npt.NDArray[np.float64],
-        tol: float = 1e-10,
-        max_iter: int = 25,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
     def run_equilibrium(
         self,
         time: float = 0.0,
-        tol: float = 1e-10,
-        max_iter: int = 100,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
     def run_dynamics(
         self,
         times: npt.NDArray[np.float64],
-        h: float = 1e-3,
-        rho_inf: float = 0.8,
-        tol: float = 1e-6,
-        max_iter: int = 12,
-        projection_tol: float = 1e-12,
+        *,
+        h: float = ...,
+        rho_inf: float = ...,
+        tol: float = ...,
+        max_iter: int = ...,
+        projection_tol: float = ...,
         adaptive: tuple[float, float, float] | None = None,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
 
 def json_schema() -> str: ...
+def convert_adm(
+    path: str | PathLike[str], format: str, acf: str | PathLike[str] | None = None
+) -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
-CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]
-# (value, cam angle θ in rad)
-CamExtreme: TypeAlias = tuple[float, float]
+_CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]
 
+@final
 class CamCore:
     """A cam synthesised from a motion program (the Rust core's `cam::Cam`)."""
 
-    def __init__(
-        self,
-        segments: Sequence[CamSegment],
+    def __new__(
+        cls,
+        segments: Sequence[_CamSegment],
         follower: str,
         dims: Sequence[float],
         base_radius: float,
         ccw: bool,
-    ) -> None: ...
+    ) -> CamCore: ...
     def motion(self, theta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]: ...
     def starts(self) -> list[float]: ...
     def boundaries(self) -> list[tuple[float, int, int, int, tuple[float, float, float], str]]: ...
-    def factors(self) -> list[tuple[int, str, tuple[float, float, float], tuple[float, float, float] | None]]: ...
+    def factors(
+        self,
+    ) -> list[tuple[int, str, tuple[float, float, float], tuple[float, float, float] | None]]: ...
     def surface(self, theta: npt.NDArray[np.float64], offset: float = 0.0) -> npt.NDArray[np.float64]: ...
     def pitch(self, theta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64] | None: ...
     def contact(self, theta: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[np.float64]]: ...

@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 import camlink
-from camlink import cam_cli
+from camlink import cam_cli, cli_convert
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
@@ -36,7 +36,10 @@ def _parser() -> argparse.ArgumentParser:
         "kinematics, inverse_dynamics, equilibrium or dynamics), or the one given "
         "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
-    run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    run.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     run.add_argument(
         "-a",
         "--analysis",
@@ -53,7 +56,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
     run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
-    run.add_argument("--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)")
+    run.add_argument(
+        "--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)"
+    )
     run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance")
     run.add_argument("--max-iter", type=int, metavar="N", help="Newton iterations per step")
     run.add_argument("--h", type=float, metavar="H", help="dynamics: integration step (s)")
@@ -65,6 +70,13 @@ def _parser() -> argparse.ArgumentParser:
         action=argparse.BooleanOptionalAction,
         default=None,
         help="dynamics: error-controlled steps (--no-adaptive: fixed steps)",
+    )
+    run.add_argument(
+        "--jerk",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="kinematics: also output the exact jerk, <body>.jx .jy .jphi and "
+        "<point>.jx .jy (default: [analysis] jerk)",
     )
     run.add_argument(
         "-p",
@@ -86,10 +98,14 @@ def _parser() -> argparse.ArgumentParser:
         "check",
         help="count bodies, coordinates and constraints; find the degrees of freedom",
     )
-    check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    check.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    check.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     check.add_argument("--json", action="store_true", help="print the report as JSON")
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    cli_convert.add_parser(sub)
     cam_cli.add_parser(sub)
     return p
 
@@ -105,7 +121,7 @@ def _os_message(e: OSError) -> str:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
     settings = {
@@ -118,6 +134,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         "h": args.h,
         "rho_inf": args.rho_inf,
         "adaptive": args.adaptive,
+        "jerk": args.jerk,
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)
@@ -150,8 +167,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"Δφ = {dphi:.6g} rad",
                 file=sys.stderr,
             )
-    for t, message in summary.get("warnings", []):
-        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
+    for w in summary.get("warnings", []):
+        print(f"camlink: warning: {w}", file=sys.stderr)
     if args.verbose:
         counts = ", ".join(
             f"{k.replace('_', ' ')} {summary[k]}"
@@ -184,7 +201,7 @@ def _print_design(model: camlink.Model) -> None:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     r = model.check()
     design = model.design_check()
     if args.json:
@@ -232,7 +249,13 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema, "cam": cam_cli.run}[args.command]
+    command = {
+        "run": _cmd_run,
+        "check": _cmd_check,
+        "schema": _cmd_schema,
+        "convert": cli_convert.run,
+        "cam": cam_cli.run,
+    }[args.command]
     try:
         return command(args)
     except ModelError as e:
@@ -249,7 +272,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("camlink: interrupted", file=sys.stderr)
         return 130
-    except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
+    except Exception as e:
         if os.environ.get("CAMLINK_TRACEBACK"):
             raise
         _error(f"{e}" if str(e).startswith("internal error") else f"internal error: {e!r}")

@@ -29,9 +29,10 @@ use crate::constraint::revolute::Revolute;
 use crate::constraint::translational::Translational;
 use crate::curve::{Curve, Parametric};
 use crate::function::TimeFn;
-use crate::kinematics::{run, AnalysisError, Settings, Table};
+use crate::kinematics::run;
 use crate::math::rot_t;
 use crate::model::{Body, BodyId, Model};
+use crate::run::{AnalysisError, Settings, Table};
 
 /// The cam surface of `cam` as a closed curve in the cam's frame,
 /// parametrised by the cam angle θ (rad).

@@ -9,10 +9,10 @@ use std::sync::Arc;
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
 use camlink_core::cam_limits::{force, Train};
 use camlink_core::cam_mechanism::mechanism;
-use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::inverse::run;
-use camlink_core::dynamics::Force;
-use camlink_core::kinematics::{Settings, Table};
+use camlink_core::force::tsda::Tsda;
+use camlink_core::run::{Settings, Table};
+use camlink_core::Force;
 use camlink_core::{BodyId, TimeFn};
 
 #[test]

@@ -8,6 +8,7 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
+pub mod adm;
 mod error;
 mod eval;
 pub mod file;
@@ -58,7 +59,7 @@ impl Loaded {
     ///
     /// The loader has checked every name; an error means `analysis.points`
     /// was changed after loading to name a body or point the model lacks.
-    pub fn point_outputs(&self) -> Result<Vec<camlink_core::kinematics::PointOutput>, String> {
+    pub fn point_outputs(&self) -> Result<Vec<camlink_core::run::PointOutput>, String> {
         self.analysis
             .points
             .iter()
@@ -75,7 +76,7 @@ impl Loaded {
                     .body(id)
                     .point(point)
                     .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::kinematics::PointOutput {
+                Ok(camlink_core::run::PointOutput {
                     body: id,
                     name: full.clone(),
                     s,
@@ -111,6 +112,8 @@ pub struct AnalysisSpec {
     pub max_iter_set: bool,
     /// Output points as `"body.point"`; each names an existing point.
     pub points: Vec<String>,
+    /// Kinematics: also solve and output the jerk.
+    pub jerk: bool,
     /// Forward-dynamics settings (defaults unless `kind` is dynamics).
     pub dynamics: DynamicsSpec,
 }
@@ -226,6 +229,7 @@ impl Default for AnalysisSpec {
             tol_set: false,
             max_iter_set: false,
             points: Vec::new(),
+            jerk: false,
             dynamics: DynamicsSpec::default(),
         }
     }
@@ -240,6 +244,14 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             "unknown model file type; expected a .toml or .json file",
         ));
     };
+    let text = read_text(path)?;
+    load_str(&text, format, &source)
+}
+
+/// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
+/// name the file.
+pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+    let source = path.display().to_string();
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
     if meta.len() > MAX_FILE_SIZE {
@@ -264,10 +276,10 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
-    load_str(&text, format, &source)
+    Ok(text)
 }
 
-fn too_large(source: &str, len: Option<u64>) -> LoadError {
+pub(crate) fn too_large(source: &str, len: Option<u64>) -> LoadError {
     let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,

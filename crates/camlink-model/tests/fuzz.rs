@@ -112,11 +112,14 @@ fn mutated_json_never_panics() {
 fn mutated_every_bad_file_never_panics() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/models/bad");
     let mut rng = Rng(42);
+    let mut mutated = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
+        // Files that are not UTF-8 on purpose are fuzzed as bytes elsewhere.
         let Ok(base) = std::fs::read_to_string(&path) else {
             continue;
         };
+        mutated += 1;
         let format = if path.extension().is_some_and(|e| e == "json") {
             Format::Json
         } else {
@@ -126,6 +129,7 @@ fn mutated_every_bad_file_never_panics() {
             let _ = load_str(&mutate(&mut rng, &base), format, "bad");
         }
     }
+    assert!(mutated >= 15, "only {mutated} bad files found to mutate");
 }
 
 #[test]
@@ -135,4 +139,37 @@ fn deep_nesting_is_an_error_not_a_crash() {
     assert!(load_str(&toml, Format::Toml, "deep.toml").is_err());
     let json = format!("{{\"x\": {}{}}}", "[".repeat(depth), "]".repeat(depth));
     assert!(load_str(&json, Format::Json, "deep.json").is_err());
+}
+
+/// Mutated simEngine2D models never panic the `.adm` reader, and every one
+/// that loads converts to a TOML file that loads too.
+#[test]
+fn mutated_adm_never_panics_and_converts_when_it_loads() {
+    use camlink_model::adm::describe_str;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let files = [
+        dir.join("../../examples/simengine2d/slider_crank.adm"),
+        dir.join("tests/adm/rack_pinion.adm"),
+        dir.join("tests/adm/forces.adm"),
+    ];
+    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
+    let mut loaded = 0;
+    for path in files {
+        let base = std::fs::read_to_string(path).unwrap();
+        for _ in 0..500 {
+            let text = mutate(&mut rng, &base);
+            let Ok(described) = describe_str(&text, "m.adm", None) else {
+                continue;
+            };
+            if described.resolve().is_err() {
+                continue;
+            }
+            loaded += 1;
+            let toml = described.write(Format::Toml).unwrap();
+            if let Err(e) = load_str(&toml, Format::Toml, "m.toml") {
+                panic!("{e}\nfrom the .adm\n{text}\nconverted to\n{toml}");
+            }
+        }
+    }
+    assert!(loaded > 0);
 }

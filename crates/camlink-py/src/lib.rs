@@ -16,12 +16,13 @@ use std::sync::Arc;
 
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
-use camlink_core::dynamics::contact_force::LiftOff;
-use camlink_core::dynamics::force::callback::Callback;
 use camlink_core::dynamics::integrator::{self, Adaptive};
-use camlink_core::dynamics::{inverse, statics, Force};
-use camlink_core::kinematics::{
-    self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
+use camlink_core::dynamics::{inverse, statics};
+use camlink_core::force::callback::Callback;
+use camlink_core::force::Force;
+use camlink_core::kinematics;
+use camlink_core::run::{
+    self, AnalysisError as CoreAnalysisError, LiftOff, PointOutput, Settings, Sink, Summary,
 };
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded};
@@ -70,6 +71,17 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
+/// A model file format by name: `"toml"` or `"json"`, any case.
+fn model_format(name: &str) -> PyResult<Format> {
+    match name.to_ascii_lowercase().as_str() {
+        "toml" => Ok(Format::Toml),
+        "json" => Ok(Format::Json),
+        other => Err(ModelError::new_err(format!(
+            "unknown model format '{other}' (expected 'toml' or 'json')"
+        ))),
+    }
+}
+
 /// What `run_kinematics` returns: channel names, data, summary.
 type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
 
@@ -92,21 +104,26 @@ impl Model {
         })
     }
 
+    /// Loads a simEngine2D `.adm` model with the analysis of `acf` (default:
+    /// the `.acf` beside it, if any).
+    #[staticmethod]
+    #[pyo3(signature = (path, acf = None))]
+    fn load_adm(py: Python<'_>, path: PathBuf, acf: Option<PathBuf>) -> PyResult<Model> {
+        guard(|| {
+            let loaded = py.detach(|| camlink_model::adm::load_adm(&path, acf.as_deref()));
+            Ok(Model {
+                loaded: loaded.map_err(model_error)?,
+            })
+        })
+    }
+
     /// Loads a model from text; `format` is `"toml"` or `"json"`; `source`
     /// names the text in error messages.
     #[staticmethod]
     #[pyo3(signature = (text, format, source = "<string>"))]
     fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
         guard(|| {
-            let format = match format.to_ascii_lowercase().as_str() {
-                "toml" => Format::Toml,
-                "json" => Format::Json,
-                other => {
-                    return Err(ModelError::new_err(format!(
-                        "unknown model format '{other}' (expected 'toml' or 'json')"
-                    )))
-                }
-            };
+            let format = model_format(format)?;
             let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
             Ok(Model { loaded })
         })
@@ -172,6 +189,7 @@ impl Model {
         d.set_item("tol", a.tol_set.then_some(a.tol))?;
         d.set_item("max_iter", a.max_iter_set.then_some(a.max_iter))?;
         d.set_item("points", a.points.clone())?;
+        d.set_item("jerk", a.jerk)?;
         let dy = &a.dynamics;
         d.set_item("h", dy.h)?;
         d.set_item("rho_inf", dy.rho_inf)?;
@@ -219,7 +237,7 @@ impl Model {
     /// Applied forces: a list of dicts with name, kind and bodies.
     #[getter]
     fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        use camlink_core::dynamics::Applied;
+        use camlink_core::force::Applied;
         let model = &self.loaded.model;
         let list = PyList::empty(py);
         for f in &model.forces {
@@ -332,14 +350,16 @@ impl Model {
     /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
     /// channel names starting with `"t"`, a `steps × len(names)` array and
     /// a dict of solver counts, warnings, assembly moves and `lift_off`
-    /// (empty here; see `run_inverse_dynamics`).
+    /// (empty here; see `run_inverse_dynamics`). With `jerk`, Φ_q q⃛ = η is
+    /// solved too and the jerk channels `<body>.jx .jy .jphi` and
+    /// `<point>.jx .jy` follow the others.
     ///
     /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
     /// the end, also when the analysis fails, so a caller can write results
     /// as the run goes. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -350,9 +370,14 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            jerk,
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             kinematics::run(model, &times, &settings, points, sink)
         })
@@ -370,7 +395,7 @@ impl Model {
     /// where it rises again (None when the run ends in lift-off),
     /// `least_force` (N, negative) and where it is, `least_time` (s) and
     /// `least_cam_angle` (rad). The cam angle is φ of the cam body.
-    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_inverse_dynamics<'py>(
         &self,
@@ -383,7 +408,11 @@ impl Model {
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let settings = Settings { tol, max_iter };
+        let settings = Settings {
+            tol,
+            max_iter,
+            ..Settings::default()
+        };
         self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
             inverse::run(model, &times, &settings, points, sink)
         })
@@ -391,7 +420,7 @@ impl Model {
 
     /// The equilibrium at `time` (s), as one row with the channels of
     /// `run_inverse_dynamics` (velocities and accelerations zero).
-    #[pyo3(signature = (time = 0.0, tol = 1e-10, max_iter = 100, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (time = 0.0, *, tol = statics::Settings::default().tol, max_iter = statics::Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_equilibrium<'py>(
         &self,
@@ -414,7 +443,7 @@ impl Model {
     /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
     /// `h` is the largest step). Channels and the summary's `lift_off` as
     /// `run_inverse_dynamics`.
-    #[pyo3(signature = (times, h = 1e-3, rho_inf = 0.8, tol = 1e-6, max_iter = 12, projection_tol = 1e-12, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, h = integrator::Settings::default().step, rho_inf = integrator::Settings::default().rho_inf, tol = integrator::Settings::default().tol, max_iter = integrator::Settings::default().max_iter, projection_tol = integrator::Settings::default().projection_tol, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_dynamics<'py>(
         &self,
@@ -579,16 +608,26 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .collect()
 }
 
-/// The run summary as a dict: counts, `warnings` as (t, message) pairs,
+/// The run summary as a dict: counts, `warnings` as dicts (`kind`, `time`,
+/// `joints`, `message`),
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
-fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
+fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
     d.set_item("newton_iterations", s.newton_iterations)?;
     d.set_item("factorizations", s.factorizations)?;
     d.set_item("halvings", s.halvings)?;
-    d.set_item("warnings", s.warnings.clone())?;
+    let warnings = PyList::empty(py);
+    for w in &s.warnings {
+        let wd = PyDict::new(py);
+        wd.set_item("kind", w.kind.name())?;
+        wd.set_item("time", w.time)?;
+        wd.set_item("joints", w.joints.clone())?;
+        wd.set_item("message", &w.message)?;
+        warnings.append(wd)?;
+    }
+    d.set_item("warnings", warnings)?;
     d.set_item("assembly_moves", s.assembly_moves.clone())?;
     let lift_off = PyList::empty(py);
     for l in &s.lift_off {
@@ -628,13 +667,14 @@ fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_
 /// results attached.
 fn analysis_error(
     py: Python<'_>,
-    e: &kinematics::AnalysisError,
+    e: &CoreAnalysisError,
     names: Vec<String>,
     data: Option<Bound<'_, PyArray2<f64>>>,
 ) -> PyErr {
     let err = AnalysisError::new_err(e.to_string());
     let value = err.value(py);
     let set = || -> PyResult<()> {
+        value.setattr("kind", e.kind.name())?;
         value.setattr("time", e.time)?;
         value.setattr("joints", e.joints.clone())?;
         value.setattr("residual", e.residual)?;
@@ -731,8 +771,20 @@ impl Sink for ChunkSink {
 #[pyfunction]
 fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
     guard(|| {
-        let times = kinematics::time_grid(t_end, step).map_err(ModelError::new_err)?;
+        let times = run::time_grid(t_end, step).map_err(ModelError::new_err)?;
         Ok(times.into_pyarray(py))
+    })
+}
+
+/// A simEngine2D `.adm` model (with the analysis of `acf`, default the
+/// `.acf` beside it) written as a camlink model file; `format` is `"toml"`
+/// or `"json"`.
+#[pyfunction]
+#[pyo3(signature = (path, format, acf = None))]
+fn convert_adm(path: PathBuf, format: &str, acf: Option<PathBuf>) -> PyResult<String> {
+    guard(|| {
+        let format = model_format(format)?;
+        camlink_model::adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
     })
 }
 
@@ -751,6 +803,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<Model>()?;
     m.add_class::<cam::CamCore>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;

@@ -1,5 +1,5 @@
 //! Motion laws: normalised shapes S(u) on 0 ≤ u ≤ 1 with their
-//! derivatives to the fourth, and the textbook peak factors.
+//! derivatives to the fifth, and the textbook peak factors.
 //!
 //! A law rises from S(0) = 0 to S(1) = 1. A segment of span β (rad) and
 //! lift h follows s(θ) = s₀ + h S(u), u = (θ − θ₀)/β, so
@@ -18,8 +18,8 @@
 
 use std::f64::consts::PI;
 
-/// Derivatives `[S, S′, S″, S‴, S⁗]` with respect to u.
-pub type Shape5 = [f64; 5];
+/// Derivatives `[S, S′, S″, S‴, S⁗, S⁽⁵⁾]` with respect to u.
+pub type Shape5 = [f64; 6];
 
 /// A named motion law.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -103,7 +103,7 @@ pub struct Piece {
 }
 
 impl Piece {
-    /// `[S, S′, S″, S‴, S⁗]` at u, x = u − u_k.
+    /// `[S, S′, S″, S‴, S⁗, S⁽⁵⁾]` at u, x = u − u_k.
     fn eval(&self, u: f64) -> Shape5 {
         let x = u - self.u0;
         let (a0, a1, a2, w) = (self.a0, self.a1, self.a2, self.w);
@@ -111,6 +111,7 @@ impl Piece {
             self.s0 + self.v0 * x + 0.5 * a0 * x * x,
             self.v0 + a0 * x,
             a0,
+            0.0,
             0.0,
             0.0,
         ];
@@ -121,6 +122,7 @@ impl Piece {
             d[2] += a1 * sn + a2 * cs;
             d[3] = w * (a1 * cs - a2 * sn);
             d[4] = -w * w * (a1 * sn + a2 * cs);
+            d[5] = -w * w * w * (a1 * cs - a2 * sn);
         }
         d
     }
@@ -167,7 +169,7 @@ impl Shape {
         }
     }
 
-    /// `[S, S′, S″, S‴, S⁗]` at u (clamped to [0, 1]).
+    /// `[S, S′, S″, S‴, S⁗, S⁽⁵⁾]` at u (clamped to [0, 1]).
     pub fn eval(&self, u: f64) -> Shape5 {
         let u = u.clamp(0.0, 1.0);
         match self {
@@ -211,9 +213,9 @@ fn trig(spec: &[(f64, f64, f64, f64, f64)]) -> Option<Shape> {
     Some(Shape::Trig(pieces))
 }
 
-/// `[P, P′, P″, P‴, P⁗]` of P(u) = Σ c_i uⁱ (Horner on each derivative).
+/// `[P, P′, …, P⁽⁵⁾]` of P(u) = Σ c_i uⁱ (Horner on each derivative).
 pub fn poly_eval(c: &[f64], u: f64) -> Shape5 {
-    let mut d = [0.0; 5];
+    let mut d = [0.0; 6];
     for (k, dk) in d.iter_mut().enumerate() {
         let mut acc = 0.0;
         for i in (k..c.len()).rev() {
@@ -280,7 +282,7 @@ mod tests {
         for (kind, s) in shapes() {
             for &u in &[0.05, 0.2, 0.3, 0.45, 0.55, 0.7, 0.8, 0.95] {
                 let (p, m, d) = (s.eval(u + h), s.eval(u - h), s.eval(u));
-                for k in 0..4 {
+                for k in 0..5 {
                     let fd = (p[k] - m[k]) / (2.0 * h);
                     let tol = 1e-6 * (1.0 + d[k + 1].abs());
                     assert!(
@@ -333,9 +335,16 @@ mod tests {
         for &u in &[0.1, 0.37, 0.8] {
             let w = 2.0 * PI;
             let (sn, cs) = (w * u).sin_cos();
-            let want = [u - sn / w, 1.0 - cs, w * sn, w * w * cs, -w * w * w * sn];
+            let want = [
+                u - sn / w,
+                1.0 - cs,
+                w * sn,
+                w * w * cs,
+                -w * w * w * sn,
+                -w.powi(4) * cs,
+            ];
             let got = s.eval(u);
-            for k in 0..5 {
+            for k in 0..6 {
                 assert!((got[k] - want[k]).abs() < 1e-12 * (1.0 + want[k].abs()));
             }
         }

@@ -209,24 +209,24 @@ impl Program {
             .unwrap_or(0)
     }
 
-    /// `[s, s′, s″, s‴, s⁗]` at θ (rad, wrapped), from the segment that
-    /// holds θ (a boundary belongs to the segment it starts).
-    pub fn eval(&self, theta: f64) -> [f64; 5] {
+    /// `[s, s′, s″, s‴, s⁗, s⁽⁵⁾]` at θ (rad, wrapped), from the segment
+    /// that holds θ (a boundary belongs to the segment it starts).
+    pub fn eval(&self, theta: f64) -> [f64; 6] {
         let k = self.segment_at(theta);
         self.eval_in(k, theta.rem_euclid(TAU))
     }
 
-    /// `[s, s′, s″, s‴, s⁗]` of segment k's formula at θ (not wrapped).
-    pub fn eval_in(&self, k: usize, theta: f64) -> [f64; 5] {
+    /// `[s, s′, …, s⁽⁵⁾]` of segment k's formula at θ (not wrapped).
+    pub fn eval_in(&self, k: usize, theta: f64) -> [f64; 6] {
         let seg = &self.segments[k];
         let (beta, h) = (seg.spec.span, seg.spec.lift);
         let d: Shape5 = match &seg.shape {
             Some(shape) => shape.eval((theta - seg.theta0) / beta),
-            None => [0.0; 5],
+            None => [0.0; 6],
         };
-        let mut out = [0.0; 5];
+        let mut out = [0.0; 6];
         let mut bk = 1.0;
-        for k in 0..5 {
+        for k in 0..6 {
             out[k] = h * d[k] / bk;
             bk *= beta;
         }

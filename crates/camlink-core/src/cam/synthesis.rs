@@ -230,17 +230,17 @@ impl Cam {
     }
 
     /// Series of s at θ, and of θ itself.
-    fn motion_series(&self, theta: f64) -> (T, T, [f64; 5]) {
+    fn motion_series(&self, theta: f64) -> (T, T, [f64; 6]) {
         let d = self.program.eval(theta);
         (
             T::from_derivatives(d),
-            T::from_derivatives([theta, 1.0, 0.0, 0.0, 0.0]),
+            T::from_derivatives([theta, 1.0, 0.0, 0.0, 0.0, 0.0]),
             d,
         )
     }
 
     /// Cam-frame series of the surface and of a roller's pitch curve at θ
-    /// (the surface exact to degree 3, the pitch curve to degree 4).
+    /// (the surface exact to degree 4, the pitch curve to degree 5).
     fn series(&self, theta: f64) -> (TV, Option<TV>) {
         let (s, th, d) = self.motion_series(theta);
         let back = th.scale(-self.sigma);
@@ -260,7 +260,7 @@ impl Cam {
                 r,
             ),
             Follower::TranslatingFlat => {
-                let s1 = T::from_derivatives([d[1], d[2], d[3], d[4], 0.0]);
+                let s1 = T::from_derivatives([d[1], d[2], d[3], d[4], d[5], 0.0]);
                 let r = TV(s1.scale(self.sigma), s + T::constant(self.base_radius));
                 (r.rot(back), None)
             }
@@ -288,7 +288,7 @@ impl Cam {
         }
     }
 
-    /// The cam surface at θ: p, p′, p″, p‴ in the cam frame (m, m/rad, …).
+    /// The cam surface at θ: p, p′, p″, p‴, p⁗ in the cam frame (m, m/rad, …).
     pub fn surface(&self, theta: f64) -> ProfileJet {
         jet(self.series(theta).0)
     }
@@ -377,22 +377,24 @@ impl Cam {
 }
 
 /// A point of a cam-frame curve and its derivatives with respect to θ:
-/// p (m), p′ (m/rad), p″, p‴.
+/// p (m), p′ (m/rad), p″, p‴, p⁗.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct ProfileJet {
     pub p: V2,
     pub d1: V2,
     pub d2: V2,
     pub d3: V2,
+    pub d4: V2,
 }
 
-/// The jet of a cam-frame series (degree 0…3).
+/// The jet of a cam-frame series (degree 0…4).
 fn jet(v: TV) -> ProfileJet {
     ProfileJet {
         p: v.derivative(0),
         d1: v.derivative(1),
         d2: v.derivative(2),
         d3: v.derivative(3),
+        d4: v.derivative(4),
     }
 }
 
@@ -467,7 +469,12 @@ mod tests {
                 ];
                 for f in &curves {
                     let (p, m, j) = (f(th + h), f(th - h), f(th));
-                    let pairs = [(p.p, m.p, j.d1), (p.d1, m.d1, j.d2), (p.d2, m.d2, j.d3)];
+                    let pairs = [
+                        (p.p, m.p, j.d1),
+                        (p.d1, m.d1, j.d2),
+                        (p.d2, m.d2, j.d3),
+                        (p.d3, m.d3, j.d4),
+                    ];
                     for (k, (a, b, d)) in pairs.into_iter().enumerate() {
                         for i in 0..2 {
                             let fd = (a[i] - b[i]) / (2.0 * h);

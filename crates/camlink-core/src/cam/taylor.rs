@@ -1,24 +1,25 @@
-//! Truncated Taylor series of degree 4 in the cam angle θ.
+//! Truncated Taylor series of degree 5 in the cam angle θ.
 //!
-//! A cam surface point needs the follower motion to its fourth derivative:
+//! A cam surface point needs the follower motion one order beyond its own:
 //! the surface's third derivative p‴ (which the curve contacts need for γ)
-//! involves s⁗. A series `T(c)` holds the normalised coefficients
-//! c_k = f⁽ᵏ⁾(θ)/k!, k = 0…4, so that products are convolutions and the
-//! elementary functions follow from their differential equations.
+//! involves s⁗, and its fourth p⁗ (the jerk analysis) s⁽⁵⁾. A series
+//! `T(c)` holds the normalised coefficients c_k = f⁽ᵏ⁾(θ)/k!, k = 0…5, so
+//! that products are convolutions and the elementary functions follow from
+//! their differential equations.
 
 // Series arithmetic reads as the formulas with explicit indices.
 #![allow(clippy::needless_range_loop)]
 
 use std::ops::{Add, Mul, Neg, Sub};
 
-/// Terms kept: degree 4.
-pub const N: usize = 5;
+/// Terms kept: degree 5.
+pub const N: usize = 6;
 
-/// f(θ + h) = Σ c_k h^k, k = 0…4.
+/// f(θ + h) = Σ c_k h^k, k = 0…5.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct T(pub [f64; N]);
 
-const FACT: [f64; N] = [1.0, 1.0, 2.0, 6.0, 24.0];
+const FACT: [f64; N] = [1.0, 1.0, 2.0, 6.0, 24.0, 120.0];
 
 impl T {
     /// A constant.
@@ -28,7 +29,7 @@ impl T {
         T(t)
     }
 
-    /// The series of a function from its derivatives `[f, f′, f″, f‴, f⁗]`.
+    /// The series of a function from its derivatives `[f, f′, …, f⁽⁵⁾]`.
     pub fn from_derivatives(d: [f64; N]) -> T {
         let mut c = [0.0; N];
         for k in 0..N {
@@ -37,7 +38,7 @@ impl T {
         T(c)
     }
 
-    /// The derivatives `[f, f′, f″, f‴, f⁗]`.
+    /// The derivatives `[f, f′, …, f⁽⁵⁾]`.
     pub fn derivatives(self) -> [f64; N] {
         let mut d = [0.0; N];
         for k in 0..N {
@@ -196,7 +197,7 @@ mod tests {
     #[test]
     fn series_match_closed_form_derivatives() {
         let x = 0.7;
-        let th = T::from_derivatives([x, 1.0, 0.0, 0.0, 0.0]);
+        let th = T::from_derivatives([x, 1.0, 0.0, 0.0, 0.0, 0.0]);
         // f = sin(2θ)·θ, derivatives by hand.
         let (s2, _) = th.scale(2.0).sin_cos();
         let f = (s2 * th).derivatives();
@@ -207,6 +208,7 @@ mod tests {
             -4.0 * s * x + 4.0 * c,
             -8.0 * c * x - 12.0 * s,
             16.0 * s * x - 32.0 * c,
+            32.0 * c * x + 80.0 * s,
         ];
         for k in 0..N {
             assert!(
