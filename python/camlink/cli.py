@@ -14,7 +14,7 @@ import sys
 from pathlib import Path
 
 import camlink
-from camlink import cli_convert, cli_visuals
+from camlink import cam_cli, cli_convert, cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
@@ -110,6 +110,7 @@ def _parser() -> argparse.ArgumentParser:
     sub.add_parser("schema", help="print the JSON Schema of model files")
     cli_convert.add_parser(sub)
     COMMANDS.update(cli_visuals.add_parsers(sub))
+    cam_cli.add_parser(sub)
     return p
 
 
@@ -265,6 +266,7 @@ def main(argv: list[str] | None = None) -> int:
         "schema": _cmd_schema,
         "convert": cli_convert.run,
         **COMMANDS,
+        "cam": cam_cli.run,
     }[args.command]
     try:
         return command(args)

@@ -7,6 +7,8 @@
 //! No Rust panic crosses into Python: every entry point runs under
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
+mod cam;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
@@ -895,6 +897,7 @@ fn json_schema() -> PyResult<String> {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
+    m.add_class::<cam::CamCore>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
