@@ -18,13 +18,16 @@ from pathlib import Path
 from typing import Any
 
 import camlink
-from camlink import cli_convert
+from camlink import cam_cli, cli_convert, cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
 from camlink.settings import check_settings
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+#: Subcommands registered from their own modules.
+COMMANDS: dict[str, cli_visuals.Command] = {}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -133,6 +136,8 @@ def _parser() -> argparse.ArgumentParser:
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
     cli_convert.add_parser(sub)
+    COMMANDS.update(cli_visuals.add_parsers(sub))
+    cam_cli.add_parser(sub)
     return p
 
 
@@ -190,8 +195,17 @@ def _cmd_run(args: argparse.Namespace) -> int:
             _error(f"--{key.replace('_', '-')}: {e}")
             return EXIT_INPUT
     _print_design(model)
+    from camlink.progress import Progress
+
+    total = 1 if kind == "equilibrium" else len(model.times(args.t_end, args.step))
     try:
-        res = model.run(analysis=kind, output=None if to_stdout else output, **given)
+        with Progress(total, f"{kind} of {model.name}", quiet=args.quiet) as bar:
+            res = model.run(
+                analysis=kind,
+                output=None if to_stdout else output,
+                on_rows=bar.update,
+                **given,
+            )
     except AnalysisError as e:
         _error(str(e))
         details = []
@@ -386,6 +400,8 @@ def _main(args: argparse.Namespace) -> int:
         "check": _cmd_check,
         "schema": _cmd_schema,
         "convert": cli_convert.run,
+        **COMMANDS,
+        "cam": cam_cli.run,
     }[args.command]
     try:
         return command(args)

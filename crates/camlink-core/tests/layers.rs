@@ -12,14 +12,14 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "fmt_num", "curve", "function", "motion"],
+    &["math", "fmt_num", "cam", "curve", "function", "motion"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
     &["contact"],
     &["run", "setting"],
-    &["design", "diagnose"],
-    &["kinematics"],
+    &["design", "diagnose", "cam_limits"],
+    &["kinematics", "cam_mechanism"],
     &["dynamics"],
 ];
 

@@ -56,6 +56,22 @@ pub struct Loaded {
     /// The data files read (canonical paths), so that a run can refuse to
     /// write its output over one of them.
     pub data_files: Vec<PathBuf>,
+    /// Drawn shapes that the file gives for bodies (`outline`).
+    pub outlines: Vec<Outline>,
+}
+
+/// A body's drawn outline from the model file, in the body frame.
+#[derive(Clone, Debug)]
+pub struct Outline {
+    pub body: String,
+    pub shape: OutlineShape,
+}
+
+/// A closed polyline (corners, m) or a closed curve.
+#[derive(Clone, Debug)]
+pub enum OutlineShape {
+    Polyline(Vec<camlink_core::math::V2>),
+    Curve(camlink_core::curve::Curve),
 }
 
 impl Loaded {
@@ -68,25 +84,7 @@ impl Loaded {
         self.analysis
             .points
             .iter()
-            .map(|full| {
-                let (body, point) = full
-                    .split_once('.')
-                    .ok_or_else(|| format!("expected \"body.point\", found '{full}'"))?;
-                let id = self
-                    .model
-                    .body_id(body)
-                    .ok_or_else(|| format!("'{full}': no body named '{body}'"))?;
-                let s = self
-                    .model
-                    .body(id)
-                    .point(point)
-                    .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::run::PointOutput {
-                    body: id,
-                    name: full.clone(),
-                    s,
-                })
-            })
+            .map(|full| camlink_core::run::PointOutput::named(&self.model, full))
             .collect()
     }
 }
@@ -336,7 +334,7 @@ pub fn load_str_with(
         None => Path::new(source).parent().unwrap_or(Path::new("")),
     };
     let data = data_file::DataFiles::new(base, options.allow_outside_data);
-    let (model, analysis, data) = resolve::resolve(&file, stem, data).map_err(|f| {
+    let (model, analysis, outlines, data) = resolve::resolve(&file, stem, data).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),
@@ -346,6 +344,7 @@ pub fn load_str_with(
     Ok(Loaded {
         model,
         analysis,
+        outlines,
         data_files: data.into_read(),
     })
 }

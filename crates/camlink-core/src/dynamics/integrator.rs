@@ -443,15 +443,16 @@ impl<'m> Integrator<'m> {
     /// Advances to `t_end`: fixed steps of `settings.step` (the last one
     /// shortened to land on `t_end`), or error-controlled steps.
     pub fn advance_to(&mut self, t_end: f64, h_next: &mut f64) -> Result<(), AnalysisError> {
-        self.advance_watching(t_end, h_next, &mut || {})
+        self.advance_watching(t_end, h_next, &mut || Ok(()))
     }
 
-    /// [`Integrator::advance_to`], calling `tick` before every step.
+    /// [`Integrator::advance_to`], calling `tick` before every step; an
+    /// error from `tick` stops the run.
     pub fn advance_watching(
         &mut self,
         t_end: f64,
         h_next: &mut f64,
-        tick: &mut dyn FnMut(),
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
     ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
         // Done when what is left is below a few ulps of t_end, or a
@@ -460,7 +461,7 @@ impl<'m> Integrator<'m> {
         let scale = h_max.min(t_end.abs()).max(f64::MIN_POSITIVE);
         let done = (4.0 * f64::EPSILON * t_end.abs()).max(1e-12 * scale);
         while t_end - self.t > done {
-            tick();
+            tick()?;
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
                 None => {
@@ -550,7 +551,7 @@ pub fn run(
                     format!("times must increase, but {t} follows {}", times[k - 1]),
                 ));
             }
-            it.advance_watching(t, &mut h_next, &mut || sink.tick())?;
+            it.advance_watching(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
         }
         run::fill_outputs(
             model,
@@ -569,7 +570,7 @@ pub fn run(
             it.t,
             &mut values[nk..],
         );
-        sink.row(t, &values);
+        sink.row(t, &values).map_err(|s| s.at(t))?;
         lift_off.observe(t, &values);
     }
     let mut summary = it.summary.clone();

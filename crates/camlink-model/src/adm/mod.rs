@@ -211,11 +211,12 @@ impl Described {
             .parent()
             .unwrap_or(Path::new(""));
         let data = crate::data_file::DataFiles::new(base, false);
-        let (model, analysis, data) = crate::resolve::resolve(&file, stem, data)
+        let (model, analysis, outlines, data) = crate::resolve::resolve(&file, stem, data)
             .map_err(|f| self.locate(&f.path, &f.message))?;
         Ok(Loaded {
             model,
             analysis,
+            outlines,
             data_files: data.into_read(),
         })
     }
