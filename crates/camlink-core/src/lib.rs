@@ -23,3 +23,4 @@ pub mod diagnose;
 pub mod dynamics;
 pub mod kinematics;
 pub mod linsolve;
+pub mod newton;

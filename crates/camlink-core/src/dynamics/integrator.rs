@@ -44,11 +44,20 @@ use super::project;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
 use crate::math::max_abs;
+use crate::newton;
 use crate::model::Model;
 
 /// A Newton correction larger than this fraction of the one before means
 /// the chord iteration has stalled: the next iteration refactors.
 const STALL: f64 = 0.5;
+
+/// The retry of a step with a fresh matrix each iteration may take this
+/// many times `max_iter` iterations.
+const SINGULAR_ITER: usize = 4;
+
+/// A correction within this many times the measured rounding noise of the
+/// solve counts as converged.
+const NOISE_SAFETY: f64 = 4.0;
 
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
@@ -69,9 +78,10 @@ pub struct Settings {
     pub step: f64,
     /// Spectral radius at infinity ρ∞ ∈ [0, 1].
     pub rho_inf: f64,
-    /// Newton stops when the last corrections of positions and of
-    /// velocities, max |Δq| and max |Δq̇| = γ' max |Δq|, are both ≤ tol
-    /// (m or rad; m/s or rad/s).
+    /// Newton stops when every coordinate's last correction |Δq_k| and
+    /// its velocity's |Δq̇_k| = γ' |Δq_k| are each ≤ tol (m or rad; m/s or
+    /// rad/s) or within the rounding of the value ([`crate::newton`]),
+    /// whichever is larger.
     pub tol: f64,
     /// Newton iterations per step.
     pub max_iter: usize,
@@ -140,6 +150,10 @@ pub struct Integrator<'m> {
     prev: [Vec<f64>; 2],
     h_prev: f64,
     rhs: Vec<f64>,
+    /// Scratch of length n, and the rounding noise of a correction per
+    /// coordinate (zero until measured in a step).
+    work: Vec<f64>,
+    noise: Vec<f64>,
     pub summary: Summary,
     /// Steps rejected by the error control.
     pub rejected: usize,
@@ -179,12 +193,6 @@ impl<'m> Integrator<'m> {
         if n == 0 {
             return Err(fail("the model has no moving bodies".into(), 0.0));
         }
-        if m > n {
-            return Err(fail(
-                format!("{n} coordinates but {m} equations: the model is over-constrained"),
-                0.0,
-            ));
-        }
         let mut q = sys.asm.initial_q(model);
         let mut qd = vec![0.0; n];
         for (id, b) in model.moving_bodies() {
@@ -215,6 +223,8 @@ impl<'m> Integrator<'m> {
             prev: [vec![0.0; n], vec![0.0; m]],
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
+            work: vec![0.0; n],
+            noise: vec![0.0; n],
             q,
             qd,
             sys,
@@ -252,7 +262,7 @@ impl<'m> Integrator<'m> {
         s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
         s.asm
             .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
-        self.aug.solve(&mut self.rhs);
+        self.aug.solve_refined(&mut self.rhs);
         self.qdd.copy_from_slice(&self.rhs[..n]);
         self.lambda.copy_from_slice(&self.rhs[n..]);
         Ok(())
@@ -338,7 +348,17 @@ impl<'m> Integrator<'m> {
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
         let mut last = f64::INFINITY;
-        for _ in 0..self.settings.max_iter {
+        self.noise.fill(0.0);
+        let mut noise_known = false;
+        // Near a singular position Newton converges only linearly (the
+        // root is singular); the retry with a fresh matrix each iteration
+        // has [`SINGULAR_ITER`] times the iterations.
+        let max_iter = if fresh {
+            SINGULAR_ITER * self.settings.max_iter
+        } else {
+            self.settings.max_iter
+        };
+        for _ in 0..max_iter {
             // r = [s R ; Φ].
             let sys = &self.sys;
             let (r_motion, r_phi) = self.rhs.split_at_mut(n);
@@ -380,13 +400,38 @@ impl<'m> Integrator<'m> {
             }
             self.aug.solve(&mut self.rhs);
             self.summary.newton_iterations += 1;
+            // Converged when every position and velocity correction is
+            // within tol or the rounding of its value ([`newton::settled`]);
+            // a position settled at its rounding settles its velocity too.
+            // Near a singular position a velocity's floor is γ' times the
+            // rounding of the residual carried through the ill-conditioned
+            // solve, `noise`.
+            // A slow iteration's correction understates its error: with
+            // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
+            // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
+            let tol = self.settings.tol;
+            let dnew = max_abs(&self.rhs[..n]);
+            let theta = dnew / last;
+            let eta = if theta < 1.0 {
+                (theta / (1.0 - theta)).max(1.0)
+            } else {
+                f64::INFINITY
+            };
             let mut dmax = 0.0f64;
+            let mut converged = true;
             for k in 0..n {
                 let d = self.rhs[k];
+                let de = eta * d;
                 self.q[k] += d;
                 self.qd[k] += gp * d;
                 self.qdd[k] += bp * d;
                 dmax = dmax.max(d.abs());
+                let round = newton::rounding(self.q[k]);
+                let position = newton::settled(de, self.q[k], tol)
+                    || d.abs() <= round.max(self.noise[k].min(tol));
+                let velocity = newton::settled(gp * de, self.qd[k], tol)
+                    || d.abs() <= round.max(self.noise[k]);
+                converged &= position && velocity;
             }
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
@@ -394,7 +439,7 @@ impl<'m> Integrator<'m> {
             if !dmax.is_finite() {
                 return Ok(false);
             }
-            if dmax * gp.max(1.0) <= self.settings.tol {
+            if converged {
                 // a_{n+1} from the converged q̈_{n+1}.
                 for k in 0..n {
                     self.a[k] = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
@@ -408,14 +453,44 @@ impl<'m> Integrator<'m> {
                 self.summary.steps += 1;
                 return Ok(true);
             }
-            // Chord iterations that stall get a fresh matrix.
+            // Chord iterations that stall get a fresh matrix; fresh ones
+            // that stall have reached the noise of the solve, measured once.
             if dmax > STALL * last {
+                if fresh && !noise_known {
+                    self.measure_noise(t1, s);
+                    noise_known = true;
+                }
                 self.aug.invalidate();
             }
             last = dmax;
         }
         self.aug.invalidate();
         Ok(false)
+    }
+
+    /// The rounding noise of a Newton correction at the current iterate
+    /// into `noise` (the same level for every coordinate): S⁻¹ applied to the rounding of the
+    /// residual, [`newton::ULPS`] ε_mach (|Q| + |M q̈| + |Φ_qᵀλ|) scaled by
+    /// `s` in the equations of motion and ULPS ε_mach max |q| in Φ. Small
+    /// where S is well conditioned, it sets the floor of the corrections
+    /// near a singular position, where it is not.
+    fn measure_noise(&mut self, t: f64, s: f64) {
+        let n = self.sys.n();
+        let u = newton::ULPS * f64::EPSILON;
+        let (head, tail) = self.rhs.split_at_mut(n);
+        self.sys.forces(&self.q, &self.qd, t, head);
+        head.iter_mut().for_each(|v| *v = v.abs());
+        self.work.fill(0.0);
+        self.sys.add_mass_times(&self.q, &self.qdd, &mut self.work);
+        self.sys.add_jt_lambda(&self.q, t, &self.lambda, &mut self.work);
+        for (h, w) in head.iter_mut().zip(&self.work) {
+            *h = u * s * (*h + w.abs());
+        }
+        tail.fill(u * max_abs(&self.q));
+        self.aug.solve(&mut self.rhs);
+        // One level for all: the pattern of the rounding errors is unknown.
+        let level = NOISE_SAFETY * max_abs(&self.rhs[..n]);
+        self.noise.fill(level);
     }
 
     /// The weighted local error estimate of the last step (≤ 1 to accept).

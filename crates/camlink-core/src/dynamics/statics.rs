@@ -88,7 +88,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         },
     )
     .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
-    aug.solve(&mut rhs);
+    aug.solve_refined(&mut rhs);
     let mut lambda = rhs[n..].to_vec();
 
     let angles = s.asm.angle_mask(model);
