@@ -51,3 +51,25 @@ fn reproduce() {
         }
     }
 }
+
+#[test]
+fn reproduce_fused() {
+    for n in [2usize, 40] {
+        for th in [-0.5, 0.0] {
+            let model = parallelogram_chain(n, th, true);
+            let times = time_grid(1.2, 0.01).unwrap();
+            let settings = Settings { step: 1e-3, tol: 1e-8, ..Settings::default() };
+            let mut table = Table::default();
+            let r = run(&model, &times, &settings, &[], &mut table);
+            match r {
+                Err(e) => eprintln!("fused n {n} th {th}: {e}"),
+                Ok(_) => {
+                    let want = parallelogram_reference(parallelogram_kappa(n, G), th, &table.t);
+                    let th0 = table.channel("crank0.phi").unwrap();
+                    let err = th0.iter().zip(&want).map(|(a, b)| (a - b).abs()).fold(0.0, f64::max);
+                    eprintln!("fused n {n} th {th}: err {err:e}");
+                }
+            }
+        }
+    }
+}

@@ -41,6 +41,7 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project;
+use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
 use crate::math::max_abs;
@@ -155,6 +156,8 @@ pub struct Integrator<'m> {
     work: Vec<f64>,
     noise: Vec<f64>,
     pub summary: Summary,
+    /// The model's redundant equations, if any.
+    pub redundant: Option<Redundant>,
     /// Steps rejected by the error control.
     pub rejected: usize,
     /// The weighted error of the last accepted error-controlled step.
@@ -200,6 +203,12 @@ impl<'m> Integrator<'m> {
             qd[c..c + 3].copy_from_slice(&b.qd0);
         }
         let mut aug = Augmented::new(&sys, &q);
+        let redundant = Redundant::detect(&sys, &q, t0);
+        let mut summary = Summary::default();
+        if let Some(r) = &redundant {
+            aug.set_regularised(true);
+            summary.warnings.push((t0, r.warning()));
+        }
         project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
             .map_err(|e| fail(e.message, e.residual))?;
         project::velocities(&sys, &mut aug, &q, &mut qd, t0)
@@ -228,7 +237,8 @@ impl<'m> Integrator<'m> {
             q,
             qd,
             sys,
-            summary: Summary::default(),
+            summary,
+            redundant,
             rejected: 0,
             err_prev: None,
         };
@@ -239,6 +249,24 @@ impl<'m> Integrator<'m> {
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
     pub fn accelerations(&mut self) -> Result<(), AnalysisError> {
+        self.consistent()?;
+        let n = self.sys.n();
+        self.qdd.copy_from_slice(&self.rhs[..n]);
+        self.lambda.copy_from_slice(&self.rhs[n..]);
+        Ok(())
+    }
+
+    /// The minimum-norm multipliers at the current (t, q, q̇) into `out`
+    /// (length m), for the reactions of a model with redundant equations;
+    /// the integrator's own state is left as it is.
+    pub fn min_norm_multipliers(&mut self, out: &mut [f64]) -> Result<(), AnalysisError> {
+        self.consistent()?;
+        out.copy_from_slice(&self.rhs[self.sys.n()..]);
+        Ok(())
+    }
+
+    /// Solves [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] into `rhs`, λ of minimum norm.
+    fn consistent(&mut self) -> Result<(), AnalysisError> {
         let (n, s) = (self.sys.n(), &self.sys);
         let k = Coefficients {
             mass: 1.0,
@@ -263,8 +291,6 @@ impl<'m> Integrator<'m> {
         s.asm
             .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
         self.aug.solve_refined(&mut self.rhs);
-        self.qdd.copy_from_slice(&self.rhs[..n]);
-        self.lambda.copy_from_slice(&self.rhs[n..]);
         Ok(())
     }
 
@@ -577,6 +603,7 @@ pub fn run(
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&it.sys);
     let mut h_next = settings.step;
+    let mut lambda = vec![0.0; it.sys.m()];
     for (k, &t) in times.iter().enumerate() {
         if k > 0 {
             if t <= times[k - 1] || t.is_nan() {
@@ -597,12 +624,18 @@ pub fn run(
             points,
             &mut values[..nk],
         );
+        // Reactions of a redundant model: the minimum-norm split.
+        if it.redundant.is_some() {
+            it.min_norm_multipliers(&mut lambda)?;
+        } else {
+            lambda.copy_from_slice(&it.lambda);
+        }
         output::fill(
             &it.sys,
             &mut scratch,
             &it.q,
             &it.qd,
-            &it.lambda,
+            &lambda,
             it.t,
             &mut values[nk..],
         );

@@ -264,6 +264,8 @@ pub struct Augmented {
     mult_slots: Vec<usize>,
     /// ε of the last factorization.
     eps: f64,
+    /// Factor S_ε at once, S being known singular (redundant equations).
+    regularised: bool,
     /// Scratch for [`solve_refined`](Self::solve_refined).
     work: [Vec<f64>; 2],
     /// Scratch for (Φ_qᵀλ)_q.
@@ -396,6 +398,7 @@ impl Augmented {
             jac_slots,
             mult_slots,
             eps: 0.0,
+            regularised: false,
             work: [vec![0.0; n + m], vec![0.0; n + m]],
             jac: [Jac::default(); 2],
         }
@@ -483,7 +486,7 @@ impl Augmented {
             .fold(0.0f64, |a, k| a.max(self.vals[k].abs()));
         // S itself when it is nonsingular, else S_ε.
         self.eps = 0.0;
-        if self.put_and_factor().is_ok() {
+        if !self.regularised && self.put_and_factor().is_ok() {
             return Ok(());
         }
         self.eps = if dmax > 0.0 && jmax > 0.0 {
@@ -504,6 +507,12 @@ impl Augmented {
             self.sys.put(slot, r, c, v);
         }
         self.sys.factor()
+    }
+
+    /// Factors S_ε always, for a model whose equations are known to be
+    /// redundant (S is singular everywhere; a sparse LU need not notice).
+    pub fn set_regularised(&mut self, on: bool) {
+        self.regularised = on;
     }
 
     /// ε of the last factorization: 0 when S was nonsingular.

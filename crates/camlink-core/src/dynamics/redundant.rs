@@ -1,0 +1,67 @@
+//! Redundant constraint equations in the dynamics analyses.
+//!
+//! A model whose Φ_q has dependent rows (parallel cranks, a pantograph, a
+//! doubly supported shaft) determines its motion but not how its
+//! reactions split among the joints involved: Φ_qᵀλ = f has a family of
+//! solutions λ + w, Φ_qᵀw = 0. The analyses detect the dependent rows once,
+//! at the start (Gram–Schmidt on the rows of Φ_q, as `camlink check` does,
+//! [`crate::diagnose::redundant_equations`]), solve through the regularised
+//! augmented matrix ([`super::system`]) and report the minimum-norm λ (no
+//! component w), with a warning that names the equations and the joints
+//! whose reactions are not unique.
+
+use super::system::System;
+use crate::diagnose::redundant_equations;
+
+/// The redundant equations of a model and the joints they involve.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Redundant {
+    /// `joint.equation` of each dependent row, in model order.
+    pub equations: Vec<String>,
+    /// The joints of those rows and of the rows they depend on, in model
+    /// order: their reactions are not unique.
+    pub joints: Vec<String>,
+}
+
+impl Redundant {
+    /// The redundant equations at `q` (m or rad) and time `t` (s); None
+    /// when every equation is independent.
+    pub fn detect(sys: &System, q: &[f64], t: f64) -> Option<Redundant> {
+        let found = redundant_equations(sys.model, &sys.asm, q, t);
+        if found.is_empty() {
+            return None;
+        }
+        let joint = |e: &str| e.rsplit_once('.').map_or(e, |(j, _)| j).to_string();
+        let mut involved: Vec<String> = found
+            .iter()
+            .flat_map(|r| {
+                std::iter::once(joint(&r.equation))
+                    .chain(r.depends_on.iter().map(|(e, _)| joint(e)))
+            })
+            .collect();
+        let order = |name: &String| {
+            sys.model
+                .joints
+                .iter()
+                .position(|j| &j.name == name)
+                .unwrap_or(usize::MAX)
+        };
+        involved.sort_by_key(order);
+        involved.dedup();
+        Some(Redundant {
+            equations: found.into_iter().map(|r| r.equation).collect(),
+            joints: involved,
+        })
+    }
+
+    /// The warning of a run on a redundant model.
+    pub fn warning(&self) -> String {
+        format!(
+            "{} redundant constraint equation(s) ({}): the motion is determined, but the \
+             reactions of joints {} are not unique; the minimum-norm split is reported",
+            self.equations.len(),
+            self.equations.join(", "),
+            self.joints.join(", ")
+        )
+    }
+}
