@@ -175,7 +175,7 @@ fn unit(n: usize, k: usize) -> Vec<f64> {
 }
 
 /// Rank, condition number and a basis of the null space of `j`.
-fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
+pub(crate) fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
     let n = j.ncols();
     let svd = match j.svd() {
         Ok(svd) => svd,

@@ -22,6 +22,10 @@ pub const SMALL_MAX: usize = 24;
 /// marks the matrix as singular.
 const SINGULAR_PIVOT: f64 = 1e-12;
 
+/// Largest error of the sparse LU's check solve (x = 1) of a matrix that
+/// counts as nonsingular.
+const SPARSE_CHECK: f64 = 1e-6;
+
 /// A factorization found the matrix singular at `column` (0-based) of U.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Singular {
@@ -56,6 +60,8 @@ pub struct SmallLu {
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
+    /// A relative pivot at or below this marks the matrix singular.
+    singular_pivot: f64,
 }
 
 impl SmallLu {
@@ -70,6 +76,7 @@ impl SmallLu {
             inv_diag: vec![0.0; n],
             valid: false,
             min_pivot: 0.0,
+            singular_pivot: SINGULAR_PIVOT,
         }
     }
 
@@ -105,7 +112,7 @@ impl SmallLu {
                 }
             }
             let ratio = big / scale;
-            if ratio <= SINGULAR_PIVOT || ratio.is_nan() {
+            if ratio <= self.singular_pivot || ratio.is_nan() {
                 self.valid = false;
                 self.min_pivot = ratio;
                 return Err(Singular {
@@ -210,6 +217,8 @@ pub struct DenseLu {
     scratch: MemBuffer,
     valid: bool,
     min_pivot: f64,
+    /// A relative pivot at or below this marks the matrix singular.
+    singular_pivot: f64,
 }
 
 impl DenseLu {
@@ -223,6 +232,7 @@ impl DenseLu {
             scratch: MemBuffer::new(req),
             valid: false,
             min_pivot: 0.0,
+            singular_pivot: SINGULAR_PIVOT,
         }
     }
 
@@ -257,7 +267,7 @@ impl DenseLu {
         for k in 0..n {
             let pivot = self.lu[(k, k)].abs() / scale;
             self.min_pivot = self.min_pivot.min(pivot);
-            if pivot <= SINGULAR_PIVOT || pivot.is_nan() {
+            if pivot <= self.singular_pivot || pivot.is_nan() {
                 self.valid = false;
                 return Err(Singular {
                     row: self.perm[k],
@@ -347,7 +357,31 @@ impl SparseLu {
             Default::default(),
         );
         self.valid = res.is_ok();
-        res.map(|_| ()).map_err(|_| Singular { row: 0, pivot: 0.0 })
+        res.map_err(|_| Singular { row: 0, pivot: 0.0 })?;
+        self.check()
+    }
+
+    /// The sparse LU reports no small pivot: a solve of A x = A 1 that
+    /// misses x = 1 by more than [`SPARSE_CHECK`] marks A as singular.
+    fn check(&mut self) -> Result<(), Singular> {
+        let n = self.pattern.nrows();
+        let mut b = vec![0.0; n];
+        for c in 0..n {
+            for k in self.pattern.col_ptr()[c]..self.pattern.col_ptr()[c + 1] {
+                b[self.pattern.row_idx()[k]] += self.values[k];
+            }
+        }
+        self.solve(&mut b);
+        let (row, miss) = b
+            .iter()
+            .enumerate()
+            .map(|(r, x)| (r, (x - 1.0).abs()))
+            .fold((0, 0.0f64), |a, e| if e.1 > a.1 || e.1.is_nan() { e } else { a });
+        if miss > SPARSE_CHECK || miss.is_nan() {
+            self.valid = false;
+            return Err(Singular { row, pivot: 0.0 });
+        }
+        Ok(())
     }
 
     pub fn solve(&mut self, b: &mut [f64]) {
@@ -439,6 +473,16 @@ impl SystemMatrix {
             SystemMatrix::Small { lu, .. } => lu.valid = false,
             SystemMatrix::Dense { lu, .. } => lu.invalidate(),
             SystemMatrix::Sparse(s) => s.valid = false,
+        }
+    }
+
+    /// Sets the relative pivot at or below which a factorization reports
+    /// the matrix singular (dense kernels; default 1e-12).
+    pub fn set_singular_pivot(&mut self, pivot: f64) {
+        match self {
+            SystemMatrix::Small { lu, .. } => lu.singular_pivot = pivot,
+            SystemMatrix::Dense { lu, .. } => lu.singular_pivot = pivot,
+            SystemMatrix::Sparse(_) => {}
         }
     }
 

@@ -203,7 +203,7 @@ impl<'m> Integrator<'m> {
             qd[c..c + 3].copy_from_slice(&b.qd0);
         }
         let mut aug = Augmented::new(&sys, &q);
-        let redundant = Redundant::detect(&sys, &q, t0);
+        let redundant = Redundant::detect(&sys, &mut aug, &q, t0);
         let mut summary = Summary::default();
         if let Some(r) = &redundant {
             aug.set_regularised(true);
@@ -307,6 +307,14 @@ impl<'m> Integrator<'m> {
 
     /// Advances one step of size `h`; the state is unchanged on failure.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        // At a singular position (S_ε factored last) the multipliers of the
+        // lost direction are not determined, and the ones carried over can
+        // be arbitrarily large: start from the consistent q̈ and the
+        // minimum-norm λ instead.
+        if self.aug.eps() > 0.0 && std::env::var("CL_NORESET").is_err() {
+            self.accelerations()?;
+            self.h_prev = 0.0;
+        }
         self.save();
         if self.try_step(h, false)? {
             return Ok(());
@@ -363,7 +371,7 @@ impl<'m> Integrator<'m> {
             self.qdd[k] += r * (self.qdd[k] - self.prev[0][k]);
         }
         for k in 0..self.lambda.len() {
-            self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]);
+            if std::env::var("CL_NOLX").is_err() { self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]); }
         }
         for k in 0..n {
             let a0 = self.a[k];
@@ -443,6 +451,11 @@ impl<'m> Integrator<'m> {
             } else {
                 f64::INFINITY
             };
+            // Where S has lost rank (S_ε factored: a singular position, or
+            // redundant equations) the lost direction converges as slowly
+            // as an augmented-Lagrangian update; the iteration stops when
+            // the position corrections are within tol.
+            let lost = self.aug.eps() > 0.0;
             let mut dmax = 0.0f64;
             let mut converged = true;
             for k in 0..n {
@@ -454,14 +467,19 @@ impl<'m> Integrator<'m> {
                 dmax = dmax.max(d.abs());
                 let round = newton::rounding(self.q[k]);
                 let position = newton::settled(de, self.q[k], tol)
-                    || d.abs() <= round.max(self.noise[k].min(tol));
+                    || d.abs() <= round.max(self.noise[k]);
                 let velocity = newton::settled(gp * de, self.qd[k], tol)
                     || d.abs() <= round.max(self.noise[k]);
-                converged &= position && velocity;
+                converged &= if lost {
+                    newton::settled(d, self.q[k], tol)
+                } else {
+                    position && velocity
+                };
             }
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
             }
+            if std::env::var("CL_DEBUG").is_ok() { eprintln!("t {t1:.5} dmax {dmax:.3e} theta {theta:.3} noise {:.3e} fresh {fresh} eps {:.1e} q5 {:.9} qd5 {:.3e} dl {:.3e}", self.noise[0], self.aug.eps(), self.q[2], self.qd[2], max_abs(&self.rhs[n..])); }
             if !dmax.is_finite() {
                 return Ok(false);
             }

@@ -4,14 +4,16 @@
 //! doubly supported shaft) determines its motion but not how its
 //! reactions split among the joints involved: Φ_qᵀλ = f has a family of
 //! solutions λ + w, Φ_qᵀw = 0. The analyses detect the dependent rows once,
-//! at the start (Gram–Schmidt on the rows of Φ_q, as `camlink check` does,
+//! at the start and after a small allowed motion (so that a singular
+//! starting position is not taken for redundancy) (Gram–Schmidt on the rows of Φ_q, as `camlink check` does,
 //! [`crate::diagnose::redundant_equations`]), solve through the regularised
 //! augmented matrix ([`super::system`]) and report the minimum-norm λ (no
 //! component w), with a warning that names the equations and the joints
 //! whose reactions are not unique.
 
-use super::system::System;
-use crate::diagnose::redundant_equations;
+use super::project;
+use super::system::{Augmented, System};
+use crate::diagnose::{dense_jacobian, redundant_equations, svd_rank};
 
 /// The redundant equations of a model and the joints they involve.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,10 +26,34 @@ pub struct Redundant {
 }
 
 impl Redundant {
-    /// The redundant equations at `q` (m or rad) and time `t` (s); None
-    /// when every equation is independent.
-    pub fn detect(sys: &System, q: &[f64], t: f64) -> Option<Redundant> {
-        let found = redundant_equations(sys.model, &sys.asm, q, t);
+    /// The redundant equations of the model assembled at `q` (m or rad)
+    /// and time `t` (s); None when every equation is independent.
+    ///
+    /// Rows dependent at `q` may only mark a singular position (the flat
+    /// position of a parallelogram): the rank is measured again after a
+    /// small motion that the constraints allow (a mix of the null-space
+    /// directions of Φ_q, some 0.05 rad, projected back onto Φ = 0), and
+    /// the equations dependent there are the redundant ones.
+    pub fn detect(sys: &System, aug: &mut Augmented, q: &[f64], t: f64) -> Option<Redundant> {
+        if redundant_equations(sys.model, &sys.asm, q, t).is_empty() {
+            return None;
+        }
+        let j = dense_jacobian(sys.model, &sys.asm, q, t);
+        let (_, _, null) = svd_rank(&j);
+        let mut moved = q.to_vec();
+        let angles = sys.asm.angle_mask(sys.model);
+        let mut v = vec![0.0; q.len()];
+        for (k, basis) in null.iter().enumerate() {
+            let w = 1.0 / (k as f64 + 1.37);
+            v.iter_mut().zip(basis).for_each(|(a, b)| *a += w * b);
+        }
+        let big = (0..v.len())
+            .filter(|&k| angles[k])
+            .fold(0.0f64, |a, k| a.max(v[k].abs()))
+            .max(1e-300);
+        moved.iter_mut().zip(&v).for_each(|(x, d)| *x += 0.05 * d / big);
+        project::positions(sys, aug, &mut moved, t, 1e-12, 100).ok()?;
+        let found = redundant_equations(sys.model, &sys.asm, &moved, t);
         if found.is_empty() {
             return None;
         }

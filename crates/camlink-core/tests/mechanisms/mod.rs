@@ -194,13 +194,8 @@ pub fn parallelogram_chain(n: usize, th0: f64, fused: bool) -> Model {
     let cranks: Vec<BodyId> = (0..=n)
         .map(|k| {
             let x = k as f64 * d;
-            let id = m.add_body(body(
-                &format!("crank{k}"),
-                [x, 0.0, th0],
-                mc,
-                mc * a * a / 12.0,
-                [a / 2.0, 0.0],
-            ));
+            let (jc, c) = crank_inertia();
+            let id = m.add_body(body(&format!("crank{k}"), [x, 0.0, th0], mc, jc, [c, 0.0]));
             m.add_joint(format!("O{k}"), rev(g, [x, 0.0], id, [0.0, 0.0]));
             id
         })
@@ -243,7 +238,18 @@ pub fn parallelogram_chain(n: usize, th0: f64, fused: bool) -> Model {
 pub fn parallelogram_kappa(n: usize, g: f64) -> f64 {
     let (a, mc, mb) = (PAR_CRANK, PAR_CRANK_MASS, PAR_COUPLER_MASS);
     let (nc, nb) = ((n + 1) as f64, n as f64);
-    g * (nc * mc * a / 2.0 + nb * mb * a) / (nc * mc * a * a / 3.0 + nb * mb * a * a)
+    let (jc, c) = crank_inertia();
+    g * (nc * mc * c + nb * mb * a) / (nc * (jc + mc * c * c) + nb * mb * a * a)
+}
+
+/// Centroidal inertia (kg·m²) and centroid distance from the pivot (m) of a crank.
+pub fn crank_inertia() -> (f64, f64) {
+    let a = PAR_CRANK;
+    if std::env::var("CL_TIP").is_ok() {
+        (0.0, a)
+    } else {
+        (PAR_CRANK_MASS * a * a / 12.0, a / 2.0)
+    }
 }
 
 /// θ(t) at `times` of θ̈ = −κ cos θ from θ(0) = θ₀, θ̇(0) = 0: classical
