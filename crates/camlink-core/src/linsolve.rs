@@ -60,8 +60,6 @@ pub struct SmallLu {
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
-    /// A relative pivot at or below this marks the matrix singular.
-    singular_pivot: f64,
 }
 
 impl SmallLu {
@@ -76,7 +74,6 @@ impl SmallLu {
             inv_diag: vec![0.0; n],
             valid: false,
             min_pivot: 0.0,
-            singular_pivot: SINGULAR_PIVOT,
         }
     }
 
@@ -112,7 +109,7 @@ impl SmallLu {
                 }
             }
             let ratio = big / scale;
-            if ratio <= self.singular_pivot || ratio.is_nan() {
+            if ratio <= SINGULAR_PIVOT || ratio.is_nan() {
                 self.valid = false;
                 self.min_pivot = ratio;
                 return Err(Singular {
@@ -217,8 +214,6 @@ pub struct DenseLu {
     scratch: MemBuffer,
     valid: bool,
     min_pivot: f64,
-    /// A relative pivot at or below this marks the matrix singular.
-    singular_pivot: f64,
 }
 
 impl DenseLu {
@@ -232,7 +227,6 @@ impl DenseLu {
             scratch: MemBuffer::new(req),
             valid: false,
             min_pivot: 0.0,
-            singular_pivot: SINGULAR_PIVOT,
         }
     }
 
@@ -267,7 +261,7 @@ impl DenseLu {
         for k in 0..n {
             let pivot = self.lu[(k, k)].abs() / scale;
             self.min_pivot = self.min_pivot.min(pivot);
-            if pivot <= self.singular_pivot || pivot.is_nan() {
+            if pivot <= SINGULAR_PIVOT || pivot.is_nan() {
                 self.valid = false;
                 return Err(Singular {
                     row: self.perm[k],
@@ -473,16 +467,6 @@ impl SystemMatrix {
             SystemMatrix::Small { lu, .. } => lu.valid = false,
             SystemMatrix::Dense { lu, .. } => lu.invalidate(),
             SystemMatrix::Sparse(s) => s.valid = false,
-        }
-    }
-
-    /// Sets the relative pivot at or below which a factorization reports
-    /// the matrix singular (dense kernels; default 1e-12).
-    pub fn set_singular_pivot(&mut self, pivot: f64) {
-        match self {
-            SystemMatrix::Small { lu, .. } => lu.singular_pivot = pivot,
-            SystemMatrix::Dense { lu, .. } => lu.singular_pivot = pivot,
-            SystemMatrix::Sparse(_) => {}
         }
     }
 

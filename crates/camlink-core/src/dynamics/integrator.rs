@@ -256,12 +256,30 @@ impl<'m> Integrator<'m> {
         Ok(())
     }
 
-    /// The minimum-norm multipliers at the current (t, q, q̇) into `out`
-    /// (length m), for the reactions of a model with redundant equations;
-    /// the integrator's own state is left as it is.
+    /// The multipliers μ of minimum norm with the same constraint forces
+    /// Φ_qᵀμ = Φ_qᵀλ as the current λ, into `out` (length m): the
+    /// reactions of a model with redundant equations. From
+    /// [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0] (x = 0), solved by
+    /// [`Augmented::solve_refined`]; the integrator's state is unchanged.
     pub fn min_norm_multipliers(&mut self, out: &mut [f64]) -> Result<(), AnalysisError> {
-        self.consistent()?;
-        out.copy_from_slice(&self.rhs[self.sys.n()..]);
+        let (n, s) = (self.sys.n(), &self.sys);
+        let k = Coefficients {
+            identity: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        self.h_factored = 0.0;
+        if self
+            .aug
+            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .is_err()
+        {
+            return Err(self.error("the constraint Jacobian is singular"));
+        }
+        self.rhs.fill(0.0);
+        s.add_jt_lambda(&self.q, self.t, &self.lambda, &mut self.rhs[..n]);
+        self.aug.solve_refined(&mut self.rhs);
+        out.copy_from_slice(&self.rhs[n..]);
         Ok(())
     }
 
@@ -311,7 +329,7 @@ impl<'m> Integrator<'m> {
         // lost direction are not determined, and the ones carried over can
         // be arbitrarily large: start from the consistent q̈ and the
         // minimum-norm λ instead.
-        if self.aug.eps() > 0.0 && std::env::var("CL_NORESET").is_err() {
+        if self.aug.eps() > 0.0 {
             self.accelerations()?;
             self.h_prev = 0.0;
         }
@@ -371,7 +389,7 @@ impl<'m> Integrator<'m> {
             self.qdd[k] += r * (self.qdd[k] - self.prev[0][k]);
         }
         for k in 0..self.lambda.len() {
-            if std::env::var("CL_NOLX").is_err() { self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]); }
+            self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]);
         }
         for k in 0..n {
             let a0 = self.a[k];
@@ -479,7 +497,6 @@ impl<'m> Integrator<'m> {
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
             }
-            if std::env::var("CL_DEBUG").is_ok() { eprintln!("t {t1:.5} dmax {dmax:.3e} theta {theta:.3} noise {:.3e} fresh {fresh} eps {:.1e} q5 {:.9} qd5 {:.3e} dl {:.3e}", self.noise[0], self.aug.eps(), self.q[2], self.qd[2], max_abs(&self.rhs[n..])); }
             if !dmax.is_finite() {
                 return Ok(false);
             }

@@ -21,6 +21,7 @@
 
 use super::output::{self, Scratch};
 use super::project;
+use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary, MAX_ANGLE_STEP};
 use crate::math::{max_abs, norm2};
@@ -223,10 +224,15 @@ pub fn run(
         &mut values[nk..],
     );
     sink.row(t, &values);
+    let mut aug = Augmented::new(&s, &e.q);
+    let warnings = Redundant::detect(&s, &mut aug, &e.q, t)
+        .map(|r| vec![(t, r.warning())])
+        .unwrap_or_default();
     Ok(Summary {
         steps: 1,
         newton_iterations: e.iterations,
         factorizations: e.iterations,
+        warnings,
         ..Summary::default()
     })
 }

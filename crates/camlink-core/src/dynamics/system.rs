@@ -377,8 +377,7 @@ impl Augmented {
         });
         // The multiplier block's diagonal, −ε.
         let mult_slots: Vec<usize> = (0..m).map(|r| slot(n + r, n + r)).collect();
-        let mut sys = SystemMatrix::new(n + m, &pattern);
-        sys.set_singular_pivot(std::env::var("CL_PIV").map(|v| v.parse().unwrap()).unwrap_or(1e-12));
+        let sys = SystemMatrix::new(n + m, &pattern);
         let vals = vec![0.0; pattern.len() + 1];
         let trash = vals.len() - 1;
         for b in &mut body_slots {

@@ -178,23 +178,48 @@ pub const PAR_PITCH: f64 = 0.5;
 pub const PAR_CRANK_MASS: f64 = 1.0;
 pub const PAR_COUPLER_MASS: f64 = 2.0;
 
+/// How a crank of [`parallelogram_chain`] carries its mass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CrankMass {
+    /// All at the crank pin (centroid at a, no centroidal inertia): at the
+    /// flat position every crank would fall alike, so the multipliers stay
+    /// bounded through it.
+    AtPin,
+    /// A uniform bar (centroid at a/2, inertia m a²/12): at the flat
+    /// position the cranks would fall at different rates, and the exact
+    /// multipliers grow without bound there (the couplers' tension ~ 1/θ).
+    Uniform,
+}
+
+impl CrankMass {
+    /// (centroidal inertia J' in kg·m², centroid distance c from the pivot in m).
+    pub fn inertia(self) -> (f64, f64) {
+        let a = PAR_CRANK;
+        match self {
+            CrankMass::AtPin => (0.0, a),
+            CrankMass::Uniform => (PAR_CRANK_MASS * a * a / 12.0, a / 2.0),
+        }
+    }
+}
+
 /// A chain of `n` parallelogram four-bars: n + 1 equal cranks of length a
-/// pivoted on the ground at (k d, 0), each a uniform bar with its frame at
-/// the pivot, all at angle `th0` (rad); their tips carried by `n` uniform
-/// couplers of length d (frame at the left end), or, with `fused`, by one
-/// rigid bar of length n d and mass n m_b (n − 1 redundant equations pairs
-/// less one: 4(n + 1) equations, rank 3n + 5). One degree of freedom either
-/// way: every crank at the same angle θ, the couplers translating.
-pub fn parallelogram_chain(n: usize, th0: f64, fused: bool) -> Model {
+/// pivoted on the ground at (k d, 0), frames at the pivots, all at angle
+/// `th0` (rad); their pins carried by `n` uniform couplers of length d
+/// (frame at the left end), or, with `fused`, by one rigid bar of length
+/// n d and mass n m_b: 4(n + 1) equations of rank 3n + 5, so n − 1
+/// redundant. One degree of freedom either way: every crank at the same
+/// angle θ, the couplers translating. At θ = 0 and θ = ±π all links are
+/// collinear and Φ_q loses one rank per four-bar.
+pub fn parallelogram_chain(n: usize, th0: f64, fused: bool, crank: CrankMass) -> Model {
     let (a, d) = (PAR_CRANK, PAR_PITCH);
     let (mc, mb) = (PAR_CRANK_MASS, PAR_COUPLER_MASS);
+    let (jc, c) = crank.inertia();
     let mut m = Model::new("parallelogram chain");
     let g = BodyId::GROUND;
     let tip = [a * th0.cos(), a * th0.sin()];
     let cranks: Vec<BodyId> = (0..=n)
         .map(|k| {
             let x = k as f64 * d;
-            let (jc, c) = crank_inertia();
             let id = m.add_body(body(&format!("crank{k}"), [x, 0.0, th0], mc, jc, [c, 0.0]));
             m.add_joint(format!("O{k}"), rev(g, [x, 0.0], id, [0.0, 0.0]));
             id
@@ -210,10 +235,7 @@ pub fn parallelogram_chain(n: usize, th0: f64, fused: bool) -> Model {
             [len / 2.0, 0.0],
         ));
         for (k, &c) in cranks.iter().enumerate() {
-            m.add_joint(
-                format!("P{k}"),
-                rev(c, [a, 0.0], bar, [k as f64 * d, 0.0]),
-            );
+            m.add_joint(format!("P{k}"), rev(c, [a, 0.0], bar, [k as f64 * d, 0.0]));
         }
     } else {
         for k in 0..n {
@@ -232,24 +254,15 @@ pub fn parallelogram_chain(n: usize, th0: f64, fused: bool) -> Model {
 }
 
 /// θ̈ = −κ cos θ, the exact motion of every crank of
-/// [`parallelogram_chain`] (couplers translating): κ = g (n_c m_c a/2 +
-/// n m_b a) / (n_c m_c a²/3 + n m_b a²), n_c = n + 1, from the energy
-/// equation in the crank angle.
-pub fn parallelogram_kappa(n: usize, g: f64) -> f64 {
+/// [`parallelogram_chain`] (couplers translating), from the energy
+/// equation in the crank angle: with n_c = n + 1 cranks of first moment
+/// m_c c and inertia J_O = J' + m_c c² about the pivot,
+/// κ = g (n_c m_c c + n m_b a) / (n_c J_O + n m_b a²).
+pub fn parallelogram_kappa(n: usize, crank: CrankMass, g: f64) -> f64 {
     let (a, mc, mb) = (PAR_CRANK, PAR_CRANK_MASS, PAR_COUPLER_MASS);
     let (nc, nb) = ((n + 1) as f64, n as f64);
-    let (jc, c) = crank_inertia();
+    let (jc, c) = crank.inertia();
     g * (nc * mc * c + nb * mb * a) / (nc * (jc + mc * c * c) + nb * mb * a * a)
-}
-
-/// Centroidal inertia (kg·m²) and centroid distance from the pivot (m) of a crank.
-pub fn crank_inertia() -> (f64, f64) {
-    let a = PAR_CRANK;
-    if std::env::var("CL_TIP").is_ok() {
-        (0.0, a)
-    } else {
-        (PAR_CRANK_MASS * a * a / 12.0, a / 2.0)
-    }
 }
 
 /// θ(t) at `times` of θ̈ = −κ cos θ from θ(0) = θ₀, θ̇(0) = 0: classical
