@@ -75,19 +75,12 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     let mut rhs = vec![0.0; n + m];
     s.forces(&q, &zeros, t, &mut qf);
     rhs[..n].copy_from_slice(&qf);
-    aug.refactor(
-        &s,
-        &q,
-        &zeros,
-        &zeros,
-        None,
-        t,
-        Coefficients {
-            identity: 1.0,
-            scale: 1.0,
-            ..Default::default()
-        },
-    )
+    let least_squares = Coefficients {
+        identity: 1.0,
+        scale: 1.0,
+        ..Default::default()
+    };
+    aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
     .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
     aug.solve_refined(&mut rhs);
     let mut lambda = rhs[n..].to_vec();
@@ -126,6 +119,15 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
             // balances everywhere).
             aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
                 .map_err(|_| neutral())?;
+            // The multipliers of minimum norm with the same forces Φ_qᵀλ
+            // (they differ from λ only with redundant equations):
+            // [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0].
+            aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
+                .map_err(|_| err("the constraint Jacobian is rank deficient".into(), rp))?;
+            res.fill(0.0);
+            s.add_jt_lambda(&q, t, &lambda, &mut res[..n]);
+            aug.solve_refined(&mut res);
+            lambda.copy_from_slice(&res[n..]);
             return Ok(Equilibrium {
                 q,
                 lambda,
