@@ -10,7 +10,8 @@
 
 use std::collections::HashMap;
 
-use camlink_core::kinematics::{self, Settings, Table};
+use camlink_core::kinematics;
+use camlink_core::run::{Settings, Table};
 use camlink_core::Model;
 use camlink_expr::{eval_constant, Expr};
 use camlink_model::{load_str, Format};
@@ -61,6 +62,7 @@ pub fn analyse(model: &Model, tol: f64) {
     let settings = Settings {
         tol: tol.max(1e-12),
         max_iter: 4,
+        ..Settings::default()
     };
     let mut table = Table::default();
     let result = kinematics::run(model, &RUN_TIMES, &settings, &[], &mut table);

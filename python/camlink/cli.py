@@ -52,7 +52,9 @@ def _parser() -> argparse.ArgumentParser:
     )
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
     run.add_argument("--step", type=float, metavar="H", help="output time step (s)")
-    run.add_argument("--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)")
+    run.add_argument(
+        "--time", type=float, metavar="T", help="equilibrium: time of the drivers and forces (s)"
+    )
     run.add_argument("--tol", type=float, metavar="TOL", help="Newton tolerance")
     run.add_argument("--max-iter", type=int, metavar="N", help="Newton iterations per step")
     run.add_argument("--h", type=float, metavar="H", help="dynamics: integration step (s)")
@@ -64,6 +66,13 @@ def _parser() -> argparse.ArgumentParser:
         action=argparse.BooleanOptionalAction,
         default=None,
         help="dynamics: error-controlled steps (--no-adaptive: fixed steps)",
+    )
+    run.add_argument(
+        "--jerk",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="kinematics: also output the exact jerk, <body>.jx .jy .jphi and "
+        "<point>.jx .jy (default: [analysis] jerk)",
     )
     run.add_argument(
         "-p",
@@ -116,6 +125,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
         "h": args.h,
         "rho_inf": args.rho_inf,
         "adaptive": args.adaptive,
+        "jerk": args.jerk,
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)
@@ -148,8 +158,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"Δφ = {dphi:.6g} rad",
                 file=sys.stderr,
             )
-    for t, message in summary.get("warnings", []):
-        print(f"camlink: warning: at t = {t:g} s: {message}", file=sys.stderr)
+    for w in summary.get("warnings", []):
+        print(f"camlink: warning: {w}", file=sys.stderr)
     if args.verbose:
         counts = ", ".join(
             f"{k.replace('_', ' ')} {summary[k]}"
@@ -258,7 +268,7 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("camlink: interrupted", file=sys.stderr)
         return 130
-    except Exception as e:  # noqa: BLE001 - a bug must still not print a traceback
+    except Exception as e:
         if os.environ.get("CAMLINK_TRACEBACK"):
             raise
         _error(f"{e}" if str(e).startswith("internal error") else f"internal error: {e!r}")

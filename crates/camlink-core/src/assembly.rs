@@ -251,6 +251,26 @@ impl Assembly {
         }
     }
 
+    /// η(q, q̇, q̈, t) into `out`, the right side of Φ_q q⃛ = η.
+    pub fn eta(&self, model: &Model, q: &[f64], qd: &[f64], qdd: &[f64], t: f64, out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, joint) in model.joints.iter().enumerate() {
+            let mut x = self.local(model, j, q, qd, t);
+            let (cols, own) = self.joint_cols[j];
+            for (k, col) in cols.iter().enumerate() {
+                if let Some(c) = *col {
+                    x.qdd[k] = [qdd[c], qdd[c + 1], qdd[c + 2]];
+                }
+            }
+            let o = self.own_col[j];
+            x.own_dd[..own].copy_from_slice(&qdd[o..o + own]);
+            joint.constraint.eta(&x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
+        }
+    }
+
     /// γ(q, q̇, t) into `out`.
     pub fn gamma(&self, model: &Model, q: &[f64], qd: &[f64], t: f64, out: &mut [f64]) {
         let mut rows: Rows = [0.0; 3];

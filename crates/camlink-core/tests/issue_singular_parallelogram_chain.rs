@@ -13,7 +13,7 @@
 mod mechanisms;
 
 use camlink_core::dynamics::integrator::{run, Settings};
-use camlink_core::kinematics::{time_grid, Table};
+use camlink_core::run::{time_grid, Table};
 use mechanisms::{parallelogram_chain, parallelogram_kappa, parallelogram_reference, CrankMass};
 
 const G: f64 = 9.81;
@@ -59,12 +59,18 @@ fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
                 crank_error(n, h, tol, t_end).unwrap_or_else(|e| panic!("h {h}, tol {tol}: {e}"));
             eprintln!("N = {n}, h = {h:e} s, tol = {tol:e}: max |θ − θ_exact| {err:.2e} rad, crank spread {spread:.1e} rad");
             assert!(err <= 120.0 * h * h, "h {h}, tol {tol}: error {err}");
-            assert!(spread < 1e-8, "h {h}, tol {tol}: the cranks parted by {spread}");
+            assert!(
+                spread < 1e-8,
+                "h {h}, tol {tol}: the cranks parted by {spread}"
+            );
             errs.push(err);
         }
         let ratio = steps[0] / steps[1];
         for w in errs.windows(2) {
-            assert!(w[0] / w[1] > 0.5 * ratio * ratio, "tol {tol}: errors {errs:?} do not fall at second order");
+            assert!(
+                w[0] / w[1] > 0.5 * ratio * ratio,
+                "tol {tol}: errors {errs:?} do not fall at second order"
+            );
         }
     }
 }

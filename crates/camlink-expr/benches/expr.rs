@@ -32,6 +32,19 @@ fn profile_jet(b: divan::Bencher) {
     });
 }
 
+/// The fourth-order jet the jerk analysis evaluates (the usual step uses
+/// `profile_jet`).
+#[divan::bench(sample_count = 200, sample_size = 256)]
+fn profile_jet4(b: divan::Bencher) {
+    let e = Expr::parse(PROFILE, "a").unwrap();
+    let xs = points();
+    let mut i = 0;
+    b.bench_local(|| {
+        i = (i + 1) & 63;
+        e.jet4(black_box(xs[i]))
+    });
+}
+
 #[divan::bench(sample_count = 200, sample_size = 256)]
 fn profile_eval(b: divan::Bencher) {
     let e = Expr::parse(PROFILE, "a").unwrap();

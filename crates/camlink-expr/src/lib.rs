@@ -100,6 +100,7 @@ mod compile;
 mod error;
 mod function;
 mod jet;
+mod jet4;
 mod lexer;
 mod motion;
 mod parser;
@@ -114,6 +115,7 @@ use vm::{run, Fault, Op};
 pub use error::{EvalError, ParseError, RENDER_WIDTH};
 pub use function::functions;
 pub use jet::Jet;
+pub use jet4::Jet4;
 pub use motion::Law;
 pub use parser::{MAX_LEN, MAX_NESTING};
 
@@ -175,6 +177,22 @@ impl Expr {
             9..=32 => self.jet_on::<32>(x),
             _ => self.jet_on::<{ parser::MAX_STACK }>(x),
         }
+    }
+
+    /// `[f, f', f'', f''', f'''']` at x: [`jet`](Self::jet) one order
+    /// further ([`Jet4`]), for the jerk analysis.
+    pub fn jet4(&self, x: f64) -> [f64; 5] {
+        match self.depth {
+            0..=4 => self.jet4_on::<4>(x),
+            5..=8 => self.jet4_on::<8>(x),
+            9..=32 => self.jet4_on::<32>(x),
+            _ => self.jet4_on::<{ parser::MAX_STACK }>(x),
+        }
+    }
+
+    fn jet4_on<const N: usize>(&self, x: f64) -> [f64; 5] {
+        let mut stack = [Jet4::ZERO; N];
+        run::<Jet4, false>(&self.code, x, &mut stack).map_or([f64::NAN; 5], |j| j.0)
     }
 
     #[inline]
@@ -246,6 +264,25 @@ impl fmt::Display for Expr {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(&self.source)
     }
+}
+
+/// The names `src` reads — its variable and named constants, not the
+/// functions it calls — each once, in order of first appearance. Only the
+/// tokens are read (no parsing, no evaluation), so this is linear in the
+/// length of `src`; a model file uses it to order its parameters.
+pub fn names(src: &str) -> Result<Vec<&str>, ParseError> {
+    let toks = lexer::tokenize(src)?;
+    let mut out: Vec<&str> = Vec::new();
+    for (k, t) in toks.iter().enumerate() {
+        let call = toks.get(k + 1).is_some_and(|n| n.tok == lexer::Tok::LParen);
+        if t.tok == lexer::Tok::Ident && !call {
+            let name = &src[t.start..t.end];
+            if !out.contains(&name) {
+                out.push(name);
+            }
+        }
+    }
+    Ok(out)
 }
 
 /// Evaluates a constant expression such as `"deg(30)"` or `"2*r"` with

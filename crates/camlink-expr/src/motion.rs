@@ -18,6 +18,7 @@
 //! x1 when those depend on the variable too).
 
 use crate::jet::Jet;
+use crate::jet4::Jet4;
 use std::f64::consts::PI;
 
 /// A motion law's shape s(u) on 0 ≤ u ≤ 1.
@@ -81,6 +82,26 @@ impl Law {
         }
     }
 
+    /// `[s, s', s'', s''', s'''']` at u, for 0 < u < 1: [`Law::shape`] and
+    /// the fourth derivative
+    ///
+    /// ```text
+    /// ramp, step  s'''' = 0
+    /// poly345     s'''' = 360(2u − 1)
+    /// harmonic    s'''' = −(π⁴/2) cos πu
+    /// cycloidal   s'''' = −8π³ sin 2πu
+    /// ```
+    pub fn shape4(self, u: f64) -> [f64; 5] {
+        let [s0, s1, s2, s3] = self.shape(u);
+        let s4 = match self {
+            Law::Ramp | Law::Step => 0.0,
+            Law::Poly345 => 360.0 * (2.0 * u - 1.0),
+            Law::Harmonic => -0.5 * PI.powi(4) * (PI * u).cos(),
+            Law::Cycloidal => -8.0 * PI.powi(3) * (2.0 * PI * u).sin(),
+        };
+        [s0, s1, s2, s3, s4]
+    }
+
     /// The highest order of derivative that is continuous at u = 0 and u = 1.
     pub fn continuity(self) -> usize {
         match self {
@@ -114,6 +135,20 @@ impl Law {
             h1
         } else {
             h0 + (h1 - h0) * u.compose(self.shape(u0))
+        }
+    }
+
+    /// The law's fourth-order jet; its value equals [`Law::value`] exactly.
+    #[inline]
+    pub fn jet4(self, x: Jet4, x0: Jet4, h0: Jet4, x1: Jet4, h1: Jet4) -> Jet4 {
+        let u = (x - x0) / (x1 - x0);
+        let u0 = u.value();
+        if u0 <= 0.0 {
+            h0
+        } else if u0 >= 1.0 {
+            h1
+        } else {
+            h0 + (h1 - h0) * u.compose(self.shape4(u0))
         }
     }
 }

@@ -7,6 +7,7 @@
 //! in a checked mode that stops at the first operation leaving its domain.
 
 use crate::jet::{floor_mod, sign, Jet};
+use crate::jet4::Jet4;
 use crate::motion::Law;
 use std::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -351,6 +352,94 @@ impl Value for Jet {
     #[inline]
     fn motion(law: Law, [x, x0, h0, x1, h1]: [Jet; 5]) -> Jet {
         law.jet(x, x0, h0, x1, h1)
+    }
+}
+
+impl Value for Jet4 {
+    #[inline]
+    fn constant(c: f64) -> Jet4 {
+        Jet4::constant(c)
+    }
+    #[inline]
+    fn variable(x: f64) -> Jet4 {
+        Jet4::variable(x)
+    }
+    #[inline]
+    fn value(self) -> f64 {
+        self.0[0]
+    }
+    fn first_non_finite(self) -> Option<(usize, f64)> {
+        Jet4::first_non_finite(self)
+    }
+    #[inline]
+    fn add_c(self, c: f64) -> Jet4 {
+        Jet4::add_c(self, c)
+    }
+    #[inline]
+    fn mul_c(self, c: f64) -> Jet4 {
+        Jet4::mul_c(self, c)
+    }
+    #[inline]
+    fn div_c(self, c: f64) -> Jet4 {
+        Jet4::div_c(self, c)
+    }
+    #[inline]
+    fn rsub_c(self, c: f64) -> Jet4 {
+        Jet4::rsub_c(self, c)
+    }
+    #[inline]
+    fn rdiv_c(self, c: f64) -> Jet4 {
+        Jet4::rdiv_c(self, c)
+    }
+    #[inline]
+    fn pow(self, v: Jet4) -> Jet4 {
+        Jet4::pow(self, v)
+    }
+    #[inline]
+    fn pow_c(self, c: f64) -> Jet4 {
+        Jet4::pow_c(self, c)
+    }
+    #[inline]
+    fn pow_i(self, n: i32) -> Jet4 {
+        Jet4::pow_i(self, n)
+    }
+    #[inline]
+    fn unary(self, op: Op) -> Jet4 {
+        match op {
+            Op::Sin => self.sin(),
+            Op::Cos => self.cos(),
+            Op::Tan => self.tan(),
+            Op::Asin => self.asin(),
+            Op::Acos => self.acos(),
+            Op::Atan => self.atan(),
+            Op::Sinh => self.sinh(),
+            Op::Cosh => self.cosh(),
+            Op::Tanh => self.tanh(),
+            Op::Exp => self.exp(),
+            Op::Ln => self.ln(),
+            Op::Sqrt => self.sqrt(),
+            Op::Abs => self.abs(),
+            Op::Sign => Jet4::constant(sign(self.0[0])),
+            Op::Floor => Jet4::constant(self.0[0].floor()),
+            Op::Ceil => Jet4::constant(self.0[0].ceil()),
+            _ => Jet4::constant(f64::NAN),
+        }
+    }
+    #[inline]
+    fn atan2(self, x: Jet4) -> Jet4 {
+        Jet4::atan2(self, x)
+    }
+    #[inline]
+    fn hypot(self, v: Jet4) -> Jet4 {
+        Jet4::hypot(self, v)
+    }
+    #[inline]
+    fn modulo(self, v: Jet4) -> Jet4 {
+        Jet4::modulo(self, v)
+    }
+    #[inline]
+    fn motion(law: Law, [x, x0, h0, x1, h1]: [Jet4; 5]) -> Jet4 {
+        law.jet4(x, x0, h0, x1, h1)
     }
 }
 

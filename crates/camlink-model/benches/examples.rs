@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use camlink_core::kinematics::{run, time_grid, Settings, Sink};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Sink};
 use camlink_expr::Expr;
 
 /// Discards rows; the benchmark measures the solver alone.
@@ -23,6 +24,11 @@ fn main() {
 }
 
 fn bench_file(bencher: divan::Bencher, name: &str) {
+    bench_file_with(bencher, name, false);
+}
+
+/// As `bench_file`, with the jerk solved and output when `jerk`.
+fn bench_file_with(bencher: divan::Bencher, name: &str, jerk: bool) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../examples")
         .join(name);
@@ -32,6 +38,7 @@ fn bench_file(bencher: divan::Bencher, name: &str) {
     let settings = Settings {
         tol: loaded.analysis.tol,
         max_iter: loaded.analysis.max_iter,
+        jerk,
     };
     bencher.bench_local(|| run(&loaded.model, &times, &settings, &[], &mut Discard).unwrap());
 }
@@ -48,10 +55,34 @@ fn cam_roller_10k_steps(bencher: divan::Bencher) {
     bench_file(bencher, "cam_seed_example_3_4_3.toml");
 }
 
+/// The same cam with the jerk (`jerk = true`): one more solve and the
+/// fourth-order profile jet per step.
+#[divan::bench(sample_count = 20)]
+fn cam_roller_jerk_10k_steps(bencher: divan::Bencher) {
+    bench_file_with(bencher, "cam_seed_example_3_4_3.toml", true);
+}
+
+/// The four-bar with the jerk.
+#[divan::bench(sample_count = 20)]
+fn four_bar_jerk_10k_steps(bencher: divan::Bencher) {
+    bench_file_with(bencher, "four_bar.toml", true);
+}
+
 /// Eccentric cam with a flat-faced translating follower.
 #[divan::bench(sample_count = 20)]
 fn cam_flat_10k_steps(bencher: divan::Bencher) {
     bench_file(bencher, "cam_eccentric_flat.toml");
+}
+
+/// The lecture's piecewise profile ρ₁ with four derivatives (the jerk path).
+#[divan::bench]
+fn seed_profile_jet4(bencher: divan::Bencher) {
+    let e = Expr::parse("if(a <= 2*pi/3, 5/4 - cos(3*a)/4, 1)", "a").unwrap();
+    let mut a = 0.0;
+    bencher.bench_local(|| {
+        a = (a + 0.1) % 6.2;
+        divan::black_box(e.jet4(divan::black_box(a)))
+    });
 }
 
 /// The lecture's piecewise profile ρ₁ with three derivatives.

@@ -820,6 +820,11 @@ pub struct AnalysisSection {
     /// Body points to output as "body.point" (x, y, vx, vy, ax, ay).
     #[serde(default)]
     pub points: Vec<String>,
+    /// "kinematics" only: also solve for the jerk (Φ_q q⃛ = η) and output
+    /// `<body>.jx`, `.jy` (m/s³), `.jphi` (rad/s³) and, for each output
+    /// point, `<point>.jx`, `.jy`; default false.
+    #[serde(default)]
+    pub jerk: Option<bool>,
     /// "dynamics" only: integration time step h (s), > 0; the largest step
     /// when `adaptive`. Default: the output `step`, but at most 1e-3.
     #[serde(default)]

@@ -7,7 +7,7 @@
 use std::path::Path;
 
 use camlink_core::dynamics::integrator::{run, Adaptive, Settings};
-use camlink_core::kinematics::Table;
+use camlink_core::run::Table;
 use camlink_model::{load_path, Loaded};
 
 fn slider_crank() -> Loaded {
@@ -27,8 +27,8 @@ fn tiny_steps_with_a_tight_tolerance_converge() {
         ..Settings::default()
     };
     let mut table = Table::default();
-    let summary = run(&l.model, &[0.0, 5e-4], &settings, &[], &mut table)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let summary =
+        run(&l.model, &[0.0, 5e-4], &settings, &[], &mut table).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(summary.steps, 5000);
     let phi = table.channel("constraint.residual").unwrap();
     assert!(phi.iter().all(|v| *v < 1e-12), "{phi:?}");
@@ -56,8 +56,8 @@ fn adaptive_steps_with_a_tight_atol_run() {
         ..Settings::default()
     };
     let mut table = Table::default();
-    let summary = run(&l.model, &[0.0, 5e-5], &settings, &[], &mut table)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let summary =
+        run(&l.model, &[0.0, 5e-5], &settings, &[], &mut table).unwrap_or_else(|e| panic!("{e}"));
     eprintln!("adaptive, atol 1e-16: {} steps", summary.steps);
     let phi = table.channel("constraint.residual").unwrap();
     assert!(phi.iter().all(|v| *v < 1e-12), "{phi:?}");

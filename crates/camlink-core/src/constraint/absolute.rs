@@ -13,12 +13,18 @@
 //! - distance: Φ_q = 2eᵀ[I  B_i s'_i], ν = 2 f f',
 //!   γ = −2ėᵀė + 2 φ̇_i² eᵀA_i s'_i + 2(f'² + f f'').
 //!
+//! η = −d³Φ/dt³ with the jerks set to zero ([`motion`](crate::motion)),
+//! with r⃛^P* = −3 A_i s'_i φ̇_i φ̈_i − B_i s'_i φ̇_i³:
+//! - x, y: η = −(r⃛^P*)_{x,y} + f‴; φ: η = f‴;
+//! - distance: η = −2(eᵀr⃛^P* + 3ėᵀë) + 2f f‴ + 6f′f″.
+//!
 //! Body j of the [`Local`] view is the ground.
 
 use super::{CoordMask, Equations, Jac, Local, Rows, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, point, point_vel, rot, rot_d, sub, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 /// Which coordinate a coordinate constraint holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -126,6 +132,16 @@ impl Equations for AbsoluteCoord {
         };
         *out = [centripetal + self.f.jet(x.t)[2], 0.0, 0.0];
     }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let p = x.point_path(0, self.s);
+        let jerk = match self.coord {
+            Coord::X => p[3][0],
+            Coord::Y => p[3][1],
+            Coord::Phi => 0.0,
+        };
+        *out = [self.f.jet(x.t)[3] - jerk, 0.0, 0.0];
+    }
 }
 
 impl Equations for AbsoluteDistance {
@@ -182,6 +198,15 @@ impl Equations for AbsoluteDistance {
             0.0,
             0.0,
         ];
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let e = motion::sub(
+            &x.point_path(0, self.s),
+            &motion::constant(self.ground_point),
+        );
+        let (ee, ff) = (motion::dot(&e, &e), motion::square(self.f.jet(x.t)));
+        *out = [ff[3] - ee[3], 0.0, 0.0];
     }
 }
 

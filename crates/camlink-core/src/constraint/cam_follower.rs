@@ -29,11 +29,16 @@
 //! where * marks the velocity-quadratic part of a second derivative
 //! ([`Carried`]): r̈^P* = A(−p φ̇² + 2 p′⊥ φ̇ α̇ + p″ α̇²),
 //! g̈* = A(−p′ φ̇² + 2 p″⊥ φ̇ α̇ + p‴ α̇²).
+//!
+//! η = −[ r⃛_i^P* − r⃛_j^P* ; (g_i × g_j)⃛* ], the starred third derivatives
+//! taken with the jerks set to zero ([`carried_paths`], which needs p⁗ for
+//! g⃛*), the cross product's by Leibniz's rule.
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
-use crate::curve::{search, Carried, Curve};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
+use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{cross, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 #[derive(Clone, Debug)]
 pub struct CamFollower {
@@ -69,6 +74,10 @@ impl Equations for CamFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Curve(&self.curve_i), Feature::Curve(&self.curve_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
@@ -124,6 +133,15 @@ impl Equations for CamFollower {
         out[0] = b.p_quad[0] - a.p_quad[0];
         out[1] = b.p_quad[1] - a.p_quad[1];
         out[2] = -(cross(a.g_quad, b.g) + 2.0 * cross(a.gd, b.gd) + cross(a.g, b.g_quad));
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let ji = self.curve_i.jet4(x.own[0]);
+        let jj = self.curve_j.jet4(x.own[1]);
+        let (pi, gi) = carried_paths(x.q[0], x.qd[0], x.qdd[0], &ji, x.own_path(0));
+        let (pj, gj) = carried_paths(x.q[1], x.qd[1], x.qdd[1], &jj, x.own_path(1));
+        let d = motion::sub(&pi, &pj);
+        *out = [-d[3][0], -d[3][1], -motion::cross(&gi, &gj)[3]];
     }
 }
 

@@ -5,7 +5,10 @@
 //! - ν against −Φ_t by central differences in t;
 //! - γ against the second time derivative of Φ along the trajectory
 //!   z(τ) = z₀ + v τ + a τ²/2, t = t₀ + τ, using
-//!   d²Φ/dτ² = Φ_q a − γ.
+//!   d²Φ/dτ² = Φ_q a − γ;
+//! - η against the time derivative of γ − Φ_q q̈ along the trajectory
+//!   z(τ) = z₀ + v τ + a τ²/2 + j τ³/6 with a random jerk j, using
+//!   d/dτ (γ − Φ_q z̈) = η − Φ_q j (γ itself being checked against Φ).
 //!
 //! Differences use Richardson extrapolation, so the tolerance can stay tight.
 
@@ -13,7 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::{Equations, Jac, Local, LocalBlock, Rows, LOCAL_COORDS, MAX_OWN};
-use crate::model::BodyId;
+use crate::constraint::BodyId;
 
 /// Deterministic pseudo-random numbers (SplitMix64) for reproducible checks.
 pub struct Rng(u64);
@@ -122,9 +125,10 @@ fn close(what: &str, kind: &str, r: usize, got: f64, want: f64, x: &Local) {
     );
 }
 
-/// Checks Φ_q, ν and γ of `c` at the configuration `x` (velocities in
-/// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`).
-pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
+/// Checks Φ_q, ν, γ and η of `c` at the configuration `x` (velocities in
+/// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`, which
+/// η reads from `x.qdd`, `x.own_dd` too; its jerk is `jerk`).
+pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[f64; NZ]) {
     let m = c.rows();
     let mask = moving(c);
     let z0 = to_z(x);
@@ -245,15 +249,45 @@ pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ]) {
         let jac_a: f64 = (0..NZ).map(|k| row[k] * acc[k]).sum();
         close("γ", c.kind(), r, gamma[r], jac_a - dd[r], x);
     }
+
+    // η = d/dτ (γ − Φ_q z̈) + Φ_q j along z(τ) = z₀ + v τ + a τ²/2 + j τ³/6.
+    let mut eta = [0.0; 3];
+    c.eta(x, &mut eta);
+    let residual = d1(
+        |h| {
+            let z = std::array::from_fn(|k| {
+                z0[k] + v[k] * h + 0.5 * acc[k] * h * h + jerk[k] * h * h * h / 6.0
+            });
+            let zd: [f64; NZ] = std::array::from_fn(|k| v[k] + acc[k] * h + 0.5 * jerk[k] * h * h);
+            let zdd: [f64; NZ] = std::array::from_fn(|k| acc[k] + jerk[k] * h);
+            let mut y = from_z(&z, x.t + h, x);
+            y.qd = [[zd[0], zd[1], zd[2]], [zd[3], zd[4], zd[5]]];
+            y.own_d.copy_from_slice(&zd[6..]);
+            let (mut g, mut j) = ([0.0; 3], Jac::default());
+            c.gamma(&y, &mut g);
+            c.jacobian(&y, &mut j);
+            [0, 1, 2].map(|r| {
+                let row = jac_row(&j, r);
+                g[r] - (0..NZ).map(|k| row[k] * zdd[k]).sum::<f64>()
+            })
+        },
+        1e-4,
+    );
+    for r in 0..m {
+        let row = jac_row(&jac, r);
+        let jac_j: f64 = (0..NZ).map(|k| row[k] * jerk[k]).sum();
+        close("η", c.kind(), r, eta[r], residual[r] + jac_j, x);
+    }
 }
 
-/// A random configuration for `c`: ground bodies at rest at the origin,
-/// own coordinates drawn from `own_range`.
+/// A random configuration for `c` with its acceleration and jerk: ground
+/// bodies at rest at the origin, own coordinates drawn from `own_range`;
+/// the acceleration is also in the configuration's `qdd`, `own_dd`.
 pub fn random_local<C: Equations>(
     c: &C,
     rng: &mut Rng,
     own_range: [(f64, f64); MAX_OWN],
-) -> (Local, [f64; NZ]) {
+) -> (Local, [f64; NZ], [f64; NZ]) {
     let mask = moving(c);
     let mut x = Local {
         t: rng.range(0.0, 2.0),
@@ -277,8 +311,11 @@ pub fn random_local<C: Equations>(
         x.own[o] = rng.range(own_range[o].0, own_range[o].1);
         x.own_d[o] = rng.range(-2.0, 2.0);
     }
-    let acc = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
-    (x, acc)
+    let acc: [f64; NZ] = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
+    x.qdd = [[acc[0], acc[1], acc[2]], [acc[3], acc[4], acc[5]]];
+    x.own_dd.copy_from_slice(&acc[6..]);
+    let jerk = std::array::from_fn(|k| if mask[k] { rng.range(-3.0, 3.0) } else { 0.0 });
+    (x, acc, jerk)
 }
 
 /// Checks `c` on `n` random configurations, own coordinates in [−π, π].
@@ -292,8 +329,8 @@ pub fn check_random<C: Equations>(c: &C, n: usize) {
 pub fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); MAX_OWN]) {
     let mut rng = Rng::new(0x5EED ^ n as u64);
     for _ in 0..n {
-        let (x, acc) = random_local(c, &mut rng, own_range);
-        check_at(c, &x, &acc);
+        let (x, acc, jerk) = random_local(c, &mut rng, own_range);
+        check_at(c, &x, &acc, &jerk);
     }
 }
 
@@ -318,6 +355,8 @@ mod tests {
         Pattern,
         /// Curvature with the wrong sign at (φ_j, φ_j).
         Curvature,
+        /// η without the −B_j s'_j φ̇_j³ term.
+        EtaTerm,
     }
 
     /// A revolute joint with one deliberate mistake.
@@ -376,6 +415,15 @@ mod tests {
                 out[0] = 1.0;
             }
         }
+        fn eta(&self, x: &Local, out: &mut Rows) {
+            self.0.eta(x, out);
+            if let Fault::EtaTerm = self.1 {
+                let wj = x.qd[1][2];
+                let bj = crate::math::rot_d(x.q[1][2], self.0.s_j);
+                out[0] -= bj[0] * wj * wj * wj;
+                out[1] -= bj[1] * wj * wj * wj;
+            }
+        }
         fn gamma(&self, x: &Local, out: &mut Rows) {
             self.0.gamma(x, out);
             if let Fault::GammaTerm = self.1 {
@@ -425,6 +473,261 @@ mod tests {
     #[should_panic(expected = "curvature (5, 5)")]
     fn catches_a_wrong_curvature() {
         check_random(&broken(Fault::Curvature), 10);
+    }
+
+    /// Φ_q, ν, γ and η of every constraint kind, each with a moving body on
+    /// both sides and with the ground as body i and as body j, curve
+    /// contacts on polar (expression, Fourier) and parametric (open spline,
+    /// closed circle, expression) curves, drivers on every coordinate and
+    /// on curve travel.
+    #[test]
+    fn every_kind_with_ground_on_either_side() {
+        use crate::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
+        use crate::constraint::cam_follower::CamFollower;
+        use crate::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
+        use crate::constraint::flat_follower::FlatFollower;
+        use crate::constraint::gear::{Gear, GearKind, RackPinion};
+        use crate::constraint::point_follower::PointFollower;
+        use crate::constraint::relative::{RelCoord, RelativeCoord, RelativeDistance};
+        use crate::constraint::translational::Translational;
+        use crate::constraint::Constraint;
+        use crate::curve::{Curve, Parametric, Polar};
+        use crate::function::TimeFn;
+        use std::sync::Arc;
+
+        let f = || TimeFn::Sine {
+            amplitude: 0.4,
+            omega: 1.7,
+            phase: 0.3,
+            offset: 1.2,
+        };
+        let expr_f = || {
+            TimeFn::Expr(Arc::new(
+                camlink_expr::Expr::parse("0.3 + t^2/4 + sin(2*t)/5", "t").unwrap(),
+            ))
+        };
+        let lobe: Curve = Polar::expr([0.05, 0.0], "1 + 0.15*cos(2*a) + 0.05*sin(3*a)")
+            .unwrap()
+            .into();
+        let fourier: Curve = Polar::fourier([0.1, -0.05], 1.0, &[0.2, 0.0, 0.05], &[0.1])
+            .unwrap()
+            .into();
+        let open: Curve =
+            Parametric::spline(&[[0.0, 0.0], [0.4, 0.2], [0.9, 0.1], [1.3, 0.5]], false)
+                .unwrap()
+                .into();
+        let closed: Curve = Parametric::circle([0.2, 0.0], 0.3, 0.4).unwrap().into();
+        let pexpr: Curve = Parametric::expr(
+            "0.3*cos(s) + s^3/10",
+            "0.2*sin(s) + 0.1*s",
+            -1.0,
+            2.0,
+            false,
+        )
+        .unwrap()
+        .into();
+        let (si, sj) = ([0.4, -0.2], [-0.3, 0.7]);
+        let pi = std::f64::consts::PI;
+        let mut cases: Vec<(Constraint, [(f64, f64); MAX_OWN])> = Vec::new();
+        let any = [(-pi, pi); MAX_OWN];
+        for (bi, bj) in [
+            (BodyId(1), BodyId(2)),
+            (BodyId::GROUND, BodyId(2)),
+            (BodyId(1), BodyId::GROUND),
+        ] {
+            cases.push((
+                Revolute {
+                    body_i: bi,
+                    s_i: si,
+                    body_j: bj,
+                    s_j: sj,
+                }
+                .into(),
+                any,
+            ));
+            for coord in [
+                RelCoord::X,
+                RelCoord::Y,
+                RelCoord::Phi,
+                RelCoord::Along([0.6, -1.1]),
+            ] {
+                let c = RelativeCoord {
+                    body_i: bi,
+                    s_i: si,
+                    body_j: bj,
+                    s_j: sj,
+                    coord,
+                    f: f(),
+                };
+                cases.push((c.into(), any));
+            }
+            let d = RelativeDistance {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                f: expr_f(),
+            };
+            cases.push((d.into(), any));
+            let t = Translational {
+                body_i: bi,
+                s_i: si,
+                v_i: [0.8, 0.3],
+                body_j: bj,
+                s_j: sj,
+                angle: 0.25,
+            };
+            cases.push((t.into(), any));
+            let rr = RevoluteRevolute {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                length: 1.3,
+            };
+            cases.push((rr.into(), any));
+            let rt = RevoluteTranslational {
+                body_i: bi,
+                s_i: si,
+                body_j: bj,
+                s_j: sj,
+                v_j: [0.5, -1.2],
+                offset: 0.15,
+            };
+            cases.push((rt.into(), any));
+            for kind in [GearKind::External, GearKind::Internal] {
+                let g = Gear {
+                    body_i: bi,
+                    s_i: si,
+                    radius_i: 0.5,
+                    body_j: bj,
+                    s_j: sj,
+                    radius_j: 1.25,
+                    kind,
+                    phase: 0.2,
+                };
+                cases.push((g.into(), any));
+            }
+            let rp = RackPinion {
+                body_i: bi,
+                s_i: si,
+                radius: 0.4,
+                body_j: bj,
+                s_j: sj,
+                u_j: [1.0, 0.3],
+                phase: 0.1,
+            };
+            cases.push((rp.into(), any));
+            for (ci, cj, range) in [
+                (&lobe, &closed, [(-pi, 3.0 * pi), (-2.0, 4.0)]),
+                (&fourier, &open, [(-pi, pi), (0.1, 1.4)]),
+                (&closed, &pexpr, [(-1.0, 3.0), (-0.9, 1.9)]),
+            ] {
+                let cf = CamFollower {
+                    body_i: bi,
+                    curve_i: ci.clone(),
+                    body_j: bj,
+                    curve_j: cj.clone(),
+                };
+                cases.push((cf.into(), range));
+            }
+            for (cam, range) in [
+                (&lobe, (-pi, 3.0 * pi)),
+                (&open, (0.1, 1.4)),
+                (&pexpr, (-0.9, 1.9)),
+            ] {
+                let ff = FlatFollower::new(bi, cam.clone(), bj, [0.2, -0.3], [1.0, 0.4]).unwrap();
+                cases.push((ff.into(), [range; MAX_OWN]));
+            }
+            for (slot, range) in [
+                (&fourier, (-pi, 3.0 * pi)),
+                (&open, (0.1, 1.4)),
+                (&closed, (-1.0, 3.0)),
+                (&pexpr, (-0.9, 1.9)),
+            ] {
+                cases.push((
+                    PointFollower::new(bi, si, bj, slot.clone()).into(),
+                    [range; MAX_OWN],
+                ));
+                let driven = PointFollower {
+                    travel: Some(expr_f()),
+                    ..PointFollower::new(bi, si, bj, slot.clone())
+                };
+                cases.push((driven.into(), [range; MAX_OWN]));
+            }
+        }
+        // Absolute constraints hold a body against the ground (body j).
+        for coord in [Coord::X, Coord::Y, Coord::Phi] {
+            let c = AbsoluteCoord {
+                body: BodyId(1),
+                s: si,
+                coord,
+                f: expr_f(),
+            };
+            cases.push((c.into(), any));
+        }
+        let d = AbsoluteDistance {
+            body: BodyId(1),
+            s: si,
+            ground_point: [0.3, 1.1],
+            f: f(),
+        };
+        cases.push((d.into(), any));
+        let kinds: std::collections::BTreeSet<&str> = cases.iter().map(|(c, _)| c.kind()).collect();
+        // The 13 variants of `Constraint`, the point–follower with and without
+        // its travel driver.
+        assert_eq!(kinds.len(), 14, "{kinds:?}");
+        for (c, range) in &cases {
+            check_random_own(c, 12, *range);
+        }
+    }
+
+    #[test]
+    #[should_panic(expected = "η of equation")]
+    fn catches_a_missing_eta_term() {
+        check_random(&broken(Fault::EtaTerm), 10);
+    }
+
+    /// η is checked at the trajectory's acceleration: an η that ignores q̈
+    /// (the φ̈ terms of a revolute's) is caught too.
+    #[test]
+    #[should_panic(expected = "η of equation")]
+    fn catches_an_eta_that_ignores_the_acceleration() {
+        struct NoAcc(Revolute);
+        impl Equations for NoAcc {
+            fn kind(&self) -> &'static str {
+                "revolute_without_acceleration"
+            }
+            fn equations(&self) -> &'static [&'static str] {
+                self.0.equations()
+            }
+            fn bodies(&self) -> [BodyId; 2] {
+                self.0.bodies()
+            }
+            fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
+                self.0.joint_points(x)
+            }
+            fn phi(&self, x: &Local, out: &mut Rows) {
+                self.0.phi(x, out)
+            }
+            fn jacobian(&self, x: &Local, out: &mut Jac) {
+                self.0.jacobian(x, out)
+            }
+            fn nu(&self, x: &Local, out: &mut Rows) {
+                self.0.nu(x, out)
+            }
+            fn gamma(&self, x: &Local, out: &mut Rows) {
+                self.0.gamma(x, out)
+            }
+            fn eta(&self, x: &Local, out: &mut Rows) {
+                let y = Local {
+                    qdd: [[0.0; 3]; 2],
+                    ..*x
+                };
+                self.0.eta(&y, out)
+            }
+        }
+        check_random(&NoAcc(broken(Fault::Nu).0), 10);
     }
 
     #[test]

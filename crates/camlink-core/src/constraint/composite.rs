@@ -3,22 +3,25 @@
 //! Revolute–revolute (coupler of length L between P_i and P_j):
 //! Φ = dᵀd − L², d = r_j^P − r_i^P;
 //! Φ_q = 2dᵀ[−I  −B_i s'_i | I  B_j s'_j], ν = 0,
-//! γ = −2ḋᵀḋ + 2dᵀ(A_j s'_j φ̇_j² − A_i s'_i φ̇_i²).
+//! γ = −2ḋᵀḋ + 2dᵀ(A_j s'_j φ̇_j² − A_i s'_i φ̇_i²),
+//! η = −(dᵀd)⃛* = −2dᵀd⃛* − 6ḋᵀd̈ ([`motion`](crate::motion)).
 //!
 //! Revolute–translational (pin P_i of body i runs on the line through Q_j
 //! along v'_j of body j, at a signed offset c to the left of v_j):
 //! Φ = (A_j v'_j)⊥ᵀ (r_i^P − r_j^Q) − c;
 //! the axis projection of `relative.rs` with a = j, b = i, w' = v'_j⊥ gives
-//! Φ_q and γ; ν = 0. v'_j is normalised when the equation is evaluated, so
+//! Φ_q, γ and η; ν = 0. v'_j is normalised when the equation is evaluated, so
 //! c is in metres whatever the length of the given vector (which must not be
 //! zero).
 
 use super::relative::{
-    projection_gamma, projection_jac, projection_phi, rel, rel_centripetal, rel_vel, unit,
+    projection_eta, projection_gamma, projection_jac, projection_phi, rel, rel_centripetal,
+    rel_path, rel_vel, unit,
 };
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, rot_d, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 #[derive(Clone, Debug)]
 pub struct RevoluteRevolute {
@@ -86,6 +89,11 @@ impl Equations for RevoluteRevolute {
         let a = rel_centripetal(x, self.s_i, self.s_j);
         *out = [-2.0 * dot(d_d, d_d) + 2.0 * dot(d, a), 0.0, 0.0];
     }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let d = rel_path(x, self.s_i, self.s_j);
+        *out = [-motion::dot(&d, &d)[3], 0.0, 0.0];
+    }
 }
 
 impl RevoluteTranslational {
@@ -131,6 +139,11 @@ impl Equations for RevoluteTranslational {
     fn gamma(&self, x: &Local, out: &mut Rows) {
         let g = projection_gamma(x, 1, self.s_j, self.normal(), self.s_i);
         *out = [g, 0.0, 0.0];
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let e = projection_eta(x, 1, self.s_j, self.normal(), self.s_i);
+        *out = [e, 0.0, 0.0];
     }
 }
 

@@ -27,13 +27,18 @@
 //! γ = −[ −φ̇_j² nᵀ d + 2 ṅᵀ ḋ + nᵀ (r̈_i^P* − r̈_j^P*) ;
 //!        −φ̇_j² nᵀ g_i + 2 ṅᵀ ġ_i + nᵀ g̈_i* ].
 //!
+//! η = −[ (nᵀd)⃛* ; (nᵀg_i)⃛* ] by Leibniz's rule, n = A_j u′_j⊥ turning with
+//! body j and the cam point and tangent from [`carried_paths`] (which needs
+//! p⁗), the jerks set to zero ([`motion`](crate::motion)).
+//!
 //! The follower stays in contact only where the cam is convex: see
 //! [`Curve::concave_ranges`](crate::curve::Curve::concave_ranges).
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
-use crate::curve::{search, Carried, Curve};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
+use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{dot, norm, perp, rot, rot_t, scale, sub, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 #[derive(Clone, Debug)]
 pub struct FlatFollower {
@@ -82,6 +87,10 @@ impl Equations for FlatFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Curve(&self.curve_i), Feature::Face(self.u_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
@@ -156,6 +165,16 @@ impl Equations for FlatFollower {
         let dd = sub(a.v, b.v);
         out[0] = w * w * dot(n, d) - 2.0 * dot(nd, dd) - dot(n, sub(a.p_quad, b.p_quad));
         out[1] = w * w * dot(n, a.g) - 2.0 * dot(nd, a.gd) - dot(n, a.g_quad);
+        out[2] = 0.0;
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let ji = self.curve_i.jet4(x.own[0]);
+        let (pi, gi) = carried_paths(x.q[0], x.qd[0], x.qdd[0], &ji, x.own_path(0));
+        let d = motion::sub(&pi, &x.point_path(1, self.s_j));
+        let n = x.vector_path(1, perp(self.u_j));
+        out[0] = -motion::dot(&n, &d)[3];
+        out[1] = -motion::dot(&n, &gi)[3];
         out[2] = 0.0;
     }
 }

@@ -11,7 +11,9 @@
 //! Φ₁_q = [−u⊥ᵀ  −u⊥ᵀB_i s'_i | u⊥ᵀ  u⊥ᵀB_j s'_j],  Φ₁_θ = −uᵀd;
 //! Φ₂_q = [0 0 R_i | 0 0 ±R_j],  Φ₂_θ = −(R_i ± R_j);
 //! ν = 0;
-//! γ₁ = u⊥ᵀd θ̇² + 2 θ̇ uᵀḋ + u⊥ᵀ(A_j s'_j φ̇_j² − A_i s'_i φ̇_i²),  γ₂ = 0.
+//! γ₁ = u⊥ᵀd θ̇² + 2 θ̇ uᵀḋ + u⊥ᵀ(A_j s'_j φ̇_j² − A_i s'_i φ̇_i²),  γ₂ = 0;
+//! η₁ = −(u⊥ᵀd)⃛* by the product rule, u⊥ = A(θ)(0, 1) turning with θ̇, θ̈
+//! ([`motion`](crate::motion)); η₂ = 0.
 //! With fixed centres θ is constant and Φ₂ gives ω_j = ∓(R_i/R_j) ω_i: an
 //! external pair turns the other way, an internal pair the same way.
 //!
@@ -19,18 +21,21 @@
 //! along u'_j; the pinion lies to the left of u_j):
 //! Φ = (A_j u'_j)ᵀ (r_i^P − r_j^Q) + R(φ_i − φ_j) − c.
 //! The first term is the axis projection of `relative.rs` with a = j, b = i,
-//! w' = u'_j (giving Φ_q and γ); the second adds R and −R to the φ columns
-//! and nothing to γ; ν = 0.
+//! w' = u'_j (giving Φ_q, γ and η); the second adds R and −R to the φ
+//! columns and nothing to γ or η; ν = 0.
 //! Rolling towards +u_j turns the pinion clockwise: travel = −R Δ(φ_i − φ_j).
 //! u'_j is normalised when the equation is evaluated, so c is in metres
 //! whatever the length of the given vector (which must not be zero).
 
 use std::f64::consts::TAU;
 
-use super::relative::{projection_gamma, projection_jac, projection_phi, rel, rel_vel, unit};
+use super::relative::{
+    projection_eta, projection_gamma, projection_jac, projection_phi, rel, rel_path, rel_vel, unit,
+};
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, point, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GearKind {
@@ -187,6 +192,14 @@ impl Equations for Gear {
         out[1] = 0.0;
         out[2] = 0.0;
     }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let u_perp = motion::rotated(x.own_path(0), &motion::constant([0.0, 1.0]));
+        let d = rel_path(x, self.s_i, self.s_j);
+        out[0] = -motion::dot(&u_perp, &d)[3];
+        out[1] = 0.0;
+        out[2] = 0.0;
+    }
 }
 
 impl RackPinion {
@@ -240,6 +253,11 @@ impl Equations for RackPinion {
     fn gamma(&self, x: &Local, out: &mut Rows) {
         let g = projection_gamma(x, 1, self.s_j, unit(self.u_j), self.s_i);
         *out = [g, 0.0, 0.0];
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let e = projection_eta(x, 1, self.s_j, unit(self.u_j), self.s_i);
+        *out = [e, 0.0, 0.0];
     }
 }
 

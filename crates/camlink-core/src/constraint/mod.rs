@@ -1,8 +1,10 @@
 //! The constraint library.
 //!
 //! Every constraint provides, analytically and in this order, its residual
-//! Φ, its Jacobian Φ_q, ν = −Φ_t and
-//! γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
+//! Φ, its Jacobian Φ_q, ν = −Φ_t,
+//! γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt and, for the jerk analysis,
+//! η = γ̇ − Φ̇_q q̈ (total time derivatives along the motion), the right side
+//! of Φ_q q⃛ = η.
 //!
 //! A constraint sees only its own coordinates (a [`Local`] view): the two
 //! bodies it joins, `i` and `j` (either may be ground, whose coordinates are
@@ -12,8 +14,9 @@
 //!
 //! Adding a constraint is one new file and one line in [`constraints!`].
 
+use crate::curve::Curve;
 use crate::math::{point, rot_t, sub, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 pub mod absolute;
 pub mod cam_follower;
@@ -27,6 +30,31 @@ pub mod translational;
 
 #[cfg(any(test, feature = "check"))]
 pub mod check;
+
+/// Index of a body in [`Model::bodies`](crate::model::Model::bodies); body
+/// 0 is the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyId(pub usize);
+
+impl BodyId {
+    pub const GROUND: BodyId = BodyId(0);
+
+    pub fn is_ground(self) -> bool {
+        self == Self::GROUND
+    }
+}
+
+/// What one body of a curve contact carries there, in its body frame.
+#[derive(Clone, Copy, Debug)]
+pub enum Feature<'a> {
+    /// A curve; its parameter at the contact is one of the joint's own
+    /// coordinates.
+    Curve(&'a Curve),
+    /// A point s′ (m): a pin.
+    Point(V2),
+    /// A straight face along the unit vector u′.
+    Face(V2),
+}
 
 /// Most equations one constraint contributes.
 pub const MAX_ROWS: usize = 3;
@@ -62,9 +90,36 @@ pub struct Local {
     pub own: [f64; MAX_OWN],
     /// Their time derivatives.
     pub own_d: [f64; MAX_OWN],
+    /// Accelerations (ẍ, ÿ, φ̈) of bodies i and j (m/s², m/s², rad/s²),
+    /// read by η only.
+    pub qdd: [[f64; 3]; 2],
+    /// Second time derivatives of the own coordinates, read by η only.
+    pub own_dd: [f64; MAX_OWN],
 }
 
 impl Local {
+    /// The body point s′ of body k (0 for i, 1 for j) with its time
+    /// derivatives, for η.
+    #[inline]
+    pub fn point_path(&self, k: usize, s: V2) -> motion::Path {
+        motion::body_point(self.q[k], self.qd[k], self.qdd[k], s)
+    }
+
+    /// A vector w′ fixed in body k, A_k w′, with its time derivatives.
+    #[inline]
+    pub fn vector_path(&self, k: usize, w: V2) -> motion::Path {
+        motion::rotated(
+            [self.q[k][2], self.qd[k][2], self.qdd[k][2]],
+            &motion::constant(w),
+        )
+    }
+
+    /// Own coordinate o's `[value, rate, second derivative]`.
+    #[inline]
+    pub fn own_path(&self, o: usize) -> [f64; 3] {
+        [self.own[o], self.own_d[o], self.own_dd[o]]
+    }
+
     /// A point of body i (`s_i`, body i frame) expressed in body j's frame,
     /// at the current configuration (m).
     pub fn on_j(&self, s_i: V2) -> V2 {
@@ -109,6 +164,12 @@ pub trait Equations {
     fn check_functions(&self, _x: &Local) -> Result<(), String> {
         Ok(())
     }
+    /// For a curve contact, what bodies i and j carry ([`Feature`]); own
+    /// coordinate k is the parameter of the k-th curve of the two. `None`
+    /// for every other joint. [`crate::contact::ContactView`] builds on it.
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        None
+    }
     /// Where the joint's reaction acts on bodies i and j, each in its own
     /// body frame (m): the joint points, or the current contact point.
     fn joint_points(&self, x: &Local) -> [V2; 2];
@@ -149,6 +210,10 @@ pub trait Equations {
     fn nu(&self, x: &Local, out: &mut Rows);
     /// γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
     fn gamma(&self, x: &Local, out: &mut Rows);
+    /// η, the right side of Φ_q q⃛ = η: η = −d³Φ/dt³ along the motion with
+    /// the jerks q⃛ set to zero (= γ̇ − Φ̇_q q̈); reads q̈ from `x.qdd` and
+    /// `x.own_dd`. See [`motion`](crate::motion).
+    fn eta(&self, x: &Local, out: &mut Rows);
     /// Number of equations m.
     fn rows(&self) -> usize {
         self.equations().len()
@@ -187,6 +252,9 @@ macro_rules! constraints {
             fn check_functions(&self, x: &Local) -> Result<(), String> {
                 match self { $(Constraint::$variant(c) => c.check_functions(x),)* }
             }
+            fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+                match self { $(Constraint::$variant(c) => c.contact_sides(),)* }
+            }
             fn joint_points(&self, x: &Local) -> [V2; 2] {
                 match self { $(Constraint::$variant(c) => c.joint_points(x),)* }
             }
@@ -223,6 +291,10 @@ macro_rules! constraints {
             #[inline]
             fn gamma(&self, x: &Local, out: &mut Rows) {
                 match self { $(Constraint::$variant(c) => c.gamma(x, out),)* }
+            }
+            #[inline]
+            fn eta(&self, x: &Local, out: &mut Rows) {
+                match self { $(Constraint::$variant(c) => c.eta(x, out),)* }
             }
         }
     };

@@ -10,6 +10,9 @@
 //! ν = 0
 //! γ = A_i s′_i φ̇_i² − A_j (p_j φ̇_j² − 2 g′_j⊥ φ̇_j α̇_j − (g′_j)_α α̇_j²)
 //!
+//! η = −(r⃛_i^P* − r⃛_j^P*) with the jerks set to zero: the pin as a body
+//! point, the slot point from [`carried_paths`] ([`motion`](crate::motion)).
+//!
 //! γ is the revolute joint's with the moving point's extra terms: the
 //! Coriolis term 2 B_j g′_j φ̇_j α̇_j and the curvature term A_j p″_j α̇_j².
 //!
@@ -17,15 +20,16 @@
 //! function of time, "travel along a curve = f(t)", adds a third equation
 //!
 //! Φ₃ = α_j − f(t),   Φ₃_q = [0 | 0 | 1],   ν₃ = f′(t),   γ₃ = f″(t),
+//! η₃ = f‴(t),
 //!
 //! in the unit of α_j (rad on a polar slot, m of length on a line, arc,
 //! circle or spline slot, the user's parameter on an expression slot).
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
-use crate::curve::{search, Carried, Curve};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
+use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::function::TimeFn;
 use crate::math::{rot_t, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct PointFollower {
@@ -77,6 +81,10 @@ impl Equations for PointFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Point(self.s_i), Feature::Curve(&self.curve_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
@@ -146,6 +154,18 @@ impl Equations for PointFollower {
         out[1] = b.p_quad[1] - a.p_quad[1];
         out[2] = match &self.travel {
             Some(f) => f.jet(x.t)[2],
+            None => 0.0,
+        };
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let jj = self.curve_j.jet4(x.own[0]);
+        let (pj, _) = carried_paths(x.q[1], x.qd[1], x.qdd[1], &jj, x.own_path(0));
+        let d = crate::motion::sub(&x.point_path(0, self.s_i), &pj);
+        out[0] = -d[3][0];
+        out[1] = -d[3][1];
+        out[2] = match &self.travel {
+            Some(f) => f.jet(x.t)[3],
             None => 0.0,
         };
     }

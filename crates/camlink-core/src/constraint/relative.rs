@@ -19,6 +19,10 @@
 //! - distance: Φ_q = 2dᵀ[−I  −B_i s'_i | I  B_j s'_j], ν = 2 f f',
 //!   γ = −2ḋᵀḋ + 2dᵀ(a_j − a_i) + 2(f'² + f f'').
 //!
+//! η = −d³Φ/dt³ with the jerks set to zero ([`motion`](crate::motion)):
+//! x, y: −(d⃛*)_{x,y} + f‴; φ: f‴; along: −((A_i v'_i)ᵀd)⃛* + f‴ by the
+//! product rule; distance: −(dᵀd)⃛* + (f²)‴.
+//!
 //! The axis projection (`projection_phi`, `projection_jac`,
 //! `projection_gamma`), shared with the translational and
 //! revolute–translational joints and the rack, is Φ = (A_a w')ᵀe with
@@ -28,9 +32,10 @@
 //! γ = (A_a w')ᵀe φ̇_a² − 2 φ̇_a (B_a w')ᵀė − (A_a w')ᵀ(A_a s'_a φ̇_a² − A_b s'_b φ̇_b²).
 
 use super::{CoordMask, Equations, Jac, Local, Rows, ALL_COORDS, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, norm, point, point_vel, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 /// Which relative coordinate a [`RelativeCoord`] holds.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,6 +93,18 @@ pub(super) fn rel_centripetal(x: &Local, s_i: V2, s_j: V2) -> V2 {
         scale(wj * wj, rot(x.q[1][2], s_j)),
         scale(wi * wi, rot(x.q[0][2], s_i)),
     )
+}
+
+/// d = r_j^P − r_i^P with its time derivatives, for η.
+pub(super) fn rel_path(x: &Local, s_i: V2, s_j: V2) -> motion::Path {
+    motion::sub(&x.point_path(1, s_j), &x.point_path(0, s_i))
+}
+
+/// η of the axis projection below, −((A_a w')ᵀ e)⃛* by the product rule.
+pub(super) fn projection_eta(x: &Local, axis: usize, s_a: V2, w: V2, s_b: V2) -> f64 {
+    let (a, b) = (axis, 1 - axis);
+    let e = motion::sub(&x.point_path(b, s_b), &x.point_path(a, s_a));
+    -motion::dot(&x.vector_path(a, w), &e)[3]
 }
 
 // Projection onto an axis fixed in one body, shared by the along coordinate,
@@ -230,6 +247,17 @@ impl Equations for RelativeCoord {
         };
         *out = [value + f_dd, 0.0, 0.0];
     }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let f3 = self.f.jet(x.t)[3];
+        let value = match self.coord {
+            RelCoord::X => -rel_path(x, self.s_i, self.s_j)[3][0],
+            RelCoord::Y => -rel_path(x, self.s_i, self.s_j)[3][1],
+            RelCoord::Phi => 0.0,
+            RelCoord::Along(v) => projection_eta(x, 0, self.s_i, unit(v), self.s_j),
+        };
+        *out = [value + f3, 0.0, 0.0];
+    }
 }
 
 impl Equations for RelativeDistance {
@@ -287,6 +315,12 @@ impl Equations for RelativeDistance {
             0.0,
             0.0,
         ];
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let d = rel_path(x, self.s_i, self.s_j);
+        let (dd, ff) = (motion::dot(&d, &d), motion::square(self.f.jet(x.t)));
+        *out = [ff[3] - dd[3], 0.0, 0.0];
     }
 }
 

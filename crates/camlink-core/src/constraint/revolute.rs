@@ -4,11 +4,13 @@
 //! Φ_q = [I  B_i s'_i | −I  −B_j s'_j]
 //! ν = 0
 //! γ = A_i s'_i φ̇_i² − A_j s'_j φ̇_j²
+//! η = −(r⃛_i^P* − r⃛_j^P*), r⃛^P* = −3 A s' φ̇ φ̈ − B s' φ̇³ (see [`motion`](crate::motion))
 //! (Φ_qᵀλ)_q: −λᵀA_i s'_i at (φ_i, φ_i), λᵀA_j s'_j at (φ_j, φ_j)
 
 use super::{CoordMask, Equations, Jac, Local, LocalBlock, Rows, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::math::{point, rot, rot_d, V2};
-use crate::model::BodyId;
+use crate::motion;
 
 #[derive(Clone, Debug)]
 pub struct Revolute {
@@ -84,6 +86,11 @@ impl Equations for Revolute {
         out[0] = ai[0] * wi * wi - aj[0] * wj * wj;
         out[1] = ai[1] * wi * wi - aj[1] * wj * wj;
         out[2] = 0.0;
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        let d = motion::sub(&x.point_path(0, self.s_i), &x.point_path(1, self.s_j));
+        *out = [-d[3][0], -d[3][1], 0.0];
     }
 }
 

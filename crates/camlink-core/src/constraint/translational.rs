@@ -10,15 +10,17 @@
 //!         (A_i v'_i⊥)ᵀ  (A_i v'_i⊥)ᵀB_j s'_j],
 //! γ₁ = (A_i v'_i⊥)ᵀd φ̇_i² + 2 φ̇_i (A_i v'_i)ᵀḋ
 //!      − (A_i v'_i⊥)ᵀ(A_i s'_i φ̇_i² − A_j s'_j φ̇_j²);
-//! Φ₂_q = [0 0 −1 | 0 0 1], γ₂ = 0; ν = 0.
+//! Φ₂_q = [0 0 −1 | 0 0 1], γ₂ = 0; ν = 0;
+//! η₁ = −((A_i v'_i⊥)ᵀd)⃛* by the product rule ([`motion`](crate::motion)),
+//! η₂ = 0.
 //!
 //! v'_i is normalised when the equations are evaluated, so Φ₁ is a distance
 //! in metres whatever the length of the given vector (which must not be zero).
 
-use super::relative::{projection_gamma, projection_jac, projection_phi, unit};
+use super::relative::{projection_eta, projection_gamma, projection_jac, projection_phi, unit};
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{perp, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct Translational {
@@ -85,6 +87,12 @@ impl Equations for Translational {
 
     fn gamma(&self, x: &Local, out: &mut Rows) {
         out[0] = projection_gamma(x, 0, self.s_i, self.normal(), self.s_j);
+        out[1] = 0.0;
+        out[2] = 0.0;
+    }
+
+    fn eta(&self, x: &Local, out: &mut Rows) {
+        out[0] = projection_eta(x, 0, self.s_i, self.normal(), self.s_j);
         out[1] = 0.0;
         out[2] = 0.0;
     }

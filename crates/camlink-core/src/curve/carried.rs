@@ -13,9 +13,49 @@
 //!   g̈* = A(−p′ φ̇² + 2 p″⊥ φ̇ ṡ + p‴ ṡ²).
 //!
 //! A point fixed in the body is the case p′ = p″ = p‴ = 0.
+//!
+//! For the jerk analysis, [`carried_paths`] gives the point and the tangent
+//! with their time derivatives to third order ([`motion`](crate::motion)),
+//! from the body-frame derivatives along the curve (jerks s⃛ left out):
+//! d/dt p = p′ṡ, d²/dt² p = p″ṡ² + p′s̈, d³/dt³ p* = p‴ṡ³ + 3p″ṡs̈, and the
+//! same one order up for p′ (which brings in p⁗).
 
-use super::CurveJet;
+use super::{CurveJet, CurveJet4};
 use crate::math::{add, perp, rot, scale, V2};
+use crate::motion::{on_body, rotated, Path};
+
+/// The carried point r + A p(s) and tangent A p′(s) with their time
+/// derivatives, for a body at (q, q̇, q̈) and the curve parameter's
+/// `[s, ṡ, s̈]`; `j` is the curve's jet at s.
+#[inline]
+pub fn carried_paths(
+    q: [f64; 3],
+    qd: [f64; 3],
+    qdd: [f64; 3],
+    j: &CurveJet4,
+    s: [f64; 3],
+) -> (Path, Path) {
+    let [_, sd, sdd] = s;
+    let CurveJet { p, d1, d2, d3 } = j.jet;
+    let d4 = j.d4;
+    let lin = |a: f64, u: V2, b: f64, v: V2| add(scale(a, u), scale(b, v));
+    let point = [
+        p,
+        scale(sd, d1),
+        lin(sd * sd, d2, sdd, d1),
+        lin(sd * sd * sd, d3, 3.0 * sd * sdd, d2),
+    ];
+    let tangent = [
+        d1,
+        scale(sd, d2),
+        lin(sd * sd, d3, sdd, d2),
+        lin(sd * sd * sd, d4, 3.0 * sd * sdd, d3),
+    ];
+    (
+        on_body(q, qd, qdd, &point),
+        rotated([q[2], qd[2], qdd[2]], &tangent),
+    )
+}
 
 /// Global position, tangent and their derivatives of a carried curve point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -66,6 +66,20 @@ impl Fourier {
         }
         out
     }
+
+    /// `[f, f′, f″, f‴, f⁗]` at α (rad); a term's t⁗ = w⁴ t.
+    pub fn jet4(&self, alpha: f64) -> [f64; 5] {
+        let [f0, f1, f2, f3] = self.jet(alpha);
+        let (s1, c1) = alpha.sin_cos();
+        let (mut s, mut c) = (s1, c1);
+        let mut f4 = 0.0;
+        for (k, (&ak, &bk)) in self.a.iter().zip(&self.b).enumerate() {
+            let w2 = ((k + 1) * (k + 1)) as f64;
+            f4 += w2 * w2 * (ak * c + bk * s);
+            (s, c) = (s * c1 + c * s1, c * c1 - s * s1);
+        }
+        [f0, f1, f2, f3, f4]
+    }
 }
 
 #[cfg(test)]

@@ -44,7 +44,7 @@ pub mod polar;
 pub mod search;
 pub mod spline;
 
-pub use carried::Carried;
+pub use carried::{carried_paths, Carried};
 pub use fourier::Fourier;
 pub use parametric::Parametric;
 pub use points::{parse_points_csv, read_points_csv};
@@ -59,6 +59,14 @@ pub struct CurveJet {
     pub d1: V2,
     pub d2: V2,
     pub d3: V2,
+}
+
+/// A [`CurveJet`] and the fourth derivative p⁗ = d⁴p/ds⁴ (body frame),
+/// which the jerk analysis of a curve contact needs.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct CurveJet4 {
+    pub jet: CurveJet,
+    pub d4: V2,
 }
 
 /// Why a curve could not be built.
@@ -103,6 +111,15 @@ impl Curve {
         }
     }
 
+    /// p(s) … p⁗(s) in the body frame at parameter `s` (closed curves wrap
+    /// `s`): [`jet`](Self::jet) one order further, for the jerk analysis.
+    pub fn jet4(&self, s: f64) -> CurveJet4 {
+        match self {
+            Curve::Polar(c) => c.jet4(s),
+            Curve::Parametric(c) => c.jet4(s),
+        }
+    }
+
     /// True for a closed curve (its parameter wraps).
     pub fn closed(&self) -> bool {
         match self {
@@ -144,6 +161,40 @@ impl Curve {
     pub fn curvature(&self, s: f64) -> f64 {
         let j = self.jet(s);
         cross(j.d1, j.d2) / norm(j.d1).powi(3)
+    }
+
+    /// +1 for a counterclockwise closed curve, −1 for a clockwise one (the
+    /// sign of its enclosed area ½∮ p × p′ ds, summed at 720 midpoints);
+    /// `None` for an open curve.
+    pub fn orientation(&self) -> Option<f64> {
+        const SAMPLES: usize = 720;
+        if !self.closed() {
+            return None;
+        }
+        let (s0, s1) = self.range();
+        let h = (s1 - s0) / SAMPLES as f64;
+        let area: f64 = (0..SAMPLES)
+            .map(|k| {
+                let j = self.jet(s0 + (k as f64 + 0.5) * h);
+                cross(j.p, j.d1)
+            })
+            .sum();
+        Some(if area < 0.0 { -1.0 } else { 1.0 })
+    }
+
+    /// The centre (m, body frame) and radius r (m) of a circular curve (a
+    /// roller: a constant-radius polar profile, a circle or an arc); `None`
+    /// for any other curve.
+    pub fn circle_centre(&self) -> Option<(V2, f64)> {
+        match self {
+            Curve::Polar(p) => match p.rho {
+                Radius::Const(r) => Some((p.q, r)),
+                _ => None,
+            },
+            Curve::Parametric(Parametric::Circle { c, r, .. })
+            | Curve::Parametric(Parametric::Arc { c, r, .. }) => Some((*c, *r)),
+            _ => None,
+        }
     }
 
     /// Parameter intervals (a, b) where the curve is concave, κ < 0 (below
@@ -336,6 +387,116 @@ mod tests {
         assert_eq!(r[0].0, 0.0);
         let x_end = c.jet(r[0].1).p[0];
         assert!((x_end - PI).abs() < 1e-3, "{x_end}");
+    }
+
+    /// Every curve source: polar circle, expression, Fourier series and
+    /// spline; parametric line, arc, circle, expression pair, open and
+    /// closed splines.
+    fn every_source() -> Vec<(Curve, (f64, f64))> {
+        let pts = [[0.0, 0.0], [0.4, 0.2], [0.9, 0.1], [1.3, 0.5], [1.6, 0.4]];
+        let radii: Vec<V2> = (0..7)
+            .map(|k| [k as f64 * TAU / 7.0, 1.0 + 0.1 * (k as f64).sin()])
+            .collect();
+        vec![
+            (Polar::circle([0.1, 0.2], 0.7).unwrap().into(), (-1.0, 7.0)),
+            (
+                Polar::expr([0.0, 0.1], "1 + 0.2*sin(2*a) + 0.05*exp(cos(a))")
+                    .unwrap()
+                    .into(),
+                (0.1, 6.0),
+            ),
+            (
+                Polar::fourier([0.1, 0.0], 1.0, &[0.2, 0.0, 0.05], &[0.1, 0.03])
+                    .unwrap()
+                    .into(),
+                (-3.0, 9.0),
+            ),
+            (
+                Polar::spline([0.0, 0.0], &radii).unwrap().into(),
+                (0.1, 6.0),
+            ),
+            (
+                Parametric::line([0.0, 0.0], [1.0, 2.0]).unwrap().into(),
+                (-1.0, 3.0),
+            ),
+            (
+                Parametric::arc([0.2, 0.0], 1.5, 0.2, 2.0).unwrap().into(),
+                (0.1, 2.6),
+            ),
+            (
+                Parametric::circle([0.0, 0.3], 0.4, 1.0).unwrap().into(),
+                (-2.0, 5.0),
+            ),
+            (
+                Parametric::expr(
+                    "0.3*cos(s) + s^3/10",
+                    "0.2*sin(s) + 0.1*s",
+                    -1.0,
+                    2.0,
+                    false,
+                )
+                .unwrap()
+                .into(),
+                (-0.9, 1.9),
+            ),
+            (Parametric::spline(&pts, false).unwrap().into(), (0.05, 1.8)),
+            (Parametric::spline(&pts, true).unwrap().into(), (-1.0, 5.0)),
+        ]
+    }
+
+    /// jet4 extends jet: the same p … p‴, and p⁗ against central
+    /// differences of p‴ (on a polar spline at parameters away from the
+    /// knots, where ρ‴ jumps); a parametric cubic spline's p⁗ is exactly
+    /// zero.
+    #[test]
+    fn fourth_derivative_of_every_source_matches_differences() {
+        for (c, (s0, s1)) in every_source() {
+            for k in 0..23 {
+                let s = s0 + (s1 - s0) * (k as f64 + 0.5) / 23.0;
+                let (j, j4) = (c.jet(s), c.jet4(s));
+                let close = |a: V2, b: V2, tol: f64| {
+                    (0..2).all(|i| (a[i] - b[i]).abs() <= tol * (1.0 + b[i].abs()))
+                };
+                assert!(
+                    close(j4.jet.p, j.p, 1e-13) && close(j4.jet.d1, j.d1, 1e-13),
+                    "{c:?} at {s}"
+                );
+                assert!(
+                    close(j4.jet.d2, j.d2, 1e-13) && close(j4.jet.d3, j.d3, 1e-13),
+                    "{c:?} at {s}"
+                );
+                let h = 1e-5;
+                let (p, m) = (c.jet(s + h).d3, c.jet(s - h).d3);
+                let fd = [(p[0] - m[0]) / (2.0 * h), (p[1] - m[1]) / (2.0 * h)];
+                let spline = matches!(&c, Curve::Parametric(Parametric::Spline(_)));
+                if spline {
+                    assert_eq!(j4.d4, [0.0; 2], "{c:?} at {s}");
+                } else {
+                    assert!(
+                        close(j4.d4, fd, 1e-6),
+                        "{c:?} at {s}: {:?} vs {fd:?}",
+                        j4.d4
+                    );
+                }
+            }
+        }
+    }
+
+    /// p⁗ of a circle of radius r about c, parametrised by arc length from
+    /// angle θ₀: u(θ)/r³, θ = θ₀ + s/r; of a polar circle: ρ u(α).
+    #[test]
+    fn fourth_derivative_of_circles_in_closed_form() {
+        let (r, th0, s) = (0.4, 1.0, 0.9);
+        let c = Curve::from(Parametric::circle([0.0, 0.3], r, th0).unwrap());
+        let th = th0 + s / r;
+        let d4 = c.jet4(s).d4;
+        assert!((d4[0] - th.cos() / r.powi(3)).abs() < 1e-12);
+        assert!((d4[1] - th.sin() / r.powi(3)).abs() < 1e-12);
+        let c = Curve::from(Polar::circle([0.1, 0.2], 0.7).unwrap());
+        let d4 = c.jet4(2.0).d4;
+        assert!(
+            (d4[0] - 0.7 * 2f64.cos()).abs() < 1e-15 && (d4[1] - 0.7 * 2f64.sin()).abs() < 1e-15
+        );
     }
 
     #[test]

@@ -9,7 +9,8 @@
 //! - line from P₀ to P₁: p = P₀ + s e, e = (P₁ − P₀)/L;
 //! - arc of radius r about C from angle θ₀ to θ₁ (rad, body frame; θ₁ < θ₀
 //!   runs clockwise): θ(s) = θ₀ + σ s/r, σ = sign(θ₁ − θ₀),
-//!   p = C + r u(θ), p′ = σ u⊥(θ), p″ = −u(θ)/r, p‴ = −σ u⊥(θ)/r²;
+//!   p = C + r u(θ), p′ = σ u⊥(θ), p″ = −u(θ)/r, p‴ = −σ u⊥(θ)/r²,
+//!   p⁗ = u(θ)/r³;
 //! - circle: the closed counterclockwise arc from θ₀ round to θ₀ + 2π,
 //!   period 2πr;
 //! - expressions x(s), y(s) on [s₀, s₁], open or closed (period s₁ − s₀);
@@ -20,7 +21,7 @@ use std::sync::Arc;
 
 use camlink_expr::Expr;
 
-use super::{CurveError, CurveJet, PlanarSpline};
+use super::{CurveError, CurveJet, CurveJet4, PlanarSpline};
 use crate::math::{norm, scale, sub, V2};
 
 /// A parametric curve in a body frame.
@@ -186,6 +187,53 @@ impl Parametric {
             }
             Parametric::Spline(sp) => sp.jet(s),
         }
+    }
+
+    /// p(s) … p⁗(s) in the body frame.
+    pub fn jet4(&self, s: f64) -> CurveJet4 {
+        match self {
+            Parametric::Line { .. } => CurveJet4 {
+                jet: self.jet(s),
+                d4: [0.0; 2],
+            },
+            Parametric::Arc {
+                c, r, start, sigma, ..
+            } => arc_jet4(*c, *r, *start, *sigma, s),
+            Parametric::Circle { c, r, start } => arc_jet4(*c, *r, *start, 1.0, s),
+            Parametric::Expr {
+                x,
+                y,
+                s0,
+                s1,
+                closed,
+            } => {
+                let s = if *closed {
+                    s0 + (s - s0).rem_euclid(s1 - s0)
+                } else {
+                    s
+                };
+                let (x, y) = (x.jet4(s), y.jet4(s));
+                CurveJet4 {
+                    jet: CurveJet {
+                        p: [x[0], y[0]],
+                        d1: [x[1], y[1]],
+                        d2: [x[2], y[2]],
+                        d3: [x[3], y[3]],
+                    },
+                    d4: [x[4], y[4]],
+                }
+            }
+            Parametric::Spline(sp) => sp.jet4(s),
+        }
+    }
+}
+
+/// Jet of the arc to fourth order: p⁗ = u(θ)/r³.
+fn arc_jet4(c: V2, r: f64, start: f64, sigma: f64, s: f64) -> CurveJet4 {
+    let (sn, cs) = (start + sigma * s / r).sin_cos();
+    CurveJet4 {
+        jet: arc_jet(c, r, start, sigma, s),
+        d4: scale(1.0 / (r * r * r), [cs, sn]),
     }
 }
 

@@ -7,6 +7,7 @@
 //! g′(α) = ds′/dα = ρ′ u + ρ u⊥
 //! s″ = (ρ″ − ρ) u + 2ρ′ u⊥
 //! s‴ = (ρ‴ − 3ρ′) u + (3ρ″ − ρ) u⊥
+//! s⁗ = (ρ⁗ − 6ρ″ + ρ) u + (4ρ‴ − 4ρ′) u⊥
 //!
 //! ρ (m) is evaluated at α wrapped into [0, 2π), the range on which a
 //! piecewise profile such as the seed's example 3.4.3 is written.
@@ -16,7 +17,7 @@ use std::sync::Arc;
 
 use camlink_expr::Expr;
 
-use super::{CurveError, CurveJet, Fourier, Spline};
+use super::{CurveError, CurveJet, CurveJet4, Fourier, Spline};
 use crate::math::V2;
 
 /// The radius function ρ(α) (m) of a polar profile.
@@ -43,6 +44,17 @@ impl Radius {
             Radius::Expr(e) => e.jet(a),
             Radius::Fourier(f) => f.jet(a),
             Radius::Spline(s) => s.jet(a),
+        }
+    }
+
+    /// `[ρ, ρ′, ρ″, ρ‴, ρ⁗]` at α (rad).
+    pub fn jet4(&self, alpha: f64) -> [f64; 5] {
+        let a = alpha.rem_euclid(TAU);
+        match self {
+            Radius::Const(r) => [*r, 0.0, 0.0, 0.0, 0.0],
+            Radius::Expr(e) => e.jet4(a),
+            Radius::Fourier(f) => f.jet4(a),
+            Radius::Spline(s) => s.jet4(a),
         }
     }
 }
@@ -114,6 +126,23 @@ impl Polar {
             d1: at(r1, r),
             d2: at(r2 - r, 2.0 * r1),
             d3: at(r3 - 3.0 * r1, 3.0 * r2 - r),
+        }
+    }
+
+    /// s′ … s′_αααα at α (rad).
+    pub fn jet4(&self, alpha: f64) -> CurveJet4 {
+        let [r, r1, r2, r3, r4] = self.rho.jet4(alpha);
+        let (sn, cs) = alpha.sin_cos();
+        let at = |cu: f64, cp: f64| [cu * cs - cp * sn, cu * sn + cp * cs];
+        let p = at(r, 0.0);
+        CurveJet4 {
+            jet: CurveJet {
+                p: [self.q[0] + p[0], self.q[1] + p[1]],
+                d1: at(r1, r),
+                d2: at(r2 - r, 2.0 * r1),
+                d3: at(r3 - 3.0 * r1, 3.0 * r2 - r),
+            },
+            d4: at(r4 - 6.0 * r2 + r, 4.0 * (r3 - r1)),
         }
     }
 }

@@ -23,7 +23,7 @@ use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Mat;
 
-use super::{CurveError, CurveJet};
+use super::{CurveError, CurveJet, CurveJet4};
 use crate::math::{norm, sub, V2};
 
 /// A cubic spline y(x) through given points, periodic or open.
@@ -193,6 +193,12 @@ impl Spline {
             6.0 * d,
         ]
     }
+
+    /// `[y, y′, y″, y‴, y⁗]` at `x`: a cubic's fourth derivative is zero.
+    pub fn jet4(&self, x: f64) -> [f64; 5] {
+        let [y0, y1, y2, y3] = self.jet(x);
+        [y0, y1, y2, y3, 0.0]
+    }
 }
 
 /// Finite values and strictly increasing x.
@@ -348,6 +354,14 @@ impl PlanarSpline {
             d1: [x[1], y[1]],
             d2: [x[2], y[2]],
             d3: [x[3], y[3]],
+        }
+    }
+
+    /// p(s) … p⁗(s): p⁗ = 0 on every cubic piece.
+    pub fn jet4(&self, s: f64) -> CurveJet4 {
+        CurveJet4 {
+            jet: self.jet(s),
+            d4: [0.0; 2],
         }
     }
 }

@@ -14,6 +14,7 @@
 use super::project;
 use super::system::{Augmented, System};
 use crate::diagnose::{dense_jacobian, redundant_equations, svd_rank};
+use crate::run::{Kind, Warning};
 
 /// The redundant equations of a model and the joints they involve.
 #[derive(Clone, Debug, PartialEq)]
@@ -51,7 +52,10 @@ impl Redundant {
             .filter(|&k| angles[k])
             .fold(0.0f64, |a, k| a.max(v[k].abs()))
             .max(1e-300);
-        moved.iter_mut().zip(&v).for_each(|(x, d)| *x += 0.05 * d / big);
+        moved
+            .iter_mut()
+            .zip(&v)
+            .for_each(|(x, d)| *x += 0.05 * d / big);
         project::positions(sys, aug, &mut moved, t, 1e-12, 100).ok()?;
         let found = redundant_equations(sys.model, &sys.asm, &moved, t);
         if found.is_empty() {
@@ -80,14 +84,19 @@ impl Redundant {
         })
     }
 
-    /// The warning of a run on a redundant model.
-    pub fn warning(&self) -> String {
-        format!(
-            "{} redundant constraint equation(s) ({}): the motion is determined, but the \
-             reactions of joints {} are not unique; the minimum-norm split is reported",
-            self.equations.len(),
-            self.equations.join(", "),
-            self.joints.join(", ")
-        )
+    /// The warning of a run on a redundant model, at time `t` (s).
+    pub fn warning(&self, t: f64) -> Warning {
+        Warning {
+            kind: Kind::Redundant,
+            time: t,
+            joints: self.joints.clone(),
+            message: format!(
+                "{} redundant constraint equation(s) ({}): the motion is determined, but the \
+                 reactions of joints {} are not unique; the minimum-norm split is reported",
+                self.equations.len(),
+                self.equations.join(", "),
+                self.joints.join(", ")
+            ),
+        }
     }
 }

@@ -35,7 +35,7 @@
 //! [`EPS_REL`] · max(d, j²/d), d the largest diagonal entry of D and j the
 //! largest entry of Φ_q: S_ε⁻¹ S then differs from the identity by about
 //! ε/σ² in a constraint direction whose singular value of
-//! Φ_q D^{-1/2} is σ, some 1e-10 in a healthy direction, and by ≈ 1 in
+//! Φ_q D^{-1/2} is σ, some 1e-8 in a healthy direction, and by ≈ 1 in
 //! a direction that is lost (σ = 0), where the multipliers are not
 //! determined. Near, not at, a singular position S itself is factored:
 //! S_ε would converge as slowly as 1 − σ²/ε there. Newton iterations
@@ -48,16 +48,16 @@
 
 use std::collections::HashMap;
 
-use super::force::{Applied, BodyJac, BodyQ};
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
-use crate::linsolve::{Singular, SystemMatrix};
+use crate::force::{Applied, BodyJac, BodyQ};
+use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
 
 /// The regularisation ε of the multiplier block relative to
 /// max(d, j²/d) (see the module documentation).
-pub const EPS_REL: f64 = 1e-10;
+pub const EPS_REL: f64 = 1e-8;
 
 /// Passes of [`Augmented::solve_refined`]: each reduces the error in a
 /// healthy direction by about [`EPS_REL`].
@@ -283,7 +283,7 @@ const TRASH: usize = usize::MAX;
 const OWN0: usize = 6;
 
 impl Augmented {
-    pub fn new(s: &System, q: &[f64]) -> Self {
+    pub fn new(s: &System, q: &[f64]) -> Result<Self, SetupError> {
         let (n, m) = (s.n(), s.m());
         let mut map: HashMap<(usize, usize), usize> = HashMap::new();
         let mut pattern = Vec::new();
@@ -377,7 +377,7 @@ impl Augmented {
         });
         // The multiplier block's diagonal, −ε.
         let mult_slots: Vec<usize> = (0..m).map(|r| slot(n + r, n + r)).collect();
-        let sys = SystemMatrix::new(n + m, &pattern);
+        let sys = SystemMatrix::try_new(n + m, &pattern)?;
         let vals = vec![0.0; pattern.len() + 1];
         let trash = vals.len() - 1;
         for b in &mut body_slots {
@@ -385,7 +385,7 @@ impl Augmented {
                 *k = trash;
             }
         }
-        Augmented {
+        Ok(Augmented {
             n,
             m,
             vals,
@@ -401,7 +401,7 @@ impl Augmented {
             regularised: false,
             work: [vec![0.0; n + m], vec![0.0; n + m]],
             jac: [Jac::default(); 2],
-        }
+        })
     }
 
     /// Dimension n + m.
