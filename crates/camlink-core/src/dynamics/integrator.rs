@@ -336,7 +336,7 @@ impl<'m> Integrator<'m> {
         // lost direction are not determined, and the ones carried over can
         // be arbitrarily large: start from the consistent q̈ and the
         // minimum-norm λ instead.
-        if self.aug.eps() > 0.0 {
+        if self.at_singular_position() {
             self.accelerations()?;
             self.h_prev = 0.0;
         }
@@ -479,11 +479,10 @@ impl<'m> Integrator<'m> {
             } else {
                 f64::INFINITY
             };
-            // Where S has lost rank (S_ε factored: a singular position, or
-            // redundant equations) the lost direction converges as slowly
-            // as an augmented-Lagrangian update; the iteration stops when
-            // the position corrections are within tol.
-            let lost = self.aug.eps() > 0.0;
+            // At a singular position (S_ε factored) the lost direction
+            // converges as slowly as an augmented-Lagrangian update; the
+            // iteration stops when the position corrections are within tol.
+            let lost = self.at_singular_position();
             let mut dmax = 0.0f64;
             let mut converged = true;
             for k in 0..n {
@@ -537,6 +536,13 @@ impl<'m> Integrator<'m> {
         }
         self.aug.invalidate();
         Ok(false)
+    }
+
+    /// True when the last factorization found S singular in a model
+    /// without redundant equations (which always factors S_ε, its lost
+    /// directions being exact and harmless): a singular position.
+    fn at_singular_position(&self) -> bool {
+        self.aug.eps() > 0.0 && self.redundant.is_none()
     }
 
     /// The rounding noise of a Newton correction at the current iterate
