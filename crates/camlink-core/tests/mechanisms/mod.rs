@@ -5,6 +5,7 @@
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::constraint::translational::Translational;
+use camlink_core::run::Table;
 use camlink_core::{Body, BodyId, Model, Point, TimeFn};
 
 /// Slider-crank: crank a, rod b (m).
@@ -291,4 +292,16 @@ pub fn parallelogram_reference(kappa: f64, th0: f64, times: &[f64]) -> Vec<f64> 
         out.push(y[0]);
     }
     out
+}
+
+/// Largest |θ − θ_exact| (rad) of crank 0 of a [`parallelogram_chain`]
+/// released at rest from `th0`, over the rows of `table` (channel
+/// `crank0.phi` against [`parallelogram_reference`], gravity g in m/s²).
+pub fn parallelogram_error(table: &Table, n: usize, crank: CrankMass, th0: f64, g: f64) -> f64 {
+    let want = parallelogram_reference(parallelogram_kappa(n, crank, g), th0, &table.t);
+    let th = table.channel("crank0.phi").expect("crank0.phi");
+    th.iter()
+        .zip(&want)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
 }
