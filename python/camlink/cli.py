@@ -14,10 +14,14 @@ import sys
 from pathlib import Path
 
 import camlink
+from camlink import cam_cli, cli_convert, cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+#: Subcommands registered from their own modules.
+COMMANDS: dict[str, cli_visuals.Command] = {}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -35,7 +39,10 @@ def _parser() -> argparse.ArgumentParser:
         "kinematics, inverse_dynamics, equilibrium or dynamics), or the one given "
         "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
-    run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    run.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     run.add_argument(
         "-a",
         "--analysis",
@@ -94,10 +101,16 @@ def _parser() -> argparse.ArgumentParser:
         "check",
         help="count bodies, coordinates and constraints; find the degrees of freedom",
     )
-    check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    check.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    check.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     check.add_argument("--json", action="store_true", help="print the report as JSON")
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    cli_convert.add_parser(sub)
+    COMMANDS.update(cli_visuals.add_parsers(sub))
+    cam_cli.add_parser(sub)
     return p
 
 
@@ -112,7 +125,7 @@ def _os_message(e: OSError) -> str:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
     settings = {
@@ -129,8 +142,15 @@ def _cmd_run(args: argparse.Namespace) -> int:
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)
+    from camlink.progress import Progress
+
+    total = 1 if kind == "equilibrium" else len(model.times(args.t_end, args.step))
     try:
-        res = model.run(analysis=kind, output=output, **given)
+        with Progress(total, f"{kind} of {model.name}", quiet=args.quiet) as bar:
+            res = model.run(analysis=kind, output=output, on_rows=bar.update, **given)
+    except KeyboardInterrupt:
+        print(f"camlink: interrupted; the steps computed so far are in {output}", file=sys.stderr)
+        return 130
     except AnalysisError as e:
         _error(str(e))
         details = []
@@ -210,7 +230,7 @@ def _verdict(dof: int, redundant: bool) -> str:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     r = model.check()
     design = model.design_check()
     if args.json:
@@ -251,7 +271,14 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    command = {
+        "run": _cmd_run,
+        "check": _cmd_check,
+        "schema": _cmd_schema,
+        "convert": cli_convert.run,
+        **COMMANDS,
+        "cam": cam_cli.run,
+    }[args.command]
     try:
         return command(args)
     except ModelError as e:

@@ -12,14 +12,14 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "curve", "function", "motion", "newton"],
+    &["math", "cam", "curve", "function", "motion", "newton"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
     &["contact"],
     &["run"],
-    &["design", "diagnose"],
-    &["kinematics"],
+    &["design", "diagnose", "cam_limits"],
+    &["kinematics", "cam_mechanism"],
     &["dynamics"],
 ];
 

@@ -8,6 +8,7 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
+pub mod adm;
 mod error;
 mod eval;
 pub mod file;
@@ -50,6 +51,22 @@ impl Format {
 pub struct Loaded {
     pub model: camlink_core::Model,
     pub analysis: AnalysisSpec,
+    /// Drawn shapes that the file gives for bodies (`outline`).
+    pub outlines: Vec<Outline>,
+}
+
+/// A body's drawn outline from the model file, in the body frame.
+#[derive(Clone, Debug)]
+pub struct Outline {
+    pub body: String,
+    pub shape: OutlineShape,
+}
+
+/// A closed polyline (corners, m) or a closed curve.
+#[derive(Clone, Debug)]
+pub enum OutlineShape {
+    Polyline(Vec<camlink_core::math::V2>),
+    Curve(camlink_core::curve::Curve),
 }
 
 impl Loaded {
@@ -62,25 +79,7 @@ impl Loaded {
         self.analysis
             .points
             .iter()
-            .map(|full| {
-                let (body, point) = full
-                    .split_once('.')
-                    .ok_or_else(|| format!("expected \"body.point\", found '{full}'"))?;
-                let id = self
-                    .model
-                    .body_id(body)
-                    .ok_or_else(|| format!("'{full}': no body named '{body}'"))?;
-                let s = self
-                    .model
-                    .body(id)
-                    .point(point)
-                    .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::run::PointOutput {
-                    body: id,
-                    name: full.clone(),
-                    s,
-                })
-            })
+            .map(|full| camlink_core::run::PointOutput::named(&self.model, full))
             .collect()
     }
 }
@@ -243,6 +242,14 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             "unknown model file type; expected a .toml or .json file",
         ));
     };
+    let text = read_text(path)?;
+    load_str(&text, format, &source)
+}
+
+/// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
+/// name the file.
+pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+    let source = path.display().to_string();
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
     if meta.len() > MAX_FILE_SIZE {
@@ -267,10 +274,10 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
-    load_str(&text, format, &source)
+    Ok(text)
 }
 
-fn too_large(source: &str, len: Option<u64>) -> LoadError {
+pub(crate) fn too_large(source: &str, len: Option<u64>) -> LoadError {
     let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,
@@ -299,14 +306,18 @@ pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, Load
         .filter(|s| !s.is_empty())
         .unwrap_or("model");
     let base = Path::new(source).parent().unwrap_or(Path::new(""));
-    let (model, analysis) = resolve::resolve(&file, stem, base).map_err(|f| {
+    let (model, analysis, outlines) = resolve::resolve(&file, stem, base).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),
         };
         at(text, source, span.map(|s| s.start), Some(f.path), f.message)
     })?;
-    Ok(Loaded { model, analysis })
+    Ok(Loaded {
+        model,
+        analysis,
+        outlines,
+    })
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.

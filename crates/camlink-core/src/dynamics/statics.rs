@@ -248,7 +248,7 @@ pub fn run(
         t,
         &mut values[nk..],
     );
-    sink.row(t, &values);
+    sink.row(t, &values).map_err(|s| s.at(t))?;
     let mut aug = Augmented::new(&s, &e.q).map_err(|e| AnalysisError {
         kind: Kind::Internal,
         time: t,
