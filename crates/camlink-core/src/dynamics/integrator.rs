@@ -355,9 +355,12 @@ impl<'m> Integrator<'m> {
         Err(self.error(
             Kind::NotConverged,
             &format!(
-                "Newton did not converge in {} iterations at step {h:.3e} s \
-             (a stiffer problem needs a smaller step)",
-                self.settings.max_iter
+                "Newton did not converge in {} iterations at step {h:.3e} s, nor in {} \
+                 with a fresh matrix each iteration: near a singular position (a toggle, \
+                 a dead centre, the flat position of a parallelogram) try another step h; \
+                 with stiff springs or contacts, a smaller h",
+                self.settings.max_iter,
+                SINGULAR_ITER * self.settings.max_iter
             ),
         ))
     }
