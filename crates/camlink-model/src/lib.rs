@@ -51,6 +51,22 @@ impl Format {
 pub struct Loaded {
     pub model: camlink_core::Model,
     pub analysis: AnalysisSpec,
+    /// Drawn shapes that the file gives for bodies (`outline`).
+    pub outlines: Vec<Outline>,
+}
+
+/// A body's drawn outline from the model file, in the body frame.
+#[derive(Clone, Debug)]
+pub struct Outline {
+    pub body: String,
+    pub shape: OutlineShape,
+}
+
+/// A closed polyline (corners, m) or a closed curve.
+#[derive(Clone, Debug)]
+pub enum OutlineShape {
+    Polyline(Vec<camlink_core::math::V2>),
+    Curve(camlink_core::curve::Curve),
 }
 
 impl Loaded {
@@ -290,14 +306,18 @@ pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, Load
         .filter(|s| !s.is_empty())
         .unwrap_or("model");
     let base = Path::new(source).parent().unwrap_or(Path::new(""));
-    let (model, analysis) = resolve::resolve(&file, stem, base).map_err(|f| {
+    let (model, analysis, outlines) = resolve::resolve(&file, stem, base).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),
         };
         at(text, source, span.map(|s| s.start), Some(f.path), f.message)
     })?;
-    Ok(Loaded { model, analysis })
+    Ok(Loaded {
+        model,
+        analysis,
+        outlines,
+    })
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.

@@ -7,6 +7,8 @@
 //! No Rust panic crosses into Python: every entry point runs under
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
+mod cam;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
@@ -24,7 +26,7 @@ use camlink_core::run::{
     Summary,
 };
 use camlink_core::Equations;
-use camlink_model::{AnalysisType, Format, Loaded};
+use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -301,6 +303,114 @@ impl Model {
             loaded.model.add_force(Force::new(name, callback));
             Ok(Model { loaded })
         })
+    }
+
+    /// What a drawing needs of every joint, in model order: a list of dicts
+    /// with `name`, `kind`, `bodies` and `driver`, and by kind the points
+    /// `s_i`, `s_j` (m, body frames), axes `v_i`, `u_j`, pitch radii
+    /// `radius_i`, `radius_j`, `radius` (m), `internal`, and curves
+    /// `curve_i`, `curve_j` as dicts of `closed` and `points` (n × 2, body
+    /// frame, m) within `tol` (m) of the exact curve.
+    #[pyo3(signature = (tol = 1e-4))]
+    fn geometry<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyList>> {
+        use camlink_core::constraint::gear::GearKind;
+        use camlink_core::Constraint as C;
+        guard(|| {
+            let model = &self.loaded.model;
+            let list = PyList::empty(py);
+            for j in &model.joints {
+                let d = PyDict::new(py);
+                let [bi, bj] = j.constraint.bodies();
+                d.set_item("name", &j.name)?;
+                d.set_item("kind", j.constraint.kind())?;
+                d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+                d.set_item("driver", j.driver)?;
+                match &j.constraint {
+                    C::Revolute(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::Translational(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("v_i", c.v_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::RevoluteRevolute(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::RevoluteTranslational(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("v_j", c.v_j)?;
+                    }
+                    C::Gear(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("radius_i", c.radius_i)?;
+                        d.set_item("radius_j", c.radius_j)?;
+                        d.set_item("internal", matches!(c.kind, GearKind::Internal))?;
+                    }
+                    C::RackPinion(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("radius", c.radius)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("u_j", c.u_j)?;
+                    }
+                    C::CamFollower(c) => {
+                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
+                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
+                    }
+                    C::FlatFollower(c) => {
+                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("u_j", c.u_j)?;
+                    }
+                    C::PointFollower(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
+                    }
+                    C::AbsoluteCoord(_)
+                    | C::AbsoluteDistance(_)
+                    | C::RelativeCoord(_)
+                    | C::RelativeDistance(_) => {}
+                }
+                list.append(d)?;
+            }
+            Ok(list)
+        })
+    }
+
+    /// The bodies' drawn outlines from the model file: body name → corners
+    /// (n × 2, body frame, m) of a closed polyline; a curve outline is
+    /// sampled within `tol` (m).
+    #[pyo3(signature = (tol = 1e-4))]
+    fn outlines<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| {
+            let d = PyDict::new(py);
+            for o in &self.loaded.outlines {
+                let flat: Vec<f64> = match &o.shape {
+                    OutlineShape::Polyline(p) => p.iter().flat_map(|v| [v[0], v[1]]).collect(),
+                    OutlineShape::Curve(c) => c
+                        .sample(tol)
+                        .iter()
+                        .flat_map(|(_, v)| [v[0], v[1]])
+                        .collect(),
+                };
+                d.set_item(&o.body, to_array(py, flat, 2)?)?;
+            }
+            Ok(d)
+        })
+    }
+
+    /// The ground's named points: name → [x, y] (m).
+    #[getter]
+    fn ground_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let points = PyDict::new(py);
+        for p in &self.loaded.model.bodies[0].points {
+            points.set_item(&p.name, p.s)?;
+        }
+        Ok(points)
     }
 
     /// Counts of bodies, coordinates and equations, every constraint with
@@ -587,6 +697,21 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
 /// `joints`, `message`),
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
+/// A curve sampled for drawing: `closed` and `points` (n × 2, body frame,
+/// m) within `tol` (m) of the curve.
+fn curve_dict<'py>(
+    py: Python<'py>,
+    curve: &camlink_core::curve::Curve,
+    tol: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let pts = curve.sample(tol);
+    let flat: Vec<f64> = pts.iter().flat_map(|(_, p)| [p[0], p[1]]).collect();
+    d.set_item("closed", curve.closed())?;
+    d.set_item("points", to_array(py, flat, 2)?)?;
+    Ok(d)
+}
+
 fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
@@ -772,6 +897,7 @@ fn json_schema() -> PyResult<String> {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
+    m.add_class::<cam::CamCore>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
