@@ -13,6 +13,7 @@ from typing import Any
 import ezdxf
 import numpy as np
 import pytest
+
 from camlink import cam_cli, cam_design, cam_export, cam_plots, cli
 from camlink._core import CamCore
 from conftest import ROOT
