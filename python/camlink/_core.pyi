@@ -11,7 +11,16 @@ from camlink.results import Results
 
 __version__: str
 
-__all__ = ["AnalysisError", "CamCore", "Model", "ModelError", "__version__", "json_schema", "time_grid"]
+__all__ = [
+    "AnalysisError",
+    "CamCore",
+    "Model",
+    "ModelError",
+    "__version__",
+    "convert_adm",
+    "json_schema",
+    "time_grid",
+]
 
 _OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
 _RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
