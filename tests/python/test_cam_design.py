@@ -264,7 +264,7 @@ def test_tool_undercut_where_concave_tighter_than_the_tool() -> None:
         assert -1.1 * tightest < r < 0
 
 
-def _pixel(fig, ax, xy) -> tuple[int, int]:
+def _pixel(fig: Any, ax: Any, xy: Any) -> tuple[int, int]:
     fig.canvas.draw()
     x, y = ax.transData.transform(xy)
     h = fig.canvas.get_width_height()[1]
