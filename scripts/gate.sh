@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole gate, as CI runs it: Rust format, lints and tests, then the
-# Python package built from source and its tests.
+# Python package built from source, its tests, lints, types and stub.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -25,3 +25,10 @@ fi
 # uv builds the extension (release, via maturin) and installs the locked
 # dependencies; --locked fails if uv.lock is out of date with pyproject.toml.
 "${uv[@]}" run --locked pytest -q tests/python
+
+echo "== ruff, mypy, stubtest"
+# Lints and types of the package and its tests (configured in
+# pyproject.toml), and the binding's stub against the compiled module.
+"${uv[@]}" run --locked ruff check python tests
+"${uv[@]}" run --locked mypy
+"${uv[@]}" run --locked python -m mypy.stubtest camlink._core

@@ -10,7 +10,8 @@
 
 use std::collections::HashMap;
 
-use camlink_core::kinematics::{self, Settings, Table};
+use camlink_core::kinematics;
+use camlink_core::run::{Settings, Table};
 use camlink_core::Model;
 use camlink_expr::{eval_constant, Expr};
 use camlink_model::{load_str, Format};

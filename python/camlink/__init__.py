@@ -13,16 +13,20 @@ time series back::
 
 from camlink._core import AnalysisError, ModelError, __version__
 from camlink.builder import Mechanism
+from camlink.errors import ERROR_KINDS, WARNING_KINDS, RunWarning
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
 
 __all__ = [
     "ANALYSES",
+    "ERROR_KINDS",
+    "WARNING_KINDS",
     "AnalysisError",
     "Mechanism",
     "Model",
     "ModelError",
     "Results",
+    "RunWarning",
     "__version__",
     "json_schema",
     "load",

@@ -2,7 +2,7 @@
 
 from collections.abc import Callable, Sequence
 from os import PathLike
-from typing import Any
+from typing import Any, TypeAlias, final
 
 import numpy as np
 import numpy.typing as npt
@@ -11,8 +11,10 @@ from camlink.results import Results
 
 __version__: str
 
-OnChunk = Callable[[list[str], npt.NDArray[np.float64]], object]
-RunOutput = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+__all__ = ["AnalysisError", "Model", "ModelError", "__version__", "json_schema", "time_grid"]
+
+_OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
+_RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
@@ -20,6 +22,7 @@ class ModelError(ValueError):
 class AnalysisError(RuntimeError):
     """An analysis could not proceed; carries the results computed so far."""
 
+    kind: str
     time: float
     joints: list[str]
     residual: float
@@ -29,6 +32,7 @@ class AnalysisError(RuntimeError):
     results: Results
     output: PathLike[str] | None
 
+@final
 class Model:
     @staticmethod
     def load(path: str | PathLike[str]) -> Model: ...
@@ -59,44 +63,48 @@ class Model:
     def run_kinematics(
         self,
         times: npt.NDArray[np.float64],
-        tol: float = 1e-10,
-        max_iter: int = 25,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
         jerk: bool = False,
-    ) -> RunOutput: ...
+    ) -> _RunOutput: ...
     def run_inverse_dynamics(
         self,
         times: npt.NDArray[np.float64],
-        tol: float = 1e-10,
-        max_iter: int = 25,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
     def run_equilibrium(
         self,
         time: float = 0.0,
-        tol: float = 1e-10,
-        max_iter: int = 100,
+        *,
+        tol: float = ...,
+        max_iter: int = ...,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
     def run_dynamics(
         self,
         times: npt.NDArray[np.float64],
-        h: float = 1e-3,
-        rho_inf: float = 0.8,
-        tol: float = 1e-6,
-        max_iter: int = 12,
-        projection_tol: float = 1e-12,
+        *,
+        h: float = ...,
+        rho_inf: float = ...,
+        tol: float = ...,
+        max_iter: int = ...,
+        projection_tol: float = ...,
         adaptive: tuple[float, float, float] | None = None,
         points: Sequence[str] = ...,
-        on_chunk: OnChunk | None = None,
-        chunk_rows: int = 1024,
-    ) -> RunOutput: ...
+        on_chunk: _OnChunk | None = None,
+        chunk_rows: int = ...,
+    ) -> _RunOutput: ...
 
 def json_schema() -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...

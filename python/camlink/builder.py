@@ -20,15 +20,16 @@ import json
 import math
 import numbers
 from collections.abc import Callable, Sequence
-from typing import Any, Union
+from typing import Any, TypeAlias
 
 from camlink.model import Model, loads
+from camlink.results import Results
 
 __all__ = ["Mechanism"]
 
-Num = Union[float, int, str]
-Vec2 = Union[tuple[Num, Num], list[Num]]
-PointRef = Union[str, Vec2]
+Num: TypeAlias = float | int | str
+Vec2: TypeAlias = tuple[Num, Num] | list[Num]
+PointRef: TypeAlias = str | Vec2
 
 
 def _value(v: Any) -> Any:
@@ -317,7 +318,7 @@ class Mechanism:
             model = model.with_force(name, body, f)
         return model
 
-    def run(self, **kwargs: Any):
+    def run(self, **kwargs: Any) -> Results:
         """`build()` then `Model.run(**kwargs)`."""
         return self.build().run(**kwargs)
 

@@ -14,9 +14,10 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import AnalysisError, ModelError
-from camlink.results import Results, open_writer
+from camlink.errors import warnings_from
+from camlink.results import LiftOffRecord, Results, RunSummary, open_writer
 
-__all__ = ["ANALYSES", "Model", "load", "loads", "json_schema"]
+__all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 
 #: Rows computed between two writes of a run's ``output`` file.
 CHUNK_ROWS = 1024
@@ -205,12 +206,13 @@ class Model:
                 hint = f" (it is a setting of {', '.join(users)})" if users else ""
                 raise ModelError(f"`{key}` does not apply to the {kind} analysis{hint}")
         kwargs = {k: v for k, v in given.items() if k in allowed}
-        method = {
+        methods: dict[str, Callable[..., Results]] = {
             "kinematics": self.kinematics,
             "inverse_dynamics": self.inverse_dynamics,
             "equilibrium": self.equilibrium,
             "dynamics": self.simulate,
-        }[kind]
+        }
+        method = methods[kind]
         return method(output=output, **kwargs)
 
     def kinematics(
@@ -412,11 +414,39 @@ class Model:
         finally:
             if writer is not None:
                 writer.close(names)
-        summary["analysis"] = kind
-        return Results(names, data, model=self.name, summary=summary)
+        return Results(names, data, model=self.name, summary=_summary(kind, summary))
 
     def __repr__(self) -> str:
         return repr(self._core)
+
+
+def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
+    """The binding's summary dict as a `RunSummary`."""
+    return RunSummary(
+        analysis=kind,
+        steps=int(raw["steps"]),
+        newton_iterations=int(raw["newton_iterations"]),
+        factorizations=int(raw["factorizations"]),
+        halvings=int(raw["halvings"]),
+        warnings=warnings_from(raw["warnings"]),
+        assembly_moves=[(str(b), (dx, dy, dphi)) for b, (dx, dy, dphi) in raw["assembly_moves"]],
+        lift_off=[_lift_off(r) for r in raw["lift_off"]],
+    )
+
+
+def _lift_off(r: dict[str, Any]) -> LiftOffRecord:
+    end_time, end_angle = r["end_time"], r["end_cam_angle"]
+    return LiftOffRecord(
+        joint=str(r["joint"]),
+        cam=str(r["cam"]),
+        start_time=float(r["start_time"]),
+        start_cam_angle=float(r["start_cam_angle"]),
+        end_time=None if end_time is None else float(end_time),
+        end_cam_angle=None if end_angle is None else float(end_angle),
+        least_force=float(r["least_force"]),
+        least_time=float(r["least_time"]),
+        least_cam_angle=float(r["least_cam_angle"]),
+    )
 
 
 def _as_times(times: Any) -> npt.NDArray[np.float64]:

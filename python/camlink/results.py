@@ -6,17 +6,25 @@ from __future__ import annotations
 import difflib
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypedDict
 
 import numpy as np
 import numpy.typing as npt
 
 from camlink._core import ModelError
+from camlink.errors import RunWarning
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["Results", "open_writer", "SUFFIXES", "LIFT_OFF_COLUMNS"]
+__all__ = [
+    "LIFT_OFF_COLUMNS",
+    "SUFFIXES",
+    "LiftOffRecord",
+    "Results",
+    "RunSummary",
+    "open_writer",
+]
 
 #: File name suffixes `Results.save` and the `output=` of a run understand.
 SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
@@ -36,6 +44,39 @@ LIFT_OFF_COLUMNS = [
 ]
 
 
+class LiftOffRecord(TypedDict):
+    """One interval of negative normal force (a row of `Results.lift_off`)."""
+
+    joint: str
+    cam: str
+    start_time: float
+    start_cam_angle: float
+    end_time: float | None
+    end_cam_angle: float | None
+    least_force: float
+    least_time: float
+    least_cam_angle: float
+
+
+class RunSummary(TypedDict, total=False):
+    """How a run went; results read from a file have none of the keys."""
+
+    #: The analysis run: one of `camlink.ANALYSES`.
+    analysis: str
+    steps: int
+    newton_iterations: int
+    factorizations: int
+    halvings: int
+    warnings: list[RunWarning]
+    #: (body, (Δx, Δy, Δφ)) in m, m, rad for bodies that assembly moved.
+    assembly_moves: list[tuple[str, tuple[float, float, float]]]
+    lift_off: list[LiftOffRecord]
+    #: Forward dynamics: largest |E − E(0)| (J), |Φ| and |Φ_q q̇ − ν|.
+    energy_drift: float
+    constraint_drift: float
+    velocity_drift: float
+
+
 class Results:
     """Time series of one run: ``t`` and one array per channel.
 
@@ -53,7 +94,7 @@ class Results:
         *,
         model: str = "",
         complete: bool = True,
-        summary: dict | None = None,
+        summary: RunSummary | None = None,
     ) -> None:
         data = np.asarray(data, dtype=np.float64)
         if data.ndim != 2 or (names and data.shape[1] != len(names)):
@@ -62,17 +103,20 @@ class Results:
             )
         self._names = list(names)
         self._index = {n: k for k, n in enumerate(self._names)}
-        self._data = data
+        # A read-only view: results are not edited in place (the caller's
+        # array keeps its own flags).
+        self._data = data.view()
+        self._data.flags.writeable = False
         self.model = model
         self.complete = complete
         #: The ``analysis`` run, solver counts (steps, newton_iterations,
-        #: factorizations, halvings), ``warnings`` as (t, message) pairs and
+        #: factorizations, halvings), ``warnings`` as `camlink.RunWarning` records and
         #: ``assembly_moves`` as (body, (Δx, Δy, Δφ)) for bodies that
         #: assembly moved, ``lift_off`` as a list of dicts (the rows of
         #: `lift_off`); forward dynamics adds ``energy_drift``,
         #: ``constraint_drift`` and ``velocity_drift``. Empty for results
         #: read from a file.
-        self.summary = summary or {}
+        self.summary: RunSummary = summary if summary is not None else {}
 
     @property
     def t(self) -> npt.NDArray[np.float64]:
@@ -141,14 +185,15 @@ class Results:
         )
 
     def to_pandas(self) -> pd.DataFrame:
-        """A DataFrame with one column per channel, indexed by ``t``."""
+        """A DataFrame with one column per channel, indexed by ``t`` (by the
+        step number when there is no ``t`` column)."""
         import pandas as pd
 
-        return pd.DataFrame(
-            self._data[:, 1:],
-            index=pd.Index(self.t, name="t"),
-            columns=self.channels,
+        columns = [k for k, n in enumerate(self._names) if n != "t"]
+        index = (
+            pd.Index(self.t, name="t") if "t" in self._index else pd.RangeIndex(len(self), name="step")
         )
+        return pd.DataFrame(self._data[:, columns], index=index, columns=self.channels)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Writes the results as CSV or Parquet, chosen by the suffix."""
@@ -222,11 +267,11 @@ class _ParquetWriter:
 
     def __init__(self, path: Path) -> None:
         self.path = path
-        self._writer = None
+        self._writer: Any = None
         # Fail now, not after the run, if the file cannot be written.
         path.open("wb").close()
 
-    def _table(self, names: list[str], rows: npt.NDArray[np.float64]):
+    def _table(self, names: list[str], rows: npt.NDArray[np.float64]) -> Any:
         import pyarrow as pa
 
         return pa.table({n: rows[:, k] for k, n in enumerate(names)})

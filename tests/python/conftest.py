@@ -7,6 +7,7 @@ the examples; `test_examples.py` covers those.
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -133,7 +134,7 @@ def stuck_file(tmp_path: Path) -> Path:
     return path
 
 
-def run_cli(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+def run_cli(*args: str | os.PathLike[str], cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
     """`python -m camlink ARGS`, capturing output."""
     return subprocess.run(
         [sys.executable, "-m", "camlink", *map(str, args)],

@@ -79,12 +79,12 @@ def test_dyn_spring_pendulum_equilibrium_matches_closed_form():
     model = load("dyn_spring_pendulum.toml")
     res = model.run()
     assert len(res) == 1 and res.summary["analysis"] == "equilibrium"
-    m, l, k, g = 1.0, 0.5, 20.0, 9.81
+    m, length, k, g = 1.0, 0.5, 20.0, 9.81
     phi = 0.0
     for _ in range(50):
-        phi -= (k * phi + m * g * l * math.cos(phi)) / (k - m * g * l * math.sin(phi))
+        phi -= (k * phi + m * g * length * math.cos(phi)) / (k - m * g * length * math.sin(phi))
     assert abs(res["arm.phi"][0] - phi) < 1e-10, (res["arm.phi"][0], phi)
-    assert abs(res["arm.tip.x"][0] - 2 * l * math.cos(phi)) < 1e-10
+    assert abs(res["arm.tip.x"][0] - 2 * length * math.cos(phi)) < 1e-10
     # The pivot holds the weight: (0, m g) on the arm, (0, −m g) on the ground.
     assert abs(res["pivot.fx_j"][0]) < 1e-9
     assert abs(res["pivot.fy_j"][0] - m * g) < 1e-9

@@ -128,7 +128,7 @@ def test_analysis_error_keeps_partial_results(stuck_file):
     assert not partial.complete
     assert 5 < len(partial) < 50
     assert partial.t[-1] < err.time
-    assert err.data.shape == (len(partial), len(err.names))
+    assert err.data is not None and err.data.shape == (len(partial), len(err.names))
     assert partial["crank.phi"] == pytest.approx(math.radians(60) + 2 * math.pi * partial.t)
     assert STUCK_FOUR_BAR["L"] == 2.6
 

@@ -8,7 +8,7 @@ import pyarrow.parquet as pq
 import pytest
 
 import camlink
-from camlink.results import LIFT_OFF_COLUMNS, Results
+from camlink.results import LIFT_OFF_COLUMNS, LiftOffRecord, Results, RunSummary
 
 
 def synthetic() -> Results:
@@ -27,7 +27,7 @@ def test_columns_by_name():
 
 
 def test_unknown_channel_suggests_close_names():
-    with pytest.raises(KeyError, match="did you mean 'arm.phi'"):
+    with pytest.raises(KeyError, match=r"did you mean 'arm\.phi'"):
         synthetic()["arm.ph"]
 
 
@@ -36,11 +36,11 @@ def test_to_pandas_is_indexed_by_time():
     assert isinstance(df, pd.DataFrame)
     assert df.index.name == "t"
     assert list(df.columns) == ["arm.phi", "arm.omega"]
-    assert df.loc[0.5, "arm.phi"] == pytest.approx(np.sin(0.5))
+    assert df["arm.phi"].loc[0.5] == pytest.approx(np.sin(0.5))
 
 
 def test_lift_off_is_a_frame_with_one_row_per_interval():
-    closed = dict(
+    closed = LiftOffRecord(
         joint="bucket",
         cam="cam",
         start_time=0.1,
@@ -51,7 +51,9 @@ def test_lift_off_is_a_frame_with_one_row_per_interval():
         least_time=0.15,
         least_cam_angle=1.57,
     )
-    still_open = {**closed, "start_time": 0.9, "end_time": None, "end_cam_angle": None}
+    still_open = LiftOffRecord(
+        {**closed, "start_time": 0.9, "end_time": None, "end_cam_angle": None}
+    )
     res = synthetic()
     res.summary = {"lift_off": [closed, still_open]}
     df = res.lift_off
@@ -63,7 +65,8 @@ def test_lift_off_is_a_frame_with_one_row_per_interval():
 
 
 def test_lift_off_without_intervals_is_an_empty_frame_with_the_columns():
-    for summary in ({}, {"lift_off": []}):
+    summaries: tuple[RunSummary, ...] = ({}, {"lift_off": []})
+    for summary in summaries:
         res = synthetic()
         res.summary = summary
         df = res.lift_off

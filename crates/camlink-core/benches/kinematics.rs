@@ -5,7 +5,8 @@
 #[path = "../tests/common/mod.rs"]
 mod common;
 
-use camlink_core::kinematics::{run, time_grid, Settings, Sink};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Sink};
 
 /// Discards rows; the benchmark measures the solver alone.
 struct Discard;

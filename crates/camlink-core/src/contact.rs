@@ -1,5 +1,8 @@
-//! Contact outputs of the curve-contact joints: the global contact point and
-//! the pressure angle.
+//! The curve contacts: one view of each ([`ContactView`]: what its bodies
+//! carry, which own coordinate runs on which curve, the follower and the
+//! cam), read by the contact outputs here, the design checks and the contact
+//! forces; and the contact outputs, the global contact point and the
+//! pressure angle.
 //!
 //! For every cam–follower, cam–flat-faced follower and point–follower joint,
 //! channels `<joint>.cx` and `<joint>.cy` give the contact point in the
@@ -29,8 +32,8 @@
 //! else body j. A follower with no such guide gets no pressure angle.
 
 use crate::assembly::Assembly;
-use crate::constraint::{Constraint, Equations};
-use crate::curve::{Curve, Parametric, Radius};
+use crate::constraint::{Constraint, Equations, Feature};
+use crate::curve::Curve;
 use crate::math::{cross, dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
 
@@ -60,6 +63,138 @@ struct Item {
     follower: Option<Follower>,
 }
 
+/// One curve-contact joint as the contact outputs, the design checks
+/// ([`crate::design`]) and the contact forces see it: what its bodies
+/// carry ([`Feature`]), which own coordinate runs on which curve, the
+/// contact point and tangent, the follower and the cam.
+#[derive(Clone, Copy, Debug)]
+pub struct ContactView<'a> {
+    /// Index of the joint in [`Model::joints`].
+    pub joint: usize,
+    /// Bodies i and j.
+    pub bodies: [BodyId; 2],
+    /// What body i and body j carry.
+    pub sides: [Feature<'a>; 2],
+}
+
+impl<'a> ContactView<'a> {
+    /// The view of joint `joint`, if it is a curve contact.
+    pub fn of(model: &'a Model, joint: usize) -> Option<Self> {
+        let c = &model.joints[joint].constraint;
+        Some(ContactView {
+            joint,
+            bodies: c.bodies(),
+            sides: c.contact_sides()?,
+        })
+    }
+
+    /// Every curve contact of `model`, drivers included, in joint order.
+    pub fn all(model: &'a Model) -> impl Iterator<Item = ContactView<'a>> + 'a {
+        (0..model.joints.len()).filter_map(move |j| ContactView::of(model, j))
+    }
+
+    /// The curve body `side` (0: i, 1: j) carries, if it carries one.
+    pub fn curve(&self, side: usize) -> Option<&'a Curve> {
+        match self.sides[side] {
+            Feature::Curve(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The own coordinate that runs on the curve of `side`.
+    pub fn own_of(&self, side: usize) -> Option<usize> {
+        self.curve(side)?;
+        Some((0..side).filter(|&s| self.curve(s).is_some()).count())
+    }
+
+    /// (side, curve) that own coordinate `own` runs on.
+    pub fn own_curve(&self, own: usize) -> Option<(usize, &'a Curve)> {
+        (0..2).filter_map(|s| Some((s, self.curve(s)?))).nth(own)
+    }
+
+    /// The name of own coordinate `own` in reports: α_i on a curve of
+    /// body i, α_j on one of body j.
+    pub fn own_name(&self, own: usize) -> &'static str {
+        match self.own_curve(own) {
+            Some((0, _)) => "α_i",
+            _ => "α_j",
+        }
+    }
+
+    /// True for a pin in a slot: the slot has two walls and pushes either
+    /// way; every other contact is a cam that can only push.
+    pub fn two_walled(&self) -> bool {
+        self.sides.iter().any(|s| matches!(s, Feature::Point(_)))
+    }
+
+    /// The global contact point (m) and the contact tangent (global, not
+    /// normalised) at body coordinates `q` = (q_i, q_j) and own
+    /// coordinates `own`. The point is body i's: the point of C_i at α_i,
+    /// or the pin. The tangent is a face's direction where there is a face,
+    /// else the tangent of the first curve, as α grows.
+    pub fn point_tangent(&self, q: &[[f64; 3]; 2], own: &[f64]) -> (V2, V2) {
+        let p = match self.sides[0] {
+            Feature::Curve(c) => point(q[0], c.jet(own[0]).p),
+            Feature::Point(s) | Feature::Face(s) => point(q[0], s),
+        };
+        let face = (0..2).find_map(|s| match self.sides[s] {
+            Feature::Face(u) => Some(rot(q[s][2], u)),
+            _ => None,
+        });
+        let t = face.unwrap_or_else(|| match self.own_curve(0) {
+            Some((s, c)) => rot(q[s][2], c.jet(own[0]).d1),
+            None => [f64::NAN; 2],
+        });
+        (p, t)
+    }
+
+    /// The follower body (see the module notes): the body that carries a
+    /// face or a pin unless it is the ground; between two curves, the body
+    /// that translates, else the one that is not driven, else body j.
+    pub fn follower(&self, model: &Model) -> BodyId {
+        let [bi, bj] = self.bodies;
+        let carrier = (0..2).find(|&s| self.curve(s).is_none());
+        match carrier {
+            Some(s) => {
+                let (f, other) = if s == 0 { (bi, bj) } else { (bj, bi) };
+                if f.is_ground() {
+                    other
+                } else {
+                    f
+                }
+            }
+            None => {
+                let ti = translates(model, bi);
+                let tj = translates(model, bj);
+                let pick_i = if bj.is_ground() {
+                    true
+                } else if bi.is_ground() {
+                    false
+                } else if ti != tj {
+                    ti
+                } else {
+                    driven(model, bj) && !driven(model, bi)
+                };
+                if pick_i {
+                    bi
+                } else {
+                    bj
+                }
+            }
+        }
+    }
+
+    /// The cam: the body whose curve the follower runs on.
+    pub fn cam(&self, model: &Model) -> BodyId {
+        let [bi, bj] = self.bodies;
+        match (self.curve(0), self.curve(1)) {
+            (Some(_), Some(_)) if self.follower(model) == bi => bj,
+            (Some(_), _) => bi,
+            (None, _) => bj,
+        }
+    }
+}
+
 /// The contact joints of a model and their followers, found once.
 #[derive(Clone, Debug, Default)]
 pub struct Contacts {
@@ -69,14 +204,10 @@ pub struct Contacts {
 impl Contacts {
     /// Finds the contact joints and their followers.
     pub fn new(model: &Model) -> Self {
-        let items = model
-            .joints
-            .iter()
-            .enumerate()
-            .filter(|(_, j)| is_contact(&j.constraint))
-            .map(|(k, j)| Item {
-                joint: k,
-                follower: follower(model, &j.constraint),
+        let items = ContactView::all(model)
+            .map(|v| Item {
+                joint: v.joint,
+                follower: follower(model, &v),
             })
             .collect();
         Contacts { items }
@@ -114,9 +245,12 @@ impl Contacts {
     pub fn fill(&self, model: &Model, asm: &Assembly, q: &[f64], out: &mut [f64]) {
         let mut k = 0;
         for it in &self.items {
-            let c = &model.joints[it.joint].constraint;
+            let Some(v) = ContactView::of(model, it.joint) else {
+                continue;
+            };
             let x = asm.local(model, it.joint, q, &[], 0.0);
-            let (cp, n) = contact(c, &x.q, &x.own);
+            let (cp, t) = v.point_tangent(&x.q, &x.own);
+            let n = perp(t);
             out[k] = cp[0];
             out[k + 1] = cp[1];
             k += 2;
@@ -148,102 +282,18 @@ pub fn pressure_angle(n: V2, d: V2) -> f64 {
     cross(n, d).abs().atan2(dot(n, d).abs())
 }
 
-/// True for the curve-contact joints.
-pub fn is_contact(c: &Constraint) -> bool {
-    matches!(
-        c,
-        Constraint::CamFollower(_) | Constraint::FlatFollower(_) | Constraint::PointFollower(_)
-    )
-}
-
-/// The global contact point and contact normal (not normalised) of a
-/// contact joint at body coordinates `q` = (q_i, q_j) and own coordinates.
-pub fn contact(c: &Constraint, q: &[[f64; 3]; 2], own: &[f64]) -> (V2, V2) {
-    match c {
-        Constraint::CamFollower(cf) => {
-            let j = cf.curve_i.jet(own[0]);
-            (point(q[0], j.p), perp(rot(q[0][2], j.d1)))
-        }
-        Constraint::FlatFollower(ff) => {
-            let j = ff.curve_i.jet(own[0]);
-            (point(q[0], j.p), perp(rot(q[1][2], ff.u_j)))
-        }
-        Constraint::PointFollower(pf) => {
-            let j = pf.curve_j.jet(own[0]);
-            (point(q[0], pf.s_i), perp(rot(q[1][2], j.d1)))
-        }
-        _ => ([f64::NAN; 2], [f64::NAN; 2]),
-    }
-}
-
-/// The centre of a circular curve (a roller) in its body frame.
-pub fn circle_centre(c: &Curve) -> Option<(V2, f64)> {
-    match c {
-        Curve::Polar(p) => match p.rho {
-            Radius::Const(r) => Some((p.q, r)),
-            _ => None,
-        },
-        Curve::Parametric(Parametric::Circle { c, r, .. })
-        | Curve::Parametric(Parametric::Arc { c, r, .. }) => Some((*c, *r)),
-        _ => None,
-    }
-}
-
-/// The follower body of a contact joint (see the module notes); `None`
-/// for other joints.
-pub fn follower_body(model: &Model, c: &Constraint) -> Option<BodyId> {
-    let [bi, bj] = c.bodies();
-    Some(match c {
-        Constraint::CamFollower(_) => {
-            let ti = translates(model, bi);
-            let tj = translates(model, bj);
-            let pick_i = if bj.is_ground() {
-                true
-            } else if bi.is_ground() {
-                false
-            } else if ti != tj {
-                ti
-            } else {
-                driven(model, bj) && !driven(model, bi)
-            };
-            if pick_i {
-                bi
-            } else {
-                bj
-            }
-        }
-        Constraint::FlatFollower(_) => {
-            if bj.is_ground() {
-                bi
-            } else {
-                bj
-            }
-        }
-        Constraint::PointFollower(_) => {
-            if bi.is_ground() {
-                bj
-            } else {
-                bi
-            }
-        }
-        _ => return None,
-    })
-}
-
 /// The follower of a contact joint and its guide, if it has one.
-fn follower(model: &Model, c: &Constraint) -> Option<Follower> {
-    let [bi, bj] = c.bodies();
+fn follower(model: &Model, v: &ContactView) -> Option<Follower> {
+    let [bi, bj] = v.bodies;
     // The follower body and, for a roller, its curve.
-    let fb = follower_body(model, c)?;
-    let curve: Option<&Curve> = match c {
-        Constraint::CamFollower(cf) if fb == bi => Some(&cf.curve_i),
-        Constraint::CamFollower(cf) => Some(&cf.curve_j),
-        _ => None,
-    };
+    let fb = v.follower(model);
+    let curve = v.curve(if fb == bi { 0 } else { 1 });
     if fb.is_ground() {
         return None;
     }
-    let roller = curve.and_then(circle_centre).map(|(centre, _)| centre);
+    let roller = curve
+        .and_then(Curve::circle_centre)
+        .map(|(centre, _)| centre);
     if let Some(guide) = guide(model, fb) {
         return Some(Follower {
             guide,
@@ -322,6 +372,73 @@ fn guide(model: &Model, b: BodyId) -> Option<Guide> {
 mod tests {
     use super::*;
     use std::f64::consts::FRAC_PI_2;
+
+    use crate::constraint::{
+        cam_follower::CamFollower, flat_follower::FlatFollower, point_follower::PointFollower,
+    };
+    use crate::curve::{Parametric, Polar};
+    use crate::model::Body;
+
+    /// A model with bodies `cam` (1) and `follower` (2) and one joint.
+    fn with_joint(c: Constraint) -> Model {
+        let mut m = Model::new("m");
+        m.add_body(Body::new("cam", [0.0; 3]));
+        m.add_body(Body::new("follower", [0.0, 2.0, 0.0]));
+        m.add_joint("contact", c);
+        m
+    }
+
+    #[test]
+    fn the_view_matches_each_contact_joints_own_coordinates() {
+        let disc = || Curve::from(Polar::circle([0.0, 0.0], 1.0).unwrap());
+        let line = || Curve::from(Parametric::line([0.0, 0.0], [1.0, 0.0]).unwrap());
+        let joints: Vec<Constraint> = vec![
+            CamFollower {
+                body_i: BodyId(1),
+                curve_i: disc(),
+                body_j: BodyId(2),
+                curve_j: disc(),
+            }
+            .into(),
+            FlatFollower::new(BodyId(1), disc(), BodyId(2), [0.0; 2], [1.0, 0.0])
+                .unwrap()
+                .into(),
+            PointFollower::new(BodyId(2), [0.0; 2], BodyId(1), line()).into(),
+        ];
+        for c in joints {
+            let m = with_joint(c);
+            let c = &m.joints[0].constraint;
+            let v = ContactView::of(&m, 0).expect("a contact view");
+            // One own coordinate per curve, named after the body carrying it.
+            assert_eq!((0..2).filter_map(|s| v.curve(s)).count(), c.own_count());
+            for own in 0..c.own_count() {
+                let ascii = c.own_names()[own].replace("alpha", "α");
+                assert_eq!(v.own_name(own), ascii, "{}", c.kind());
+                let (side, _) = v.own_curve(own).unwrap();
+                assert_eq!(v.own_of(side), Some(own));
+            }
+            // The follower carries the face or the pin.
+            let follower = v.follower(&m);
+            assert!(!follower.is_ground());
+            match c.kind() {
+                "flat-follower" => assert_eq!(follower, BodyId(2)),
+                "point-follower" => assert_eq!(follower, BodyId(2)),
+                _ => {}
+            }
+            assert_ne!(v.cam(&m), follower, "{}", c.kind());
+        }
+        assert!(ContactView::all(&with_joint(
+            crate::constraint::revolute::Revolute {
+                body_i: BodyId(1),
+                s_i: [0.0; 2],
+                body_j: BodyId(2),
+                s_j: [0.0; 2],
+            }
+            .into()
+        ))
+        .next()
+        .is_none());
+    }
 
     #[test]
     fn pressure_angle_folds_into_a_quarter_turn() {

@@ -26,12 +26,11 @@
 use std::fmt;
 
 use crate::assembly::Assembly;
-use crate::constraint::Constraint;
-use crate::contact::circle_centre;
+use crate::constraint::Feature;
+use crate::contact::ContactView;
 use crate::curve::Curve;
-use crate::kinematics::AnalysisError;
-use crate::math::cross;
 use crate::model::Model;
+use crate::run::{AnalysisError, Kind};
 
 /// Samples per curve for the pre-run checks.
 const SAMPLES: usize = 720;
@@ -76,16 +75,18 @@ pub fn check(model: &Model) -> Vec<Finding> {
 /// The findings with the index of their joint.
 fn findings(model: &Model) -> Vec<(usize, Finding)> {
     let mut out = Vec::new();
-    for (k, j) in model.joints.iter().enumerate() {
-        match &j.constraint {
-            Constraint::FlatFollower(ff) => {
-                let Some(o) = orientation(&ff.curve_i) else {
+    for v in ContactView::all(model) {
+        let k = v.joint;
+        let j = &model.joints[k];
+        match v.sides {
+            // A flat face on a cam: the cam must be convex.
+            [Feature::Curve(cam), Feature::Face(_)] | [Feature::Face(_), Feature::Curve(cam)] => {
+                let Some(o) = cam.orientation() else {
                     continue;
                 };
-                let tol = FLAT * ff.curve_i.max_curvature(SAMPLES);
-                let r = ff
-                    .curve_i
-                    .ranges_where(SAMPLES, |s| o * ff.curve_i.curvature(s) < -tol);
+                let name = v.own_name(face_cam_own(&v));
+                let tol = FLAT * cam.max_curvature(SAMPLES);
+                let r = cam.ranges_where(SAMPLES, |s| o * cam.curvature(s) < -tol);
                 if !r.is_empty() {
                     out.push((
                         k,
@@ -96,17 +97,18 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                                 "the flat-faced follower's cam profile is concave for {}: \
                              a flat face cannot touch it there, and leaves the profile at \
                              the edges of these ranges",
-                                describe_ranges(&ff.curve_i, "α_i", &r)
+                                describe_ranges(cam, name, &r)
                             ),
                         },
                     ));
                 }
             }
-            Constraint::CamFollower(cf) => {
-                let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) else {
+            // A roller on a cam: the cam's hollows must be wider than it.
+            [Feature::Curve(ci), Feature::Curve(cj)] => {
+                let Some((cam, r, which)) = roller_pair(ci, cj) else {
                     continue;
                 };
-                let Some(o) = orientation(cam) else {
+                let Some(o) = cam.orientation() else {
                     continue;
                 };
                 // Smallest concave radius of curvature, sampled.
@@ -122,7 +124,7 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                     });
                 if let Some((rho, at)) = min.filter(|m| m.0 < r) {
                     let bad = cam.ranges_where(SAMPLES, |s| o * cam.curvature(s) < -1.0 / r);
-                    let name = if which == 0 { "α_i" } else { "α_j" };
+                    let name = v.own_name(which);
                     out.push((
                         k,
                         Finding {
@@ -143,6 +145,12 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
         }
     }
     out
+}
+
+/// The own coordinate of the cam curve of a contact between a flat face
+/// and a cam.
+fn face_cam_own(v: &ContactView) -> usize {
+    (0..2).find_map(|s| v.own_of(s)).unwrap_or(0)
 }
 
 /// What the per-step guard watches on one contact parameter.
@@ -177,35 +185,35 @@ impl StepGuard {
     /// Finds what to watch in `model`.
     pub fn new(model: &Model) -> Self {
         let mut items = Vec::new();
-        for (k, j) in model.joints.iter().enumerate() {
-            let mut ends = |own: usize, c: &Curve| {
-                if !c.closed() {
-                    let (s0, s1) = c.range();
-                    items.push(Item {
-                        joint: k,
-                        own,
-                        watch: Watch::Ends { s0, s1 },
-                    });
-                }
-            };
-            match &j.constraint {
-                Constraint::PointFollower(pf) => ends(0, &pf.curve_j),
-                Constraint::FlatFollower(ff) => {
-                    ends(0, &ff.curve_i);
-                    if let Some(o) = orientation(&ff.curve_i) {
-                        let tol = STEP_TOL * ff.curve_i.max_curvature(SAMPLES);
+        for v in ContactView::all(model) {
+            let k = v.joint;
+            for own in 0..2 {
+                if let Some((_, c)) = v.own_curve(own) {
+                    if !c.closed() {
+                        let (s0, s1) = c.range();
                         items.push(Item {
                             joint: k,
-                            own: 0,
+                            own,
+                            watch: Watch::Ends { s0, s1 },
+                        });
+                    }
+                }
+            }
+            match v.sides {
+                [Feature::Curve(cam), Feature::Face(_)]
+                | [Feature::Face(_), Feature::Curve(cam)] => {
+                    if let Some(o) = cam.orientation() {
+                        let tol = STEP_TOL * cam.max_curvature(SAMPLES);
+                        items.push(Item {
+                            joint: k,
+                            own: face_cam_own(&v),
                             watch: Watch::Convex { o, tol },
                         });
                     }
                 }
-                Constraint::CamFollower(cf) => {
-                    ends(0, &cf.curve_i);
-                    ends(1, &cf.curve_j);
-                    if let Some((cam, r, which)) = roller_pair(&cf.curve_i, &cf.curve_j) {
-                        if let Some(o) = orientation(cam) {
+                [Feature::Curve(ci), Feature::Curve(cj)] => {
+                    if let Some((cam, r, which)) = roller_pair(ci, cj) {
+                        if let Some(o) = cam.orientation() {
                             items.push(Item {
                                 joint: k,
                                 own: which,
@@ -251,18 +259,27 @@ impl StepGuard {
         for it in &self.items {
             let joint = &model.joints[it.joint];
             let a = q[asm.own_col(it.joint) + it.own];
-            let name = joint_own_name(&joint.constraint, it.own);
-            let curve = contact_curve(&joint.constraint, it.own);
-            let message = match it.watch {
+            let Some(view) = ContactView::of(model, it.joint) else {
+                continue;
+            };
+            let Some((_, curve)) = view.own_curve(it.own) else {
+                continue;
+            };
+            let name = view.own_name(it.own);
+            let (kind, message) = match it.watch {
                 Watch::Ends { s0, s1 } => {
                     let tol = 1e-9 * (s1 - s0);
                     if a >= s0 - tol && a <= s1 + tol {
                         continue;
                     }
-                    format!(
-                        "the contact ran off the end of the open curve of joint '{}': \
-                         {name} = {a} is outside its range [{s0}, {s1}]",
-                        joint.name
+                    let (end, at) = if a > s1 { ("upper", s1) } else { ("lower", s0) };
+                    (
+                        Kind::OffCurve,
+                        format!(
+                            "the contact ran off the {end} end ({at}) of the open curve of \
+                             joint '{}': {name} = {a} is outside its range [{s0}, {s1}]",
+                            joint.name
+                        ),
                     )
                 }
                 Watch::Convex { o, tol } => {
@@ -270,13 +287,16 @@ impl StepGuard {
                     if k >= -tol {
                         continue;
                     }
-                    format!(
-                        "the flat-faced follower of joint '{}' touches the cam where it is \
+                    (
+                        Kind::Undercut,
+                        format!(
+                            "the flat-faced follower of joint '{}' touches the cam where it is \
                          concave ({name} = {}, radius of curvature {:.6} m): a flat face \
                          cannot follow this profile",
-                        joint.name,
-                        value(curve, a),
-                        -1.0 / k
+                            joint.name,
+                            value(curve, a),
+                            -1.0 / k
+                        ),
                     )
                 }
                 Watch::Roller { o, r } => {
@@ -284,70 +304,35 @@ impl StepGuard {
                     if k >= -(1.0 + STEP_TOL) / r {
                         continue;
                     }
-                    format!(
-                        "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
+                    (
+                        Kind::Undercut,
+                        format!(
+                            "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
                          with a smaller radius of curvature ({:.6} m at {name} = {}): the cam \
                          is undercut there",
-                        joint.name,
-                        -1.0 / k,
-                        value(curve, a)
+                            joint.name,
+                            -1.0 / k,
+                            value(curve, a)
+                        ),
                     )
                 }
             };
-            return Err(AnalysisError {
-                time: t,
-                message,
-                joints: vec![joint.name.clone()],
-                residual: 0.0,
-            });
+            return Err(
+                AnalysisError::new(kind, t, message).at_joints(vec![joint.name.clone()], 0.0)
+            );
         }
         Ok(())
-    }
-}
-
-/// The curve of a contact joint that own coordinate `own` runs on.
-fn contact_curve(c: &Constraint, own: usize) -> &Curve {
-    match (c, own) {
-        (Constraint::CamFollower(cf), 0) => &cf.curve_i,
-        (Constraint::CamFollower(cf), _) => &cf.curve_j,
-        (Constraint::FlatFollower(ff), _) => &ff.curve_i,
-        (Constraint::PointFollower(pf), _) => &pf.curve_j,
-        _ => unreachable!("the guard watches curve-contact joints only"),
-    }
-}
-
-fn joint_own_name(c: &Constraint, own: usize) -> &'static str {
-    match (c, own) {
-        (Constraint::PointFollower(_), _) | (Constraint::CamFollower(_), 1) => "α_j",
-        _ => "α_i",
     }
 }
 
 /// (cam, roller radius, which own coordinate runs on the cam) when exactly
 /// one of the two curves is a circle and the other is closed.
 fn roller_pair<'a>(ci: &'a Curve, cj: &'a Curve) -> Option<(&'a Curve, f64, usize)> {
-    match (circle_centre(ci), circle_centre(cj)) {
+    match (ci.circle_centre(), cj.circle_centre()) {
         (None, Some((_, r))) if ci.closed() => Some((ci, r, 0)),
         (Some((_, r)), None) if cj.closed() => Some((cj, r, 1)),
         _ => None,
     }
-}
-
-/// +1 for a counterclockwise closed curve, −1 for a clockwise one (the sign
-/// of its enclosed area ½∮ p × p′ ds); `None` for an open curve.
-pub fn orientation(c: &Curve) -> Option<f64> {
-    if !c.closed() {
-        return None;
-    }
-    let (s0, s1) = c.range();
-    let h = (s1 - s0) / SAMPLES as f64;
-    let area: f64 = (0..SAMPLES)
-        .map(|k| {
-            let j = c.jet(s0 + (k as f64 + 0.5) * h);
-            cross(j.p, j.d1)
-        })
-        .sum();
-    Some(if area < 0.0 { -1.0 } else { 1.0 })
 }
 
 /// A parameter value with its unit: rad and degrees for a polar profile,
@@ -375,7 +360,7 @@ fn describe_ranges(c: &Curve, name: &str, r: &[(f64, f64)]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constraint::{cam_follower::CamFollower, flat_follower::FlatFollower};
+    use crate::constraint::{cam_follower::CamFollower, flat_follower::FlatFollower, Constraint};
     use crate::curve::{Parametric, Polar};
     use crate::model::{Body, BodyId};
     use std::f64::consts::PI;
@@ -443,7 +428,7 @@ mod tests {
             })
             .collect();
         let c: Curve = Parametric::spline(&pts, true).unwrap().into();
-        assert_eq!(orientation(&c), Some(-1.0));
+        assert_eq!(c.orientation(), Some(-1.0));
         let ff = FlatFollower::new(BodyId(1), c, BodyId(2), [0.0; 2], [1.0, 0.0]);
         assert!(check(&model_with(ff.unwrap())).is_empty());
     }

@@ -24,99 +24,15 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
-use crate::diagnose::levenberg_marquardt;
-use crate::dynamics::contact_force::LiftOff;
+use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{max_abs, norm2, point, point_vel, rot, rot_d, V2};
+use crate::math::{max_abs, norm2, rot_d};
 use crate::model::{BodyId, Model};
 use crate::motion;
-
-/// Solver settings.
-#[derive(Clone, Debug)]
-pub struct Settings {
-    /// Newton stops when max |Φ| ≤ tol (m or rad).
-    pub tol: f64,
-    /// Newton iterations allowed per time step.
-    pub max_iter: usize,
-    /// Also solve Φ_q q⃛ = η for the jerk and output it ([`jerk_channels`]).
-    pub jerk: bool,
-}
-
-impl Default for Settings {
-    fn default() -> Self {
-        Settings {
-            tol: 1e-10,
-            max_iter: 25,
-            jerk: false,
-        }
-    }
-}
-
-/// A body point whose motion is output, as channels
-/// `<name>.x .y .vx .vy .ax .ay`.
-#[derive(Clone, Debug)]
-pub struct PointOutput {
-    pub body: BodyId,
-    /// Channel prefix, e.g. `coupler.P`.
-    pub name: String,
-    /// The point in the body frame (m).
-    pub s: V2,
-}
-
-/// Receives results as the run goes.
-pub trait Sink {
-    /// Called once before the first row with the channel names (not `t`).
-    fn begin(&mut self, channels: &[String]);
-    /// One time step: time t (s) and the values, in channel order.
-    fn row(&mut self, t: f64, values: &[f64]);
-}
-
-/// A sink that keeps everything in memory, row by row.
-#[derive(Clone, Debug, Default)]
-pub struct Table {
-    pub channels: Vec<String>,
-    pub t: Vec<f64>,
-    /// Row-major values, `channels.len()` per step.
-    pub values: Vec<f64>,
-}
-
-impl Table {
-    /// The series of one channel.
-    pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
-        let k = self.channels.iter().position(|c| c == name)?;
-        let w = self.channels.len();
-        Some(self.values.chunks(w).map(|row| row[k]).collect())
-    }
-}
-
-impl Sink for Table {
-    fn begin(&mut self, channels: &[String]) {
-        self.channels = channels.to_vec();
-    }
-    fn row(&mut self, t: f64, values: &[f64]) {
-        self.t.push(t);
-        self.values.extend_from_slice(values);
-    }
-}
-
-/// How a run went.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Summary {
-    pub steps: usize,
-    pub newton_iterations: usize,
-    pub factorizations: usize,
-    /// Steps retried as two half steps.
-    pub halvings: usize,
-    /// (time in s, message) of each warning.
-    pub warnings: Vec<(f64, String)>,
-    /// How assembly moved each body from its given placement:
-    /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
-    pub assembly_moves: Vec<(String, [f64; 3])>,
-    /// Intervals where a cam contact's normal force is negative (the
-    /// follower would leave the cam), by start time; each is also a
-    /// warning. Filled by inverse and forward dynamics.
-    pub lift_off: Vec<LiftOff>,
-}
+use crate::run::{
+    channels, fill_outputs, jerk_channels, worst_joints, AnalysisError, Kind, PointOutput,
+    Settings, Sink, Summary, Warning,
+};
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
 pub const MAX_HALVINGS: u32 = 8;
@@ -127,19 +43,6 @@ pub const NEAR_SINGULAR: f64 = 1e-3;
 /// Largest correction of an angle (rad) from the predicted position that
 /// still counts as continuous motion; a larger one is treated as a jump.
 pub const JUMP_ANGLE: f64 = 0.2;
-
-/// An analysis that cannot proceed.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("at t = {time} s: {message}")]
-pub struct AnalysisError {
-    /// Time (s) of the step that failed.
-    pub time: f64,
-    pub message: String,
-    /// Joints whose equations are involved.
-    pub joints: Vec<String>,
-    /// Largest |Φ| at failure (m or rad).
-    pub residual: f64,
-}
 
 /// What `check` reports about a model.
 #[derive(Clone, Debug, PartialEq)]
@@ -176,66 +79,6 @@ pub fn check(model: &Model) -> Report {
     }
 }
 
-/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
-pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
-    if !(step.is_finite() && step > 0.0) {
-        return Err(format!(
-            "the time step must be a positive number, not {step}"
-        ));
-    }
-    if !(t_end.is_finite() && t_end >= 0.0) {
-        return Err(format!("the end time must be a number ≥ 0, not {t_end}"));
-    }
-    let n = (t_end / step + 1e-9).floor() as usize;
-    if n > 100_000_000 {
-        return Err(format!(
-            "{n} steps ({t_end} s at {step} s) is more than 100 million; use a larger step"
-        ));
-    }
-    Ok((0..=n).map(|k| k as f64 * step).collect())
-}
-
-/// The output channel names of a run.
-pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
-    for (_, b) in model.moving_bodies() {
-        for c in ["x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha"] {
-            names.push(format!("{}.{c}", b.name));
-        }
-    }
-    for p in points {
-        for c in ["x", "y", "vx", "vy", "ax", "ay"] {
-            names.push(format!("{}.{c}", p.name));
-        }
-    }
-    for j in &model.joints {
-        for k in 0..j.constraint.own_count() {
-            let n = j.constraint.own_names().get(k).copied().unwrap_or("own");
-            names.push(format!("{}.{n}", j.name));
-        }
-    }
-    names.extend(Contacts::new(model).channels(model));
-    names
-}
-
-/// The jerk channels of a run with [`Settings::jerk`], after those of
-/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
-/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
-pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
-    for (_, b) in model.moving_bodies() {
-        for c in ["jx", "jy", "jphi"] {
-            names.push(format!("{}.{c}", b.name));
-        }
-    }
-    for p in points {
-        for c in ["jx", "jy"] {
-            names.push(format!("{}.{c}", p.name));
-        }
-    }
-    names
-}
-
 /// Position, velocity and acceleration analysis over `times`.
 ///
 /// Rows reach `sink` as each step completes, so a run that fails keeps every
@@ -264,12 +107,11 @@ pub fn run(
     for &t in times {
         if let Some(p) = prev_t {
             if t <= p || t.is_nan() {
-                return Err(AnalysisError {
-                    time: t,
-                    message: format!("times must increase, but {t} follows {p}"),
-                    joints: Vec::new(),
-                    residual: 0.0,
-                });
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {p}"),
+                ));
             }
         }
         match prev_t {
@@ -327,14 +169,14 @@ impl<'m> Solver<'m> {
         let asm = Assembly::new(model);
         let (n, m) = (asm.n, asm.m);
         if n == 0 {
-            return Err(fail(0.0, "the model has no moving bodies"));
+            return Err(fail(Kind::InvalidInput, "the model has no moving bodies"));
         }
         model
             .check_grounded()
-            .map_err(|e| fail(0.0, &e.to_string()))?;
+            .map_err(|e| fail(Kind::InvalidInput, &e.to_string()))?;
         if m < n {
             return Err(fail(
-                0.0,
+                Kind::NotDriven,
                 &format!(
                     "{n} coordinates but {m} equations: {} degree(s) of freedom are not driven; \
                      add as many drivers (or run a dynamic analysis)",
@@ -344,7 +186,7 @@ impl<'m> Solver<'m> {
         }
         if m > n {
             return Err(fail(
-                0.0,
+                Kind::Redundant,
                 &format!(
                     "{n} coordinates but {m} equations: {} equation(s) too many; \
                      remove redundant joints or drivers (`camlink check` names them)",
@@ -358,7 +200,8 @@ impl<'m> Solver<'m> {
         Ok(Solver {
             model,
             settings,
-            jac: SystemMatrix::new(n, &pattern),
+            jac: SystemMatrix::try_new(n, &pattern)
+                .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             qddd: vec![0.0; n],
@@ -390,7 +233,7 @@ impl<'m> Solver<'m> {
         }
         let h_prev = self.h_prev;
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
-            Some(what) => Err(self.failure(t, &what)),
+            Some(what) => Err(self.failure(Kind::BranchJump, t, &what)),
             None => Ok(()),
         });
         match outcome {
@@ -447,7 +290,11 @@ impl<'m> Solver<'m> {
             .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
-            return Err(self.failure(t, "velocities or accelerations are not finite numbers"));
+            return Err(self.failure(
+                Kind::NotFinite,
+                t,
+                "velocities or accelerations are not finite numbers",
+            ));
         }
         self.watch_singularity(t);
         self.summary.steps += 1;
@@ -501,15 +348,17 @@ impl<'m> Solver<'m> {
         };
         let near = pivot < NEAR_SINGULAR;
         if near && !self.near_singular {
-            self.summary.warnings.push((
-                t,
-                format!(
+            self.summary.warnings.push(Warning {
+                kind: Kind::NearSingular,
+                time: t,
+                joints: Vec::new(),
+                message: format!(
                     "near-singular configuration (relative pivot {pivot:.1e}, \
                      condition about {:.1e}): a toggle or dead-centre position; \
                      accuracy of velocities and accelerations may suffer here",
                     1.0 / pivot
                 ),
-            ));
+            });
         }
         self.near_singular = near;
     }
@@ -518,7 +367,8 @@ impl<'m> Solver<'m> {
     /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
     /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
     /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
-    /// singular.
+    /// singular (for models of at most [`DENSE_MAX`] coordinates; a larger
+    /// one stops with the singular joint named).
     pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
         let angles = self.asm.angle_mask(self.model);
         let mut trial = self.q.clone();
@@ -527,15 +377,21 @@ impl<'m> Solver<'m> {
             self.asm.phi(self.model, &self.q, t, &mut phi);
             let r = max_abs(&phi);
             if !r.is_finite() {
-                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+                return Err(self.failure(
+                    Kind::NotFinite,
+                    t,
+                    "the constraint equations are not finite numbers",
+                ));
             }
             if r <= self.settings.tol {
                 return Ok(());
             }
             // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
             self.rhs.copy_from_slice(&phi);
+            // Levenberg–Marquardt is dense: up to the diagnosis' size only.
             match self.refactor(t) {
                 Ok(()) => self.jac.solve(&mut self.rhs),
+                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
                 Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
             }
             self.summary.newton_iterations += 1;
@@ -561,6 +417,7 @@ impl<'m> Solver<'m> {
                 s *= 0.5;
                 if s < 1e-6 {
                     return Err(self.failure(
+                        Kind::NotAssembled,
                         t,
                         "the mechanism cannot be assembled from the given placement: \
                          no step reduces the constraint residual (check the joints \
@@ -571,6 +428,7 @@ impl<'m> Solver<'m> {
             self.q.copy_from_slice(&trial);
         }
         Err(self.failure(
+            Kind::NotAssembled,
             t,
             &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
         ))
@@ -587,7 +445,11 @@ impl<'m> Solver<'m> {
             self.asm.phi(self.model, &self.q, t, &mut self.rhs);
             let r = max_abs(&self.rhs);
             if !r.is_finite() {
-                return Err(self.failure(t, "the constraint equations are not finite numbers"));
+                return Err(self.failure(
+                    Kind::NotFinite,
+                    t,
+                    "the constraint equations are not finite numbers",
+                ));
             }
             if r <= self.settings.tol {
                 // Converged: still apply the correction this residual gives,
@@ -614,6 +476,7 @@ impl<'m> Solver<'m> {
             }
         }
         Err(self.failure(
+            Kind::NotConverged,
             t,
             &format!(
                 "positions did not converge in {} Newton iterations: the drivers may ask \
@@ -642,6 +505,7 @@ impl<'m> Solver<'m> {
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
         let (j, _) = self.asm.joint_of_row(s.row);
         let mut e = self.failure(
+            Kind::LockUp,
             t,
             &format!(
                 "the constraint Jacobian is singular (relative pivot {:.1e}): \
@@ -657,36 +521,10 @@ impl<'m> Solver<'m> {
     }
 
     /// An error at `t` naming the joints with the largest residuals.
-    fn failure(&self, t: f64, what: &str) -> AnalysisError {
+    fn failure(&self, kind: Kind, t: f64, what: &str) -> AnalysisError {
         let mut phi = vec![0.0; self.asm.m];
         self.asm.phi(self.model, &self.q, t, &mut phi);
-        let mut worst: Vec<(f64, usize)> = Vec::new();
-        for (j, _) in self.model.joints.iter().enumerate() {
-            let r = self
-                .asm
-                .rows_of(self.model, j)
-                .map(|k| phi[k].abs())
-                .fold(
-                    0.0,
-                    |a: f64, b| {
-                        if b.is_nan() {
-                            f64::INFINITY
-                        } else {
-                            a.max(b)
-                        }
-                    },
-                );
-            if r > self.settings.tol {
-                worst.push((r, j));
-            }
-        }
-        worst.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let joints: Vec<String> = worst
-            .iter()
-            .take(5)
-            .map(|&(_, j)| self.model.joints[j].name.clone())
-            .collect();
-        let residual = worst.first().map_or(0.0, |w| w.0);
+        let (joints, residual) = worst_joints(self.model, &self.asm, &phi, self.settings.tol);
         let mut message = what.to_string();
         // A function of time or of a curve parameter that cannot be evaluated.
         for (j, joint) in self.model.joints.iter().enumerate() {
@@ -716,12 +554,7 @@ impl<'m> Solver<'m> {
                 message.push_str(&format!("; condition of Φ_q {:.1e}", hi / lo));
             }
         }
-        AnalysisError {
-            time: t,
-            message,
-            joints,
-            residual,
-        }
+        AnalysisError::new(kind, t, message).at_joints(joints, residual)
     }
 
     /// Fills the output channels for the current state.
@@ -743,7 +576,7 @@ impl<'m> Solver<'m> {
             .eta(self.model, &self.q, &self.qd, &self.qdd, t, &mut self.qddd);
         self.jac.solve(&mut self.qddd);
         if self.qddd.iter().any(|v| !v.is_finite()) {
-            return Err(self.failure(t, "jerks are not finite numbers"));
+            return Err(self.failure(Kind::NotFinite, t, "jerks are not finite numbers"));
         }
         Ok(())
     }
@@ -786,52 +619,6 @@ impl<'m> Solver<'m> {
     }
 }
 
-/// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
-/// points, own coordinates, then contact outputs.
-pub fn fill_outputs(
-    model: &Model,
-    asm: &Assembly,
-    contacts: &Contacts,
-    state: [&[f64]; 3],
-    points: &[PointOutput],
-    out: &mut [f64],
-) {
-    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
-        match asm.body_col(id.0) {
-            Some(c) => [v[c], v[c + 1], v[c + 2]],
-            None => [0.0; 3],
-        }
-    };
-    let mut k = 0;
-    for (id, _) in model.moving_bodies() {
-        for v in state {
-            out[k..k + 3].copy_from_slice(&body(v, id));
-            k += 3;
-        }
-    }
-    for p in points {
-        let [q, qd, qdd] = state.map(|v| body(v, p.body));
-        let r = point(q, p.s);
-        let v = point_vel(q, qd, p.s);
-        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
-        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
-        let acc = [
-            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
-            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
-        ];
-        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
-        k += 6;
-    }
-    for (j, joint) in model.joints.iter().enumerate() {
-        let c = asm.own_col(j);
-        for o in 0..joint.constraint.own_count() {
-            out[k] = state[0][c + o];
-            k += 1;
-        }
-    }
-    contacts.fill(model, asm, state[0], &mut out[k..]);
-}
-
 /// Largest model (coordinates) whose Jacobian condition is computed for an
 /// error message.
 const DIAGNOSE_MAX: usize = 600;
@@ -854,11 +641,7 @@ const ASSEMBLY_ITER: usize = 100;
 /// Largest change of an angle (rad) in one assembly iteration.
 pub const MAX_ANGLE_STEP: f64 = 0.5;
 
-fn fail(time: f64, message: &str) -> AnalysisError {
-    AnalysisError {
-        time,
-        message: message.to_string(),
-        joints: Vec::new(),
-        residual: 0.0,
-    }
+/// An error before the first step (t = 0).
+fn fail(kind: Kind, message: &str) -> AnalysisError {
+    AnalysisError::new(kind, 0.0, message)
 }

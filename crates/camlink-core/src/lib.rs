@@ -6,21 +6,46 @@
 //! q = [moving bodies' (x, y, φ)…, joints' own coordinates…].
 //! Data flows down: [`model`] (immutable) → [`assembly`] (layout and
 //! buffers) → analyses such as [`kinematics`].
+//!
+//! The modules are layered; each imports only modules of its own or an
+//! earlier line, with no cycle (`tests/layers.rs` checks it):
+//!
+//! 1. [`math`], [`curve`], [`function`], [`motion`]: geometry, functions of
+//!    time, and time derivatives of points along a motion;
+//! 2. [`constraint`], [`force`]: Φ, Φ_q, ν, γ and applied forces Q;
+//! 3. [`model`]: the validated, immutable description;
+//! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
+//! 5. [`contact`]: the curve contacts;
+//! 6. [`run`]: settings, sinks, tables, summaries, errors and warnings;
+//! 7. [`design`], [`diagnose`]: checks and reports;
+//! 8. [`kinematics`];
+//! 9. [`dynamics`].
 
-pub mod constraint;
 pub mod curve;
 pub mod function;
 pub mod math;
-pub mod model;
 pub mod motion;
 
-pub use constraint::{Constraint, Equations};
-pub use function::TimeFn;
-pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
+pub mod constraint;
+pub mod force;
+
+pub mod model;
+
 pub mod assembly;
+pub mod linsolve;
+
 pub mod contact;
+
+pub mod run;
+
 pub mod design;
 pub mod diagnose;
-pub mod dynamics;
+
 pub mod kinematics;
-pub mod linsolve;
+
+pub mod dynamics;
+
+pub use constraint::{Constraint, Equations};
+pub use force::{Applied, Force, ForceKind};
+pub use function::TimeFn;
+pub use model::{Body, BodyId, Joint, Model, ModelError, Point};

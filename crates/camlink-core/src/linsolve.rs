@@ -10,6 +10,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::sparse::linalg::lu::{factorize_symbolic_lu, LuRef, NumericLu, SymbolicLu};
+use faer::sparse::linalg::LuError;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, MatRef, Par};
 
@@ -285,10 +286,16 @@ impl DenseLu {
     }
 }
 
-/// Sparse LU of a square matrix with a fixed pattern.
+/// Sparse LU of a square matrix A with a fixed pattern.
+///
+/// The factorization is of Aᵀ, and A x = b is solved as (Aᵀ)ᵀ x = b: the
+/// columns faer eliminates are then the rows of A (the equations), so when
+/// no pivot is found in one, that row is a dependent equation and
+/// [`Singular::row`] names it.
 pub struct SparseLu {
+    /// The pattern of Aᵀ.
     pattern: SymbolicSparseColMat<usize>,
-    /// Values in column-compressed order.
+    /// Values of Aᵀ in column-compressed order.
     values: Vec<f64>,
     /// Position in `values` of the k-th pattern entry.
     pos: Vec<usize>,
@@ -296,31 +303,50 @@ pub struct SparseLu {
     numeric: NumericLu<usize, f64>,
     scratch: MemBuffer,
     valid: bool,
+    /// The probe of the pivot check: A·1, then its solution.
+    probe: Vec<f64>,
 }
+
+/// Largest error of the probe solve A x = A·1 (in x, against 1) that a
+/// sparse factorization may show; beyond it the pivots have grown or
+/// vanished and the matrix counts as singular.
+const PROBE_TOL: f64 = 1e-6;
+
+/// Largest matrix whose singular row the sparse path locates by a dense LU
+/// when the probe fails (the diagnosis' limit).
+const LOCATE_MAX: usize = 2000;
+
+/// Why a sparse matrix could not be set up.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("sparse matrix setup failed: {0}")]
+pub struct SetupError(String);
 
 impl SparseLu {
     /// Analyses the pattern `(row, col)` (no duplicates) of an n × n matrix.
-    pub fn new(n: usize, pattern: &[(usize, usize)]) -> Self {
+    pub fn try_new(n: usize, pattern: &[(usize, usize)]) -> Result<Self, SetupError> {
+        // The pattern of Aᵀ: entry (r, c) of A is (c, r) of Aᵀ.
         let pairs: Vec<Pair<usize, usize>> = pattern
             .iter()
-            .map(|&(row, col)| Pair { row, col })
+            .map(|&(row, col)| Pair { row: col, col: row })
             .collect();
         let (sym, _) = SymbolicSparseColMat::try_new_from_indices(n, n, &pairs)
-            .expect("pattern indices are within the matrix");
+            .map_err(|e| SetupError(format!("pattern: {e:?}")))?;
         let pos = pattern
             .iter()
             .map(|&(r, c)| {
-                let start = sym.col_ptr()[c];
-                let rows = &sym.row_idx()[start..sym.col_ptr()[c + 1]];
-                start + rows.binary_search(&r).expect("entry is in the pattern")
+                let start = sym.col_ptr()[r];
+                let rows = &sym.row_idx()[start..sym.col_ptr()[r + 1]];
+                rows.binary_search(&c)
+                    .map(|k| start + k)
+                    .map_err(|_| SetupError(format!("entry ({r}, {c}) is not in the pattern")))
             })
-            .collect();
+            .collect::<Result<Vec<_>, _>>()?;
         let symbolic = factorize_symbolic_lu(sym.as_ref(), Default::default())
-            .expect("symbolic LU of a valid pattern");
+            .map_err(|e| SetupError(format!("symbolic LU: {e:?}")))?;
         let req = symbolic
             .factorize_numeric_lu_scratch::<f64>(Par::Seq, Default::default())
-            .or(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-        SparseLu {
+            .or(symbolic.solve_transpose_in_place_scratch::<f64>(1, Par::Seq));
+        Ok(SparseLu {
             values: vec![0.0; sym.row_idx().len()],
             pattern: sym,
             pos,
@@ -328,7 +354,8 @@ impl SparseLu {
             numeric: NumericLu::new(),
             scratch: MemBuffer::new(req),
             valid: false,
-        }
+            probe: vec![0.0; n],
+        })
     }
 
     /// Sets the k-th pattern entry.
@@ -337,6 +364,8 @@ impl SparseLu {
         self.values[self.pos[k]] = v;
     }
 
+    /// Factors the current values; a singular matrix names the row of A
+    /// (the equation) where elimination found no pivot.
     pub fn factor(&mut self) -> Result<(), Singular> {
         let a = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
         let res = self.symbolic.factorize_numeric_lu(
@@ -347,23 +376,73 @@ impl SparseLu {
             Default::default(),
         );
         self.valid = res.is_ok();
-        res.map(|_| ()).map_err(|_| Singular { row: 0, pivot: 0.0 })
+        match res {
+            Ok(_) => self.check_pivots(),
+            // Elimination step `index` works on column col_perm[index] of Aᵀ.
+            Err(LuError::SymbolicSingular { index }) => Err(Singular {
+                row: self.symbolic.col_perm().arrays().0[index],
+                pivot: 0.0,
+            }),
+            Err(LuError::Generic(_)) => Err(Singular { row: 0, pivot: 0.0 }),
+        }
+    }
+
+    /// The pivot check: faer's sparse LU pivots on any nonzero, so a
+    /// vanished or grown pivot shows as an inaccurate solve of A x = A·1.
+    /// A singular matrix's row comes from a dense LU of A, up to
+    /// [`LOCATE_MAX`] unknowns.
+    fn check_pivots(&mut self) -> Result<(), Singular> {
+        // probe = A·1: column c of Aᵀ sums into entry c of A·1.
+        let n = self.probe.len();
+        for c in 0..n {
+            let range = self.pattern.col_ptr()[c]..self.pattern.col_ptr()[c + 1];
+            self.probe[c] = self.values[range].iter().sum();
+        }
+        let mut probe = std::mem::take(&mut self.probe);
+        self.solve(&mut probe);
+        let err = probe.iter().fold(0.0f64, |e, x| {
+            if x.is_finite() {
+                e.max((x - 1.0).abs())
+            } else {
+                f64::INFINITY
+            }
+        });
+        self.probe = probe;
+        if err <= PROBE_TOL {
+            return Ok(());
+        }
+        self.valid = false;
+        let row = if n <= LOCATE_MAX {
+            let mut dense = DenseLu::new(n);
+            dense
+                .factor(self.to_dense().as_ref())
+                .err()
+                .map_or(0, |s| s.row)
+        } else {
+            0
+        };
+        Err(Singular { row, pivot: 0.0 })
     }
 
     pub fn solve(&mut self, b: &mut [f64]) {
         let n = b.len();
         let rhs = MatMut::from_column_major_slice_mut(b, n, 1);
         let lu = LuRef::new_unchecked(&self.symbolic, &self.numeric);
-        lu.solve_in_place_with_conj(Conj::No, rhs, Par::Seq, MemStack::new(&mut self.scratch));
+        lu.solve_transpose_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut self.scratch),
+        );
     }
 
-    /// The matrix as a dense one (for diagnostics).
+    /// The matrix A as a dense one (for diagnostics).
     pub fn to_dense(&self) -> Mat<f64> {
         let n = self.pattern.nrows();
         let mut a = Mat::zeros(n, n);
         for c in 0..n {
             for k in self.pattern.col_ptr()[c]..self.pattern.col_ptr()[c + 1] {
-                a[(self.pattern.row_idx()[k], c)] = self.values[k];
+                a[(c, self.pattern.row_idx()[k])] = self.values[k];
             }
         }
         a
@@ -381,8 +460,8 @@ pub enum SystemMatrix {
 impl SystemMatrix {
     /// An n × n matrix with the entries `pattern` (row, col), in the order
     /// [`put`](Self::put) will fill them.
-    pub fn new(n: usize, pattern: &[(usize, usize)]) -> Self {
-        if n <= SMALL_MAX {
+    pub fn try_new(n: usize, pattern: &[(usize, usize)]) -> Result<Self, SetupError> {
+        Ok(if n <= SMALL_MAX {
             SystemMatrix::Small {
                 lu: SmallLu::new(n),
                 work: vec![0.0; n],
@@ -393,8 +472,8 @@ impl SystemMatrix {
                 lu: DenseLu::new(n),
             }
         } else {
-            SystemMatrix::Sparse(Box::new(SparseLu::new(n, pattern)))
-        }
+            SystemMatrix::Sparse(Box::new(SparseLu::try_new(n, pattern)?))
+        })
     }
 
     /// Sets entry k of the pattern, at (r, c).
@@ -520,7 +599,7 @@ mod tests {
                 .collect();
             let mut small = SmallLu::new(n);
             let mut dense = DenseLu::new(n);
-            let mut sparse = SparseLu::new(n, &pattern);
+            let mut sparse = SparseLu::try_new(n, &pattern).unwrap();
             for (k, (&(r, c), &v)) in pattern.iter().zip(&vals).enumerate() {
                 small.set(r, c, v);
                 sparse.put(k, v);
@@ -604,7 +683,7 @@ mod tests {
                 vals.push(if i == j { 4.0 + i as f64 * 0.01 } else { -1.0 });
             }
         }
-        let mut sys = SystemMatrix::new(n, &pattern);
+        let mut sys = SystemMatrix::try_new(n, &pattern).unwrap();
         assert!(matches!(sys, SystemMatrix::Sparse(_)));
         for (k, (&(r, c), &v)) in pattern.iter().zip(&vals).enumerate() {
             sys.put(k, r, c, v);
@@ -614,11 +693,52 @@ mod tests {
         let mut b: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| a[(i, j)] * x[j]).sum())
             .collect();
+        let mut dense = DenseLu::new(n);
+        dense.factor(a.as_ref()).unwrap();
+        let mut xd = b.clone();
+        dense.solve(&mut xd);
         sys.factor().unwrap();
         sys.solve(&mut b);
         for i in 0..n {
             assert!((b[i] - x[i]).abs() < 1e-12, "{i}: {} vs {}", b[i], x[i]);
+            assert!(
+                (b[i] - xd[i]).abs() < 1e-13,
+                "{i}: sparse {} vs dense {}",
+                b[i],
+                xd[i]
+            );
         }
+    }
+
+    #[test]
+    fn sparse_lu_names_the_row_without_a_pivot() {
+        // A tridiagonal matrix large enough for the sparse path whose row
+        // 131 is zero (a joint whose Jacobian row vanishes): the error
+        // names that row, not the first.
+        let n = DENSE_MAX + 30;
+        let zero = 131;
+        let mut entries = Vec::new();
+        for i in 0..n {
+            for j in i.saturating_sub(1)..(i + 2).min(n) {
+                let v = if i == zero {
+                    0.0
+                } else if i == j {
+                    4.0 + i as f64 * 0.01
+                } else {
+                    -1.0
+                };
+                entries.push(((i, j), v));
+            }
+        }
+        let pattern: Vec<(usize, usize)> = entries.iter().map(|e| e.0).collect();
+        let mut sys = SystemMatrix::try_new(n, &pattern).unwrap();
+        assert!(matches!(sys, SystemMatrix::Sparse(_)));
+        for (k, &((r, c), v)) in entries.iter().enumerate() {
+            sys.put(k, r, c, v);
+        }
+        let err = sys.factor().unwrap_err();
+        assert_eq!(err.row, zero, "{err:?}");
+        assert!(!sys.is_valid());
     }
 
     #[test]

@@ -6,21 +6,10 @@
 
 use std::collections::HashMap;
 
+pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
-use crate::dynamics::force::{Applied, Force};
+use crate::force::{Applied, Force};
 use crate::math::V2;
-
-/// Index of a body in [`Model::bodies`]; body 0 is the ground.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct BodyId(pub usize);
-
-impl BodyId {
-    pub const GROUND: BodyId = BodyId(0);
-
-    pub fn is_ground(self) -> bool {
-        self == Self::GROUND
-    }
-}
 
 /// A named point fixed in a body, at `s` (m) in the body frame.
 #[derive(Clone, Debug, PartialEq)]

@@ -3,7 +3,8 @@
 
 mod common;
 
-use camlink_core::kinematics::{run, Settings, Table};
+use camlink_core::kinematics::run;
+use camlink_core::run::{Settings, Table};
 use common::{four_bar_with, freudenstein};
 
 const L: [f64; 4] = [0.4, 0.1, 0.35, 0.3];

@@ -4,10 +4,10 @@
 
 mod mechanisms;
 
-use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::integrator::{run, Adaptive, Integrator, Settings};
-use camlink_core::dynamics::Force;
-use camlink_core::kinematics::{time_grid, Table};
+use camlink_core::force::tsda::Tsda;
+use camlink_core::force::Force;
+use camlink_core::run::{time_grid, Table};
 use camlink_core::{BodyId, Model, TimeFn};
 use mechanisms::{
     chain, pendulum, slider_crank, CRANK, CRANK_CENTROID, INERTIA, MASS, ROD, ROD_CENTROID,

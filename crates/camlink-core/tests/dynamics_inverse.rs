@@ -3,11 +3,11 @@
 
 mod mechanisms;
 
-use camlink_core::dynamics::force::point::PointForce;
-use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::inverse::run;
-use camlink_core::dynamics::Force;
-use camlink_core::kinematics::{time_grid, Settings, Table};
+use camlink_core::force::point::PointForce;
+use camlink_core::force::tsda::Tsda;
+use camlink_core::force::Force;
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_core::{BodyId, Model, TimeFn};
 use mechanisms::{body, rev, slider_crank};
 

@@ -4,7 +4,7 @@
 
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::dynamics::integrator;
-use camlink_core::kinematics::Table;
+use camlink_core::run::{Kind, Table};
 use camlink_core::{Body, BodyId, Model};
 
 #[test]
@@ -29,6 +29,7 @@ fn massless_body_is_named_when_the_mass_matrix_is_singular() {
         &mut Table::default(),
     )
     .unwrap_err();
+    assert_eq!(err.kind, Kind::SingularMass, "{err}");
     assert!(
         err.message.contains("'arm'") && err.message.contains("inertia"),
         "{err}"

@@ -3,11 +3,11 @@
 mod mechanisms;
 
 use camlink_core::constraint::translational::Translational;
-use camlink_core::dynamics::force::point::Torque;
-use camlink_core::dynamics::force::tsda::Tsda;
 use camlink_core::dynamics::statics::{run, solve, Settings};
-use camlink_core::dynamics::Force;
-use camlink_core::kinematics::Table;
+use camlink_core::force::point::Torque;
+use camlink_core::force::tsda::Tsda;
+use camlink_core::force::Force;
+use camlink_core::run::Table;
 use camlink_core::{BodyId, Model, TimeFn};
 use mechanisms::{body, pendulum};
 

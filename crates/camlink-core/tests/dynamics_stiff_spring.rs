@@ -5,10 +5,10 @@
 //! axial vibration, and follows the rigid pendulum.
 
 use camlink_core::constraint::composite::RevoluteRevolute;
-use camlink_core::dynamics::force::tsda::Tsda;
-use camlink_core::dynamics::force::Force;
 use camlink_core::dynamics::integrator::{self, Settings};
-use camlink_core::kinematics::Table;
+use camlink_core::force::tsda::Tsda;
+use camlink_core::force::Force;
+use camlink_core::run::Table;
 use camlink_core::{Body, BodyId, Model, TimeFn};
 
 const L: f64 = 0.5;

@@ -2,7 +2,8 @@
 
 mod common;
 
-use camlink_core::kinematics::{run, time_grid, PointOutput, Settings, Table};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, PointOutput, Settings, Table};
 use common::{four_bar, freudenstein, CRANK_SPEED, CRANK_START, FOUR_BAR};
 
 fn wrap(a: f64) -> f64 {

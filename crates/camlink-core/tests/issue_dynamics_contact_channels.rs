@@ -6,7 +6,7 @@ use camlink_core::constraint::absolute::{AbsoluteCoord, Coord};
 use camlink_core::constraint::point_follower::PointFollower;
 use camlink_core::curve::{Curve, Polar};
 use camlink_core::dynamics::{integrator, statics};
-use camlink_core::kinematics::Table;
+use camlink_core::run::Table;
 use camlink_core::{Body, BodyId, Model, TimeFn};
 
 /// A bead (mass 1 kg) in a circular slot of radius 0.5 m on the ground,

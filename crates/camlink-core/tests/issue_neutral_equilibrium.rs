@@ -3,6 +3,7 @@
 
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::dynamics::statics;
+use camlink_core::run::Kind;
 use camlink_core::{Body, BodyId, Model};
 
 fn pendulum(gravity: [f64; 2]) -> Model {
@@ -27,6 +28,7 @@ fn pendulum(gravity: [f64; 2]) -> Model {
 #[test]
 fn a_pendulum_without_gravity_is_neutral() {
     let err = statics::solve(&pendulum([0.0, 0.0]), 0.0, &Default::default()).unwrap_err();
+    assert_eq!(err.kind, Kind::LockUp, "{err}");
     assert!(err.message.contains("neutral equilibrium"), "{err}");
 }
 

@@ -266,6 +266,25 @@ impl fmt::Display for Expr {
     }
 }
 
+/// The names `src` reads — its variable and named constants, not the
+/// functions it calls — each once, in order of first appearance. Only the
+/// tokens are read (no parsing, no evaluation), so this is linear in the
+/// length of `src`; a model file uses it to order its parameters.
+pub fn names(src: &str) -> Result<Vec<&str>, ParseError> {
+    let toks = lexer::tokenize(src)?;
+    let mut out: Vec<&str> = Vec::new();
+    for (k, t) in toks.iter().enumerate() {
+        let call = toks.get(k + 1).is_some_and(|n| n.tok == lexer::Tok::LParen);
+        if t.tok == lexer::Tok::Ident && !call {
+            let name = &src[t.start..t.end];
+            if !out.contains(&name) {
+                out.push(name);
+            }
+        }
+    }
+    Ok(out)
+}
+
 /// Evaluates a constant expression such as `"deg(30)"` or `"2*r"` with
 /// parameters. A value that is not finite (`1/0`, `log(-1)`) is an error
 /// pointing at the operation.

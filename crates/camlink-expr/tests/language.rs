@@ -166,3 +166,13 @@ fn long_flat_expressions_compile() {
     assert_eq!(e.eval(1.0), 21.0);
     assert_eq!(e.jet(0.0)[1], 1.0);
 }
+
+#[test]
+fn names_lists_what_an_expression_reads_not_what_it_calls() {
+    assert_eq!(
+        camlink_expr::names("a*sin(w*t) + a + max(b, 2e3) - pi").unwrap(),
+        vec!["a", "w", "t", "b", "pi"]
+    );
+    assert_eq!(camlink_expr::names("1 + 2").unwrap(), Vec::<&str>::new());
+    assert!(camlink_expr::names("a $ b").is_err());
+}

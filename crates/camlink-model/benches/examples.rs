@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use camlink_core::kinematics::{run, time_grid, Settings, Sink};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Sink};
 use camlink_expr::Expr;
 
 /// Discards rows; the benchmark measures the solver alone.

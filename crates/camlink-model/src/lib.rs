@@ -58,7 +58,7 @@ impl Loaded {
     ///
     /// The loader has checked every name; an error means `analysis.points`
     /// was changed after loading to name a body or point the model lacks.
-    pub fn point_outputs(&self) -> Result<Vec<camlink_core::kinematics::PointOutput>, String> {
+    pub fn point_outputs(&self) -> Result<Vec<camlink_core::run::PointOutput>, String> {
         self.analysis
             .points
             .iter()
@@ -75,7 +75,7 @@ impl Loaded {
                     .body(id)
                     .point(point)
                     .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::kinematics::PointOutput {
+                Ok(camlink_core::run::PointOutput {
                     body: id,
                     name: full.clone(),
                     s,

@@ -128,7 +128,6 @@ pub(crate) fn resolve(
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
 fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
-    let mut done = HashMap::new();
     for name in list.keys() {
         let path = format!("parameters.{name}");
         if !is_identifier(name) {
@@ -144,59 +143,92 @@ fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
             );
         }
     }
-    let mut pending: Vec<(&String, &Num)> = list.iter().collect();
-    while !pending.is_empty() {
-        let mut left = Vec::new();
-        let mut first_error = None;
-        for (name, value) in pending.iter().copied() {
-            let v = match value {
-                Num::Value(v) => Ok(*v),
-                Num::Expr(src) => eval::constant(src, &done),
-            };
-            match v {
-                Ok(v) => {
-                    if !v.is_finite() {
+    // Each parameter's dependencies: the other parameters its expression reads.
+    let names: Vec<&String> = list.keys().collect();
+    let index: HashMap<&str, usize> = names
+        .iter()
+        .enumerate()
+        .map(|(k, n)| (n.as_str(), k))
+        .collect();
+    let mut needs: Vec<Vec<usize>> = vec![Vec::new(); names.len()];
+    for (k, value) in list.values().enumerate() {
+        if let Num::Expr(src) = value {
+            // A malformed expression has no dependencies; evaluating it below
+            // reports the fault with its caret.
+            for n in camlink_expr::names(src).unwrap_or_default() {
+                if let Some(&j) = index.get(n) {
+                    needs[k].push(j);
+                }
+            }
+        }
+    }
+    // Evaluate in dependency order (depth first, iterative): linear in the
+    // number of parameters and references.
+    let mut state = vec![Visit::New; names.len()];
+    let mut done: HashMap<String, f64> = HashMap::with_capacity(names.len());
+    let values: Vec<&Num> = list.values().collect();
+    for root in 0..names.len() {
+        if state[root] != Visit::New {
+            continue;
+        }
+        // Stack of (parameter, next dependency to look at).
+        let mut stack = vec![(root, 0usize)];
+        state[root] = Visit::Open;
+        while let Some(&mut (k, ref mut next)) = stack.last_mut() {
+            if let Some(&j) = needs[k].get(*next) {
+                *next += 1;
+                match state[j] {
+                    Visit::New => {
+                        state[j] = Visit::Open;
+                        stack.push((j, 0));
+                    }
+                    Visit::Open => {
+                        // j is on the stack: the cycle runs from j to k.
+                        let from = stack.iter().position(|&(p, _)| p == j).unwrap_or(0);
+                        let cycle: Vec<&str> = stack[from..]
+                            .iter()
+                            .map(|&(p, _)| names[p].as_str())
+                            .collect();
                         return fail(
-                            format!("parameters.{name}"),
-                            format!("value is not a finite number ({v})"),
+                            format!("parameters.{}", names[j]),
+                            format!(
+                                "parameters {} refer to each other in a cycle",
+                                cycle.join(", ")
+                            ),
                         );
                     }
-                    done.insert(name.clone(), v);
+                    Visit::Done => {}
                 }
-                Err(e) => {
-                    first_error.get_or_insert((name, e));
-                    left.push((name, value));
-                }
+                continue;
             }
-        }
-        if left.len() == pending.len() {
-            let names: Vec<&str> = left.iter().map(|(n, _)| n.as_str()).collect();
-            let cyclic = left.iter().all(|(_, v)| match v {
-                Num::Expr(src) => names.iter().any(|n| mentions(src, n)),
-                Num::Value(_) => false,
-            });
-            if cyclic {
+            stack.pop();
+            state[k] = Visit::Done;
+            let name = names[k];
+            let v = match values[k] {
+                Num::Value(v) => *v,
+                Num::Expr(src) => match eval::constant(src, &done) {
+                    Ok(v) => v,
+                    Err(e) => return fail(format!("parameters.{name}"), e),
+                },
+            };
+            if !v.is_finite() {
                 return fail(
-                    format!("parameters.{}", names[0]),
-                    format!(
-                        "parameters {} refer to each other in a cycle",
-                        names.join(", ")
-                    ),
+                    format!("parameters.{name}"),
+                    format!("value is not a finite number ({v})"),
                 );
             }
-            if let Some((name, e)) = first_error {
-                return fail(format!("parameters.{name}"), e);
-            }
+            done.insert(name.clone(), v);
         }
-        pending = left;
     }
     Ok(done)
 }
 
-/// True when `src` contains `name` as a whole word.
-fn mentions(src: &str, name: &str) -> bool {
-    src.split(|c: char| !(c.is_alphanumeric() || c == '_'))
-        .any(|w| w == name)
+/// Where a parameter stands in the depth-first ordering of [`parameters`].
+#[derive(Clone, Copy, PartialEq)]
+enum Visit {
+    New,
+    Open,
+    Done,
 }
 
 fn is_identifier(s: &str) -> bool {

@@ -6,9 +6,9 @@
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 use std::path::{Path, PathBuf};
 
-use camlink_core::dynamics::contact_force::{lift_off, LiftOff};
+use camlink_core::dynamics::contact_force::lift_off;
 use camlink_core::dynamics::{integrator, inverse};
-use camlink_core::kinematics::{self, Settings, Summary, Table};
+use camlink_core::run::{Kind, LiftOff, Settings, Summary, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 const EXAMPLE: &str = "cam_valve_spring.toml";
@@ -78,8 +78,8 @@ fn ch(t: &Table, name: &str) -> Vec<f64> {
 fn lift_off_warnings(s: &Summary) -> Vec<&String> {
     s.warnings
         .iter()
-        .map(|(_, m)| m)
-        .filter(|m| m.contains("would leave cam"))
+        .filter(|w| w.kind == Kind::LiftOff)
+        .map(|w| &w.message)
         .collect()
 }
 
@@ -90,8 +90,8 @@ fn assert_lift_off_data_matches_warnings(l: &Loaded, t: &Table, s: &Summary) {
     let warnings: Vec<(f64, String)> = s
         .warnings
         .iter()
-        .filter(|(_, m)| m.contains("would leave cam"))
-        .cloned()
+        .filter(|w| w.kind == Kind::LiftOff)
+        .map(|w| (w.time, w.message.clone()))
         .collect();
     let records: Vec<(f64, String)> = s
         .lift_off
@@ -285,7 +285,7 @@ fn valve_spring_forward_dynamics_reports_lift_off() {
         ]);
         // A turn at half the given speed.
         let period = 120.0 / rpm;
-        let times = kinematics::time_grid(period, period / 360.0).unwrap();
+        let times = camlink_core::run::time_grid(period, period / 360.0).unwrap();
         let settings = integrator::Settings {
             step: period / 2880.0,
             tol: 1e-8,

@@ -8,7 +8,8 @@ use std::path::{Path, PathBuf};
 
 use camlink_core::constraint::Constraint;
 use camlink_core::design::{self, Severity};
-use camlink_core::kinematics::{self, AnalysisError, PointOutput, Settings, Table};
+use camlink_core::kinematics;
+use camlink_core::run::{AnalysisError, Kind, PointOutput, Settings, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 fn examples() -> PathBuf {
@@ -28,11 +29,11 @@ fn variant(name: &str, from: &str, to: &str) -> Loaded {
 }
 
 /// Runs the `[analysis]` of a loaded model.
-fn try_run(l: &Loaded) -> (Table, Result<kinematics::Summary, AnalysisError>) {
+fn try_run(l: &Loaded) -> (Table, Result<camlink_core::run::Summary, AnalysisError>) {
     let a = &l.analysis;
     let times = match &a.times {
         Some(t) => t.clone(),
-        None => kinematics::time_grid(a.t_end.unwrap(), a.step.unwrap()).unwrap(),
+        None => camlink_core::run::time_grid(a.t_end.unwrap(), a.step.unwrap()).unwrap(),
     };
     let points: Vec<PointOutput> = a
         .points
@@ -245,6 +246,8 @@ fn flat_follower_on_the_seed_cam_warns_then_stops_in_a_hollow() {
     let (table, r) = try_run(&l);
     let e = r.unwrap_err();
     assert!(e.joints == ["contact"], "{e:?}");
+    // Newton stops at the edge; the design finding explains why.
+    assert_eq!(e.kind, Kind::NotConverged, "{e:?}");
     assert!(
         e.to_string().contains("possible cause: joint 'contact'"),
         "{e}"
@@ -445,13 +448,32 @@ fn valve_train_lift_is_the_cam_support_function() {
             &zero
         ) < 1e-12
     );
-    // From the base at ρ(π) = 0.018 to the nose at ρ(0) = 0.026: 8 mm of lift.
-    let (lo, hi) = lift
+    // camlink's valve rises from the base, ρ(π) = 0.018, to the nose,
+    // ρ(0) = 0.026: 8 mm of lift. The lift lies between the cam's least and
+    // largest radius, ρ(π) and ρ(0), and reaches each where it points along
+    // the valve axis (the profile's normal is radial there): the base at
+    // φ = −π/2 (t = 0.01 s), the nose at φ = −3π/2 (t = 0.03 s), both output
+    // times, so these radii are the extremes of the lift on the grid. Newton
+    // stops once the contact residual (m, along the valve axis: the pressure
+    // angle is zero) is within `tol` and then applies that correction, so
+    // camlink's lift is within `tol` of them.
+    let tol = l.analysis.tol;
+    let step = l.analysis.step.unwrap();
+    for at in [0.01, 0.03] {
+        assert!(
+            t.t.iter().any(|&x| (x - at).abs() < 1e-9 * step),
+            "no output at {at} s"
+        );
+    }
+    let y = ch(&t, "valve.y");
+    let (lo, hi) = y
         .iter()
         .fold((f64::MAX, f64::MIN), |m, &v| (m.0.min(v), m.1.max(v)));
     assert!(
-        (hi - 0.026).abs() < 1e-12 && (lo - 0.018).abs() < 1e-12,
-        "{lo} {hi}"
+        (hi - rho(0.0)).abs() <= tol && (lo - rho(PI)).abs() <= tol,
+        "camlink's lift runs from {lo} to {hi} m, want {} to {} m within {tol:.0e} m",
+        rho(PI),
+        rho(0.0)
     );
 }
 
@@ -539,12 +561,33 @@ fn a_pin_driven_off_the_end_of_its_slot_stops_the_run() {
     // s = 1 + 0.3 sin 2πt passes 1.2 at t = asin(2/3)/2π = 0.1161 s.
     assert!((e.time - 0.12).abs() < 1e-12, "{e}");
     assert_eq!(e.joints, ["slider"]);
+    assert_eq!(e.kind, Kind::OffCurve, "{e}");
     let text = e.to_string();
     assert!(
-        text.contains("ran off the end") && text.contains("[0.2, 1.2]"),
+        text.contains("ran off the upper end (1.2)") && text.contains("α_j = 1.2"),
         "{text}"
     );
     assert_eq!(table.t.len(), 24, "the steps before the error are kept");
+}
+
+#[test]
+fn a_pin_driven_off_the_start_of_its_slot_names_the_lower_end() {
+    // Slot starting at x = 0.75; the drive comes down to 0.7.
+    let l = variant(
+        "slot_curved_driven.toml",
+        "range = [0.2, 1.6]",
+        "range = [0.75, 1.6]",
+    );
+    let (_, r) = try_run(&l);
+    let e = r.unwrap_err();
+    // s = 1 + 0.3 sin 2πt falls below 0.75 at t = 1/2 + asin(5/6)/2π = 0.6568 s, first
+    // seen at the next output time.
+    assert!((e.time - 0.66).abs() < 1e-12, "{e}");
+    let text = e.to_string();
+    assert!(
+        text.contains("ran off the lower end (0.75)") && text.contains("α_j = 0.7"),
+        "{text}"
+    );
 }
 
 #[test]
@@ -592,12 +635,15 @@ fn every_cam_and_slot_example_has_a_test() {
         include_str!("cam_dynamics.rs"),
     ]
     .concat();
+    let mut found = 0;
     for entry in std::fs::read_dir(examples()).unwrap() {
         let name = entry.unwrap().file_name().to_string_lossy().into_owned();
         if (name.starts_with("cam_") || name.starts_with("slot_")) && name.ends_with(".toml") {
             assert!(this.contains(&format!("\"{name}\"")), "{name} has no test");
+            found += 1;
         }
     }
+    assert!(found >= 9, "only {found} cam and slot examples found");
 }
 
 /// A small cam model with `curves` and `joint` spliced in, loaded as

@@ -1,6 +1,6 @@
 //! `[[forces]]`: every force type loads; defaults and errors.
 
-use camlink_core::dynamics::force::ForceKind;
+use camlink_core::force::ForceKind;
 use camlink_model::{load_str, Format};
 
 const MODEL: &str = r#"

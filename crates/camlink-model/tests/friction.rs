@@ -1,9 +1,9 @@
 //! `[[forces]] type = "viscous_friction"`: loading, errors, and a block
 //! sliding down an inclined guide to its terminal speed.
 
-use camlink_core::dynamics::force::ForceKind;
 use camlink_core::dynamics::integrator::{run, Settings};
-use camlink_core::kinematics::{time_grid, Table};
+use camlink_core::force::ForceKind;
+use camlink_core::run::{time_grid, Table};
 use camlink_model::{load_str, Format};
 
 /// A block on a guide inclined at `beta`, and a wheel on a pin.

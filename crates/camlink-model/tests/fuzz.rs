@@ -112,11 +112,14 @@ fn mutated_json_never_panics() {
 fn mutated_every_bad_file_never_panics() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/models/bad");
     let mut rng = Rng(42);
+    let mut mutated = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
+        // Files that are not UTF-8 on purpose are fuzzed as bytes elsewhere.
         let Ok(base) = std::fs::read_to_string(&path) else {
             continue;
         };
+        mutated += 1;
         let format = if path.extension().is_some_and(|e| e == "json") {
             Format::Json
         } else {
@@ -126,6 +129,7 @@ fn mutated_every_bad_file_never_panics() {
             let _ = load_str(&mutate(&mut rng, &base), format, "bad");
         }
     }
+    assert!(mutated >= 15, "only {mutated} bad files found to mutate");
 }
 
 #[test]

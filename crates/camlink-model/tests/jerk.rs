@@ -5,7 +5,8 @@
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
-use camlink_core::kinematics::{run, time_grid, Settings, Table};
+use camlink_core::kinematics::run;
+use camlink_core::run::{time_grid, Settings, Table};
 use camlink_expr::Expr;
 use camlink_model::{load_path, load_str, Format, Loaded};
 

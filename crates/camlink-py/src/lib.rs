@@ -14,12 +14,13 @@ use std::sync::Arc;
 
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
-use camlink_core::dynamics::contact_force::LiftOff;
-use camlink_core::dynamics::force::callback::Callback;
 use camlink_core::dynamics::integrator::{self, Adaptive};
-use camlink_core::dynamics::{inverse, statics, Force};
-use camlink_core::kinematics::{
-    self, AnalysisError as CoreAnalysisError, PointOutput, Settings, Sink, Summary,
+use camlink_core::dynamics::{inverse, statics};
+use camlink_core::force::callback::Callback;
+use camlink_core::force::Force;
+use camlink_core::kinematics;
+use camlink_core::run::{
+    self, AnalysisError as CoreAnalysisError, LiftOff, PointOutput, Settings, Sink, Summary,
 };
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded};
@@ -218,7 +219,7 @@ impl Model {
     /// Applied forces: a list of dicts with name, kind and bodies.
     #[getter]
     fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        use camlink_core::dynamics::Applied;
+        use camlink_core::force::Applied;
         let model = &self.loaded.model;
         let list = PyList::empty(py);
         for f in &model.forces {
@@ -340,7 +341,7 @@ impl Model {
     /// as the run goes. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -376,7 +377,7 @@ impl Model {
     /// where it rises again (None when the run ends in lift-off),
     /// `least_force` (N, negative) and where it is, `least_time` (s) and
     /// `least_cam_angle` (rad). The cam angle is φ of the cam body.
-    #[pyo3(signature = (times, tol = 1e-10, max_iter = 25, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_inverse_dynamics<'py>(
         &self,
@@ -401,7 +402,7 @@ impl Model {
 
     /// The equilibrium at `time` (s), as one row with the channels of
     /// `run_inverse_dynamics` (velocities and accelerations zero).
-    #[pyo3(signature = (time = 0.0, tol = 1e-10, max_iter = 100, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (time = 0.0, *, tol = statics::Settings::default().tol, max_iter = statics::Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_equilibrium<'py>(
         &self,
@@ -424,7 +425,7 @@ impl Model {
     /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
     /// `h` is the largest step). Channels and the summary's `lift_off` as
     /// `run_inverse_dynamics`.
-    #[pyo3(signature = (times, h = 1e-3, rho_inf = 0.8, tol = 1e-6, max_iter = 12, projection_tol = 1e-12, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, h = integrator::Settings::default().step, rho_inf = integrator::Settings::default().rho_inf, tol = integrator::Settings::default().tol, max_iter = integrator::Settings::default().max_iter, projection_tol = integrator::Settings::default().projection_tol, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
     #[allow(clippy::too_many_arguments)]
     fn run_dynamics<'py>(
         &self,
@@ -589,16 +590,26 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .collect()
 }
 
-/// The run summary as a dict: counts, `warnings` as (t, message) pairs,
+/// The run summary as a dict: counts, `warnings` as dicts (`kind`, `time`,
+/// `joints`, `message`),
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
-fn summary_dict<'py>(py: Python<'py>, s: &kinematics::Summary) -> PyResult<Bound<'py, PyDict>> {
+fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
     d.set_item("newton_iterations", s.newton_iterations)?;
     d.set_item("factorizations", s.factorizations)?;
     d.set_item("halvings", s.halvings)?;
-    d.set_item("warnings", s.warnings.clone())?;
+    let warnings = PyList::empty(py);
+    for w in &s.warnings {
+        let wd = PyDict::new(py);
+        wd.set_item("kind", w.kind.name())?;
+        wd.set_item("time", w.time)?;
+        wd.set_item("joints", w.joints.clone())?;
+        wd.set_item("message", &w.message)?;
+        warnings.append(wd)?;
+    }
+    d.set_item("warnings", warnings)?;
     d.set_item("assembly_moves", s.assembly_moves.clone())?;
     let lift_off = PyList::empty(py);
     for l in &s.lift_off {
@@ -638,13 +649,14 @@ fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_
 /// results attached.
 fn analysis_error(
     py: Python<'_>,
-    e: &kinematics::AnalysisError,
+    e: &CoreAnalysisError,
     names: Vec<String>,
     data: Option<Bound<'_, PyArray2<f64>>>,
 ) -> PyErr {
     let err = AnalysisError::new_err(e.to_string());
     let value = err.value(py);
     let set = || -> PyResult<()> {
+        value.setattr("kind", e.kind.name())?;
         value.setattr("time", e.time)?;
         value.setattr("joints", e.joints.clone())?;
         value.setattr("residual", e.residual)?;
@@ -741,7 +753,7 @@ impl Sink for ChunkSink {
 #[pyfunction]
 fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
     guard(|| {
-        let times = kinematics::time_grid(t_end, step).map_err(ModelError::new_err)?;
+        let times = run::time_grid(t_end, step).map_err(ModelError::new_err)?;
         Ok(times.into_pyarray(py))
     })
 }

@@ -21,9 +21,9 @@
 //! Body j of the [`Local`] view is the ground.
 
 use super::{CoordMask, Equations, Jac, Local, Rows, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, point, point_vel, rot, rot_d, sub, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 /// Which coordinate a coordinate constraint holds.

@@ -34,10 +34,10 @@
 //! taken with the jerks set to zero ([`carried_paths`], which needs p⁗ for
 //! g⃛*), the cross product's by Leibniz's rule.
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{cross, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 #[derive(Clone, Debug)]
@@ -74,6 +74,10 @@ impl Equations for CamFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Curve(&self.curve_i), Feature::Curve(&self.curve_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

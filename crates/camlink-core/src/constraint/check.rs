@@ -16,7 +16,7 @@
 #![allow(clippy::needless_range_loop)]
 
 use super::{Equations, Jac, Local, LocalBlock, Rows, LOCAL_COORDS, MAX_OWN};
-use crate::model::BodyId;
+use crate::constraint::BodyId;
 
 /// Deterministic pseudo-random numbers (SplitMix64) for reproducible checks.
 pub struct Rng(u64);

@@ -19,8 +19,8 @@ use super::relative::{
     rel_path, rel_vel, unit,
 };
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, rot_d, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 #[derive(Clone, Debug)]

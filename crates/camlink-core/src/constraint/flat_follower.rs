@@ -34,10 +34,10 @@
 //! The follower stays in contact only where the cam is convex: see
 //! [`Curve::concave_ranges`](crate::curve::Curve::concave_ranges).
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{dot, norm, perp, rot, rot_t, scale, sub, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 #[derive(Clone, Debug)]
@@ -87,6 +87,10 @@ impl Equations for FlatFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Curve(&self.curve_i), Feature::Face(self.u_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -33,8 +33,8 @@ use super::relative::{
     projection_eta, projection_gamma, projection_jac, projection_phi, rel, rel_path, rel_vel, unit,
 };
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::math::{dot, perp, point, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

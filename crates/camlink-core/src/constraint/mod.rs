@@ -14,8 +14,8 @@
 //!
 //! Adding a constraint is one new file and one line in [`constraints!`].
 
+use crate::curve::Curve;
 use crate::math::{point, rot_t, sub, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 pub mod absolute;
@@ -30,6 +30,31 @@ pub mod translational;
 
 #[cfg(any(test, feature = "check"))]
 pub mod check;
+
+/// Index of a body in [`Model::bodies`](crate::model::Model::bodies); body
+/// 0 is the ground.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct BodyId(pub usize);
+
+impl BodyId {
+    pub const GROUND: BodyId = BodyId(0);
+
+    pub fn is_ground(self) -> bool {
+        self == Self::GROUND
+    }
+}
+
+/// What one body of a curve contact carries there, in its body frame.
+#[derive(Clone, Copy, Debug)]
+pub enum Feature<'a> {
+    /// A curve; its parameter at the contact is one of the joint's own
+    /// coordinates.
+    Curve(&'a Curve),
+    /// A point s′ (m): a pin.
+    Point(V2),
+    /// A straight face along the unit vector u′.
+    Face(V2),
+}
 
 /// Most equations one constraint contributes.
 pub const MAX_ROWS: usize = 3;
@@ -139,6 +164,12 @@ pub trait Equations {
     fn check_functions(&self, _x: &Local) -> Result<(), String> {
         Ok(())
     }
+    /// For a curve contact, what bodies i and j carry ([`Feature`]); own
+    /// coordinate k is the parameter of the k-th curve of the two. `None`
+    /// for every other joint. [`crate::contact::ContactView`] builds on it.
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        None
+    }
     /// Where the joint's reaction acts on bodies i and j, each in its own
     /// body frame (m): the joint points, or the current contact point.
     fn joint_points(&self, x: &Local) -> [V2; 2];
@@ -220,6 +251,9 @@ macro_rules! constraints {
             }
             fn check_functions(&self, x: &Local) -> Result<(), String> {
                 match self { $(Constraint::$variant(c) => c.check_functions(x),)* }
+            }
+            fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+                match self { $(Constraint::$variant(c) => c.contact_sides(),)* }
             }
             fn joint_points(&self, x: &Local) -> [V2; 2] {
                 match self { $(Constraint::$variant(c) => c.joint_points(x),)* }

@@ -25,11 +25,11 @@
 //! in the unit of α_j (rad on a polar slot, m of length on a line, arc,
 //! circle or spline slot, the user's parameter on an expression slot).
 
-use super::{Equations, Jac, Local, Rows, MAX_OWN};
+use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::function::TimeFn;
 use crate::math::{rot_t, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct PointFollower {
@@ -81,6 +81,10 @@ impl Equations for PointFollower {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
+        Some([Feature::Point(self.s_i), Feature::Curve(&self.curve_j)])
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

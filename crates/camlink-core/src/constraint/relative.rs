@@ -32,9 +32,9 @@
 //! γ = (A_a w')ᵀe φ̇_a² − 2 φ̇_a (B_a w')ᵀė − (A_a w')ᵀ(A_a s'_a φ̇_a² − A_b s'_b φ̇_b²).
 
 use super::{CoordMask, Equations, Jac, Local, Rows, ALL_COORDS, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, norm, point, point_vel, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 /// Which relative coordinate a [`RelativeCoord`] holds.

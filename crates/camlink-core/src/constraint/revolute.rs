@@ -8,8 +8,8 @@
 //! (Φ_qᵀλ)_q: −λᵀA_i s'_i at (φ_i, φ_i), λᵀA_j s'_j at (φ_j, φ_j)
 
 use super::{CoordMask, Equations, Jac, Local, LocalBlock, Rows, MAX_ROWS};
+use crate::constraint::BodyId;
 use crate::math::{point, rot, rot_d, V2};
-use crate::model::BodyId;
 use crate::motion;
 
 #[derive(Clone, Debug)]

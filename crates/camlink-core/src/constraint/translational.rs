@@ -19,8 +19,8 @@
 
 use super::relative::{projection_eta, projection_gamma, projection_jac, projection_phi, unit};
 use super::{Equations, Jac, Local, Rows};
+use crate::constraint::BodyId;
 use crate::math::{perp, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct Translational {

@@ -163,6 +163,40 @@ impl Curve {
         cross(j.d1, j.d2) / norm(j.d1).powi(3)
     }
 
+    /// +1 for a counterclockwise closed curve, −1 for a clockwise one (the
+    /// sign of its enclosed area ½∮ p × p′ ds, summed at 720 midpoints);
+    /// `None` for an open curve.
+    pub fn orientation(&self) -> Option<f64> {
+        const SAMPLES: usize = 720;
+        if !self.closed() {
+            return None;
+        }
+        let (s0, s1) = self.range();
+        let h = (s1 - s0) / SAMPLES as f64;
+        let area: f64 = (0..SAMPLES)
+            .map(|k| {
+                let j = self.jet(s0 + (k as f64 + 0.5) * h);
+                cross(j.p, j.d1)
+            })
+            .sum();
+        Some(if area < 0.0 { -1.0 } else { 1.0 })
+    }
+
+    /// The centre (m, body frame) and radius r (m) of a circular curve (a
+    /// roller: a constant-radius polar profile, a circle or an arc); `None`
+    /// for any other curve.
+    pub fn circle_centre(&self) -> Option<(V2, f64)> {
+        match self {
+            Curve::Polar(p) => match p.rho {
+                Radius::Const(r) => Some((p.q, r)),
+                _ => None,
+            },
+            Curve::Parametric(Parametric::Circle { c, r, .. })
+            | Curve::Parametric(Parametric::Arc { c, r, .. }) => Some((*c, *r)),
+            _ => None,
+        }
+    }
+
     /// Parameter intervals (a, b) where the curve is concave, κ < 0 (below
     /// −10⁻⁹ times the largest |κ| found, so straight pieces do not count).
     /// The curvature is sampled at `samples` points over the range and each

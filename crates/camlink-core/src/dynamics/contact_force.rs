@@ -17,7 +17,7 @@
 //! closed curve (every polar profile, a closed parametric curve) bounds its
 //! body's material, with outward unit normal n_k = σ_k (−g_k⊥)/|g_k|,
 //! σ_k = +1 for a counterclockwise curve, −1 for a clockwise one
-//! ([`crate::design::orientation`]). Then:
+//! ([`Curve::orientation`]). Then:
 //!
 //! - cam–follower, both curves closed, touching from outside
 //!   (n_i · n_j < 0): N = F_j · n_i, the force on j pointing out of i;
@@ -45,12 +45,12 @@
 
 use super::reaction::Reaction;
 use crate::assembly::Assembly;
-use crate::constraint::{Constraint, Equations};
+use crate::constraint::Feature;
+use crate::contact::ContactView;
 use crate::curve::Curve;
-use crate::design::orientation;
-use crate::kinematics::Summary;
 use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
+use crate::run::{Crossing, Kind, LiftOff, Summary, Warning};
 
 /// Samples of a curve for the mean point of an open curve.
 const MEAN_SAMPLES: usize = 64;
@@ -80,12 +80,9 @@ pub type NormalTangential = [f64; 2];
 
 impl ContactForces {
     pub fn new(model: &Model) -> Self {
-        let items = model
-            .joints
-            .iter()
-            .enumerate()
-            .filter(|(_, j)| !j.driver)
-            .filter_map(|(k, j)| {
+        let items = ContactView::all(model)
+            .filter(|v| !model.joints[v.joint].driver)
+            .map(|v| {
                 let mean = |c: &Curve| {
                     let (s0, s1) = c.range();
                     let n = MEAN_SAMPLES as f64;
@@ -94,25 +91,12 @@ impl ContactForces {
                         [m[0] + p[0] / n, m[1] + p[1] / n]
                     })
                 };
-                let bi = j.constraint.bodies()[0];
-                let (sides, mean_i, cam) = match &j.constraint {
-                    Constraint::CamFollower(c) => (
-                        [orientation(&c.curve_i), orientation(&c.curve_j)],
-                        mean(&c.curve_i),
-                        Some(cam_body(model, &j.constraint)),
-                    ),
-                    Constraint::FlatFollower(c) => {
-                        ([orientation(&c.curve_i), None], mean(&c.curve_i), Some(bi))
-                    }
-                    Constraint::PointFollower(_) => ([None; 2], [0.0; 2], None),
-                    _ => return None,
-                };
-                Some(Item {
-                    joint: k,
-                    sides,
-                    mean_i,
-                    cam,
-                })
+                Item {
+                    joint: v.joint,
+                    sides: [0, 1].map(|s| v.curve(s).and_then(Curve::orientation)),
+                    mean_i: v.curve(0).map_or([0.0; 2], mean),
+                    cam: (!v.two_walled()).then(|| v.cam(model)),
+                }
             })
             .collect();
         ContactForces { items }
@@ -148,54 +132,49 @@ impl ContactForces {
         let Some(it) = self.items.iter().find(|it| it.joint == j) else {
             return [f64::NAN; 2];
         };
+        let Some(v) = ContactView::of(model, j) else {
+            return [f64::NAN; 2];
+        };
         let x = asm.local(model, j, q, &[], 0.0);
-        let fj = r[1].force;
         let unit = |v: V2| scale(1.0 / norm(v), v);
+        let (_, t) = v.point_tangent(&x.q, &x.own);
+        let t = unit(t);
+        // A pin in a slot: the force on the pin along the slot's left normal.
+        if let Some(pin) = v.sides.iter().position(|s| matches!(s, Feature::Point(_))) {
+            let f = r[pin].force;
+            return [dot(f, perp(t)), dot(f, t)];
+        }
+        // A cam (C_i) against a curve or a face on body j: the force on j
+        // along the normal out of the solid side.
+        let Some(ci) = v.curve(0) else {
+            return [f64::NAN; 2];
+        };
+        let fj = r[1].force;
+        let ji = ci.jet(x.own[0]);
+        let gi = rot(x.q[0][2], ji.d1);
+        // The tangent of C_j (global) and its parameter, when j carries a curve.
+        let cj = v.curve(1).zip(v.own_of(1)).map(|(c, o)| (c, x.own[o]));
+        let gj = || cj.map_or([f64::NAN; 2], |(c, a)| rot(x.q[1][2], c.jet(a).d1));
         // Outward normal of a closed curve with orientation σ, tangent g.
         let outward = |sigma: f64, g: V2| scale(-sigma, unit(perp(g)));
-        match &model.joints[j].constraint {
-            Constraint::CamFollower(c) => {
-                let ji = c.curve_i.jet(x.own[0]);
-                let jj = c.curve_j.jet(x.own[1]);
-                let gi = rot(x.q[0][2], ji.d1);
-                let gj = rot(x.q[1][2], jj.d1);
-                let t = unit(gi);
-                let n = match it.sides {
-                    [Some(si), Some(sj)] => {
-                        let (ni, nj) = (outward(si, gi), outward(sj, gj));
-                        if dot(ni, nj) <= 0.0 {
-                            ni
-                        } else if c.curve_i.curvature(x.own[0]).abs()
-                            < c.curve_j.curvature(x.own[1]).abs()
-                        {
-                            // C_i is a hole around C_j.
-                            scale(-1.0, nj)
-                        } else {
-                            nj
-                        }
-                    }
-                    [Some(si), None] => outward(si, gi),
-                    [None, Some(sj)] => scale(-1.0, outward(sj, gj)),
-                    [None, None] => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
-                };
-                [dot(fj, n), dot(fj, t)]
+        let n = match it.sides {
+            [Some(si), Some(sj)] => {
+                let (ni, nj) = (outward(si, gi), outward(sj, gj()));
+                let kj = cj.map_or(0.0, |(c, a)| c.curvature(a).abs());
+                if dot(ni, nj) <= 0.0 {
+                    ni
+                } else if ci.curvature(x.own[0]).abs() < kj {
+                    // C_i is a hole around C_j.
+                    scale(-1.0, nj)
+                } else {
+                    nj
+                }
             }
-            Constraint::FlatFollower(c) => {
-                let ji = c.curve_i.jet(x.own[0]);
-                let gi = rot(x.q[0][2], ji.d1);
-                let n = match it.sides[0] {
-                    Some(si) => outward(si, gi),
-                    None => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
-                };
-                [dot(fj, n), dot(fj, rot(x.q[1][2], c.u_j))]
-            }
-            Constraint::PointFollower(c) => {
-                let g = unit(rot(x.q[1][2], c.curve_j.jet(x.own[0]).d1));
-                let fi = r[0].force;
-                [dot(fi, perp(g)), dot(fi, g)]
-            }
-            _ => [f64::NAN; 2],
-        }
+            [Some(si), None] => outward(si, gi),
+            [None, Some(sj)] => scale(-1.0, outward(sj, gj())),
+            [None, None] => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
+        };
+        [dot(fj, n), dot(fj, t)]
     }
 }
 
@@ -207,79 +186,6 @@ fn away_from(inside: V2, p: V2, g: V2) -> V2 {
         scale(-1.0, n)
     } else {
         n
-    }
-}
-
-/// The cam of a cam–follower pair: the body that is not the follower
-/// ([`crate::contact::follower_body`]).
-fn cam_body(model: &Model, c: &Constraint) -> BodyId {
-    let [bi, bj] = c.bodies();
-    match crate::contact::follower_body(model, c) {
-        Some(f) if f == bi => bj,
-        _ => bi,
-    }
-}
-
-/// A time and the cam angle then.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Crossing {
-    /// t (s).
-    pub time: f64,
-    /// φ of the cam body (rad); 0 for a cam fixed to the ground.
-    pub cam_angle: f64,
-}
-
-/// An interval where a cam contact's normal force is negative: the
-/// follower would leave the cam.
-#[derive(Clone, Debug, PartialEq)]
-pub struct LiftOff {
-    pub joint: String,
-    /// The cam body's name.
-    pub cam: String,
-    /// Where N falls through zero: interpolated linearly between the last
-    /// output time with N ≥ 0 and the first with N < 0 (the first output
-    /// time when the run starts with N < 0).
-    pub start: Crossing,
-    /// Where N rises through zero again, interpolated likewise; `None`
-    /// when the run ends with N < 0.
-    pub end: Option<Crossing>,
-    /// The least normal force in the interval (N, negative) and where.
-    pub least: f64,
-    pub least_at: Crossing,
-}
-
-impl LiftOff {
-    /// The report, as the run summary's warning:
-    ///
-    /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
-    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
-    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
-    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
-    ///
-    /// The degrees are the cam angle folded into [0°, 360°).
-    pub fn message(&self) -> String {
-        let at = |c: &Crossing| {
-            format!(
-                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
-                c.time,
-                c.cam_angle,
-                c.cam_angle.to_degrees().rem_euclid(360.0)
-            )
-        };
-        let end = match &self.end {
-            Some(e) => format!("to {}", at(e)),
-            None => "to the end of the run".to_string(),
-        };
-        format!(
-            "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
-             least {:.4} N at {}",
-            self.joint,
-            self.cam,
-            at(&self.start),
-            end,
-            self.least,
-            at(&self.least_at)
-        )
     }
 }
 
@@ -414,14 +320,19 @@ impl LiftOffWatch {
     /// data in `summary.lift_off`.
     pub fn report(self, summary: &mut Summary) {
         for l in self.finish() {
-            summary.warnings.push((l.start.time, l.message()));
+            summary.warnings.push(Warning {
+                kind: Kind::LiftOff,
+                time: l.start.time,
+                joints: vec![l.joint.clone()],
+                message: l.message(),
+            });
             summary.lift_off.push(l);
         }
     }
 }
 
 /// The lift-off intervals in a finished table of dynamic results.
-pub fn lift_off(model: &Model, table: &crate::kinematics::Table) -> Vec<LiftOff> {
+pub fn lift_off(model: &Model, table: &crate::run::Table) -> Vec<LiftOff> {
     let mut w = LiftOffWatch::new(model, &table.channels);
     let width = table.channels.len().max(1);
     for (t, row) in table.t.iter().zip(table.values.chunks(width)) {
@@ -529,7 +440,12 @@ mod tests {
             w.observe(t, &[na, t, nb, 2.0 * t]);
         }
         let mut summary = Summary {
-            warnings: vec![(0.25, "an earlier warning".into())],
+            warnings: vec![Warning {
+                kind: Kind::NearSingular,
+                time: 0.25,
+                joints: Vec::new(),
+                message: "an earlier warning".into(),
+            }],
             ..Summary::default()
         };
         w.report(&mut summary);
@@ -549,8 +465,20 @@ mod tests {
                 cam_angle: 1.5
             })
         );
-        let mut want = vec![(0.25, "an earlier warning".to_string())];
-        want.extend(summary.lift_off.iter().map(|l| (l.start.time, l.message())));
-        assert_eq!(summary.warnings, want);
+        let mut want = vec![(Kind::NearSingular, 0.25, "an earlier warning".to_string())];
+        want.extend(
+            summary
+                .lift_off
+                .iter()
+                .map(|l| (Kind::LiftOff, l.start.time, l.message())),
+        );
+        let got: Vec<_> = summary
+            .warnings
+            .iter()
+            .map(|w| (w.kind, w.time, w.message.clone()))
+            .collect();
+        assert_eq!(got, want);
+        // A lift-off warning names its joint.
+        assert_eq!(summary.warnings[1].joints, ["b"]);
     }
 }

@@ -42,9 +42,9 @@ use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project;
 use super::system::{Augmented, Coefficients, System};
-use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary};
 use crate::math::max_abs;
 use crate::model::Model;
+use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 
 /// A Newton correction larger than this fraction of the one before means
 /// the chord iteration has stalled: the next iteration refactors.
@@ -159,14 +159,12 @@ impl<'m> Integrator<'m> {
         settings: Settings,
         t0: f64,
     ) -> Result<Self, AnalysisError> {
-        let fail = |message: String, residual: f64| AnalysisError {
-            time: t0,
-            message,
-            joints: Vec::new(),
-            residual,
+        let fail = |kind: Kind, message: String, residual: f64| {
+            AnalysisError::new(kind, t0, message).at_joints(Vec::new(), residual)
         };
         if !(settings.step.is_finite() && settings.step > 0.0) {
             return Err(fail(
+                Kind::InvalidInput,
                 format!(
                     "the time step must be a positive number, not {}",
                     settings.step
@@ -177,10 +175,15 @@ impl<'m> Integrator<'m> {
         let sys = System::new(model);
         let (n, m) = (sys.n(), sys.m());
         if n == 0 {
-            return Err(fail("the model has no moving bodies".into(), 0.0));
+            return Err(fail(
+                Kind::InvalidInput,
+                "the model has no moving bodies".into(),
+                0.0,
+            ));
         }
         if m > n {
             return Err(fail(
+                Kind::Redundant,
                 format!("{n} coordinates but {m} equations: the model is over-constrained"),
                 0.0,
             ));
@@ -191,11 +194,18 @@ impl<'m> Integrator<'m> {
             let c = sys.asm.body_col(id.0).expect("moving body");
             qd[c..c + 3].copy_from_slice(&b.qd0);
         }
-        let mut aug = Augmented::new(&sys, &q);
+        let mut aug =
+            Augmented::new(&sys, &q).map_err(|e| fail(Kind::Internal, e.to_string(), 0.0))?;
+        // The joints furthest from Φ = 0 at q when a projection fails.
+        let named = |e: project::ProjectionError, q: &[f64]| {
+            let mut phi = vec![0.0; m];
+            sys.asm.phi(model, q, t0, &mut phi);
+            let (joints, _) = run::worst_joints(model, &sys.asm, &phi, 0.0);
+            fail(e.kind, e.message, e.residual).at_joints(joints, e.residual)
+        };
         project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
-            .map_err(|e| fail(e.message, e.residual))?;
-        project::velocities(&sys, &mut aug, &q, &mut qd, t0)
-            .map_err(|e| fail(e.message, e.residual))?;
+            .map_err(|e| named(e, &q))?;
+        project::velocities(&sys, &mut aug, &q, &mut qd, t0).map_err(|e| named(e, &q))?;
         let mut it = Integrator {
             c: Coeffs::new(settings.rho_inf),
             aug,
@@ -246,7 +256,7 @@ impl<'m> Integrator<'m> {
             if let Err(e) = s.model.check_mass_properties() {
                 message.push_str(&format!(" ({e})"));
             }
-            return Err(self.error(&message));
+            return Err(self.error(Kind::SingularMass, &message));
         }
         self.h_factored = 0.0;
         s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
@@ -258,15 +268,13 @@ impl<'m> Integrator<'m> {
         Ok(())
     }
 
-    fn error(&self, what: &str) -> AnalysisError {
+    /// An error at the current state, naming the joints furthest from
+    /// Φ = 0 (at most five) and the largest |Φ|.
+    fn error(&self, kind: Kind, what: &str) -> AnalysisError {
         let mut phi = vec![0.0; self.sys.m()];
         self.sys.asm.phi(self.sys.model, &self.q, self.t, &mut phi);
-        AnalysisError {
-            time: self.t,
-            message: what.to_string(),
-            joints: Vec::new(),
-            residual: max_abs(&phi),
-        }
+        let (joints, _) = run::worst_joints(self.sys.model, &self.sys.asm, &phi, 0.0);
+        AnalysisError::new(kind, self.t, what).at_joints(joints, max_abs(&phi))
     }
 
     /// Advances one step of size `h`; the state is unchanged on failure.
@@ -283,11 +291,14 @@ impl<'m> Integrator<'m> {
             return Ok(());
         }
         self.restore();
-        Err(self.error(&format!(
-            "Newton did not converge in {} iterations at step {h:.3e} s \
+        Err(self.error(
+            Kind::NotConverged,
+            &format!(
+                "Newton did not converge in {} iterations at step {h:.3e} s \
              (a stiffer problem needs a smaller step)",
-            self.settings.max_iter
-        )))
+                self.settings.max_iter
+            ),
+        ))
     }
 
     fn save(&mut self) {
@@ -373,7 +384,7 @@ impl<'m> Integrator<'m> {
                     .is_err()
                 {
                     self.h_factored = 0.0;
-                    return Err(self.error("the Newton iteration matrix is singular"));
+                    return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
                 }
                 self.h_factored = h;
                 self.summary.factorizations += 1;
@@ -494,7 +505,7 @@ pub fn run(
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
     let contacts = crate::contact::Contacts::new(model);
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
@@ -505,16 +516,15 @@ pub fn run(
     for (k, &t) in times.iter().enumerate() {
         if k > 0 {
             if t <= times[k - 1] || t.is_nan() {
-                return Err(AnalysisError {
-                    time: t,
-                    message: format!("times must increase, but {t} follows {}", times[k - 1]),
-                    joints: Vec::new(),
-                    residual: 0.0,
-                });
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {}", times[k - 1]),
+                ));
             }
             it.advance_to(t, &mut h_next)?;
         }
-        kinematics::fill_outputs(
+        run::fill_outputs(
             model,
             &it.sys.asm,
             &contacts,

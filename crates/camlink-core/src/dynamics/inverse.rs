@@ -16,9 +16,10 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::system::System;
-use crate::kinematics::{self, AnalysisError, PointOutput, Settings, Sink, Summary};
+use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
+use crate::run::{self, AnalysisError, Kind, PointOutput, Settings, Sink, Summary};
 
 /// The state and scratch of an inverse-dynamics run; allocated once.
 pub struct InverseSolver<'m> {
@@ -41,7 +42,8 @@ impl<'m> InverseSolver<'m> {
             .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
         let n = sys.n();
         Ok(InverseSolver {
-            jt: SystemMatrix::new(n, &pattern),
+            jt: SystemMatrix::try_new(n, &pattern)
+                .map_err(|e| AnalysisError::new(Kind::Internal, 0.0, e.to_string()))?,
             lambda: vec![0.0; n],
             rhs: vec![0.0; n],
             kin,
@@ -69,22 +71,20 @@ impl<'m> InverseSolver<'m> {
             k += 1;
         });
         if self.jt.factor().is_err() {
-            return Err(AnalysisError {
-                time: t,
-                message: "the constraint Jacobian is singular: reactions are not determined".into(),
-                joints: Vec::new(),
-                residual: 0.0,
-            });
+            return Err(AnalysisError::new(
+                Kind::LockUp,
+                t,
+                "the constraint Jacobian is singular: reactions are not determined",
+            ));
         }
         self.lambda.copy_from_slice(&self.rhs);
         self.jt.solve(&mut self.lambda);
         if self.lambda.iter().any(|v| !v.is_finite()) {
-            return Err(AnalysisError {
-                time: t,
-                message: "the Lagrange multipliers are not finite numbers".into(),
-                joints: Vec::new(),
-                residual: 0.0,
-            });
+            return Err(AnalysisError::new(
+                Kind::NotFinite,
+                t,
+                "the Lagrange multipliers are not finite numbers",
+            ));
         }
         Ok(())
     }
@@ -101,7 +101,7 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let mut s = InverseSolver::new(model, settings.clone())?;
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
@@ -112,12 +112,11 @@ pub fn run(
     for &t in times {
         if let Some(p) = prev {
             if t <= p || t.is_nan() {
-                return Err(AnalysisError {
-                    time: t,
-                    message: format!("times must increase, but {t} follows {p}"),
-                    joints: Vec::new(),
-                    residual: 0.0,
-                });
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {p}"),
+                ));
             }
         }
         s.step(t, prev)?;

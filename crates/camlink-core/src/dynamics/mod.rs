@@ -1,5 +1,5 @@
-//! Dynamics: applied forces, inverse dynamics and reactions, equilibrium and
-//! forward dynamics of the constrained equations of motion
+//! Dynamics: inverse dynamics and reactions, equilibrium and forward
+//! dynamics of the constrained equations of motion
 //!
 //! M(q) q̈ + Φ_qᵀ λ = Q(q, q̇, t),  Φ(q, t) = 0
 //!
@@ -7,7 +7,8 @@
 //!
 //! - the mass matrix of a body whose centroid is anywhere in its frame,
 //!   gravity and the velocity-quadratic force, in [`mass`];
-//! - point forces and torques, TSDA, RSDA, user callbacks, in [`force`];
+//! - applied forces (point forces and torques, TSDA, RSDA, user callbacks)
+//!   are defined in [`crate::force`];
 //! - assembly of M, Q and the augmented matrices, in [`system`];
 //! - consistent initial conditions, in [`project`];
 //! - joint reactions and driver efforts from λ, in [`reaction`], the
@@ -18,7 +19,6 @@
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
 
 pub mod contact_force;
-pub mod force;
 pub mod integrator;
 pub mod inverse;
 pub mod mass;
@@ -27,5 +27,3 @@ pub mod project;
 pub mod reaction;
 pub mod statics;
 pub mod system;
-
-pub use force::{Applied, Force, ForceKind};

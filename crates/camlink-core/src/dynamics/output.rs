@@ -1,7 +1,7 @@
 //! Output channels of the dynamic analyses.
 //!
 //! After the kinematic channels of every body, point and own coordinate
-//! ([`crate::kinematics::channels`]):
+//! ([`crate::run::channels`]):
 //! - per joint (not driver), the reaction on body i:
 //!   `<joint>.fx .fy .torque .fx_local .fy_local`, and on body j:
 //!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`

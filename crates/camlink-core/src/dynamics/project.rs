@@ -17,6 +17,7 @@ use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Equations, Jac, MAX_OWN};
 use crate::kinematics::MAX_ANGLE_STEP;
 use crate::math::{max_abs, norm2};
+use crate::run::Kind;
 
 /// The projection matrix's coefficients: D = I.
 const IDENTITY: Coefficients = Coefficients {
@@ -30,6 +31,7 @@ const IDENTITY: Coefficients = Coefficients {
 /// Why a projection failed, with the largest |Φ| reached.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProjectionError {
+    pub kind: Kind,
     pub message: String,
     pub residual: f64,
 }
@@ -58,6 +60,11 @@ pub fn positions(
         }
         if !r.is_finite() || it == max_iter {
             return Err(ProjectionError {
+                kind: if r.is_finite() {
+                    Kind::NotConverged
+                } else {
+                    Kind::NotFinite
+                },
                 message: if r.is_finite() {
                     format!("the positions did not reach the constraints in {max_iter} iterations")
                 } else {
@@ -68,6 +75,7 @@ pub fn positions(
         }
         aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
             .map_err(|_| ProjectionError {
+                kind: Kind::LockUp,
                 message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
                     .into(),
                 residual: r,
@@ -98,6 +106,7 @@ pub fn positions(
             step *= 0.5;
             if step < 1e-6 {
                 return Err(ProjectionError {
+                    kind: Kind::NotAssembled,
                     message: "the mechanism cannot be assembled from the given placement".into(),
                     residual: r,
                 });
@@ -172,6 +181,7 @@ pub fn velocities(
     let zeros = vec![0.0; n];
     aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
         .map_err(|_| ProjectionError {
+            kind: Kind::LockUp,
             message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
                 .into(),
             residual: 0.0,

@@ -22,9 +22,10 @@
 use super::output::{self, Scratch};
 use super::project;
 use super::system::{Augmented, Coefficients, System};
-use crate::kinematics::{self, AnalysisError, PointOutput, Sink, Summary, MAX_ANGLE_STEP};
+use crate::kinematics::MAX_ANGLE_STEP;
 use crate::math::{max_abs, norm2};
 use crate::model::Model;
+use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 
 /// Equilibrium solver settings.
 #[derive(Clone, Debug)]
@@ -55,19 +56,20 @@ pub struct Equilibrium {
 pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, AnalysisError> {
     let s = System::new(model);
     let (n, m) = (s.n(), s.m());
-    let err = |message: String, residual: f64| AnalysisError {
-        time: t,
-        message,
-        joints: Vec::new(),
-        residual,
+    let err = |kind: Kind, message: String, residual: f64| {
+        AnalysisError::new(kind, t, message).at_joints(Vec::new(), residual)
     };
     if n == 0 {
-        return Err(err("the model has no moving bodies".into(), 0.0));
+        return Err(err(
+            Kind::InvalidInput,
+            "the model has no moving bodies".into(),
+            0.0,
+        ));
     }
     let mut q = s.asm.initial_q(model);
-    let mut aug = Augmented::new(&s, &q);
+    let mut aug = Augmented::new(&s, &q).map_err(|e| err(Kind::Internal, e.to_string(), 0.0))?;
     project::positions(&s, &mut aug, &mut q, t, settings.tol, settings.max_iter)
-        .map_err(|e| err(e.message, e.residual))?;
+        .map_err(|e| err(e.kind, e.message, e.residual))?;
     let zeros = vec![0.0; n];
     let mut qf = vec![0.0; n];
     // Least-squares multipliers: [I Φ_qᵀ; Φ_q 0][x; λ] = [Q; 0].
@@ -87,7 +89,13 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
             ..Default::default()
         },
     )
-    .map_err(|_| err("the constraint Jacobian is rank deficient".into(), 0.0))?;
+    .map_err(|_| {
+        err(
+            Kind::Redundant,
+            "the constraint Jacobian is rank deficient".into(),
+            0.0,
+        )
+    })?;
     aug.solve(&mut rhs);
     let mut lambda = rhs[n..].to_vec();
 
@@ -109,10 +117,15 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     for it in 0..=settings.max_iter {
         let (rf, rp) = residual(&q, &lambda, &mut res, &mut qf);
         if !(rf.is_finite() && rp.is_finite()) {
-            return Err(err("the equations are not finite numbers".into(), rp));
+            return Err(err(
+                Kind::NotFinite,
+                "the equations are not finite numbers".into(),
+                rp,
+            ));
         }
         let neutral = || {
             err(
+                Kind::LockUp,
                 "the equilibrium equations are singular: a degree of freedom is neither \
                  restrained by a spring or gravity nor driven (neutral equilibrium)"
                     .into(),
@@ -133,6 +146,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         }
         if it == settings.max_iter {
             return Err(err(
+                Kind::NotConverged,
                 format!(
                     "no equilibrium found in {} iterations (force residual {rf:.2e}, relative)",
                     settings.max_iter
@@ -198,13 +212,13 @@ pub fn run(
     let e = solve(model, t, settings)?;
     let s = System::new(model);
     let contacts = crate::contact::Contacts::new(model);
-    let mut names = kinematics::channels(model, points);
+    let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let zeros = vec![0.0; s.n()];
-    kinematics::fill_outputs(
+    run::fill_outputs(
         model,
         &s.asm,
         &contacts,

@@ -22,11 +22,11 @@
 
 use std::collections::HashMap;
 
-use super::force::{Applied, BodyJac, BodyQ};
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
-use crate::linsolve::{Singular, SystemMatrix};
+use crate::force::{Applied, BodyJac, BodyQ};
+use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
 
 /// The model with its layout and the inertia of each body.
@@ -241,7 +241,7 @@ const TRASH: usize = usize::MAX;
 const OWN0: usize = 6;
 
 impl Augmented {
-    pub fn new(s: &System, q: &[f64]) -> Self {
+    pub fn new(s: &System, q: &[f64]) -> Result<Self, SetupError> {
         let (n, m) = (s.n(), s.m());
         let mut map: HashMap<(usize, usize), usize> = HashMap::new();
         let mut pattern = Vec::new();
@@ -337,7 +337,7 @@ impl Augmented {
         for r in 0..m {
             slot(n + r, n + r);
         }
-        let sys = SystemMatrix::new(n + m, &pattern);
+        let sys = SystemMatrix::try_new(n + m, &pattern)?;
         let vals = vec![0.0; pattern.len() + 1];
         let trash = vals.len() - 1;
         for b in &mut body_slots {
@@ -345,7 +345,7 @@ impl Augmented {
                 *k = trash;
             }
         }
-        Augmented {
+        Ok(Augmented {
             n,
             m,
             vals,
@@ -357,7 +357,7 @@ impl Augmented {
             joint_slots,
             jac_slots,
             jac: [Jac::default(); 2],
-        }
+        })
     }
 
     /// Dimension n + m.

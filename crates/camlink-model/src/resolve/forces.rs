@@ -1,10 +1,10 @@
 //! `[[forces]]` into core [`Force`]s.
 
-use camlink_core::dynamics::force::point::{PointForce, Torque};
-use camlink_core::dynamics::force::rsda::Rsda;
-use camlink_core::dynamics::force::translational_damper::TranslationalDamper;
-use camlink_core::dynamics::force::tsda::Tsda;
-use camlink_core::dynamics::Force;
+use camlink_core::force::point::{PointForce, Torque};
+use camlink_core::force::rsda::Rsda;
+use camlink_core::force::translational_damper::TranslationalDamper;
+use camlink_core::force::tsda::Tsda;
+use camlink_core::force::Force;
 use camlink_core::math::{norm, sub};
 use camlink_core::TimeFn;
 

@@ -11,8 +11,8 @@
 //! iterations when the force is stiff.
 
 use super::{Applied, BodyJac, BodyQ, ForceFn};
+use crate::constraint::BodyId;
 use crate::constraint::Local;
-use crate::model::BodyId;
 
 #[derive(Clone)]
 pub struct Callback {

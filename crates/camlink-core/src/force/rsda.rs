@@ -15,9 +15,9 @@
 //! likewise ±c. Potential V = ½ k (θ − θ₀)².
 
 use super::{Applied, BodyJac, BodyQ};
+use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct Rsda {
@@ -85,7 +85,7 @@ impl Applied for Rsda {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::force::check;
+    use crate::force::check;
 
     fn rsda(c: f64) -> Rsda {
         Rsda {

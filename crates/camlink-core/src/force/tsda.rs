@@ -25,10 +25,10 @@
 //! At l = 0 the direction u is undefined and the force is taken as zero.
 
 use super::{Applied, BodyJac, BodyQ};
+use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
 use crate::math::{dot, norm, point, point_vel, rot, rot_d, scale, sub, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct Tsda {
@@ -169,7 +169,7 @@ impl Applied for Tsda {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::force::check;
+    use crate::force::check;
 
     fn spring(c: f64) -> Tsda {
         Tsda {

@@ -22,9 +22,9 @@
 //! power c ṡ² and stores no energy.
 
 use super::{Applied, BodyJac, BodyQ};
+use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::math::{cross, norm, perp, rot, scale, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct TranslationalDamper {
@@ -136,7 +136,7 @@ impl Applied for TranslationalDamper {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::force::check;
+    use crate::force::check;
 
     fn damper() -> TranslationalDamper {
         TranslationalDamper::new(BodyId(1), [0.6, 0.8], BodyId(2), [0.3, -0.2], 4.5).unwrap()

@@ -13,10 +13,10 @@
 //! change of the mechanism's energy).
 
 use super::{Applied, BodyJac, BodyQ};
+use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
 use crate::math::{dot, rot, rot_d, V2};
-use crate::model::BodyId;
 
 #[derive(Clone, Debug)]
 pub struct PointForce {
@@ -101,7 +101,7 @@ impl Applied for Torque {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::dynamics::force::check;
+    use crate::force::check;
 
     fn force(local: bool) -> PointForce {
         PointForce {

@@ -21,8 +21,8 @@
 
 use std::sync::Arc;
 
+use crate::constraint::BodyId;
 use crate::constraint::Local;
-use crate::model::BodyId;
 
 pub mod callback;
 pub mod point;

@@ -1,0 +1,467 @@
+//! The vocabulary of a run, shared by every analysis: solver settings,
+//! output points and channels, sinks that receive rows as the run goes,
+//! summaries, warnings and errors.
+
+use crate::assembly::Assembly;
+use crate::constraint::Equations;
+use crate::contact::Contacts;
+use crate::math::{point, point_vel, rot, rot_d, V2};
+use crate::model::{BodyId, Model};
+
+/// Solver settings.
+#[derive(Clone, Debug)]
+pub struct Settings {
+    /// Newton stops when max |Φ| ≤ tol (m or rad).
+    pub tol: f64,
+    /// Newton iterations allowed per time step.
+    pub max_iter: usize,
+    /// Also solve Φ_q q⃛ = η for the jerk and output it ([`jerk_channels`]).
+    pub jerk: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            tol: 1e-10,
+            max_iter: 25,
+            jerk: false,
+        }
+    }
+}
+
+/// A body point whose motion is output, as channels
+/// `<name>.x .y .vx .vy .ax .ay`.
+#[derive(Clone, Debug)]
+pub struct PointOutput {
+    pub body: BodyId,
+    /// Channel prefix, e.g. `coupler.P`.
+    pub name: String,
+    /// The point in the body frame (m).
+    pub s: V2,
+}
+
+/// Receives results as the run goes.
+pub trait Sink {
+    /// Called once before the first row with the channel names (not `t`).
+    fn begin(&mut self, channels: &[String]);
+    /// One time step: time t (s) and the values, in channel order.
+    fn row(&mut self, t: f64, values: &[f64]);
+}
+
+/// A sink that keeps everything in memory, row by row.
+#[derive(Clone, Debug, Default)]
+pub struct Table {
+    pub channels: Vec<String>,
+    pub t: Vec<f64>,
+    /// Row-major values, `channels.len()` per step.
+    pub values: Vec<f64>,
+}
+
+impl Table {
+    /// The series of one channel.
+    pub fn channel(&self, name: &str) -> Option<Vec<f64>> {
+        let k = self.channels.iter().position(|c| c == name)?;
+        let w = self.channels.len();
+        Some(self.values.chunks(w).map(|row| row[k]).collect())
+    }
+}
+
+impl Sink for Table {
+    fn begin(&mut self, channels: &[String]) {
+        self.channels = channels.to_vec();
+    }
+    fn row(&mut self, t: f64, values: &[f64]) {
+        self.t.push(t);
+        self.values.extend_from_slice(values);
+    }
+}
+
+/// How a run went.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Summary {
+    pub steps: usize,
+    pub newton_iterations: usize,
+    pub factorizations: usize,
+    /// Steps retried as two half steps.
+    pub halvings: usize,
+    /// The warnings, in the order they arose.
+    pub warnings: Vec<Warning>,
+    /// How assembly moved each body from its given placement:
+    /// (body, [Δx, Δy, Δφ] in m, m, rad), for bodies that moved.
+    pub assembly_moves: Vec<(String, [f64; 3])>,
+    /// Intervals where a cam contact's normal force is negative (the
+    /// follower would leave the cam), by start time; each is also a
+    /// warning. Filled by inverse and forward dynamics.
+    pub lift_off: Vec<LiftOff>,
+}
+
+/// What kind of error or warning a run reports: a stable name that
+/// programs match instead of the message (`docs/errors.md` lists them).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Kind {
+    /// Settings or times an analysis cannot use (a step ≤ 0, times that do
+    /// not increase), or a model it cannot run (no moving body, a body not
+    /// connected to the ground).
+    InvalidInput,
+    /// Fewer equations than coordinates in an analysis that needs every
+    /// degree of freedom driven (kinematics, inverse dynamics).
+    NotDriven,
+    /// More equations than coordinates, or equations that depend on each
+    /// other where the analysis needs them independent.
+    Redundant,
+    /// The mechanism cannot be assembled from the given placement.
+    NotAssembled,
+    /// Newton's method did not converge within its iterations.
+    NotConverged,
+    /// The constraint Jacobian (or the matrix of a Newton step) is singular:
+    /// the mechanism is locked, at a singular position, or a driver pushes
+    /// it past its reach.
+    LockUp,
+    /// The solution jumped away from continuous motion: a singular position
+    /// was crossed or the assembly branch changed.
+    BranchJump,
+    /// Equations, velocities, accelerations or forces are not finite.
+    NotFinite,
+    /// The mass matrix is singular on the constraints.
+    SingularMass,
+    /// A contact ran off the end of an open curve.
+    OffCurve,
+    /// A flat face touches a concave part of its cam, or a roller a hollow
+    /// narrower than itself.
+    Undercut,
+    /// A solver could not be set up (a matrix pattern faer refuses, or no
+    /// memory for it): a bug to report.
+    Internal,
+    /// Warning: Φ_q is close to singular (a toggle or dead-centre position).
+    NearSingular,
+    /// Warning: a cam contact's normal force is negative; the follower
+    /// would leave the cam.
+    LiftOff,
+}
+
+impl Kind {
+    /// Every kind, in declaration order.
+    pub const ALL: [Kind; 14] = [
+        Kind::InvalidInput,
+        Kind::NotDriven,
+        Kind::Redundant,
+        Kind::NotAssembled,
+        Kind::NotConverged,
+        Kind::LockUp,
+        Kind::BranchJump,
+        Kind::NotFinite,
+        Kind::SingularMass,
+        Kind::OffCurve,
+        Kind::Undercut,
+        Kind::Internal,
+        Kind::NearSingular,
+        Kind::LiftOff,
+    ];
+
+    /// The stable name, e.g. `not_converged`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Kind::InvalidInput => "invalid_input",
+            Kind::NotDriven => "not_driven",
+            Kind::Redundant => "redundant",
+            Kind::NotAssembled => "not_assembled",
+            Kind::NotConverged => "not_converged",
+            Kind::LockUp => "lock_up",
+            Kind::BranchJump => "branch_jump",
+            Kind::NotFinite => "not_finite",
+            Kind::SingularMass => "singular_mass",
+            Kind::OffCurve => "off_curve",
+            Kind::Undercut => "undercut",
+            Kind::Internal => "internal",
+            Kind::NearSingular => "near_singular",
+            Kind::LiftOff => "lift_off",
+        }
+    }
+}
+
+impl std::fmt::Display for Kind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A warning of a run: the run went on, but a result may need care.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Warning {
+    pub kind: Kind,
+    /// Time (s) where it arose.
+    pub time: f64,
+    /// Joints involved (may be empty).
+    pub joints: Vec<String>,
+    pub message: String,
+}
+
+/// An analysis that cannot proceed.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("at t = {time} s: {message}")]
+pub struct AnalysisError {
+    /// What went wrong, as a stable name (`docs/errors.md`).
+    pub kind: Kind,
+    /// Time (s) of the step that failed.
+    pub time: f64,
+    pub message: String,
+    /// Joints whose equations are involved.
+    pub joints: Vec<String>,
+    /// Largest |Φ| at failure (m or rad).
+    pub residual: f64,
+}
+
+impl AnalysisError {
+    /// An error of `kind` at `time` (s) with no joint named and no residual.
+    pub fn new(kind: Kind, time: f64, message: impl Into<String>) -> Self {
+        AnalysisError {
+            kind,
+            time,
+            message: message.into(),
+            joints: Vec::new(),
+            residual: 0.0,
+        }
+    }
+
+    /// The same error with the joints involved and the largest |Φ| (m or
+    /// rad).
+    pub fn at_joints(mut self, joints: Vec<String>, residual: f64) -> Self {
+        self.joints = joints;
+        self.residual = residual;
+        self
+    }
+}
+
+/// The joints whose equations have the largest residuals |Φ| above `tol`,
+/// worst first and at most five, with the largest residual (m or rad); a
+/// NaN residual counts as infinite. `phi` is Φ at the failure.
+pub fn worst_joints(model: &Model, asm: &Assembly, phi: &[f64], tol: f64) -> (Vec<String>, f64) {
+    let mut worst: Vec<(f64, usize)> = Vec::new();
+    for j in 0..model.joints.len() {
+        let r = asm
+            .rows_of(model, j)
+            .map(|k| phi[k].abs())
+            .fold(
+                0.0,
+                |a: f64, b| if b.is_nan() { f64::INFINITY } else { a.max(b) },
+            );
+        if r > tol {
+            worst.push((r, j));
+        }
+    }
+    worst.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let joints = worst
+        .iter()
+        .take(5)
+        .map(|&(_, j)| model.joints[j].name.clone())
+        .collect();
+    (joints, worst.first().map_or(0.0, |w| w.0))
+}
+
+/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
+pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
+    if !(step.is_finite() && step > 0.0) {
+        return Err(format!(
+            "the time step must be a positive number, not {step}"
+        ));
+    }
+    if !(t_end.is_finite() && t_end >= 0.0) {
+        return Err(format!("the end time must be a number ≥ 0, not {t_end}"));
+    }
+    let n = (t_end / step + 1e-9).floor() as usize;
+    if n > 100_000_000 {
+        return Err(format!(
+            "{n} steps ({t_end} s at {step} s) is more than 100 million; use a larger step"
+        ));
+    }
+    Ok((0..=n).map(|k| k as f64 * step).collect())
+}
+
+/// The output channel names of a run.
+pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["x", "y", "vx", "vy", "ax", "ay"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
+    for j in &model.joints {
+        for k in 0..j.constraint.own_count() {
+            let n = j.constraint.own_names().get(k).copied().unwrap_or("own");
+            names.push(format!("{}.{n}", j.name));
+        }
+    }
+    names.extend(Contacts::new(model).channels(model));
+    names
+}
+
+/// The jerk channels of a run with [`Settings::jerk`], after those of
+/// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
+/// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
+pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
+    let mut names = Vec::new();
+    for (_, b) in model.moving_bodies() {
+        for c in ["jx", "jy", "jphi"] {
+            names.push(format!("{}.{c}", b.name));
+        }
+    }
+    for p in points {
+        for c in ["jx", "jy"] {
+            names.push(format!("{}.{c}", p.name));
+        }
+    }
+    names
+}
+
+/// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
+/// points, own coordinates, then contact outputs.
+pub fn fill_outputs(
+    model: &Model,
+    asm: &Assembly,
+    contacts: &Contacts,
+    state: [&[f64]; 3],
+    points: &[PointOutput],
+    out: &mut [f64],
+) {
+    let body = |v: &[f64], id: BodyId| -> [f64; 3] {
+        match asm.body_col(id.0) {
+            Some(c) => [v[c], v[c + 1], v[c + 2]],
+            None => [0.0; 3],
+        }
+    };
+    let mut k = 0;
+    for (id, _) in model.moving_bodies() {
+        for v in state {
+            out[k..k + 3].copy_from_slice(&body(v, id));
+            k += 3;
+        }
+    }
+    for p in points {
+        let [q, qd, qdd] = state.map(|v| body(v, p.body));
+        let r = point(q, p.s);
+        let v = point_vel(q, qd, p.s);
+        // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
+        let (a, b) = (rot(q[2], p.s), rot_d(q[2], p.s));
+        let acc = [
+            qdd[0] + b[0] * qdd[2] - a[0] * qd[2] * qd[2],
+            qdd[1] + b[1] * qdd[2] - a[1] * qd[2] * qd[2],
+        ];
+        out[k..k + 6].copy_from_slice(&[r[0], r[1], v[0], v[1], acc[0], acc[1]]);
+        k += 6;
+    }
+    for (j, joint) in model.joints.iter().enumerate() {
+        let c = asm.own_col(j);
+        for o in 0..joint.constraint.own_count() {
+            out[k] = state[0][c + o];
+            k += 1;
+        }
+    }
+    contacts.fill(model, asm, state[0], &mut out[k..]);
+}
+
+/// A time and the cam angle then.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Crossing {
+    /// t (s).
+    pub time: f64,
+    /// φ of the cam body (rad); 0 for a cam fixed to the ground.
+    pub cam_angle: f64,
+}
+
+/// An interval where a cam contact's normal force is negative: the
+/// follower would leave the cam.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LiftOff {
+    pub joint: String,
+    /// The cam body's name.
+    pub cam: String,
+    /// Where N falls through zero: interpolated linearly between the last
+    /// output time with N ≥ 0 and the first with N < 0 (the first output
+    /// time when the run starts with N < 0).
+    pub start: Crossing,
+    /// Where N rises through zero again, interpolated likewise; `None`
+    /// when the run ends with N < 0.
+    pub end: Option<Crossing>,
+    /// The least normal force in the interval (N, negative) and where.
+    pub least: f64,
+    pub least_at: Crossing,
+}
+
+impl LiftOff {
+    /// The report, as the run summary's warning:
+    ///
+    /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
+    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
+    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
+    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
+    ///
+    /// The degrees are the cam angle folded into [0°, 360°).
+    pub fn message(&self) -> String {
+        let at = |c: &Crossing| {
+            format!(
+                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
+                c.time,
+                c.cam_angle,
+                c.cam_angle.to_degrees().rem_euclid(360.0)
+            )
+        };
+        let end = match &self.end {
+            Some(e) => format!("to {}", at(e)),
+            None => "to the end of the run".to_string(),
+        };
+        format!(
+            "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
+             least {:.4} N at {}",
+            self.joint,
+            self.cam,
+            at(&self.start),
+            end,
+            self.least,
+            at(&self.least_at)
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The kinds listed in `docs/errors.md`, between `<!-- kinds -->` and
+    /// `<!-- /kinds -->`, as (name, "error" or "warning").
+    fn documented_kinds() -> Vec<(String, String)> {
+        let page = include_str!("../../../docs/errors.md");
+        let table = page
+            .split("<!-- kinds -->")
+            .nth(1)
+            .and_then(|rest| rest.split("<!-- /kinds -->").next())
+            .expect("docs/errors.md has a table of kinds");
+        table
+            .lines()
+            .filter_map(|line| {
+                let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+                let name = cells.get(1)?.strip_prefix('`')?.strip_suffix('`')?;
+                Some((name.to_string(), cells.get(2)?.to_string()))
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_kind_is_documented_once_as_error_or_warning() {
+        let want: Vec<(String, String)> = Kind::ALL
+            .iter()
+            .map(|k| {
+                let level = match k {
+                    Kind::NearSingular | Kind::LiftOff => "warning",
+                    _ => "error",
+                };
+                (k.name().to_string(), level.to_string())
+            })
+            .collect();
+        assert_eq!(documented_kinds(), want);
+    }
+}

@@ -1,0 +1,19 @@
+"""The compiled binding converts and nothing more: analysis settings are
+keyword-only, with the core's defaults."""
+
+from __future__ import annotations
+
+import pytest
+
+import camlink
+
+
+def test_analysis_settings_are_keyword_only(four_bar_file):
+    model = camlink.load(four_bar_file)
+    times = model.times(t_end=0.1, step=0.05)
+    with pytest.raises(TypeError):
+        model._core.run_kinematics(times, 1e-10)  # type: ignore[call-arg]
+    with pytest.raises(TypeError):
+        model._core.run_dynamics(times, 1e-3)  # type: ignore[call-arg]
+    names, data, _ = model._core.run_kinematics(times, tol=1e-10)
+    assert names[0] == "t" and data.shape == (3, len(names))
