@@ -5,10 +5,11 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import camlink
 import numpy as np
 import numpy.typing as npt
 import pytest
+
+import camlink
 from camlink import ModelError
 from camlink.results import Results
 from conftest import ROOT, run_cli
