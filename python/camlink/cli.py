@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import camlink
+from camlink import cli_convert
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
@@ -35,7 +36,10 @@ def _parser() -> argparse.ArgumentParser:
         "kinematics, inverse_dynamics, equilibrium or dynamics), or the one given "
         "with --analysis. Settings left out come from the model file's [analysis] table.",
     )
-    run.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    run.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    run.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     run.add_argument(
         "-a",
         "--analysis",
@@ -94,10 +98,14 @@ def _parser() -> argparse.ArgumentParser:
         "check",
         help="count bodies, coordinates and constraints; find the degrees of freedom",
     )
-    check.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    check.add_argument("model", metavar="MODEL", help="model file (.toml, .json or simEngine2D .adm)")
+    check.add_argument(
+        "--acf", metavar="FILE", help="simEngine2D analysis file for a .adm model (default: beside it)"
+    )
     check.add_argument("--json", action="store_true", help="print the report as JSON")
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
+    cli_convert.add_parser(sub)
     return p
 
 
@@ -112,7 +120,7 @@ def _os_message(e: OSError) -> str:
 
 
 def _cmd_run(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     kind = args.analysis or model.analysis_type
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".csv")
     settings = {
@@ -192,7 +200,7 @@ def _print_design(model: camlink.Model) -> None:
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
-    model = camlink.load(args.model)
+    model = camlink.load(args.model, acf=args.acf)
     r = model.check()
     design = model.design_check()
     if args.json:
@@ -240,7 +248,12 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    command = {"run": _cmd_run, "check": _cmd_check, "schema": _cmd_schema}[args.command]
+    command = {
+        "run": _cmd_run,
+        "check": _cmd_check,
+        "schema": _cmd_schema,
+        "convert": cli_convert.run,
+    }[args.command]
     try:
         return command(args)
     except ModelError as e:

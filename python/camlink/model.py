@@ -40,18 +40,25 @@ _SETTINGS = {
 }
 
 
-def load(path: str | os.PathLike[str]) -> Model:
-    """Loads a TOML or JSON model file (the format follows the suffix).
+def load(path: str | os.PathLike[str], acf: str | os.PathLike[str] | None = None) -> Model:
+    """Loads a TOML or JSON model file (the format follows the suffix), or a
+    simEngine2D ``.adm`` model with the analysis of `acf` (default: the
+    ``.acf`` file beside it, if any; see docs/simengine2d.md).
 
     Raises `FileNotFoundError` for a missing file and `ModelError` (a
     `ValueError`) naming the file, line and field for a file that is not a
     valid model.
     """
     path = Path(path)
-    if not path.is_file():
-        if path.is_dir():
-            raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(path))
-        raise FileNotFoundError(errno.ENOENT, "no such model file", str(path))
+    for p in (path, None if acf is None else Path(acf)):
+        if p is not None and not p.is_file():
+            if p.is_dir():
+                raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(p))
+            raise FileNotFoundError(errno.ENOENT, "no such model file", str(p))
+    if path.suffix.lower() == ".adm":
+        return Model(_core.Model.load_adm(path, acf), source=path)
+    if acf is not None:
+        raise ModelError(f"{path}: an .acf analysis file goes with a simEngine2D .adm model only")
     return Model(_core.Model.load(path), source=path)
 
 

@@ -8,6 +8,7 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
+pub mod adm;
 mod error;
 mod eval;
 pub mod file;
@@ -243,6 +244,14 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             "unknown model file type; expected a .toml or .json file",
         ));
     };
+    let text = read_text(path)?;
+    load_str(&text, format, &source)
+}
+
+/// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
+/// name the file.
+pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+    let source = path.display().to_string();
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
     if meta.len() > MAX_FILE_SIZE {
@@ -267,10 +276,10 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
             format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
         )
     })?;
-    load_str(&text, format, &source)
+    Ok(text)
 }
 
-fn too_large(source: &str, len: Option<u64>) -> LoadError {
+pub(crate) fn too_large(source: &str, len: Option<u64>) -> LoadError {
     let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,

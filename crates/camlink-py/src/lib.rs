@@ -69,6 +69,17 @@ fn model_error(e: impl std::fmt::Display) -> PyErr {
     ModelError::new_err(e.to_string())
 }
 
+/// A model file format by name: `"toml"` or `"json"`, any case.
+fn model_format(name: &str) -> PyResult<Format> {
+    match name.to_ascii_lowercase().as_str() {
+        "toml" => Ok(Format::Toml),
+        "json" => Ok(Format::Json),
+        other => Err(ModelError::new_err(format!(
+            "unknown model format '{other}' (expected 'toml' or 'json')"
+        ))),
+    }
+}
+
 /// What `run_kinematics` returns: channel names, data, summary.
 type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
 
@@ -91,21 +102,26 @@ impl Model {
         })
     }
 
+    /// Loads a simEngine2D `.adm` model with the analysis of `acf` (default:
+    /// the `.acf` beside it, if any).
+    #[staticmethod]
+    #[pyo3(signature = (path, acf = None))]
+    fn load_adm(py: Python<'_>, path: PathBuf, acf: Option<PathBuf>) -> PyResult<Model> {
+        guard(|| {
+            let loaded = py.detach(|| camlink_model::adm::load_adm(&path, acf.as_deref()));
+            Ok(Model {
+                loaded: loaded.map_err(model_error)?,
+            })
+        })
+    }
+
     /// Loads a model from text; `format` is `"toml"` or `"json"`; `source`
     /// names the text in error messages.
     #[staticmethod]
     #[pyo3(signature = (text, format, source = "<string>"))]
     fn from_str(text: &str, format: &str, source: &str) -> PyResult<Model> {
         guard(|| {
-            let format = match format.to_ascii_lowercase().as_str() {
-                "toml" => Format::Toml,
-                "json" => Format::Json,
-                other => {
-                    return Err(ModelError::new_err(format!(
-                        "unknown model format '{other}' (expected 'toml' or 'json')"
-                    )))
-                }
-            };
+            let format = model_format(format)?;
             let loaded = camlink_model::load_str(text, format, source).map_err(model_error)?;
             Ok(Model { loaded })
         })
@@ -758,6 +774,18 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
     })
 }
 
+/// A simEngine2D `.adm` model (with the analysis of `acf`, default the
+/// `.acf` beside it) written as a camlink model file; `format` is `"toml"`
+/// or `"json"`.
+#[pyfunction]
+#[pyo3(signature = (path, format, acf = None))]
+fn convert_adm(path: PathBuf, format: &str, acf: Option<PathBuf>) -> PyResult<String> {
+    guard(|| {
+        let format = model_format(format)?;
+        camlink_model::adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
+    })
+}
+
 /// The JSON Schema of model files, as JSON text.
 #[pyfunction]
 fn json_schema() -> PyResult<String> {
@@ -772,6 +800,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
+    m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;

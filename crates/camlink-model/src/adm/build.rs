@@ -1,0 +1,1051 @@
+//! From a `.adm` (and `.acf`) to camlink's model description.
+//!
+//! Every course type maps onto camlink constraints and forces whose
+//! equations have the same solutions (see docs/simengine2d.md):
+//!
+//! - `AbsoluteX`/`AbsoluteY`/`AbsoluteAngle` with a constant `fun` become
+//!   `absolute_x`/`absolute_y`/`absolute_phi` joints, with a `fun` of `t`
+//!   drivers of the same type. A constant `AbsoluteX` and `AbsoluteY` pair
+//!   at the same point of one body becomes a `revolute` joint to a named
+//!   ground point.
+//! - `RevoluteJoint` → `revolute`.
+//! - `TranslationalJoint` → `translational` with `angle` θ₀ the relative
+//!   angle φ₂ − φ₁ at which A₁v′₁ ∥ A₂v′₂ (v₁⊥·v₂ = 0), the root nearest the
+//!   initial placement.
+//! - `RackPinion` → `rack_pinion` (rolling) with phase
+//!   c = |sQ1 − sP1| + R₂(θ₁ − θ₂ + 3π/2), plus `revolute_translational`
+//!   holding the pinion centre at R₂ to the left of the pitch line; each is
+//!   the course's equation divided by |sQ1 − sP1|.
+//! - `PointForce` → `point_force` (`local` for `LRF`), `Torque` → `torque`,
+//!   `RSDA1` → `rsda` from the ground to body1, `RSDA2` → `rsda` from body1
+//!   to body2.
+
+use std::collections::{HashMap, HashSet};
+use std::f64::consts::PI;
+
+use serde::de::DeserializeOwned;
+use serde_json::Value;
+
+use super::format::{self, Acf, Id, Number};
+use super::item::Item;
+use super::matlab;
+
+/// A failure in the `.adm`: the field path in the file, the entry it
+/// belongs to (e.g. `constraint 'crank_pin' (id 4)`) and what is wrong.
+#[derive(Debug)]
+pub struct AdmFail {
+    pub path: String,
+    pub label: Option<String>,
+    pub message: String,
+}
+
+type R<T> = Result<T, AdmFail>;
+
+/// Where an entry of the description comes from, so that an error found in
+/// it later names the `.adm` entry and field.
+#[derive(Clone, Debug)]
+pub struct Origin {
+    /// The entry's path in the description, e.g. `joints[2]`.
+    pub prefix: String,
+    /// The entry's path in the `.adm`, e.g. `constraints[3]`.
+    pub adm_path: String,
+    pub label: String,
+    /// Description field → `.adm` field.
+    pub fields: Vec<(&'static str, &'static str)>,
+}
+
+/// The description and the origin of its entries.
+pub struct Built {
+    pub doc: Item,
+    pub origins: Vec<Origin>,
+}
+
+/// The constraint types read, as the error for an unknown type lists them.
+pub const CONSTRAINT_TYPES: &[&str] = &[
+    "AbsoluteX",
+    "AbsoluteY",
+    "AbsoluteAngle",
+    "RevoluteJoint",
+    "TranslationalJoint",
+    "RackPinion",
+];
+
+/// The force types read (`PointForceFile` is recognised and refused).
+pub const FORCE_TYPES: &[&str] = &["PointForce", "Torque", "RSDA1", "RSDA2", "PointForceFile"];
+
+struct BodyOut {
+    name: String,
+    body: format::Body,
+    /// Named points (body frame, m), in order of first use.
+    points: Vec<(String, [f64; 2])>,
+}
+
+/// A constant AbsoluteX or AbsoluteY, waiting for its partner.
+struct Pin {
+    path: String,
+    label: String,
+    name: String,
+    /// The camlink joint type: `absolute_x` or `absolute_y`.
+    axis: &'static str,
+    body: usize,
+    s: [f64; 2],
+    value: f64,
+    text: Item,
+}
+
+/// The lists of the description that the reader appends to.
+#[derive(Clone, Copy)]
+enum Section {
+    Joints,
+    Drivers,
+    Forces,
+}
+
+struct Builder {
+    bodies: Vec<BodyOut>,
+    by_id: HashMap<i64, usize>,
+    ground: Vec<(String, [f64; 2])>,
+    /// Names of joints, drivers and forces given so far.
+    names: HashSet<String>,
+    joints: Vec<Item>,
+    drivers: Vec<Item>,
+    forces: Vec<Item>,
+    origins: Vec<Origin>,
+}
+
+fn fail<T>(path: impl Into<String>, label: Option<&str>, message: impl Into<String>) -> R<T> {
+    Err(AdmFail {
+        path: path.into(),
+        label: label.map(str::to_string),
+        message: message.into(),
+    })
+}
+
+/// Deserialises `v` into `T`, with the failing field's path below `path`.
+fn parse<T: DeserializeOwned>(v: &Value, path: &str, label: Option<&str>) -> R<T> {
+    serde_path_to_error::deserialize(v).map_err(|e| {
+        let inner = crate::field_path(e.path());
+        let full = match (path.is_empty(), inner.is_empty()) {
+            (_, true) => path.to_string(),
+            (true, false) => inner,
+            (false, false) if inner.starts_with('[') => format!("{path}{inner}"),
+            (false, false) => format!("{path}.{inner}"),
+        };
+        AdmFail {
+            path: full,
+            label: label.map(str::to_string),
+            message: e.into_inner().to_string(),
+        }
+    })
+}
+
+/// A name usable in camlink: no `.`, `[`, `]` or control characters.
+fn clean(name: &str) -> String {
+    name.trim()
+        .chars()
+        .map(|c| {
+            if c == '.' || c == '[' || c == ']' || c.is_control() {
+                '_'
+            } else {
+                c
+            }
+        })
+        .collect()
+}
+
+fn pair(v: [Number; 2]) -> [f64; 2] {
+    [v[0].0, v[1].0]
+}
+
+fn is_none(fun: Option<&str>) -> bool {
+    fun.is_none_or(|f| f.trim().is_empty() || f.trim().eq_ignore_ascii_case("NONE"))
+}
+
+/// The name of the revolute made of an AbsoluteX named `x` and an
+/// AbsoluteY named `y`: their common beginning (`O` for `O_x`, `O_y`), else
+/// `x+y`.
+fn pin_name(x: &str, y: &str) -> String {
+    let common: String = x
+        .chars()
+        .zip(y.chars())
+        .take_while(|(a, b)| a == b)
+        .map(|(a, _)| a)
+        .collect();
+    let common = common.trim_end_matches(['_', '-', ' ']);
+    if common.is_empty() {
+        format!("{x}+{y}")
+    } else {
+        common.to_string()
+    }
+}
+
+/// An entry's name and id as written, read leniently for labels.
+fn name_and_id(v: &Value) -> (Option<String>, Option<String>) {
+    let name = v.get("name").and_then(Value::as_str).map(str::to_string);
+    let id = v.get("id").map(|id| match id {
+        Value::String(s) => s.clone(),
+        other => other.to_string(),
+    });
+    (name, id)
+}
+
+fn label(kind: &str, name: Option<&str>, id: Option<&str>) -> String {
+    match (name, id) {
+        (Some(n), Some(i)) => format!("{kind} '{n}' (id {i})"),
+        (Some(n), None) => format!("{kind} '{n}'"),
+        (None, Some(i)) => format!("{kind} with id {i}"),
+        (None, None) => kind.to_string(),
+    }
+}
+
+/// A function of t as a description value: a number when it is a plain
+/// number, else camlink expression text; and whether it uses t.
+fn fun_item(src: &str, path: &str, label: &str) -> R<(Item, bool)> {
+    let t = matlab::translate(src, true)
+        .or_else(|e| fail(path, Some(label), format!("cannot read the function: {e}")))?;
+    let item = match t.text.parse::<f64>() {
+        Ok(v) if v.is_finite() => Item::Num(v),
+        _ => Item::Str(t.text),
+    };
+    Ok((item, t.uses_t))
+}
+
+/// Builds the description of `adm`; its `[analysis]` comes from [`analysis`].
+pub fn build(adm: &Value) -> R<Built> {
+    let Value::Object(top) = adm else {
+        return fail("", None, "a .adm file is a JSON object");
+    };
+    let head: format::AdmTop = parse(adm, "", None)?;
+    let mut b = Builder {
+        bodies: Vec::new(),
+        by_id: HashMap::new(),
+        ground: Vec::new(),
+        names: HashSet::new(),
+        joints: Vec::new(),
+        drivers: Vec::new(),
+        forces: Vec::new(),
+        origins: Vec::new(),
+    };
+    let list = |key: &str| -> R<Vec<Value>> {
+        match top.get(key) {
+            None | Some(Value::Null) => Ok(Vec::new()),
+            Some(Value::Array(a)) => Ok(a.clone()),
+            // MATLAB writes a one-element array as the element itself.
+            Some(v @ Value::Object(_)) => Ok(vec![v.clone()]),
+            Some(_) => fail(key, None, "expected a list of entries"),
+        }
+    };
+    let bodies = list("bodies")?;
+    if bodies.is_empty() {
+        return fail("bodies", None, "the model has no bodies");
+    }
+    b.bodies(&bodies)?;
+    let mut pins = Vec::new();
+    for (k, c) in list("constraints")?.iter().enumerate() {
+        b.constraint(c, k, &mut pins)?;
+    }
+    b.pair_pins(pins);
+    for (k, f) in list("forces")?.iter().enumerate() {
+        b.force(f, k)?;
+    }
+
+    let mut model = Item::Table(Vec::new());
+    if let Some(name) = &head.name {
+        model.push("name", Item::Str(name.clone()));
+    }
+    if let Some(g) = head.gravity {
+        model.push("gravity", Item::pair(pair(g)));
+    }
+    let mut doc = Item::Table(Vec::new());
+    if model != Item::Table(Vec::new()) {
+        doc.push("model", model);
+    }
+    if !b.ground.is_empty() {
+        let points = b.ground.iter().map(|(n, s)| (n.clone(), Item::pair(*s)));
+        doc.push(
+            "ground",
+            Item::table([("points", Item::Table(points.collect()))]),
+        );
+    }
+    let bodies: Vec<Item> = b.bodies.iter().map(body_item).collect();
+    doc.push("bodies", Item::List(bodies));
+    for (key, items) in [
+        ("joints", b.joints),
+        ("drivers", b.drivers),
+        ("forces", b.forces),
+    ] {
+        if !items.is_empty() {
+            doc.push(key, Item::List(items));
+        }
+    }
+    Ok(Built {
+        doc,
+        origins: b.origins,
+    })
+}
+
+fn body_item(b: &BodyOut) -> Item {
+    let q0 = b.body.q0;
+    let qd0 = b.body.qd0.unwrap_or([Number(0.0); 3]);
+    let mut t = Item::table([
+        ("name", Item::Str(b.name.clone())),
+        ("mass", Item::Num(b.body.mass.map_or(0.0, |m| m.0))),
+        ("inertia", Item::Num(b.body.jbar.map_or(0.0, |j| j.0))),
+        ("position", Item::pair([q0[0].0, q0[1].0])),
+        ("angle", Item::Num(q0[2].0)),
+    ]);
+    if qd0.iter().any(|v| v.0 != 0.0) {
+        t.push("velocity", Item::pair([qd0[0].0, qd0[1].0]));
+        t.push("omega", Item::Num(qd0[2].0));
+    }
+    if !b.points.is_empty() {
+        let pts = b.points.iter().map(|(n, s)| (n.clone(), Item::pair(*s)));
+        t.push("points", Item::Table(pts.collect()));
+    }
+    t
+}
+
+/// The `[analysis]` table of a `.acf`.
+pub fn analysis(acf: &Value) -> R<Item> {
+    let a: Acf = parse(acf, "", Some("analysis file"))?;
+    let kind = match a.simulation.trim().to_ascii_lowercase().as_str() {
+        "kinematics" => "kinematics",
+        "dynamics" => "dynamics",
+        "equilibrium" => "equilibrium",
+        other => {
+            return fail(
+                "simulation",
+                Some("analysis file"),
+                format!(
+                    "unknown simulation '{other}'; expected Kinematics, Dynamics or Equilibrium"
+                ),
+            )
+        }
+    };
+    let mut t = Item::table([("type", Item::Str(kind.into()))]);
+    if kind == "equilibrium" {
+        return Ok(t);
+    }
+    let Some(tend) = a.tend else {
+        return fail("tend", Some("analysis file"), "missing field `tend`");
+    };
+    let step = match (a.outputSteps, a.stepSize) {
+        (Some(n), _) => {
+            if n.0 < 1.0 || n.0.fract() != 0.0 {
+                return fail(
+                    "outputSteps",
+                    Some("analysis file"),
+                    format!(
+                        "outputSteps is a whole number of output intervals ≥ 1, not {}",
+                        n.0
+                    ),
+                );
+            }
+            tend.0 / n.0
+        }
+        (None, Some(h)) => h.0,
+        (None, None) => {
+            return fail(
+                "outputSteps",
+                Some("analysis file"),
+                "give outputSteps (output intervals over [0, tend]) or stepSize",
+            )
+        }
+    };
+    t.push("t_end", Item::Num(tend.0));
+    t.push("step", Item::Num(step));
+    if kind == "dynamics" {
+        if let Some(h) = a.stepSize {
+            t.push("h", Item::Num(h.0));
+        }
+    }
+    Ok(t)
+}
+
+impl Builder {
+    /// Registers a joint, driver or force name: the file's, else `fallback`;
+    /// a name already taken gets `_<id>`, then a counter.
+    fn unique(&mut self, given: Option<&str>, fallback: &str, id: Option<&str>) -> String {
+        let base = given
+            .map(clean)
+            .filter(|n| !n.is_empty())
+            .unwrap_or_else(|| fallback.to_string());
+        let mut name = base.clone();
+        if self.names.contains(&name) {
+            if let Some(id) = id {
+                name = format!("{base}_{}", clean(id));
+            }
+        }
+        let mut n = 2;
+        while self.names.contains(&name) {
+            name = format!("{base}_{n}");
+            n += 1;
+        }
+        self.names.insert(name.clone());
+        name
+    }
+
+    fn bodies(&mut self, list: &[Value]) -> R<()> {
+        let mut taken: HashSet<String> = HashSet::from(["ground".to_string()]);
+        for (k, v) in list.iter().enumerate() {
+            let path = format!("bodies[{k}]");
+            let (name, id) = name_and_id(v);
+            let lab = label("body", name.as_deref(), id.as_deref());
+            let body: format::Body = parse(v, &path, Some(&lab))?;
+            if let Some(&first) = self.by_id.get(&body.id.0) {
+                return fail(
+                    format!("{path}.id"),
+                    Some(&lab),
+                    format!("id {} is also the id of bodies[{first}]", body.id.0),
+                );
+            }
+            let fallback = format!("body{}", body.id.0);
+            let mut out = name
+                .as_deref()
+                .map(clean)
+                .filter(|n| !n.is_empty())
+                .unwrap_or(fallback.clone());
+            if taken.contains(&out) {
+                out = format!("{out}_{}", body.id.0);
+            }
+            let mut n = 2;
+            while taken.contains(&out) {
+                out = format!("{fallback}_{n}");
+                n += 1;
+            }
+            for (field, value) in [("mass", body.mass), ("jbar", body.jbar)] {
+                if value.is_some_and(|v| v.0 < 0.0) {
+                    return fail(
+                        format!("{path}.{field}"),
+                        Some(&lab),
+                        format!("{field} must not be negative"),
+                    );
+                }
+            }
+            taken.insert(out.clone());
+            self.by_id.insert(body.id.0, self.bodies.len());
+            self.bodies.push(BodyOut {
+                name: out,
+                body,
+                points: Vec::new(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The body of an id; `None` (no id) is the ground.
+    fn body(&self, id: Option<Id>, path: &str, lab: &str) -> R<Option<usize>> {
+        match id {
+            None => Ok(None),
+            Some(Id(i)) => match self.by_id.get(&i) {
+                Some(&k) => Ok(Some(k)),
+                None => {
+                    let mut ids: Vec<i64> = self.by_id.keys().copied().collect();
+                    ids.sort_unstable();
+                    let ids: Vec<String> = ids.iter().map(i64::to_string).collect();
+                    fail(
+                        path,
+                        Some(lab),
+                        format!("no body has id {i} (the body ids are {})", ids.join(", ")),
+                    )
+                }
+            },
+        }
+    }
+
+    fn body_name(&self, b: Option<usize>) -> Item {
+        Item::Str(b.map_or("ground".to_string(), |k| self.bodies[k].name.clone()))
+    }
+
+    /// A named point of body `b` (the ground for `None`) at `s` (m):
+    /// an existing point at the same place, else a new point named `hint`.
+    fn point(&mut self, b: Option<usize>, s: [f64; 2], hint: &str) -> Item {
+        let points = match b {
+            Some(k) => &mut self.bodies[k].points,
+            None => &mut self.ground,
+        };
+        // A body's joints at one place share its point; ground points stay
+        // one per joint, named after it.
+        if let Some((n, _)) = points.iter().find(|(_, p)| *p == s && b.is_some()) {
+            return Item::Str(n.clone());
+        }
+        let mut name = hint.to_string();
+        let mut n = 2;
+        while points.iter().any(|(p, _)| *p == name) {
+            name = format!("{hint}_{n}");
+            n += 1;
+        }
+        points.push((name.clone(), s));
+        Item::Str(name)
+    }
+
+    fn origin(
+        &mut self,
+        prefix: String,
+        adm_path: &str,
+        lab: &str,
+        fields: Vec<(&'static str, &'static str)>,
+    ) {
+        self.origins.push(Origin {
+            prefix,
+            adm_path: adm_path.to_string(),
+            label: lab.to_string(),
+            fields,
+        });
+    }
+
+    /// Appends `item` to the description's `joints`, `drivers` or `forces`
+    /// and records where it came from.
+    fn add(
+        &mut self,
+        section: Section,
+        item: Item,
+        path: &str,
+        lab: &str,
+        fields: Vec<(&'static str, &'static str)>,
+    ) {
+        let (key, list) = match section {
+            Section::Joints => ("joints", &mut self.joints),
+            Section::Drivers => ("drivers", &mut self.drivers),
+            Section::Forces => ("forces", &mut self.forces),
+        };
+        let prefix = format!("{key}[{}]", list.len());
+        list.push(item);
+        self.origin(prefix, path, lab, fields);
+    }
+
+    fn constraint(&mut self, v: &Value, k: usize, pins: &mut Vec<Pin>) -> R<()> {
+        let path = format!("constraints[{k}]");
+        let (name, id) = name_and_id(v);
+        let lab = label("constraint", name.as_deref(), id.as_deref());
+        let p = path.as_str();
+        let Some(kind) = v.get("type") else {
+            return fail(
+                format!("{p}.type"),
+                Some(&lab),
+                format!(
+                    "missing field `type` (one of {})",
+                    CONSTRAINT_TYPES.join(", ")
+                ),
+            );
+        };
+        let kind = kind.as_str().unwrap_or_default();
+        let fallback = format!(
+            "constraint{}",
+            id.as_deref().map(clean).unwrap_or_else(|| k.to_string())
+        );
+        match kind {
+            "AbsoluteX" | "AbsoluteY" => {
+                let c: format::AbsoluteCoord = parse(v, p, Some(&lab))?;
+                let body = self
+                    .body(Some(c.body1), &format!("{p}.body1"), &lab)?
+                    .unwrap_or_default();
+                if is_none(Some(&c.fun)) {
+                    return fail(
+                        format!("{p}.fun"),
+                        Some(&lab),
+                        format!("{kind} needs a fun: a constant or a function of t"),
+                    );
+                }
+                let (f, uses_t) = fun_item(&c.fun, &format!("{p}.fun"), &lab)?;
+                let axis = if kind == "AbsoluteX" {
+                    "absolute_x"
+                } else {
+                    "absolute_y"
+                };
+                let s = pair(c.sP1);
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                if uses_t {
+                    let point = self.point(Some(body), s, &name);
+                    let item = Item::table([
+                        ("name", Item::Str(name)),
+                        ("type", Item::Str(axis.into())),
+                        ("body", self.body_name(Some(body))),
+                        ("point", point),
+                        ("f", f),
+                    ]);
+                    self.add(
+                        Section::Drivers,
+                        item,
+                        p,
+                        &lab,
+                        vec![("body", "body1"), ("point", "sP1"), ("f", "fun")],
+                    );
+                } else {
+                    let value = match &f {
+                        Item::Str(text) => {
+                            camlink_expr::eval_constant(text, &Default::default())
+                                .or_else(|e| fail(format!("{p}.fun"), Some(&lab), e.message))?
+                        }
+                        Item::Num(v) => *v,
+                        _ => f64::NAN,
+                    };
+                    pins.push(Pin {
+                        path: path.clone(),
+                        label: lab.clone(),
+                        name,
+                        axis,
+                        body,
+                        s,
+                        value,
+                        text: f,
+                    });
+                }
+            }
+            "AbsoluteAngle" => {
+                let c: format::AbsoluteAngle = parse(v, p, Some(&lab))?;
+                let body = self.body(Some(c.body1), &format!("{p}.body1"), &lab)?;
+                if is_none(Some(&c.fun)) {
+                    return fail(
+                        format!("{p}.fun"),
+                        Some(&lab),
+                        "AbsoluteAngle needs a fun: a constant or a function of t",
+                    );
+                }
+                let (f, uses_t) = fun_item(&c.fun, &format!("{p}.fun"), &lab)?;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let mut item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("absolute_phi".into())),
+                    ("body", self.body_name(body)),
+                ]);
+                if uses_t {
+                    item.push("f", f);
+                    self.add(
+                        Section::Drivers,
+                        item,
+                        p,
+                        &lab,
+                        vec![("body", "body1"), ("f", "fun")],
+                    );
+                } else {
+                    item.push("value", f);
+                    self.add(
+                        Section::Joints,
+                        item,
+                        p,
+                        &lab,
+                        vec![("body", "body1"), ("value", "fun")],
+                    );
+                }
+            }
+            "RevoluteJoint" => {
+                let (c, b1, b2) = self.joint_of::<format::Revolute>(v, p, &lab, kind)?;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let p1 = self.point(b1, pair(c.sP1), &name);
+                let p2 = self.point(b2, pair(c.sP2), &name);
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("revolute".into())),
+                    ("body_i", self.body_name(b1)),
+                    ("point_i", p1),
+                    ("body_j", self.body_name(b2)),
+                    ("point_j", p2),
+                ]);
+                self.add(
+                    Section::Joints,
+                    item,
+                    p,
+                    &lab,
+                    vec![
+                        ("body_i", "body1"),
+                        ("point_i", "sP1"),
+                        ("body_j", "body2"),
+                        ("point_j", "sP2"),
+                    ],
+                );
+            }
+            "TranslationalJoint" => {
+                let (c, b1, b2) = self.joint_of::<format::Translational>(v, p, &lab, kind)?;
+                let (v1, v2) = (pair(c.vP1), pair(c.vP2));
+                for (field, v) in [("vP1", v1), ("vP2", v2)] {
+                    if v[0] == 0.0 && v[1] == 0.0 {
+                        return fail(
+                            format!("{p}.{field}"),
+                            Some(&lab),
+                            "the direction vector is zero",
+                        );
+                    }
+                }
+                // θ₀: the root of v₁⊥·v₂ = 0 nearest the initial φ₂ − φ₁.
+                let phi = |b: Option<usize>| b.map_or(0.0, |k| self.bodies[k].body.q0[2].0);
+                let base = v1[1].atan2(v1[0]) - v2[1].atan2(v2[0]);
+                let turns = ((phi(b2) - phi(b1) - base) / PI).round();
+                let angle = base + turns * PI;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let p1 = self.point(b1, pair(c.sP1), &name);
+                let p2 = self.point(b2, pair(c.sP2), &name);
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("translational".into())),
+                    ("body_i", self.body_name(b1)),
+                    ("point_i", p1),
+                    ("axis", Item::pair(v1)),
+                    ("body_j", self.body_name(b2)),
+                    ("point_j", p2),
+                    ("angle", Item::Num(angle)),
+                ]);
+                self.add(
+                    Section::Joints,
+                    item,
+                    p,
+                    &lab,
+                    vec![
+                        ("body_i", "body1"),
+                        ("point_i", "sP1"),
+                        ("axis", "vP1"),
+                        ("body_j", "body2"),
+                        ("point_j", "sP2"),
+                        ("angle", "vP2"),
+                    ],
+                );
+            }
+            "RackPinion" => {
+                let (c, rack, pinion) = self.joint_of::<format::RackPinion>(v, p, &lab, kind)?;
+                let (sp, sq) = (pair(c.sP1), pair(c.sQ1));
+                let axis = [sq[0] - sp[0], sq[1] - sp[1]];
+                let length = axis[0].hypot(axis[1]);
+                if length == 0.0 {
+                    return fail(
+                        format!("{p}.sQ1"),
+                        Some(&lab),
+                        "sQ1 equals sP1: the pitch line has no direction",
+                    );
+                }
+                let r = c.R2.0;
+                if r <= 0.0 {
+                    return fail(
+                        format!("{p}.R2"),
+                        Some(&lab),
+                        format!("the pitch radius R2 must be positive ({r} m)"),
+                    );
+                }
+                let phase = length + r * (c.theta1.0 - c.theta2.0 + 1.5 * PI);
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let centre_name = self.unique(Some(&format!("{name}_centre")), "", None);
+                let line = self.point(rack, sp, &format!("{name}_P"));
+                self.point(rack, sq, &format!("{name}_Q"));
+                let centre = self.point(pinion, pair(c.sP2), &name);
+                let rolling = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("rack_pinion".into())),
+                    ("body_i", self.body_name(pinion)),
+                    ("point_i", centre.clone()),
+                    ("radius", Item::Num(r)),
+                    ("body_j", self.body_name(rack)),
+                    ("point_j", line.clone()),
+                    ("axis", Item::pair(axis)),
+                    ("phase", Item::Num(phase)),
+                ]);
+                let fields = vec![
+                    ("body_i", "body2"),
+                    ("point_i", "sP2"),
+                    ("radius", "R2"),
+                    ("body_j", "body1"),
+                    ("point_j", "sP1"),
+                    ("axis", "sQ1"),
+                    ("phase", "theta1"),
+                ];
+                self.add(Section::Joints, rolling, p, &lab, fields);
+                let on_line = Item::table([
+                    ("name", Item::Str(centre_name)),
+                    ("type", Item::Str("revolute_translational".into())),
+                    ("body_i", self.body_name(pinion)),
+                    ("point_i", centre),
+                    ("body_j", self.body_name(rack)),
+                    ("point_j", line),
+                    ("axis", Item::pair(axis)),
+                    ("offset", Item::Num(r)),
+                ]);
+                let fields = vec![
+                    ("body_i", "body2"),
+                    ("point_i", "sP2"),
+                    ("body_j", "body1"),
+                    ("point_j", "sP1"),
+                    ("axis", "sQ1"),
+                    ("offset", "R2"),
+                ];
+                self.add(Section::Joints, on_line, p, &lab, fields);
+            }
+            other => {
+                return fail(
+                    format!("{p}.type"),
+                    Some(&lab),
+                    format!(
+                        "unknown constraint type '{other}'; the supported types are {}",
+                        CONSTRAINT_TYPES.join(", ")
+                    ),
+                )
+            }
+        }
+        Ok(())
+    }
+
+    /// A joint between `body1` and `body2` read from `v`, with its bodies;
+    /// joints take no function (`fun` left out or `NONE`).
+    fn joint_of<T: DeserializeOwned + format::TwoBodies>(
+        &self,
+        v: &Value,
+        p: &str,
+        lab: &str,
+        kind: &str,
+    ) -> R<(T, Option<usize>, Option<usize>)> {
+        let c: T = parse(v, p, Some(lab))?;
+        if !is_none(c.fun()) {
+            return fail(
+                format!("{p}.fun"),
+                Some(lab),
+                format!("a {kind} takes no function; write \"NONE\" or leave fun out"),
+            );
+        }
+        let (b1, b2) = c.bodies();
+        let (k1, k2) = self.two_bodies(b1, b2, p, lab)?;
+        Ok((c, k1, k2))
+    }
+
+    /// body1 and body2 (either may be the ground, not both, not the same).
+    fn two_bodies(
+        &self,
+        b1: Option<Id>,
+        b2: Option<Id>,
+        p: &str,
+        lab: &str,
+    ) -> R<(Option<usize>, Option<usize>)> {
+        let k1 = self.body(b1, &format!("{p}.body1"), lab)?;
+        let k2 = self.body(b2, &format!("{p}.body2"), lab)?;
+        if k1 == k2 {
+            let what = if k1.is_none() {
+                "both bodies are the ground (body1 and body2 are missing)"
+            } else {
+                "body1 and body2 are the same body"
+            };
+            return fail(format!("{p}.body2"), Some(lab), what);
+        }
+        Ok((k1, k2))
+    }
+
+    /// Places the constant AbsoluteX/AbsoluteY constraints: a pair at the
+    /// same point of one body becomes a revolute to a ground point; the
+    /// others stay single `absolute_x`/`absolute_y` joints.
+    fn pair_pins(&mut self, pins: Vec<Pin>) {
+        let mut used = vec![false; pins.len()];
+        for a in 0..pins.len() {
+            if used[a] {
+                continue;
+            }
+            let x = &pins[a];
+            let partner = (a + 1..pins.len()).find(|&c| {
+                let y = &pins[c];
+                !used[c]
+                    && y.body == x.body
+                    && y.s == x.s
+                    && x.axis != y.axis
+                    && x.value.is_finite()
+                    && y.value.is_finite()
+            });
+            used[a] = true;
+            let prefix = format!("joints[{}]", self.joints.len());
+            match partner {
+                Some(c) => {
+                    used[c] = true;
+                    let (px, py) = if x.axis == "absolute_x" {
+                        (x, &pins[c])
+                    } else {
+                        (&pins[c], x)
+                    };
+                    let name = self.unique(Some(&pin_name(&px.name, &py.name)), "pin", None);
+                    let ground = self.point(
+                        None,
+                        [px.value, py.value],
+                        &format!("{}_pin", self.bodies[px.body].name),
+                    );
+                    let point = self.point(Some(px.body), px.s, &name);
+                    self.joints.push(Item::table([
+                        ("name", Item::Str(name)),
+                        ("type", Item::Str("revolute".into())),
+                        ("body_i", Item::Str("ground".into())),
+                        ("point_i", ground),
+                        ("body_j", self.body_name(Some(px.body))),
+                        ("point_j", point),
+                    ]));
+                    for pin in [px, py] {
+                        let fields =
+                            vec![("body_j", "body1"), ("point_j", "sP1"), ("point_i", "fun")];
+                        self.origin(prefix.clone(), &pin.path, &pin.label, fields);
+                    }
+                }
+                None => {
+                    let point = self.point(Some(x.body), x.s, &x.name);
+                    self.joints.push(Item::table([
+                        ("name", Item::Str(x.name.clone())),
+                        ("type", Item::Str(x.axis.into())),
+                        ("body", self.body_name(Some(x.body))),
+                        ("point", point),
+                        ("value", x.text.clone()),
+                    ]));
+                    let fields = vec![("body", "body1"), ("point", "sP1"), ("value", "fun")];
+                    self.origin(prefix, &x.path, &x.label, fields);
+                }
+            }
+        }
+    }
+
+    fn force(&mut self, v: &Value, k: usize) -> R<()> {
+        let path = format!("forces[{k}]");
+        let (name, id) = name_and_id(v);
+        let lab = label("force", name.as_deref(), id.as_deref());
+        let p = path.as_str();
+        let Some(kind) = v.get("type") else {
+            return fail(
+                format!("{p}.type"),
+                Some(&lab),
+                format!("missing field `type` (one of {})", FORCE_TYPES.join(", ")),
+            );
+        };
+        let kind = kind.as_str().unwrap_or_default();
+        let fallback = format!(
+            "force{}",
+            id.as_deref().map(clean).unwrap_or_else(|| k.to_string())
+        );
+        let opt_fun = |fun: Option<&str>, field: &str| -> R<Item> {
+            match fun {
+                f if is_none(f) => Ok(Item::Num(0.0)),
+                Some(f) => fun_item(f, &format!("{p}.{field}"), &lab).map(|(i, _)| i),
+                None => Ok(Item::Num(0.0)),
+            }
+        };
+        match kind {
+            "PointForce" => {
+                let f: format::PointForce = parse(v, p, Some(&lab))?;
+                let body = self.body(Some(f.body1), &format!("{p}.body1"), &lab)?;
+                let local = match f.frame.trim().to_ascii_uppercase().as_str() {
+                    "GRF" => false,
+                    "LRF" => true,
+                    other => return fail(format!("{p}.frame"), Some(&lab), format!("unknown frame '{other}'; expected \"GRF\" (global) or \"LRF\" (body-fixed)")),
+                };
+                let fx = opt_fun(f.funX.as_deref(), "funX")?;
+                let fy = opt_fun(f.funY.as_deref(), "funY")?;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let point = self.point(body, pair(f.sP1), &name);
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("point_force".into())),
+                    ("body", self.body_name(body)),
+                    ("point", point),
+                    ("fx", fx),
+                    ("fy", fy),
+                    ("local", Item::Bool(local)),
+                ]);
+                self.add(
+                    Section::Forces,
+                    item,
+                    p,
+                    &lab,
+                    vec![
+                        ("body", "body1"),
+                        ("point", "sP1"),
+                        ("fx", "funX"),
+                        ("fy", "funY"),
+                    ],
+                );
+            }
+            "Torque" => {
+                let f: format::Torque = parse(v, p, Some(&lab))?;
+                let body = self.body(Some(f.body1), &format!("{p}.body1"), &lab)?;
+                let t = opt_fun(Some(&f.fun), "fun")?;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("torque".into())),
+                    ("body", self.body_name(body)),
+                    ("torque", t),
+                ]);
+                self.add(
+                    Section::Forces,
+                    item,
+                    p,
+                    &lab,
+                    vec![("body", "body1"), ("torque", "fun")],
+                );
+            }
+            "RSDA1" | "RSDA2" => {
+                let f: format::Rsda = parse(v, p, Some(&lab))?;
+                let (bi, bj) = if kind == "RSDA1" {
+                    let b = self.body(f.body1, &format!("{p}.body1"), &lab)?;
+                    if b.is_none() {
+                        return fail(format!("{p}.body1"), Some(&lab), "missing field `body1`");
+                    }
+                    (None, b)
+                } else {
+                    self.two_bodies(f.body1, f.body2, p, &lab)?
+                };
+                for (field, value) in [("k", f.k.0), ("c", f.c.0)] {
+                    if value < 0.0 {
+                        return fail(
+                            format!("{p}.{field}"),
+                            Some(&lab),
+                            format!("{field} must not be negative ({value})"),
+                        );
+                    }
+                }
+                let actuator = opt_fun(f.fun.as_deref(), "fun")?;
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("rsda".into())),
+                    ("body_i", self.body_name(bi)),
+                    ("body_j", self.body_name(bj)),
+                    ("stiffness", Item::Num(f.k.0)),
+                    ("free_angle", Item::Num(f.theta0.0)),
+                    ("damping", Item::Num(f.c.0)),
+                    ("actuator", actuator),
+                ]);
+                let fields = if kind == "RSDA1" {
+                    vec![
+                        ("body_j", "body1"),
+                        ("stiffness", "k"),
+                        ("free_angle", "theta0"),
+                        ("damping", "c"),
+                        ("actuator", "fun"),
+                    ]
+                } else {
+                    vec![
+                        ("body_i", "body1"),
+                        ("body_j", "body2"),
+                        ("stiffness", "k"),
+                        ("free_angle", "theta0"),
+                        ("damping", "c"),
+                        ("actuator", "fun"),
+                    ]
+                };
+                self.add(Section::Forces, item, p, &lab, fields);
+            }
+            "PointForceFile" => {
+                let f: format::PointForceFile = parse(v, p, Some(&lab))?;
+                let file = f.mfile.map_or("its MATLAB file".to_string(), |m| {
+                    format!("the MATLAB file '{m}'")
+                });
+                return fail(
+                    format!("{p}.mfile"),
+                    Some(&lab),
+                    format!(
+                        "PointForceFile computes its force with {file}, which camlink cannot run; \
+                         write the force as a [[forces]] entry of a converted model (`camlink convert`) \
+                         or as a Python force (Model.with_force)"
+                    ),
+                );
+            }
+            other => {
+                return fail(
+                    format!("{p}.type"),
+                    Some(&lab),
+                    format!(
+                        "unknown force type '{other}'; the supported types are {}",
+                        FORCE_TYPES.join(", ")
+                    ),
+                )
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,44 @@
+"""simEngine2D course models (``.adm`` with a ``.acf`` analysis file).
+
+Loading goes through :func:`camlink.load`; this module writes a course
+model as a camlink model file. The mapping of every field and type is in
+docs/simengine2d.md.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+from pathlib import Path
+
+from camlink import _core
+from camlink._core import ModelError
+
+__all__ = ["convert"]
+
+#: Model file formats by suffix.
+_FORMATS = {".toml": "toml", ".json": "json"}
+
+
+def convert(
+    adm: str | os.PathLike[str],
+    output: str | os.PathLike[str],
+    acf: str | os.PathLike[str] | None = None,
+) -> Path:
+    """Writes the mechanism of `adm` (and the analysis of `acf`, default the
+    ``.acf`` beside it) as a camlink model file; the format follows
+    `output`'s suffix (``.toml`` or ``.json``). Returns the path written.
+
+    The model is loaded first: a model that does not load is not converted
+    (`ModelError` names the file, the entry and the field).
+    """
+    adm, out = Path(adm), Path(output)
+    fmt = _FORMATS.get(out.suffix.lower())
+    if fmt is None:
+        raise ModelError(f"{out}: the converted model is a .toml or .json file")
+    for p in (adm, None if acf is None else Path(acf)):
+        if p is not None and not p.is_file():
+            raise FileNotFoundError(errno.ENOENT, "no such file", str(p))
+    text = _core.convert_adm(adm, fmt, acf)
+    out.write_text(text, encoding="utf-8")
+    return out
