@@ -10,9 +10,10 @@ import subprocess
 import tomllib
 from pathlib import Path
 
-import camlink
 import numpy as np
 import pytest
+
+import camlink
 from camlink import simengine2d
 from camlink.results import Results
 from conftest import ROOT

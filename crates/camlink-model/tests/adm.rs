@@ -34,6 +34,7 @@ fn kin(l: &Loaded) -> Table {
     let settings = Settings {
         tol: l.analysis.tol,
         max_iter: l.analysis.max_iter,
+        ..Settings::default()
     };
     let mut table = Table::default();
     kinematics::run(&l.model, &times(l), &settings, &[], &mut table)
