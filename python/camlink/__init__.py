@@ -28,7 +28,21 @@ __all__ = [
     "Results",
     "RunWarning",
     "__version__",
+    "draw",
     "json_schema",
     "load",
     "loads",
+    "plot",
+    "svaj",
 ]
+
+#: Picture functions, imported on first use (they load matplotlib).
+_PICTURES = {"draw": "camlink.drawing", "plot": "camlink.plots", "svaj": "camlink.plots"}
+
+
+def __getattr__(name: str) -> object:
+    if name in _PICTURES:
+        import importlib
+
+        return getattr(importlib.import_module(_PICTURES[name]), name)
+    raise AttributeError(f"module 'camlink' has no attribute {name!r}")

@@ -14,11 +14,14 @@ import sys
 from pathlib import Path
 
 import camlink
-from camlink import cli_convert
+from camlink import cam_cli, cli_convert, cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.model import ANALYSES
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+#: Subcommands registered from their own modules.
+COMMANDS: dict[str, cli_visuals.Command] = {}
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -106,6 +109,8 @@ def _parser() -> argparse.ArgumentParser:
 
     sub.add_parser("schema", help="print the JSON Schema of model files")
     cli_convert.add_parser(sub)
+    COMMANDS.update(cli_visuals.add_parsers(sub))
+    cam_cli.add_parser(sub)
     return p
 
 
@@ -137,8 +142,15 @@ def _cmd_run(args: argparse.Namespace) -> int:
     }
     given = {k: v for k, v in settings.items() if v is not None}
     _print_design(model)
+    from camlink.progress import Progress
+
+    total = 1 if kind == "equilibrium" else len(model.times(args.t_end, args.step))
     try:
-        res = model.run(analysis=kind, output=output, **given)
+        with Progress(total, f"{kind} of {model.name}", quiet=args.quiet) as bar:
+            res = model.run(analysis=kind, output=output, on_rows=bar.update, **given)
+    except KeyboardInterrupt:
+        print(f"camlink: interrupted; the steps computed so far are in {output}", file=sys.stderr)
+        return 130
     except AnalysisError as e:
         _error(str(e))
         details = []
@@ -253,6 +265,8 @@ def main(argv: list[str] | None = None) -> int:
         "check": _cmd_check,
         "schema": _cmd_schema,
         "convert": cli_convert.run,
+        **COMMANDS,
+        "cam": cam_cli.run,
     }[args.command]
     try:
         return command(args)

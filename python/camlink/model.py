@@ -177,12 +177,13 @@ class Model:
         t_end: float | None = None,
         step: float | None = None,
         times: Sequence[float] | npt.ArrayLike | None = None,
+        *,
         tol: float | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
         max_iter: int | None = None,
-        *,
         analysis: str | None = None,
+        on_rows: Callable[[int], object] | None = None,
         **settings: Any,
     ) -> Results:
         """Runs the file's analysis (``[analysis] type``), or `analysis`.
@@ -191,6 +192,9 @@ class Model:
         ``"equilibrium"``, ``"dynamics"``; the other arguments are those of
         `kinematics`, `inverse_dynamics`, `equilibrium` or `simulate`, and
         one that does not apply to the chosen analysis raises `ModelError`.
+        `on_rows(n)`, if given, is called each time n more output rows are
+        computed (a progress bar); an exception it raises stops the run,
+        keeping the rows written to `output`.
         """
         kind = self.analysis_type if analysis is None else analysis
         if kind not in ANALYSES:
@@ -220,7 +224,7 @@ class Model:
             "dynamics": self.simulate,
         }
         method = methods[kind]
-        return method(output=output, **kwargs)
+        return method(output=output, on_rows=on_rows, **kwargs)
 
     def kinematics(
         self,
@@ -232,6 +236,7 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        on_rows: Callable[[int], object] | None = None,
         jerk: bool | None = None,
     ) -> Results:
         """Kinematic analysis: positions, velocities and accelerations.
@@ -258,6 +263,7 @@ class Model:
                 grid, tol=tol, max_iter=max_iter, jerk=with_jerk, **kw
             ),
             points,
+            on_rows,
         )
 
     def inverse_dynamics(
@@ -270,6 +276,7 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        on_rows: Callable[[int], object] | None = None,
     ) -> Results:
         """Inverse dynamics of a driven (zero-DOF) model: the kinematic
         channels, then joint reactions (``<joint>.fx``, ``.fy``,
@@ -282,6 +289,7 @@ class Model:
             output,
             lambda **kw: self._core.run_inverse_dynamics(grid, tol=tol, max_iter=max_iter, **kw),
             points,
+            on_rows,
         )
 
     def equilibrium(
@@ -292,6 +300,7 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        on_rows: Callable[[int], object] | None = None,
     ) -> Results:
         """The static equilibrium nearest the model's placement, with drivers
         and forces evaluated at `time` (s, default ``[analysis] time`` or 0):
@@ -303,6 +312,7 @@ class Model:
             output,
             lambda **kw: self._core.run_equilibrium(time, tol=tol, max_iter=max_iter, **kw),
             points,
+            on_rows,
         )
 
     def simulate(
@@ -322,6 +332,7 @@ class Model:
         max_iter: int | None = None,
         points: Sequence[str] | None = None,
         output: str | os.PathLike[str] | None = None,
+        on_rows: Callable[[int], object] | None = None,
     ) -> Results:
         """Forward dynamics (implicit index-3 generalized-α) from the model's
         placement and velocities, output at `times` or 0, `step`, … `t_end`.
@@ -370,7 +381,7 @@ class Model:
                 **kw,
             )
 
-        res = self._run("dynamics", output, core, points)
+        res = self._run("dynamics", output, core, points, on_rows)
         s = res.summary
         if len(res):
             energy = res["energy.total"]
@@ -396,6 +407,7 @@ class Model:
         output: str | os.PathLike[str] | None,
         core: Callable[..., tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]],
         points: Sequence[str] | None,
+        on_rows: Callable[[int], object] | None = None,
     ) -> Results:
         """Calls a core run with the output points and a chunk writer; wraps
         the outcome (or the partial results of a failure) as `Results`."""
@@ -407,6 +419,8 @@ class Model:
             names[:] = chunk_names
             if writer is not None:
                 writer.write(chunk_names, rows)
+            if on_rows is not None:
+                on_rows(len(rows))
 
         try:
             names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
@@ -416,12 +430,27 @@ class Model:
             e.results = Results(
                 names, partial, model=self.name, complete=False, summary={"analysis": kind}
             )
+            e.results.mechanism = self
             e.output = writer.path if writer is not None else None
             raise
         finally:
             if writer is not None:
                 writer.close(names)
-        return Results(names, data, model=self.name, summary=_summary(kind, summary))
+        results = Results(names, data, model=self.name, summary=_summary(kind, summary))
+        results.mechanism = self
+        return results
+
+    def draw(self, t: float | None = None, *, traces: Sequence[str] = ()) -> Any:
+        """The mechanism at time `t` (s) as a matplotlib figure; see
+        `camlink.draw`."""
+        from camlink.drawing import draw
+
+        return draw(self, t, traces=traces)
+
+    def _repr_html_(self) -> str:
+        from camlink.notebook import model_html
+
+        return model_html(self)
 
     def __repr__(self) -> str:
         return repr(self._core)

@@ -15,7 +15,12 @@ from camlink._core import ModelError
 from camlink.errors import RunWarning
 
 if TYPE_CHECKING:
+    from collections.abc import Sequence
+
     import pandas as pd
+    from matplotlib.figure import Figure
+
+    from camlink.model import Model
 
 __all__ = [
     "LIFT_OFF_COLUMNS",
@@ -117,6 +122,9 @@ class Results:
         #: ``constraint_drift`` and ``velocity_drift``. Empty for results
         #: read from a file.
         self.summary: RunSummary = summary if summary is not None else {}
+        #: The model that produced these results (None when read from a
+        #: file); drawings and animations take their geometry from it.
+        self.mechanism: Model | None = None
 
     @property
     def t(self) -> npt.NDArray[np.float64]:
@@ -194,6 +202,57 @@ class Results:
             pd.Index(self.t, name="t") if "t" in self._index else pd.RangeIndex(len(self), name="step")
         )
         return pd.DataFrame(self._data[:, columns], index=index, columns=self.channels)
+
+    def plot(self, y: str | Sequence[str], x: str = "t") -> Figure:
+        """Channels `y` against time or the channel `x`; see `camlink.plot`."""
+        from camlink.plots import plot
+
+        return plot(self, y, x)
+
+    def svaj(self, joint: str | None = None) -> Figure:
+        """The SVAJ diagram of a cam contact; see `camlink.plots.svaj`."""
+        from camlink.plots import svaj
+
+        return svaj(self, joint)
+
+    def draw(
+        self, t: float | None = None, *, traces: Sequence[str] = (), forces: Sequence[str] = ()
+    ) -> Figure:
+        """The mechanism at time `t` (s); see `camlink.draw`."""
+        from camlink.drawing import draw
+
+        return draw(self, t, traces=traces, forces=forces)
+
+    def animate(
+        self,
+        path: str | os.PathLike[str] | None = None,
+        *,
+        fps: float = 20.0,
+        speed: float = 1.0,
+        traces: Sequence[str] = (),
+        width: float = 6.4,
+        dpi: int = 80,
+    ) -> Path | str:
+        """An animation of the run: a GIF or MP4 file at `path` (by suffix),
+        or, with no path, HTML of an inline animation for a notebook. See
+        `camlink.animate.animate`."""
+        from camlink.animate import animate
+
+        return animate(self, path, fps=fps, speed=speed, traces=traces, width=width, dpi=dpi)
+
+    def to_html(
+        self, path: str | os.PathLike[str] | None = None, *, plots: Sequence[str] | None = None
+    ) -> Path | str:
+        """The self-contained browser viewer of the run, written to `path`
+        (or returned as text); see `camlink.viewer.to_html`."""
+        from camlink.viewer import to_html
+
+        return to_html(self, path, plots=plots)
+
+    def _repr_html_(self) -> str:
+        from camlink.notebook import results_html
+
+        return results_html(self)
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Writes the results as CSV or Parquet, chosen by the suffix."""

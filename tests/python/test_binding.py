@@ -17,3 +17,10 @@ def test_analysis_settings_are_keyword_only(four_bar_file):
         model._core.run_dynamics(times, 1e-3)  # type: ignore[call-arg]
     names, data, _ = model._core.run_kinematics(times, tol=1e-10)
     assert names[0] == "t" and data.shape == (3, len(names))
+
+
+def test_run_takes_its_settings_by_keyword(four_bar_file):
+    model = camlink.load(four_bar_file)
+    with pytest.raises(TypeError):
+        model.run(0.1, 0.05, None, 1e-10)  # type: ignore[call-arg]
+    assert len(model.run(0.1, 0.05, tol=1e-10)) == 3

@@ -179,3 +179,15 @@ def test_equilibrium_acf_balances_an_rsda1_against_gravity(tmp_path: Path) -> No
     phi = float(model.run()["rod.phi"][0])
     assert abs(-50 * (phi - 0.3) - 2 * 9.81 * 0.5 * math.cos(phi)) < 1e-8
     assert 0.0 < phi < 0.3
+
+
+def test_cli_convert_default_output_and_a_bad_suffix(tmp_path: Path) -> None:
+    proc = run_cli("convert", EXAMPLE, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    converted = tmp_path / "slider_crank.toml"
+    assert converted.read_text().startswith("# camlink model converted from the simEngine2D files")
+    assert camlink.load(converted).check()["dof"] == 0
+    proc = run_cli("convert", EXAMPLE, "-o", tmp_path / "m.yaml")
+    assert proc.returncode == 2
+    assert "m.yaml" in proc.stderr and ".toml or .json" in proc.stderr
+    assert "Traceback" not in proc.stderr

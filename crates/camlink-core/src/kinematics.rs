@@ -125,7 +125,7 @@ pub fn run(
             solver.jerk(t)?;
             solver.jerk_outputs(points, &mut values[plain..]);
         }
-        sink.row(t, &values);
+        sink.row(t, &values).map_err(|s| s.at(t))?;
         prev_t = Some(t);
     }
     Ok(solver.summary.clone())

@@ -10,17 +10,19 @@
 //! The modules are layered; each imports only modules of its own or an
 //! earlier line, with no cycle (`tests/layers.rs` checks it):
 //!
-//! 1. [`math`], [`curve`], [`function`], [`motion`]: geometry, functions of
-//!    time, and time derivatives of points along a motion;
+//! 1. [`math`], [`cam`], [`curve`], [`function`], [`motion`]: geometry
+//!    (a synthesised cam's profile too), functions of time, and time
+//!    derivatives of points along a motion;
 //! 2. [`constraint`], [`force`]: Φ, Φ_q, ν, γ and applied forces Q;
 //! 3. [`model`]: the validated, immutable description;
 //! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
 //! 5. [`contact`]: the curve contacts;
 //! 6. [`run`]: settings, sinks, tables, summaries, errors and warnings;
-//! 7. [`design`], [`diagnose`]: checks and reports;
-//! 8. [`kinematics`];
+//! 7. [`design`], [`diagnose`], [`cam_limits`]: checks and reports;
+//! 8. [`kinematics`], [`cam_mechanism`] (a synthesised cam run through it);
 //! 9. [`dynamics`].
 
+pub mod cam;
 pub mod curve;
 pub mod function;
 pub mod math;
@@ -38,9 +40,11 @@ pub mod contact;
 
 pub mod run;
 
+pub mod cam_limits;
 pub mod design;
 pub mod diagnose;
 
+pub mod cam_mechanism;
 pub mod kinematics;
 
 pub mod dynamics;

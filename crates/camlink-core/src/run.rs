@@ -40,12 +40,55 @@ pub struct PointOutput {
     pub s: V2,
 }
 
+impl PointOutput {
+    /// The output of the point named `"body.point"` in `model`; an error
+    /// says what is wrong with the name.
+    pub fn named(model: &Model, full: &str) -> Result<Self, String> {
+        let (body, point) = full
+            .split_once('.')
+            .ok_or_else(|| format!("point '{full}' should be written as 'body.point'"))?;
+        let id = model
+            .body_id(body)
+            .ok_or_else(|| format!("point '{full}': no body named '{body}'"))?;
+        let b = model.body(id);
+        let s = b.point(point).ok_or_else(|| {
+            let known: Vec<&str> = b.points.iter().map(|p| p.name.as_str()).collect();
+            format!(
+                "point '{full}': body '{body}' has no point '{point}' (it has: {})",
+                if known.is_empty() {
+                    "none".to_string()
+                } else {
+                    known.join(", ")
+                }
+            )
+        })?;
+        Ok(PointOutput {
+            body: id,
+            name: full.to_string(),
+            s,
+        })
+    }
+}
+
 /// Receives results as the run goes.
 pub trait Sink {
     /// Called once before the first row with the channel names (not `t`).
     fn begin(&mut self, channels: &[String]);
-    /// One time step: time t (s) and the values, in channel order.
-    fn row(&mut self, t: f64, values: &[f64]);
+    /// One time step: time t (s) and the values, in channel order. An error
+    /// stops the run, which returns an [`AnalysisError`] of kind
+    /// [`Kind::Stopped`] at `t`.
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop>;
+}
+
+/// Why a [`Sink`] stopped the run (its receiver failed or was interrupted).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Stop(pub String);
+
+impl Stop {
+    /// The run's error at time `t` (s).
+    pub fn at(self, t: f64) -> AnalysisError {
+        AnalysisError::new(Kind::Stopped, t, self.0)
+    }
 }
 
 /// A sink that keeps everything in memory, row by row.
@@ -70,9 +113,10 @@ impl Sink for Table {
     fn begin(&mut self, channels: &[String]) {
         self.channels = channels.to_vec();
     }
-    fn row(&mut self, t: f64, values: &[f64]) {
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
         self.t.push(t);
         self.values.extend_from_slice(values);
+        Ok(())
     }
 }
 
@@ -132,6 +176,9 @@ pub enum Kind {
     /// A solver could not be set up (a matrix pattern faer refuses, or no
     /// memory for it): a bug to report.
     Internal,
+    /// The receiver of the results stopped the run (an interrupt, a failing
+    /// callback that takes the rows).
+    Stopped,
     /// Warning: Φ_q is close to singular (a toggle or dead-centre position).
     NearSingular,
     /// Warning: a cam contact's normal force is negative; the follower
@@ -141,7 +188,7 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 14] = [
+    pub const ALL: [Kind; 15] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -154,6 +201,7 @@ impl Kind {
         Kind::OffCurve,
         Kind::Undercut,
         Kind::Internal,
+        Kind::Stopped,
         Kind::NearSingular,
         Kind::LiftOff,
     ];
@@ -173,6 +221,7 @@ impl Kind {
             Kind::OffCurve => "off_curve",
             Kind::Undercut => "undercut",
             Kind::Internal => "internal",
+            Kind::Stopped => "stopped",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
         }
@@ -448,6 +497,27 @@ mod tests {
                 Some((name.to_string(), cells.get(2)?.to_string()))
             })
             .collect()
+    }
+
+    #[test]
+    fn points_are_resolved_by_name_with_a_reason_when_they_are_not() {
+        use crate::model::{Body, Point};
+        let mut m = Model::new("m");
+        let mut arm = Body::new("arm", [0.0; 3]);
+        arm.points.push(Point {
+            name: "tip".into(),
+            s: [1.0, 0.5],
+        });
+        let id = m.add_body(arm);
+        let p = PointOutput::named(&m, "arm.tip").unwrap();
+        assert_eq!((p.body, p.name.as_str(), p.s), (id, "arm.tip", [1.0, 0.5]));
+        let err = |full: &str| PointOutput::named(&m, full).unwrap_err();
+        assert_eq!(err("tip"), "point 'tip' should be written as 'body.point'");
+        assert_eq!(err("leg.tip"), "point 'leg.tip': no body named 'leg'");
+        assert_eq!(
+            err("arm.toe"),
+            "point 'arm.toe': body 'arm' has no point 'toe' (it has: tip)"
+        );
     }
 
     #[test]

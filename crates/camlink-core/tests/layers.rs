@@ -12,14 +12,14 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "curve", "function", "motion"],
+    &["math", "cam", "curve", "function", "motion"],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],
     &["contact"],
     &["run"],
-    &["design", "diagnose"],
-    &["kinematics"],
+    &["design", "diagnose", "cam_limits"],
+    &["kinematics", "cam_mechanism"],
     &["dynamics"],
 ];
 

@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use camlink_core::kinematics::run;
-use camlink_core::run::{time_grid, Settings, Sink};
+use camlink_core::run::{time_grid, Settings, Sink, Stop};
 use camlink_expr::Expr;
 
 /// Discards rows; the benchmark measures the solver alone.
@@ -14,8 +14,9 @@ struct Discard;
 
 impl Sink for Discard {
     fn begin(&mut self, _: &[String]) {}
-    fn row(&mut self, _: f64, values: &[f64]) {
+    fn row(&mut self, _: f64, values: &[f64]) -> Result<(), Stop> {
         divan::black_box(values);
+        Ok(())
     }
 }
 

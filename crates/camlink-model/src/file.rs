@@ -272,6 +272,20 @@ pub struct BodySpec {
     /// Named points, `name = [x, y]` in the body frame (m).
     #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
+    /// The body's shape in drawings, instead of the one derived from its
+    /// points: a closed polyline `[[x, y], …]` in the body frame (m, at
+    /// least three corners) or the name of a closed curve on this body.
+    #[serde(default)]
+    pub outline: Option<OutlineSpec>,
+}
+
+/// A body's drawn outline: corners of a closed polyline (body frame, m), or
+/// the name of a closed curve carried by the body.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(untagged)]
+pub enum OutlineSpec {
+    Polyline(Vec<Vec2>),
+    Curve(String),
 }
 
 /// Gear pair kind.
@@ -602,6 +616,72 @@ pub enum CurveSpec {
         #[serde(default)]
         closed: Option<bool>,
     },
+    /// A cam surface synthesised from a motion program (docs/cam-design.md):
+    /// the profile that moves `follower` through `segments` as the body turns
+    /// about its origin; parameter: the cam angle θ (rad); closed.
+    Motion {
+        name: String,
+        body: String,
+        /// `translating-roller`, `translating-flat`, `oscillating-roller` or `oscillating-flat`.
+        follower: String,
+        /// Base circle radius R_b (m): the least radius of the cam surface.
+        base_radius: Num,
+        /// `ccw` (default) or `cw`: the sense in which the cam turns.
+        #[serde(default)]
+        rotation: Option<String>,
+        /// Translating roller: offset ε of the stem (m); default 0.
+        #[serde(default)]
+        offset: Option<Num>,
+        /// Roller radius (m), for roller followers.
+        #[serde(default)]
+        roller_radius: Option<Num>,
+        /// Oscillating followers: distance d from the cam centre to the arm's pivot (m).
+        #[serde(default)]
+        pivot_distance: Option<Num>,
+        /// Oscillating roller: arm length L, pivot to roller centre (m).
+        #[serde(default)]
+        arm_length: Option<Num>,
+        /// Oscillating flat face: distance e of the face from the pivot (m); default 0.
+        #[serde(default)]
+        face_offset: Option<Num>,
+        /// `surface` (default): the cam surface; `pitch`: a roller's pitch curve.
+        #[serde(default)]
+        curve: Option<String>,
+        /// The motion program, in order from θ = 0; spans add up to 2π.
+        segments: Vec<MotionSegmentSpec>,
+    },
+}
+
+/// One segment of a `motion` curve's program.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MotionSegmentSpec {
+    /// `dwell`, `constant-velocity`, `simple-harmonic`, `cycloidal`,
+    /// `modified-trapezoid`, `modified-sine`, `3-4-5`, `4-5-6-7` or `polynomial`.
+    pub law: String,
+    /// Span of cam angle (rad), > 0.
+    pub span: Num,
+    /// Lift (m; rad of swing for an oscillating follower); default 0.
+    #[serde(default)]
+    pub lift: Option<Num>,
+    /// `polynomial`: derivatives at the start.
+    #[serde(default)]
+    pub start: Option<MotionEndSpec>,
+    /// `polynomial`: derivatives at the end.
+    #[serde(default)]
+    pub end: Option<MotionEndSpec>,
+}
+
+/// End conditions of a fitted polynomial segment: s′, s″, s‴ per radian of cam angle.
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MotionEndSpec {
+    #[serde(default)]
+    pub velocity: Option<Num>,
+    #[serde(default)]
+    pub acceleration: Option<Num>,
+    #[serde(default)]
+    pub jerk: Option<Num>,
 }
 
 /// `absolute_x` / `absolute_y` joint.

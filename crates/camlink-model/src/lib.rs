@@ -51,6 +51,22 @@ impl Format {
 pub struct Loaded {
     pub model: camlink_core::Model,
     pub analysis: AnalysisSpec,
+    /// Drawn shapes that the file gives for bodies (`outline`).
+    pub outlines: Vec<Outline>,
+}
+
+/// A body's drawn outline from the model file, in the body frame.
+#[derive(Clone, Debug)]
+pub struct Outline {
+    pub body: String,
+    pub shape: OutlineShape,
+}
+
+/// A closed polyline (corners, m) or a closed curve.
+#[derive(Clone, Debug)]
+pub enum OutlineShape {
+    Polyline(Vec<camlink_core::math::V2>),
+    Curve(camlink_core::curve::Curve),
 }
 
 impl Loaded {
@@ -63,25 +79,7 @@ impl Loaded {
         self.analysis
             .points
             .iter()
-            .map(|full| {
-                let (body, point) = full
-                    .split_once('.')
-                    .ok_or_else(|| format!("expected \"body.point\", found '{full}'"))?;
-                let id = self
-                    .model
-                    .body_id(body)
-                    .ok_or_else(|| format!("'{full}': no body named '{body}'"))?;
-                let s = self
-                    .model
-                    .body(id)
-                    .point(point)
-                    .ok_or_else(|| format!("'{full}': body '{body}' has no point '{point}'"))?;
-                Ok(camlink_core::run::PointOutput {
-                    body: id,
-                    name: full.clone(),
-                    s,
-                })
-            })
+            .map(|full| camlink_core::run::PointOutput::named(&self.model, full))
             .collect()
     }
 }
@@ -308,14 +306,18 @@ pub fn load_str(text: &str, format: Format, source: &str) -> Result<Loaded, Load
         .filter(|s| !s.is_empty())
         .unwrap_or("model");
     let base = Path::new(source).parent().unwrap_or(Path::new(""));
-    let (model, analysis) = resolve::resolve(&file, stem, base).map_err(|f| {
+    let (model, analysis, outlines) = resolve::resolve(&file, stem, base).map_err(|f| {
         let span = match format {
             Format::Toml => locate::toml_span(text, &f.path),
             Format::Json => locate::json_span(text, &f.path),
         };
         at(text, source, span.map(|s| s.start), Some(f.path), f.message)
     })?;
-    Ok(Loaded { model, analysis })
+    Ok(Loaded {
+        model,
+        analysis,
+        outlines,
+    })
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.

@@ -23,7 +23,7 @@ use crate::eval;
 use crate::file::*;
 use camlink_core::dynamics::integrator::Adaptive;
 
-use crate::{AnalysisSpec, DynamicsSpec};
+use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
 mod curves;
 mod forces;
@@ -86,7 +86,7 @@ pub(crate) fn resolve(
     file: &ModelFile,
     default_name: &str,
     base: &Path,
-) -> R<(Model, AnalysisSpec)> {
+) -> R<(Model, AnalysisSpec, Vec<Outline>)> {
     let params = parameters(&file.parameters)?;
     let mut cx = Ctx {
         params,
@@ -122,8 +122,9 @@ pub(crate) fn resolve(
         cx.force(f, k)?;
     }
     let analysis = cx.analysis(file.analysis.as_ref())?;
+    let outlines = cx.outlines(&file.bodies)?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
-    Ok((cx.model, analysis))
+    Ok((cx.model, analysis, outlines))
 }
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
@@ -377,6 +378,68 @@ impl Ctx {
             );
         }
         Ok(())
+    }
+
+    /// The bodies' `outline`s: polylines evaluated, curve names looked up
+    /// among the closed curves of the same body.
+    fn outlines(&self, bodies: &[BodySpec]) -> R<Vec<Outline>> {
+        let mut out = Vec::new();
+        for (k, b) in bodies.iter().enumerate() {
+            let path = format!("bodies[{k}].outline");
+            let shape = match &b.outline {
+                None => continue,
+                Some(OutlineSpec::Polyline(corners)) => {
+                    if corners.len() < 3 {
+                        return fail(
+                            path,
+                            format!(
+                                "an outline needs at least three corners, got {}",
+                                corners.len()
+                            ),
+                        );
+                    }
+                    let pts = corners
+                        .iter()
+                        .enumerate()
+                        .map(|(n, v)| self.vec2(v, &format!("{path}[{n}]")))
+                        .collect::<R<Vec<V2>>>()?;
+                    OutlineShape::Polyline(pts)
+                }
+                Some(OutlineSpec::Curve(name)) => {
+                    let Some(entry) = self.curves.get(name) else {
+                        return fail(
+                            path,
+                            format!(
+                                "no curve named '{name}'{}",
+                                did_you_mean(name, self.curves.keys().map(String::as_str))
+                            ),
+                        );
+                    };
+                    if self.model.body(entry.body).name != b.name {
+                        return fail(
+                            path,
+                            format!(
+                                "curve '{name}' is on body '{}', not on '{}'",
+                                self.model.body(entry.body).name,
+                                b.name
+                            ),
+                        );
+                    }
+                    if !entry.curve.closed() {
+                        return fail(
+                            path,
+                            format!("curve '{name}' is open; an outline must be closed"),
+                        );
+                    }
+                    OutlineShape::Curve(entry.curve.clone())
+                }
+            };
+            out.push(Outline {
+                body: b.name.clone(),
+                shape,
+            });
+        }
+        Ok(out)
     }
 
     /// Resolves a body name.

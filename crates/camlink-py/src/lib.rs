@@ -7,6 +7,8 @@
 //! No Rust panic crosses into Python: every entry point runs under
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
+mod cam;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
@@ -20,10 +22,11 @@ use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
 use camlink_core::kinematics;
 use camlink_core::run::{
-    self, AnalysisError as CoreAnalysisError, LiftOff, PointOutput, Settings, Sink, Summary,
+    self, AnalysisError as CoreAnalysisError, Kind, LiftOff, PointOutput, Settings, Sink, Stop,
+    Summary,
 };
 use camlink_core::Equations;
-use camlink_model::{AnalysisType, Format, Loaded};
+use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
@@ -302,6 +305,114 @@ impl Model {
         })
     }
 
+    /// What a drawing needs of every joint, in model order: a list of dicts
+    /// with `name`, `kind`, `bodies` and `driver`, and by kind the points
+    /// `s_i`, `s_j` (m, body frames), axes `v_i`, `u_j`, pitch radii
+    /// `radius_i`, `radius_j`, `radius` (m), `internal`, and curves
+    /// `curve_i`, `curve_j` as dicts of `closed` and `points` (n × 2, body
+    /// frame, m) within `tol` (m) of the exact curve.
+    #[pyo3(signature = (tol = 1e-4))]
+    fn geometry<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyList>> {
+        use camlink_core::constraint::gear::GearKind;
+        use camlink_core::Constraint as C;
+        guard(|| {
+            let model = &self.loaded.model;
+            let list = PyList::empty(py);
+            for j in &model.joints {
+                let d = PyDict::new(py);
+                let [bi, bj] = j.constraint.bodies();
+                d.set_item("name", &j.name)?;
+                d.set_item("kind", j.constraint.kind())?;
+                d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+                d.set_item("driver", j.driver)?;
+                match &j.constraint {
+                    C::Revolute(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::Translational(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("v_i", c.v_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::RevoluteRevolute(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                    }
+                    C::RevoluteTranslational(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("v_j", c.v_j)?;
+                    }
+                    C::Gear(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("radius_i", c.radius_i)?;
+                        d.set_item("radius_j", c.radius_j)?;
+                        d.set_item("internal", matches!(c.kind, GearKind::Internal))?;
+                    }
+                    C::RackPinion(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("radius", c.radius)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("u_j", c.u_j)?;
+                    }
+                    C::CamFollower(c) => {
+                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
+                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
+                    }
+                    C::FlatFollower(c) => {
+                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
+                        d.set_item("s_j", c.s_j)?;
+                        d.set_item("u_j", c.u_j)?;
+                    }
+                    C::PointFollower(c) => {
+                        d.set_item("s_i", c.s_i)?;
+                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
+                    }
+                    C::AbsoluteCoord(_)
+                    | C::AbsoluteDistance(_)
+                    | C::RelativeCoord(_)
+                    | C::RelativeDistance(_) => {}
+                }
+                list.append(d)?;
+            }
+            Ok(list)
+        })
+    }
+
+    /// The bodies' drawn outlines from the model file: body name → corners
+    /// (n × 2, body frame, m) of a closed polyline; a curve outline is
+    /// sampled within `tol` (m).
+    #[pyo3(signature = (tol = 1e-4))]
+    fn outlines<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyDict>> {
+        guard(|| {
+            let d = PyDict::new(py);
+            for o in &self.loaded.outlines {
+                let flat: Vec<f64> = match &o.shape {
+                    OutlineShape::Polyline(p) => p.iter().flat_map(|v| [v[0], v[1]]).collect(),
+                    OutlineShape::Curve(c) => c
+                        .sample(tol)
+                        .iter()
+                        .flat_map(|(_, v)| [v[0], v[1]])
+                        .collect(),
+                };
+                d.set_item(&o.body, to_array(py, flat, 2)?)?;
+            }
+            Ok(d)
+        })
+    }
+
+    /// The ground's named points: name → [x, y] (m).
+    #[getter]
+    fn ground_points<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let points = PyDict::new(py);
+        for p in &self.loaded.model.bodies[0].points {
+            points.set_item(&p.name, p.s)?;
+        }
+        Ok(points)
+    }
+
     /// Counts of bodies, coordinates and equations, every constraint with
     /// its kind and equation count, and the diagnosis of Φ_q at t = 0:
     /// rank, degrees of freedom, redundant equations and free motions.
@@ -537,10 +648,10 @@ impl Model {
                 return Err(e);
             }
             match outcome {
-                Err(payload) if payload.is::<StopRun>() => Err(PyRuntimeError::new_err(
-                    "internal error: run stopped without a Python error",
-                )),
                 Err(payload) => Err(internal_error(payload)),
+                Ok(Err(e)) if e.kind == Kind::Stopped => Err(PyRuntimeError::new_err(format!(
+                    "internal error: run stopped without a Python error ({e})"
+                ))),
                 Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
                 Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
             }
@@ -578,31 +689,7 @@ fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
 fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec<PointOutput>> {
     names
         .iter()
-        .map(|full| {
-            let (body, point) = full.split_once('.').ok_or_else(|| {
-                ModelError::new_err(format!("point '{full}' should be written as 'body.point'"))
-            })?;
-            let id = model.body_id(body).ok_or_else(|| {
-                ModelError::new_err(format!("point '{full}': no body named '{body}'"))
-            })?;
-            let b = model.body(id);
-            let s = b.point(point).ok_or_else(|| {
-                let known: Vec<&str> = b.points.iter().map(|p| p.name.as_str()).collect();
-                ModelError::new_err(format!(
-                    "point '{full}': body '{body}' has no point '{point}' (it has: {})",
-                    if known.is_empty() {
-                        "none".to_string()
-                    } else {
-                        known.join(", ")
-                    }
-                ))
-            })?;
-            Ok(PointOutput {
-                body: id,
-                name: full.clone(),
-                s,
-            })
-        })
+        .map(|full| PointOutput::named(model, full).map_err(ModelError::new_err))
         .collect()
 }
 
@@ -610,6 +697,21 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
 /// `joints`, `message`),
 /// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
 /// of [`lift_off_dict`]s.
+/// A curve sampled for drawing: `closed` and `points` (n × 2, body frame,
+/// m) within `tol` (m) of the curve.
+fn curve_dict<'py>(
+    py: Python<'py>,
+    curve: &camlink_core::curve::Curve,
+    tol: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let pts = curve.sample(tol);
+    let flat: Vec<f64> = pts.iter().flat_map(|(_, p)| [p[0], p[1]]).collect();
+    d.set_item("closed", curve.closed())?;
+    d.set_item("points", to_array(py, flat, 2)?)?;
+    Ok(d)
+}
+
 fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("steps", s.steps)?;
@@ -739,11 +841,6 @@ impl ChunkSink {
     }
 }
 
-/// Unwinding payload that stops a run from inside the sink once Python has
-/// raised (an interrupt, a failing callback). `resume_unwind` does not call
-/// the panic hook, so nothing is printed; `run_kinematics` catches it.
-struct StopRun;
-
 impl Sink for ChunkSink {
     fn begin(&mut self, channels: &[String]) {
         self.names = std::iter::once("t".to_string())
@@ -753,15 +850,16 @@ impl Sink for ChunkSink {
         self.chunk.reserve(self.chunk_rows * width);
     }
 
-    fn row(&mut self, t: f64, values: &[f64]) {
+    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
         self.chunk.push(t);
         self.chunk.extend_from_slice(values);
         if self.chunk.len() >= self.chunk_rows * self.width() {
             self.flush();
             if self.callback_error.is_some() {
-                std::panic::resume_unwind(Box::new(StopRun));
+                return Err(Stop("on_chunk raised an exception".into()));
             }
         }
+        Ok(())
     }
 }
 
@@ -799,6 +897,7 @@ fn json_schema() -> PyResult<String> {
 fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
+    m.add_class::<cam::CamCore>()?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;

@@ -41,6 +41,7 @@ pub mod fourier;
 pub mod parametric;
 pub mod points;
 pub mod polar;
+pub mod sample;
 pub mod search;
 pub mod spline;
 

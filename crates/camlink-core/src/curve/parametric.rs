@@ -14,7 +14,9 @@
 //! - circle: the closed counterclockwise arc from θ₀ round to θ₀ + 2π,
 //!   period 2πr;
 //! - expressions x(s), y(s) on [s₀, s₁], open or closed (period s₁ − s₀);
-//! - cubic spline through points, open or closed ([`PlanarSpline`]).
+//! - cubic spline through points, open or closed ([`PlanarSpline`]);
+//! - a synthesised cam's surface or pitch curve ([`crate::cam::Cam`]),
+//!   parametrised by the cam angle θ (rad), closed with period 2π.
 
 use std::f64::consts::TAU;
 use std::sync::Arc;
@@ -22,6 +24,7 @@ use std::sync::Arc;
 use camlink_expr::Expr;
 
 use super::{CurveError, CurveJet, CurveJet4, PlanarSpline};
+use crate::cam::Cam;
 use crate::math::{norm, scale, sub, V2};
 
 /// A parametric curve in a body frame.
@@ -51,6 +54,9 @@ pub enum Parametric {
     },
     /// Cubic spline through points, parametrised by chord length.
     Spline(PlanarSpline),
+    /// A synthesised cam's surface (or a roller's pitch curve when `pitch`),
+    /// parametrised by the cam angle θ (rad) over [0, 2π), closed.
+    Cam { cam: Arc<Cam>, pitch: bool },
 }
 
 fn positive(what: &str, v: f64) -> Result<f64, CurveError> {
@@ -140,6 +146,7 @@ impl Parametric {
             Parametric::Circle { .. } => true,
             Parametric::Expr { closed, .. } => *closed,
             Parametric::Spline(s) => s.closed(),
+            Parametric::Cam { .. } => true,
         }
     }
 
@@ -149,6 +156,7 @@ impl Parametric {
             Parametric::Circle { r, .. } => (0.0, TAU * r),
             Parametric::Expr { s0, s1, .. } => (*s0, *s1),
             Parametric::Spline(s) => s.range(),
+            Parametric::Cam { .. } => (0.0, TAU),
         }
     }
 
@@ -191,6 +199,7 @@ impl Parametric {
                 }
             }
             Parametric::Spline(sp) => sp.jet(s),
+            Parametric::Cam { .. } => self.jet4(s).jet,
         }
     }
 
@@ -219,6 +228,22 @@ impl Parametric {
                 }
             }
             Parametric::Spline(sp) => sp.jet4(s),
+            Parametric::Cam { cam, pitch } => {
+                let th = s.rem_euclid(TAU);
+                let j = match pitch {
+                    true => cam.pitch(th).unwrap_or_else(|| cam.surface(th)),
+                    false => cam.surface(th),
+                };
+                CurveJet4 {
+                    jet: CurveJet {
+                        p: j.p,
+                        d1: j.d1,
+                        d2: j.d2,
+                        d3: j.d3,
+                    },
+                    d4: j.d4,
+                }
+            }
         }
     }
 }

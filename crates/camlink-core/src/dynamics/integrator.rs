@@ -541,7 +541,7 @@ pub fn run(
             it.t,
             &mut values[nk..],
         );
-        sink.row(t, &values);
+        sink.row(t, &values).map_err(|s| s.at(t))?;
         lift_off.observe(t, &values);
     }
     let mut summary = it.summary.clone();

@@ -130,7 +130,7 @@ pub fn run(
             t,
             &mut values[nk..],
         );
-        sink.row(t, &values);
+        sink.row(t, &values).map_err(|s| s.at(t))?;
         lift_off.observe(t, &values);
         prev = Some(t);
     }

@@ -236,7 +236,7 @@ pub fn run(
         t,
         &mut values[nk..],
     );
-    sink.row(t, &values);
+    sink.row(t, &values).map_err(|s| s.at(t))?;
     Ok(Summary {
         steps: 1,
         newton_iterations: e.iterations,

@@ -210,9 +210,13 @@ impl Described {
         let base = Path::new(&self.adm.source)
             .parent()
             .unwrap_or(Path::new(""));
-        let (model, analysis) = crate::resolve::resolve(&file, stem, base)
+        let (model, analysis, outlines) = crate::resolve::resolve(&file, stem, base)
             .map_err(|f| self.locate(&f.path, &f.message))?;
-        Ok(Loaded { model, analysis })
+        Ok(Loaded {
+            model,
+            analysis,
+            outlines,
+        })
     }
 
     /// A resolver error at description path `path`, placed in the `.adm`

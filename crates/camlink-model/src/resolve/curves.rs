@@ -8,6 +8,7 @@
 
 use std::sync::Arc;
 
+use camlink_core::cam::{Cam, Follower, LawKind, MotionError, Program, SegmentSpec};
 use camlink_core::constraint::cam_follower::CamFollower;
 use camlink_core::constraint::flat_follower::FlatFollower;
 use camlink_core::constraint::point_follower::PointFollower;
@@ -39,7 +40,8 @@ impl CurveSpec {
             | CurveSpec::Arc { name, body, .. }
             | CurveSpec::Expression { name, body, .. }
             | CurveSpec::Fourier { name, body, .. }
-            | CurveSpec::Spline { name, body, .. } => (name, body),
+            | CurveSpec::Spline { name, body, .. }
+            | CurveSpec::Motion { name, body, .. } => (name, body),
         }
     }
 }
@@ -237,6 +239,147 @@ impl Ctx {
                 Polar::fourier(centre(cen)?, a0, &list(a, "a")?, &list(bs, "b")?)
                     .map(Into::into)
                     .or_else(|e| bad("a0", e))
+            }
+            CurveSpec::Motion {
+                follower,
+                base_radius,
+                rotation,
+                offset,
+                roller_radius,
+                pivot_distance,
+                arm_length,
+                face_offset,
+                curve,
+                segments,
+                ..
+            } => {
+                let rb = self.positive(base_radius, &format!("{p}.base_radius"), "base_radius")?;
+                let ccw = match rotation.as_deref().unwrap_or("ccw") {
+                    "ccw" => true,
+                    "cw" => false,
+                    other => {
+                        return fail(
+                            format!("{p}.rotation"),
+                            format!("'{other}' is not 'ccw' or 'cw'"),
+                        )
+                    }
+                };
+                let need = |v: &Option<Num>, key: &str| -> R<f64> {
+                    match v {
+                        Some(n) => self.positive(n, &format!("{p}.{key}"), key),
+                        None => fail(
+                            format!("{p}.{key}"),
+                            format!("a {follower} follower needs `{key}`"),
+                        ),
+                    }
+                };
+                let given = [
+                    ("offset", offset.is_some()),
+                    ("roller_radius", roller_radius.is_some()),
+                    ("pivot_distance", pivot_distance.is_some()),
+                    ("arm_length", arm_length.is_some()),
+                    ("face_offset", face_offset.is_some()),
+                ];
+                let (f, keys): (Follower, &[&str]) = match follower.as_str() {
+                    "translating-roller" => (
+                        Follower::TranslatingRoller {
+                            offset: self.opt(offset.as_ref(), 0.0, &format!("{p}.offset"))?,
+                            roller: need(roller_radius, "roller_radius")?,
+                        },
+                        &["offset", "roller_radius"],
+                    ),
+                    "translating-flat" => (Follower::TranslatingFlat, &[]),
+                    "oscillating-roller" => (
+                        Follower::OscillatingRoller {
+                            pivot: need(pivot_distance, "pivot_distance")?,
+                            arm: need(arm_length, "arm_length")?,
+                            roller: need(roller_radius, "roller_radius")?,
+                        },
+                        &["pivot_distance", "arm_length", "roller_radius"],
+                    ),
+                    "oscillating-flat" => (
+                        Follower::OscillatingFlat {
+                            pivot: need(pivot_distance, "pivot_distance")?,
+                            face_offset: self.opt(
+                                face_offset.as_ref(),
+                                0.0,
+                                &format!("{p}.face_offset"),
+                            )?,
+                        },
+                        &["pivot_distance", "face_offset"],
+                    ),
+                    other => {
+                        return fail(
+                            format!("{p}.follower"),
+                            format!(
+                                "unknown follower '{other}' (translating-roller, translating-flat, \
+                                 oscillating-roller or oscillating-flat)"
+                            ),
+                        )
+                    }
+                };
+                if let Some((key, _)) = given.iter().find(|(k, g)| *g && !keys.contains(k)) {
+                    return fail(
+                        format!("{p}.{key}"),
+                        format!("`{key}` does not apply to a {follower} follower"),
+                    );
+                }
+                let pitch = match curve.as_deref().unwrap_or("surface") {
+                    "surface" => false,
+                    "pitch" if f.roller().is_some() => true,
+                    "pitch" => return fail(format!("{p}.curve"), "a flat face has no pitch curve"),
+                    other => {
+                        return fail(
+                            format!("{p}.curve"),
+                            format!("'{other}' is not 'surface' or 'pitch'"),
+                        )
+                    }
+                };
+                let mut specs = Vec::with_capacity(segments.len());
+                for (k, sg) in segments.iter().enumerate() {
+                    let sp = format!("{p}.segments[{k}]");
+                    let Some(law) = LawKind::parse(&sg.law) else {
+                        let names: Vec<&str> = LawKind::ALL.iter().map(|l| l.name()).collect();
+                        return fail(
+                            format!("{sp}.law"),
+                            format!("unknown law '{}' ({})", sg.law, names.join(", ")),
+                        );
+                    };
+                    let ends = |e: &Option<MotionEndSpec>, key: &str| -> R<[Option<f64>; 3]> {
+                        let Some(e) = e else {
+                            return Ok([None; 3]);
+                        };
+                        let one = |n: &Option<Num>, d: &str| {
+                            n.as_ref()
+                                .map(|n| self.num(n, &format!("{sp}.{key}.{d}")))
+                                .transpose()
+                        };
+                        Ok([
+                            one(&e.velocity, "velocity")?,
+                            one(&e.acceleration, "acceleration")?,
+                            one(&e.jerk, "jerk")?,
+                        ])
+                    };
+                    specs.push(SegmentSpec {
+                        law,
+                        span: self.positive(&sg.span, &format!("{sp}.span"), "span")?,
+                        lift: self.opt(sg.lift.as_ref(), 0.0, &format!("{sp}.lift"))?,
+                        start: ends(&sg.start, "start")?,
+                        end: ends(&sg.end, "end")?,
+                    });
+                }
+                let program = Program::new(&specs).or_else(|e| match e {
+                    MotionError::Segment { segment, message } => {
+                        fail(format!("{p}.segments[{segment}]"), message)
+                    }
+                    other => fail(format!("{p}.segments"), other.to_string()),
+                })?;
+                let cam = Cam::new(program, f, rb, ccw).or_else(|e| fail(p, e.to_string()))?;
+                Ok(Parametric::Cam {
+                    cam: Arc::new(cam),
+                    pitch,
+                }
+                .into())
             }
             CurveSpec::Spline {
                 kind,

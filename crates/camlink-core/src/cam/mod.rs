@@ -1,0 +1,22 @@
+//! Cam design: motion programs, profile synthesis and design limits.
+//!
+//! - [`motion`]: the follower motion over one revolution as segments of
+//!   standard laws ([`law`]), checked for closure and continuity;
+//! - [`synthesis`]: the cam surface (and a roller's pitch curve) for four
+//!   follower types, exact to the third derivative.
+//!
+//! The design limits over a turn (pressure angle, radius of curvature,
+//! undercut, face width, base circle sizing, contact force and jump speed)
+//! are in [`crate::cam_limits`], and the mechanism that runs a cam in
+//! [`crate::cam_mechanism`]: both read the curves, which read this module.
+//! This module reads only [`crate::math`]; the curves use it to turn a
+//! synthesised cam into a profile ([`crate::curve::Parametric::Cam`]).
+
+pub mod law;
+pub mod motion;
+pub mod synthesis;
+pub mod taylor;
+
+pub use law::LawKind;
+pub use motion::{Boundary, Factors, MotionError, Program, SegmentSpec};
+pub use synthesis::{Cam, CamError, Contact, Follower, ProfileJet};

@@ -1,0 +1,298 @@
+//! Binding of the cam design core: a synthesised cam, its motion, profile,
+//! limits and round trip. Converts only; the Python module
+//! `camlink.cam_design` reads design files and builds the report.
+
+use std::sync::Arc;
+
+use camlink_core::cam::motion::EndConditions;
+use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
+use camlink_core::cam_limits::{self, Extreme, Train};
+use camlink_core::cam_mechanism::round_trip;
+use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+
+use crate::to_array;
+
+/// One segment as Python gives it: law, span (rad), lift, start and end
+/// conditions `[s′, s″, s‴]` (None where free).
+type SegmentArg = (String, f64, f64, [Option<f64>; 3], [Option<f64>; 3]);
+
+/// One segment's factors: (segment, law, [Cv, Ca, Cj], textbook values).
+type FactorRow = (usize, String, [f64; 3], Option<[f64; 3]>);
+
+/// A synthesised cam.
+#[pyclass(frozen, module = "camlink._core")]
+pub struct CamCore {
+    cam: Arc<Cam>,
+}
+
+fn value_error(e: impl std::fmt::Display) -> PyErr {
+    PyValueError::new_err(e.to_string())
+}
+
+fn extreme(e: &Extreme) -> (f64, f64) {
+    (e.value, e.theta)
+}
+
+#[pymethods]
+impl CamCore {
+    /// `follower`: translating-roller (offset, roller), translating-flat (),
+    /// oscillating-roller (pivot, arm, roller), oscillating-flat (pivot,
+    /// face_offset): its dimensions in that order (m).
+    #[new]
+    fn new(
+        segments: Vec<SegmentArg>,
+        follower: &str,
+        dims: Vec<f64>,
+        base_radius: f64,
+        ccw: bool,
+    ) -> PyResult<CamCore> {
+        let mut specs = Vec::with_capacity(segments.len());
+        for (k, (law, span, lift, start, end)) in segments.into_iter().enumerate() {
+            let law = LawKind::parse(&law).ok_or_else(|| {
+                let names: Vec<&str> = LawKind::ALL.iter().map(|l| l.name()).collect();
+                value_error(format!(
+                    "segment {k}: unknown law '{law}' (one of {})",
+                    names.join(", ")
+                ))
+            })?;
+            let (start, end): (EndConditions, EndConditions) = (start, end);
+            specs.push(SegmentSpec {
+                law,
+                span,
+                lift,
+                start,
+                end,
+            });
+        }
+        let program = Program::new(&specs).map_err(value_error)?;
+        let need = |n: usize| {
+            if dims.len() == n {
+                Ok(())
+            } else {
+                Err(value_error(format!(
+                    "a {follower} follower takes {n} dimensions, got {}",
+                    dims.len()
+                )))
+            }
+        };
+        let f = match follower {
+            "translating-roller" => {
+                need(2)?;
+                Follower::TranslatingRoller {
+                    offset: dims[0],
+                    roller: dims[1],
+                }
+            }
+            "translating-flat" => {
+                need(0)?;
+                Follower::TranslatingFlat
+            }
+            "oscillating-roller" => {
+                need(3)?;
+                Follower::OscillatingRoller {
+                    pivot: dims[0],
+                    arm: dims[1],
+                    roller: dims[2],
+                }
+            }
+            "oscillating-flat" => {
+                need(2)?;
+                Follower::OscillatingFlat {
+                    pivot: dims[0],
+                    face_offset: dims[1],
+                }
+            }
+            other => return Err(value_error(format!("unknown follower type '{other}'"))),
+        };
+        let cam = Cam::new(program, f, base_radius, ccw).map_err(value_error)?;
+        Ok(CamCore { cam: Arc::new(cam) })
+    }
+
+    /// `[s, s′, s″, s‴]` at each θ (rad): an (n, 4) array.
+    fn motion<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let mut v = Vec::new();
+        for &t in theta.as_slice()? {
+            v.extend_from_slice(&self.cam.program.eval(t)[..4]);
+        }
+        to_array(py, v, 4)
+    }
+
+    /// Start angle (rad) of each segment.
+    fn starts(&self) -> Vec<f64> {
+        self.cam.program.starts()
+    }
+
+    /// Boundaries: (θ, before, after, continuity, [jumps of s′, s″, s‴], text).
+    #[allow(clippy::type_complexity)]
+    fn boundaries(&self) -> Vec<(f64, usize, usize, usize, [f64; 3], String)> {
+        self.cam
+            .program
+            .boundaries()
+            .into_iter()
+            .map(|b| {
+                let text = b.to_string();
+                (b.theta, b.before, b.after, b.continuity, b.jumps, text)
+            })
+            .collect()
+    }
+
+    /// Factors: (segment, law, [Cv, Ca, Cj], textbook or None).
+    fn factors(&self) -> Vec<FactorRow> {
+        self.cam
+            .program
+            .factors()
+            .into_iter()
+            .map(|f| (f.segment, f.law.name().to_string(), f.computed, f.textbook))
+            .collect()
+    }
+
+    /// Surface points (cam frame, m) at each θ: (n, 2); with `offset`, the
+    /// curve that far outside the surface (a tool's centre path).
+    #[pyo3(signature = (theta, offset = 0.0))]
+    fn surface<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+        offset: f64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let mut v = Vec::new();
+        for &t in theta.as_slice()? {
+            v.extend_from_slice(&self.cam.offset_point(t, offset));
+        }
+        to_array(py, v, 2)
+    }
+
+    /// A roller's pitch curve (cam frame, m) at each θ: (n, 2), or None.
+    fn pitch<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Option<Bound<'py, PyArray2<f64>>>> {
+        if self.cam.follower.roller().is_none() {
+            return Ok(None);
+        }
+        let mut v = Vec::new();
+        for &t in theta.as_slice()? {
+            v.extend_from_slice(&self.cam.pitch(t).map_or([f64::NAN; 2], |j| j.p));
+        }
+        to_array(py, v, 2).map(Some)
+    }
+
+    /// Contact quantities at each θ (ground frame): a dict of arrays
+    /// `point` (n, 2), `normal` (n, 2), `pressure_angle`, `rho`,
+    /// `rho_pitch`, `face_position` (NaN where not defined), `follower`
+    /// (stem y in m or arm angle ψ in rad).
+    fn contact<'py>(
+        &self,
+        py: Python<'py>,
+        theta: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let th = theta.as_slice()?;
+        let (mut point, mut normal) = (Vec::new(), Vec::new());
+        let (mut phi, mut rho, mut rp, mut face, mut fol) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for &t in th {
+            let c = self.cam.contact(t);
+            point.extend_from_slice(&c.point);
+            normal.extend_from_slice(&c.normal);
+            phi.push(c.pressure_angle);
+            rho.push(c.rho);
+            rp.push(c.rho_pitch.unwrap_or(f64::NAN));
+            face.push(c.face_position.unwrap_or(f64::NAN));
+            fol.push(self.cam.follower_coordinate(t)[0]);
+        }
+        let d = PyDict::new(py);
+        d.set_item("point", to_array(py, point, 2)?)?;
+        d.set_item("normal", to_array(py, normal, 2)?)?;
+        let arr = |v: Vec<f64>| -> Bound<'py, PyArray1<f64>> { v.into_pyarray(py) };
+        d.set_item("pressure_angle", arr(phi))?;
+        d.set_item("rho", arr(rho))?;
+        d.set_item("rho_pitch", arr(rp))?;
+        d.set_item("face_position", arr(face))?;
+        d.set_item("follower", arr(fol))?;
+        Ok(d)
+    }
+
+    /// The geometric limits over a turn, as a dict (angles in rad,
+    /// lengths in m; extremes as (value, θ)).
+    fn geometry<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let g = py.detach(|| cam_limits::geometry(&self.cam));
+        let d = PyDict::new(py);
+        d.set_item("pressure_rise", g.pressure_rise.as_ref().map(extreme))?;
+        d.set_item("pressure_return", g.pressure_return.as_ref().map(extreme))?;
+        d.set_item("min_convex_radius", extreme(&g.min_convex_radius))?;
+        d.set_item(
+            "min_concave_radius",
+            g.min_concave_radius.as_ref().map(extreme),
+        )?;
+        d.set_item("min_pitch_radius", g.min_pitch_radius.as_ref().map(extreme))?;
+        d.set_item("concave", g.concave)?;
+        d.set_item("undercut", g.undercut)?;
+        d.set_item(
+            "face_travel",
+            g.face_travel.map(|(a, b)| (extreme(&a), extreme(&b))),
+        )?;
+        d.set_item("max_radius", g.max_radius)?;
+        Ok(d)
+    }
+
+    /// Contact force over a turn at ω (rad/s) and the jump speed.
+    fn force<'py>(
+        &self,
+        py: Python<'py>,
+        mass: f64,
+        spring_rate: f64,
+        preload: f64,
+        damping: f64,
+        omega: f64,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let train = Train {
+            mass,
+            spring_rate,
+            preload,
+            damping,
+        };
+        let f = py
+            .detach(|| cam_limits::force(&self.cam, &train, omega))
+            .map_err(value_error)?;
+        let d = PyDict::new(py);
+        d.set_item("omega", f.omega)?;
+        d.set_item("theta", f.theta.into_pyarray(py))?;
+        d.set_item("generalised", f.generalised.into_pyarray(py))?;
+        d.set_item("normal", f.normal.into_pyarray(py))?;
+        d.set_item("min_normal", extreme(&f.min_normal))?;
+        d.set_item("max_normal", extreme(&f.max_normal))?;
+        d.set_item("jump", f.jump.as_ref().map(extreme))?;
+        Ok(d)
+    }
+
+    /// The least base circle radius (m) in [lo, hi] meeting the limits, or None.
+    #[pyo3(signature = (max_pressure, min_radius, lo, hi))]
+    fn smallest_base_radius(
+        &self,
+        py: Python<'_>,
+        max_pressure: Option<f64>,
+        min_radius: Option<f64>,
+        lo: f64,
+        hi: f64,
+    ) -> PyResult<Option<f64>> {
+        py.detach(|| cam_limits::smallest_base_radius(&self.cam, max_pressure, min_radius, lo, hi))
+            .map_err(value_error)
+    }
+
+    /// Round trip at ω (rad/s) in `steps` steps: (displacement, velocity,
+    /// acceleration) relative errors.
+    fn round_trip(&self, py: Python<'_>, omega: f64, steps: usize) -> PyResult<(f64, f64, f64)> {
+        let r = py
+            .detach(|| round_trip(&self.cam, omega, steps))
+            .map_err(value_error)?;
+        Ok((r.displacement, r.velocity, r.acceleration))
+    }
+}

@@ -1,0 +1,680 @@
+"""Cam design files: a motion program and a follower in, a synthesised cam,
+its design limits and a pass/fail report out.
+
+A design file (TOML) holds ``[cam]``, ``[follower]``, ``[[segments]]`` and
+optionally ``[limits]``, ``[dynamics]`` and ``[export]``; see
+docs/cam-design.md. Angles in the file are in degrees (keys end in
+``_deg``) and cam speeds in rev/min (``_rpm``); lengths are in metres.
+Inside, everything is SI and radians; the mechanics run in the Rust core
+(``camlink._core.CamCore``).
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from camlink._core import CamCore
+
+FOLLOWERS: dict[str, tuple[str, ...]] = {
+    "translating-roller": ("offset", "roller_radius"),
+    "translating-flat": (),
+    "oscillating-roller": ("pivot_distance", "arm_length", "roller_radius"),
+    "oscillating-flat": ("pivot_distance", "face_offset"),
+}
+LAWS = (
+    "dwell",
+    "constant-velocity",
+    "simple-harmonic",
+    "cycloidal",
+    "modified-trapezoid",
+    "modified-sine",
+    "3-4-5",
+    "4-5-6-7",
+    "polynomial",
+)
+RPM = 2.0 * math.pi / 60.0
+
+
+class CamDesignError(ValueError):
+    """A design file that cannot be used; the message names file and field."""
+
+
+@dataclass(frozen=True)
+class Segment:
+    """One segment of the motion program as the file gives it."""
+
+    law: str
+    span: float
+    """Span (rad)."""
+    lift: float
+    """Lift (m), or swing (rad) for an oscillating follower."""
+    start: tuple[float | None, float | None, float | None]
+    end: tuple[float | None, float | None, float | None]
+
+
+@dataclass(frozen=True)
+class Dynamics:
+    """Follower mass (kg, or kg·m² about the pivot), spring and speeds."""
+
+    mass: float
+    spring_rate: float
+    preload: float
+    damping: float
+    speed: float
+    """Running speed (rad/s)."""
+    redline: float | None
+    """Highest speed the cam must run at without jump (rad/s)."""
+
+
+@dataclass(frozen=True)
+class Limits:
+    """User limits; None where not given."""
+
+    max_pressure_angle: float | None
+    """rad"""
+    min_radius: float | None
+    """Least convex radius of curvature of the cam surface (m)."""
+    max_face_width: float | None
+    """m"""
+    base_radius_range: tuple[float, float] | None
+    """Search range (m) for the smallest base circle."""
+
+
+@dataclass(frozen=True)
+class Export:
+    """Files to write, relative to the output directory; None to skip."""
+
+    csv: str | None
+    csv_step: float
+    """Angular step (rad) of the CSV, or 0 with a chord tolerance."""
+    csv_chord: float | None
+    dxf: str | None
+    dxf_mode: Literal["polyline", "arcs"]
+    tolerance: float
+    """Chord or arc-fit tolerance (m) of DXF and SVG."""
+    svg: str | None
+    tool_radius: float | None
+    svaj: str | None
+    profile: str | None
+
+
+@dataclass(frozen=True)
+class Design:
+    """A parsed design file."""
+
+    path: Path
+    name: str
+    follower: str
+    dims: tuple[float, ...]
+    base_radius: float
+    ccw: bool
+    segments: tuple[Segment, ...]
+    limits: Limits
+    dynamics: Dynamics | None
+    export: Export
+
+    @property
+    def oscillating(self) -> bool:
+        return self.follower.startswith("oscillating")
+
+    def core(self, base_radius: float | None = None) -> CamCore:
+        """The synthesised cam (in the Rust core)."""
+        segs = [
+            (s.law, s.span, s.lift, list(s.start), list(s.end)) for s in self.segments
+        ]
+        try:
+            return CamCore(
+                segs,
+                self.follower,
+                list(self.dims),
+                self.base_radius if base_radius is None else base_radius,
+                self.ccw,
+            )
+        except ValueError as e:
+            raise CamDesignError(f"{self.path}: {e}") from None
+
+
+class _Table:
+    """Typed reads from one TOML table with messages naming the field."""
+
+    def __init__(self, path: Path, where: str, data: object) -> None:
+        if not isinstance(data, dict):
+            raise CamDesignError(f"{path}: {where} must be a table")
+        self.path, self.where, self.data = path, where, data
+        self.used: set[str] = set()
+
+    def fail(self, key: str, message: str) -> CamDesignError:
+        return CamDesignError(f"{self.path}: {self.where}.{key}: {message}")
+
+    def number(
+        self, key: str, default: float | None = None, *, positive: bool = False
+    ) -> float:
+        self.used.add(key)
+        v = self.data.get(key, default)
+        if v is None:
+            raise self.fail(key, "is required")
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float))
+            or not math.isfinite(v)
+        ):
+            raise self.fail(key, f"must be a number, got {v!r}")
+        if positive and v <= 0:
+            raise self.fail(key, f"must be positive, got {v}")
+        return float(v)
+
+    def optional(self, key: str, *, positive: bool = False) -> float | None:
+        if key not in self.data:
+            self.used.add(key)
+            return None
+        return self.number(key, positive=positive)
+
+    def text(
+        self, key: str, default: str | None = None, choices: tuple[str, ...] = ()
+    ) -> str:
+        self.used.add(key)
+        v = self.data.get(key, default)
+        if not isinstance(v, str):
+            raise self.fail(
+                key, "is required" if v is None else f"must be a string, got {v!r}"
+            )
+        if choices and v not in choices:
+            raise self.fail(key, f"'{v}' is not one of {', '.join(choices)}")
+        return v
+
+    def finish(self) -> None:
+        extra = sorted(set(self.data) - self.used)
+        if extra:
+            raise self.fail(extra[0], "unknown key")
+
+
+def _ends(
+    t: _Table, key: str, scale: float
+) -> tuple[float | None, float | None, float | None]:
+    t.used.add(key)
+    if key not in t.data:
+        return (None, None, None)
+    e = _Table(t.path, f"{t.where}.{key}", t.data[key])
+    out = tuple(
+        None if k not in e.data else e.number(k) * scale
+        for k in ("velocity", "acceleration", "jerk")
+    )
+    e.used.update(("velocity", "acceleration", "jerk"))
+    e.finish()
+    return (out[0], out[1], out[2])
+
+
+def load(path: str | Path) -> Design:
+    """Reads and checks a design file; raises CamDesignError naming the field."""
+    p = Path(path)
+    try:
+        with p.open("rb") as f:
+            doc = tomllib.load(f)
+    except tomllib.TOMLDecodeError as e:
+        raise CamDesignError(f"{p}: {e}") from None
+    top = _Table(p, "design", doc)
+    name = top.text("name", p.stem)
+    cam = _Table(p, "cam", doc.get("cam", {}))
+    top.used.add("cam")
+    base = cam.number("base_radius", positive=True)
+    rotation = cam.text("rotation", "ccw", ("ccw", "cw"))
+    cam.finish()
+    fol = _Table(p, "follower", doc.get("follower", {}))
+    top.used.add("follower")
+    kind = fol.text("type", None, tuple(FOLLOWERS))
+    dims = []
+    for k in FOLLOWERS[kind]:
+        dims.append(
+            fol.number(
+                k,
+                0.0 if k in ("offset", "face_offset") else None,
+                positive=k not in ("offset", "face_offset"),
+            )
+        )
+    fol.finish()
+    oscillating = kind.startswith("oscillating")
+    raw = doc.get("segments")
+    top.used.add("segments")
+    if not isinstance(raw, list) or not raw:
+        raise CamDesignError(
+            f"{p}: [[segments]]: the motion program needs at least one segment"
+        )
+    segments = []
+    for i, r in enumerate(raw):
+        s = _Table(p, f"segments[{i}]", r)
+        law = s.text("law", None, LAWS)
+        span = math.radians(s.number("span_deg", positive=True))
+        if oscillating:
+            lift = math.radians(s.number("swing_deg", 0.0))
+            scale = 1.0
+        else:
+            lift = s.number("lift", 0.0)
+            scale = 1.0
+        start, end = _ends(s, "start", scale), _ends(s, "end", scale)
+        s.finish()
+        segments.append(Segment(law, span, lift, start, end))
+    lim = _Table(p, "limits", doc.get("limits", {}))
+    top.used.add("limits")
+    phi = lim.optional("max_pressure_angle_deg", positive=True)
+    rng = None
+    if "base_radius_search" in lim.data:
+        lim.used.add("base_radius_search")
+        v = lim.data["base_radius_search"]
+        if not (
+            isinstance(v, list)
+            and len(v) == 2
+            and all(isinstance(x, (int, float)) for x in v)
+            and 0 < v[0] < v[1]
+        ):
+            raise lim.fail(
+                "base_radius_search",
+                f"must be [lo, hi] with 0 < lo < hi (m), got {v!r}",
+            )
+        rng = (float(v[0]), float(v[1]))
+    limits = Limits(
+        max_pressure_angle=None if phi is None else math.radians(phi),
+        min_radius=lim.optional("min_radius", positive=True),
+        max_face_width=lim.optional("max_face_width", positive=True),
+        base_radius_range=rng,
+    )
+    lim.finish()
+    dynamics = None
+    if "dynamics" in doc:
+        top.used.add("dynamics")
+        d = _Table(p, "dynamics", doc["dynamics"])
+        red = d.optional("redline_rpm", positive=True)
+        dynamics = Dynamics(
+            mass=d.number("mass", positive=True),
+            spring_rate=d.number("spring_rate", 0.0),
+            preload=d.number("preload", 0.0),
+            damping=d.number("damping", 0.0),
+            speed=d.number("speed_rpm", positive=True) * RPM,
+            redline=None if red is None else red * RPM,
+        )
+        for k in ("spring_rate", "preload", "damping"):
+            if getattr(dynamics, k) < 0:
+                raise d.fail(k, "must not be negative")
+        d.finish()
+    ex = _Table(p, "export", doc.get("export", {}))
+    top.used.add("export")
+    stem = p.stem
+
+    def out(key: str, default: str | None) -> str | None:
+        ex.used.add(key)
+        v = ex.data.get(key, default)
+        if v is False:
+            return None
+        if not isinstance(v, str) or not v:
+            raise ex.fail(key, f"must be a file name or false, got {v!r}")
+        return v
+
+    chord = ex.optional("csv_chord_tolerance", positive=True)
+    export = Export(
+        csv=out("csv", f"{stem}.csv"),
+        csv_step=0.0
+        if chord is not None
+        else math.radians(ex.number("csv_step_deg", 1.0, positive=True)),
+        csv_chord=chord,
+        dxf=out("dxf", f"{stem}.dxf"),
+        dxf_mode="arcs"
+        if ex.text("dxf_mode", "polyline", ("polyline", "arcs")) == "arcs"
+        else "polyline",
+        tolerance=ex.number("tolerance", 1e-5, positive=True),
+        svg=out("svg", f"{stem}.svg"),
+        tool_radius=ex.optional("tool_radius", positive=True),
+        svaj=out("svaj_plot", f"{stem}_svaj.png"),
+        profile=out("profile_plot", f"{stem}_profile.png"),
+    )
+    ex.finish()
+    top.finish()
+    design = Design(
+        p,
+        name,
+        kind,
+        tuple(dims),
+        base,
+        rotation == "ccw",
+        tuple(segments),
+        limits,
+        dynamics,
+        export,
+    )
+    design.core()  # checks the program and the follower's geometry
+    return design
+
+
+@dataclass(frozen=True)
+class Check:
+    """One design limit: its value, the user's limit, the margin, pass/fail."""
+
+    name: str
+    value: float
+    limit: float | None
+    margin: float | None
+    """How far inside the limit (positive) or past it (negative), same unit."""
+    unit: str
+    at_deg: float | None
+    ok: bool
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class BoundaryReport:
+    theta_deg: float
+    before: int
+    after: int
+    continuity: int
+    jumps: tuple[float, float, float]
+    text: str
+
+
+@dataclass(frozen=True)
+class FactorReport:
+    segment: int
+    law: str
+    computed: tuple[float, float, float]
+    textbook: tuple[float, float, float] | None
+
+
+@dataclass(frozen=True)
+class Report:
+    """Everything `camlink cam` prints."""
+
+    name: str
+    follower: str
+    base_radius: float
+    boundaries: tuple[BoundaryReport, ...]
+    factors: tuple[FactorReport, ...]
+    checks: tuple[Check, ...]
+    concave_deg: tuple[tuple[float, float], ...]
+    undercut_deg: tuple[tuple[float, float], ...]
+    tool_undercut_deg: tuple[tuple[float, float], ...]
+    smallest_base_radius: float | None
+    round_trip: tuple[float, float, float]
+    files: tuple[str, ...] = field(default=())
+
+    @property
+    def ok(self) -> bool:
+        return all(c.ok for c in self.checks)
+
+    def to_dict(self) -> dict[str, Any]:
+        from dataclasses import asdict
+
+        d = asdict(self)
+        d["ok"] = self.ok
+        return d
+
+
+def _deg_ranges(r: list[tuple[float, float]]) -> tuple[tuple[float, float], ...]:
+    return tuple((math.degrees(a), math.degrees(b)) for a, b in r)
+
+
+def tool_undercut(
+    core: CamCore, tool_radius: float, n: int = 3600
+) -> list[tuple[float, float]]:
+    """θ ranges (rad) a tool of `tool_radius` (m) cannot cut: where the
+    surface is concave tighter than the tool, or already cusped."""
+    th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    rho = np.asarray(core.contact(th)["rho"])
+    bad = (rho < 0) & (-rho < tool_radius) | ~np.isfinite(rho)
+    out: list[tuple[float, float]] = []
+    start: float | None = None
+    for i in range(n + 1):
+        b = bool(bad[i % n])
+        if b and start is None:
+            start = float(th[i % n]) + (2 * math.pi if i >= n else 0.0)
+        elif not b and start is not None:
+            out.append((start, float(th[i - 1]) + 2 * math.pi / n))
+            start = None
+    if start is not None:
+        out.append((start, 2 * math.pi))
+    return out
+
+
+def analyse(design: Design) -> Report:
+    """Synthesises the cam and checks every limit."""
+    core = design.core()
+    g = core.geometry()
+    checks: list[Check] = []
+    deg = math.degrees
+    lim = design.limits
+    for key, label in (
+        ("pressure_rise", "pressure angle, rise"),
+        ("pressure_return", "pressure angle, return"),
+    ):
+        e = g[key]
+        if e is None or design.follower == "translating-flat":
+            continue
+        value, at = e
+        limit = lim.max_pressure_angle
+        margin = None if limit is None else deg(limit - abs(value))
+        checks.append(
+            Check(
+                label,
+                deg(value),
+                None if limit is None else deg(limit),
+                margin,
+                "deg",
+                deg(at),
+                margin is None or margin >= 0,
+            )
+        )
+    rmin, at = g["min_convex_radius"]
+    margin = None if lim.min_radius is None else rmin - lim.min_radius
+    checks.append(
+        Check(
+            "least radius of curvature (convex)",
+            rmin,
+            lim.min_radius,
+            margin,
+            "m",
+            deg(at),
+            margin is None or margin >= 0,
+        )
+    )
+    if g["min_pitch_radius"] is not None:
+        rp, at = g["min_pitch_radius"]
+        rr = design.dims[-1]
+        checks.append(
+            Check(
+                "least convex pitch-curve radius vs roller radius",
+                rp,
+                rr,
+                rp - rr,
+                "m",
+                deg(at),
+                rp > rr,
+            )
+        )
+    und = g["undercut"]
+    checks.append(
+        Check("undercut ranges", float(len(und)), None, None, "", None, not und)
+    )
+    if design.follower.endswith("flat"):
+        (lo, _), (hi, _) = g["face_travel"]
+        width = hi - lo
+        limit = lim.max_face_width
+        margin = None if limit is None else limit - width
+        checks.append(
+            Check(
+                "face width needed",
+                width,
+                limit,
+                margin,
+                "m",
+                None,
+                margin is None or margin >= 0,
+                f"contact travels from {lo:.6g} to {hi:.6g} m along the face",
+            )
+        )
+        conc = g["concave"]
+        if conc:
+            checks.append(
+                Check(
+                    "concave ranges under a flat face",
+                    float(len(conc)),
+                    None,
+                    None,
+                    "",
+                    None,
+                    False,
+                )
+            )
+    if design.dynamics is not None:
+        d = design.dynamics
+        f = core.force(d.mass, d.spring_rate, d.preload, d.damping, d.speed)
+        fmin, at = f["min_normal"]
+        checks.append(
+            Check(
+                f"least contact force at {d.speed / RPM:.0f} rpm",
+                fmin,
+                0.0,
+                fmin,
+                "N",
+                deg(at),
+                fmin > 0,
+            )
+        )
+        jump = f["jump"]
+        jump_rpm = math.inf if jump is None else jump[0] / RPM
+        if d.redline is not None:
+            red = d.redline / RPM
+            checks.append(
+                Check(
+                    "jump speed vs redline",
+                    jump_rpm,
+                    red,
+                    jump_rpm - red,
+                    "rpm",
+                    None if jump is None else deg(jump[1]),
+                    jump_rpm > red,
+                )
+            )
+        else:
+            checks.append(
+                Check(
+                    "jump speed",
+                    jump_rpm,
+                    None,
+                    None,
+                    "rpm",
+                    None if jump is None else deg(jump[1]),
+                    jump_rpm > d.speed / RPM,
+                )
+            )
+    tool = []
+    if design.export.tool_radius is not None:
+        tool = tool_undercut(core, design.export.tool_radius)
+    smallest = None
+    if lim.base_radius_range is not None:
+        smallest = core.smallest_base_radius(
+            lim.max_pressure_angle, lim.min_radius, *lim.base_radius_range
+        )
+        limit = design.base_radius
+        checks.append(
+            Check(
+                "smallest base circle meeting the limits",
+                math.nan if smallest is None else smallest,
+                limit,
+                None if smallest is None else limit - smallest,
+                "m",
+                None,
+                smallest is not None and smallest <= limit,
+            )
+        )
+    rt = core.round_trip(1.0, 720)
+    return Report(
+        name=design.name,
+        follower=design.follower,
+        base_radius=design.base_radius,
+        boundaries=tuple(
+            BoundaryReport(
+                deg(b[0]), b[1], b[2], b[3], (b[4][0], b[4][1], b[4][2]), b[5]
+            )
+            for b in core.boundaries()
+        ),
+        factors=tuple(
+            FactorReport(
+                k, law, (c[0], c[1], c[2]), None if t is None else (t[0], t[1], t[2])
+            )
+            for k, law, c, t in core.factors()
+        ),
+        checks=tuple(checks),
+        concave_deg=_deg_ranges(g["concave"]),
+        undercut_deg=_deg_ranges(und),
+        tool_undercut_deg=_deg_ranges(tool),
+        smallest_base_radius=smallest,
+        round_trip=rt,
+    )
+
+
+def format_report(r: Report) -> str:
+    """The report as text."""
+    lines = [
+        f"cam design '{r.name}': {r.follower} follower, base circle {r.base_radius:g} m",
+        "",
+    ]
+    lines.append("motion program boundaries:")
+    for b in r.boundaries:
+        lines.append(f"  segment {b.before} -> {b.after}: {b.text}")
+    lines.append("")
+    lines.append("segment factors   Cv       Ca       Cj      (textbook Cv, Ca, Cj)")
+    for f in r.factors:
+        tb = (
+            ""
+            if f.textbook is None
+            else "(" + ", ".join(f"{v:.4g}" for v in f.textbook) + ")"
+        )
+        lines.append(
+            f"  {f.segment:2d} {f.law:18s} {f.computed[0]:7.4f} {f.computed[1]:8.4f} {f.computed[2]:8.3f}  {tb}"
+        )
+    lines.append("")
+    lines.append("design limits:")
+    for c in r.checks:
+        mark = "ok  " if c.ok else "FAIL"
+        where = "" if c.at_deg is None else f" at {c.at_deg:.2f}°"
+        lim = "" if c.limit is None else f" (limit {c.limit:.6g} {c.unit}"
+        lim += (
+            "" if c.margin is None or c.limit is None else f", margin {c.margin:.6g})"
+        )
+        lim += ")" if c.limit is not None and c.margin is None else ""
+        note = f"; {c.note}" if c.note else ""
+        lines.append(f"  {mark} {c.name}: {c.value:.6g} {c.unit}{where}{lim}{note}")
+    for label, ranges in (
+        ("concave", r.concave_deg),
+        ("undercut", r.undercut_deg),
+        ("tool cannot cut", r.tool_undercut_deg),
+    ):
+        if ranges:
+            txt = ", ".join(f"{a:.2f}°–{b:.2f}°" for a, b in ranges)
+            lines.append(f"  {label}: {txt}")
+    if r.smallest_base_radius is not None:
+        lines.append(f"  smallest base circle: {r.smallest_base_radius:.6g} m")
+    lines.append("")
+    d, v, a = r.round_trip
+    lines.append(
+        "round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):"
+    )
+    lines.append(
+        f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)"
+    )
+    for path in r.files:
+        lines.append(f"wrote {path}")
+    lines.append("")
+    lines.append("all limits hold" if r.ok else "some limits fail")
+    return "\n".join(lines)
+
+
+def sample(
+    core: CamCore, n: int = 1441
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(θ over a turn, [s, s′, s″, s‴] at each) for plots and exports."""
+    th = np.linspace(0.0, 2.0 * math.pi, n)
+    return th, np.asarray(core.motion(th))

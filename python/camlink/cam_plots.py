@@ -1,0 +1,142 @@
+"""Pictures of a cam design: the SVAJ diagram and the cam profile.
+
+Both take a synthesised cam (``camlink._core.CamCore``), draw with
+matplotlib (Agg) and return the figure; ``save`` writes a PNG.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+from matplotlib.patches import Circle
+
+from camlink._core import CamCore
+
+
+def svaj(
+    core: CamCore, *, oscillating: bool = False, title: str = "", n: int = 1441
+) -> Figure:
+    """S, V, A, J against cam angle θ (deg), derivatives per radian of cam
+    angle, with the segment boundaries marked by vertical lines."""
+    th = np.linspace(0.0, 2.0 * math.pi, n)
+    m = np.asarray(core.motion(th))
+    unit = "rad" if oscillating else "m"
+    labels = [
+        f"s ({unit})",
+        f"v = s′ ({unit}/rad)",
+        f"a = s″ ({unit}/rad²)",
+        f"j = s‴ ({unit}/rad³)",
+    ]
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9), layout="constrained")
+    deg = np.degrees(th)
+    for k, ax in enumerate(axes):
+        ax.plot(deg, m[:, k], color="C0", lw=1.4)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        for b in core.starts():
+            ax.axvline(math.degrees(b), color="C3", lw=0.8, ls="--")
+        ax.set_ylabel(labels[k])
+        ax.grid(True, lw=0.3)
+    axes[-1].set_xlabel("cam angle θ (deg)")
+    axes[-1].set_xlim(0.0, 360.0)
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    if title:
+        axes[0].set_title(title)
+    return fig
+
+
+def profile(
+    core: CamCore,
+    *,
+    base_radius: float,
+    colour_by: str = "pressure_angle",
+    followers: int = 4,
+    title: str = "",
+    n: int = 1441,
+) -> Figure:
+    """The cam in its own frame (m): the surface coloured by pressure angle
+    (deg) or radius of curvature (m), the base circle (dashed), a roller's
+    pitch curve (dotted) and the follower drawn at `followers` cam angles
+    (where it touches the cam when the cam has turned by that angle)."""
+    th = np.linspace(0.0, 2.0 * math.pi, n)
+    surf = np.asarray(core.surface(th))
+    c = core.contact(th)
+    if colour_by == "pressure_angle":
+        values = np.degrees(np.asarray(c["pressure_angle"]))
+        label = "pressure angle φ (deg)"
+    else:
+        values = np.clip(np.asarray(c["rho"]), -10 * base_radius, 10 * base_radius)
+        label = "radius of curvature ρ (m)"
+    fig, ax = plt.subplots(figsize=(7, 7), layout="constrained")
+    seg = np.stack([surf[:-1], surf[1:]], axis=1)
+    lc = LineCollection(
+        list(seg),
+        array=0.5 * (values[:-1] + values[1:]),
+        cmap="viridis",
+        linewidths=2.5,
+    )
+    ax.add_collection(lc)
+    fig.colorbar(lc, ax=ax, label=label, shrink=0.8)
+    ax.add_patch(
+        Circle((0.0, 0.0), base_radius, fill=False, ls="--", color="0.5", lw=0.8)
+    )
+    pitch = core.pitch(th)
+    if pitch is not None:
+        p = np.asarray(pitch)
+        ax.plot(p[:, 0], p[:, 1], ls=":", color="C1", lw=1.0, label="pitch curve")
+    ax.plot([0.0], [0.0], "k+", ms=10)
+    # The follower at a few cam angles, drawn in the cam frame.
+    ts = np.linspace(0.0, 2.0 * math.pi, followers, endpoint=False)
+    if pitch is not None:
+        pts = np.asarray(core.pitch(ts))
+        roller = float(np.linalg.norm(pts[0] - np.asarray(core.surface(ts[:1]))[0]))
+        for q in pts:
+            ax.add_patch(Circle((q[0], q[1]), roller, fill=False, color="C3", lw=1.0))
+    else:
+        cc = core.contact(ts)
+        pts = np.asarray(core.surface(ts))
+        for t, q, nrm in zip(ts, pts, np.asarray(cc["normal"])):
+            # The face's direction in the cam frame: the ground normal turned back.
+            a = -float(t) if core_ccw(core) else float(t)
+            ca, sa = math.cos(a), math.sin(a)
+            nn = np.array([ca * nrm[0] - sa * nrm[1], sa * nrm[0] + ca * nrm[1]])
+            d = np.array([-nn[1], nn[0]]) * 0.6 * base_radius
+            ax.plot(
+                [q[0] - d[0], q[0] + d[0]],
+                [q[1] - d[1], q[1] + d[1]],
+                color="C3",
+                lw=1.2,
+            )
+    r = float(np.max(np.linalg.norm(surf, axis=1)))
+    pad = 0.25 * r
+    ax.set_xlim(-r - pad, r + pad)
+    ax.set_ylim(-r - pad, r + pad)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m, cam frame)")
+    ax.set_ylabel("y (m, cam frame)")
+    ax.grid(True, lw=0.3)
+    if title:
+        ax.set_title(title)
+    return fig
+
+
+def core_ccw(core: CamCore) -> bool:
+    """True when the cam turns counterclockwise: its pitch or surface runs
+    clockwise in the cam frame (the signed area is negative)."""
+    th = np.linspace(0.0, 2.0 * math.pi, 361)
+    p = np.asarray(core.surface(th))
+    area = 0.5 * float(np.sum(p[:-1, 0] * p[1:, 1] - p[1:, 0] * p[:-1, 1]))
+    return area < 0
+
+
+def save(fig: Figure, path: str | Path, dpi: int = 120) -> None:
+    """Writes the figure as PNG and closes it."""
+    fig.savefig(path, dpi=dpi)
+    plt.close(fig)
