@@ -27,7 +27,9 @@ def test_ctrl_c_keeps_the_rows_written(tmp_path: Path) -> None:
     out = tmp_path / "cut.csv"
     with pytest.raises(KeyboardInterrupt):
         camlink.load(EXAMPLES / "four_bar.toml").run(t_end=12.0, step=0.005, output=out, on_rows=stop)
-    back = camlink.Results.load(out)
+    # The rows are kept under the output's partial name, never as the output.
+    assert not out.exists()
+    back = camlink.Results.load(tmp_path / "cut.partial.csv")
     assert len(back) == 1024 and back.t[-1] == pytest.approx(1023 * 0.005)
 
 
@@ -42,5 +44,6 @@ def test_cli_run_interrupted_exits_130(tmp_path: Path, monkeypatch: pytest.Monke
     out = tmp_path / "cut.csv"
     code = main(["run", str(EXAMPLES / "four_bar.toml"), "--t-end", "12", "-o", str(out)])
     assert code == 130
-    assert f"interrupted; the steps computed so far are in {out}" in capsys.readouterr().err
-    assert len(camlink.Results.load(out)) == 1024
+    partial = tmp_path / "cut.partial.csv"
+    assert f"interrupted; the steps computed are in {partial}" in capsys.readouterr().err
+    assert len(camlink.Results.load(partial)) == 1024
