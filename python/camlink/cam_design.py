@@ -633,7 +633,8 @@ def format_report(r: Report) -> str:
             else "(" + ", ".join(f"{v:.4g}" for v in f.textbook) + ")"
         )
         lines.append(
-            f"  {f.segment:2d} {f.law:18s} {f.computed[0]:7.4f} {f.computed[1]:8.4f} {f.computed[2]:8.3f}  {tb}"
+            f"  {f.segment:2d} {f.law:18s} {f.computed[0]:7.4f} {f.computed[1]:8.4f} "
+            f"{f.computed[2]:8.3f}  {tb}"
         )
     lines.append("")
     lines.append("design limits:")

@@ -102,7 +102,7 @@ def profile(
     else:
         cc = core.contact(ts)
         pts = np.asarray(core.surface(ts))
-        for t, q, nrm in zip(ts, pts, np.asarray(cc["normal"])):
+        for t, q, nrm in zip(ts, pts, np.asarray(cc["normal"]), strict=True):
             # The face's direction in the cam frame: the ground normal turned back.
             a = -float(t) if core_ccw(core) else float(t)
             ca, sa = math.cos(a), math.sin(a)

@@ -296,6 +296,24 @@ def _print_design(model: camlink.Model) -> None:
         print(f"camlink: {f['text']}", file=sys.stderr)
 
 
+def _verdict(dof: int, redundant: bool) -> str:
+    """The analyses that accept a model with `dof` free motions: dynamics
+    and equilibrium accept redundant equations, kinematics and inverse
+    dynamics need as many independent equations as coordinates."""
+    if dof == 0 and not redundant:
+        return "fully driven: ready for kinematics and inverse dynamics"
+    if dof == 0:
+        return (
+            "fully driven, with redundant equations: remove them for kinematics and "
+            "inverse dynamics"
+        )
+    plural = "s" if dof != 1 else ""
+    need = f"add {dof} driver{plural}" + (
+        " and remove the redundant equations" if redundant else ""
+    )
+    return f"{dof} free motion{plural}: ready for dynamics and equilibrium; {need} for kinematics"
+
+
 def _cmd_check(args: argparse.Namespace) -> int:
     model = _load(args)
     r = model.check()
@@ -335,14 +353,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         for f in design:
             print(f"design       {f['text']}")
         return EXIT_OK
-    if dof == 0:
-        verdict = "fully driven: ready for kinematics and inverse dynamics"
-    else:
-        verdict = (
-            f"{dof} free motion{'s' if dof != 1 else ''}: ready for dynamics and equilibrium; "
-            f"add {dof} driver{'s' if dof != 1 else ''} for kinematics"
-        )
-    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
+    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {_verdict(dof, bool(r['redundant']))})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
         print(f"  free motion {k}: {parts}")

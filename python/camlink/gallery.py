@@ -70,7 +70,13 @@ def build(out: Path, examples: Path | None = None, dpi: int = 80, quiet: bool = 
     examples = ROOT / "examples" if examples is None else examples
     pictures = out / "gallery"
     pictures.mkdir(parents=True, exist_ok=True)
-    paths = sorted(examples.glob("*.toml")) + sorted(examples.glob("*.json"))
+    # Cam design files (`cam_design_*.toml`) are not models; docs/cam-design.md
+    # shows their pictures.
+    paths = [
+        p
+        for p in sorted(examples.glob("*.toml")) + sorted(examples.glob("*.json"))
+        if not p.name.startswith("cam_design_")
+    ]
     entries = []
     with Progress(len(paths), "gallery", unit="example", quiet=quiet) as bar:
         for path in paths:

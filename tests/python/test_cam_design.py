@@ -13,6 +13,7 @@ from typing import Any
 import ezdxf
 import numpy as np
 import pytest
+
 from camlink import cam_cli, cam_design, cam_export, cam_plots, cli
 from camlink._core import CamCore
 from conftest import ROOT
@@ -263,7 +264,7 @@ def test_tool_undercut_where_concave_tighter_than_the_tool() -> None:
         assert -1.1 * tightest < r < 0
 
 
-def _pixel(fig, ax, xy) -> tuple[int, int]:  # type: ignore[no-untyped-def]
+def _pixel(fig: Any, ax: Any, xy: Any) -> tuple[int, int]:
     fig.canvas.draw()
     x, y = ax.transData.transform(xy)
     h = fig.canvas.get_width_height()[1]

@@ -112,6 +112,17 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
     }
 }
 
+/// The equations of Φ_q at `q` (m × n, dense) that are combinations of
+/// earlier independent ones, in model order: the rows an analysis must
+/// drop or regularise. Empty for a model too large for the dense analysis
+/// (more than [`DENSE_MAX`] coordinates).
+pub fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<Redundancy> {
+    if asm.n > DENSE_MAX || asm.m == 0 {
+        return Vec::new();
+    }
+    redundant_rows(model, asm, &dense_jacobian(model, asm, q, t))
+}
+
 /// Φ_q as a dense m × n matrix.
 pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f64> {
     let mut j = Mat::zeros(asm.m, asm.n);
@@ -175,7 +186,7 @@ fn unit(n: usize, k: usize) -> Vec<f64> {
 }
 
 /// Rank, condition number and a basis of the null space of `j`.
-fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
+pub(crate) fn svd_rank(j: &Mat<f64>) -> (usize, f64, Vec<Vec<f64>>) {
     let n = j.ncols();
     let svd = match j.svd() {
         Ok(svd) => svd,

@@ -12,7 +12,9 @@ use std::path::{Path, PathBuf};
 
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
-    &["math", "fmt_num", "cam", "curve", "function", "motion"],
+    &[
+        "math", "fmt_num", "cam", "curve", "function", "motion", "newton",
+    ],
     &["constraint", "force"],
     &["model"],
     &["assembly", "linsolve"],

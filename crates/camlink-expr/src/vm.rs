@@ -267,181 +267,102 @@ impl Value for f64 {
     }
 }
 
-impl Value for Jet {
-    #[inline]
-    fn constant(c: f64) -> Jet {
-        Jet::constant(c)
-    }
-    #[inline]
-    fn variable(x: f64) -> Jet {
-        Jet::variable(x)
-    }
-    #[inline]
-    fn value(self) -> f64 {
-        self.0[0]
-    }
-    fn first_non_finite(self) -> Option<(usize, f64)> {
-        Jet::first_non_finite(self)
-    }
-    #[inline]
-    fn add_c(self, c: f64) -> Jet {
-        Jet::add_c(self, c)
-    }
-    #[inline]
-    fn mul_c(self, c: f64) -> Jet {
-        Jet::mul_c(self, c)
-    }
-    #[inline]
-    fn div_c(self, c: f64) -> Jet {
-        Jet::div_c(self, c)
-    }
-    #[inline]
-    fn rsub_c(self, c: f64) -> Jet {
-        Jet::rsub_c(self, c)
-    }
-    #[inline]
-    fn rdiv_c(self, c: f64) -> Jet {
-        Jet::rdiv_c(self, c)
-    }
-    #[inline]
-    fn pow(self, v: Jet) -> Jet {
-        Jet::pow(self, v)
-    }
-    #[inline]
-    fn pow_c(self, c: f64) -> Jet {
-        Jet::pow_c(self, c)
-    }
-    #[inline]
-    fn pow_i(self, n: i32) -> Jet {
-        Jet::pow_i(self, n)
-    }
-    #[inline]
-    fn unary(self, op: Op) -> Jet {
-        match op {
-            Op::Sin => self.sin(),
-            Op::Cos => self.cos(),
-            Op::Tan => self.tan(),
-            Op::Asin => self.asin(),
-            Op::Acos => self.acos(),
-            Op::Atan => self.atan(),
-            Op::Sinh => self.sinh(),
-            Op::Cosh => self.cosh(),
-            Op::Tanh => self.tanh(),
-            Op::Exp => self.exp(),
-            Op::Ln => self.ln(),
-            Op::Sqrt => self.sqrt(),
-            Op::Abs => self.abs(),
-            Op::Sign => Jet::constant(sign(self.0[0])),
-            Op::Floor => Jet::constant(self.0[0].floor()),
-            Op::Ceil => Jet::constant(self.0[0].ceil()),
-            _ => Jet::constant(f64::NAN),
+/// Implements [`Value`] for a jet type by its inherent methods of the same
+/// names; `$law` is the [`Law`] method for that order.
+macro_rules! jet_value {
+    ($jet:ident, $law:ident) => {
+        impl Value for $jet {
+            #[inline]
+            fn constant(c: f64) -> $jet {
+                $jet::constant(c)
+            }
+            #[inline]
+            fn variable(x: f64) -> $jet {
+                $jet::variable(x)
+            }
+            #[inline]
+            fn value(self) -> f64 {
+                self.0[0]
+            }
+            fn first_non_finite(self) -> Option<(usize, f64)> {
+                $jet::first_non_finite(self)
+            }
+            #[inline]
+            fn add_c(self, c: f64) -> $jet {
+                $jet::add_c(self, c)
+            }
+            #[inline]
+            fn mul_c(self, c: f64) -> $jet {
+                $jet::mul_c(self, c)
+            }
+            #[inline]
+            fn div_c(self, c: f64) -> $jet {
+                $jet::div_c(self, c)
+            }
+            #[inline]
+            fn rsub_c(self, c: f64) -> $jet {
+                $jet::rsub_c(self, c)
+            }
+            #[inline]
+            fn rdiv_c(self, c: f64) -> $jet {
+                $jet::rdiv_c(self, c)
+            }
+            #[inline]
+            fn pow(self, v: $jet) -> $jet {
+                $jet::pow(self, v)
+            }
+            #[inline]
+            fn pow_c(self, c: f64) -> $jet {
+                $jet::pow_c(self, c)
+            }
+            #[inline]
+            fn pow_i(self, n: i32) -> $jet {
+                $jet::pow_i(self, n)
+            }
+            #[inline]
+            fn unary(self, op: Op) -> $jet {
+                match op {
+                    Op::Sin => self.sin(),
+                    Op::Cos => self.cos(),
+                    Op::Tan => self.tan(),
+                    Op::Asin => self.asin(),
+                    Op::Acos => self.acos(),
+                    Op::Atan => self.atan(),
+                    Op::Sinh => self.sinh(),
+                    Op::Cosh => self.cosh(),
+                    Op::Tanh => self.tanh(),
+                    Op::Exp => self.exp(),
+                    Op::Ln => self.ln(),
+                    Op::Sqrt => self.sqrt(),
+                    Op::Abs => self.abs(),
+                    Op::Sign => $jet::constant(sign(self.0[0])),
+                    Op::Floor => $jet::constant(self.0[0].floor()),
+                    Op::Ceil => $jet::constant(self.0[0].ceil()),
+                    _ => $jet::constant(f64::NAN),
+                }
+            }
+            #[inline]
+            fn atan2(self, x: $jet) -> $jet {
+                $jet::atan2(self, x)
+            }
+            #[inline]
+            fn hypot(self, v: $jet) -> $jet {
+                $jet::hypot(self, v)
+            }
+            #[inline]
+            fn modulo(self, v: $jet) -> $jet {
+                $jet::modulo(self, v)
+            }
+            #[inline]
+            fn motion(law: Law, [x, x0, h0, x1, h1]: [$jet; 5]) -> $jet {
+                law.$law(x, x0, h0, x1, h1)
+            }
         }
-    }
-    #[inline]
-    fn atan2(self, x: Jet) -> Jet {
-        Jet::atan2(self, x)
-    }
-    #[inline]
-    fn hypot(self, v: Jet) -> Jet {
-        Jet::hypot(self, v)
-    }
-    #[inline]
-    fn modulo(self, v: Jet) -> Jet {
-        Jet::modulo(self, v)
-    }
-    #[inline]
-    fn motion(law: Law, [x, x0, h0, x1, h1]: [Jet; 5]) -> Jet {
-        law.jet(x, x0, h0, x1, h1)
-    }
+    };
 }
 
-impl Value for Jet4 {
-    #[inline]
-    fn constant(c: f64) -> Jet4 {
-        Jet4::constant(c)
-    }
-    #[inline]
-    fn variable(x: f64) -> Jet4 {
-        Jet4::variable(x)
-    }
-    #[inline]
-    fn value(self) -> f64 {
-        self.0[0]
-    }
-    fn first_non_finite(self) -> Option<(usize, f64)> {
-        Jet4::first_non_finite(self)
-    }
-    #[inline]
-    fn add_c(self, c: f64) -> Jet4 {
-        Jet4::add_c(self, c)
-    }
-    #[inline]
-    fn mul_c(self, c: f64) -> Jet4 {
-        Jet4::mul_c(self, c)
-    }
-    #[inline]
-    fn div_c(self, c: f64) -> Jet4 {
-        Jet4::div_c(self, c)
-    }
-    #[inline]
-    fn rsub_c(self, c: f64) -> Jet4 {
-        Jet4::rsub_c(self, c)
-    }
-    #[inline]
-    fn rdiv_c(self, c: f64) -> Jet4 {
-        Jet4::rdiv_c(self, c)
-    }
-    #[inline]
-    fn pow(self, v: Jet4) -> Jet4 {
-        Jet4::pow(self, v)
-    }
-    #[inline]
-    fn pow_c(self, c: f64) -> Jet4 {
-        Jet4::pow_c(self, c)
-    }
-    #[inline]
-    fn pow_i(self, n: i32) -> Jet4 {
-        Jet4::pow_i(self, n)
-    }
-    #[inline]
-    fn unary(self, op: Op) -> Jet4 {
-        match op {
-            Op::Sin => self.sin(),
-            Op::Cos => self.cos(),
-            Op::Tan => self.tan(),
-            Op::Asin => self.asin(),
-            Op::Acos => self.acos(),
-            Op::Atan => self.atan(),
-            Op::Sinh => self.sinh(),
-            Op::Cosh => self.cosh(),
-            Op::Tanh => self.tanh(),
-            Op::Exp => self.exp(),
-            Op::Ln => self.ln(),
-            Op::Sqrt => self.sqrt(),
-            Op::Abs => self.abs(),
-            Op::Sign => Jet4::constant(sign(self.0[0])),
-            Op::Floor => Jet4::constant(self.0[0].floor()),
-            Op::Ceil => Jet4::constant(self.0[0].ceil()),
-            _ => Jet4::constant(f64::NAN),
-        }
-    }
-    #[inline]
-    fn atan2(self, x: Jet4) -> Jet4 {
-        Jet4::atan2(self, x)
-    }
-    #[inline]
-    fn hypot(self, v: Jet4) -> Jet4 {
-        Jet4::hypot(self, v)
-    }
-    #[inline]
-    fn modulo(self, v: Jet4) -> Jet4 {
-        Jet4::modulo(self, v)
-    }
-    #[inline]
-    fn motion(law: Law, [x, x0, h0, x1, h1]: [Jet4; 5]) -> Jet4 {
-        law.jet4(x, x0, h0, x1, h1)
-    }
-}
+jet_value!(Jet, jet);
+jet_value!(Jet4, jet4);
 
 /// The truth of a condition: any value other than zero (NaN included).
 #[inline]

@@ -649,3 +649,23 @@ fn a_text_over_the_size_limit_is_refused() {
     let e = load_adm_text(&big, None).unwrap_err();
     assert!(e.message.contains("too large"), "{e}");
 }
+
+/// A body's one `vis` rectangle becomes its drawn outline, corners
+/// counter-clockwise in the body frame.
+#[test]
+fn a_vis_rectangle_becomes_the_body_outline() {
+    let l = load_adm(&example(), None).unwrap();
+    assert_eq!(l.outlines.len(), 3);
+    let crank = l.outlines.iter().find(|o| o.body == "crank").unwrap();
+    match &crank.shape {
+        camlink_model::OutlineShape::Polyline(p) => {
+            assert_eq!(p, &[[-0.1, -0.01], [0.1, -0.01], [0.1, 0.01], [-0.1, 0.01]]);
+        }
+        other => panic!("{other:?}"),
+    }
+    let text = convert_adm(&example(), None, Format::Toml).unwrap();
+    assert!(
+        text.contains("outline = [[-0.25, -0.01], [0.25, -0.01], [0.25, 0.01], [-0.25, 0.01]]"),
+        "{text}"
+    );
+}

@@ -160,6 +160,21 @@ impl Parametric {
         }
     }
 
+    /// An expression pair's parameter: `s` wrapped into [s₀, s₁) when the
+    /// curve is closed, else `s`.
+    #[inline]
+    fn wrap_expr(&self, s: f64) -> f64 {
+        match self {
+            Parametric::Expr {
+                s0,
+                s1,
+                closed: true,
+                ..
+            } => s0 + (s - s0).rem_euclid(s1 - s0),
+            _ => s,
+        }
+    }
+
     /// p(s), p′, p″, p‴ in the body frame.
     #[inline]
     pub fn jet(&self, s: f64) -> CurveJet {
@@ -173,18 +188,8 @@ impl Parametric {
                 c, r, start, sigma, ..
             } => arc_jet(*c, *r, *start, *sigma, s),
             Parametric::Circle { c, r, start } => arc_jet(*c, *r, *start, 1.0, s),
-            Parametric::Expr {
-                x,
-                y,
-                s0,
-                s1,
-                closed,
-            } => {
-                let s = if *closed {
-                    s0 + (s - s0).rem_euclid(s1 - s0)
-                } else {
-                    s
-                };
+            Parametric::Expr { x, y, .. } => {
+                let s = self.wrap_expr(s);
                 let (x, y) = (x.jet(s), y.jet(s));
                 CurveJet {
                     p: [x[0], y[0]],
@@ -209,18 +214,8 @@ impl Parametric {
                 c, r, start, sigma, ..
             } => arc_jet4(*c, *r, *start, *sigma, s),
             Parametric::Circle { c, r, start } => arc_jet4(*c, *r, *start, 1.0, s),
-            Parametric::Expr {
-                x,
-                y,
-                s0,
-                s1,
-                closed,
-            } => {
-                let s = if *closed {
-                    s0 + (s - s0).rem_euclid(s1 - s0)
-                } else {
-                    s
-                };
+            Parametric::Expr { x, y, .. } => {
+                let s = self.wrap_expr(s);
                 let (x, y) = (x.jet4(s), y.jet4(s));
                 CurveJet4 {
                     jet: CurveJet {

@@ -41,14 +41,24 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project;
+use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
 use crate::math::max_abs;
 use crate::model::Model;
+use crate::newton;
 use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 
 /// A Newton correction larger than this fraction of the one before means
 /// the chord iteration has stalled: the next iteration refactors.
 const STALL: f64 = 0.5;
+
+/// The retry of a step with a fresh matrix each iteration may take this
+/// many times `max_iter` iterations.
+const SINGULAR_ITER: usize = 4;
+
+/// A correction within this many times the measured rounding noise of the
+/// solve counts as converged.
+const NOISE_SAFETY: f64 = 4.0;
 
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
@@ -69,9 +79,10 @@ pub struct Settings {
     pub step: f64,
     /// Spectral radius at infinity ρ∞ ∈ [0, 1].
     pub rho_inf: f64,
-    /// Newton stops when the last corrections of positions and of
-    /// velocities, max |Δq| and max |Δq̇| = γ' max |Δq|, are both ≤ tol
-    /// (m or rad; m/s or rad/s).
+    /// Newton stops when every coordinate's last correction |Δq_k| and
+    /// its velocity's |Δq̇_k| = γ' |Δq_k| are each ≤ tol (m or rad; m/s or
+    /// rad/s) or within the rounding of the value ([`crate::newton`]),
+    /// whichever is larger.
     pub tol: f64,
     /// Newton iterations per step.
     pub max_iter: usize,
@@ -140,7 +151,13 @@ pub struct Integrator<'m> {
     prev: [Vec<f64>; 2],
     h_prev: f64,
     rhs: Vec<f64>,
+    /// Scratch of length n, and the rounding noise of a correction per
+    /// coordinate (zero until measured in a step).
+    work: Vec<f64>,
+    noise: Vec<f64>,
     pub summary: Summary,
+    /// The model's redundant equations, if any.
+    pub redundant: Option<Redundant>,
     /// Steps rejected by the error control.
     pub rejected: usize,
     /// The weighted error of the last accepted error-controlled step.
@@ -181,13 +198,6 @@ impl<'m> Integrator<'m> {
                 0.0,
             ));
         }
-        if m > n {
-            return Err(fail(
-                Kind::Redundant,
-                format!("{n} coordinates but {m} equations: the model is over-constrained"),
-                0.0,
-            ));
-        }
         let mut q = sys.asm.initial_q(model);
         let mut qd = vec![0.0; n];
         for (id, b) in model.moving_bodies() {
@@ -196,6 +206,12 @@ impl<'m> Integrator<'m> {
         }
         let mut aug =
             Augmented::new(&sys, &q).map_err(|e| fail(Kind::Internal, e.to_string(), 0.0))?;
+        let redundant = Redundant::detect(&sys, &mut aug, &q, t0);
+        let mut summary = Summary::default();
+        if let Some(r) = &redundant {
+            aug.set_regularised(true);
+            summary.warnings.push(r.warning(t0));
+        }
         // The joints furthest from Φ = 0 at q when a projection fails.
         let named = |e: project::ProjectionError, q: &[f64]| {
             let mut phi = vec![0.0; m];
@@ -225,10 +241,13 @@ impl<'m> Integrator<'m> {
             prev: [vec![0.0; n], vec![0.0; m]],
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
+            work: vec![0.0; n],
+            noise: vec![0.0; n],
             q,
             qd,
             sys,
-            summary: Summary::default(),
+            summary,
+            redundant,
             rejected: 0,
             err_prev: None,
         };
@@ -239,6 +258,42 @@ impl<'m> Integrator<'m> {
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
     pub fn accelerations(&mut self) -> Result<(), AnalysisError> {
+        self.consistent()?;
+        let n = self.sys.n();
+        self.qdd.copy_from_slice(&self.rhs[..n]);
+        self.lambda.copy_from_slice(&self.rhs[n..]);
+        Ok(())
+    }
+
+    /// The multipliers μ of minimum norm with the same constraint forces
+    /// Φ_qᵀμ = Φ_qᵀλ as the current λ, into `out` (length m): the
+    /// reactions of a model with redundant equations. From
+    /// [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0] (x = 0), solved by
+    /// [`Augmented::solve_refined`]; the integrator's state is unchanged.
+    pub fn min_norm_multipliers(&mut self, out: &mut [f64]) -> Result<(), AnalysisError> {
+        let (n, s) = (self.sys.n(), &self.sys);
+        let k = Coefficients {
+            identity: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        self.h_factored = 0.0;
+        if self
+            .aug
+            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .is_err()
+        {
+            return Err(self.error(Kind::LockUp, "the constraint Jacobian is singular"));
+        }
+        self.rhs.fill(0.0);
+        s.add_jt_lambda(&self.q, self.t, &self.lambda, &mut self.rhs[..n]);
+        self.aug.solve_refined(&mut self.rhs);
+        out.copy_from_slice(&self.rhs[n..]);
+        Ok(())
+    }
+
+    /// Solves [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] into `rhs`, λ of minimum norm.
+    fn consistent(&mut self) -> Result<(), AnalysisError> {
         let (n, s) = (self.sys.n(), &self.sys);
         let k = Coefficients {
             mass: 1.0,
@@ -262,9 +317,7 @@ impl<'m> Integrator<'m> {
         s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
         s.asm
             .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
-        self.aug.solve(&mut self.rhs);
-        self.qdd.copy_from_slice(&self.rhs[..n]);
-        self.lambda.copy_from_slice(&self.rhs[n..]);
+        self.aug.solve_refined(&mut self.rhs);
         Ok(())
     }
 
@@ -279,6 +332,14 @@ impl<'m> Integrator<'m> {
 
     /// Advances one step of size `h`; the state is unchanged on failure.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        // At a singular position (S_ε factored last) the multipliers of the
+        // lost direction are not determined, and the ones carried over can
+        // be arbitrarily large: start from the consistent q̈ and the
+        // minimum-norm λ instead.
+        if self.at_singular_position() {
+            self.accelerations()?;
+            self.h_prev = 0.0;
+        }
         self.save();
         if self.try_step(h, false)? {
             return Ok(());
@@ -294,9 +355,12 @@ impl<'m> Integrator<'m> {
         Err(self.error(
             Kind::NotConverged,
             &format!(
-                "Newton did not converge in {} iterations at step {h:.3e} s \
-             (a stiffer problem needs a smaller step)",
-                self.settings.max_iter
+                "Newton did not converge in {} iterations at step {h:.3e} s, nor in {} \
+                 with a fresh matrix each iteration: near a singular position (a toggle, \
+                 a dead centre, the flat position of a parallelogram) try another step h; \
+                 with stiff springs or contacts, a smaller h",
+                self.settings.max_iter,
+                SINGULAR_ITER * self.settings.max_iter
             ),
         ))
     }
@@ -349,7 +413,17 @@ impl<'m> Integrator<'m> {
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
         let mut last = f64::INFINITY;
-        for _ in 0..self.settings.max_iter {
+        self.noise.fill(0.0);
+        let mut noise_known = false;
+        // Near a singular position Newton converges only linearly (the
+        // root is singular); the retry with a fresh matrix each iteration
+        // has [`SINGULAR_ITER`] times the iterations.
+        let max_iter = if fresh {
+            SINGULAR_ITER * self.settings.max_iter
+        } else {
+            self.settings.max_iter
+        };
+        for _ in 0..max_iter {
             // r = [s R ; Φ].
             let sys = &self.sys;
             let (r_motion, r_phi) = self.rhs.split_at_mut(n);
@@ -391,13 +465,46 @@ impl<'m> Integrator<'m> {
             }
             self.aug.solve(&mut self.rhs);
             self.summary.newton_iterations += 1;
+            // Converged when every position and velocity correction is
+            // within tol or the rounding of its value ([`newton::settled`]);
+            // a position settled at its rounding settles its velocity too.
+            // Near a singular position a velocity's floor is γ' times the
+            // rounding of the residual carried through the ill-conditioned
+            // solve, `noise`.
+            // A slow iteration's correction understates its error: with
+            // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
+            // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
+            let tol = self.settings.tol;
+            let dnew = max_abs(&self.rhs[..n]);
+            let theta = dnew / last;
+            let eta = if theta < 1.0 {
+                (theta / (1.0 - theta)).max(1.0)
+            } else {
+                f64::INFINITY
+            };
+            // At a singular position (S_ε factored) the lost direction
+            // converges as slowly as an augmented-Lagrangian update; the
+            // iteration stops when the position corrections are within tol.
+            let lost = self.at_singular_position();
             let mut dmax = 0.0f64;
+            let mut converged = true;
             for k in 0..n {
                 let d = self.rhs[k];
+                let de = eta * d;
                 self.q[k] += d;
                 self.qd[k] += gp * d;
                 self.qdd[k] += bp * d;
                 dmax = dmax.max(d.abs());
+                let round = newton::rounding(self.q[k]);
+                let position =
+                    newton::settled(de, self.q[k], tol) || d.abs() <= round.max(self.noise[k]);
+                let velocity = newton::settled(gp * de, self.qd[k], tol)
+                    || d.abs() <= round.max(self.noise[k]);
+                converged &= if lost {
+                    newton::settled(d, self.q[k], tol)
+                } else {
+                    position && velocity
+                };
             }
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
@@ -405,7 +512,7 @@ impl<'m> Integrator<'m> {
             if !dmax.is_finite() {
                 return Ok(false);
             }
-            if dmax * gp.max(1.0) <= self.settings.tol {
+            if converged {
                 // a_{n+1} from the converged q̈_{n+1}.
                 for k in 0..n {
                     self.a[k] = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
@@ -419,14 +526,52 @@ impl<'m> Integrator<'m> {
                 self.summary.steps += 1;
                 return Ok(true);
             }
-            // Chord iterations that stall get a fresh matrix.
+            // Chord iterations that stall get a fresh matrix; fresh ones
+            // that stall have reached the noise of the solve, measured once.
             if dmax > STALL * last {
+                if fresh && !noise_known {
+                    self.measure_noise(t1, s);
+                    noise_known = true;
+                }
                 self.aug.invalidate();
             }
             last = dmax;
         }
         self.aug.invalidate();
         Ok(false)
+    }
+
+    /// True when the last factorization found S singular in a model
+    /// without redundant equations (which always factors S_ε, its lost
+    /// directions being exact and harmless): a singular position.
+    fn at_singular_position(&self) -> bool {
+        self.aug.eps() > 0.0 && self.redundant.is_none()
+    }
+
+    /// The rounding noise of a Newton correction at the current iterate
+    /// into `noise` (the same level for every coordinate): S⁻¹ applied to the rounding of the
+    /// residual, [`newton::ULPS`] ε_mach (|Q| + |M q̈| + |Φ_qᵀλ|) scaled by
+    /// `s` in the equations of motion and ULPS ε_mach max |q| in Φ. Small
+    /// where S is well conditioned, it sets the floor of the corrections
+    /// near a singular position, where it is not.
+    fn measure_noise(&mut self, t: f64, s: f64) {
+        let n = self.sys.n();
+        let u = newton::ULPS * f64::EPSILON;
+        let (head, tail) = self.rhs.split_at_mut(n);
+        self.sys.forces(&self.q, &self.qd, t, head);
+        head.iter_mut().for_each(|v| *v = v.abs());
+        self.work.fill(0.0);
+        self.sys.add_mass_times(&self.q, &self.qdd, &mut self.work);
+        self.sys
+            .add_jt_lambda(&self.q, t, &self.lambda, &mut self.work);
+        for (h, w) in head.iter_mut().zip(&self.work) {
+            *h = u * s * (*h + w.abs());
+        }
+        tail.fill(u * max_abs(&self.q));
+        self.aug.solve(&mut self.rhs);
+        // One level for all: the pattern of the rounding errors is unknown.
+        let level = NOISE_SAFETY * max_abs(&self.rhs[..n]);
+        self.noise.fill(level);
     }
 
     /// The weighted local error estimate of the last step (≤ 1 to accept).
@@ -542,6 +687,7 @@ pub fn run(
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&it.sys);
     let mut h_next = settings.step;
+    let mut lambda = vec![0.0; it.sys.m()];
     for (k, &t) in times.iter().enumerate() {
         if k > 0 {
             if t <= times[k - 1] || t.is_nan() {
@@ -561,12 +707,18 @@ pub fn run(
             points,
             &mut values[..nk],
         );
+        // Reactions of a redundant model: the minimum-norm split.
+        if it.redundant.is_some() {
+            it.min_norm_multipliers(&mut lambda)?;
+        } else {
+            lambda.copy_from_slice(&it.lambda);
+        }
         output::fill(
             &it.sys,
             &mut scratch,
             &it.q,
             &it.qd,
-            &it.lambda,
+            &lambda,
             it.t,
             &mut values[nk..],
         );

@@ -11,6 +11,7 @@
 //!   are defined in [`crate::force`];
 //! - assembly of M, Q and the augmented matrices, in [`system`];
 //! - consistent initial conditions, in [`project`];
+//! - redundant equations (detection, warning), in [`redundant`];
 //! - joint reactions and driver efforts from λ, in [`reaction`], the
 //!   normal force of curve contacts and follower lift-off, in
 //!   [`contact_force`], and the output channels, in [`output`];
@@ -25,5 +26,6 @@ pub mod mass;
 pub mod output;
 pub mod project;
 pub mod reaction;
+pub mod redundant;
 pub mod statics;
 pub mod system;

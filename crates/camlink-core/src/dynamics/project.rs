@@ -189,7 +189,7 @@ pub fn velocities(
     let mut rhs = vec![0.0; n + m];
     rhs[..n].copy_from_slice(qd);
     s.asm.nu(s.model, q, t, &mut rhs[n..]);
-    aug.solve(&mut rhs);
+    aug.solve_refined(&mut rhs);
     qd.copy_from_slice(&rhs[..n]);
     Ok(())
 }

@@ -21,6 +21,7 @@
 
 use super::output::{self, Scratch};
 use super::project;
+use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::MAX_ANGLE_STEP;
 use crate::math::{max_abs, norm2};
@@ -68,6 +69,9 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     }
     let mut q = s.asm.initial_q(model);
     let mut aug = Augmented::new(&s, &q).map_err(|e| err(Kind::Internal, e.to_string(), 0.0))?;
+    if Redundant::detect(&s, &mut aug, &q, t).is_some() {
+        aug.set_regularised(true);
+    }
     project::positions(&s, &mut aug, &mut q, t, settings.tol, settings.max_iter)
         .map_err(|e| err(e.kind, e.message, e.residual))?;
     let zeros = vec![0.0; n];
@@ -76,27 +80,20 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     let mut rhs = vec![0.0; n + m];
     s.forces(&q, &zeros, t, &mut qf);
     rhs[..n].copy_from_slice(&qf);
-    aug.refactor(
-        &s,
-        &q,
-        &zeros,
-        &zeros,
-        None,
-        t,
-        Coefficients {
-            identity: 1.0,
-            scale: 1.0,
-            ..Default::default()
-        },
-    )
-    .map_err(|_| {
-        err(
-            Kind::Redundant,
-            "the constraint Jacobian is rank deficient".into(),
-            0.0,
-        )
-    })?;
-    aug.solve(&mut rhs);
+    let least_squares = Coefficients {
+        identity: 1.0,
+        scale: 1.0,
+        ..Default::default()
+    };
+    aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
+        .map_err(|_| {
+            err(
+                Kind::Redundant,
+                "the constraint Jacobian is rank deficient".into(),
+                0.0,
+            )
+        })?;
+    aug.solve_refined(&mut rhs);
     let mut lambda = rhs[n..].to_vec();
 
     let angles = s.asm.angle_mask(model);
@@ -138,6 +135,21 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
             // balances everywhere).
             aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
                 .map_err(|_| neutral())?;
+            // The multipliers of minimum norm with the same forces Φ_qᵀλ
+            // (they differ from λ only with redundant equations):
+            // [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0].
+            aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
+                .map_err(|_| {
+                    err(
+                        Kind::Redundant,
+                        "the constraint Jacobian is rank deficient".into(),
+                        rp,
+                    )
+                })?;
+            res.fill(0.0);
+            s.add_jt_lambda(&q, t, &lambda, &mut res[..n]);
+            aug.solve_refined(&mut res);
+            lambda.copy_from_slice(&res[n..]);
             return Ok(Equilibrium {
                 q,
                 lambda,
@@ -237,10 +249,21 @@ pub fn run(
         &mut values[nk..],
     );
     sink.row(t, &values).map_err(|s| s.at(t))?;
+    let mut aug = Augmented::new(&s, &e.q).map_err(|e| AnalysisError {
+        kind: Kind::Internal,
+        time: t,
+        message: e.to_string(),
+        joints: Vec::new(),
+        residual: 0.0,
+    })?;
+    let warnings = Redundant::detect(&s, &mut aug, &e.q, t)
+        .map(|r| vec![r.warning(t)])
+        .unwrap_or_default();
     Ok(Summary {
         steps: 1,
         newton_iterations: e.iterations,
         factorizations: e.iterations,
+        warnings,
         ..Summary::default()
     })
 }

@@ -19,6 +19,32 @@
 //! coefficients chosen by the analysis (see [`Coefficients`]). Its
 //! sparsity pattern (body blocks, force couplings, joint couplings and Φ_q)
 //! is laid out once; values are refilled in place.
+//!
+//! S is singular wherever Φ_q loses rank: at singular positions (the flat
+//! position of a parallelogram, a toggle) and, everywhere, in a model with
+//! redundant equations. When the factorization of S finds it singular, the
+//! regularised matrix is factored instead:
+//!
+//! S_ε = [ D  Φ_qᵀ
+//!         Φ_q  −ε I ],
+//!
+//! the augmented Lagrangian form (Bayo & Ledesma 1996): eliminating the
+//! multipliers gives D + Φ_qᵀΦ_q/ε, the penalty 1/ε on the constraints.
+//! With D positive definite on the motions the constraints allow, S_ε is
+//! nonsingular whatever the rank of Φ_q. ε is set per factorization to
+//! [`EPS_REL`] · max(d, j²/d), d the largest diagonal entry of D and j the
+//! largest entry of Φ_q: S_ε⁻¹ S then differs from the identity by about
+//! ε/σ² in a constraint direction whose singular value of
+//! Φ_q D^{-1/2} is σ, some 1e-8 in a healthy direction, and by ≈ 1 in
+//! a direction that is lost (σ = 0), where the multipliers are not
+//! determined. Near, not at, a singular position S itself is factored:
+//! S_ε would converge as slowly as 1 − σ²/ε there. Newton iterations
+//! on the exact residual absorb the difference (each iteration is one
+//! augmented-Lagrangian update of λ); one-shot solves use
+//! [`Augmented::solve_refined`], which iterates S_ε x_{k+1} = b − (S − S_ε) x_k
+//! and converges to the solution of S x = b with the multipliers'
+//! component in the null space of Φ_qᵀ (not determined by the equations)
+//! left at zero: the minimum-norm multipliers.
 
 use std::collections::HashMap;
 
@@ -28,6 +54,14 @@ use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
 use crate::force::{Applied, BodyJac, BodyQ};
 use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
+
+/// The regularisation ε of the multiplier block relative to
+/// max(d, j²/d) (see the module documentation).
+pub const EPS_REL: f64 = 1e-8;
+
+/// Passes of [`Augmented::solve_refined`]: each reduces the error in a
+/// healthy direction by about [`EPS_REL`].
+const REFINE: usize = 3;
 
 /// The model with its layout and the inertia of each body.
 pub struct System<'m> {
@@ -226,6 +260,14 @@ pub struct Augmented {
     joint_slots: Vec<JointSlots>,
     /// Slots (lower Φ_q, upper Φ_qᵀ) of each Jacobian entry, in fill order.
     jac_slots: Vec<(usize, usize)>,
+    /// Slots of the multiplier block's diagonal, which holds −ε.
+    mult_slots: Vec<usize>,
+    /// ε of the last factorization.
+    eps: f64,
+    /// Factor S_ε at once, S being known singular (redundant equations).
+    regularised: bool,
+    /// Scratch for [`solve_refined`](Self::solve_refined).
+    work: [Vec<f64>; 2],
     /// Scratch for (Φ_qᵀλ)_q.
     jac: [Jac; 2],
 }
@@ -333,10 +375,8 @@ impl Augmented {
         s.asm.jacobian(s.model, q, 0.0, |r, c, _| {
             jac_slots.push((slot(n + r, c), slot(c, n + r)));
         });
-        // The zero block's diagonal, so that a sparse LU may pivot there.
-        for r in 0..m {
-            slot(n + r, n + r);
-        }
+        // The multiplier block's diagonal, −ε.
+        let mult_slots: Vec<usize> = (0..m).map(|r| slot(n + r, n + r)).collect();
         let sys = SystemMatrix::try_new(n + m, &pattern)?;
         let vals = vec![0.0; pattern.len() + 1];
         let trash = vals.len() - 1;
@@ -356,6 +396,10 @@ impl Augmented {
             force_slots,
             joint_slots,
             jac_slots,
+            mult_slots,
+            eps: 0.0,
+            regularised: false,
+            work: [vec![0.0; n + m], vec![0.0; n + m]],
             jac: [Jac::default(); 2],
         })
     }
@@ -427,16 +471,53 @@ impl Augmented {
         // Φ_q below, Φ_qᵀ to the right.
         let (vals, slots) = (&mut self.vals, &self.jac_slots);
         let mut e = 0;
+        let mut jmax = 0.0f64;
         s.asm.jacobian(s.model, q, t, |_, _, v| {
             let (lo, up) = slots[e];
             vals[lo] = v;
             vals[up] = v;
+            jmax = jmax.max(v.abs());
             e += 1;
         });
+        // −ε on the multiplier block's diagonal.
+        let diag = self.body_slots.iter().flat_map(|b| [b[0], b[4], b[8]]);
+        let dmax = diag
+            .chain(self.own_slots.iter().copied())
+            .fold(0.0f64, |a, k| a.max(self.vals[k].abs()));
+        // S itself when it is nonsingular, else S_ε.
+        self.eps = 0.0;
+        if !self.regularised && self.put_and_factor().is_ok() {
+            return Ok(());
+        }
+        self.eps = if dmax > 0.0 && jmax > 0.0 {
+            EPS_REL * dmax.max(jmax * jmax / dmax)
+        } else {
+            EPS_REL * jmax.max(1.0)
+        };
+        self.put_and_factor()
+    }
+
+    /// Puts −ε on the multiplier block's diagonal, hands the values to the
+    /// system matrix and factors it.
+    fn put_and_factor(&mut self) -> Result<(), Singular> {
+        for &k in &self.mult_slots {
+            self.vals[k] = -self.eps;
+        }
         for (slot, (&(r, c), &v)) in self.pattern.iter().zip(&self.vals).enumerate() {
             self.sys.put(slot, r, c, v);
         }
         self.sys.factor()
+    }
+
+    /// Factors S_ε always, for a model whose equations are known to be
+    /// redundant (S is singular everywhere; a sparse LU need not notice).
+    pub fn set_regularised(&mut self, on: bool) {
+        self.regularised = on;
+    }
+
+    /// ε of the last factorization: 0 when S was nonsingular.
+    pub fn eps(&self) -> f64 {
+        self.eps
     }
 
     /// Adds `w (Φ^jᵀ λ_j)_q` of joint `j` to its curvature block: the
@@ -490,10 +571,35 @@ impl Augmented {
         }
     }
 
-    /// Solves S x = b in place with the last factorization.
+    /// Solves S_ε x = b in place with the last factorization: one Newton
+    /// (augmented-Lagrangian) update.
     #[inline]
     pub fn solve(&mut self, b: &mut [f64]) {
         self.sys.solve(b);
+    }
+
+    /// Solves S x = b (the matrix without ε) in place by iterating on the
+    /// last factorization of S_ε; the multipliers come out with no
+    /// component in the null space of Φ_qᵀ.
+    pub fn solve_refined(&mut self, b: &mut [f64]) {
+        let [rhs, x] = &mut self.work;
+        rhs.copy_from_slice(b);
+        x.fill(0.0);
+        for _ in 0..REFINE {
+            // b ← rhs − S x, then x += S_ε⁻¹ b.
+            b.copy_from_slice(rhs);
+            for (&(r, c), &v) in self.pattern.iter().zip(&self.vals) {
+                b[r] -= v * x[c];
+            }
+            for r in self.n..self.n + self.m {
+                b[r] -= self.eps * x[r];
+            }
+            self.sys.solve(b);
+            for (xk, bk) in x.iter_mut().zip(b.iter()) {
+                *xk += bk;
+            }
+        }
+        b.copy_from_slice(x);
     }
 
     pub fn is_valid(&self) -> bool {

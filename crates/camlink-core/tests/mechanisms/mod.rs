@@ -5,6 +5,7 @@
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
 use camlink_core::constraint::revolute::Revolute;
 use camlink_core::constraint::translational::Translational;
+use camlink_core::run::Table;
 use camlink_core::{Body, BodyId, Model, Point, TimeFn};
 
 /// Slider-crank: crank a, rod b (m).
@@ -169,4 +170,138 @@ pub fn pendulum(l: f64, mass: f64, inertia: f64, th0: f64, frame_at_pivot: bool)
     let s = if frame_at_pivot { [0.0, 0.0] } else { [0.0, l] };
     m.add_joint("pivot", rev(BodyId::GROUND, [0.0, 0.0], id, s));
     m
+}
+
+/// Parallelogram chain: crank length a, pitch d (coupler length), m.
+pub const PAR_CRANK: f64 = 0.2;
+pub const PAR_PITCH: f64 = 0.5;
+/// Mass (kg) of a crank and of the coupler between two cranks.
+pub const PAR_CRANK_MASS: f64 = 1.0;
+pub const PAR_COUPLER_MASS: f64 = 2.0;
+
+/// How a crank of [`parallelogram_chain`] carries its mass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CrankMass {
+    /// All at the crank pin (centroid at a, no centroidal inertia): at the
+    /// flat position every crank would fall alike, so the multipliers stay
+    /// bounded through it.
+    AtPin,
+    /// A uniform bar (centroid at a/2, inertia m a²/12): at the flat
+    /// position the cranks would fall at different rates, and the exact
+    /// multipliers grow without bound there (the couplers' tension ~ 1/θ).
+    Uniform,
+}
+
+impl CrankMass {
+    /// (centroidal inertia J' in kg·m², centroid distance c from the pivot in m).
+    pub fn inertia(self) -> (f64, f64) {
+        let a = PAR_CRANK;
+        match self {
+            CrankMass::AtPin => (0.0, a),
+            CrankMass::Uniform => (PAR_CRANK_MASS * a * a / 12.0, a / 2.0),
+        }
+    }
+}
+
+/// A chain of `n` parallelogram four-bars: n + 1 equal cranks of length a
+/// pivoted on the ground at (k d, 0), frames at the pivots, all at angle
+/// `th0` (rad); their pins carried by `n` uniform couplers of length d
+/// (frame at the left end), or, with `fused`, by one rigid bar of length
+/// n d and mass n m_b: 4(n + 1) equations of rank 3n + 5, so n − 1
+/// redundant. One degree of freedom either way: every crank at the same
+/// angle θ, the couplers translating. At θ = 0 and θ = ±π all links are
+/// collinear and Φ_q loses one rank per four-bar.
+pub fn parallelogram_chain(n: usize, th0: f64, fused: bool, crank: CrankMass) -> Model {
+    let (a, d) = (PAR_CRANK, PAR_PITCH);
+    let (mc, mb) = (PAR_CRANK_MASS, PAR_COUPLER_MASS);
+    let (jc, c) = crank.inertia();
+    let mut m = Model::new("parallelogram chain");
+    let g = BodyId::GROUND;
+    let tip = [a * th0.cos(), a * th0.sin()];
+    let cranks: Vec<BodyId> = (0..=n)
+        .map(|k| {
+            let x = k as f64 * d;
+            let id = m.add_body(body(&format!("crank{k}"), [x, 0.0, th0], mc, jc, [c, 0.0]));
+            m.add_joint(format!("O{k}"), rev(g, [x, 0.0], id, [0.0, 0.0]));
+            id
+        })
+        .collect();
+    if fused {
+        let len = n as f64 * d;
+        let bar = m.add_body(body(
+            "coupler",
+            [tip[0], tip[1], 0.0],
+            n as f64 * mb,
+            n as f64 * mb * len * len / 12.0,
+            [len / 2.0, 0.0],
+        ));
+        for (k, &c) in cranks.iter().enumerate() {
+            m.add_joint(format!("P{k}"), rev(c, [a, 0.0], bar, [k as f64 * d, 0.0]));
+        }
+    } else {
+        for k in 0..n {
+            let id = m.add_body(body(
+                &format!("coupler{k}"),
+                [k as f64 * d + tip[0], tip[1], 0.0],
+                mb,
+                mb * d * d / 12.0,
+                [d / 2.0, 0.0],
+            ));
+            m.add_joint(format!("L{k}"), rev(cranks[k], [a, 0.0], id, [0.0, 0.0]));
+            m.add_joint(format!("R{k}"), rev(id, [d, 0.0], cranks[k + 1], [a, 0.0]));
+        }
+    }
+    m
+}
+
+/// θ̈ = −κ cos θ, the exact motion of every crank of
+/// [`parallelogram_chain`] (couplers translating), from the energy
+/// equation in the crank angle: with n_c = n + 1 cranks of first moment
+/// m_c c and inertia J_O = J' + m_c c² about the pivot,
+/// κ = g (n_c m_c c + n m_b a) / (n_c J_O + n m_b a²).
+pub fn parallelogram_kappa(n: usize, crank: CrankMass, g: f64) -> f64 {
+    let (a, mc, mb) = (PAR_CRANK, PAR_CRANK_MASS, PAR_COUPLER_MASS);
+    let (nc, nb) = ((n + 1) as f64, n as f64);
+    let (jc, c) = crank.inertia();
+    g * (nc * mc * c + nb * mb * a) / (nc * (jc + mc * c * c) + nb * mb * a * a)
+}
+
+/// θ(t) at `times` of θ̈ = −κ cos θ from θ(0) = θ₀, θ̇(0) = 0: classical
+/// Runge–Kutta with at most 1e-4 s steps, landing on every output time
+/// (global error ~ (√κ h)⁴ ≈ 1e-13 rad over 20 s for κ ≈ 50 s⁻²).
+pub fn parallelogram_reference(kappa: f64, th0: f64, times: &[f64]) -> Vec<f64> {
+    let f = |y: [f64; 2]| [y[1], -kappa * y[0].cos()];
+    let mut y = [th0, 0.0];
+    let mut t = 0.0;
+    let mut out = Vec::with_capacity(times.len());
+    for &te in times {
+        let steps = ((te - t) / 1e-4).ceil().max(0.0) as usize;
+        if steps > 0 {
+            let h = (te - t) / steps as f64;
+            for _ in 0..steps {
+                let k1 = f(y);
+                let k2 = f([y[0] + 0.5 * h * k1[0], y[1] + 0.5 * h * k1[1]]);
+                let k3 = f([y[0] + 0.5 * h * k2[0], y[1] + 0.5 * h * k2[1]]);
+                let k4 = f([y[0] + h * k3[0], y[1] + h * k3[1]]);
+                for i in 0..2 {
+                    y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+                }
+            }
+            t = te;
+        }
+        out.push(y[0]);
+    }
+    out
+}
+
+/// Largest |θ − θ_exact| (rad) of crank 0 of a [`parallelogram_chain`]
+/// released at rest from `th0`, over the rows of `table` (channel
+/// `crank0.phi` against [`parallelogram_reference`], gravity g in m/s²).
+pub fn parallelogram_error(table: &Table, n: usize, crank: CrankMass, th0: f64, g: f64) -> f64 {
+    let want = parallelogram_reference(parallelogram_kappa(n, crank, g), th0, &table.t);
+    let th = table.channel("crank0.phi").expect("crank0.phi");
+    th.iter()
+        .zip(&want)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max)
 }

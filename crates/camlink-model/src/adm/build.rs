@@ -302,7 +302,54 @@ fn body_item(b: &BodyOut) -> Item {
         let pts = b.points.iter().map(|(n, s)| (n.clone(), Item::pair(*s)));
         t.push("points", Item::Table(pts.collect()));
     }
+    if let Some(corners) = b.body.vis.as_ref().and_then(rectangle) {
+        t.push(
+            "outline",
+            Item::List(corners.into_iter().map(Item::pair).collect()),
+        );
+    }
     t
+}
+
+/// The corners of a body's one `vis` rectangle (`loc` its centre, `size`
+/// [length, width] along the body's x and y axes; m), counter-clockwise;
+/// `None` unless `vis.shapes` holds exactly one readable rectangle.
+fn rectangle(vis: &Value) -> Option<Vec<[f64; 2]>> {
+    let number = |v: &Value| match v {
+        Value::Number(n) => n.as_f64(),
+        Value::String(s) => format::constant(s).ok(),
+        _ => None,
+    };
+    let pair = |v: Option<&Value>| -> Option<[f64; 2]> {
+        match v? {
+            Value::Array(a) if a.len() == 2 => Some([number(&a[0])?, number(&a[1])?]),
+            _ => None,
+        }
+    };
+    let shapes = match vis.get("shapes")? {
+        Value::Array(a) => a.iter().collect::<Vec<_>>(),
+        one @ Value::Object(_) => vec![one],
+        _ => return None,
+    };
+    let [shape] = shapes.as_slice() else {
+        return None;
+    };
+    let (loc, size) = (pair(shape.get("loc"))?, pair(shape.get("size"))?);
+    let (hx, hy) = (size[0].abs() / 2.0, size[1].abs() / 2.0);
+    if !(hx > 0.0
+        && hy > 0.0
+        && loc.iter().all(|v| v.is_finite())
+        && hx.is_finite()
+        && hy.is_finite())
+    {
+        return None;
+    }
+    Some(vec![
+        [loc[0] - hx, loc[1] - hy],
+        [loc[0] + hx, loc[1] - hy],
+        [loc[0] + hx, loc[1] + hy],
+        [loc[0] - hx, loc[1] + hy],
+    ])
 }
 
 /// The `[analysis]` table of a `.acf`.

@@ -110,6 +110,10 @@ pub struct Body {
     /// [ẋ, ẏ, φ̇] (m/s, m/s, rad/s).
     #[serde(default)]
     pub qd0: Option<[Number; 3]>,
+    /// Drawing data; its rectangles (`shapes[]` with `loc`, `size`) become
+    /// the body's outline.
+    #[serde(default)]
+    pub vis: Option<serde_json::Value>,
 }
 
 /// `AbsoluteX`, `AbsoluteY`: x (or y) of `sP1` on `body1` equals `fun(t)`.
