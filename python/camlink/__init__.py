@@ -16,6 +16,7 @@ from camlink.builder import Mechanism
 from camlink.errors import ERROR_KINDS, WARNING_KINDS, RunWarning
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
+from camlink.study import monte_carlo, optimize, sweep
 from camlink.warn import CamlinkWarning, DesignWarning, LiftOffWarning, NearSingularWarning
 
 __all__ = [
@@ -37,8 +38,11 @@ __all__ = [
     "json_schema",
     "load",
     "loads",
+    "monte_carlo",
+    "optimize",
     "plot",
     "svaj",
+    "sweep",
 ]
 
 #: Picture functions, imported on first use (they load matplotlib).
