@@ -151,6 +151,7 @@ def run_batch(
     threads: int | None = None,
     time_limit: float | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[str], list[str]]: ...
+def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]

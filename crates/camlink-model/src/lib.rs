@@ -350,6 +350,14 @@ pub fn load_str_with(
     Recipe::resolve(&std::sync::Arc::new(recipe))
 }
 
+/// The 1-based (line, column) of the field `path` (`study.outputs.swing`)
+/// in TOML `text`, or of the deepest part of it that is present; `None`
+/// when the text is not TOML or holds none of it. Lets files read
+/// elsewhere (a study table) name the line of a bad field.
+pub fn toml_position(text: &str, path: &str) -> Option<(usize, usize)> {
+    locate::toml_span(text, path).map(|s| error::line_col(text, s.start))
+}
+
 /// A [`LoadError`] at byte `offset` of `text`.
 fn at(
     text: &str,

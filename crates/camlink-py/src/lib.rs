@@ -999,6 +999,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -85,3 +85,10 @@ pub(crate) fn run_batch<'py>(
         Ok((values.to_pyarray(py), status, errors))
     })
 }
+
+/// The 1-based (line, column) of the field `path` (e.g.
+/// `study.parameters.a`) in TOML `text`, or None.
+#[pyfunction]
+pub(crate) fn toml_position(text: &str, path: &str) -> Option<(usize, usize)> {
+    camlink_model::toml_position(text, path)
+}
