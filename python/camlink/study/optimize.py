@@ -62,6 +62,7 @@ def optimize(
     bounds) and runs one variant at a time. `options` go to the scipy
     function; `execution` arguments to `camlink.study.run_variants`
     (``output`` is not allowed: an optimisation keeps its `history`).
+    Variants run are not cached: a point scipy asks for twice runs twice.
     """
     from scipy import optimize as so
 
@@ -109,7 +110,7 @@ def optimize(
     else:
         start = np.array([float(x0[n]) for n in names]) if x0 is not None else (lo + hi) / 2
         result = so.minimize(lambda x: float(evaluate(x)[0]), start, method=method,
-                             bounds=list(zip(lo, hi, strict=True)), **opts)
+                             bounds=list(zip(lo, hi, strict=True)), options=opts)
     hist = pd.concat(history, ignore_index=True)
     ok = hist[np.isfinite(hist["objective"])]
     if ok.empty:

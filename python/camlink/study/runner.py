@@ -103,7 +103,7 @@ def run_variants(
     keys = [variant_key(recipe[0], v) for v in full]
 
     folder = None if output is None else _study_folder(Path(output))
-    done = _read_done(folder, set(keys)) if folder is not None else {}
+    done = _read_done(folder, set(keys), ["status", "error", "batch", *named]) if folder is not None else {}
     todo = [k for k, key in enumerate(keys) if key not in done]
     size = batch_size or _default_batch_size(len(todo), threads)
     if size < 1:
@@ -131,13 +131,19 @@ def run_variants(
             for batch in batches:
                 arrived(batch, _core.run_batch(model._core, [variants[k] for k in batch], spec,
                                                threads=threads, time_limit=time_limit))
-    old = pd.DataFrame.from_records(list(done.values())) if done else None
-    table = pd.concat([f for f in [old, *frames] if f is not None and len(f)], ignore_index=True) \
-        if (frames or done) else _frame([], [], [], columns, out_names,
-                                        (np.empty((0, len(out_names))), [], []))
-    order = {key: k for k, key in enumerate(keys)}
-    table["variant"] = table["key"].map(order).astype("int64")
-    table = table.sort_values("variant").drop_duplicates("variant").reset_index(drop=True)
+    # Variants found in the folder, each with its own index and values.
+    todo_set = set(todo)
+    old = [
+        _frame([k], [variants[k]], [keys[k]], columns, out_names,
+               (np.array([[float(done[keys[k]][o]) for o in out_names]]),
+                [str(done[keys[k]]["status"])], [str(done[keys[k]]["error"])]),
+               batch=str(done[keys[k]]["batch"]))
+        for k in range(len(variants)) if k not in todo_set
+    ]
+    parts = [f for f in [*old, *frames] if len(f)]
+    table = (pd.concat(parts, ignore_index=True) if parts
+             else _frame([], [], [], columns, out_names, (np.empty((0, len(out_names))), [], [])))
+    table = table.sort_values("variant", kind="stable").reset_index(drop=True)
     return table[["variant", *columns, *out_names, "status", "error", "key", "batch"]]
 
 
@@ -188,15 +194,18 @@ def _default_batch_size(n: int, threads: int | None) -> int:
 
 
 def _frame(
-    batch: list[int],
+    indices: list[int],
     variants: list[Mapping[str, float]],
     keys: list[str],
     columns: list[str],
     outputs: list[str],
     result: _BatchResult,
+    batch: str | None = None,
 ) -> pd.DataFrame:
+    """One row per variant of a batch: index, parameters, outputs, status,
+    error, key and the batch's id (the start of its first key)."""
     values, status, errors = result
-    data: dict[str, Any] = {"variant": np.asarray(batch, dtype=np.int64)}
+    data: dict[str, Any] = {"variant": np.asarray(indices, dtype=np.int64)}
     for c in columns:
         data[c] = np.array([float(v.get(c, np.nan)) for v in variants], dtype=np.float64)
     for j, name in enumerate(outputs):
@@ -204,7 +213,7 @@ def _frame(
     data["status"] = list(status)
     data["error"] = list(errors)
     data["key"] = keys
-    data["batch"] = keys[0][:12] if keys else ""
+    data["batch"] = batch if batch is not None else keys[0][:12] if keys else ""
     return pd.DataFrame(data)
 
 
@@ -218,15 +227,16 @@ def _study_folder(path: Path) -> Path:
     return path
 
 
-def _read_done(folder: Path, wanted: set[str]) -> dict[str, dict[str, Any]]:
-    """The rows already in `folder` for the keys in `wanted`."""
+def _read_done(folder: Path, wanted: set[str], needed: list[str]) -> dict[str, dict[str, Any]]:
+    """The rows already in `folder` for the keys in `wanted` that hold the
+    `needed` columns (a row of a study with other outputs runs again)."""
     done: dict[str, dict[str, Any]] = {}
     for f in sorted(folder.glob("batch-*.parquet")):
         try:
             frame = pd.read_parquet(f)
         except Exception as e:  # a partial file from a crash: run its variants again
             raise ModelError(f"{f}: cannot read this batch file ({e}); delete it to run its variants again") from None
-        if "key" not in frame.columns:
+        if "key" not in frame.columns or not set(needed) <= set(frame.columns):
             continue
         for row in frame.to_dict("records"):
             if row["key"] in wanted:

@@ -95,16 +95,16 @@ def read_study(path: str | Path) -> StudyFile:
     kind = study.get("kind", "sweep")
     if kind not in ("sweep", "monte_carlo"):
         raise where.error("study.kind", f"expected \"sweep\" or \"monte_carlo\", not {kind!r}")
-    outputs = _outputs(study.get("outputs"), where)
-    params = study.get("parameters")
-    if not isinstance(params, dict) or not params:
-        raise where.error("study.parameters", "give each parameter its values (sweep) or distribution")
     opts: dict[str, Any] = {
         "batch_size": _whole(study, "batch_size", where),
         "threads": _whole(study, "threads", where),
         "time_limit": _positive(study, "time_limit", where),
         "scheduler": _text(study, "scheduler", where),
     }
+    params = study.get("parameters")
+    if not isinstance(params, dict) or not params:
+        raise where.error("study.parameters", "give each parameter its values (sweep) or distribution")
+    outputs = _outputs(study.get("outputs"), where)
     common = {"path": path, "model": path.parent / model, "kind": kind, "outputs": outputs, **opts}
     if kind == "sweep":
         for key in ("n", "seed", "sampling"):
