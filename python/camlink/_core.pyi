@@ -22,7 +22,9 @@ __all__ = [
     "convert_adm",
     "csv_rows",
     "json_schema",
+    "run_batch",
     "time_grid",
+    "toml_position",
 ]
 
 _OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]

@@ -14,7 +14,9 @@ from camlink.study.study_file import read_study
 from camlink.study.sweep import sweep
 
 
-def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> Callable[[argparse.Namespace], int]:
+def add_parser(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> Callable[[argparse.Namespace], int]:
     """Registers the ``study`` subcommand; returns its handler."""
     p = sub.add_parser(
         "study",

@@ -203,7 +203,7 @@ def test_a_variant_past_the_time_limit_is_stopped():
 
 def test_outputs_are_checked_before_the_study_runs():
     model = camlink.load(FOUR_BAR)
-    with pytest.raises(camlink.ModelError, match="output 'swing': the run has no channel 'rocker.ph'"):
+    with pytest.raises(camlink.ModelError, match=r"output 'swing': the run has no channel 'rocker\.ph'"):
         camlink.sweep(model, {"a": [0.1]}, {"swing": range_of("rocker.ph")})
     with pytest.raises(camlink.ModelError, match=r"outputs.swing.kind: unknown output kind 'rnage'"):
         camlink.sweep(model, {"a": [0.1]}, {"swing": {"kind": "rnage", "channel": "rocker.phi"}})
@@ -217,7 +217,8 @@ def test_grid_and_zip_and_transmission_angle():
     model = camlink.load(FOUR_BAR)
     out = {"mu": least_transmission_angle("coupler", "rocker")}
     grid = camlink.sweep(model, {"a": [0.1, 0.12], "c": [0.3, 0.31]}, out)
-    assert list(zip(grid["a"], grid["c"], strict=True)) == [(0.1, 0.3), (0.1, 0.31), (0.12, 0.3), (0.12, 0.31)]
+    pairs = [(0.1, 0.3), (0.1, 0.31), (0.12, 0.3), (0.12, 0.31)]
+    assert list(zip(grid["a"], grid["c"], strict=True)) == pairs
     zipped = camlink.sweep(model, {"a": [0.1, 0.12], "c": [0.3, 0.31]}, out, mode="zip")
     assert list(zip(zipped["a"], zipped["c"], strict=True)) == [(0.1, 0.3), (0.12, 0.31)]
     # The transmission angle by the cosine law, least where the crank
@@ -328,7 +329,8 @@ def test_a_monte_carlo_study_file(tmp_path, capsys):
 )
 def test_study_file_errors_name_the_line_and_field(tmp_path, body, where):
     study = tmp_path / "study.toml"
-    study.write_text(f'[study]\nmodel = "{FOUR_BAR}"\nkind = "sweep"\n\n[study.parameters]\na = [0.1]\n{body}')
+    head = f'[study]\nmodel = "{FOUR_BAR}"\nkind = "sweep"\n\n[study.parameters]\na = [0.1]\n'
+    study.write_text(head + body)
     with pytest.raises(camlink.ModelError, match=where):
         read_study(study)
 
@@ -337,9 +339,11 @@ def test_study_file_errors_in_parameters(tmp_path, capsys):
     study = tmp_path / "study.toml"
     study.write_text(
         f'[study]\nmodel = "{FOUR_BAR}"\nkind = "monte_carlo"\nn = 4\n[study.parameters]\n'
-        'a = { dist = "__import__", loc = 1 }\n[study.outputs]\ns = { kind = "range", channel = "rocker.phi" }\n'
+        'a = { dist = "__import__", loc = 1 }\n'
+        '[study.outputs]\ns = { kind = "range", channel = "rocker.phi" }\n'
     )
-    with pytest.raises(camlink.ModelError, match=r"study.toml:6:\d+: study.parameters.a.dist: '__import__' is not"):
+    where = r"study.toml:6:\d+: study.parameters.a.dist: '__import__' is not"
+    with pytest.raises(camlink.ModelError, match=where):
         read_study(study)
     study.write_text(f'[study]\nmodel = "{FOUR_BAR}"\nthreads = 0\n')
     assert main(["study", str(study), "-o", str(tmp_path / "x")]) == 2

@@ -9,6 +9,7 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Iterable
 
 import numpy as np
 import pandas as pd
@@ -37,7 +38,7 @@ def client():
 
 def test_dask_and_local_cores_give_identical_results(client, tmp_path):
     model = camlink.load(FOUR_BAR)
-    values = {"a": np.linspace(0.08, 0.14, 12), "c": [0.3, 0.31]}
+    values: dict[str, Iterable[float]] = {"a": np.linspace(0.08, 0.14, 12), "c": [0.3, 0.31]}
     local = camlink.sweep(model, values, OUTPUTS, batch_size=5)
     out = tmp_path / "dask.parquet"
     on_dask = camlink.sweep(model, values, OUTPUTS, batch_size=5, client=client, output=out)
@@ -46,11 +47,16 @@ def test_dask_and_local_cores_give_identical_results(client, tmp_path):
     # Run again: everything is in the folder, no batch is sent.
     sent: list[object] = []
     submit = client.submit
-    client.submit = lambda *a, **k: sent.append(a) or submit(*a, **k)  # type: ignore[method-assign]
+
+    def spy(*a, **k):
+        sent.append(a)
+        return submit(*a, **k)
+
+    client.submit = spy
     try:
         again = camlink.sweep(model, values, OUTPUTS, batch_size=5, client=client, output=out)
     finally:
-        client.submit = submit  # type: ignore[method-assign]
+        client.submit = submit
     pd.testing.assert_frame_equal(again, on_dask)
     assert sent == []
 

@@ -160,7 +160,10 @@ f = "a*t"
         let base = crate::load_str(FILE, Format::Toml, "arm.toml").unwrap();
         let e = base.with_parameters(&[("aa".into(), 1.0)]).unwrap_err();
         let text = e.to_string();
-        assert!(text.starts_with("arm.toml: parameters: no parameter named 'aa'"), "{text}");
+        assert!(
+            text.starts_with("arm.toml: parameters: no parameter named 'aa'"),
+            "{text}"
+        );
         assert!(text.contains("did you mean 'a'"), "{text}");
     }
 

@@ -5,8 +5,8 @@ use std::time::Duration;
 
 use camlink_model::Loaded;
 use camlink_study::{BatchSettings, Reduction};
-use numpy::{PyArray2, ToPyArray};
 use numpy::ndarray::Array2;
+use numpy::{PyArray2, ToPyArray};
 use pyo3::prelude::*;
 
 use crate::{guard, model_error, Model, ModelError};

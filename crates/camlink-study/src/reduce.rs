@@ -52,7 +52,9 @@ impl Reduction {
         })?;
         if let Reduction::At { time, .. } = &r {
             if !time.is_finite() {
-                return Err(format!("output '{name}': time must be a finite number ({time})"));
+                return Err(format!(
+                    "output '{name}': time must be a finite number ({time})"
+                ));
             }
         }
         Ok(r)
@@ -157,7 +159,7 @@ impl Reducer {
                 Reduction::FirstLiftOff { joint } => Ok(summary
                     .lift_off
                     .iter()
-                    .filter(|l| joint.as_ref().map_or(true, |j| &l.joint == j))
+                    .filter(|l| joint.as_ref().is_none_or(|j| &l.joint == j))
                     .map(|l| l.start.time)
                     .fold(f64::NAN, f64::min)),
                 _ => Ok(s.value),
@@ -167,9 +169,9 @@ impl Reducer {
 
     fn check_deadline(&self) -> Result<(), Stop> {
         match self.deadline {
-            Some(d) if std::time::Instant::now() > d => {
-                Err(Stop("the variant took longer than the study's time limit".into()))
-            }
+            Some(d) if std::time::Instant::now() > d => Err(Stop(
+                "the variant took longer than the study's time limit".into(),
+            )),
             _ => Ok(()),
         }
     }
@@ -219,7 +221,11 @@ impl Sink for Reducer {
             let v = |k: usize| values[s.columns[k]];
             match &s.reduction {
                 Reduction::MaxAbs { .. } | Reduction::PeakEffort { .. } => {
-                    s.value = if first { v(0).abs() } else { s.value.max(v(0).abs()) };
+                    s.value = if first {
+                        v(0).abs()
+                    } else {
+                        s.value.max(v(0).abs())
+                    };
                 }
                 Reduction::Max { .. } | Reduction::MaxPressureAngle { .. } => {
                     s.value = if first { v(0) } else { s.value.max(v(0)) };
@@ -318,13 +324,19 @@ mod tests {
     #[test]
     fn unknown_channel_kind_and_field_are_named() {
         let e = reduce(&[("s", r#"{"kind": "range", "channel": "c.phi"}"#)], &ROWS).unwrap_err();
-        assert!(e.starts_with("output 's': the run has no channel 'c.phi'"), "{e}");
+        assert!(
+            e.starts_with("output 's': the run has no channel 'c.phi'"),
+            "{e}"
+        );
         let e = reduce(&[("s", r#"{"kind": "rnage", "channel": "a.phi"}"#)], &ROWS).unwrap_err();
         assert!(e.starts_with("output 's': unknown variant `rnage`"), "{e}");
         let e = reduce(&[("s", r#"{"kind": "max", "chanel": "a.phi"}"#)], &ROWS).unwrap_err();
         assert!(e.contains("chanel"), "{e}");
-        let e = reduce(&[("s", r#"{"kind": "at", "channel": "a.phi", "time": 5}"#)], &ROWS)
-            .unwrap_err();
+        let e = reduce(
+            &[("s", r#"{"kind": "at", "channel": "a.phi", "time": 5}"#)],
+            &ROWS,
+        )
+        .unwrap_err();
         assert_eq!(e, "output 's': time 5 s is outside the run (0 to 1 s)");
     }
 }

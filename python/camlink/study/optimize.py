@@ -94,7 +94,7 @@ def optimize(
         values = np.full(len(table), np.inf)
         for k, row in enumerate(table.to_dict("records")):
             if row["status"] == "ok":
-                v = float(objective(row))
+                v = float(objective({str(c): x for c, x in row.items()}))
                 values[k] = v if np.isfinite(v) else np.inf
         table = table.drop(columns=["variant", "key", "batch"]).assign(objective=values)
         history.append(table)

@@ -118,7 +118,9 @@ def first_lift_off(joint: str | None = None) -> Output:
     return Output("first_lift_off", () if joint is None else (("joint", joint),))
 
 
-def parse_outputs(outputs: Mapping[str, Output | Mapping[str, Any]], where: str = "outputs") -> dict[str, Output]:
+def parse_outputs(
+    outputs: Mapping[str, Output | Mapping[str, Any]], where: str = "outputs"
+) -> dict[str, Output]:
     """Named outputs from `Output` values or plain tables such as
     ``{"kind": "range", "channel": "rocker.phi"}``; an error names the
     output and the field at fault (`where` prefixes it)."""

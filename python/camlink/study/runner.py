@@ -234,13 +234,15 @@ def _read_done(folder: Path, wanted: set[str], needed: list[str]) -> dict[str, d
     for f in sorted(folder.glob("batch-*.parquet")):
         try:
             frame = pd.read_parquet(f)
-        except Exception as e:  # a partial file from a crash: run its variants again
-            raise ModelError(f"{f}: cannot read this batch file ({e}); delete it to run its variants again") from None
+        except Exception as e:  # batch files are renamed whole: this one was damaged
+            raise ModelError(
+                f"{f}: cannot read this batch file ({e}); delete it to run its variants again"
+            ) from None
         if "key" not in frame.columns or not set(needed) <= set(frame.columns):
             continue
         for row in frame.to_dict("records"):
             if row["key"] in wanted:
-                done[str(row["key"])] = row
+                done[str(row["key"])] = {str(k): v for k, v in row.items()}
     return done
 
 

@@ -88,7 +88,8 @@ def read_study(path: str | Path) -> StudyFile:
         raise ModelError(f"{path}: no [study] table; a study file names its model in [study] model = \"...\"")
     for key in study:
         if key not in _KEYS:
-            raise where.error(f"study.{key}", f"unknown key (the keys of [study]: {', '.join(sorted(_KEYS))})")
+            keys = ", ".join(sorted(_KEYS))
+            raise where.error(f"study.{key}", f"unknown key (the keys of [study]: {keys})")
     model = study.get("model")
     if not isinstance(model, str) or not model:
         raise where.error("study.model", "give the model file, e.g. model = \"four_bar.toml\"")

@@ -4,7 +4,7 @@ lists of values taken together."""
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterable, Mapping
 from typing import Any, Literal
 
 import pandas as pd
@@ -18,7 +18,7 @@ __all__ = ["sweep", "sweep_variants"]
 
 
 def sweep_variants(
-    values: Mapping[str, Sequence[float]], mode: Literal["grid", "zip"] = "grid"
+    values: Mapping[str, Iterable[float]], mode: Literal["grid", "zip"] = "grid"
 ) -> list[dict[str, float]]:
     """The parameter sets of a sweep: every combination of the lists
     (``"grid"``, the last name varying fastest), or the i-th value of each
@@ -46,7 +46,7 @@ def sweep_variants(
 
 def sweep(
     model: Model,
-    values: Mapping[str, Sequence[float]],
+    values: Mapping[str, Iterable[float]],
     outputs: Mapping[str, Output | Mapping[str, Any]],
     *,
     mode: Literal["grid", "zip"] = "grid",
