@@ -5,7 +5,11 @@ files and `camlink study`."""
 
 from __future__ import annotations
 
+import os
 import pickle
+import signal
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -365,3 +369,21 @@ def test_a_model_with_a_python_force_cannot_be_studied():
 
 def test_study_files_are_found(tmp_path):
     assert Path(ROOT / "examples" / "study_four_bar.toml").is_file()
+
+
+def test_ctrl_c_stops_a_running_batch_at_once(tmp_path):
+    # 400 slow variants (20,000 steps each) in one batch on one thread: many
+    # seconds of work; Ctrl-C after 0.3 s stops the runs at their next step.
+    text = FOUR_BAR.read_text().replace("step = 0.005", "step = 0.0001")
+    model = camlink.loads(text, "toml", str(FOUR_BAR))
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        camlink.sweep(model, {"a": np.linspace(0.08, 0.14, 400)}, {"s": range_of("rocker.phi")},
+                      threads=1, batch_size=400, output=tmp_path / "s.parquet")
+    elapsed = time.monotonic() - start
+    timer.join()
+    assert elapsed < 2.0, elapsed
+    # Nothing of the stopped batch was written.
+    assert list((tmp_path / "s.parquet").glob("batch-*")) == []

@@ -1,6 +1,8 @@
 //! Bindings of camlink studies: model variants and batched runs.
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{mpsc, Arc};
 use std::time::Duration;
 
 use camlink_model::Loaded;
@@ -64,13 +66,31 @@ pub(crate) fn run_batch<'py>(
                 v
             })
             .collect();
+        let stop = Arc::new(AtomicBool::new(false));
         let settings = BatchSettings {
             threads,
             time_limit,
+            stop: Some(Arc::clone(&stop)),
         };
         let base = &model.loaded;
-        let outcomes = py
-            .detach(|| camlink_study::run_batch(base, &variants, &outputs, &settings))
+        let (variants, declared) = (&variants, &outputs);
+        let (outcomes, interrupted) = py.detach(|| {
+            std::thread::scope(|s| {
+                let (done, finished) = mpsc::channel::<()>();
+                let batch = s.spawn(move || {
+                    let out = camlink_study::run_batch(base, variants, declared, &settings);
+                    let _ = done.send(());
+                    out
+                });
+                let interrupted = watch_signals(&finished, &stop);
+                (batch.join(), interrupted)
+            })
+        });
+        if let Some(e) = interrupted {
+            return Err(e);
+        }
+        let outcomes = outcomes
+            .map_err(crate::internal_error)?
             .map_err(ModelError::new_err)?;
         let mut values = Array2::<f64>::from_elem((outcomes.len(), outputs.len()), f64::NAN);
         let mut status = Vec::with_capacity(outcomes.len());
@@ -84,6 +104,23 @@ pub(crate) fn run_batch<'py>(
         }
         Ok((values.to_pyarray(py), status, errors))
     })
+}
+
+/// How often a running batch looks for Ctrl-C and other signals.
+const SIGNAL_INTERVAL: Duration = Duration::from_millis(50);
+
+/// Runs Python's signal handlers every [`SIGNAL_INTERVAL`] until the
+/// batch says it has `finished`; when one raises (Ctrl-C), sets `stop` so
+/// that the batch ends at the next step of each run, and returns the
+/// exception.
+fn watch_signals(finished: &mpsc::Receiver<()>, stop: &AtomicBool) -> Option<PyErr> {
+    while let Err(mpsc::RecvTimeoutError::Timeout) = finished.recv_timeout(SIGNAL_INTERVAL) {
+        if let Err(e) = Python::attach(|py| py.check_signals()) {
+            stop.store(true, Ordering::Relaxed);
+            return Some(e);
+        }
+    }
+    None
 }
 
 /// The 1-based (line, column) of the field `path` (e.g.

@@ -11,6 +11,8 @@ mod analysis;
 pub mod reduce;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use camlink_model::Loaded;
@@ -35,6 +37,9 @@ pub enum Status {
     OutputError,
     /// A bug in camlink (a caught panic).
     InternalError,
+    /// The batch was stopped before the variant finished
+    /// ([`BatchSettings::stop`]); its outcome is not a result.
+    Stopped,
 }
 
 impl Status {
@@ -46,6 +51,7 @@ impl Status {
             Status::AnalysisError => "analysis_error",
             Status::OutputError => "output_error",
             Status::InternalError => "internal_error",
+            Status::Stopped => "stopped",
         }
     }
 }
@@ -68,6 +74,10 @@ pub struct BatchSettings {
     /// Wall time allowed per variant; a variant past it is stopped and
     /// recorded as an analysis error.
     pub time_limit: Option<Duration>,
+    /// Set from another thread to stop the batch (Ctrl-C): the runs going
+    /// on stop at their next step and the variants not started are skipped,
+    /// each recorded as [`Status::Stopped`].
+    pub stop: Option<Arc<AtomicBool>>,
 }
 
 /// Runs every parameter set of `variants` (name, value pairs) on `base`
@@ -83,7 +93,7 @@ pub fn run_batch(
         variants
             .par_iter()
             .with_max_len(1)
-            .map(|v| run_one(base, v, outputs, settings.time_limit))
+            .map(|v| run_one(base, v, outputs, settings))
             .collect()
     };
     match settings.threads {
@@ -103,24 +113,34 @@ pub fn run_one(
     base: &Loaded,
     values: &[(String, f64)],
     outputs: &[(String, Reduction)],
-    time_limit: Option<Duration>,
+    settings: &BatchSettings,
 ) -> Outcome {
     let failed = |status: Status, error: String| Outcome {
         values: vec![f64::NAN; outputs.len()],
         status,
         error,
     };
+    let stopped = || {
+        settings
+            .stop
+            .as_ref()
+            .is_some_and(|s| s.load(Ordering::Relaxed))
+    };
+    if stopped() {
+        return failed(Status::Stopped, "the batch was stopped".into());
+    }
     let result = catch_unwind(AssertUnwindSafe(|| {
         let model = match base.with_parameters(values) {
             Ok(m) => m,
             Err(e) => return failed(Status::ModelError, e.to_string()),
         };
-        let deadline = time_limit.map(|d| Instant::now() + d);
-        let mut reducer = Reducer::new(outputs, deadline);
+        let deadline = settings.time_limit.map(|d| Instant::now() + d);
+        let mut reducer = Reducer::new(outputs, deadline, settings.stop.clone());
         let summary = match run_file_analysis(&model, &mut reducer) {
             Ok(s) => s,
             Err(e) => {
                 return match reducer.missing() {
+                    _ if stopped() => failed(Status::Stopped, "the batch was stopped".into()),
                     Some(m) => failed(Status::OutputError, m.to_string()),
                     None => failed(Status::AnalysisError, e),
                 };

@@ -7,6 +7,8 @@
 //! writes is evaluated as code.
 
 use std::f64::consts::{FRAC_PI_2, PI};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 
 use camlink_core::run::{Sink, Stop, Summary};
 use serde::Deserialize;
@@ -105,11 +107,18 @@ pub struct Reducer {
     last_t: f64,
     /// Checked at every row and tick: the run stops once it is past.
     deadline: Option<std::time::Instant>,
+    /// Checked likewise: the run stops once it is set.
+    stop: Option<Arc<AtomicBool>>,
 }
 
 impl Reducer {
-    /// A reducer for `outputs`; `deadline` stops a run that takes too long.
-    pub fn new(outputs: &[(String, Reduction)], deadline: Option<std::time::Instant>) -> Self {
+    /// A reducer for `outputs`; `deadline` stops a run that takes too
+    /// long, `stop` one that another thread stops.
+    pub fn new(
+        outputs: &[(String, Reduction)],
+        deadline: Option<std::time::Instant>,
+        stop: Option<Arc<AtomicBool>>,
+    ) -> Self {
         let slots = outputs
             .iter()
             .map(|(name, r)| Slot {
@@ -128,6 +137,7 @@ impl Reducer {
             rows: 0,
             last_t: f64::NAN,
             deadline,
+            stop,
         }
     }
 
@@ -168,6 +178,13 @@ impl Reducer {
     }
 
     fn check_deadline(&self) -> Result<(), Stop> {
+        if self
+            .stop
+            .as_ref()
+            .is_some_and(|s| s.load(Ordering::Relaxed))
+        {
+            return Err(Stop("the batch was stopped".into()));
+        }
         match self.deadline {
             Some(d) if std::time::Instant::now() > d => Err(Stop(
                 "the variant took longer than the study's time limit".into(),
@@ -276,7 +293,7 @@ mod tests {
             .iter()
             .map(|(n, j)| Ok((n.to_string(), Reduction::from_json(n, j)?)))
             .collect::<Result<_, String>>()?;
-        let mut r = Reducer::new(&outputs, None);
+        let mut r = Reducer::new(&outputs, None, None);
         r.begin(&["a.phi".into(), "b.phi".into()]);
         for (t, v) in rows {
             r.row(*t, v).map_err(|s| s.0)?;

@@ -66,6 +66,7 @@ fn one_thread_and_two_give_the_same_bits() {
         let settings = BatchSettings {
             threads: Some(threads),
             time_limit: None,
+            stop: None,
         };
         run_batch(&four_bar(), &variants, &swing(), &settings).unwrap()
     };
