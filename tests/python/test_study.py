@@ -387,3 +387,37 @@ def test_ctrl_c_stops_a_running_batch_at_once(tmp_path):
     assert elapsed < 2.0, elapsed
     # Nothing of the stopped batch was written.
     assert list((tmp_path / "s.parquet").glob("batch-*")) == []
+
+
+def test_with_parameters_recomputes_defaults_from_the_initial_placement():
+    # `absolute_x` without a value holds the point where the file places
+    # it: a variant that moves the body moves the constraint with it.
+    text = """
+[parameters]
+x0 = 0.1
+
+[[bodies]]
+name = "block"
+position = ["x0", 0]
+
+[[joints]]
+name = "hold_x"
+type = "absolute_x"
+body = "block"
+point = [0, 0]
+
+[[joints]]
+name = "hold_y"
+type = "absolute_y"
+body = "block"
+point = [0, 0]
+
+[[joints]]
+name = "square"
+type = "absolute_phi"
+body = "block"
+"""
+    base = camlink.loads(text)
+    assert base.run(t_end=0.0)["block.x"][0] == pytest.approx(0.1, abs=1e-12)
+    moved = base.with_parameters(x0=0.3)
+    assert moved.run(t_end=0.0)["block.x"][0] == pytest.approx(0.3, abs=1e-12)
