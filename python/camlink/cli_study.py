@@ -6,12 +6,7 @@ import argparse
 from collections.abc import Callable
 from pathlib import Path
 
-import pandas as pd
-
 import camlink
-from camlink.study.monte_carlo import monte_carlo
-from camlink.study.study_file import read_study
-from camlink.study.sweep import sweep
 
 
 def add_parser(
@@ -42,6 +37,12 @@ def add_parser(
 
 def run(args: argparse.Namespace) -> int:
     """Runs the study; bad input raises ModelError or OSError (exit 2)."""
+    import pandas as pd
+
+    from camlink.study.sampling import monte_carlo
+    from camlink.study.study_file import read_study
+    from camlink.study.sweeps import sweep
+
     sf = read_study(args.file)
     model = camlink.load(sf.model)
     output = Path(args.output) if args.output else Path(Path(args.file).stem + ".parquet")

@@ -2,8 +2,7 @@
 each run reduced to the outputs named, on local cores or on Dask
 (docs/studies.md)."""
 
-from camlink.study.monte_carlo import MonteCarlo, monte_carlo
-from camlink.study.optimize import Optimum, optimize
+from camlink.study.optimization import Optimum, optimize
 from camlink.study.outputs import (
     Output,
     at,
@@ -17,7 +16,8 @@ from camlink.study.outputs import (
     range_of,
 )
 from camlink.study.runner import run_variants, variant_key
-from camlink.study.sweep import sweep, sweep_variants
+from camlink.study.sampling import MonteCarlo, monte_carlo
+from camlink.study.sweeps import sweep, sweep_variants
 
 __all__ = [
     "MonteCarlo",
