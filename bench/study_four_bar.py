@@ -10,7 +10,9 @@ on one core and against the ideal, one run's time × N ÷ cores.
 
 The Python loop runs `--loop-n` variants and is scaled to N (it is linear
 in N); one run's time is the best of five single-variant batches on one
-thread, the run alone without Python in between.
+thread, the run alone without Python in between. The CPU time per variant
+(process time ÷ variants) is also printed: on a machine shared with other
+work the wall times say more about the load than about camlink.
 """
 
 from __future__ import annotations
@@ -53,14 +55,21 @@ def main() -> None:
     cores = args.threads or os.cpu_count() or 1
 
     one = min(_timed(lambda: _core.run_batch(model._core, [{"a": 0.12}], spec, threads=1)) for _ in range(5))
+    cpu = time.process_time()
+    _core.run_batch(model._core, variants[:200], spec, threads=1)
+    one_cpu = (time.process_time() - cpu) / min(200, args.n)
     ideal = one * args.n / cores
 
     def loop() -> None:
         for v in variants[: args.loop_n]:
             np.ptp(model.with_parameters(**v).run()["rocker.phi"])
 
+    cpu = time.process_time()
     py_loop = _timed(loop) * args.n / args.loop_n
+    loop_cpu = (time.process_time() - cpu) / args.loop_n
+    cpu = time.process_time()
     local = _timed(lambda: camlink.sweep(model, {"a": a}, outputs, threads=args.threads))
+    sweep_cpu = (time.process_time() - cpu) / args.n
 
     print(f"{args.n} four-bar variants of {steps} steps, {cores} cores")
     print(f"  one run (Rust, one thread)       {one * 1e3:9.3f} ms")
@@ -68,6 +77,9 @@ def main() -> None:
     print(f"  Python loop of model.run, 1 core {py_loop:9.2f} s  (measured on {args.loop_n}, scaled)")
     print(f"  camlink.sweep on local cores     {local:9.2f} s  ({local / ideal:.2f}× ideal, "
           f"{py_loop / local:.1f}× faster than the loop)")
+    # CPU time per variant does not depend on what else the machine runs.
+    print(f"  CPU per variant: one run {one_cpu * 1e3:.3f} ms, sweep {sweep_cpu * 1e3:.3f} ms, "
+          f"Python loop {loop_cpu * 1e3:.3f} ms")
     if args.scheduler:
         from distributed import Client
 
