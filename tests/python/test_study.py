@@ -421,3 +421,36 @@ body = "block"
     assert base.run(t_end=0.0)["block.x"][0] == pytest.approx(0.1, abs=1e-12)
     moved = base.with_parameters(x0=0.3)
     assert moved.run(t_end=0.0)["block.x"][0] == pytest.approx(0.3, abs=1e-12)
+
+
+def test_cam_outputs_agree_with_the_full_results():
+    # The valve example under inverse dynamics: below and above its jump
+    # speed (4554 rpm). Each reduction, computed as the rows go, equals the
+    # same number taken from the run's whole table.
+    path = ROOT / "examples" / "cam_valve_spring.toml"
+    text = path.read_text().replace("[analysis]", '[analysis]\ntype = "inverse_dynamics"')
+    model = camlink.loads(text, "toml", str(path))
+    outputs = {
+        "lift": camlink.study.first_lift_off(),
+        "lift_bucket": camlink.study.first_lift_off("bucket"),
+        "torque": camlink.study.peak_effort("motor"),
+        "force": at("bucket.normal_force", 0.003),
+    }
+    table = camlink.sweep(model, {"rpm": [3000.0, 5000.0]}, outputs)
+    assert set(table["status"]) == {"ok"}
+    with pytest.warns(camlink.LiftOffWarning):
+        full = [model.with_parameters(rpm=rpm).run() for rpm in (3000.0, 5000.0)]
+    assert np.isnan(table["lift"][0]) and full[0].lift_off.empty
+    assert table["lift"][1] == full[1].lift_off["start_time"].min() == table["lift_bucket"][1]
+    for k in range(2):
+        assert table["torque"][k] == np.max(np.abs(full[k]["motor.effort"]))
+        assert table["force"][k] == pytest.approx(np.interp(0.003, full[k].t, full[k]["bucket.normal_force"]),
+                                                  rel=1e-12)
+
+
+def test_pressure_angle_output_agrees_with_the_full_results():
+    model = camlink.load(ROOT / "examples" / "cam_circle_roller.toml")
+    table = camlink.sweep(model, {"e": [0.15, 0.2]}, {"p": camlink.study.max_pressure_angle("contact")})
+    for k, e in enumerate([0.15, 0.2]):
+        assert table["p"][k] == np.max(model.with_parameters(e=e).run()["contact.pressure_angle"])
+    assert table["p"][0] != table["p"][1]
