@@ -133,14 +133,15 @@ def run_variants(
                                                threads=threads, time_limit=time_limit))
     # Variants found in the folder, each with its own index and values.
     todo_set = set(todo)
-    old = [
-        _frame([k], [variants[k]], [keys[k]], columns, out_names,
-               (np.array([[float(done[keys[k]][o]) for o in out_names]]),
-                [str(done[keys[k]]["status"])], [str(done[keys[k]]["error"])]),
-               batch=str(done[keys[k]]["batch"]))
-        for k in range(len(variants)) if k not in todo_set
-    ]
-    parts = [f for f in [*old, *frames] if len(f)]
+    found = [k for k in range(len(variants)) if k not in todo_set]
+    rows = [done[keys[k]] for k in found]
+    old = _frame(
+        found, [variants[k] for k in found], [keys[k] for k in found], columns, out_names,
+        (np.array([[float(r[o]) for o in out_names] for r in rows]).reshape(len(rows), len(out_names)),
+         [str(r["status"]) for r in rows], [str(r["error"]) for r in rows]),
+        batch=[str(r["batch"]) for r in rows],
+    )
+    parts = [f for f in [old, *frames] if len(f)]
     table = (pd.concat(parts, ignore_index=True) if parts
              else _frame([], [], [], columns, out_names, (np.empty((0, len(out_names))), [], [])))
     table = table.sort_values("variant", kind="stable").reset_index(drop=True)
@@ -200,7 +201,7 @@ def _frame(
     columns: list[str],
     outputs: list[str],
     result: _BatchResult,
-    batch: str | None = None,
+    batch: list[str] | None = None,
 ) -> pd.DataFrame:
     """One row per variant of a batch: index, parameters, outputs, status,
     error, key and the batch's id (the start of its first key)."""
@@ -213,7 +214,7 @@ def _frame(
     data["status"] = list(status)
     data["error"] = list(errors)
     data["key"] = keys
-    data["batch"] = batch if batch is not None else keys[0][:12] if keys else ""
+    data["batch"] = batch if batch is not None else [keys[0][:12]] * len(keys)
     return pd.DataFrame(data)
 
 
