@@ -286,6 +286,11 @@ def _run_dask(
     again on another (Dask's own recovery)."""
     from distributed import Client, as_completed
 
+    # Workers may run in other folders: data files resolve against an
+    # absolute folder.
+    text, fmt, source, base_dir, allow_outside = recipe
+    folder = base_dir if base_dir is not None else os.path.dirname(source)
+    recipe = (text, fmt, source, os.path.abspath(folder or "."), allow_outside)
     own = client is None
     if client is None:
         try:
