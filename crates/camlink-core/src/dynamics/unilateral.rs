@@ -1,0 +1,749 @@
+//! Forward dynamics with unilateral cam contacts: lift-off, flight and
+//! impact (`docs/dynamics.md`, "Unilateral contacts").
+//!
+//! A `cam_follower` or `flat_follower` joint with [`Unilateral`] settings
+//! is, at every time, either
+//!
+//! - **closed**: its equations hold, as in a bilateral run, and its normal
+//!   force N (N, positive pressing, [`normal_force`]) is watched; or
+//! - **open**: its equations are released (the model integrated is the
+//!   model without that joint) and the gap g (m, [`crate::curve::distance`])
+//!   between its two features is watched.
+//!
+//! Events are located inside the step in which they happen, by bisection
+//! on the step length from the step's start, to the joint's `event_tol`
+//! (s): lift-off where N falls through zero, impact where g falls through
+//! zero. A grazing approach — g positive at both ends of a step but
+//! falling at its start and rising at its end — is caught by the cubic
+//! Hermite interpolant of (g, ġ) over the step: when its least value is
+//! negative, the step is cut there and the event located before it.
+//!
+//! At lift-off the joint opens and the integration restarts from the
+//! event. At impact the impulse of Newton's law with restitution e is
+//! applied ([`super::impact`]); the contact stays open when the follower
+//! separates, and closes (a plastic impact) when e = 0 or when the
+//! approach speed is below the joint's `rest_speed`: a follower bouncing
+//! ever lower comes to rest in finite time.
+//!
+//! Each combination of open joints is its own model (at most
+//! [`MAX_UNILATERAL`] unilateral joints, 2^k models) with its own
+//! integrator, created at the first switch to it. The full model's state
+//! is kept for the outputs: an open joint's contact parameters are those
+//! of the gap's witness points, their rates and its multipliers zero.
+//! Steps are of the fixed size `settings.step` (landing on the output
+//! times); the error-controlled mode is not used in a run with
+//! unilateral contacts.
+
+use super::impact;
+use super::integrator::{Integrator, Settings, Snapshot};
+use super::output::{self, Scratch};
+use super::system::System;
+use crate::constraint::{Constraint, Equations};
+use crate::contact::{ContactView, Contacts};
+use crate::curve::distance::{curve_gap, face_gap, outward, Gap};
+use crate::curve::Curve;
+use crate::math::{dot, perp, rot, rot_t, V2};
+use crate::model::{BodyId, Model, Unilateral};
+use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
+
+/// Most unilateral joints in one model.
+pub const MAX_UNILATERAL: usize = 6;
+
+/// What defines a unilateral joint's gap.
+#[derive(Clone, Debug)]
+enum Shape {
+    /// Curve C_i on a face of body j through `point` (body j frame, m),
+    /// `m` the face normal into the cam's side (body j frame).
+    Face { point: V2, m: V2 },
+    /// Two curves; N from the closed curve of `side` with orientation σ.
+    Curves { side: usize, sigma: f64 },
+}
+
+/// One unilateral joint and its state.
+#[derive(Clone, Debug)]
+struct Contact {
+    joint: usize,
+    bodies: [BodyId; 2],
+    cam: BodyId,
+    curves: [Option<Curve>; 2],
+    shape: Shape,
+    law: Unilateral,
+    open: bool,
+    /// The gap at the current state (open joints).
+    gap: Option<Gap>,
+    /// The flight under way.
+    flight: Option<Flight>,
+}
+
+impl Contact {
+    /// The gap at body coordinates `q`, `qd` of bodies i and j.
+    fn gap(&self, q: [[f64; 3]; 2], qd: [[f64; 3]; 2]) -> Gap {
+        let guess = self.gap.map(|g| g.params);
+        match (&self.shape, &self.curves) {
+            (Shape::Face { point, m }, [Some(ci), _]) => {
+                face_gap(ci, q, qd, *point, *m, guess.map(|g| g[0]))
+            }
+            (Shape::Curves { side, sigma }, [Some(ci), Some(cj)]) => {
+                curve_gap([ci, cj], q, qd, (*side, *sigma), guess)
+            }
+            _ => unreachable!("shapes are built with their curves"),
+        }
+    }
+
+    /// N (global unit) of the closed contact at own coordinates `own`.
+    fn normal(&self, q: [[f64; 3]; 2], own: [f64; 2]) -> V2 {
+        match (&self.shape, &self.curves) {
+            (Shape::Face { m, .. }, _) => {
+                let mg = rot(q[1][2], *m);
+                [-mg[0], -mg[1]]
+            }
+            (Shape::Curves { side, sigma }, curves) => {
+                let c = curves[*side].as_ref().expect("curve of the normal");
+                let out = rot(q[*side][2], outward(c, *sigma, own[*side]));
+                if *side == 0 {
+                    out
+                } else {
+                    [-out[0], -out[1]]
+                }
+            }
+        }
+    }
+}
+
+/// The normal force N (N) of closed contact joint `j` from its multipliers
+/// `lam` (its rows): the force on body j along N, −Φ_{r_j}ᵀλ · N.
+fn normal_force(model: &Model, j: usize, q_j: [f64; 3], lam: &[f64], n: V2) -> f64 {
+    match &model.joints[j].constraint {
+        Constraint::CamFollower(_) => dot(n, [lam[0], lam[1]]),
+        Constraint::FlatFollower(f) => dot(n, perp(rot(q_j[2], f.u_j))) * lam[0],
+        _ => f64::NAN,
+    }
+}
+
+/// Where model `mask` (bit k: unilateral joint k open) puts each
+/// coordinate and row of the full model.
+struct Layout {
+    cols: Vec<Option<usize>>,
+    rows: Vec<Option<usize>>,
+}
+
+impl Layout {
+    fn new(full: &System, sub: &System, removed: &[usize]) -> Self {
+        let (fm, sm) = (full.model, sub.model);
+        let mut cols = vec![None; full.n()];
+        let mut rows = vec![None; full.m()];
+        for b in 0..fm.bodies.len() {
+            if let (Some(a), Some(c)) = (full.asm.body_col(b), sub.asm.body_col(b)) {
+                for d in 0..3 {
+                    cols[a + d] = Some(c + d);
+                }
+            }
+        }
+        let mut k = 0;
+        for j in 0..fm.joints.len() {
+            if removed.contains(&j) {
+                continue;
+            }
+            let (a, c) = (full.asm.own_col(j), sub.asm.own_col(k));
+            for o in 0..fm.joints[j].constraint.own_count() {
+                cols[a + o] = Some(c + o);
+            }
+            for (r, s) in full.asm.rows_of(fm, j).zip(sub.asm.rows_of(sm, k)) {
+                rows[r] = Some(s);
+            }
+            k += 1;
+        }
+        Layout { cols, rows }
+    }
+}
+
+/// The model with joints `removed` taken out.
+fn without(model: &Model, removed: &[usize]) -> Model {
+    let mut m = model.clone();
+    m.joints = model
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(j, _)| !removed.contains(j))
+        .map(|(_, j)| j.clone())
+        .collect();
+    m
+}
+
+/// The unilateral joints of `model`, checked.
+fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, AnalysisError> {
+    let bad = |j: usize, what: &str| {
+        AnalysisError::new(
+            Kind::InvalidInput,
+            0.0,
+            format!("joint '{}': {what}", model.joints[j].name),
+        )
+    };
+    let mut out = Vec::new();
+    for (j, joint) in model.joints.iter().enumerate() {
+        let Some(law) = joint.unilateral else {
+            continue;
+        };
+        if joint.driver {
+            return Err(bad(j, "a driver cannot be unilateral"));
+        }
+        let Some(view) = ContactView::of(model, j) else {
+            return Err(bad(j, "only cam_follower and flat_follower joints can be unilateral"));
+        };
+        if !(0.0..=1.0).contains(&law.restitution) {
+            return Err(bad(j, "restitution must be between 0 and 1"));
+        }
+        if !(law.event_tol > 0.0 && law.rest_speed >= 0.0) {
+            return Err(bad(j, "event_tol must be positive and rest_speed not negative"));
+        }
+        let x = sys.asm.local(model, j, q, &[], 0.0);
+        let curves = [view.curve(0).cloned(), view.curve(1).cloned()];
+        let shape = match &joint.constraint {
+            Constraint::FlatFollower(f) => {
+                let Some(sigma) = f.curve_i.orientation() else {
+                    return Err(bad(j, "a unilateral flat_follower needs a closed cam curve"));
+                };
+                // m: the face normal on the side of the cam's outward normal's
+                // opposite at the initial contact.
+                let out = rot(x.q[0][2], outward(&f.curve_i, sigma, x.own[0]));
+                let nf = perp(f.u_j);
+                let s = -dot(rot_t(x.q[1][2], out), nf).signum();
+                Shape::Face {
+                    point: f.s_j,
+                    m: [s * nf[0], s * nf[1]],
+                }
+            }
+            Constraint::CamFollower(c) => match (c.curve_i.orientation(), c.curve_j.orientation()) {
+                (Some(s), _) => Shape::Curves { side: 0, sigma: s },
+                (None, Some(s)) => Shape::Curves { side: 1, sigma: s },
+                _ => return Err(bad(j, "a unilateral cam_follower needs a closed curve on one side")),
+            },
+            _ => return Err(bad(j, "only cam_follower and flat_follower joints can be unilateral")),
+        };
+        out.push(Contact {
+            joint: j,
+            bodies: view.bodies,
+            cam: view.cam(model),
+            curves,
+            shape,
+            law,
+            open: false,
+            gap: None,
+            flight: None,
+        });
+    }
+    if out.len() > MAX_UNILATERAL {
+        return Err(AnalysisError::new(
+            Kind::InvalidInput,
+            0.0,
+            format!("at most {MAX_UNILATERAL} unilateral joints in one model"),
+        ));
+    }
+    Ok(out)
+}
+
+/// What the event functions say at the end of a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Event {
+    LiftOff(usize),
+    Impact(usize),
+}
+
+/// The run's state: the full model's vectors, the models of the active
+/// sets and their integrators.
+struct Run<'a> {
+    full: System<'a>,
+    models: &'a [Model],
+    layouts: Vec<Option<Layout>>,
+    its: Vec<Option<Integrator<'a>>>,
+    settings: Settings,
+    mask: usize,
+    contacts: Vec<Contact>,
+    /// The full model's q, q̇, q̈, λ.
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+    summary: Summary,
+}
+
+impl<'a> Run<'a> {
+    fn it(&mut self) -> &mut Integrator<'a> {
+        self.its[self.mask].as_mut().expect("integrator of the active set")
+    }
+
+    fn removed(&self, mask: usize) -> Vec<usize> {
+        (0..self.contacts.len())
+            .filter(|k| mask & (1 << k) != 0)
+            .map(|k| self.contacts[k].joint)
+            .collect()
+    }
+
+    fn layout(&mut self, mask: usize) -> &Layout {
+        if self.layouts[mask].is_none() {
+            let sub = System::new(&self.models[mask]);
+            let removed = self.removed(mask);
+            self.layouts[mask] = Some(Layout::new(&self.full, &sub, &removed));
+        }
+        self.layouts[mask].as_ref().expect("layout")
+    }
+
+    /// Bodies i and j of contact `k` at the full state.
+    fn bodies(&self, k: usize) -> ([[f64; 3]; 2], [[f64; 3]; 2]) {
+        let mut q = [[0.0; 3]; 2];
+        let mut qd = [[0.0; 3]; 2];
+        for (s, b) in self.contacts[k].bodies.iter().enumerate() {
+            if let Some(c) = self.full.asm.body_col(b.0) {
+                q[s].copy_from_slice(&self.q[c..c + 3]);
+                qd[s].copy_from_slice(&self.qd[c..c + 3]);
+            }
+        }
+        (q, qd)
+    }
+
+    /// The full state from the active integrator; open joints' contact
+    /// parameters from their gaps' witnesses.
+    fn pull(&mut self) {
+        let mask = self.mask;
+        self.layout(mask);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        let it = self.its[mask].as_ref().expect("integrator");
+        for (f, c) in layout.cols.iter().enumerate() {
+            let (a, b, d) = match c {
+                Some(c) => (it.q[*c], it.qd[*c], it.qdd[*c]),
+                None => (self.q[f], 0.0, 0.0),
+            };
+            self.q[f] = a;
+            self.qd[f] = b;
+            self.qdd[f] = d;
+        }
+        for (f, r) in layout.rows.iter().enumerate() {
+            self.lambda[f] = r.map_or(0.0, |r| it.lambda[r]);
+        }
+        for k in 0..self.contacts.len() {
+            if !self.contacts[k].open {
+                self.contacts[k].gap = None;
+                continue;
+            }
+            let (q, qd) = self.bodies(k);
+            let g = self.contacts[k].gap(q, qd);
+            self.contacts[k].gap = Some(g);
+            let j = self.contacts[k].joint;
+            let o = self.full.asm.own_col(j);
+            for s in 0..self.full.model.joints[j].constraint.own_count() {
+                self.q[o + s] = g.params[s];
+            }
+        }
+    }
+
+    /// Switches to active set `mask`, restarting its integrator from the
+    /// full state at `t` with the velocity `qd` (full layout).
+    fn switch(&mut self, mask: usize, t: f64, qd: &[f64]) -> Result<(), AnalysisError> {
+        if self.its[mask].is_none() {
+            let it = Integrator::starting_at(&self.models[mask], self.settings.clone(), t)?;
+            self.its[mask] = Some(it);
+        }
+        self.layout(mask);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        let it = self.its[mask].as_mut().expect("integrator");
+        let (mut q, mut v) = (it.q.clone(), it.qd.clone());
+        for (f, c) in layout.cols.iter().enumerate() {
+            if let Some(c) = c {
+                q[*c] = self.q[f];
+                v[*c] = qd[f];
+            }
+        }
+        it.restart(t, &q, &v)?;
+        self.mask = mask;
+        self.pull();
+        Ok(())
+    }
+
+    /// The event values of contact `k` at the full state: N (closed) or g
+    /// (open).
+    fn value(&self, k: usize) -> f64 {
+        let c = &self.contacts[k];
+        if c.open {
+            return c.gap.map_or(f64::INFINITY, |g| g.gap);
+        }
+        let (q, _) = self.bodies(k);
+        let o = self.full.asm.own_col(c.joint);
+        let own = [self.q[o], self.q.get(o + 1).copied().unwrap_or(0.0)];
+        let rows = self.full.asm.rows_of(self.full.model, c.joint);
+        normal_force(self.full.model, c.joint, q[1], &self.lambda[rows], c.normal(q, own))
+    }
+
+    /// The earliest event at the current state (after a step): a closed
+    /// contact with N < 0, an open one with g < 0 while approaching.
+    fn event(&self) -> Option<Event> {
+        (0..self.contacts.len()).find_map(|k| {
+            let c = &self.contacts[k];
+            let v = self.value(k);
+            if c.open {
+                let approaching = c.gap.is_some_and(|g| g.rate < 0.0);
+                (v < 0.0 && approaching).then_some(Event::Impact(k))
+            } else {
+                (v < 0.0).then_some(Event::LiftOff(k))
+            }
+        })
+    }
+
+    /// The crossing record at time `t` of contact `k`.
+    fn crossing(&self, k: usize, t: f64) -> Crossing {
+        let cam = self.contacts[k].cam;
+        let cam_angle = self.full.asm.body_col(cam.0).map_or(0.0, |c| self.q[c + 2]);
+        Crossing { time: t, cam_angle }
+    }
+
+    /// One step of at most `h`, with the events inside it located; returns
+    /// the length stepped.
+    fn step(&mut self, h: f64, snap: &mut Snapshot) -> Result<(), AnalysisError> {
+        let gaps: Vec<Option<Gap>> = self.contacts.iter().map(|c| c.gap).collect();
+        self.it().snapshot(snap);
+        self.it().step(h)?;
+        self.pull();
+        // A grazing approach between the step's ends.
+        let mut cut = None;
+        if self.event().is_none() {
+            for (k, g0) in gaps.iter().enumerate() {
+                let (Some(g0), Some(g1)) = (g0, self.contacts[k].gap) else {
+                    continue;
+                };
+                if let Some(tau) = hermite_dip(h, [g0.gap, g0.rate, g1.gap, g1.rate]) {
+                    cut = Some(cut.map_or(tau, |c: f64| c.min(tau)));
+                }
+            }
+        }
+        let mut span = h;
+        if let Some(tau) = cut {
+            self.trial(snap, &gaps, tau)?;
+            if self.event().is_none() {
+                // The interpolant dipped, the motion did not: keep the step.
+                self.trial(snap, &gaps, h)?;
+                return Ok(());
+            }
+            span = tau;
+        }
+        if self.event().is_none() {
+            return Ok(());
+        }
+        // Bisection on the step length to the tightest event tolerance.
+        let tol = self
+            .contacts
+            .iter()
+            .map(|c| c.law.event_tol)
+            .fold(f64::INFINITY, f64::min);
+        let (mut lo, mut hi) = (0.0, span);
+        while hi - lo > tol {
+            let mid = 0.5 * (lo + hi);
+            self.trial(snap, &gaps, mid)?;
+            if self.event().is_some() {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        self.trial(snap, &gaps, hi)?;
+        match self.event() {
+            Some(Event::LiftOff(k)) => self.lift_off(k),
+            Some(Event::Impact(k)) => self.impact(k),
+            None => Ok(()),
+        }
+    }
+
+    /// From the snapshot, one step of length `h`.
+    fn trial(&mut self, snap: &Snapshot, gaps: &[Option<Gap>], h: f64) -> Result<(), AnalysisError> {
+        self.it().resume(snap);
+        for (c, g) in self.contacts.iter_mut().zip(gaps) {
+            c.gap = *g;
+        }
+        self.it().step(h)?;
+        self.pull();
+        Ok(())
+    }
+
+    /// Opens contact `k` at the current state.
+    fn lift_off(&mut self, k: usize) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        let at = self.crossing(k, t);
+        let name = self.full.model.joints[self.contacts[k].joint].name.clone();
+        let cam = self.full.model.bodies[self.contacts[k].cam.0].name.clone();
+        self.contacts[k].open = true;
+        self.contacts[k].gap = None;
+        self.contacts[k].flight = Some(Flight {
+            joint: name,
+            cam,
+            start: at,
+            end: None,
+            greatest_gap: 0.0,
+            greatest_at: at,
+        });
+        let qd = self.qd.clone();
+        self.switch(self.mask | (1 << k), t, &qd)
+    }
+
+    /// The impact of contact `k` at the current state.
+    fn impact(&mut self, k: usize) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        let gap = self.contacts[k].gap.expect("open contact has a gap");
+        let law = self.contacts[k].law;
+        let approach = -gap.rate;
+        let closes = law.restitution == 0.0 || approach < law.rest_speed;
+        let e = if closes { 0.0 } else { law.restitution };
+        // Close the contact at the impact position, then the impulse.
+        let closed = self.mask & !(1 << k);
+        let qd_before = self.qd.clone();
+        self.contacts[k].open = false;
+        self.switch(closed, t, &qd_before)?;
+        let j = self.contacts[k].joint;
+        let jm = self.removed_index(closed, j);
+        let at = self.crossing(k, t);
+        let layout = self.layouts[closed].as_ref().expect("layout");
+        let it = self.its[closed].as_mut().expect("integrator");
+        let mut v = vec![0.0; it.qd.len()];
+        for (f, c) in layout.cols.iter().enumerate() {
+            if let Some(c) = c {
+                v[*c] = qd_before[f];
+            }
+        }
+        let q = it.q.clone();
+        let (sys, aug) = it.system_and_matrix();
+        let Some(out) = impact::solve(sys, aug, jm, &q, &v, t, gap.normal, gap.rate, e) else {
+            return Err(AnalysisError::new(
+                Kind::LockUp,
+                t,
+                format!(
+                    "the impact of joint '{}' meets a singular matrix",
+                    self.full.model.joints[j].name
+                ),
+            ));
+        };
+        if let Some(mut f) = self.contacts[k].flight.take() {
+            f.end = Some(at);
+            self.summary.flights.push(f);
+        }
+        let mut impact = Impact {
+            joint: self.full.model.joints[j].name.clone(),
+            at,
+            approach,
+            separation: 0.0,
+            impulse: out.impulse,
+            closed: closes,
+        };
+        if closes {
+            it.restart(t, &q, &out.qd)?;
+            self.pull();
+        } else {
+            // The follower leaves again: a new flight from the bounce.
+            let mut qd_full = self.qd.clone();
+            for (f, c) in layout.cols.iter().enumerate() {
+                if let Some(c) = c {
+                    qd_full[f] = out.qd[*c];
+                }
+            }
+            self.contacts[k].open = true;
+            self.contacts[k].gap = None;
+            self.contacts[k].flight = Some(Flight {
+                joint: impact.joint.clone(),
+                cam: self.full.model.bodies[self.contacts[k].cam.0].name.clone(),
+                start: at,
+                end: None,
+                greatest_gap: 0.0,
+                greatest_at: at,
+            });
+            self.switch(self.mask | (1 << k), t, &qd_full)?;
+            impact.separation = self.contacts[k].gap.map_or(0.0, |g| g.rate);
+        }
+        self.summary.impacts.push(impact);
+        Ok(())
+    }
+
+    /// The index of joint `j` in the model of `mask`.
+    fn removed_index(&self, mask: usize, j: usize) -> usize {
+        let removed = self.removed(mask);
+        j - removed.iter().filter(|&&r| r < j).count()
+    }
+
+    /// Keeps the greatest gap of every flight under way.
+    fn track_flights(&mut self, t: f64) {
+        for k in 0..self.contacts.len() {
+            let at = self.crossing(k, t);
+            let c = &mut self.contacts[k];
+            if let (Some(f), Some(g)) = (c.flight.as_mut(), c.gap) {
+                if g.gap > f.greatest_gap {
+                    f.greatest_gap = g.gap;
+                    f.greatest_at = at;
+                }
+            }
+        }
+    }
+}
+
+/// The time τ ∈ (0, h) where the cubic Hermite interpolant of g with
+/// values and slopes [g₀, ġ₀, g₁, ġ₁] at 0 and h is least, when that
+/// least value is negative and the ends are not.
+fn hermite_dip(h: f64, [g0, d0, g1, d1]: [f64; 4]) -> Option<f64> {
+    if !(g0 >= 0.0 && g1 >= 0.0 && d0 < 0.0 && d1 > 0.0) {
+        return None;
+    }
+    // g(s) = a s³ + b s² + c s + d on s ∈ [0, 1], slopes scaled by h.
+    let (m0, m1) = (d0 * h, d1 * h);
+    let a = 2.0 * g0 + m0 - 2.0 * g1 + m1;
+    let b = -3.0 * g0 - 2.0 * m0 + 3.0 * g1 - m1;
+    let c = m0;
+    let value = |s: f64| ((a * s + b) * s + c) * s + g0;
+    // g′(s) = 3a s² + 2b s + c = 0, the root where g′ turns positive.
+    let s = if a.abs() < 1e-300 {
+        -c / (2.0 * b)
+    } else {
+        let disc = b * b - 3.0 * a * c;
+        if disc < 0.0 {
+            return None;
+        }
+        (-b + disc.sqrt()) / (3.0 * a)
+    };
+    (s > 0.0 && s < 1.0 && value(s) < 0.0).then_some(s * h)
+}
+
+/// Forward dynamics of a model with unilateral contacts, output as
+/// [`super::integrator::run`], with the channels `<joint>.gap` (m) and
+/// `<joint>.state` (1 closed, 0 open) of every unilateral joint after the
+/// others, and the flights and impacts in the summary.
+pub fn run(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let t0 = times.first().copied().unwrap_or(0.0);
+    let first = Integrator::starting_at(model, settings.clone(), t0)?;
+    let mut contacts = contacts(model, &first.sys, &first.q)?;
+    let k = contacts.len();
+    for c in &mut contacts {
+        c.gap = None;
+    }
+    let all: Vec<usize> = contacts.iter().map(|c| c.joint).collect();
+    let models: Vec<Model> = (0..1usize << k)
+        .map(|mask| {
+            let removed: Vec<usize> = (0..k)
+                .filter(|b| mask & (1 << b) != 0)
+                .map(|b| all[b])
+                .collect();
+            without(model, &removed)
+        })
+        .collect();
+    let full = System::new(model);
+    let (n, m) = (full.n(), full.m());
+    let mut r = Run {
+        full,
+        models: &models,
+        layouts: (0..1 << k).map(|_| None).collect(),
+        its: (0..1 << k).map(|_| None).collect(),
+        settings: settings.clone(),
+        mask: 0,
+        contacts,
+        q: first.q.clone(),
+        qd: first.qd.clone(),
+        qdd: vec![0.0; n],
+        lambda: vec![0.0; m],
+        summary: Summary::default(),
+    };
+    drop(first);
+    r.its[0] = Some(Integrator::starting_at(&models[0], settings.clone(), t0)?);
+    r.pull();
+    // A contact that pulls at the start opens at once.
+    while let Some(Event::LiftOff(k)) = r.event() {
+        r.lift_off(k)?;
+    }
+    let view = Contacts::new(model);
+    let mut names = run::channels(model, points);
+    let nk = names.len();
+    names.extend(output::channels(model));
+    let nd = names.len();
+    for c in &r.contacts {
+        let name = &model.joints[c.joint].name;
+        names.push(format!("{name}.gap"));
+        names.push(format!("{name}.state"));
+    }
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let mut scratch = Scratch::new(&r.full);
+    let mut snap = Snapshot::default();
+    let h_max = settings.step;
+    for (i, &t) in times.iter().enumerate() {
+        if i > 0 {
+            if t <= times[i - 1] || t.is_nan() {
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {}", times[i - 1]),
+                ));
+            }
+            let done = (4.0 * f64::EPSILON * t.abs()).max(1e-12 * h_max.min(t.abs()));
+            while t - r.it().t > done {
+                sink.tick().map_err(|s| s.at(t))?;
+                let left = t - r.it().t;
+                let h = if left <= h_max * (1.0 + 1e-9) { left } else { h_max };
+                r.step(h, &mut snap)?;
+                let now = r.it().t;
+                r.track_flights(now);
+            }
+        }
+        r.pull();
+        run::fill_outputs(
+            model,
+            &r.full.asm,
+            &view,
+            [&r.q, &r.qd, &r.qdd],
+            points,
+            &mut values[..nk],
+        );
+        let tr = r.it().t;
+        output::fill(&r.full, &mut scratch, &r.q, &r.qd, &r.lambda, tr, &mut values[nk..nd]);
+        // Drift of the equations in force (an open joint's are released).
+        let it = r.its[r.mask].as_ref().expect("integrator");
+        let drift = drift(&it.sys, &it.q, &it.qd, tr);
+        values[nd - 2] = drift[0];
+        values[nd - 1] = drift[1];
+        for (c, out) in r.contacts.iter().zip(values[nd..].chunks_mut(2)) {
+            out[0] = c.gap.map_or(0.0, |g| g.gap);
+            out[1] = if c.open { 0.0 } else { 1.0 };
+        }
+        sink.row(t, &values).map_err(|s| s.at(t))?;
+    }
+    // Flights under way at the end, then the solver counts of every model.
+    let mut summary = std::mem::take(&mut r.summary);
+    for c in &mut r.contacts {
+        if let Some(f) = c.flight.take() {
+            summary.flights.push(f);
+        }
+    }
+    summary.flights.sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
+    for it in r.its.iter().flatten() {
+        summary.steps += it.summary.steps;
+        summary.newton_iterations += it.summary.newton_iterations;
+        summary.factorizations += it.summary.factorizations;
+        for w in &it.summary.warnings {
+            if !summary.warnings.contains(w) {
+                summary.warnings.push(w.clone());
+            }
+        }
+    }
+    Ok(summary)
+}
+
+/// max |Φ| and max |Φ_q q̇ − ν| of system `s`.
+fn drift(s: &System, q: &[f64], qd: &[f64], t: f64) -> [f64; 2] {
+    let m = s.m();
+    let mut phi = vec![0.0; m];
+    let mut nu = vec![0.0; m];
+    s.asm.phi(s.model, q, t, &mut phi);
+    s.asm.nu(s.model, q, t, &mut nu);
+    for v in nu.iter_mut() {
+        *v = -*v;
+    }
+    s.asm.jacobian(s.model, q, t, |r, c, v| nu[r] += v * qd[c]);
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    [max(&phi), max(&nu)]
+}
