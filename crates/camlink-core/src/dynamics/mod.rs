@@ -22,6 +22,7 @@
 //!   [`unilateral`] and the impact law in [`impact`].
 
 pub mod contact_force;
+pub mod impact;
 pub mod integrator;
 pub mod inverse;
 pub mod mass;
@@ -32,4 +33,3 @@ pub mod redundant;
 pub mod statics;
 pub mod system;
 pub mod unilateral;
-pub mod impact;

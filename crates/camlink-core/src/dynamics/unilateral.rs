@@ -42,9 +42,13 @@ use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
 use crate::curve::distance::{curve_gap, face_gap, outward, Gap};
 use crate::curve::Curve;
-use crate::math::{dot, perp, rot, rot_t, V2};
+use crate::math::{dot, perp, point, rot, sub, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
+
+/// A unilateral contact whose gap at the given placement exceeds this
+/// (m) starts open; a smaller one is closed by the assembly.
+pub const OPEN_AT_START: f64 = 1e-6;
 
 /// Most unilateral joints in one model.
 pub const MAX_UNILATERAL: usize = 6;
@@ -170,6 +174,15 @@ fn without(model: &Model, removed: &[usize]) -> Model {
     m
 }
 
+/// The mean of 64 samples of a curve (body frame, m).
+fn sample_mean(c: &Curve) -> V2 {
+    let (s0, s1) = c.range();
+    (0..64).fold([0.0; 2], |m, k| {
+        let p = c.jet(s0 + (s1 - s0) * k as f64 / 64.0).p;
+        [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
+    })
+}
+
 /// The unilateral joints of `model`, checked.
 fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, AnalysisError> {
     let bad = |j: usize, what: &str| {
@@ -188,37 +201,62 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
             return Err(bad(j, "a driver cannot be unilateral"));
         }
         let Some(view) = ContactView::of(model, j) else {
-            return Err(bad(j, "only cam_follower and flat_follower joints can be unilateral"));
+            return Err(bad(
+                j,
+                "only cam_follower and flat_follower joints can be unilateral",
+            ));
         };
         if !(0.0..=1.0).contains(&law.restitution) {
             return Err(bad(j, "restitution must be between 0 and 1"));
         }
         if !(law.event_tol > 0.0 && law.rest_speed >= 0.0) {
-            return Err(bad(j, "event_tol must be positive and rest_speed not negative"));
+            return Err(bad(
+                j,
+                "event_tol must be positive and rest_speed not negative",
+            ));
         }
         let x = sys.asm.local(model, j, q, &[], 0.0);
         let curves = [view.curve(0).cloned(), view.curve(1).cloned()];
         let shape = match &joint.constraint {
             Constraint::FlatFollower(f) => {
-                let Some(sigma) = f.curve_i.orientation() else {
-                    return Err(bad(j, "a unilateral flat_follower needs a closed cam curve"));
-                };
-                // m: the face normal on the side of the cam's outward normal's
-                // opposite at the initial contact.
-                let out = rot(x.q[0][2], outward(&f.curve_i, sigma, x.own[0]));
+                if f.curve_i.orientation().is_none() {
+                    return Err(bad(
+                        j,
+                        "a unilateral flat_follower needs a closed cam curve",
+                    ));
+                }
+                // m: the face normal on the side of the cam's mean point.
+                let cam_mean = point(x.q[0], sample_mean(&f.curve_i));
+                let face = point(x.q[1], f.s_j);
                 let nf = perp(f.u_j);
-                let s = -dot(rot_t(x.q[1][2], out), nf).signum();
+                let s = if dot(rot(x.q[1][2], nf), sub(cam_mean, face)) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
                 Shape::Face {
                     point: f.s_j,
                     m: [s * nf[0], s * nf[1]],
                 }
             }
-            Constraint::CamFollower(c) => match (c.curve_i.orientation(), c.curve_j.orientation()) {
-                (Some(s), _) => Shape::Curves { side: 0, sigma: s },
-                (None, Some(s)) => Shape::Curves { side: 1, sigma: s },
-                _ => return Err(bad(j, "a unilateral cam_follower needs a closed curve on one side")),
-            },
-            _ => return Err(bad(j, "only cam_follower and flat_follower joints can be unilateral")),
+            Constraint::CamFollower(c) => {
+                match (c.curve_i.orientation(), c.curve_j.orientation()) {
+                    (Some(s), _) => Shape::Curves { side: 0, sigma: s },
+                    (None, Some(s)) => Shape::Curves { side: 1, sigma: s },
+                    _ => {
+                        return Err(bad(
+                            j,
+                            "a unilateral cam_follower needs a closed curve on one side",
+                        ))
+                    }
+                }
+            }
+            _ => {
+                return Err(bad(
+                    j,
+                    "only cam_follower and flat_follower joints can be unilateral",
+                ))
+            }
         };
         out.push(Contact {
             joint: j,
@@ -269,7 +307,9 @@ struct Run<'a> {
 
 impl<'a> Run<'a> {
     fn it(&mut self) -> &mut Integrator<'a> {
-        self.its[self.mask].as_mut().expect("integrator of the active set")
+        self.its[self.mask]
+            .as_mut()
+            .expect("integrator of the active set")
     }
 
     fn removed(&self, mask: usize) -> Vec<usize> {
@@ -370,7 +410,13 @@ impl<'a> Run<'a> {
         let o = self.full.asm.own_col(c.joint);
         let own = [self.q[o], self.q.get(o + 1).copied().unwrap_or(0.0)];
         let rows = self.full.asm.rows_of(self.full.model, c.joint);
-        normal_force(self.full.model, c.joint, q[1], &self.lambda[rows], c.normal(q, own))
+        normal_force(
+            self.full.model,
+            c.joint,
+            q[1],
+            &self.lambda[rows],
+            c.normal(q, own),
+        )
     }
 
     /// The earliest event at the current state (after a step): a closed
@@ -452,7 +498,12 @@ impl<'a> Run<'a> {
     }
 
     /// From the snapshot, one step of length `h`.
-    fn trial(&mut self, snap: &Snapshot, gaps: &[Option<Gap>], h: f64) -> Result<(), AnalysisError> {
+    fn trial(
+        &mut self,
+        snap: &Snapshot,
+        gaps: &[Option<Gap>],
+        h: f64,
+    ) -> Result<(), AnalysisError> {
         self.it().resume(snap);
         for (c, g) in self.contacts.iter_mut().zip(gaps) {
             c.gap = *g;
@@ -460,6 +511,19 @@ impl<'a> Run<'a> {
         self.it().step(h)?;
         self.pull();
         Ok(())
+    }
+
+    /// A new flight of contact `k` from `at`.
+    fn flight(&self, k: usize, at: Crossing) -> Flight {
+        let model = self.full.model;
+        Flight {
+            joint: model.joints[self.contacts[k].joint].name.clone(),
+            cam: model.bodies[self.contacts[k].cam.0].name.clone(),
+            start: at,
+            end: None,
+            greatest_gap: 0.0,
+            greatest_at: at,
+        }
     }
 
     /// Opens contact `k` at the current state.
@@ -617,12 +681,16 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
-    let first = Integrator::starting_at(model, settings.clone(), t0)?;
-    let mut contacts = contacts(model, &first.sys, &first.q)?;
-    let k = contacts.len();
-    for c in &mut contacts {
-        c.gap = None;
+    let full = System::new(model);
+    let (n, m) = (full.n(), full.m());
+    let q0 = full.asm.initial_q(model);
+    let mut qd0 = vec![0.0; n];
+    for (id, b) in model.moving_bodies() {
+        let c = full.asm.body_col(id.0).expect("moving body");
+        qd0[c..c + 3].copy_from_slice(&b.qd0);
     }
+    let contacts = contacts(model, &full, &q0)?;
+    let k = contacts.len();
     let all: Vec<usize> = contacts.iter().map(|c| c.joint).collect();
     let models: Vec<Model> = (0..1usize << k)
         .map(|mask| {
@@ -633,8 +701,6 @@ pub fn run(
             without(model, &removed)
         })
         .collect();
-    let full = System::new(model);
-    let (n, m) = (full.n(), full.m());
     let mut r = Run {
         full,
         models: &models,
@@ -643,14 +709,27 @@ pub fn run(
         settings: settings.clone(),
         mask: 0,
         contacts,
-        q: first.q.clone(),
-        qd: first.qd.clone(),
+        q: q0,
+        qd: qd0,
         qdd: vec![0.0; n],
         lambda: vec![0.0; m],
         summary: Summary::default(),
     };
-    drop(first);
-    r.its[0] = Some(Integrator::starting_at(&models[0], settings.clone(), t0)?);
+    // Contacts apart at the given placement start open, in flight.
+    for c in 0..k {
+        let (q, qd) = r.bodies(c);
+        if r.contacts[c].gap(q, qd).gap > OPEN_AT_START {
+            r.mask |= 1 << c;
+            r.contacts[c].open = true;
+            let at = r.crossing(c, t0);
+            r.contacts[c].flight = Some(r.flight(c, at));
+        }
+    }
+    r.its[r.mask] = Some(Integrator::starting_at(
+        &models[r.mask],
+        settings.clone(),
+        t0,
+    )?);
     r.pull();
     // A contact that pulls at the start opens at once.
     while let Some(Event::LiftOff(k)) = r.event() {
@@ -684,7 +763,11 @@ pub fn run(
             while t - r.it().t > done {
                 sink.tick().map_err(|s| s.at(t))?;
                 let left = t - r.it().t;
-                let h = if left <= h_max * (1.0 + 1e-9) { left } else { h_max };
+                let h = if left <= h_max * (1.0 + 1e-9) {
+                    left
+                } else {
+                    h_max
+                };
                 r.step(h, &mut snap)?;
                 let now = r.it().t;
                 r.track_flights(now);
@@ -700,7 +783,15 @@ pub fn run(
             &mut values[..nk],
         );
         let tr = r.it().t;
-        output::fill(&r.full, &mut scratch, &r.q, &r.qd, &r.lambda, tr, &mut values[nk..nd]);
+        output::fill(
+            &r.full,
+            &mut scratch,
+            &r.q,
+            &r.qd,
+            &r.lambda,
+            tr,
+            &mut values[nk..nd],
+        );
         // Drift of the equations in force (an open joint's are released).
         let it = r.its[r.mask].as_ref().expect("integrator");
         let drift = drift(&it.sys, &it.q, &it.qd, tr);
@@ -719,7 +810,9 @@ pub fn run(
             summary.flights.push(f);
         }
     }
-    summary.flights.sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
+    summary
+        .flights
+        .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
     for it in r.its.iter().flatten() {
         summary.steps += it.summary.steps;
         summary.newton_iterations += it.summary.newton_iterations;

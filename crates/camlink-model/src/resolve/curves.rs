@@ -15,6 +15,7 @@ use camlink_core::constraint::point_follower::PointFollower;
 use camlink_core::constraint::{Constraint, MAX_OWN};
 use camlink_core::curve::{read_points_csv, search, Curve, Parametric, Polar, Radius};
 use camlink_core::math::{point, rot_t, sub, V2};
+use camlink_core::model::Unilateral;
 use camlink_core::BodyId;
 
 use super::{check_name, fail, Ctx, JointInfo, R};
@@ -521,6 +522,53 @@ impl Ctx {
             curve_j: cj,
         };
         self.add_contact(name, cf.into(), own0);
+        let law = [&c.restitution, &c.rest_speed, &c.event_tol];
+        self.set_unilateral(c.unilateral, law, p)
+    }
+
+    /// Makes the contact just added unilateral when `on`, with its law
+    /// [restitution, rest_speed, event_tol] checked field by field.
+    fn set_unilateral(&mut self, on: bool, law: [&Option<Num>; 3], p: &str) -> R<()> {
+        let names = ["restitution", "rest_speed", "event_tol"];
+        if !on {
+            if let Some(k) = law.iter().position(|v| v.is_some()) {
+                return fail(
+                    format!("{p}.{}", names[k]),
+                    "applies to a unilateral contact only: add unilateral = true",
+                );
+            }
+            return Ok(());
+        }
+        let mut u = Unilateral::default();
+        let mut vals = [u.restitution, u.rest_speed, u.event_tol];
+        for (k, v) in law.iter().enumerate() {
+            if let Some(n) = v {
+                vals[k] = self.num(n, &format!("{p}.{}", names[k]))?;
+            }
+        }
+        let [e, rest, tol] = vals;
+        if !(0.0..=1.0).contains(&e) {
+            return fail(
+                format!("{p}.restitution"),
+                format!("must be between 0 and 1, not {e}"),
+            );
+        }
+        if !(rest >= 0.0 && rest.is_finite()) {
+            return fail(
+                format!("{p}.rest_speed"),
+                format!("must be a speed ≥ 0 (m/s), not {rest}"),
+            );
+        }
+        if !(tol > 0.0 && tol.is_finite()) {
+            return fail(
+                format!("{p}.event_tol"),
+                format!("must be a time > 0 (s), not {tol}"),
+            );
+        }
+        (u.restitution, u.rest_speed, u.event_tol) = (e, rest, tol);
+        if let Some(j) = self.model.joints.last_mut() {
+            j.unilateral = Some(u);
+        }
         Ok(())
     }
 
@@ -550,7 +598,8 @@ impl Ctx {
             .map(|n| self.num(n, &format!("{p}.alpha_i")).map(|a| [a, 0.0]))
             .transpose()?;
         self.add_contact(name, ff.into(), own0);
-        Ok(())
+        let law = [&c.restitution, &c.rest_speed, &c.event_tol];
+        self.set_unilateral(c.unilateral, law, p)
     }
 
     pub(super) fn point_follower(&mut self, c: &PointFollowerJoint, k: usize) -> R<()> {
