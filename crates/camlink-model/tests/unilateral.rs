@@ -26,8 +26,8 @@ fn forward(l: &Loaded, t_end: f64, dt: f64, step: f64) -> (Table, Summary) {
         ..integrator::Settings::default()
     };
     let mut t = Table::default();
-    let s = integrator::run(&l.model, &times, &settings, &[], &mut t)
-        .unwrap_or_else(|e| panic!("{e}"));
+    let s =
+        integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
     (t, s)
 }
 
@@ -92,8 +92,16 @@ fn ball_rebounds_in_the_geometric_series_until_rest() {
     let mut t_k = (2.0 * h0 / G).sqrt();
     for (k, imp) in s.impacts.iter().enumerate() {
         let v = v0 * e.powi(k as i32);
-        assert!((imp.at.time - t_k).abs() < 1e-7, "impact {k}: t {} vs {t_k}", imp.at.time);
-        assert!((imp.approach - v).abs() < 1e-7 * v0, "impact {k}: v {} vs {v}", imp.approach);
+        assert!(
+            (imp.at.time - t_k).abs() < 1e-7,
+            "impact {k}: t {} vs {t_k}",
+            imp.at.time
+        );
+        assert!(
+            (imp.approach - v).abs() < 1e-7 * v0,
+            "impact {k}: v {} vs {v}",
+            imp.approach
+        );
         if k < expected {
             assert!(!imp.closed);
             assert!((imp.separation - e * v).abs() < 1e-7 * v0);
@@ -107,10 +115,18 @@ fn ball_rebounds_in_the_geometric_series_until_rest() {
     // 1 ms step ends: within ½ g (1 ms)²).
     for (k, f) in s.flights.iter().skip(1).enumerate() {
         let h = e.powi(2 * (k as i32 + 1)) * h0;
-        assert!((f.greatest_gap - h).abs() < 0.5 * G * 1e-6 + 1e-9, "flight {k}: {} vs {h}", f.greatest_gap);
+        assert!(
+            (f.greatest_gap - h).abs() < 0.5 * G * 1e-6 + 1e-9,
+            "flight {k}: {} vs {h}",
+            f.greatest_gap
+        );
     }
     // At rest: the contact closed, the gap zero, the normal force m g.
-    let (state, gap, n) = (ch(&t, "floor.state"), ch(&t, "floor.gap"), ch(&t, "floor.normal_force"));
+    let (state, gap, n) = (
+        ch(&t, "floor.state"),
+        ch(&t, "floor.gap"),
+        ch(&t, "floor.normal_force"),
+    );
     let last = state.len() - 1;
     assert_eq!(state[last], 1.0);
     assert_eq!(gap[last], 0.0);
@@ -151,6 +167,178 @@ fn elastic_impacts_conserve_energy_and_plastic_ones_lose_half_m_v_squared() {
     let lost = energy[0] - energy[energy.len() - 1];
     // Up to m g v τ apart: the impact is located within τ = 1e-9 s.
     let bound = 2.0 * G * v * 1e-9;
-    assert!((lost - 0.5 * 2.0 * v * v).abs() < bound, "{lost} vs {}", v * v);
+    assert!(
+        (lost - 0.5 * 2.0 * v * v).abs() < bound,
+        "{lost} vs {}",
+        v * v
+    );
     assert!(kinetic[kinetic.len() - 1].abs() < 1e-12);
+}
+
+/// The valve jump example's parameters (`examples/cam_valve_jump.toml`).
+mod valve {
+    pub const R: f64 = 0.02;
+    pub const E: f64 = 0.004;
+    pub const M: f64 = 0.1;
+    pub const K: f64 = 5000.0;
+    pub const PRELOAD: f64 = 50.0;
+    pub const Y_FREE: f64 = R - E - PRELOAD / K;
+}
+
+/// The first flight of the valve tappet in closed form at cam speed ω:
+/// (lift-off time t₁, landing time t₂, approach speed at landing, gap(t)).
+fn valve_flight(w: f64) -> (f64, f64, f64, impl Fn(f64) -> f64) {
+    use valve::*;
+    // Closed: y = R + e sin ωt, N = k (y − y_free) + m g − m e ω² sin ωt,
+    // zero at sin θ₁ = (k (R − y_free) + m g) / (e (m ω² − k)).
+    let th1 = ((K * (R - Y_FREE) + M * G) / (E * (M * w * w - K))).asin();
+    let t1 = th1 / w;
+    // Flight: m ÿ = −k (y − y_free) − m g from y(t₁), ẏ(t₁) on the cam.
+    let om = (K / M).sqrt();
+    let y_eq = Y_FREE - M * G / K;
+    let (y1, v1) = (R + E * th1.sin(), E * w * th1.cos());
+    let y = move |t: f64| {
+        let s = t - t1;
+        y_eq + (y1 - y_eq) * (om * s).cos() + v1 / om * (om * s).sin()
+    };
+    let yd = move |t: f64| {
+        let s = t - t1;
+        -(y1 - y_eq) * om * (om * s).sin() + v1 * (om * s).cos()
+    };
+    let gap = move |t: f64| y(t) - R - E * (w * t).sin();
+    // Landing: the first zero of the gap after lift-off, by scanning and
+    // bisection of the closed form.
+    let mut a = t1 + 1e-7;
+    let dt = 1e-6;
+    while gap(a + dt) > 0.0 {
+        a += dt;
+    }
+    let mut b = a + dt;
+    for _ in 0..100 {
+        let c = 0.5 * (a + b);
+        if gap(c) > 0.0 {
+            a = c;
+        } else {
+            b = c;
+        }
+    }
+    let t2 = 0.5 * (a + b);
+    let approach = -(yd(t2) - E * w * (w * t2).cos());
+    (t1, t2, approach, gap)
+}
+
+fn example(name: &str) -> Loaded {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name);
+    camlink_model::load_path(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn valve_jump_flight_is_the_spring_mass_motion() {
+    // Lift-off where the closed-form normal force falls through zero, the
+    // flight the free spring–mass motion, the landing where that motion
+    // meets the cam again, at its closed-form approach speed. Lift-off and
+    // landing within the event tolerance (1e-9 s) at h = 5 µs; the flight
+    // carries the integrator's O(h²) error, which halving h divides by 4.
+    let l = example("cam_valve_jump.toml");
+    let w = 6000.0 * std::f64::consts::TAU / 60.0;
+    let (t1, t2, approach, gap) = valve_flight(w);
+    let mut errors = Vec::new();
+    for step in [1e-5, 5e-6] {
+        let (t, s) = forward(&l, 0.01, 1e-5, step);
+        let f = &s.flights[0];
+        let end = f.end.as_ref().expect("the tappet lands").time;
+        let imp = &s.impacts[0];
+        let g = ch(&t, "bucket.gap");
+        let state = ch(&t, "bucket.state");
+        let n = ch(&t, "bucket.normal_force");
+        let mut worst: f64 = 0.0;
+        for (k, &tt) in t.t.iter().enumerate() {
+            if tt > t1 && tt < t2 {
+                worst = worst.max((g[k] - gap(tt)).abs());
+                assert_eq!((state[k], n[k]), (0.0, 0.0), "in flight at {tt}");
+            } else if tt < t1 {
+                assert_eq!((state[k], g[k]), (1.0, 0.0), "on the cam at {tt}");
+            }
+        }
+        errors.push([f.start.time - t1, end - t2, imp.approach - approach, worst]);
+    }
+    eprintln!("errors (lift-off s, landing s, approach m/s, gap m) at h = 10, 5 µs: {errors:?}");
+    let [lift, land, speed, flight] = errors[1];
+    assert!(lift.abs() <= 1e-9, "lift-off {lift} s");
+    assert!(land.abs() <= 1e-9, "landing {land} s");
+    assert!(
+        speed.abs() <= 2.5e-6 * approach,
+        "approach {speed} of {approach} m/s"
+    );
+    assert!(flight <= 1e-8, "flight gap {flight} m");
+    assert!(errors[0][3] / flight > 3.5, "second order: {errors:?}");
+}
+
+/// The valve jump example at `rpm`, unilateral or not.
+fn valve_at(rpm: f64, unilateral: bool) -> Loaded {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cam_valve_jump.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = text.replace("rpm = 6000 ", &format!("rpm = {rpm} "));
+    let text: String = if unilateral {
+        text
+    } else {
+        text.lines()
+            .filter(|l| {
+                !["unilateral", "restitution", "rest_speed", "event_tol"]
+                    .iter()
+                    .any(|k| l.starts_with(k))
+            })
+            .map(|l| format!("{l}\n"))
+            .collect()
+    };
+    load(&text)
+}
+
+#[test]
+fn below_the_jump_speed_the_unilateral_run_is_the_bilateral_one() {
+    // 4000 rpm < 4554 rpm: N > 0 throughout, no event; every channel of
+    // the bilateral run is equal, bit for bit.
+    let (a, sa) = forward(&valve_at(4000.0, true), 0.015, 1e-4, 1e-5);
+    let (b, sb) = forward(&valve_at(4000.0, false), 0.015, 1e-4, 1e-5);
+    assert!(sa.impacts.is_empty() && sa.flights.is_empty());
+    assert!(sb.lift_off.is_empty());
+    assert_eq!(a.t, b.t);
+    for name in &b.channels {
+        assert_eq!(ch(&a, name), ch(&b, name), "{name}");
+    }
+    assert!(ch(&a, "bucket.state").iter().all(|&s| s == 1.0));
+    assert!(ch(&a, "bucket.gap").iter().all(|&g| g == 0.0));
+}
+
+#[test]
+fn above_the_jump_speed_the_flight_starts_where_inverse_dynamics_says() {
+    // At 6000 rpm the inverse dynamics of the bilateral model reports
+    // lift-off where N falls through zero (interpolated between its output
+    // times); the unilateral run's located lift-off is within that
+    // interpolation's spacing, and its lift-off angle is the closed form's.
+    use camlink_core::dynamics::inverse;
+    let l = valve_at(6000.0, false);
+    let times = time_grid(0.01, 1e-6).unwrap();
+    let mut t = Table::default();
+    let si = inverse::run(
+        &l.model,
+        &times,
+        &camlink_core::run::Settings::default(),
+        &[],
+        &mut t,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    let predicted = si.lift_off[0].start.time;
+    let (_, s) = forward(&valve_at(6000.0, true), 0.01, 1e-4, 1e-5);
+    let located = s.flights[0].start.time;
+    assert!(
+        (located - predicted).abs() < 1e-6,
+        "{located} vs {predicted}"
+    );
+    let w = 6000.0 * std::f64::consts::TAU / 60.0;
+    let (t1, ..) = valve_flight(w);
+    assert!((s.flights[0].start.cam_angle - w * t1).abs() < 1e-9 * w);
 }

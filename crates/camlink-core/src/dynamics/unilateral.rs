@@ -37,7 +37,7 @@
 use super::impact;
 use super::integrator::{Integrator, Settings, Snapshot};
 use super::output::{self, Scratch};
-use super::system::System;
+use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
 use crate::curve::distance::{curve_gap, face_gap, outward, Gap};
@@ -302,6 +302,11 @@ struct Run<'a> {
     qd: Vec<f64>,
     qdd: Vec<f64>,
     lambda: Vec<f64>,
+    /// λ of the consistent accelerations (full layout), which the
+    /// lift-off events watch.
+    lam_watch: Vec<f64>,
+    /// Per active set, its system and an augmented matrix for them.
+    watch: Vec<Option<(System<'a>, Augmented)>>,
     summary: Summary,
 }
 
@@ -343,7 +348,7 @@ impl<'a> Run<'a> {
 
     /// The full state from the active integrator; open joints' contact
     /// parameters from their gaps' witnesses.
-    fn pull(&mut self) {
+    fn pull(&mut self) -> Result<(), AnalysisError> {
         let mask = self.mask;
         self.layout(mask);
         let layout = self.layouts[mask].as_ref().expect("layout");
@@ -374,6 +379,53 @@ impl<'a> Run<'a> {
                 self.q[o + s] = g.params[s];
             }
         }
+        if self.contacts.iter().any(|c| !c.open) {
+            self.watch_forces()?;
+        }
+        Ok(())
+    }
+
+    /// λ of the consistent accelerations at the active integrator's state,
+    /// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], into `lam_watch` (full layout). The
+    /// integrator's own λ is the generalized-α step's, whose q̈ after the
+    /// very short steps of an event search carries the Newton tolerance
+    /// divided by β h²; this one depends on (t, q, q̇) only.
+    fn watch_forces(&mut self) -> Result<(), AnalysisError> {
+        let mask = self.mask;
+        let it = self.its[mask].as_ref().expect("integrator");
+        let t = it.t;
+        if self.watch[mask].is_none() {
+            let sys = System::new(&self.models[mask]);
+            let aug = Augmented::new(&sys, &it.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
+            self.watch[mask] = Some((sys, aug));
+        }
+        let (sys, aug) = self.watch[mask].as_mut().expect("watch");
+        let (n, m) = (sys.n(), sys.m());
+        let k = Coefficients {
+            mass: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        if aug
+            .refactor(sys, &it.q, &it.qd, &it.qdd, None, t, k)
+            .is_err()
+        {
+            return Err(AnalysisError::new(
+                Kind::SingularMass,
+                t,
+                "the mass matrix is singular on the constraints",
+            ));
+        }
+        let mut rhs = vec![0.0; n + m];
+        sys.forces(&it.q, &it.qd, t, &mut rhs[..n]);
+        sys.asm.gamma(sys.model, &it.q, &it.qd, t, &mut rhs[n..]);
+        aug.solve_refined(&mut rhs);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        for (f, r) in layout.rows.iter().enumerate() {
+            self.lam_watch[f] = r.map_or(0.0, |r| rhs[n + r]);
+        }
+        Ok(())
     }
 
     /// Switches to active set `mask`, restarting its integrator from the
@@ -395,7 +447,7 @@ impl<'a> Run<'a> {
         }
         it.restart(t, &q, &v)?;
         self.mask = mask;
-        self.pull();
+        self.pull()?;
         Ok(())
     }
 
@@ -414,7 +466,7 @@ impl<'a> Run<'a> {
             self.full.model,
             c.joint,
             q[1],
-            &self.lambda[rows],
+            &self.lam_watch[rows],
             c.normal(q, own),
         )
     }
@@ -447,7 +499,7 @@ impl<'a> Run<'a> {
         let gaps: Vec<Option<Gap>> = self.contacts.iter().map(|c| c.gap).collect();
         self.it().snapshot(snap);
         self.it().step(h)?;
-        self.pull();
+        self.pull()?;
         // A grazing approach between the step's ends.
         let mut cut = None;
         if self.event().is_none() {
@@ -509,7 +561,7 @@ impl<'a> Run<'a> {
             c.gap = *g;
         }
         self.it().step(h)?;
-        self.pull();
+        self.pull()?;
         Ok(())
     }
 
@@ -596,7 +648,7 @@ impl<'a> Run<'a> {
         };
         if closes {
             it.restart(t, &q, &out.qd)?;
-            self.pull();
+            self.pull()?;
         } else {
             // The follower leaves again: a new flight from the bounce.
             let mut qd_full = self.qd.clone();
@@ -713,6 +765,8 @@ pub fn run(
         qd: qd0,
         qdd: vec![0.0; n],
         lambda: vec![0.0; m],
+        lam_watch: vec![0.0; m],
+        watch: (0..1 << k).map(|_| None).collect(),
         summary: Summary::default(),
     };
     // Contacts apart at the given placement start open, in flight.
@@ -730,7 +784,7 @@ pub fn run(
         settings.clone(),
         t0,
     )?);
-    r.pull();
+    r.pull()?;
     // A contact that pulls at the start opens at once.
     while let Some(Event::LiftOff(k)) = r.event() {
         r.lift_off(k)?;
@@ -773,7 +827,7 @@ pub fn run(
                 r.track_flights(now);
             }
         }
-        r.pull();
+        r.pull()?;
         run::fill_outputs(
             model,
             &r.full.asm,
