@@ -342,3 +342,61 @@ fn above_the_jump_speed_the_flight_starts_where_inverse_dynamics_says() {
     let (t1, ..) = valve_flight(w);
     assert!((s.flights[0].start.cam_angle - w * t1).abs() < 1e-9 * w);
 }
+
+#[test]
+fn a_grazing_impact_between_step_ends_is_caught() {
+    // A ball thrown up under a ceiling (a face on the ground at y = 1 m),
+    // its top 10 mm below, at v₀ = √(2 g (0.01 + 1e-4)): in free flight it
+    // would rise 0.1 mm into the ceiling and fall back, the gap positive
+    // at every end of the 0.1 s steps. It hits the ceiling at
+    // t = (v₀ − √(v₀² − 2 g 0.01))/g with approach speed √(2 g 1e-4).
+    let v0 = (2.0 * G * (0.01 + 1e-4)).sqrt();
+    let l = load(&format!(
+        r#"
+[model]
+name = "ball under a ceiling"
+gravity = [0, -{G}]
+
+[[bodies]]
+name = "ball"
+position = [0, 0.89]
+velocity = [0, {v0:.17}]
+mass = 1
+inertia = 0.004
+
+[[curves]]
+name = "rim"
+body = "ball"
+source = "circle"
+centre = [0, 0]
+radius = 0.1
+
+[[joints]]
+type = "flat_follower"
+name = "ceiling"
+curve_i = "rim"
+body_j = "ground"
+point_j = [0, 1]
+axis = [1, 0]
+unilateral = true
+restitution = 1
+rest_speed = 0
+"#
+    ));
+    let (_, s) = forward(&l, 0.2, 0.1, 0.1);
+    assert_eq!(s.impacts.len(), 1, "{:?}", s.impacts);
+    let t_hit = (v0 - (v0 * v0 - 2.0 * G * 0.01).sqrt()) / G;
+    let speed = (2.0 * G * 1e-4).sqrt();
+    let imp = &s.impacts[0];
+    assert!(
+        (imp.at.time - t_hit).abs() < 1e-9,
+        "{} vs {t_hit}",
+        imp.at.time
+    );
+    assert!(
+        (imp.approach - speed).abs() < 1e-7,
+        "{} vs {speed}",
+        imp.approach
+    );
+    assert!((imp.separation - speed).abs() < 1e-7);
+}

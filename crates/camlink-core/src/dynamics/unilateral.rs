@@ -708,16 +708,18 @@ fn hermite_dip(h: f64, [g0, d0, g1, d1]: [f64; 4]) -> Option<f64> {
     let b = -3.0 * g0 - 2.0 * m0 + 3.0 * g1 - m1;
     let c = m0;
     let value = |s: f64| ((a * s + b) * s + c) * s + g0;
-    // g′(s) = 3a s² + 2b s + c = 0, the root where g′ turns positive.
-    let s = if a.abs() < 1e-300 {
-        -c / (2.0 * b)
-    } else {
-        let disc = b * b - 3.0 * a * c;
-        if disc < 0.0 {
-            return None;
-        }
-        (-b + disc.sqrt()) / (3.0 * a)
-    };
+    // g′(s) = 3a s² + 2b s + c = 0 at a minimum (g″ = 6a s + 2b > 0);
+    // the roots in the stable form q = −(b + sign(b) √(b² − 3ac)):
+    // c/q and q/(3a).
+    let disc = b * b - 3.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let q = -(b + b.signum() * disc.sqrt());
+    let s = [c / q, q / (3.0 * a)]
+        .into_iter()
+        .filter(|s| s.is_finite() && *s > 0.0 && *s < 1.0 && 6.0 * a * s + 2.0 * b > 0.0)
+        .fold(f64::NAN, f64::min);
     (s > 0.0 && s < 1.0 && value(s) < 0.0).then_some(s * h)
 }
 
