@@ -140,6 +140,72 @@ fn ball_rebounds_in_the_geometric_series_until_rest() {
 }
 
 #[test]
+fn ball_on_a_line_curve_rebounds_in_the_geometric_series() {
+    // The same drop (h0 = 0.5 m, e = 0.8) with the floor a line curve on
+    // the ground and the ball's rim on it through a cam_follower joint:
+    // the gap is the least distance between the two curves.
+    let l = load(&format!(
+        r#"
+[model]
+name = "ball on a line"
+gravity = [0, -{G}]
+
+[[bodies]]
+name = "ball"
+position = [0.3, 0.6]
+mass = 2
+inertia = 0.008
+
+[[curves]]
+name = "floor_line"
+body = "ground"
+source = "line"
+from = [-2, 0]
+to = [2, 0]
+
+[[curves]]
+name = "rim"
+body = "ball"
+source = "circle"
+centre = [0, 0]
+radius = 0.1
+
+[[joints]]
+type = "cam_follower"
+name = "floor"
+curve_i = "floor_line"
+curve_j = "rim"
+unilateral = true
+restitution = 0.8
+rest_speed = 0.05
+"#
+    ));
+    let (h0, e) = (0.5f64, 0.8f64);
+    let v0 = (2.0 * G * h0).sqrt();
+    let (_, s) = forward(&l, 3.0, 1e-3, 1e-3);
+    let expected = (0..)
+        .map(|k| v0 * e.powi(k))
+        .take_while(|v| *v >= 0.05)
+        .count();
+    assert_eq!(s.impacts.len(), expected + 1);
+    let mut t_k = (2.0 * h0 / G).sqrt();
+    for (k, imp) in s.impacts.iter().enumerate() {
+        let v = v0 * e.powi(k as i32);
+        assert!(
+            (imp.at.time - t_k).abs() < 1e-7,
+            "impact {k}: t {} vs {t_k}",
+            imp.at.time
+        );
+        assert!(
+            (imp.approach - v).abs() < 1e-7 * v0,
+            "impact {k}: v {} vs {v}",
+            imp.approach
+        );
+        t_k += 2.0 * e * v / G;
+    }
+}
+
+#[test]
 fn elastic_impacts_conserve_energy_and_plastic_ones_lose_half_m_v_squared() {
     // e = 1: the total energy across the bounces equals the start's. An
     // impact is located within the event tolerance τ, so the ball meets
