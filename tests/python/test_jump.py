@@ -89,7 +89,7 @@ def test_jump_plot_marks_flights_and_landings_at_their_cam_angles(
     canvas.draw()
     image = np.asarray(canvas.buffer_rgba())
     px, py = ax.transData.transform((xs[0], ys[0]))
-    r, g, b, _ = image[int(round(image.shape[0] - py)), int(round(px))]
+    r, g, b, _ = image[round(image.shape[0] - py), round(px)]
     assert r > 150 and g < 110 and b < 110, (r, g, b)
     fig.savefig(tmp_path / "jump.png")
 
