@@ -77,7 +77,8 @@ def test_jump_plot_marks_flights_and_landings_at_their_cam_angles(
     x0 = spans[0].get_x()  # type: ignore[attr-defined]
     assert abs(x0 - (math.degrees(first["start_cam_angle"]) - theta0)) < 1e-9
     (landing,) = [ln for ln in ax.lines if ln.get_gid() == "landing"]
-    xs, ys = landing.get_data()
+    xs = np.asarray(landing.get_xdata(), dtype=float)
+    ys = np.asarray(landing.get_ydata(), dtype=float)
     assert np.allclose(xs, np.degrees(valve.impacts["cam_angle"]) - theta0)
     # The dashed line is the cam's surface under the face, R + e sin θ
     # (mm, from the follower's lowest lift).
@@ -88,7 +89,7 @@ def test_jump_plot_marks_flights_and_landings_at_their_cam_angles(
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     image = np.asarray(canvas.buffer_rgba())
-    px, py = ax.transData.transform((xs[0], ys[0]))
+    px, py = ax.transData.transform(np.array([xs[0], ys[0]]))
     r, g, b, _ = image[round(image.shape[0] - py), round(px)]
     assert r > 150 and g < 110 and b < 110, (r, g, b)
     fig.savefig(tmp_path / "jump.png")
