@@ -50,6 +50,9 @@ use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutpu
 /// (m) starts open; a smaller one is closed by the assembly.
 pub const OPEN_AT_START: f64 = 1e-6;
 
+/// Events in a row, each close to the last, that count as an accumulation.
+const MAX_BURST: usize = 1000;
+
 /// Most unilateral joints in one model.
 pub const MAX_UNILATERAL: usize = 6;
 
@@ -307,6 +310,13 @@ struct Run<'a> {
     lam_watch: Vec<f64>,
     /// Per active set, its system and an augmented matrix for them.
     watch: Vec<Option<(System<'a>, Augmented)>>,
+    /// Events in a row within 100 event tolerances of each other, and the
+    /// time of the last.
+    burst: (usize, f64),
+    /// Scratch: the right-hand side of [`watch_forces`](Self::watch_forces)
+    /// and the gaps at the start of a step.
+    rhs: Vec<f64>,
+    gaps: Vec<Option<Gap>>,
     summary: Summary,
 }
 
@@ -417,10 +427,11 @@ impl<'a> Run<'a> {
                 "the mass matrix is singular on the constraints",
             ));
         }
-        let mut rhs = vec![0.0; n + m];
+        let rhs = &mut self.rhs;
+        rhs.resize(n + m, 0.0);
         sys.forces(&it.q, &it.qd, t, &mut rhs[..n]);
         sys.asm.gamma(sys.model, &it.q, &it.qd, t, &mut rhs[n..]);
-        aug.solve_refined(&mut rhs);
+        aug.solve_refined(rhs);
         let layout = self.layouts[mask].as_ref().expect("layout");
         for (f, r) in layout.rows.iter().enumerate() {
             self.lam_watch[f] = r.map_or(0.0, |r| rhs[n + r]);
@@ -493,10 +504,24 @@ impl<'a> Run<'a> {
         Crossing { time: t, cam_angle }
     }
 
-    /// One step of at most `h`, with the events inside it located; returns
-    /// the length stepped.
+    /// One step of length `h`, or up to the first event inside it, located
+    /// and handled.
     fn step(&mut self, h: f64, snap: &mut Snapshot) -> Result<(), AnalysisError> {
-        let gaps: Vec<Option<Gap>> = self.contacts.iter().map(|c| c.gap).collect();
+        let mut gaps = std::mem::take(&mut self.gaps);
+        gaps.clear();
+        gaps.extend(self.contacts.iter().map(|c| c.gap));
+        let done = self.step_from(h, snap, &gaps);
+        self.gaps = gaps;
+        done
+    }
+
+    /// [`step`](Self::step) with the gaps at its start.
+    fn step_from(
+        &mut self,
+        h: f64,
+        snap: &mut Snapshot,
+        gaps: &[Option<Gap>],
+    ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
         self.it().step(h)?;
         self.pull()?;
@@ -514,10 +539,10 @@ impl<'a> Run<'a> {
         }
         let mut span = h;
         if let Some(tau) = cut {
-            self.trial(snap, &gaps, tau)?;
+            self.trial(snap, gaps, tau)?;
             if self.event().is_none() {
                 // The interpolant dipped, the motion did not: keep the step.
-                self.trial(snap, &gaps, h)?;
+                self.trial(snap, gaps, h)?;
                 return Ok(());
             }
             span = tau;
@@ -534,19 +559,52 @@ impl<'a> Run<'a> {
         let (mut lo, mut hi) = (0.0, span);
         while hi - lo > tol {
             let mid = 0.5 * (lo + hi);
-            self.trial(snap, &gaps, mid)?;
+            self.trial(snap, gaps, mid)?;
             if self.event().is_some() {
                 hi = mid;
             } else {
                 lo = mid;
             }
         }
-        self.trial(snap, &gaps, hi)?;
+        self.trial(snap, gaps, hi)?;
+        self.count_event(tol)?;
         match self.event() {
             Some(Event::LiftOff(k)) => self.lift_off(k),
             Some(Event::Impact(k)) => self.impact(k),
             None => Ok(()),
         }
+    }
+
+    /// Counts an event at the current time; an accumulation of more than
+    /// [`MAX_BURST`] events each within 100 event tolerances of the last
+    /// (a contact switching without end) stops the run.
+    fn count_event(&mut self, tol: f64) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        if t - self.burst.1 <= 100.0 * tol {
+            self.burst.0 += 1;
+        } else {
+            self.burst.0 = 0;
+        }
+        self.burst.1 = t;
+        if self.burst.0 > MAX_BURST {
+            let names: Vec<String> = self
+                .contacts
+                .iter()
+                .map(|c| self.full.model.joints[c.joint].name.clone())
+                .collect();
+            return Err(AnalysisError::new(
+                Kind::NotConverged,
+                t,
+                format!(
+                    "the unilateral contacts switch more than {MAX_BURST} times within \
+                     {} s each: an accumulation of events; raise rest_speed so that \
+                     slow impacts close the contact",
+                    100.0 * tol
+                ),
+            )
+            .at_joints(names, 0.0));
+        }
+        Ok(())
     }
 
     /// From the snapshot, one step of length `h`.
@@ -582,18 +640,9 @@ impl<'a> Run<'a> {
     fn lift_off(&mut self, k: usize) -> Result<(), AnalysisError> {
         let t = self.it().t;
         let at = self.crossing(k, t);
-        let name = self.full.model.joints[self.contacts[k].joint].name.clone();
-        let cam = self.full.model.bodies[self.contacts[k].cam.0].name.clone();
         self.contacts[k].open = true;
         self.contacts[k].gap = None;
-        self.contacts[k].flight = Some(Flight {
-            joint: name,
-            cam,
-            start: at,
-            end: None,
-            greatest_gap: 0.0,
-            greatest_at: at,
-        });
+        self.contacts[k].flight = Some(self.flight(k, at));
         let qd = self.qd.clone();
         self.switch(self.mask | (1 << k), t, &qd)
     }
@@ -659,14 +708,7 @@ impl<'a> Run<'a> {
             }
             self.contacts[k].open = true;
             self.contacts[k].gap = None;
-            self.contacts[k].flight = Some(Flight {
-                joint: impact.joint.clone(),
-                cam: self.full.model.bodies[self.contacts[k].cam.0].name.clone(),
-                start: at,
-                end: None,
-                greatest_gap: 0.0,
-                greatest_at: at,
-            });
+            self.contacts[k].flight = Some(self.flight(k, at));
             self.switch(self.mask | (1 << k), t, &qd_full)?;
             impact.separation = self.contacts[k].gap.map_or(0.0, |g| g.rate);
         }
@@ -769,6 +811,9 @@ pub fn run(
         lambda: vec![0.0; m],
         lam_watch: vec![0.0; m],
         watch: (0..1 << k).map(|_| None).collect(),
+        burst: (0, f64::NEG_INFINITY),
+        rhs: Vec::new(),
+        gaps: Vec::new(),
         summary: Summary::default(),
     };
     // Contacts apart at the given placement start open, in flight.
