@@ -573,3 +573,43 @@ restitution = 0
     // At the impact the arm is at −60°: the floor was placed there.
     assert!((ph[k_hit] - phi).abs() < 1e-2, "{}", ph[k_hit]);
 }
+
+#[test]
+fn a_unilateral_contact_without_a_closed_curve_is_refused_by_name() {
+    // A flat face on a line curve: no solid side to measure a gap from.
+    let l = load(&format!(
+        r#"
+[model]
+name = "open cam"
+gravity = [0, -{G}]
+
+[[bodies]]
+name = "slider"
+position = [0, 0.5]
+mass = 1
+inertia = 0.01
+
+[[curves]]
+name = "edge"
+body = "slider"
+source = "line"
+from = [-0.1, 0]
+to = [0.1, 0]
+
+[[joints]]
+type = "flat_follower"
+name = "floor"
+curve_i = "edge"
+body_j = "ground"
+axis = [1, 0]
+unilateral = true
+"#
+    ));
+    let times = time_grid(0.01, 1e-3).unwrap();
+    let mut t = Table::default();
+    let e = integrator::run(&l.model, &times, &integrator::Settings::default(), &[], &mut t)
+        .expect_err("an open cam curve cannot be unilateral");
+    assert_eq!(e.kind, camlink_core::run::Kind::InvalidInput);
+    assert!(e.to_string().contains("joint 'floor'"), "{e}");
+    assert!(e.to_string().contains("closed cam curve"), "{e}");
+}
