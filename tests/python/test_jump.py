@@ -156,3 +156,8 @@ def test_bad_unilateral_settings_name_the_field(tmp_path) -> None:
     text = VALVE.read_text().replace("unilateral = true\n", "")
     with pytest.raises(camlink.ModelError, match=r"joints\[2\]\.restitution.*unilateral = true"):
         camlink.loads(text)
+
+
+def test_adaptive_steps_are_refused_with_unilateral_contacts() -> None:
+    with pytest.raises(camlink.AnalysisError, match="adaptive.*unilateral"):
+        camlink.load(VALVE).simulate(t_end=0.001, adaptive=True)

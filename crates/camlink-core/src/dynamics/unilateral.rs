@@ -31,8 +31,8 @@
 //! is kept for the outputs: an open joint's contact parameters are those
 //! of the gap's witness points, their rates and its multipliers zero.
 //! Steps are of the fixed size `settings.step` (landing on the output
-//! times); the error-controlled mode is not used in a run with
-//! unilateral contacts.
+//! times); the error-controlled mode is refused in a run with unilateral
+//! contacts.
 
 use super::impact;
 use super::integrator::{Integrator, Settings, Snapshot};
@@ -777,6 +777,14 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
+    if settings.adaptive.is_some() {
+        return Err(AnalysisError::new(
+            Kind::InvalidInput,
+            t0,
+            "the error-controlled mode (adaptive) is not available with unilateral \
+             contacts: run with fixed steps h, the events being located to event_tol",
+        ));
+    }
     let full = System::new(model);
     let (n, m) = (full.n(), full.m());
     let q0 = full.asm.initial_q(model);
