@@ -602,22 +602,14 @@ def _lift_off(r: dict[str, Any]) -> LiftOffRecord:
 
 
 def _flight(r: dict[str, Any]) -> LiftOffRecord:
-    """A simulated flight of a unilateral contact as a lift-off row."""
-    end_time, end_angle = r["end_time"], r["end_cam_angle"]
-    return LiftOffRecord(
-        joint=str(r["joint"]),
-        cam=str(r["cam"]),
-        start_time=float(r["start_time"]),
-        start_cam_angle=float(r["start_cam_angle"]),
-        end_time=None if end_time is None else float(end_time),
-        end_cam_angle=None if end_angle is None else float(end_angle),
-        least_force=math.nan,
-        least_time=math.nan,
-        least_cam_angle=math.nan,
-        greatest_gap=float(r["greatest_gap"]),
-        greatest_time=float(r["greatest_time"]),
-        greatest_cam_angle=float(r["greatest_cam_angle"]),
-    )
+    """A simulated flight of a unilateral contact as a lift-off row: no
+    least force, the greatest gap instead."""
+    nan = {"least_force": math.nan, "least_time": math.nan, "least_cam_angle": math.nan}
+    row = _lift_off({**r, **nan})
+    row["greatest_gap"] = float(r["greatest_gap"])
+    row["greatest_time"] = float(r["greatest_time"])
+    row["greatest_cam_angle"] = float(r["greatest_cam_angle"])
+    return row
 
 
 def _impact(r: dict[str, Any]) -> ImpactRecord:

@@ -159,5 +159,5 @@ def test_bad_unilateral_settings_name_the_field(tmp_path) -> None:
 
 
 def test_adaptive_steps_are_refused_with_unilateral_contacts() -> None:
-    with pytest.raises(camlink.AnalysisError, match="adaptive.*unilateral"):
+    with pytest.raises(camlink.AnalysisError, match=r"adaptive.*unilateral"):
         camlink.load(VALVE).simulate(t_end=0.001, adaptive=True)
