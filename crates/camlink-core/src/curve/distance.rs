@@ -45,6 +45,57 @@ pub struct Gap {
     pub normal: V2,
 }
 
+/// The two features of a cam contact whose gap is measured.
+#[derive(Clone, Debug)]
+pub enum Features {
+    /// Curve C_i on body i and a face of body j through `point` (body j
+    /// frame, m) with unit normal `m` into the cam's side (body j frame).
+    Face { curve: Curve, point: V2, m: V2 },
+    /// Curves C_i and C_j; N from the closed curve of `side` (0: C_i
+    /// outward, 1: C_j inward) with orientation σ.
+    Curves {
+        curves: [Curve; 2],
+        side: usize,
+        sigma: f64,
+    },
+}
+
+impl Features {
+    /// The gap at bodies (q_i, q_j), (q̇_i, q̇_j), from the last witness
+    /// parameters `guess`.
+    pub fn gap(&self, q: [[f64; 3]; 2], qd: [[f64; 3]; 2], guess: Option<[f64; 2]>) -> Gap {
+        match self {
+            Features::Face { curve, point, m } => {
+                face_gap(curve, q, qd, *point, *m, guess.map(|g| g[0]))
+            }
+            Features::Curves {
+                curves,
+                side,
+                sigma,
+            } => curve_gap([&curves[0], &curves[1]], q, qd, (*side, *sigma), guess),
+        }
+    }
+
+    /// N (global unit) of the closed contact at contact parameters `own`.
+    pub fn normal(&self, q: [[f64; 3]; 2], own: [f64; 2]) -> V2 {
+        match self {
+            Features::Face { m, .. } => scale(-1.0, rot(q[1][2], *m)),
+            Features::Curves {
+                curves,
+                side,
+                sigma,
+            } => {
+                let out = rot(q[*side][2], outward(&curves[*side], *sigma, own[*side]));
+                if *side == 0 {
+                    out
+                } else {
+                    scale(-1.0, out)
+                }
+            }
+        }
+    }
+}
+
 /// The outward unit normal (body frame) of a closed curve of orientation
 /// σ (+1 counterclockwise) at parameter `s`.
 pub fn outward(curve: &Curve, sigma: f64, s: f64) -> V2 {

@@ -40,7 +40,7 @@ use super::output::{self, Scratch};
 use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
-use crate::curve::distance::{curve_gap, face_gap, outward, Gap};
+use crate::curve::distance::{Features, Gap};
 use crate::curve::Curve;
 use crate::math::{dot, perp, point, rot, sub, V2};
 use crate::model::{BodyId, Model, Unilateral};
@@ -56,24 +56,13 @@ const MAX_BURST: usize = 1000;
 /// Most unilateral joints in one model.
 pub const MAX_UNILATERAL: usize = 6;
 
-/// What defines a unilateral joint's gap.
-#[derive(Clone, Debug)]
-enum Shape {
-    /// Curve C_i on a face of body j through `point` (body j frame, m),
-    /// `m` the face normal into the cam's side (body j frame).
-    Face { point: V2, m: V2 },
-    /// Two curves; N from the closed curve of `side` with orientation σ.
-    Curves { side: usize, sigma: f64 },
-}
-
 /// One unilateral joint and its state.
 #[derive(Clone, Debug)]
 struct Contact {
     joint: usize,
     bodies: [BodyId; 2],
     cam: BodyId,
-    curves: [Option<Curve>; 2],
-    shape: Shape,
+    features: Features,
     law: Unilateral,
     open: bool,
     /// The gap at the current state (open joints).
@@ -85,35 +74,7 @@ struct Contact {
 impl Contact {
     /// The gap at body coordinates `q`, `qd` of bodies i and j.
     fn gap(&self, q: [[f64; 3]; 2], qd: [[f64; 3]; 2]) -> Gap {
-        let guess = self.gap.map(|g| g.params);
-        match (&self.shape, &self.curves) {
-            (Shape::Face { point, m }, [Some(ci), _]) => {
-                face_gap(ci, q, qd, *point, *m, guess.map(|g| g[0]))
-            }
-            (Shape::Curves { side, sigma }, [Some(ci), Some(cj)]) => {
-                curve_gap([ci, cj], q, qd, (*side, *sigma), guess)
-            }
-            _ => unreachable!("shapes are built with their curves"),
-        }
-    }
-
-    /// N (global unit) of the closed contact at own coordinates `own`.
-    fn normal(&self, q: [[f64; 3]; 2], own: [f64; 2]) -> V2 {
-        match (&self.shape, &self.curves) {
-            (Shape::Face { m, .. }, _) => {
-                let mg = rot(q[1][2], *m);
-                [-mg[0], -mg[1]]
-            }
-            (Shape::Curves { side, sigma }, curves) => {
-                let c = curves[*side].as_ref().expect("curve of the normal");
-                let out = rot(q[*side][2], outward(c, *sigma, own[*side]));
-                if *side == 0 {
-                    out
-                } else {
-                    [-out[0], -out[1]]
-                }
-            }
-        }
+        self.features.gap(q, qd, self.gap.map(|g| g.params))
     }
 }
 
@@ -219,8 +180,7 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
             ));
         }
         let x = sys.asm.local(model, j, q, &[], 0.0);
-        let curves = [view.curve(0).cloned(), view.curve(1).cloned()];
-        let shape = match &joint.constraint {
+        let features = match &joint.constraint {
             Constraint::FlatFollower(f) => {
                 if f.curve_i.orientation().is_none() {
                     return Err(bad(
@@ -237,15 +197,25 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
                 } else {
                     1.0
                 };
-                Shape::Face {
+                Features::Face {
+                    curve: f.curve_i.clone(),
                     point: f.s_j,
                     m: [s * nf[0], s * nf[1]],
                 }
             }
             Constraint::CamFollower(c) => {
+                let curves = [c.curve_i.clone(), c.curve_j.clone()];
                 match (c.curve_i.orientation(), c.curve_j.orientation()) {
-                    (Some(s), _) => Shape::Curves { side: 0, sigma: s },
-                    (None, Some(s)) => Shape::Curves { side: 1, sigma: s },
+                    (Some(sigma), _) => Features::Curves {
+                        curves,
+                        side: 0,
+                        sigma,
+                    },
+                    (None, Some(sigma)) => Features::Curves {
+                        curves,
+                        side: 1,
+                        sigma,
+                    },
                     _ => {
                         return Err(bad(
                             j,
@@ -265,8 +235,7 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
             joint: j,
             bodies: view.bodies,
             cam: view.cam(model),
-            curves,
-            shape,
+            features,
             law,
             open: false,
             gap: None,
@@ -478,7 +447,7 @@ impl<'a> Run<'a> {
             c.joint,
             q[1],
             &self.lam_watch[rows],
-            c.normal(q, own),
+            c.features.normal(q, own),
         )
     }
 
