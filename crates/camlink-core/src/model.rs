@@ -8,6 +8,7 @@ use std::collections::HashMap;
 
 pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
+use crate::force::compliant_contact::HuntCrossley;
 use crate::force::{Applied, Force};
 use crate::math::V2;
 
@@ -81,6 +82,9 @@ pub struct Unilateral {
     pub rest_speed: f64,
     /// Time tolerance (s) of the located lift-off and impact events.
     pub event_tol: f64,
+    /// `Some` for a compliant contact: a Hunt–Crossley normal force from
+    /// the overlap instead of impacts and closed phases.
+    pub compliant: Option<HuntCrossley>,
 }
 
 impl Default for Unilateral {
@@ -89,6 +93,7 @@ impl Default for Unilateral {
             restitution: 0.0,
             rest_speed: 1e-3,
             event_tol: 1e-9,
+            compliant: None,
         }
     }
 }

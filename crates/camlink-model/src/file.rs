@@ -474,6 +474,17 @@ pub struct CamFollowerJoint {
     /// events; default 1e-9.
     #[serde(default)]
     pub event_tol: Option<Num>,
+    /// Stiffness k (N/mⁿ) of a compliant unilateral contact: a
+    /// Hunt–Crossley force k δⁿ (1 + c δ̇) from the overlap δ instead of
+    /// impacts.
+    #[serde(default)]
+    pub stiffness: Option<Num>,
+    /// Exponent n of a compliant contact; default 1.5 (Hertz).
+    #[serde(default)]
+    pub exponent: Option<Num>,
+    /// Damping factor c (s/m) of a compliant contact; default 0.
+    #[serde(default)]
+    pub damping: Option<Num>,
 }
 
 /// `flat_follower` joint: a curve on a straight face.
@@ -512,6 +523,17 @@ pub struct FlatFollowerJoint {
     /// events; default 1e-9.
     #[serde(default)]
     pub event_tol: Option<Num>,
+    /// Stiffness k (N/mⁿ) of a compliant unilateral contact: a
+    /// Hunt–Crossley force k δⁿ (1 + c δ̇) from the overlap δ instead of
+    /// impacts.
+    #[serde(default)]
+    pub stiffness: Option<Num>,
+    /// Exponent n of a compliant contact; default 1.5 (Hertz).
+    #[serde(default)]
+    pub exponent: Option<Num>,
+    /// Damping factor c (s/m) of a compliant contact; default 0.
+    #[serde(default)]
+    pub damping: Option<Num>,
 }
 
 /// `point_follower` joint: a pin in a slot.

@@ -608,3 +608,133 @@ unilateral = true
     assert!(e.to_string().contains("joint 'floor'"), "{e}");
     assert!(e.to_string().contains("closed cam curve"), "{e}");
 }
+
+#[test]
+fn a_compliant_hertz_contact_matches_the_closed_form() {
+    // A 2 kg ball dropped from 50 mm on a floor with a Hertz contact
+    // F = k δ^{3/2}, k = 1e6 N/m^{3/2}, no damping: ½ m v² = (2/5) k δ_m^{5/2}
+    // gives the greatest overlap δ_m = (5 m v² / (4 k))^{2/5}; the contact
+    // lasts T = 2 (δ_m / v) ∫₀¹ (1 − x^{5/2})^{−1/2} dx and returns the ball
+    // at v. Without numerical damping (ρ∞ = 1) and with 10 µs steps.
+    let (m, k, h0) = (2.0f64, 1e6f64, 0.05f64);
+    let l = load(&format!(
+        r#"
+[model]
+name = "Hertz drop"
+gravity = [0, -{G}]
+
+[[bodies]]
+name = "ball"
+position = [0, {y}]
+mass = {m}
+inertia = 0.008
+
+[[curves]]
+name = "rim"
+body = "ball"
+source = "circle"
+centre = [0, 0]
+radius = 0.1
+
+[[joints]]
+type = "flat_follower"
+name = "floor"
+curve_i = "rim"
+body_j = "ground"
+axis = [1, 0]
+unilateral = true
+stiffness = {k}
+exponent = 1.5
+"#,
+        y = 0.1 + h0
+    ));
+    let v = (2.0 * G * h0).sqrt();
+    let t0 = (2.0 * h0 / G).sqrt();
+    let times = time_grid(0.15, 1e-5).unwrap();
+    let settings = integrator::Settings {
+        step: 1e-5,
+        rho_inf: 1.0,
+        tol: 1e-12,
+        ..integrator::Settings::default()
+    };
+    let mut t = Table::default();
+    let s =
+        integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
+    assert!(s.impacts.is_empty() && s.flights.is_empty());
+    let (gap, state, n) = (
+        ch(&t, "floor.gap"),
+        ch(&t, "floor.state"),
+        ch(&t, "floor.normal_force"),
+    );
+    let vy = ch(&t, "ball.vy");
+    // Gravity adds m g δ_m to the work of the spring; its share is
+    // m g / (k δ_m^{3/2}) ~ 1 %, so it is included: ½ m v² + m g δ =
+    // (2/5) k δ^{5/2}, solved by bisection.
+    let f = |d: f64| 0.4 * k * d.powf(2.5) - 0.5 * m * v * v - m * G * d;
+    let (mut a, mut b) = (0.0, 0.1);
+    for _ in 0..200 {
+        let c = 0.5 * (a + b);
+        if f(c) > 0.0 {
+            b = c;
+        } else {
+            a = c;
+        }
+    }
+    let delta_m = 0.5 * (a + b);
+    let least = gap.iter().copied().fold(f64::INFINITY, f64::min);
+    eprintln!("δ_m {delta_m:e} m, camlink {:e} m", -least);
+    assert!(
+        (-least - delta_m).abs() < 1e-3 * delta_m,
+        "{} vs {delta_m}",
+        -least
+    );
+    // The force at the deepest point is k δ_m^{3/2}.
+    let deepest = gap.iter().position(|&g| g == least).unwrap();
+    assert!((n[deepest] - k * (-least).powf(1.5)).abs() < 1e-9 * n[deepest]);
+    // Contact from t₀ for T = 2 ∫₀^δ_m dδ / δ̇, δ̇² = v² + 2 g δ − (4k/5m) δ^{5/2}
+    // (energy, gravity included), by quadrature with δ = δ_m (1 − u²);
+    // the ball leaves at v.
+    let duration_closed: f64 = {
+        let steps = 200_000;
+        (0..steps)
+            .map(|i| {
+                let u = (i as f64 + 0.5) / steps as f64;
+                let d = delta_m * (1.0 - u * u);
+                let rate2 = v * v + 2.0 * G * d - 0.8 * k / m * d.powf(2.5);
+                2.0 * 2.0 * delta_m * u / rate2.sqrt() / steps as f64
+            })
+            .sum()
+    };
+    let on: Vec<f64> =
+        t.t.iter()
+            .zip(&state)
+            .filter(|(_, s)| **s == 1.0)
+            .map(|(tt, _)| *tt)
+            .collect();
+    let duration = on[on.len() - 1] - on[0];
+    eprintln!(
+        "T {duration_closed:e} s, camlink {duration:e} s, from {} vs {t0}",
+        on[0]
+    );
+    assert!((on[0] - t0).abs() < 2e-5);
+    // The state is sampled every 10 µs.
+    assert!(
+        (duration - duration_closed).abs() < 2e-5,
+        "{duration} vs {duration_closed}"
+    );
+    // Energy (kinetic, gravity and the contact's elastic k δ^{5/2}/(5/2))
+    // is kept through the contact to the integrator's accuracy, and the
+    // ball leaves at v: at the first output after contact it has climbed
+    // for Δt, vy = v − g Δt to O(Δt²).
+    let energy = ch(&t, "energy.total");
+    let worst = energy
+        .iter()
+        .map(|e| (e - energy[0]).abs())
+        .fold(0.0, f64::max);
+    eprintln!("energy drift {worst:e} J of {:e} J", m * G * h0);
+    assert!(worst < 1e-5 * m * G * h0, "{worst}");
+    let after = t.t.iter().position(|tt| *tt > on[on.len() - 1]).unwrap();
+    let gap_after = gap[after];
+    let v_out = (vy[after] * vy[after] + 2.0 * G * gap_after).sqrt();
+    assert!((v_out - v).abs() < 1e-4 * v, "{v_out} vs {v}");
+}

@@ -42,6 +42,8 @@ use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
 use crate::curve::distance::{Features, Gap};
 use crate::curve::Curve;
+use crate::force::compliant_contact::CompliantContact;
+use crate::force::Force;
 use crate::math::{dot, perp, point, rot, sub, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
@@ -456,6 +458,9 @@ impl<'a> Run<'a> {
     fn event(&self) -> Option<Event> {
         (0..self.contacts.len()).find_map(|k| {
             let c = &self.contacts[k];
+            if c.law.compliant.is_some() {
+                return None;
+            }
             let v = self.value(k);
             if c.open {
                 let approaching = c.gap.is_some_and(|g| g.rate < 0.0);
@@ -501,6 +506,9 @@ impl<'a> Run<'a> {
                 let (Some(g0), Some(g1)) = (g0, self.contacts[k].gap) else {
                     continue;
                 };
+                if self.contacts[k].law.compliant.is_some() {
+                    continue;
+                }
                 if let Some(tau) = hermite_dip(h, [g0.gap, g0.rate, g1.gap, g1.rate]) {
                     cut = Some(cut.map_or(tau, |c: f64| c.min(tau)));
                 }
@@ -771,7 +779,20 @@ pub fn run(
                 .filter(|b| mask & (1 << b) != 0)
                 .map(|b| all[b])
                 .collect();
-            without(model, &removed)
+            let mut m = without(model, &removed);
+            // A compliant contact acts through its Hunt–Crossley force.
+            for c in contacts.iter() {
+                if let Some(law) = c.law.compliant {
+                    let force = CompliantContact {
+                        bodies: c.bodies,
+                        features: c.features.clone(),
+                        law,
+                    };
+                    let name = format!("{}.contact", model.joints[c.joint].name);
+                    m.add_force(Force::new(name, force));
+                }
+            }
+            m
         })
         .collect();
     let mut r = Run {
@@ -793,10 +814,14 @@ pub fn run(
         gaps: Vec::new(),
         summary: Summary::default(),
     };
-    // Contacts apart at the given placement start open, in flight.
+    // Compliant contacts are always released; contacts apart at the given
+    // placement start open, in flight.
     for c in 0..k {
         let (q, qd) = r.bodies(c);
-        if r.contacts[c].gap(q, qd).gap > OPEN_AT_START {
+        if r.contacts[c].law.compliant.is_some() {
+            r.mask |= 1 << c;
+            r.contacts[c].open = true;
+        } else if r.contacts[c].gap(q, qd).gap > OPEN_AT_START {
             r.mask |= 1 << c;
             r.contacts[c].open = true;
             let at = r.crossing(c, t0);
@@ -823,6 +848,15 @@ pub fn run(
         names.push(format!("{name}.gap"));
         names.push(format!("{name}.state"));
     }
+    // Where each unilateral joint's normal force channel is.
+    let normal_at: Vec<Option<usize>> = r
+        .contacts
+        .iter()
+        .map(|c| {
+            let name = format!("{}.normal_force", model.joints[c.joint].name);
+            names.iter().position(|n| *n == name)
+        })
+        .collect();
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&r.full);
@@ -870,14 +904,21 @@ pub fn run(
             tr,
             &mut values[nk..nd],
         );
-        // Drift of the equations in force (an open joint's are released).
+        // Energy and drift of the model in force: its potential includes
+        // the compliant contacts' and an open joint's equations are released.
         let it = r.its[r.mask].as_ref().expect("integrator");
+        let (kin, pot) = (it.sys.kinetic(&it.q, &it.qd), it.sys.potential(&it.q, tr));
         let drift = drift(&it.sys, &it.q, &it.qd, tr);
-        values[nd - 2] = drift[0];
-        values[nd - 1] = drift[1];
-        for (c, out) in r.contacts.iter().zip(values[nd..].chunks_mut(2)) {
-            out[0] = c.gap.map_or(0.0, |g| g.gap);
-            out[1] = if c.open { 0.0 } else { 1.0 };
+        values[nd - 5..nd].copy_from_slice(&[kin, pot, kin + pot, drift[0], drift[1]]);
+        for (k, c) in r.contacts.iter().enumerate() {
+            let gap = c.gap.map_or(0.0, |g| g.gap);
+            values[nd + 2 * k] = gap;
+            values[nd + 2 * k + 1] = if c.open { 0.0 } else { 1.0 };
+            // A compliant contact: its force, and closed while overlapping.
+            if let (Some(law), Some(g), Some(at)) = (c.law.compliant, c.gap, normal_at[k]) {
+                values[at] = law.force(-g.gap, -g.rate);
+                values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
+            }
         }
         sink.row(t, &values).map_err(|s| s.at(t))?;
     }
