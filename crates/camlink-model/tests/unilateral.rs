@@ -738,3 +738,73 @@ exponent = 1.5
     let v_out = (vy[after] * vy[after] + 2.0 * G * gap_after).sqrt();
     assert!((v_out - v).abs() < 1e-4 * v, "{v_out} vs {v}");
 }
+
+#[test]
+fn a_hunt_crossley_contact_rebounds_at_its_closed_form_speed() {
+    // Without gravity, a 2 kg ball thrown at v = 1 m/s onto a floor with
+    // F = k δⁿ (1 + c δ̇), k = 1e6 N/m^{3/2}, n = 3/2, c = 0.2 s/m. With
+    // w = δ̇, m w dw/dδ = −k δⁿ (1 + c w) separates:
+    // (m/c²) [G(w)]_{v}^{w} = −k δⁿ⁺¹/(n + 1), G(w) = c w − ln(1 + c w),
+    // so the overlap is greatest at (m/c²) G(v) = k δ_m^{5/2}/(5/2) and
+    // the ball leaves at u with G(−u) = G(v).
+    let (m, k, c, v) = (2.0f64, 1e6f64, 0.2f64, 1.0f64);
+    let l = load(&format!(
+        r#"
+[model]
+name = "Hunt–Crossley throw"
+gravity = [0, 0]
+
+[[bodies]]
+name = "ball"
+position = [0, 0.11]
+velocity = [0, -{v}]
+mass = {m}
+inertia = 0.008
+
+[[curves]]
+name = "rim"
+body = "ball"
+source = "circle"
+centre = [0, 0]
+radius = 0.1
+
+[[joints]]
+type = "flat_follower"
+name = "floor"
+curve_i = "rim"
+body_j = "ground"
+axis = [1, 0]
+unilateral = true
+stiffness = {k}
+damping = {c}
+"#
+    ));
+    let big_g = |w: f64| c * w - (1.0 + c * w).ln();
+    let delta_m = (2.5 * m / (c * c) * big_g(v) / k).powf(0.4);
+    let (mut a, mut b) = (0.0, v);
+    for _ in 0..200 {
+        let mid = 0.5 * (a + b);
+        if big_g(-mid) < big_g(v) {
+            a = mid;
+        } else {
+            b = mid;
+        }
+    }
+    let u = 0.5 * (a + b);
+    let times = time_grid(0.05, 1e-5).unwrap();
+    let settings = integrator::Settings {
+        step: 1e-5,
+        rho_inf: 1.0,
+        tol: 1e-12,
+        ..integrator::Settings::default()
+    };
+    let mut t = Table::default();
+    integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
+    let (gap, vy) = (ch(&t, "floor.gap"), ch(&t, "ball.vy"));
+    let least = gap.iter().copied().fold(f64::INFINITY, f64::min);
+    let u_out = vy[vy.len() - 1];
+    eprintln!("δ_m {delta_m:e} vs {:e} m; leaves at {u_out} vs {u} m/s", -least);
+    assert!((-least - delta_m).abs() < 1e-4 * delta_m);
+    assert!((u_out - u).abs() < 1e-4 * u, "{u_out} vs {u}");
+    assert!(u < 0.97 * v, "the damping takes energy: {u}");
+}
