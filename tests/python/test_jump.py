@@ -161,3 +161,16 @@ def test_bad_unilateral_settings_name_the_field(tmp_path) -> None:
 def test_adaptive_steps_are_refused_with_unilateral_contacts() -> None:
     with pytest.raises(camlink.AnalysisError, match=r"adaptive.*unilateral"):
         camlink.load(VALVE).simulate(t_end=0.001, adaptive=True)
+
+
+def test_compliant_settings_name_the_field() -> None:
+    base = VALVE.read_text()
+    text = base.replace("event_tol = 1e-9 ", "event_tol = 1e-9\nstiffness = 1e8 ")
+    with pytest.raises(camlink.ModelError, match=r"joints\[2\]\.restitution.*compliant"):
+        camlink.loads(text)
+    text = base.replace("restitution = 0.3 ", "damping = 0.1 ")
+    with pytest.raises(camlink.ModelError, match=r"joints\[2\]\.damping.*stiffness"):
+        camlink.loads(text)
+    text = base.replace("restitution = 0.3 ", "stiffness = -1 ")
+    with pytest.raises(camlink.ModelError, match=r"joints\[2\]\.stiffness.*> 0"):
+        camlink.loads(text)
