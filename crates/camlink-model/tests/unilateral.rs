@@ -803,8 +803,48 @@ damping = {c}
     let (gap, vy) = (ch(&t, "floor.gap"), ch(&t, "ball.vy"));
     let least = gap.iter().copied().fold(f64::INFINITY, f64::min);
     let u_out = vy[vy.len() - 1];
-    eprintln!("δ_m {delta_m:e} vs {:e} m; leaves at {u_out} vs {u} m/s", -least);
+    eprintln!(
+        "δ_m {delta_m:e} vs {:e} m; leaves at {u_out} vs {u} m/s",
+        -least
+    );
     assert!((-least - delta_m).abs() < 1e-4 * delta_m);
     assert!((u_out - u).abs() < 1e-4 * u, "{u_out} vs {u}");
     assert!(u < 0.97 * v, "the damping takes energy: {u}");
+}
+
+#[test]
+fn a_normal_force_dipping_below_zero_inside_one_step_is_caught() {
+    // Just above the jump speed (4560 rpm, ω_jump at 4554 rpm) N < 0 only
+    // for 85.5°–94.5° of cam angle (closed form), inside one 20° step
+    // (80° to 100°) whose ends have N > 0: the parabola through N at the
+    // last three step ends dips there, and the lift-off is located at the
+    // closed form's angle.
+    let rpm = 4560.0;
+    let w = rpm * std::f64::consts::TAU / 60.0;
+    let h = 20f64.to_radians() / w;
+    let l = valve_at(rpm, true);
+    let times: Vec<f64> = (0..=7).map(|k| k as f64 * h).collect();
+    let settings = integrator::Settings {
+        step: h,
+        tol: 1e-10,
+        ..integrator::Settings::default()
+    };
+    let mut t = Table::default();
+    let s =
+        integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
+    let (th1, ..) = valve_flight(w);
+    let th1 = th1 * w;
+    let start = s
+        .flights
+        .first()
+        .expect("the dip is caught")
+        .start
+        .cam_angle;
+    eprintln!(
+        "lift-off at {}° vs {}°",
+        start.to_degrees(),
+        th1.to_degrees()
+    );
+    // Within the event tolerance: ω · 1e-9 s, twice.
+    assert!((start - th1).abs() < 2.0 * w * 1e-9, "{start} vs {th1}");
 }

@@ -16,7 +16,9 @@
 //! zero. A grazing approach — g positive at both ends of a step but
 //! falling at its start and rising at its end — is caught by the cubic
 //! Hermite interpolant of (g, ġ) over the step: when its least value is
-//! negative, the step is cut there and the event located before it.
+//! negative, the step is cut there and the event located before it. A
+//! normal force that dips below zero inside a step is caught likewise,
+//! from the parabola through N at the last three step ends.
 //!
 //! At lift-off the joint opens and the integration restarts from the
 //! event. At impact the impulse of Newton's law with restitution e is
@@ -71,6 +73,8 @@ struct Contact {
     gap: Option<Gap>,
     /// The flight under way.
     flight: Option<Flight>,
+    /// (t, N) at the start of the step before, while closed.
+    n_before: Option<(f64, f64)>,
 }
 
 impl Contact {
@@ -242,6 +246,7 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
             open: false,
             gap: None,
             flight: None,
+            n_before: None,
         });
     }
     if out.len() > MAX_UNILATERAL {
@@ -497,11 +502,29 @@ impl<'a> Run<'a> {
         gaps: &[Option<Gap>],
     ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
+        let t0 = self.it().t;
+        let n0: Vec<Option<f64>> = (0..self.contacts.len())
+            .map(|k| self.watched(k).then(|| self.value(k)))
+            .collect();
         self.it().step(h)?;
         self.pull()?;
-        // A grazing approach between the step's ends.
+        let t1 = self.it().t;
+        // A grazing approach between the step's ends; a normal force that
+        // dips below zero between them (the parabola through N at the last
+        // three step ends).
         let mut cut = None;
         if self.event().is_none() {
+            for k in 0..self.contacts.len() {
+                let (Some((tm, nm)), Some(n)) = (self.contacts[k].n_before, n0[k]) else {
+                    continue;
+                };
+                if !self.watched(k) {
+                    continue;
+                }
+                if let Some(tau) = parabola_dip([tm, t0, t1], [nm, n, self.value(k)]) {
+                    cut = Some(cut.map_or(tau, |c: f64| c.min(tau)));
+                }
+            }
             for (k, g0) in gaps.iter().enumerate() {
                 let (Some(g0), Some(g1)) = (g0, self.contacts[k].gap) else {
                     continue;
@@ -520,12 +543,17 @@ impl<'a> Run<'a> {
             if self.event().is_none() {
                 // The interpolant dipped, the motion did not: keep the step.
                 self.trial(snap, gaps, h)?;
+                self.remember(t0, &n0);
                 return Ok(());
             }
             span = tau;
         }
         if self.event().is_none() {
+            self.remember(t0, &n0);
             return Ok(());
+        }
+        for c in &mut self.contacts {
+            c.n_before = None;
         }
         // Bisection on the step length to the tightest event tolerance.
         let tol = self
@@ -582,6 +610,19 @@ impl<'a> Run<'a> {
             .at_joints(names, 0.0));
         }
         Ok(())
+    }
+
+    /// True when contact `k`'s normal force is watched: closed, not compliant.
+    fn watched(&self, k: usize) -> bool {
+        let c = &self.contacts[k];
+        !c.open && c.law.compliant.is_none()
+    }
+
+    /// Keeps N at the start `t0` of the step just taken, for the next.
+    fn remember(&mut self, t0: f64, n0: &[Option<f64>]) {
+        for (c, n) in self.contacts.iter_mut().zip(n0) {
+            c.n_before = n.filter(|_| !c.open).map(|n| (t0, n));
+        }
     }
 
     /// From the snapshot, one step of length `h`.
@@ -740,6 +781,25 @@ fn hermite_dip(h: f64, [g0, d0, g1, d1]: [f64; 4]) -> Option<f64> {
         .filter(|s| s.is_finite() && *s > 0.0 && *s < 1.0 && 6.0 * a * s + 2.0 * b > 0.0)
         .fold(f64::NAN, f64::min);
     (s > 0.0 && s < 1.0 && value(s) < 0.0).then_some(s * h)
+}
+
+/// The time τ − t₀ ∈ (0, t₁ − t₀) where the parabola through (t_k, N_k),
+/// k = −1, 0, 1, is least, when that least value is negative and the
+/// three values are not.
+fn parabola_dip([tm, t0, t1]: [f64; 3], [nm, n0, n1]: [f64; 3]) -> Option<f64> {
+    if !(nm >= 0.0 && n0 >= 0.0 && n1 >= 0.0 && tm < t0 && t0 < t1) {
+        return None;
+    }
+    // N(t) = N₀ + f₋₀ (t − t₀) + a (t − t₀)(t − t₋₁), divided differences.
+    let f_m0 = (n0 - nm) / (t0 - tm);
+    let f_01 = (n1 - n0) / (t1 - t0);
+    let a = (f_01 - f_m0) / (t1 - tm);
+    if a <= 0.0 {
+        return None;
+    }
+    let tv = 0.5 * (t0 + tm) - f_m0 / (2.0 * a);
+    let value = n0 + f_m0 * (tv - t0) + a * (tv - t0) * (tv - tm);
+    (tv > t0 && tv < t1 && value < 0.0).then_some(tv - t0)
 }
 
 /// Forward dynamics of a model with unilateral contacts, output as
