@@ -6,8 +6,10 @@
 //! velocity after the impact q̇⁺ and the impulses Λ (N·s, one per
 //! equation) solve, with the augmented matrix of the forward dynamics,
 //!
+//! ```text
 //! [ M  Φ_qᵀ ] [ q̇⁺ ]   [ M q̇⁻  ]
 //! [ Φ_q  0  ] [ Λ  ] = [ ν + δ ],
+//! ```
 //!
 //! the momentum balance M (q̇⁺ − q̇⁻) = −Φ_qᵀΛ with every equation's
 //! velocity satisfied after the impact, except the contact's along its
@@ -21,8 +23,9 @@
 //!
 //! For e = 0 this is the plastic impact, q̇⁺ the M-orthogonal projection
 //! of q̇⁻ onto the closed constraints, losing the kinetic energy
-//! ½ m_eff (ġ⁻)², m_eff = 1/(Nᵀ-row of Φ_q M⁻¹ Φ_qᵀ restricted to the
-//! normal); for e = 1 kinetic energy is conserved.
+//! ½ m_eff (ġ⁻)², 1/m_eff = J M⁻¹ Jᵀ on the motions the other constraints
+//! allow, J the row of ġ in the generalized velocities; for e = 1 kinetic
+//! energy is conserved.
 
 use super::system::{Augmented, Coefficients, System};
 use crate::constraint::Constraint;

@@ -5,7 +5,7 @@
 //! is, at every time, either
 //!
 //! - **closed**: its equations hold, as in a bilateral run, and its normal
-//!   force N (N, positive pressing, [`normal_force`]) is watched; or
+//!   force N (N, positive pressing) is watched; or
 //! - **open**: its equations are released (the model integrated is the
 //!   model without that joint) and the gap g (m, [`crate::curve::distance`])
 //!   between its two features is watched.
@@ -26,6 +26,10 @@
 //! separates, and closes (a plastic impact) when e = 0 or when the
 //! approach speed is below the joint's `rest_speed`: a follower bouncing
 //! ever lower comes to rest in finite time.
+//!
+//! A compliant contact (`Unilateral::compliant`) is open throughout: its
+//! Hunt–Crossley force ([`crate::force::compliant_contact`]) is one of the
+//! forces of every model, and no event is watched for it.
 //!
 //! Each combination of open joints is its own model (at most
 //! [`MAX_UNILATERAL`] unilateral joints, 2^k models) with its own
