@@ -273,6 +273,8 @@ enum Event {
 /// The run's state: the full model's vectors, the models of the active
 /// sets and their integrators.
 struct Run<'a> {
+    /// The run's start time (s).
+    t0: f64,
     full: System<'a>,
     models: &'a [Model],
     layouts: Vec<Option<Layout>>,
@@ -423,7 +425,9 @@ impl<'a> Run<'a> {
     /// full state at `t` with the velocity `qd` (full layout).
     fn switch(&mut self, mask: usize, t: f64, qd: &[f64]) -> Result<(), AnalysisError> {
         if self.its[mask].is_none() {
-            let it = Integrator::starting_at(&self.models[mask], self.settings.clone(), t)?;
+            // Made at the run's start, where the given placement holds,
+            // then restarted from the state at t.
+            let it = Integrator::starting_at(&self.models[mask], self.settings.clone(), self.t0)?;
             self.its[mask] = Some(it);
         }
         self.layout(mask);
@@ -860,6 +864,7 @@ pub fn run(
         })
         .collect();
     let mut r = Run {
+        t0,
         full,
         models: &models,
         layouts: (0..1 << k).map(|_| None).collect(),
