@@ -1028,3 +1028,45 @@ fn drift(s: &System, q: &[f64], qd: &[f64], t: f64) -> [f64; 2] {
     let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
     [max(&phi), max(&nu)]
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_dip_finds_the_least_value_of_a_parabola() {
+        // g(t) = (t − 0.3)² − 0.01 on [0, 1]: least −0.01 at 0.3, ends
+        // positive, slopes −0.6 and 1.4. The cubic through these is g.
+        let g = |t: f64| (t - 0.3) * (t - 0.3) - 0.01;
+        let tau = hermite_dip(1.0, [g(0.0), -0.6, g(1.0), 1.4]).expect("a dip");
+        assert!((tau - 0.3).abs() < 1e-12, "{tau}");
+        // Shifted up by 0.02 it stays positive: no dip.
+        assert_eq!(
+            hermite_dip(1.0, [g(0.0) + 0.02, -0.6, g(1.0) + 0.02, 1.4]),
+            None
+        );
+        // Rising at the start: not an approach.
+        assert_eq!(hermite_dip(1.0, [0.1, 0.6, 0.1, 1.4]), None);
+    }
+
+    #[test]
+    fn parabola_dip_finds_the_vertex_between_the_last_two_points() {
+        // N(t) = 4 (t − 2.5)² − 1 through t = 1, 2, 3 (values 8, 0, 0):
+        // vertex at 2.5, N = −1, inside the last step [2, 3].
+        let n = |t: f64| 4.0 * (t - 2.5) * (t - 2.5) - 1.0;
+        let tau = parabola_dip([1.0, 2.0, 3.0], [n(1.0), n(2.0), n(3.0)]).expect("a dip");
+        assert!((tau - 0.5).abs() < 1e-12, "{tau}");
+        // The vertex in the step before: not this step's.
+        let m = |t: f64| 4.0 * (t - 1.5) * (t - 1.5) + 0.5;
+        assert_eq!(
+            parabola_dip([1.0, 2.0, 3.0], [m(1.0), m(2.0), m(3.0)]),
+            None
+        );
+        // A vertex above zero: no dip.
+        let p = |t: f64| 4.0 * (t - 2.5) * (t - 2.5) + 0.1;
+        assert_eq!(
+            parabola_dip([1.0, 2.0, 3.0], [p(1.0), p(2.0), p(3.0)]),
+            None
+        );
+    }
+}
