@@ -522,8 +522,8 @@ impl<'a> Run<'a> {
         // three step ends).
         let mut cut = None;
         if self.event().is_none() {
-            for k in 0..self.contacts.len() {
-                let (Some((tm, nm)), Some(n)) = (self.contacts[k].n_before, n0[k]) else {
+            for (k, &n0k) in n0.iter().enumerate() {
+                let (Some((tm, nm)), Some(n)) = (self.contacts[k].n_before, n0k) else {
                     continue;
                 };
                 if !self.watched(k) {
