@@ -31,24 +31,22 @@ fn forward(l: &Loaded, t_end: f64, dt: f64, step: f64) -> (Table, Summary) {
     (t, s)
 }
 
-/// A ball of radius 0.1 m, mass 2 kg, its centre `h0` + 0.1 m above a
-/// floor (a face on the ground), restitution `e`.
-fn ball(h0: f64, e: f64, rest_speed: f64) -> Loaded {
-    ball_tol(h0, e, rest_speed, 1e-9)
-}
-
-/// [`ball`] with the event tolerance `tol` (s).
-fn ball_tol(h0: f64, e: f64, rest_speed: f64, tol: f64) -> Loaded {
+/// A ball: body `ball` of mass `m` (kg, inertia 0.008 kg·m²) at `xy` (m)
+/// moving vertically at `vy` (m/s), with the circle `rim` of radius 0.1 m,
+/// under gravity `g` (m/s², downwards), and `rest` (its contact: more
+/// curves and joints) after it.
+fn ball_with(name: &str, g: f64, m: f64, xy: [f64; 2], vy: f64, rest: &str) -> Loaded {
     load(&format!(
         r#"
 [model]
-name = "bouncing ball"
-gravity = [0, -{G}]
+name = "{name}"
+gravity = [0, {gy}]
 
 [[bodies]]
 name = "ball"
-position = [0.3, {y}]
-mass = 2
+position = [{x}, {y}]
+velocity = [0, {vy:.17}]
+mass = {m}
 inertia = 0.008
 
 [[curves]]
@@ -58,6 +56,29 @@ source = "circle"
 centre = [0, 0]
 radius = 0.1
 
+{rest}"#,
+        gy = -g,
+        x = xy[0],
+        y = xy[1],
+    ))
+}
+
+/// A ball of radius 0.1 m, mass 2 kg, its centre `h0` + 0.1 m above a
+/// floor (a face on the ground), restitution `e`.
+fn ball(h0: f64, e: f64, rest_speed: f64) -> Loaded {
+    ball_tol(h0, e, rest_speed, 1e-9)
+}
+
+/// [`ball`] with the event tolerance `tol` (s).
+fn ball_tol(h0: f64, e: f64, rest_speed: f64, tol: f64) -> Loaded {
+    ball_with(
+        "bouncing ball",
+        G,
+        2.0,
+        [0.3, h0 + 0.1],
+        0.0,
+        &format!(
+            r#"
 [[joints]]
 type = "flat_follower"
 name = "floor"
@@ -68,9 +89,9 @@ unilateral = true
 restitution = {e}
 rest_speed = {rest_speed}
 event_tol = {tol:e}
-"#,
-        y = h0 + 0.1
-    ))
+"#
+        ),
+    )
 }
 
 /// The impacts of a ball of mass `m` dropped from gap `h0` with
@@ -154,31 +175,20 @@ fn ball_on_a_line_curve_rebounds_in_the_geometric_series() {
     // The same drop (h0 = 0.5 m, e = 0.8) with the floor a line curve on
     // the ground and the ball's rim on it through a cam_follower joint:
     // the gap is the least distance between the two curves.
-    let l = load(&format!(
-        r#"
-[model]
-name = "ball on a line"
-gravity = [0, -{G}]
-
-[[bodies]]
-name = "ball"
-position = [0.3, 0.6]
-mass = 2
-inertia = 0.008
-
+    let l = ball_with(
+        "ball on a line",
+        G,
+        2.0,
+        [0.3, 0.6],
+        0.0,
+        &format!(
+            r#"
 [[curves]]
 name = "floor_line"
 body = "ground"
 source = "line"
 from = [-2, 0]
 to = [2, 0]
-
-[[curves]]
-name = "rim"
-body = "ball"
-source = "circle"
-centre = [0, 0]
-radius = 0.1
 
 [[joints]]
 type = "cam_follower"
@@ -189,7 +199,8 @@ unilateral = true
 restitution = 0.8
 rest_speed = 0.05
 "#
-    ));
+        ),
+    );
     let (_, s) = forward(&l, 3.0, 1e-3, 1e-3);
     assert_geometric_series(&s, 0.5, 0.8, 0.05, 2.0);
 }
@@ -406,26 +417,14 @@ fn a_grazing_impact_between_step_ends_is_caught() {
     // at every end of the 0.1 s steps. It hits the ceiling at
     // t = (v₀ − √(v₀² − 2 g 0.01))/g with approach speed √(2 g 1e-4).
     let v0 = (2.0 * G * (0.01 + 1e-4)).sqrt();
-    let l = load(&format!(
-        r#"
-[model]
-name = "ball under a ceiling"
-gravity = [0, -{G}]
-
-[[bodies]]
-name = "ball"
-position = [0, 0.89]
-velocity = [0, {v0:.17}]
-mass = 1
-inertia = 0.004
-
-[[curves]]
-name = "rim"
-body = "ball"
-source = "circle"
-centre = [0, 0]
-radius = 0.1
-
+    let l = ball_with(
+        "ball under a ceiling",
+        G,
+        1.0,
+        [0.0, 0.89],
+        v0,
+        &format!(
+            r#"
 [[joints]]
 type = "flat_follower"
 name = "ceiling"
@@ -437,7 +436,8 @@ unilateral = true
 restitution = 1
 rest_speed = 0
 "#
-    ));
+        ),
+    );
     let (_, s) = forward(&l, 0.2, 0.1, 0.1);
     assert_eq!(s.impacts.len(), 1, "{:?}", s.impacts);
     let t_hit = (v0 - (v0 * v0 - 2.0 * G * 0.01).sqrt()) / G;
@@ -617,25 +617,14 @@ fn a_compliant_hertz_contact_matches_the_closed_form() {
     // lasts T = 2 (δ_m / v) ∫₀¹ (1 − x^{5/2})^{−1/2} dx and returns the ball
     // at v. Without numerical damping (ρ∞ = 1) and with 10 µs steps.
     let (m, k, h0) = (2.0f64, 1e6f64, 0.05f64);
-    let l = load(&format!(
-        r#"
-[model]
-name = "Hertz drop"
-gravity = [0, -{G}]
-
-[[bodies]]
-name = "ball"
-position = [0, {y}]
-mass = {m}
-inertia = 0.008
-
-[[curves]]
-name = "rim"
-body = "ball"
-source = "circle"
-centre = [0, 0]
-radius = 0.1
-
+    let l = ball_with(
+        "Hertz drop",
+        G,
+        m,
+        [0.0, 0.1 + h0],
+        0.0,
+        &format!(
+            r#"
 [[joints]]
 type = "flat_follower"
 name = "floor"
@@ -645,9 +634,9 @@ axis = [1, 0]
 unilateral = true
 stiffness = {k}
 exponent = 1.5
-"#,
-        y = 0.1 + h0
-    ));
+"#
+        ),
+    );
     let v = (2.0 * G * h0).sqrt();
     let t0 = (2.0 * h0 / G).sqrt();
     let times = time_grid(0.15, 1e-5).unwrap();
@@ -748,26 +737,14 @@ fn a_hunt_crossley_contact_rebounds_at_its_closed_form_speed() {
     // so the overlap is greatest at (m/c²) G(v) = k δ_m^{5/2}/(5/2) and
     // the ball leaves at u with G(−u) = G(v).
     let (m, k, c, v) = (2.0f64, 1e6f64, 0.2f64, 1.0f64);
-    let l = load(&format!(
-        r#"
-[model]
-name = "Hunt–Crossley throw"
-gravity = [0, 0]
-
-[[bodies]]
-name = "ball"
-position = [0, 0.11]
-velocity = [0, -{v}]
-mass = {m}
-inertia = 0.008
-
-[[curves]]
-name = "rim"
-body = "ball"
-source = "circle"
-centre = [0, 0]
-radius = 0.1
-
+    let l = ball_with(
+        "Hunt–Crossley throw",
+        0.0,
+        m,
+        [0.0, 0.11],
+        -v,
+        &format!(
+            r#"
 [[joints]]
 type = "flat_follower"
 name = "floor"
@@ -778,7 +755,8 @@ unilateral = true
 stiffness = {k}
 damping = {c}
 "#
-    ));
+        ),
+    );
     let big_g = |w: f64| c * w - (1.0 + c * w).ln();
     let delta_m = (2.5 * m / (c * c) * big_g(v) / k).powf(0.4);
     let (mut a, mut b) = (0.0, v);
