@@ -181,8 +181,7 @@ fn ball_on_a_line_curve_rebounds_in_the_geometric_series() {
         2.0,
         [0.3, 0.6],
         0.0,
-        &format!(
-            r#"
+        r#"
 [[curves]]
 name = "floor_line"
 body = "ground"
@@ -198,8 +197,7 @@ curve_j = "rim"
 unilateral = true
 restitution = 0.8
 rest_speed = 0.05
-"#
-        ),
+"#,
     );
     let (_, s) = forward(&l, 3.0, 1e-3, 1e-3);
     assert_geometric_series(&s, 0.5, 0.8, 0.05, 2.0);
@@ -423,8 +421,7 @@ fn a_grazing_impact_between_step_ends_is_caught() {
         1.0,
         [0.0, 0.89],
         v0,
-        &format!(
-            r#"
+        r#"
 [[joints]]
 type = "flat_follower"
 name = "ceiling"
@@ -435,8 +432,7 @@ axis = [1, 0]
 unilateral = true
 restitution = 1
 rest_speed = 0
-"#
-        ),
+"#,
     );
     let (_, s) = forward(&l, 0.2, 0.1, 0.1);
     assert_eq!(s.impacts.len(), 1, "{:?}", s.impacts);
