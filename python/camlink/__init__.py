@@ -41,6 +41,8 @@ __all__ = [
     "__version__",
     "draw",
     "json_schema",
+    "jump_plot",
+    "jump_speed",
     "load",
     "loads",
     "monte_carlo",
@@ -52,7 +54,13 @@ __all__ = [
 ]
 
 #: Picture functions, imported on first use (they load matplotlib).
-_PICTURES = {"draw": "camlink.drawing", "plot": "camlink.plots", "svaj": "camlink.plots"}
+_PICTURES = {
+    "draw": "camlink.drawing",
+    "plot": "camlink.plots",
+    "svaj": "camlink.plots",
+    "jump_plot": "camlink.jump",
+    "jump_speed": "camlink.jump",
+}
 #: Study functions, imported on first use (they load pandas and scipy).
 _STUDIES = {"sweep": "camlink.study", "monte_carlo": "camlink.study", "optimize": "camlink.study"}
 

@@ -20,6 +20,7 @@ from typing import Any
 import camlink
 from camlink import cam_cli, cli_convert, cli_study, cli_visuals
 from camlink._core import AnalysisError, ModelError
+from camlink.jump import flight_summary
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
 from camlink.settings import check_settings
@@ -263,6 +264,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"max |Φ| {summary['constraint_drift']:.3g}, "
                 f"max |Φ_q q̇ − ν| {summary['velocity_drift']:.3g}"
             )
+        flights = flight_summary(res)
+        if flights is not None:
+            print(f"  {flights}")
     return EXIT_OK
 
 
