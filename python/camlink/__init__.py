@@ -11,12 +11,18 @@ time series back::
     model.simulate(t_end=1.0, h=1e-3)["energy.total"]
 """
 
+from typing import TYPE_CHECKING
+
 from camlink._core import AnalysisError, ModelError, __version__
 from camlink.builder import Mechanism
 from camlink.errors import ERROR_KINDS, WARNING_KINDS, RunWarning
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
 from camlink.warn import CamlinkWarning, DesignWarning, LiftOffWarning, NearSingularWarning
+
+if TYPE_CHECKING:
+    from camlink import study
+    from camlink.study import monte_carlo, optimize, sweep
 
 __all__ = [
     "ANALYSES",
@@ -39,8 +45,12 @@ __all__ = [
     "jump_speed",
     "load",
     "loads",
+    "monte_carlo",
+    "optimize",
     "plot",
+    "study",
     "svaj",
+    "sweep",
 ]
 
 #: Picture functions, imported on first use (they load matplotlib).
@@ -51,11 +61,17 @@ _PICTURES = {
     "jump_plot": "camlink.jump",
     "jump_speed": "camlink.jump",
 }
+#: Study functions, imported on first use (they load pandas and scipy).
+_STUDIES = {"sweep": "camlink.study", "monte_carlo": "camlink.study", "optimize": "camlink.study"}
 
 
 def __getattr__(name: str) -> object:
-    if name in _PICTURES:
+    if name in _PICTURES or name in _STUDIES:
         import importlib
 
-        return getattr(importlib.import_module(_PICTURES[name]), name)
+        return getattr(importlib.import_module({**_PICTURES, **_STUDIES}[name]), name)
+    if name == "study":
+        import importlib
+
+        return importlib.import_module("camlink.study")
     raise AttributeError(f"module 'camlink' has no attribute {name!r}")

@@ -1,6 +1,6 @@
 """Type stubs for the compiled binding `camlink._core`."""
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from os import PathLike
 from pathlib import Path
 from typing import Any, TypeAlias, final
@@ -22,7 +22,9 @@ __all__ = [
     "convert_adm",
     "csv_rows",
     "json_schema",
+    "run_batch",
     "time_grid",
+    "toml_position",
 ]
 
 _OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
@@ -86,6 +88,9 @@ class Model:
         body: str,
         f: Callable[[float, tuple[float, float, float], tuple[float, float, float]], Sequence[float]],
     ) -> Model: ...
+    def with_parameters(self, values: dict[str, float]) -> Model: ...
+    @property
+    def parameter_names(self) -> list[str]: ...
     def run_kinematics(
         self,
         times: npt.NDArray[np.float64],
@@ -140,6 +145,15 @@ def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...
 def check_setting(key: str, value: float) -> None: ...
+def run_batch(
+    model: Model,
+    variants: Sequence[Mapping[str, float]],
+    outputs: Sequence[tuple[str, str]],
+    *,
+    threads: int | None = None,
+    time_limit: float | None = None,
+) -> tuple[npt.NDArray[np.float64], list[str], list[str]]: ...
+def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]

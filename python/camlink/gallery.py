@@ -71,11 +71,11 @@ def build(out: Path, examples: Path | None = None, dpi: int = 80, quiet: bool = 
     pictures = out / "gallery"
     pictures.mkdir(parents=True, exist_ok=True)
     # Cam design files (`cam_design_*.toml`) are not models; docs/cam-design.md
-    # shows their pictures.
+    # shows their pictures. Study files (`study_*.toml`) name a model.
     paths = [
         p
         for p in sorted(examples.glob("*.toml")) + sorted(examples.glob("*.json"))
-        if not p.name.startswith("cam_design_")
+        if not p.name.startswith(("cam_design_", "study_"))
     ]
     entries = []
     with Progress(len(paths), "gallery", unit="example", quiet=quiet) as bar:

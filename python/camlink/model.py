@@ -129,6 +129,8 @@ class Model:
         #: allow_outside), which is how it pickles; None for a model with a
         #: Python force, which cannot be pickled.
         self._recipe: tuple[str, str, str, str | None, bool] | None = None
+        #: Parameters changed by `with_parameters` (name → value).
+        self._overrides: dict[str, float] = {}
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickles through the model's text (multiprocessing, joblib):
@@ -139,7 +141,7 @@ class Model:
                 "in Python (with_force); pickle the model without it and add the "
                 "force in the worker"
             )
-        return (_unpickle, (*self._recipe, self.source))
+        return (_unpickle, (*self._recipe, self.source, self._overrides))
 
     @property
     def name(self) -> str:
@@ -241,6 +243,34 @@ class Model:
         if not callable(f):
             raise ModelError(f"force '{name}': f must be callable, not {type(f).__name__}")
         return Model(self._core.with_callback_force(name, body, f), source=self.source)
+
+    @property
+    def parameters(self) -> list[str]:
+        """The names of the file's ``[parameters]``."""
+        return list(self._core.parameter_names)
+
+    def with_parameters(self, **values: float) -> Model:
+        """A copy of this model with the file's ``[parameters]`` named in
+        `values` set to those numbers, and everything that depends on them
+        (points, curves, drivers, forces, placements computed from them)
+        resolved again in Rust, without reading the file.
+
+        Raises `ModelError` for an unknown name (naming it) or a variant
+        that is not a valid model (naming the file, line and field).
+        """
+        if self._recipe is None and self._core.parameter_names:
+            raise ModelError(
+                f"model '{self.name}' has a force computed in Python (with_force); "
+                "change its parameters before adding the force"
+            )
+        for name, value in values.items():
+            if isinstance(value, bool) or not isinstance(value, int | float):
+                raise ModelError(f"parameter '{name}' = {value!r} is not a number")
+        model = Model(self._core.with_parameters({k: float(v) for k, v in values.items()}),
+                      source=self.source)
+        model._recipe = self._recipe
+        model._overrides = {**self._overrides, **{k: float(v) for k, v in values.items()}}
+        return model
 
     def run(
         self,
@@ -564,10 +594,11 @@ def _unpickle(
     base_dir: str | None,
     allow_outside: bool,
     path: Path | None,
+    overrides: dict[str, float] | None = None,
 ) -> Model:
     model = loads(text, format, source, base_dir=base_dir, allow_outside=allow_outside)
     model.source = path
-    return model
+    return model.with_parameters(**overrides) if overrides else model
 
 
 def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:

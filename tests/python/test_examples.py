@@ -7,9 +7,10 @@ import pytest
 import camlink
 from conftest import ROOT
 
-# Cam design files (`cam_design_*.toml`) are not models: test_cam_design.py runs them.
+# Cam design files (`cam_design_*.toml`) are not models: test_cam_design.py runs them;
+# nor are study files (`study_*.toml`): test_study.py runs them.
 EXAMPLES = sorted(
-    p for p in (ROOT / "examples").glob("**/*.toml") if not p.name.startswith("cam_design_")
+    p for p in (ROOT / "examples").glob("**/*.toml") if not p.name.startswith(("cam_design_", "study_"))
 ) + sorted((ROOT / "examples").glob("**/*.json"))
 MODELS = sorted((ROOT / "tests" / "models").glob("*.toml")) + sorted(
     (ROOT / "tests" / "models").glob("*.json")

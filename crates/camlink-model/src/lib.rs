@@ -15,6 +15,7 @@ mod eval;
 pub mod file;
 mod locate;
 mod resolve;
+mod variant;
 
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -25,6 +26,7 @@ use camlink_core::dynamics::statics::Settings as StaticsSettings;
 pub use data_file::LoadOptions;
 pub use error::LoadError;
 pub use file::AnalysisType;
+pub use variant::Recipe;
 
 /// Largest model file accepted (bytes).
 pub const MAX_FILE_SIZE: u64 = 16 * 1024 * 1024;
@@ -58,6 +60,9 @@ pub struct Loaded {
     pub data_files: Vec<PathBuf>,
     /// Drawn shapes that the file gives for bodies (`outline`).
     pub outlines: Vec<Outline>,
+    /// The parsed file, kept to build variants with other `[parameters]`
+    /// ([`Loaded::with_parameters`]); `None` for a simEngine2D model.
+    pub recipe: Option<std::sync::Arc<Recipe>>,
 }
 
 /// A body's drawn outline from the model file, in the body frame.
@@ -333,20 +338,24 @@ pub fn load_str_with(
         Some(dir) => dir.as_path(),
         None => Path::new(source).parent().unwrap_or(Path::new("")),
     };
-    let data = data_file::DataFiles::new(base, options.allow_outside_data);
-    let (model, analysis, outlines, data) = resolve::resolve(&file, stem, data).map_err(|f| {
-        let span = match format {
-            Format::Toml => locate::toml_span(text, &f.path),
-            Format::Json => locate::json_span(text, &f.path),
-        };
-        at(text, source, span.map(|s| s.start), Some(f.path), f.message)
-    })?;
-    Ok(Loaded {
-        model,
-        analysis,
-        outlines,
-        data_files: data.into_read(),
-    })
+    let recipe = Recipe {
+        file,
+        text: text.to_string(),
+        format,
+        source: source.to_string(),
+        stem: stem.to_string(),
+        base: base.to_path_buf(),
+        allow_outside_data: options.allow_outside_data,
+    };
+    Recipe::resolve(&std::sync::Arc::new(recipe))
+}
+
+/// The 1-based (line, column) of the field `path` (`study.outputs.swing`)
+/// in TOML `text`, or of the deepest part of it that is present; `None`
+/// when the text is not TOML or holds none of it. Lets files read
+/// elsewhere (a study table) name the line of a bad field.
+pub fn toml_position(text: &str, path: &str) -> Option<(usize, usize)> {
+    locate::toml_span(text, path).map(|s| error::line_col(text, s.start))
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.

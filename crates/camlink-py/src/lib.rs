@@ -9,6 +9,7 @@
 
 mod cam;
 mod csv_text;
+mod study;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -619,6 +620,22 @@ impl Model {
         })
     }
 
+    /// This model with the `[parameters]` named in `values` (name → number)
+    /// changed and everything depending on them resolved again; an unknown
+    /// name raises `ModelError` naming it.
+    fn with_parameters(&self, values: std::collections::HashMap<String, f64>) -> PyResult<Model> {
+        guard(|| study::with_parameters(&self.loaded, values))
+    }
+
+    /// The names of the file's `[parameters]` (empty for a simEngine2D model).
+    #[getter]
+    fn parameter_names(&self) -> Vec<String> {
+        self.loaded
+            .recipe
+            .as_ref()
+            .map_or_else(Vec::new, |r| r.parameter_names())
+    }
+
     fn __repr__(&self) -> String {
         let m = &self.loaded.model;
         format!(
@@ -1030,6 +1047,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
+    m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
+    m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -218,6 +218,7 @@ impl Described {
             analysis,
             outlines,
             data_files: data.into_read(),
+            recipe: None,
         })
     }
 
