@@ -14,7 +14,6 @@ The mechanics (gap, events, impact) are in the Rust core
 from __future__ import annotations
 
 import math
-import re
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -146,33 +145,26 @@ def jump_speed(
     the inverse dynamics (the contact held) reports a negative normal
     force.
 
-    `model` is loaded from a TOML file or text whose ``[parameters]`` table
-    sets `parameter` (the cam speed, e.g. ``rpm = 6000``); each speed
-    replaces that value and the model is loaded again. `t_end` overrides
-    the runs' length (s). The inverse dynamics needs a driven cam (zero
-    degrees of freedom).
+    `model` is any model whose ``[parameters]`` table sets `parameter`
+    (the cam speed, e.g. ``rpm = 6000``); each speed is one variant,
+    `model.with_parameters(parameter=speed)`, resolved again in Rust.
+    `t_end` overrides the runs' length (s). The inverse dynamics needs a
+    driven cam (zero degrees of freedom).
     """
-    from camlink.model import loads
-
-    recipe = model._recipe
-    if recipe is None or recipe[1] != "toml":
-        raise ModelError("jump_speed varies a parameter of a model loaded from TOML")
-    text, fmt, source, base_dir, allow_outside = recipe
-    pattern = re.compile(rf"^(\s*{re.escape(parameter)}\s*=\s*)([^#\n]*)", re.MULTILINE)
-    if not pattern.search(text):
+    if parameter not in model.parameters:
         raise ModelError(
-            f"{source}: no parameter {parameter!r} to vary (a line `{parameter} = …`)"
+            f"{model.source or model.name}: no parameter {parameter!r} to vary "
+            f"(the [parameters] table has {', '.join(model.parameters) or 'none'})"
         )
     if joint not in {j["name"] for j in model.joints}:
-        raise ModelError(f"{source}: no joint named {joint!r}")
+        raise ModelError(f"{model.source or model.name}: no joint named {joint!r}")
     order = sorted(float(s) for s in speeds)
     if not order:
         raise ModelError("jump_speed needs at least one speed")
     flies: list[bool] = []
     inverse: float | None = None
     for speed in order:
-        varied = pattern.sub(rf"\g<1>{speed!r} ", text, count=1)
-        at = loads(varied, fmt, source, base_dir=base_dir, allow_outside=allow_outside)
+        at = model.with_parameters(**{parameter: speed})
         res = at.run(t_end=t_end, analysis="dynamics")
         rows = res.lift_off
         flies.append(bool(((rows["joint"] == joint) & rows["greatest_gap"].notna()).any()))
