@@ -5,6 +5,7 @@
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
+use crate::fmt_num::num;
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
 
@@ -182,6 +183,9 @@ pub enum Kind {
     /// A solver could not be set up (a matrix pattern faer refuses, or no
     /// memory for it): a bug to report.
     Internal,
+    /// A user function computing a force failed (a Python force callback
+    /// raised); the message names the force.
+    ForceFailed,
     /// The receiver of the results stopped the run (an interrupt, a failing
     /// callback that takes the rows).
     Stopped,
@@ -194,7 +198,7 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 15] = [
+    pub const ALL: [Kind; 16] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -207,6 +211,7 @@ impl Kind {
         Kind::OffCurve,
         Kind::Undercut,
         Kind::Internal,
+        Kind::ForceFailed,
         Kind::Stopped,
         Kind::NearSingular,
         Kind::LiftOff,
@@ -227,6 +232,7 @@ impl Kind {
             Kind::OffCurve => "off_curve",
             Kind::Undercut => "undercut",
             Kind::Internal => "internal",
+            Kind::ForceFailed => "force_failed",
             Kind::Stopped => "stopped",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
@@ -253,7 +259,7 @@ pub struct Warning {
 
 /// An analysis that cannot proceed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("at t = {time} s: {message}")]
+#[error("at t = {} s: {message}", crate::fmt_num::num(*.time))]
 pub struct AnalysisError {
     /// What went wrong, as a stable name (`docs/errors.md`).
     pub kind: Kind,
@@ -468,10 +474,10 @@ impl LiftOff {
     pub fn message(&self) -> String {
         let at = |c: &Crossing| {
             format!(
-                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
-                c.time,
-                c.cam_angle,
-                c.cam_angle.to_degrees().rem_euclid(360.0)
+                "t = {} s (cam angle {} rad, {}°)",
+                num(c.time),
+                num(c.cam_angle),
+                num(c.cam_angle.to_degrees().rem_euclid(360.0))
             )
         };
         let end = match &self.end {
@@ -480,12 +486,12 @@ impl LiftOff {
         };
         format!(
             "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
-             least {:.4} N at {}",
+             least {} N at {}",
             self.joint,
             self.cam,
             at(&self.start),
             end,
-            self.least,
+            num(self.least),
             at(&self.least_at)
         )
     }

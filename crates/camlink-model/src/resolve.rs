@@ -22,6 +22,7 @@ use crate::error::did_you_mean;
 use crate::eval;
 use crate::file::*;
 use camlink_core::dynamics::integrator::Adaptive;
+use camlink_core::fmt_num::num;
 
 use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
@@ -215,7 +216,7 @@ fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
             if !v.is_finite() {
                 return fail(
                     format!("parameters.{name}"),
-                    format!("value is not a finite number ({v})"),
+                    format!("value is not a finite number ({})", num(v)),
                 );
             }
             done.insert(name.clone(), v);
@@ -282,7 +283,7 @@ impl Ctx {
             },
         };
         if !v.is_finite() {
-            return fail(path, format!("value is not a finite number ({v})"));
+            return fail(path, format!("value is not a finite number ({})", num(v)));
         }
         Ok(v)
     }
@@ -548,7 +549,7 @@ impl Ctx {
     fn time_fn(&self, f: &Num, path: &str) -> R<TimeFn> {
         match f {
             Num::Value(v) if v.is_finite() => Ok(TimeFn::Const(*v)),
-            Num::Value(v) => fail(path, format!("value is not a finite number ({v})")),
+            Num::Value(v) => fail(path, format!("value is not a finite number ({})", num(*v))),
             Num::Expr(src) => eval::time_fn(src, &self.params).or_else(|e| fail(path, e)),
         }
     }
@@ -556,7 +557,7 @@ impl Ctx {
     fn positive(&self, n: &Num, path: &str, what: &str) -> R<f64> {
         let v = self.num(n, path)?;
         if v <= 0.0 {
-            return fail(path, format!("{what} must be positive ({v} m)"));
+            return fail(path, format!("{what} must be positive ({} m)", num(v)));
         }
         Ok(v)
     }
@@ -1181,7 +1182,7 @@ impl Ctx {
                     if let Some(&last) = out.last().filter(|&&last| v <= last) {
                         return fail(
                             format!("analysis.times[{k}]"),
-                            format!("times must increase ({v} s follows {last} s)"),
+                            format!("times must increase ({} s follows {} s)", num(v), num(last)),
                         );
                     }
                     out.push(v);
@@ -1269,11 +1270,8 @@ impl Ctx {
             {
                 tols[k] = self.setting(n, key)?.unwrap_or(default);
             }
-            if tols == [0.0, 0.0] {
-                return fail(
-                    "analysis.atol",
-                    "atol and rtol are both 0: no step would pass",
-                );
+            if let Err(e) = camlink_core::setting::check_error_control(tols[0], tols[1]) {
+                return fail("analysis.atol", e);
             }
             let h_min = positive(a.h_min.as_ref(), Some(DynamicsSpec::DEFAULT_H_MIN), "h_min")?
                 .unwrap_or(DynamicsSpec::DEFAULT_H_MIN);

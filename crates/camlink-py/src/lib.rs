@@ -21,11 +21,13 @@ use camlink_core::dynamics::integrator::{self, Adaptive};
 use camlink_core::dynamics::{inverse, statics};
 use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
+use camlink_core::force::ForceError;
 use camlink_core::kinematics;
 use camlink_core::run::{
     self, AnalysisError as CoreAnalysisError, Kind, LiftOff, PointOutput, Settings, Sink, Stop,
     Summary,
 };
+use camlink_core::setting;
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
 use numpy::ndarray::Array2;
@@ -596,15 +598,12 @@ impl Model {
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        if !(h > 0.0 && h.is_finite()) {
-            return Err(ModelError::new_err(format!(
-                "h must be a positive time step ({h} s)"
-            )));
-        }
-        if !(0.0..=1.0).contains(&rho_inf) {
-            return Err(ModelError::new_err(format!(
-                "rho_inf must be between 0 and 1 ({rho_inf})"
-            )));
+        let check = |key: &str, v: f64| setting::check(key, v).map_err(ModelError::new_err);
+        check("h", h)?;
+        check("rho_inf", rho_inf)?;
+        if let Some((atol, rtol, h_min)) = adaptive {
+            setting::check_error_control(atol, rtol).map_err(ModelError::new_err)?;
+            check("h_min", h_min)?;
         }
         let settings = integrator::Settings {
             step: h,
@@ -654,8 +653,10 @@ impl Model {
             let points = resolve_points(&self.loaded.model, points)?;
             let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
             let model = &self.loaded.model;
+            FORCE_ERROR.with(|slot| slot.borrow_mut().take());
             let outcome = py
                 .detach(|| catch_unwind(AssertUnwindSafe(|| analysis(model, &points, &mut sink))));
+            let force_error = FORCE_ERROR.with(|slot| slot.borrow_mut().take());
             sink.flush();
             let ChunkSink {
                 names,
@@ -664,13 +665,6 @@ impl Model {
                 ..
             } = sink;
             let data = to_array(py, all, names.len())?;
-            let outcome = match outcome {
-                Err(payload) => match payload.downcast::<ForceFailed>() {
-                    Ok(failed) => return Err(failed.0),
-                    Err(payload) => Err(payload),
-                },
-                Ok(result) => Ok(result),
-            };
             if let Some(e) = callback_error {
                 return Err(e);
             }
@@ -679,20 +673,30 @@ impl Model {
                 Ok(Err(e)) if e.kind == Kind::Stopped => Err(PyRuntimeError::new_err(format!(
                     "internal error: run stopped without a Python error ({e})"
                 ))),
-                Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
+                Ok(Err(e)) => {
+                    let err = analysis_error(py, &e, names, Some(data));
+                    if e.kind == Kind::ForceFailed {
+                        err.set_cause(py, force_error);
+                    }
+                    Err(err)
+                }
                 Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
             }
         })
     }
 }
 
-/// Unwinding payload that stops a run when a Python force function raised:
-/// the exception travels with it to [`Model::run_with`].
-struct ForceFailed(PyErr);
+thread_local! {
+    /// The exception of the Python force function that stopped the run on
+    /// this thread, for [`Model::run_with`] to chain as the `__cause__` of
+    /// the `force_failed` error.
+    static FORCE_ERROR: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
+}
 
 /// Calls a Python force function `f(t, q, qd) -> (fx, fy, n)`; on an
-/// exception or a bad return value, unwinds with [`ForceFailed`].
-fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
+/// exception or a bad return value, keeps the exception in [`FORCE_ERROR`]
+/// and returns a [`ForceError`] that stops the run.
+fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> Result<[f64; 3], ForceError> {
     let result = Python::attach(|py| -> PyResult<[f64; 3]> {
         let out = f.call1(py, (t, (q[0], q[1], q[2]), (qd[0], qd[1], qd[2])))?;
         out.extract::<[f64; 3]>(py).map_err(|_| {
@@ -706,10 +710,24 @@ fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
             ))
         })
     });
-    match result {
-        Ok(v) => v,
-        Err(e) => std::panic::resume_unwind(Box::new(ForceFailed(e))),
-    }
+    result.map_err(|e| {
+        let what = Python::attach(|py| {
+            let kind = e
+                .get_type(py)
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_else(|_| "exception".to_string());
+            let text = e.value(py).to_string();
+            let text: String = text.chars().take(200).collect();
+            if text.is_empty() {
+                kind
+            } else {
+                format!("{kind}: {text}")
+            }
+        });
+        FORCE_ERROR.with(|slot| *slot.borrow_mut() = Some(e));
+        ForceError(what)
+    })
 }
 
 /// `"body.point"` names to core point outputs; a name given twice is an

@@ -16,6 +16,7 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::system::System;
+use crate::fmt_num::num;
 use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
@@ -56,7 +57,7 @@ impl<'m> InverseSolver<'m> {
         self.kin.step(t, prev)?;
         let (q, qd, qdd) = (&self.kin.q, &self.kin.qd, &self.kin.qdd);
         // Φ_qᵀ λ = Q − M q̈.
-        self.sys.forces(q, qd, t, &mut self.rhs);
+        self.sys.forces(q, qd, t, &mut self.rhs)?;
         for v in self.rhs.iter_mut() {
             *v = -*v;
         }
@@ -115,7 +116,7 @@ pub fn run(
                 return Err(AnalysisError::new(
                     Kind::InvalidInput,
                     t,
-                    format!("times must increase, but {t} follows {p}"),
+                    format!("times must increase, but {} follows {}", num(t), num(p)),
                 ));
             }
         }
