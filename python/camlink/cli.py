@@ -112,8 +112,8 @@ def _parser() -> argparse.ArgumentParser:
         action="append",
         dest="points",
         metavar="BODY.POINT",
-        help="output this body point (repeatable); the points given replace "
-        "[analysis] points",
+        help="a body point to output instead of the model's [analysis] points "
+        "(repeatable: the points given are the only ones output)",
     )
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     run.add_argument(
