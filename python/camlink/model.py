@@ -26,6 +26,8 @@ from camlink.records import (
 )
 from camlink.results import LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
+from camlink.signals import stop_on_termination
+from camlink.units import unit
 from camlink.warn import issue_design_warnings, issue_run_warnings
 
 __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
@@ -502,7 +504,8 @@ class Model:
         writer = None
         if output is not None:
             check_not_input(Path(output), self.inputs)
-            writer = BackgroundWriter(open_writer(output))
+            head = {"camlink": _core.__version__, "model": self.name, "analysis": kind}
+            writer = BackgroundWriter(open_writer(output, head=head))
         names: list[str] = []
         complete = False
 
@@ -515,12 +518,18 @@ class Model:
 
         metadata: dict[str, Any] | None = None
         try:
-            names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
+            # SIGTERM and SIGHUP, left at their defaults, stop the run as
+            # Ctrl-C does (camlink.signals).
+            with stop_on_termination(only_default=True):
+                names, data, summary = core(
+                    points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS
+                )
             complete = True
             metadata = {
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,
+                "units": {n: unit(n) for n in names},
                 "summary": {**summary, "analysis": kind},  # the binding's plain dict
             }
         except AnalysisError as e:
@@ -537,7 +546,7 @@ class Model:
                 e.output = None
             raise
         except KeyboardInterrupt as e:
-            # Ctrl-C, or SIGTERM/SIGHUP under the CLI: keep what was computed.
+            # Ctrl-C, SIGTERM or SIGHUP: keep what was computed.
             if writer is not None:
                 e.output = writer.close(names, complete=False)  # type: ignore[attr-defined]
                 writer = None

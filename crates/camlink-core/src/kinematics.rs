@@ -106,15 +106,7 @@ pub fn run(
     let mut values = vec![0.0; names.len()];
     let mut prev_t = None;
     for &t in times {
-        if let Some(p) = prev_t {
-            if t <= p || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {} follows {}", num(t), num(p)),
-                ));
-            }
-        }
+        crate::run::check_next_time(prev_t, t)?;
         match prev_t {
             None => solver.step(t, None).map(|_| ()),
             Some(p) => solver.advance(p, t, 0),

@@ -293,6 +293,20 @@ impl AnalysisError {
     }
 }
 
+/// Checks that output time `t` (s) follows the previous one, `prev`
+/// (`None` for the first): an `invalid_input` error when it does not
+/// increase or is NaN.
+pub fn check_next_time(prev: Option<f64>, t: f64) -> Result<(), AnalysisError> {
+    match prev {
+        Some(p) if t <= p || t.is_nan() => Err(AnalysisError::new(
+            Kind::InvalidInput,
+            t,
+            format!("times must increase, but {} follows {}", num(t), num(p)),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// The joints whose equations have the largest residuals |Φ| above `tol`,
 /// worst first and at most five, with the largest residual (m or rad); a
 /// NaN residual counts as infinite. `phi` is Φ at the failure.

@@ -510,15 +510,20 @@ impl Model {
         chunk_rows: usize,
         jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
-        let times = times.as_array().to_vec();
         let settings = Settings {
             tol,
             max_iter,
             jerk,
         };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
-            kinematics::run(model, &times, &settings, points, sink)
-        })
+        self.run_grid(
+            py,
+            times,
+            settings,
+            points,
+            on_chunk,
+            chunk_rows,
+            kinematics::run,
+        )
     }
 
     /// Inverse dynamics at `times` (s) of a driven (zero-DOF) model: the
@@ -545,15 +550,20 @@ impl Model {
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
-        let times = times.as_array().to_vec();
         let settings = Settings {
             tol,
             max_iter,
             ..Settings::default()
         };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
-            inverse::run(model, &times, &settings, points, sink)
-        })
+        self.run_grid(
+            py,
+            times,
+            settings,
+            points,
+            on_chunk,
+            chunk_rows,
+            inverse::run,
+        )
     }
 
     /// The equilibrium at `time` (s), as one row with the channels of
@@ -629,7 +639,35 @@ impl Model {
     }
 }
 
+/// A core analysis over output times with the kinematic settings:
+/// `kinematics::run` or `inverse::run`.
+type GridAnalysis = fn(
+    &camlink_core::Model,
+    &[f64],
+    &Settings,
+    &[PointOutput],
+    &mut dyn camlink_core::run::Sink,
+) -> Result<Summary, CoreAnalysisError>;
+
 impl Model {
+    /// Runs `analysis` at `times` (s) with `settings`, as [`Model::run_with`].
+    #[allow(clippy::too_many_arguments)]
+    fn run_grid<'py>(
+        &self,
+        py: Python<'py>,
+        times: PyReadonlyArray1<'py, f64>,
+        settings: Settings,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+        analysis: GridAnalysis,
+    ) -> PyResult<RunOutput<'py>> {
+        let times = times.as_array().to_vec();
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            analysis(model, &times, &settings, points, sink)
+        })
+    }
+
     /// Runs `analysis` with the GIL released, rows going to a [`ChunkSink`];
     /// turns its outcome, a panic, a failing `on_chunk` or a failing
     /// callback force into the Python result or exception.

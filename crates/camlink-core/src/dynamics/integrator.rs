@@ -712,17 +712,7 @@ pub fn run(
     let mut lambda = vec![0.0; it.sys.m()];
     for (k, &t) in times.iter().enumerate() {
         if k > 0 {
-            if t <= times[k - 1] || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!(
-                        "times must increase, but {} follows {}",
-                        crate::fmt_num::num(t),
-                        crate::fmt_num::num(times[k - 1])
-                    ),
-                ));
-            }
+            run::check_next_time(Some(times[k - 1]), t)?;
             it.advance_watching(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
         }
         run::fill_outputs(

@@ -16,7 +16,6 @@
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::system::System;
-use crate::fmt_num::num;
 use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
@@ -111,15 +110,7 @@ pub fn run(
     let mut scratch = Scratch::new(&s.sys);
     let mut prev: Option<f64> = None;
     for &t in times {
-        if let Some(p) = prev {
-            if t <= p || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {} follows {}", num(t), num(p)),
-                ));
-            }
-        }
+        run::check_next_time(prev, t)?;
         s.step(t, prev)?;
         s.kin.outputs(points, &mut values[..nk]);
         output::fill(
