@@ -17,8 +17,8 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from camlink._core import ModelError
-from camlink.units import unit
 from camlink.results import Results
+from camlink.units import unit
 
 __all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj", "svaj_data", "unit"]
 

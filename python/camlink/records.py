@@ -78,8 +78,8 @@ class RedundantEquation(TypedDict):
 
     #: ``"joint[row]"``.
     equation: str
-    #: The equations it is a combination of.
-    depends_on: list[str]
+    #: The equations it is a combination of, as (equation, coefficient).
+    depends_on: list[tuple[str, float]]
 
 
 class CheckReport(TypedDict):

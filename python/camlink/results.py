@@ -18,7 +18,6 @@ import numpy.typing as npt
 
 from camlink._core import ModelError
 from camlink.errors import RunWarning, warnings_from
-from camlink.units import unit
 from camlink.output import (
     READ_SUFFIXES,
     SUFFIXES,
@@ -27,6 +26,7 @@ from camlink.output import (
     read_arrow_stream,
     read_csv_metadata,
 )
+from camlink.units import unit
 
 if TYPE_CHECKING:
     from collections.abc import Sequence

@@ -23,37 +23,34 @@ def pendulum_file(tmp_path: Path) -> Path:
     return Path(shutil.copy(PENDULUM, tmp_path / "pendulum.toml"))
 
 
+def _cli_and_python(model_file: Path, tmp_path: Path, **settings: float) -> tuple[Results, Results]:
+    """An adaptive run of `model_file` with `settings` through `camlink run`
+    (each as ``--key value``) and through `Model.simulate`."""
+    out = tmp_path / "cli.csv"
+    options = [str(a) for k, v in settings.items() for a in (f"--{k.replace('_', '-')}", v)]
+    proc = run_cli("run", model_file, "-o", out, "--adaptive", *options)
+    assert proc.returncode == 0, proc.stderr
+    py = camlink.load(model_file).simulate(adaptive=True, **settings)  # type: ignore[arg-type]
+    return Results.load(out), py
+
+
 def test_atol_rtol_h_min_on_the_command_line_match_python(pendulum_file: Path, tmp_path: Path) -> None:
     # Largest step 0.25 s, so that the tolerances, not h, set the steps.
-    settings = {"h": 0.25, "atol": 1e-9, "rtol": 1e-7, "h_min": 1e-9}
-    proc = run_cli(
-        "run", pendulum_file, "-o", tmp_path / "tight.csv", "--t-end", "1", "--step", "0.25",
-        "--h", "0.25", "--adaptive", "--atol", "1e-9", "--rtol", "1e-7", "--h-min", "1e-9",
-    )
-    assert proc.returncode == 0, proc.stderr
-    cli = Results.load(tmp_path / "tight.csv")
-    model = camlink.load(pendulum_file)
-    py = model.simulate(t_end=1, step=0.25, adaptive=True, **settings)
+    grid = {"t_end": 1, "step": 0.25, "h": 0.25}
+    cli, py = _cli_and_python(pendulum_file, tmp_path, **grid, atol=1e-9, rtol=1e-7, h_min=1e-9)
     np.testing.assert_array_equal(cli["arm.phi"], py["arm.phi"])
     # The options change the answer: the default tolerances give another.
-    loose = model.simulate(t_end=1, step=0.25, h=0.25, adaptive=True)
+    loose = camlink.load(pendulum_file).simulate(adaptive=True, **grid)  # type: ignore[arg-type]
     assert np.max(np.abs(loose["arm.phi"] - py["arm.phi"])) > 1e-9
 
 
 def test_h_min_on_the_command_line_is_used(pendulum_file: Path, tmp_path: Path) -> None:
     # Tight tolerances want steps far below 0.01 s; h_min = 0.01 s holds
     # them there, and the CLI answer is Python's with the same h_min.
-    proc = run_cli(
-        "run", pendulum_file, "-o", tmp_path / "o.csv", "--t-end", "0.2", "--step", "0.1",
-        "--h", "0.1", "--adaptive", "--atol", "1e-12", "--rtol", "1e-12", "--h-min", "0.01",
-    )
-    assert proc.returncode == 0, proc.stderr
-    cli = Results.load(tmp_path / "o.csv")
-    model = camlink.load(pendulum_file)
-    tight = {"t_end": 0.2, "step": 0.1, "h": 0.1, "adaptive": True, "atol": 1e-12, "rtol": 1e-12}
-    held = model.simulate(**tight, h_min=0.01)  # type: ignore[arg-type]
-    free = model.simulate(**tight)  # type: ignore[arg-type]
+    tight = {"t_end": 0.2, "step": 0.1, "h": 0.1, "atol": 1e-12, "rtol": 1e-12}
+    cli, held = _cli_and_python(pendulum_file, tmp_path, **tight, h_min=0.01)
     np.testing.assert_array_equal(cli["arm.phi"], held["arm.phi"])
+    free = camlink.load(pendulum_file).simulate(adaptive=True, **tight)  # type: ignore[arg-type]
     assert held.summary["steps"] < free.summary["steps"]
 
 

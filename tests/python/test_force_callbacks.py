@@ -4,6 +4,7 @@ the time, with the Python exception chained as ``__cause__``."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -22,8 +23,11 @@ class Boom(Exception):
     """The user's own exception type."""
 
 
-def _failing_after(t_fail: float):  # type: ignore[no-untyped-def]
-    def push(t: float, q: tuple[float, float, float], qd: tuple[float, float, float]) -> tuple[float, float, float]:
+Triple = tuple[float, float, float]
+
+
+def _failing_after(t_fail: float) -> Callable[[float, Triple, Triple], Triple]:
+    def push(t: float, q: Triple, qd: Triple) -> Triple:
         if t >= t_fail:
             raise Boom(f"sensor lost at {t}")
         return (0.1, 0.0, 0.0)
@@ -53,7 +57,7 @@ def test_equilibrium_and_inverse_dynamics_report_it_too() -> None:
 
 
 def test_a_bad_return_value_is_a_force_failure_with_a_model_error_cause() -> None:
-    model = _pendulum().with_force("bad", "arm", lambda t, q, qd: "three")
+    model = _pendulum().with_force("bad", "arm", lambda t, q, qd: "three")  # type: ignore[arg-type, return-value]
     with pytest.raises(camlink.AnalysisError, match="force 'bad' failed") as info:
         model.simulate(t_end=0.01, step=0.01)
     assert info.value.kind == "force_failed"
@@ -64,7 +68,7 @@ def test_a_bad_return_value_is_a_force_failure_with_a_model_error_cause() -> Non
 def test_the_model_runs_again_after_a_failure() -> None:
     calls = {"n": 0}
 
-    def flaky(t: float, q: tuple[float, float, float], qd: tuple[float, float, float]) -> tuple[float, float, float]:
+    def flaky(t: float, q: Triple, qd: Triple) -> Triple:
         calls["n"] += 1
         if calls["n"] == 3:
             raise Boom("once")

@@ -8,11 +8,11 @@ import typing
 from pathlib import Path
 
 import pytest
+from test_dynamics import flat_follower_on_the_seed_cam
 
 import camlink
 from camlink import records
 from camlink.model import Model
-from test_dynamics import flat_follower_on_the_seed_cam
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

@@ -35,7 +35,7 @@ def test_a_run_to_csv_writes_a_comment_header_that_load_reads_back(tmp_path: Pat
     assert back.model == model.name
     np.testing.assert_array_equal(back.data, res.data)
     for key in ("analysis", "steps", "newton_iterations", "energy_drift"):
-        assert back.summary[key] == res.summary[key], key  # type: ignore[literal-required]
+        assert back.summary[key] == res.summary[key], key
     # Other readers skip the comments.
     frame = pd.read_csv(tmp_path / "out.csv", comment="#")
     np.testing.assert_array_equal(frame.to_numpy(), res.data)
@@ -58,6 +58,7 @@ def test_a_failed_run_keeps_the_header_but_no_summary(stuck_file: Path, tmp_path
     with pytest.raises(camlink.AnalysisError) as info:
         model.kinematics(t_end=0.3, step=0.01, output=tmp_path / "out.csv")
     partial = info.value.output
+    assert partial is not None
     text = Path(partial).read_text()
     assert text.startswith("# camlink: ") and "# summary:" not in text
     back = Results.load(partial)
