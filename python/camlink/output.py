@@ -271,8 +271,17 @@ class BackgroundWriter:
         self._thread.start()
 
     def _work(self) -> None:
+        import queue
+
         while True:
-            item = self._queue.get()
+            # A signal handler that raises (Ctrl-C, SIGTERM) while the main
+            # thread is inside `Queue.put` can lose the wake-up of a
+            # waiting `get`: wait in short slices so that a lost wake-up
+            # costs 0.1 s, never a hang.
+            try:
+                item = self._queue.get(timeout=0.1)
+            except queue.Empty:
+                continue
             if item is None:
                 return
             if self._error is None:

@@ -34,7 +34,7 @@ def test_a_run_to_csv_writes_a_comment_header_that_load_reads_back(tmp_path: Pat
     back = Results.load(tmp_path / "out.csv")
     assert back.model == model.name
     np.testing.assert_array_equal(back.data, res.data)
-    for key in ("analysis", "steps", "newton_iterations", "energy_drift"):
+    for key in ("analysis", "steps", "newton_iterations", "factorizations"):
         assert back.summary[key] == res.summary[key], key
     # Other readers skip the comments.
     frame = pd.read_csv(tmp_path / "out.csv", comment="#")

@@ -480,11 +480,12 @@ impl LiftOff {
     /// The report, as the run summary's warning:
     ///
     /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
-    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
-    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
-    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
+    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7316°) to
+    /// t = 0.015 s (cam angle 1.9 rad, 108.862°); least −12.3 N at
+    /// t = 0.0137 s (cam angle 1.57 rad, 89.9544°)`
     ///
-    /// The degrees are the cam angle folded into [0°, 360°).
+    /// The degrees are the cam angle folded into [0°, 360°); every number
+    /// has at most six significant digits ([`crate::fmt_num`]).
     pub fn message(&self) -> String {
         let at = |c: &Crossing| {
             format!(
