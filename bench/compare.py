@@ -33,8 +33,8 @@ ROOT = HERE.parent
 sys.path.insert(0, str(HERE))
 
 import camlink_models
-import output_writing
 import divan
+import output_writing
 import slider_crank as sc
 import textbook_four_bar as tb
 
