@@ -292,18 +292,22 @@ class Results:
 
     def metadata(self) -> dict[str, Any]:
         """What a results file carries besides the rows: the ``camlink``
-        version, the ``model`` name, the ``analysis`` and the ``summary``
-        (warnings as plain dicts)."""
+        version, the ``model`` name, the ``analysis``, each channel's
+        ``units`` and the ``summary`` (warnings as plain dicts); the model,
+        analysis and summary only when known."""
         from camlink import _core
 
         summary: dict[str, Any] = dict(self.summary)
         if "warnings" in summary:
             summary["warnings"] = [dataclasses.asdict(w) for w in summary["warnings"]]
-        meta: dict[str, Any] = {"camlink": _core.__version__, "model": self.model}
+        meta: dict[str, Any] = {"camlink": _core.__version__}
+        if self.model:
+            meta["model"] = self.model
         if "analysis" in summary:
             meta["analysis"] = summary["analysis"]
         meta["units"] = {n: unit(n) for n in self._names}
-        meta["summary"] = summary
+        if summary:
+            meta["summary"] = summary
         return meta
 
     @classmethod
