@@ -574,9 +574,8 @@ impl Ctx {
                 point_j,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 self.joints
                     .insert(name.clone(), JointInfo::Revolute { bi, s_i, bj, s_j });
                 self.add(
@@ -600,9 +599,8 @@ impl Ctx {
                 angle,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_i = self.axis(axis, &format!("{p}.axis"))?;
                 let mut c = Translational {
                     body_i: bi,
@@ -637,9 +635,8 @@ impl Ctx {
                 length,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let length = match length {
                     Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
                     None => {
@@ -677,9 +674,8 @@ impl Ctx {
                 offset,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_j = self.axis(axis, &format!("{p}.axis"))?;
                 let offset = match offset {
                     Some(c) => self.num(c, &format!("{p}.offset"))?,
@@ -838,9 +834,8 @@ impl Ctx {
                 phase,
             } => {
                 let name = self.name(name.as_ref(), format!("gear_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let mut c = Gear {
                     body_i: bi,
                     s_i,
@@ -878,9 +873,8 @@ impl Ctx {
                 phase,
             } => {
                 let name = self.name(name.as_ref(), format!("rack_pinion_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let mut c = RackPinion {
                     body_i: bi,
                     s_i,
@@ -903,6 +897,22 @@ impl Ctx {
             JointSpec::PointFollower(c) => self.point_follower(c, k)?,
         }
         Ok(())
+    }
+
+    /// Body i and its point (`body_i`, `point_i`) and body j and its point
+    /// (`body_j`, `point_j`) of the joint at `path`, two different bodies.
+    fn two_bodies(
+        &self,
+        body_i: &str,
+        point_i: Option<&PointRef>,
+        body_j: &str,
+        point_j: Option<&PointRef>,
+        path: &str,
+    ) -> R<((BodyId, V2), (BodyId, V2))> {
+        let i = self.at(body_i, point_i, path, "body_i", "point_i")?;
+        let j = self.at(body_j, point_j, path, "body_j", "point_j")?;
+        self.distinct(i.0, j.0, path)?;
+        Ok((i, j))
     }
 
     fn distinct(&self, bi: BodyId, bj: BodyId, path: &str) -> R<()> {
