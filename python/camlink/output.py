@@ -33,7 +33,7 @@ import io
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -145,7 +145,7 @@ class CsvWriter:
     of rows with one write and a flush: numbers in their shortest exact
     form, names quoted as CSV requires."""
 
-    def __init__(self, path: Path, head: dict[str, Any] | None = None) -> None:
+    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
         self.path = path
         self._head = head or {}
         self._target = _Target(path, path.suffix)
@@ -169,7 +169,7 @@ class CsvWriter:
         self._file.flush()
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
         """Finishes the file, ending a complete one with the ``summary`` of
         `metadata`; returns where it is (the output, or its partial name
@@ -204,7 +204,7 @@ class ParquetWriter:
         self._sink.flush()
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
         """Writes the Parquet file from the journal, with `metadata` as JSON
         under the schema metadata key ``camlink``; returns where it is (the
@@ -300,7 +300,7 @@ class BackgroundWriter:
         self._queue.put((list(names), rows))
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
         """Waits for the queued chunks, then closes the file as
         `CsvWriter.close` / `ParquetWriter.close` do."""
@@ -315,7 +315,7 @@ class BackgroundWriter:
 
 
 def open_writer(
-    path: str | os.PathLike[str], head: dict[str, Any] | None = None
+    path: str | os.PathLike[str], head: Mapping[str, Any] | None = None
 ) -> CsvWriter | ParquetWriter:
     """A writer for `path` (CSV or Parquet by suffix), its temporary file
     created now so that an unwritable folder fails before any work; a CSV

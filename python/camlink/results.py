@@ -41,6 +41,7 @@ __all__ = [
     "SUFFIXES",
     "LiftOffRecord",
     "Results",
+    "ResultsMetadata",
     "RunSummary",
     "open_writer",
 ]
@@ -72,6 +73,21 @@ class LiftOffRecord(TypedDict):
     least_force: float
     least_time: float
     least_cam_angle: float
+
+
+class ResultsMetadata(TypedDict, total=False):
+    """What a results file carries besides its rows (`Results.metadata`)."""
+
+    #: The camlink version that wrote it.
+    camlink: str
+    #: The model's name.
+    model: str
+    #: The analysis: one of `camlink.ANALYSES`.
+    analysis: str
+    #: Each channel's unit (``""`` where the kind does not fix it).
+    units: dict[str, str]
+    #: The run summary as plain JSON values (warnings as dicts).
+    summary: dict[str, Any]
 
 
 class RunSummary(TypedDict, total=False):
@@ -290,7 +306,7 @@ class Results:
             writer.close(self._names, complete, metadata=meta)
         return writer.path
 
-    def metadata(self) -> dict[str, Any]:
+    def metadata(self) -> ResultsMetadata:
         """What a results file carries besides the rows: the ``camlink``
         version, the ``model`` name, the ``analysis``, each channel's
         ``units`` and the ``summary`` (warnings as plain dicts); the model,
@@ -300,7 +316,7 @@ class Results:
         summary: dict[str, Any] = dict(self.summary)
         if "warnings" in summary:
             summary["warnings"] = [dataclasses.asdict(w) for w in summary["warnings"]]
-        meta: dict[str, Any] = {"camlink": _core.__version__}
+        meta = ResultsMetadata(camlink=_core.__version__)
         if self.model:
             meta["model"] = self.model
         if "analysis" in summary:
