@@ -35,6 +35,8 @@ __all__ = [
     "__version__",
     "draw",
     "json_schema",
+    "jump_plot",
+    "jump_speed",
     "load",
     "loads",
     "plot",
@@ -42,7 +44,13 @@ __all__ = [
 ]
 
 #: Picture functions, imported on first use (they load matplotlib).
-_PICTURES = {"draw": "camlink.drawing", "plot": "camlink.plots", "svaj": "camlink.plots"}
+_PICTURES = {
+    "draw": "camlink.drawing",
+    "plot": "camlink.plots",
+    "svaj": "camlink.plots",
+    "jump_plot": "camlink.jump",
+    "jump_speed": "camlink.jump",
+}
 
 
 def __getattr__(name: str) -> object:

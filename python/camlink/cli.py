@@ -18,6 +18,7 @@ from pathlib import Path
 import camlink
 from camlink import cam_cli, cli_convert, cli_visuals
 from camlink._core import AnalysisError, ModelError
+from camlink.jump import flight_summary
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
 from camlink.settings import check_settings
@@ -261,6 +262,9 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"max |Φ| {summary['constraint_drift']:.3g}, "
                 f"max |Φ_q q̇ − ν| {summary['velocity_drift']:.3g}"
             )
+        flights = flight_summary(res)
+        if flights is not None:
+            print(f"  {flights}")
     return EXIT_OK
 
 

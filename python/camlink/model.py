@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import errno
 import json
+import math
 import os
 from collections.abc import Callable, Sequence
 from pathlib import Path
@@ -24,7 +25,7 @@ from camlink.records import (
     ForceRecord,
     JointRecord,
 )
-from camlink.results import LiftOffRecord, Results, RunSummary
+from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
 from camlink.units import unit
@@ -599,7 +600,9 @@ def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
         halvings=int(raw["halvings"]),
         warnings=warnings_from(raw["warnings"]),
         assembly_moves=[(str(b), (dx, dy, dphi)) for b, (dx, dy, dphi) in raw["assembly_moves"]],
-        lift_off=[_lift_off(r) for r in raw["lift_off"]],
+        lift_off=[_lift_off(r) for r in raw["lift_off"]]
+        + [_flight(r) for r in raw.get("flights", [])],
+        impacts=[_impact(r) for r in raw.get("impacts", [])],
     )
 
 
@@ -615,6 +618,29 @@ def _lift_off(r: dict[str, Any]) -> LiftOffRecord:
         least_force=float(r["least_force"]),
         least_time=float(r["least_time"]),
         least_cam_angle=float(r["least_cam_angle"]),
+    )
+
+
+def _flight(r: dict[str, Any]) -> LiftOffRecord:
+    """A simulated flight of a unilateral contact as a lift-off row: no
+    least force, the greatest gap instead."""
+    nan = {"least_force": math.nan, "least_time": math.nan, "least_cam_angle": math.nan}
+    row = _lift_off({**r, **nan})
+    row["greatest_gap"] = float(r["greatest_gap"])
+    row["greatest_time"] = float(r["greatest_time"])
+    row["greatest_cam_angle"] = float(r["greatest_cam_angle"])
+    return row
+
+
+def _impact(r: dict[str, Any]) -> ImpactRecord:
+    return ImpactRecord(
+        joint=str(r["joint"]),
+        time=float(r["time"]),
+        cam_angle=float(r["cam_angle"]),
+        approach_speed=float(r["approach_speed"]),
+        separation_speed=float(r["separation_speed"]),
+        impulse=float(r["impulse"]),
+        closed=bool(r["closed"]),
     )
 
 

@@ -25,7 +25,6 @@ __all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj"
 Array = npt.NDArray[np.float64]
 
 
-
 def label(channel: str) -> str:
     """An axis label: the channel and its unit in parentheses."""
     u = unit(channel)

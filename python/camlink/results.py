@@ -11,7 +11,7 @@ import json
 import os
 from collections.abc import Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, TypedDict
+from typing import TYPE_CHECKING, Any, NotRequired, TypedDict
 
 import numpy as np
 import numpy.typing as npt
@@ -37,8 +37,10 @@ if TYPE_CHECKING:
     from camlink.model import Model
 
 __all__ = [
+    "IMPACT_COLUMNS",
     "LIFT_OFF_COLUMNS",
     "SUFFIXES",
+    "ImpactRecord",
     "LiftOffRecord",
     "Results",
     "ResultsMetadata",
@@ -46,8 +48,9 @@ __all__ = [
     "open_writer",
 ]
 
-#: Columns of `Results.lift_off`: names, then times (s), cam angles (rad)
-#: and the least normal force (N).
+#: Columns of `Results.lift_off`: names, then times (s), cam angles (rad),
+#: the least normal force (N) of a bilateral contact and the greatest gap
+#: (m) of a unilateral contact's simulated flight.
 LIFT_OFF_COLUMNS = [
     "joint",
     "cam",
@@ -58,6 +61,22 @@ LIFT_OFF_COLUMNS = [
     "least_force",
     "least_time",
     "least_cam_angle",
+    "greatest_gap",
+    "greatest_time",
+    "greatest_cam_angle",
+]
+
+#: Columns of `Results.impacts`: the joint, time (s), cam angle (rad),
+#: normal approach and separation speeds (m/s), impulse (N·s) and whether
+#: the contact closed.
+IMPACT_COLUMNS = [
+    "joint",
+    "time",
+    "cam_angle",
+    "approach_speed",
+    "separation_speed",
+    "impulse",
+    "closed",
 ]
 
 
@@ -73,6 +92,24 @@ class LiftOffRecord(TypedDict):
     least_force: float
     least_time: float
     least_cam_angle: float
+    #: A simulated flight's greatest gap (m) and where; NaN for an interval
+    #: of negative normal force of a bilateral contact (whose ``least_*``
+    #: are NaN for a flight).
+    greatest_gap: NotRequired[float]
+    greatest_time: NotRequired[float]
+    greatest_cam_angle: NotRequired[float]
+
+
+class ImpactRecord(TypedDict):
+    """One impact of a unilateral contact (a row of `Results.impacts`)."""
+
+    joint: str
+    time: float
+    cam_angle: float
+    approach_speed: float
+    separation_speed: float
+    impulse: float
+    closed: bool
 
 
 class ResultsMetadata(TypedDict, total=False):
@@ -103,6 +140,8 @@ class RunSummary(TypedDict, total=False):
     #: (body, (Δx, Δy, Δφ)) in m, m, rad for bodies that assembly moved.
     assembly_moves: list[tuple[str, tuple[float, float, float]]]
     lift_off: list[LiftOffRecord]
+    #: Forward dynamics with unilateral contacts: the impacts.
+    impacts: list[ImpactRecord]
     #: Forward dynamics: largest |E − E(0)| (J), |Φ| and |Φ_q q̇ − ν|.
     energy_drift: float
     constraint_drift: float
@@ -185,6 +224,13 @@ class Results:
         not folded into one turn. Zeros are interpolated linearly between
         output times.
 
+        A unilateral contact (``unilateral = true``) in forward dynamics
+        leaves its cam instead: its rows are the simulated flights, from the
+        located lift-off (or a bounce) to the located impact, with
+        ``greatest_gap`` (m) and where it is, ``greatest_time`` (s) and
+        ``greatest_cam_angle`` (rad), at the step ends; ``least_*`` are NaN
+        there, as ``greatest_*`` are for a bilateral contact's rows.
+
         Inverse and forward dynamics find these; the frame is empty (with
         the same columns) when the follower stays on its cam, for the other
         analyses, for a run that stopped early and for results read from a
@@ -194,6 +240,26 @@ class Results:
 
         frame = pd.DataFrame(self.summary.get("lift_off", []), columns=LIFT_OFF_COLUMNS)
         return frame.astype({c: "float64" for c in LIFT_OFF_COLUMNS[2:]})
+
+    @property
+    def impacts(self) -> pd.DataFrame:
+        """The impacts of the unilateral cam contacts in forward dynamics,
+        in time order (`docs/dynamics.md`, "Unilateral contacts").
+
+        Columns (`IMPACT_COLUMNS`): ``joint``; ``time`` (s) and
+        ``cam_angle`` (rad, φ of the cam body) of the located impact;
+        ``approach_speed`` −ġ⁻ and ``separation_speed`` ġ⁺ (m/s, along the
+        contact normal; ġ⁺ = e (−ġ⁻) for a bounce, 0 when the contact
+        closes); ``impulse`` (N·s, on the follower side along the normal);
+        ``closed`` (True when the follower stayed on the cam). Empty, with
+        the same columns, without unilateral contacts or impacts.
+        """
+        import pandas as pd
+
+        frame = pd.DataFrame(self.summary.get("impacts", []), columns=IMPACT_COLUMNS)
+        return frame.astype(
+            {c: "float64" for c in IMPACT_COLUMNS[1:6]} | {"closed": "bool"}
+        )
 
     def __getitem__(self, name: str) -> npt.NDArray[np.float64]:
         if not isinstance(name, str):

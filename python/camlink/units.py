@@ -17,7 +17,7 @@ UNITS = {
     "fx_local_j": "N", "fy_local_j": "N", "normal": "N", "force": "N",
     "torque": "N·m", "torque_j": "N·m", "power": "W",
     "kinetic": "J", "potential": "J", "total": "J", "elastic": "J", "work": "J",
-    "residual": "m", "velocity": "m/s",
+    "residual": "m", "velocity": "m/s", "gap": "m",
 }
 
 

@@ -8,6 +8,7 @@ use std::collections::HashMap;
 
 pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
+use crate::force::compliant_contact::HuntCrossley;
 use crate::force::{Applied, Force};
 use crate::math::V2;
 
@@ -64,6 +65,37 @@ pub struct Joint {
     pub own0: Option<[f64; MAX_OWN]>,
     /// True for a driving (rheonomic) constraint.
     pub driver: bool,
+    /// `Some` for a cam contact that can open: forward dynamics releases
+    /// it where its normal force would turn negative and closes it again
+    /// at impact ([`crate::dynamics::unilateral`]).
+    pub unilateral: Option<Unilateral>,
+}
+
+/// How a unilateral cam contact opens, flies and lands.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Unilateral {
+    /// Newton's coefficient of restitution e ∈ [0, 1]: the normal
+    /// separation speed after an impact is e times the approach speed.
+    pub restitution: f64,
+    /// Approach speed (m/s) below which an impact closes the contact
+    /// (plastic): the end of a chatter of ever smaller bounces.
+    pub rest_speed: f64,
+    /// Time tolerance (s) of the located lift-off and impact events.
+    pub event_tol: f64,
+    /// `Some` for a compliant contact: a Hunt–Crossley normal force from
+    /// the overlap instead of impacts and closed phases.
+    pub compliant: Option<HuntCrossley>,
+}
+
+impl Default for Unilateral {
+    fn default() -> Self {
+        Unilateral {
+            restitution: 0.0,
+            rest_speed: 1e-3,
+            event_tol: 1e-9,
+            compliant: None,
+        }
+    }
 }
 
 /// A mechanism: bodies (ground first), joints and drivers.
@@ -145,6 +177,7 @@ impl Model {
             constraint: c.into(),
             own0: None,
             driver: false,
+            unilateral: None,
         });
     }
 
@@ -155,6 +188,7 @@ impl Model {
             constraint: c.into(),
             own0: None,
             driver: true,
+            unilateral: None,
         });
     }
 

@@ -144,6 +144,43 @@ pub struct Summary {
     /// follower would leave the cam), by start time; each is also a
     /// warning. Filled by inverse and forward dynamics.
     pub lift_off: Vec<LiftOff>,
+    /// The flights of the unilateral cam contacts in forward dynamics, by
+    /// start time.
+    pub flights: Vec<Flight>,
+    /// The impacts of the unilateral cam contacts, in time order.
+    pub impacts: Vec<Impact>,
+}
+
+/// A flight of a unilateral cam contact: from lift-off (or a bounce) to
+/// the next impact.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Flight {
+    pub joint: String,
+    /// The cam body's name.
+    pub cam: String,
+    /// The located lift-off or the bounce that starts the flight.
+    pub start: Crossing,
+    /// The located impact that ends it; `None` when the run ends in flight.
+    pub end: Option<Crossing>,
+    /// The greatest gap (m) at the step ends of the flight, and where.
+    pub greatest_gap: f64,
+    pub greatest_at: Crossing,
+}
+
+/// An impact of a unilateral cam contact (Newton's restitution law).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Impact {
+    pub joint: String,
+    pub at: Crossing,
+    /// Normal approach speed before the impact, −ġ⁻ (m/s, positive).
+    pub approach: f64,
+    /// Normal separation speed after it, ġ⁺ (m/s; 0 when the contact closes).
+    pub separation: f64,
+    /// The normal impulse on the follower side (N·s, positive).
+    pub impulse: f64,
+    /// True when the contact closed (a plastic impact, or an approach
+    /// slower than the rest speed).
+    pub closed: bool,
 }
 
 /// What kind of error or warning a run reports: a stable name that

@@ -457,6 +457,34 @@ pub struct CamFollowerJoint {
     /// Starting guess of the contact parameter on C_j; default: found.
     #[serde(default)]
     pub alpha_j: Option<Num>,
+    /// True when the contact can open: forward dynamics lets the follower
+    /// leave the cam where the normal force would turn negative, fly, and
+    /// land with Newton's restitution law (`docs/dynamics.md`).
+    #[serde(default)]
+    pub unilateral: bool,
+    /// Coefficient of restitution e of a unilateral contact, 0 (plastic,
+    /// the default) to 1 (elastic).
+    #[serde(default)]
+    pub restitution: Option<Num>,
+    /// Approach speed (m/s) below which an impact closes a unilateral
+    /// contact; default 1e-3.
+    #[serde(default)]
+    pub rest_speed: Option<Num>,
+    /// Time tolerance (s) of a unilateral contact's lift-off and impact
+    /// events; default 1e-9.
+    #[serde(default)]
+    pub event_tol: Option<Num>,
+    /// Stiffness k (N/mⁿ) of a compliant unilateral contact: a
+    /// Hunt–Crossley force k δⁿ (1 + c δ̇) from the overlap δ instead of
+    /// impacts.
+    #[serde(default)]
+    pub stiffness: Option<Num>,
+    /// Exponent n of a compliant contact; default 1.5 (Hertz).
+    #[serde(default)]
+    pub exponent: Option<Num>,
+    /// Damping factor c (s/m) of a compliant contact; default 0.
+    #[serde(default)]
+    pub damping: Option<Num>,
 }
 
 /// `flat_follower` joint: a curve on a straight face.
@@ -478,6 +506,34 @@ pub struct FlatFollowerJoint {
     /// point nearest the face.
     #[serde(default)]
     pub alpha_i: Option<Num>,
+    /// True when the contact can open: forward dynamics lets the follower
+    /// leave the cam where the normal force would turn negative, fly, and
+    /// land with Newton's restitution law (`docs/dynamics.md`).
+    #[serde(default)]
+    pub unilateral: bool,
+    /// Coefficient of restitution e of a unilateral contact, 0 (plastic,
+    /// the default) to 1 (elastic).
+    #[serde(default)]
+    pub restitution: Option<Num>,
+    /// Approach speed (m/s) below which an impact closes a unilateral
+    /// contact; default 1e-3.
+    #[serde(default)]
+    pub rest_speed: Option<Num>,
+    /// Time tolerance (s) of a unilateral contact's lift-off and impact
+    /// events; default 1e-9.
+    #[serde(default)]
+    pub event_tol: Option<Num>,
+    /// Stiffness k (N/mⁿ) of a compliant unilateral contact: a
+    /// Hunt–Crossley force k δⁿ (1 + c δ̇) from the overlap δ instead of
+    /// impacts.
+    #[serde(default)]
+    pub stiffness: Option<Num>,
+    /// Exponent n of a compliant contact; default 1.5 (Hertz).
+    #[serde(default)]
+    pub exponent: Option<Num>,
+    /// Damping factor c (s/m) of a compliant contact; default 0.
+    #[serde(default)]
+    pub damping: Option<Num>,
 }
 
 /// `point_follower` joint: a pin in a slot.

@@ -632,10 +632,12 @@ fn cam_from_csv_points() {
 
 #[test]
 fn every_cam_and_slot_example_has_a_test() {
-    // The cam examples' dynamics are tested in cam_dynamics.rs.
+    // The cam examples' dynamics are tested in cam_dynamics.rs and
+    // unilateral.rs.
     let this = [
         include_str!("cam_examples.rs"),
         include_str!("cam_dynamics.rs"),
+        include_str!("unilateral.rs"),
     ]
     .concat();
     let mut found = 0;

@@ -826,6 +826,55 @@ fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict
         lift_off.append(lift_off_dict(py, l)?)?;
     }
     d.set_item("lift_off", lift_off)?;
+    let flights = PyList::empty(py);
+    for f in &s.flights {
+        flights.append(flight_dict(py, f)?)?;
+    }
+    d.set_item("flights", flights)?;
+    let impacts = PyList::empty(py);
+    for i in &s.impacts {
+        impacts.append(impact_dict(py, i)?)?;
+    }
+    d.set_item("impacts", impacts)?;
+    Ok(d)
+}
+
+/// A flight of a unilateral contact as a dict: `joint`, `cam`,
+/// `start_time` (s), `start_cam_angle` (rad), `end_time` (s) and
+/// `end_cam_angle` (rad), None when the run ends in flight,
+/// `greatest_gap` (m), `greatest_time` (s), `greatest_cam_angle` (rad).
+fn flight_dict<'py>(
+    py: Python<'py>,
+    f: &camlink_core::run::Flight,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("joint", &f.joint)?;
+    d.set_item("cam", &f.cam)?;
+    d.set_item("start_time", f.start.time)?;
+    d.set_item("start_cam_angle", f.start.cam_angle)?;
+    d.set_item("end_time", f.end.map(|e| e.time))?;
+    d.set_item("end_cam_angle", f.end.map(|e| e.cam_angle))?;
+    d.set_item("greatest_gap", f.greatest_gap)?;
+    d.set_item("greatest_time", f.greatest_at.time)?;
+    d.set_item("greatest_cam_angle", f.greatest_at.cam_angle)?;
+    Ok(d)
+}
+
+/// An impact as a dict: `joint`, `time` (s), `cam_angle` (rad),
+/// `approach_speed` and `separation_speed` (m/s), `impulse` (N·s),
+/// `closed` (bool).
+fn impact_dict<'py>(
+    py: Python<'py>,
+    i: &camlink_core::run::Impact,
+) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("joint", &i.joint)?;
+    d.set_item("time", i.at.time)?;
+    d.set_item("cam_angle", i.at.cam_angle)?;
+    d.set_item("approach_speed", i.approach)?;
+    d.set_item("separation_speed", i.separation)?;
+    d.set_item("impulse", i.impulse)?;
+    d.set_item("closed", i.closed)?;
     Ok(d)
 }
 

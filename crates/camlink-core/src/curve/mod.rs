@@ -37,6 +37,7 @@ use std::f64::consts::TAU;
 use crate::math::{cross, norm, sub, V2};
 
 pub mod carried;
+pub mod distance;
 pub mod fourier;
 pub mod parametric;
 pub mod points;

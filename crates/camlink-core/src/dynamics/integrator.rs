@@ -129,6 +129,15 @@ impl Coeffs {
     }
 }
 
+/// A copy of an integrator's state: t, (q, q̇, q̈, λ, a) and the
+/// predictor's history, for stepping again from the same start.
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    t: f64,
+    h_prev: f64,
+    vectors: [Vec<f64>; 7],
+}
+
 /// The state and scratch of a forward-dynamics run; allocated once.
 pub struct Integrator<'m> {
     pub sys: System<'m>,
@@ -254,6 +263,66 @@ impl<'m> Integrator<'m> {
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
         Ok(it)
+    }
+
+    /// Restarts at an event of a unilateral contact ([`super::unilateral`])
+    /// from (t, q, q̇): positions and velocities projected onto this
+    /// model's constraints, q̈ and λ consistent, the predictor's history
+    /// dropped.
+    pub fn restart(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Result<(), AnalysisError> {
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.qd.copy_from_slice(qd);
+        let tol = self.settings.projection_tol;
+        let projected = project::positions(&self.sys, &mut self.aug, &mut self.q, t, tol, 100)
+            .and_then(|_| project::velocities(&self.sys, &mut self.aug, &self.q, &mut self.qd, t));
+        if let Err(e) = projected {
+            return Err(self.error(e.kind, &e.message));
+        }
+        self.accelerations()?;
+        self.a.copy_from_slice(&self.qdd);
+        self.h_prev = 0.0;
+        self.err_prev = None;
+        Ok(())
+    }
+
+    /// The system and its augmented matrix, for a one-shot solve of the
+    /// caller's (the impact's); the step's factorization is dropped.
+    pub fn system_and_matrix(&mut self) -> (&System<'m>, &mut Augmented) {
+        self.h_factored = 0.0;
+        (&self.sys, &mut self.aug)
+    }
+
+    /// Copies the state into `s`, to [`resume`](Self::resume) from it.
+    pub fn snapshot(&self, s: &mut Snapshot) {
+        s.t = self.t;
+        s.h_prev = self.h_prev;
+        for (to, from) in s.vectors.iter_mut().zip([
+            &self.q,
+            &self.qd,
+            &self.qdd,
+            &self.lambda,
+            &self.a,
+            &self.prev[0],
+            &self.prev[1],
+        ]) {
+            to.clear();
+            to.extend_from_slice(from);
+        }
+    }
+
+    /// Returns to the state of a [`snapshot`](Self::snapshot).
+    pub fn resume(&mut self, s: &Snapshot) {
+        self.t = s.t;
+        self.h_prev = s.h_prev;
+        let [q, qd, qdd, l, a, p0, p1] = &s.vectors;
+        self.q.copy_from_slice(q);
+        self.qd.copy_from_slice(qd);
+        self.qdd.copy_from_slice(qdd);
+        self.lambda.copy_from_slice(l);
+        self.a.copy_from_slice(a);
+        self.prev[0].copy_from_slice(p0);
+        self.prev[1].copy_from_slice(p1);
     }
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
@@ -698,6 +767,9 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
+    if model.joints.iter().any(|j| j.unilateral.is_some()) {
+        return super::unilateral::run(model, times, settings, points, sink);
+    }
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
     let contacts = crate::contact::Contacts::new(model);

@@ -17,9 +17,12 @@
 //!   [`contact_force`], and the output channels, in [`output`];
 //! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
 //! - equilibrium, in [`statics`];
-//! - forward dynamics, implicit index-3 generalized-α, in [`integrator`].
+//! - forward dynamics, implicit index-3 generalized-α, in [`integrator`],
+//!   with unilateral cam contacts (lift-off, flight, impact) in
+//!   [`unilateral`] and the impact law in [`impact`].
 
 pub mod contact_force;
+pub mod impact;
 pub mod integrator;
 pub mod inverse;
 pub mod mass;
@@ -29,3 +32,4 @@ pub mod reaction;
 pub mod redundant;
 pub mod statics;
 pub mod system;
+pub mod unilateral;

@@ -25,6 +25,7 @@ use crate::constraint::BodyId;
 use crate::constraint::Local;
 
 pub mod callback;
+pub mod compliant_contact;
 pub mod point;
 pub mod rsda;
 pub mod translational_damper;
@@ -121,6 +122,7 @@ forces! {
     Rsda(rsda::Rsda),
     TranslationalDamper(translational_damper::TranslationalDamper),
     Callback(callback::Callback),
+    CompliantContact(compliant_contact::CompliantContact),
 }
 
 /// A force that could not be computed: a user function failed. The

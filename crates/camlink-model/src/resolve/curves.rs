@@ -14,7 +14,9 @@ use camlink_core::constraint::flat_follower::FlatFollower;
 use camlink_core::constraint::point_follower::PointFollower;
 use camlink_core::constraint::{Constraint, MAX_OWN};
 use camlink_core::curve::{read_points_csv, search, Curve, Parametric, Polar, Radius};
+use camlink_core::force::compliant_contact::HuntCrossley;
 use camlink_core::math::{point, rot_t, sub, V2};
+use camlink_core::model::Unilateral;
 use camlink_core::BodyId;
 
 use super::{check_name, fail, Ctx, JointInfo, R};
@@ -521,6 +523,106 @@ impl Ctx {
             curve_j: cj,
         };
         self.add_contact(name, cf.into(), own0);
+        let law = [
+            &c.restitution,
+            &c.rest_speed,
+            &c.event_tol,
+            &c.stiffness,
+            &c.exponent,
+            &c.damping,
+        ];
+        self.set_unilateral(c.unilateral, law, p)
+    }
+
+    /// Makes the contact just added unilateral when `on`, with its law
+    /// [restitution, rest_speed, event_tol, stiffness, exponent, damping]
+    /// checked field by field.
+    fn set_unilateral(&mut self, on: bool, law: [&Option<Num>; 6], p: &str) -> R<()> {
+        let names = [
+            "restitution",
+            "rest_speed",
+            "event_tol",
+            "stiffness",
+            "exponent",
+            "damping",
+        ];
+        if !on {
+            if let Some(k) = law.iter().position(|v| v.is_some()) {
+                return fail(
+                    format!("{p}.{}", names[k]),
+                    "applies to a unilateral contact only: add unilateral = true",
+                );
+            }
+            return Ok(());
+        }
+        let mut vals = [None; 6];
+        for (k, v) in law.iter().enumerate() {
+            if let Some(n) = v {
+                vals[k] = Some(self.num(n, &format!("{p}.{}", names[k]))?);
+            }
+        }
+        let mut u = Unilateral::default();
+        let [e, rest, tol, k, n, c] = vals;
+        let field = |k: usize| format!("{p}.{}", names[k]);
+        if let Some(e) = e {
+            if !(0.0..=1.0).contains(&e) {
+                return fail(field(0), format!("must be between 0 and 1, not {e}"));
+            }
+            u.restitution = e;
+        }
+        if let Some(rest) = rest {
+            if !(rest >= 0.0 && rest.is_finite()) {
+                return fail(field(1), format!("must be a speed ≥ 0 (m/s), not {rest}"));
+            }
+            u.rest_speed = rest;
+        }
+        if let Some(tol) = tol {
+            if !(tol > 0.0 && tol.is_finite()) {
+                return fail(field(2), format!("must be a time > 0 (s), not {tol}"));
+            }
+            u.event_tol = tol;
+        }
+        match k {
+            Some(k) => {
+                if !(k > 0.0 && k.is_finite()) {
+                    return fail(field(3), format!("must be a stiffness > 0 (N/mⁿ), not {k}"));
+                }
+                if e.is_some() {
+                    return fail(
+                        field(0),
+                        "a compliant contact (stiffness given) has no impacts: its damping \
+                         sets the losses",
+                    );
+                }
+                let n = n.unwrap_or(1.5);
+                if !(n >= 1.0 && n.is_finite()) {
+                    return fail(field(4), format!("must be ≥ 1, not {n}"));
+                }
+                let c = c.unwrap_or(0.0);
+                if !(c >= 0.0 && c.is_finite()) {
+                    return fail(
+                        field(5),
+                        format!("must be a damping factor ≥ 0 (s/m), not {c}"),
+                    );
+                }
+                u.compliant = Some(HuntCrossley {
+                    stiffness: k,
+                    exponent: n,
+                    damping: c,
+                });
+            }
+            None => {
+                if let Some(i) = [n, c].iter().position(Option::is_some) {
+                    return fail(
+                        field(4 + i),
+                        "applies to a compliant contact: give its stiffness",
+                    );
+                }
+            }
+        }
+        if let Some(j) = self.model.joints.last_mut() {
+            j.unilateral = Some(u);
+        }
         Ok(())
     }
 
@@ -550,7 +652,15 @@ impl Ctx {
             .map(|n| self.num(n, &format!("{p}.alpha_i")).map(|a| [a, 0.0]))
             .transpose()?;
         self.add_contact(name, ff.into(), own0);
-        Ok(())
+        let law = [
+            &c.restitution,
+            &c.rest_speed,
+            &c.event_tol,
+            &c.stiffness,
+            &c.exponent,
+            &c.damping,
+        ];
+        self.set_unilateral(c.unilateral, law, p)
     }
 
     pub(super) fn point_follower(&mut self, c: &PointFollowerJoint, k: usize) -> R<()> {

@@ -1,0 +1,1072 @@
+//! Forward dynamics with unilateral cam contacts: lift-off, flight and
+//! impact (`docs/dynamics.md`, "Unilateral contacts").
+//!
+//! A `cam_follower` or `flat_follower` joint with [`Unilateral`] settings
+//! is, at every time, either
+//!
+//! - **closed**: its equations hold, as in a bilateral run, and its normal
+//!   force N (N, positive pressing) is watched; or
+//! - **open**: its equations are released (the model integrated is the
+//!   model without that joint) and the gap g (m, [`crate::curve::distance`])
+//!   between its two features is watched.
+//!
+//! Events are located inside the step in which they happen, by bisection
+//! on the step length from the step's start, to the joint's `event_tol`
+//! (s): lift-off where N falls through zero, impact where g falls through
+//! zero. A grazing approach — g positive at both ends of a step but
+//! falling at its start and rising at its end — is caught by the cubic
+//! Hermite interpolant of (g, ġ) over the step: when its least value is
+//! negative, the step is cut there and the event located before it. A
+//! normal force that dips below zero inside a step is caught likewise,
+//! from the parabola through N at the last three step ends.
+//!
+//! At lift-off the joint opens and the integration restarts from the
+//! event. At impact the impulse of Newton's law with restitution e is
+//! applied ([`super::impact`]); the contact stays open when the follower
+//! separates, and closes (a plastic impact) when e = 0 or when the
+//! approach speed is below the joint's `rest_speed`: a follower bouncing
+//! ever lower comes to rest in finite time.
+//!
+//! A compliant contact (`Unilateral::compliant`) is open throughout: its
+//! Hunt–Crossley force ([`crate::force::compliant_contact`]) is one of the
+//! forces of every model, and no event is watched for it.
+//!
+//! Each combination of open joints is its own model (at most
+//! [`MAX_UNILATERAL`] unilateral joints, 2^k models) with its own
+//! integrator, created at the first switch to it. The full model's state
+//! is kept for the outputs: an open joint's contact parameters are those
+//! of the gap's witness points, their rates and its multipliers zero.
+//! Steps are of the fixed size `settings.step` (landing on the output
+//! times); the error-controlled mode is refused in a run with unilateral
+//! contacts.
+
+use super::impact;
+use super::integrator::{Integrator, Settings, Snapshot};
+use super::output::{self, Scratch};
+use super::system::{Augmented, Coefficients, System};
+use crate::constraint::{Constraint, Equations};
+use crate::contact::{ContactView, Contacts};
+use crate::curve::distance::{Features, Gap};
+use crate::curve::Curve;
+use crate::force::compliant_contact::CompliantContact;
+use crate::force::Force;
+use crate::math::{dot, perp, point, rot, sub, V2};
+use crate::model::{BodyId, Model, Unilateral};
+use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
+
+/// A unilateral contact whose gap at the given placement exceeds this
+/// (m) starts open; a smaller one is closed by the assembly.
+pub const OPEN_AT_START: f64 = 1e-6;
+
+/// Events in a row, each close to the last, that count as an accumulation.
+const MAX_BURST: usize = 1000;
+
+/// Most unilateral joints in one model.
+pub const MAX_UNILATERAL: usize = 6;
+
+/// One unilateral joint and its state.
+#[derive(Clone, Debug)]
+struct Contact {
+    joint: usize,
+    bodies: [BodyId; 2],
+    cam: BodyId,
+    features: Features,
+    law: Unilateral,
+    open: bool,
+    /// The gap at the current state (open joints).
+    gap: Option<Gap>,
+    /// The flight under way.
+    flight: Option<Flight>,
+    /// (t, N) at the start of the step before, while closed.
+    n_before: Option<(f64, f64)>,
+}
+
+impl Contact {
+    /// The gap at body coordinates `q`, `qd` of bodies i and j.
+    fn gap(&self, q: [[f64; 3]; 2], qd: [[f64; 3]; 2]) -> Gap {
+        self.features.gap(q, qd, self.gap.map(|g| g.params))
+    }
+}
+
+/// The normal force N (N) of closed contact joint `j` from its multipliers
+/// `lam` (its rows): the force on body j along N, −Φ_{r_j}ᵀλ · N.
+fn normal_force(model: &Model, j: usize, q_j: [f64; 3], lam: &[f64], n: V2) -> f64 {
+    match &model.joints[j].constraint {
+        Constraint::CamFollower(_) => dot(n, [lam[0], lam[1]]),
+        Constraint::FlatFollower(f) => dot(n, perp(rot(q_j[2], f.u_j))) * lam[0],
+        _ => f64::NAN,
+    }
+}
+
+/// Where model `mask` (bit k: unilateral joint k open) puts each
+/// coordinate and row of the full model.
+struct Layout {
+    cols: Vec<Option<usize>>,
+    rows: Vec<Option<usize>>,
+}
+
+impl Layout {
+    fn new(full: &System, sub: &System, removed: &[usize]) -> Self {
+        let (fm, sm) = (full.model, sub.model);
+        let mut cols = vec![None; full.n()];
+        let mut rows = vec![None; full.m()];
+        for b in 0..fm.bodies.len() {
+            if let (Some(a), Some(c)) = (full.asm.body_col(b), sub.asm.body_col(b)) {
+                for d in 0..3 {
+                    cols[a + d] = Some(c + d);
+                }
+            }
+        }
+        let mut k = 0;
+        for j in 0..fm.joints.len() {
+            if removed.contains(&j) {
+                continue;
+            }
+            let (a, c) = (full.asm.own_col(j), sub.asm.own_col(k));
+            for o in 0..fm.joints[j].constraint.own_count() {
+                cols[a + o] = Some(c + o);
+            }
+            for (r, s) in full.asm.rows_of(fm, j).zip(sub.asm.rows_of(sm, k)) {
+                rows[r] = Some(s);
+            }
+            k += 1;
+        }
+        Layout { cols, rows }
+    }
+}
+
+/// The model with joints `removed` taken out.
+fn without(model: &Model, removed: &[usize]) -> Model {
+    let mut m = model.clone();
+    m.joints = model
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(j, _)| !removed.contains(j))
+        .map(|(_, j)| j.clone())
+        .collect();
+    m
+}
+
+/// The mean of 64 samples of a curve (body frame, m).
+fn sample_mean(c: &Curve) -> V2 {
+    let (s0, s1) = c.range();
+    (0..64).fold([0.0; 2], |m, k| {
+        let p = c.jet(s0 + (s1 - s0) * k as f64 / 64.0).p;
+        [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
+    })
+}
+
+/// The unilateral joints of `model`, checked.
+fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, AnalysisError> {
+    let bad = |j: usize, what: &str| {
+        AnalysisError::new(
+            Kind::InvalidInput,
+            0.0,
+            format!("joint '{}': {what}", model.joints[j].name),
+        )
+    };
+    let mut out = Vec::new();
+    for (j, joint) in model.joints.iter().enumerate() {
+        let Some(law) = joint.unilateral else {
+            continue;
+        };
+        if joint.driver {
+            return Err(bad(j, "a driver cannot be unilateral"));
+        }
+        let Some(view) = ContactView::of(model, j) else {
+            return Err(bad(
+                j,
+                "only cam_follower and flat_follower joints can be unilateral",
+            ));
+        };
+        if !(0.0..=1.0).contains(&law.restitution) {
+            return Err(bad(j, "restitution must be between 0 and 1"));
+        }
+        if !(law.event_tol > 0.0 && law.rest_speed >= 0.0) {
+            return Err(bad(
+                j,
+                "event_tol must be positive and rest_speed not negative",
+            ));
+        }
+        let x = sys.asm.local(model, j, q, &[], 0.0);
+        let features = match &joint.constraint {
+            Constraint::FlatFollower(f) => {
+                if f.curve_i.orientation().is_none() {
+                    return Err(bad(
+                        j,
+                        "a unilateral flat_follower needs a closed cam curve",
+                    ));
+                }
+                // m: the face normal on the side of the cam's mean point.
+                let cam_mean = point(x.q[0], sample_mean(&f.curve_i));
+                let face = point(x.q[1], f.s_j);
+                let nf = perp(f.u_j);
+                let s = if dot(rot(x.q[1][2], nf), sub(cam_mean, face)) < 0.0 {
+                    -1.0
+                } else {
+                    1.0
+                };
+                Features::Face {
+                    curve: f.curve_i.clone(),
+                    point: f.s_j,
+                    m: [s * nf[0], s * nf[1]],
+                }
+            }
+            Constraint::CamFollower(c) => {
+                let curves = [c.curve_i.clone(), c.curve_j.clone()];
+                match (c.curve_i.orientation(), c.curve_j.orientation()) {
+                    (Some(sigma), _) => Features::Curves {
+                        curves,
+                        side: 0,
+                        sigma,
+                    },
+                    (None, Some(sigma)) => Features::Curves {
+                        curves,
+                        side: 1,
+                        sigma,
+                    },
+                    _ => {
+                        return Err(bad(
+                            j,
+                            "a unilateral cam_follower needs a closed curve on one side",
+                        ))
+                    }
+                }
+            }
+            _ => {
+                return Err(bad(
+                    j,
+                    "only cam_follower and flat_follower joints can be unilateral",
+                ))
+            }
+        };
+        out.push(Contact {
+            joint: j,
+            bodies: view.bodies,
+            cam: view.cam(model),
+            features,
+            law,
+            open: false,
+            gap: None,
+            flight: None,
+            n_before: None,
+        });
+    }
+    if out.len() > MAX_UNILATERAL {
+        return Err(AnalysisError::new(
+            Kind::InvalidInput,
+            0.0,
+            format!("at most {MAX_UNILATERAL} unilateral joints in one model"),
+        ));
+    }
+    Ok(out)
+}
+
+/// What the event functions say at the end of a step.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Event {
+    LiftOff(usize),
+    Impact(usize),
+}
+
+/// The run's state: the full model's vectors, the models of the active
+/// sets and their integrators.
+struct Run<'a> {
+    /// The run's start time (s).
+    t0: f64,
+    full: System<'a>,
+    models: &'a [Model],
+    layouts: Vec<Option<Layout>>,
+    its: Vec<Option<Integrator<'a>>>,
+    settings: Settings,
+    mask: usize,
+    contacts: Vec<Contact>,
+    /// The full model's q, q̇, q̈, λ.
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+    /// λ of the consistent accelerations (full layout), which the
+    /// lift-off events watch.
+    lam_watch: Vec<f64>,
+    /// Per active set, its system and an augmented matrix for them.
+    watch: Vec<Option<(System<'a>, Augmented)>>,
+    /// Events in a row within 100 event tolerances of each other, and the
+    /// time of the last.
+    burst: (usize, f64),
+    /// Scratch: the right-hand side of [`watch_forces`](Self::watch_forces)
+    /// and the gaps at the start of a step.
+    rhs: Vec<f64>,
+    gaps: Vec<Option<Gap>>,
+    summary: Summary,
+}
+
+impl<'a> Run<'a> {
+    fn it(&mut self) -> &mut Integrator<'a> {
+        self.its[self.mask]
+            .as_mut()
+            .expect("integrator of the active set")
+    }
+
+    fn removed(&self, mask: usize) -> Vec<usize> {
+        (0..self.contacts.len())
+            .filter(|k| mask & (1 << k) != 0)
+            .map(|k| self.contacts[k].joint)
+            .collect()
+    }
+
+    fn layout(&mut self, mask: usize) -> &Layout {
+        if self.layouts[mask].is_none() {
+            let sub = System::new(&self.models[mask]);
+            let removed = self.removed(mask);
+            self.layouts[mask] = Some(Layout::new(&self.full, &sub, &removed));
+        }
+        self.layouts[mask].as_ref().expect("layout")
+    }
+
+    /// Bodies i and j of contact `k` at the full state.
+    fn bodies(&self, k: usize) -> ([[f64; 3]; 2], [[f64; 3]; 2]) {
+        let mut q = [[0.0; 3]; 2];
+        let mut qd = [[0.0; 3]; 2];
+        for (s, b) in self.contacts[k].bodies.iter().enumerate() {
+            if let Some(c) = self.full.asm.body_col(b.0) {
+                q[s].copy_from_slice(&self.q[c..c + 3]);
+                qd[s].copy_from_slice(&self.qd[c..c + 3]);
+            }
+        }
+        (q, qd)
+    }
+
+    /// The full state from the active integrator; open joints' contact
+    /// parameters from their gaps' witnesses.
+    fn pull(&mut self) -> Result<(), AnalysisError> {
+        let mask = self.mask;
+        self.layout(mask);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        let it = self.its[mask].as_ref().expect("integrator");
+        for (f, c) in layout.cols.iter().enumerate() {
+            let (a, b, d) = match c {
+                Some(c) => (it.q[*c], it.qd[*c], it.qdd[*c]),
+                None => (self.q[f], 0.0, 0.0),
+            };
+            self.q[f] = a;
+            self.qd[f] = b;
+            self.qdd[f] = d;
+        }
+        for (f, r) in layout.rows.iter().enumerate() {
+            self.lambda[f] = r.map_or(0.0, |r| it.lambda[r]);
+        }
+        for k in 0..self.contacts.len() {
+            if !self.contacts[k].open {
+                self.contacts[k].gap = None;
+                continue;
+            }
+            let (q, qd) = self.bodies(k);
+            let g = self.contacts[k].gap(q, qd);
+            self.contacts[k].gap = Some(g);
+            let j = self.contacts[k].joint;
+            let o = self.full.asm.own_col(j);
+            for s in 0..self.full.model.joints[j].constraint.own_count() {
+                self.q[o + s] = g.params[s];
+            }
+        }
+        if self.contacts.iter().any(|c| !c.open) {
+            self.watch_forces()?;
+        }
+        Ok(())
+    }
+
+    /// λ of the consistent accelerations at the active integrator's state,
+    /// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], into `lam_watch` (full layout). The
+    /// integrator's own λ is the generalized-α step's, whose q̈ after the
+    /// very short steps of an event search carries the Newton tolerance
+    /// divided by β h²; this one depends on (t, q, q̇) only.
+    fn watch_forces(&mut self) -> Result<(), AnalysisError> {
+        let mask = self.mask;
+        let it = self.its[mask].as_ref().expect("integrator");
+        let t = it.t;
+        if self.watch[mask].is_none() {
+            let sys = System::new(&self.models[mask]);
+            let aug = Augmented::new(&sys, &it.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
+            self.watch[mask] = Some((sys, aug));
+        }
+        let (sys, aug) = self.watch[mask].as_mut().expect("watch");
+        let (n, m) = (sys.n(), sys.m());
+        let k = Coefficients {
+            mass: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        if aug
+            .refactor(sys, &it.q, &it.qd, &it.qdd, None, t, k)
+            .is_err()
+        {
+            return Err(AnalysisError::new(
+                Kind::SingularMass,
+                t,
+                "the mass matrix is singular on the constraints",
+            ));
+        }
+        let rhs = &mut self.rhs;
+        rhs.resize(n + m, 0.0);
+        sys.forces(&it.q, &it.qd, t, &mut rhs[..n])?;
+        sys.asm.gamma(sys.model, &it.q, &it.qd, t, &mut rhs[n..]);
+        aug.solve_refined(rhs);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        for (f, r) in layout.rows.iter().enumerate() {
+            self.lam_watch[f] = r.map_or(0.0, |r| rhs[n + r]);
+        }
+        Ok(())
+    }
+
+    /// Switches to active set `mask`, restarting its integrator from the
+    /// full state at `t` with the velocity `qd` (full layout).
+    fn switch(&mut self, mask: usize, t: f64, qd: &[f64]) -> Result<(), AnalysisError> {
+        if self.its[mask].is_none() {
+            // Made at the run's start, where the given placement holds,
+            // then restarted from the state at t.
+            let it = Integrator::starting_at(&self.models[mask], self.settings.clone(), self.t0)?;
+            self.its[mask] = Some(it);
+        }
+        self.layout(mask);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        let it = self.its[mask].as_mut().expect("integrator");
+        let (mut q, mut v) = (it.q.clone(), it.qd.clone());
+        for (f, c) in layout.cols.iter().enumerate() {
+            if let Some(c) = c {
+                q[*c] = self.q[f];
+                v[*c] = qd[f];
+            }
+        }
+        it.restart(t, &q, &v)?;
+        self.mask = mask;
+        self.pull()?;
+        Ok(())
+    }
+
+    /// The event values of contact `k` at the full state: N (closed) or g
+    /// (open).
+    fn value(&self, k: usize) -> f64 {
+        let c = &self.contacts[k];
+        if c.open {
+            return c.gap.map_or(f64::INFINITY, |g| g.gap);
+        }
+        let (q, _) = self.bodies(k);
+        let o = self.full.asm.own_col(c.joint);
+        let own = [self.q[o], self.q.get(o + 1).copied().unwrap_or(0.0)];
+        let rows = self.full.asm.rows_of(self.full.model, c.joint);
+        normal_force(
+            self.full.model,
+            c.joint,
+            q[1],
+            &self.lam_watch[rows],
+            c.features.normal(q, own),
+        )
+    }
+
+    /// The earliest event at the current state (after a step): a closed
+    /// contact with N < 0, an open one with g < 0 while approaching.
+    fn event(&self) -> Option<Event> {
+        (0..self.contacts.len()).find_map(|k| {
+            let c = &self.contacts[k];
+            if c.law.compliant.is_some() {
+                return None;
+            }
+            let v = self.value(k);
+            if c.open {
+                let approaching = c.gap.is_some_and(|g| g.rate < 0.0);
+                (v < 0.0 && approaching).then_some(Event::Impact(k))
+            } else {
+                (v < 0.0).then_some(Event::LiftOff(k))
+            }
+        })
+    }
+
+    /// The crossing record at time `t` of contact `k`.
+    fn crossing(&self, k: usize, t: f64) -> Crossing {
+        let cam = self.contacts[k].cam;
+        let cam_angle = self.full.asm.body_col(cam.0).map_or(0.0, |c| self.q[c + 2]);
+        Crossing { time: t, cam_angle }
+    }
+
+    /// One step of length `h`, or up to the first event inside it, located
+    /// and handled.
+    fn step(&mut self, h: f64, snap: &mut Snapshot) -> Result<(), AnalysisError> {
+        let mut gaps = std::mem::take(&mut self.gaps);
+        gaps.clear();
+        gaps.extend(self.contacts.iter().map(|c| c.gap));
+        let done = self.step_from(h, snap, &gaps);
+        self.gaps = gaps;
+        done
+    }
+
+    /// [`step`](Self::step) with the gaps at its start.
+    fn step_from(
+        &mut self,
+        h: f64,
+        snap: &mut Snapshot,
+        gaps: &[Option<Gap>],
+    ) -> Result<(), AnalysisError> {
+        self.it().snapshot(snap);
+        let t0 = self.it().t;
+        let n0: Vec<Option<f64>> = (0..self.contacts.len())
+            .map(|k| self.watched(k).then(|| self.value(k)))
+            .collect();
+        self.it().step(h)?;
+        self.pull()?;
+        let t1 = self.it().t;
+        // A grazing approach between the step's ends; a normal force that
+        // dips below zero between them (the parabola through N at the last
+        // three step ends).
+        let mut cut = None;
+        if self.event().is_none() {
+            for (k, &n0k) in n0.iter().enumerate() {
+                let (Some((tm, nm)), Some(n)) = (self.contacts[k].n_before, n0k) else {
+                    continue;
+                };
+                if !self.watched(k) {
+                    continue;
+                }
+                if let Some(tau) = parabola_dip([tm, t0, t1], [nm, n, self.value(k)]) {
+                    cut = Some(cut.map_or(tau, |c: f64| c.min(tau)));
+                }
+            }
+            for (k, g0) in gaps.iter().enumerate() {
+                let (Some(g0), Some(g1)) = (g0, self.contacts[k].gap) else {
+                    continue;
+                };
+                if self.contacts[k].law.compliant.is_some() {
+                    continue;
+                }
+                if let Some(tau) = hermite_dip(h, [g0.gap, g0.rate, g1.gap, g1.rate]) {
+                    cut = Some(cut.map_or(tau, |c: f64| c.min(tau)));
+                }
+            }
+        }
+        let mut span = h;
+        if let Some(tau) = cut {
+            self.trial(snap, gaps, tau)?;
+            if self.event().is_none() {
+                // The interpolant dipped, the motion did not: keep the step.
+                self.trial(snap, gaps, h)?;
+                self.remember(t0, &n0);
+                return Ok(());
+            }
+            span = tau;
+        }
+        if self.event().is_none() {
+            self.remember(t0, &n0);
+            return Ok(());
+        }
+        for c in &mut self.contacts {
+            c.n_before = None;
+        }
+        // Bisection on the step length to the tightest event tolerance.
+        let tol = self
+            .contacts
+            .iter()
+            .map(|c| c.law.event_tol)
+            .fold(f64::INFINITY, f64::min);
+        let (mut lo, mut hi) = (0.0, span);
+        while hi - lo > tol {
+            let mid = 0.5 * (lo + hi);
+            self.trial(snap, gaps, mid)?;
+            if self.event().is_some() {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        self.trial(snap, gaps, hi)?;
+        self.count_event(tol)?;
+        match self.event() {
+            Some(Event::LiftOff(k)) => self.lift_off(k),
+            Some(Event::Impact(k)) => self.impact(k),
+            None => Ok(()),
+        }
+    }
+
+    /// Counts an event at the current time; an accumulation of more than
+    /// [`MAX_BURST`] events each within 100 event tolerances of the last
+    /// (a contact switching without end) stops the run.
+    fn count_event(&mut self, tol: f64) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        if t - self.burst.1 <= 100.0 * tol {
+            self.burst.0 += 1;
+        } else {
+            self.burst.0 = 0;
+        }
+        self.burst.1 = t;
+        if self.burst.0 > MAX_BURST {
+            let names: Vec<String> = self
+                .contacts
+                .iter()
+                .map(|c| self.full.model.joints[c.joint].name.clone())
+                .collect();
+            return Err(AnalysisError::new(
+                Kind::NotConverged,
+                t,
+                format!(
+                    "the unilateral contacts switch more than {MAX_BURST} times within \
+                     {} s each: an accumulation of events; raise rest_speed so that \
+                     slow impacts close the contact",
+                    100.0 * tol
+                ),
+            )
+            .at_joints(names, 0.0));
+        }
+        Ok(())
+    }
+
+    /// True when contact `k`'s normal force is watched: closed, not compliant.
+    fn watched(&self, k: usize) -> bool {
+        let c = &self.contacts[k];
+        !c.open && c.law.compliant.is_none()
+    }
+
+    /// Keeps N at the start `t0` of the step just taken, for the next.
+    fn remember(&mut self, t0: f64, n0: &[Option<f64>]) {
+        for (c, n) in self.contacts.iter_mut().zip(n0) {
+            c.n_before = n.filter(|_| !c.open).map(|n| (t0, n));
+        }
+    }
+
+    /// From the snapshot, one step of length `h`.
+    fn trial(
+        &mut self,
+        snap: &Snapshot,
+        gaps: &[Option<Gap>],
+        h: f64,
+    ) -> Result<(), AnalysisError> {
+        self.it().resume(snap);
+        for (c, g) in self.contacts.iter_mut().zip(gaps) {
+            c.gap = *g;
+        }
+        self.it().step(h)?;
+        self.pull()?;
+        Ok(())
+    }
+
+    /// A new flight of contact `k` from `at`.
+    fn flight(&self, k: usize, at: Crossing) -> Flight {
+        let model = self.full.model;
+        Flight {
+            joint: model.joints[self.contacts[k].joint].name.clone(),
+            cam: model.bodies[self.contacts[k].cam.0].name.clone(),
+            start: at,
+            end: None,
+            greatest_gap: 0.0,
+            greatest_at: at,
+        }
+    }
+
+    /// Opens contact `k` at the current state.
+    fn lift_off(&mut self, k: usize) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        let at = self.crossing(k, t);
+        self.contacts[k].open = true;
+        self.contacts[k].gap = None;
+        self.contacts[k].flight = Some(self.flight(k, at));
+        let qd = self.qd.clone();
+        self.switch(self.mask | (1 << k), t, &qd)
+    }
+
+    /// The impact of contact `k` at the current state.
+    fn impact(&mut self, k: usize) -> Result<(), AnalysisError> {
+        let t = self.it().t;
+        let gap = self.contacts[k].gap.expect("open contact has a gap");
+        let law = self.contacts[k].law;
+        let approach = -gap.rate;
+        let closes = law.restitution == 0.0 || approach < law.rest_speed;
+        let e = if closes { 0.0 } else { law.restitution };
+        // Close the contact at the impact position, then the impulse.
+        let closed = self.mask & !(1 << k);
+        let qd_before = self.qd.clone();
+        self.contacts[k].open = false;
+        self.switch(closed, t, &qd_before)?;
+        let j = self.contacts[k].joint;
+        let jm = self.removed_index(closed, j);
+        let at = self.crossing(k, t);
+        let layout = self.layouts[closed].as_ref().expect("layout");
+        let it = self.its[closed].as_mut().expect("integrator");
+        let mut v = vec![0.0; it.qd.len()];
+        for (f, c) in layout.cols.iter().enumerate() {
+            if let Some(c) = c {
+                v[*c] = qd_before[f];
+            }
+        }
+        let q = it.q.clone();
+        let (sys, aug) = it.system_and_matrix();
+        let Some(out) = impact::solve(sys, aug, jm, &q, &v, t, gap.normal, gap.rate, e) else {
+            return Err(AnalysisError::new(
+                Kind::LockUp,
+                t,
+                format!(
+                    "the impact of joint '{}' meets a singular matrix",
+                    self.full.model.joints[j].name
+                ),
+            ));
+        };
+        if let Some(mut f) = self.contacts[k].flight.take() {
+            f.end = Some(at);
+            self.summary.flights.push(f);
+        }
+        let mut impact = Impact {
+            joint: self.full.model.joints[j].name.clone(),
+            at,
+            approach,
+            separation: 0.0,
+            impulse: out.impulse,
+            closed: closes,
+        };
+        if closes {
+            it.restart(t, &q, &out.qd)?;
+            self.pull()?;
+        } else {
+            // The follower leaves again: a new flight from the bounce.
+            let mut qd_full = self.qd.clone();
+            for (f, c) in layout.cols.iter().enumerate() {
+                if let Some(c) = c {
+                    qd_full[f] = out.qd[*c];
+                }
+            }
+            self.contacts[k].open = true;
+            self.contacts[k].gap = None;
+            self.contacts[k].flight = Some(self.flight(k, at));
+            self.switch(self.mask | (1 << k), t, &qd_full)?;
+            impact.separation = self.contacts[k].gap.map_or(0.0, |g| g.rate);
+        }
+        self.summary.impacts.push(impact);
+        Ok(())
+    }
+
+    /// The index of joint `j` in the model of `mask`.
+    fn removed_index(&self, mask: usize, j: usize) -> usize {
+        let removed = self.removed(mask);
+        j - removed.iter().filter(|&&r| r < j).count()
+    }
+
+    /// Keeps the greatest gap of every flight under way.
+    fn track_flights(&mut self, t: f64) {
+        for k in 0..self.contacts.len() {
+            let at = self.crossing(k, t);
+            let c = &mut self.contacts[k];
+            if let (Some(f), Some(g)) = (c.flight.as_mut(), c.gap) {
+                if g.gap > f.greatest_gap {
+                    f.greatest_gap = g.gap;
+                    f.greatest_at = at;
+                }
+            }
+        }
+    }
+}
+
+/// The time τ ∈ (0, h) where the cubic Hermite interpolant of g with
+/// values and slopes [g₀, ġ₀, g₁, ġ₁] at 0 and h is least, when that
+/// least value is negative and the ends are not.
+fn hermite_dip(h: f64, [g0, d0, g1, d1]: [f64; 4]) -> Option<f64> {
+    if !(g0 >= 0.0 && g1 >= 0.0 && d0 < 0.0 && d1 > 0.0) {
+        return None;
+    }
+    // g(s) = a s³ + b s² + c s + d on s ∈ [0, 1], slopes scaled by h.
+    let (m0, m1) = (d0 * h, d1 * h);
+    let a = 2.0 * g0 + m0 - 2.0 * g1 + m1;
+    let b = -3.0 * g0 - 2.0 * m0 + 3.0 * g1 - m1;
+    let c = m0;
+    let value = |s: f64| ((a * s + b) * s + c) * s + g0;
+    // g′(s) = 3a s² + 2b s + c = 0 at a minimum (g″ = 6a s + 2b > 0);
+    // the roots in the stable form q = −(b + sign(b) √(b² − 3ac)):
+    // c/q and q/(3a).
+    let disc = b * b - 3.0 * a * c;
+    if disc < 0.0 {
+        return None;
+    }
+    let q = -(b + b.signum() * disc.sqrt());
+    let s = [c / q, q / (3.0 * a)]
+        .into_iter()
+        .filter(|s| s.is_finite() && *s > 0.0 && *s < 1.0 && 6.0 * a * s + 2.0 * b > 0.0)
+        .fold(f64::NAN, f64::min);
+    (s > 0.0 && s < 1.0 && value(s) < 0.0).then_some(s * h)
+}
+
+/// The time τ − t₀ ∈ (0, t₁ − t₀) where the parabola through (t_k, N_k),
+/// k = −1, 0, 1, is least, when that least value is negative and the
+/// three values are not.
+fn parabola_dip([tm, t0, t1]: [f64; 3], [nm, n0, n1]: [f64; 3]) -> Option<f64> {
+    if !(nm >= 0.0 && n0 >= 0.0 && n1 >= 0.0 && tm < t0 && t0 < t1) {
+        return None;
+    }
+    // N(t) = N₀ + f₋₀ (t − t₀) + a (t − t₀)(t − t₋₁), divided differences.
+    let f_m0 = (n0 - nm) / (t0 - tm);
+    let f_01 = (n1 - n0) / (t1 - t0);
+    let a = (f_01 - f_m0) / (t1 - tm);
+    if a <= 0.0 {
+        return None;
+    }
+    let tv = 0.5 * (t0 + tm) - f_m0 / (2.0 * a);
+    let value = n0 + f_m0 * (tv - t0) + a * (tv - t0) * (tv - tm);
+    (tv > t0 && tv < t1 && value < 0.0).then_some(tv - t0)
+}
+
+/// Forward dynamics of a model with unilateral contacts, output as
+/// [`super::integrator::run`], with the channels `<joint>.gap` (m) and
+/// `<joint>.state` (1 closed, 0 open) of every unilateral joint after the
+/// others, and the flights and impacts in the summary.
+pub fn run(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
+    let t0 = times.first().copied().unwrap_or(0.0);
+    if settings.adaptive.is_some() {
+        return Err(AnalysisError::new(
+            Kind::InvalidInput,
+            t0,
+            "the error-controlled mode (adaptive) is not available with unilateral \
+             contacts: run with fixed steps h, the events being located to event_tol",
+        ));
+    }
+    let full = System::new(model);
+    let (n, m) = (full.n(), full.m());
+    let q0 = full.asm.initial_q(model);
+    let mut qd0 = vec![0.0; n];
+    for (id, b) in model.moving_bodies() {
+        let c = full.asm.body_col(id.0).expect("moving body");
+        qd0[c..c + 3].copy_from_slice(&b.qd0);
+    }
+    let contacts = contacts(model, &full, &q0)?;
+    let k = contacts.len();
+    let all: Vec<usize> = contacts.iter().map(|c| c.joint).collect();
+    let models: Vec<Model> = (0..1usize << k)
+        .map(|mask| {
+            let removed: Vec<usize> = (0..k)
+                .filter(|b| mask & (1 << b) != 0)
+                .map(|b| all[b])
+                .collect();
+            let mut m = without(model, &removed);
+            // A compliant contact acts through its Hunt–Crossley force.
+            for c in contacts.iter() {
+                if let Some(law) = c.law.compliant {
+                    let force = CompliantContact {
+                        bodies: c.bodies,
+                        features: c.features.clone(),
+                        law,
+                    };
+                    let name = format!("{}.contact", model.joints[c.joint].name);
+                    m.add_force(Force::new(name, force));
+                }
+            }
+            m
+        })
+        .collect();
+    let mut r = Run {
+        t0,
+        full,
+        models: &models,
+        layouts: (0..1 << k).map(|_| None).collect(),
+        its: (0..1 << k).map(|_| None).collect(),
+        settings: settings.clone(),
+        mask: 0,
+        contacts,
+        q: q0,
+        qd: qd0,
+        qdd: vec![0.0; n],
+        lambda: vec![0.0; m],
+        lam_watch: vec![0.0; m],
+        watch: (0..1 << k).map(|_| None).collect(),
+        burst: (0, f64::NEG_INFINITY),
+        rhs: Vec::new(),
+        gaps: Vec::new(),
+        summary: Summary::default(),
+    };
+    // Compliant contacts are always released; contacts apart at the given
+    // placement start open, in flight.
+    for c in 0..k {
+        let (q, qd) = r.bodies(c);
+        if r.contacts[c].law.compliant.is_some() {
+            r.mask |= 1 << c;
+            r.contacts[c].open = true;
+        } else if r.contacts[c].gap(q, qd).gap > OPEN_AT_START {
+            r.mask |= 1 << c;
+            r.contacts[c].open = true;
+            let at = r.crossing(c, t0);
+            r.contacts[c].flight = Some(r.flight(c, at));
+        }
+    }
+    r.its[r.mask] = Some(Integrator::starting_at(
+        &models[r.mask],
+        settings.clone(),
+        t0,
+    )?);
+    r.pull()?;
+    // A contact that pulls at the start opens at once.
+    while let Some(Event::LiftOff(k)) = r.event() {
+        r.lift_off(k)?;
+    }
+    let view = Contacts::new(model);
+    let mut names = run::channels(model, points);
+    let nk = names.len();
+    names.extend(output::channels(model));
+    let nd = names.len();
+    for c in &r.contacts {
+        let name = &model.joints[c.joint].name;
+        names.push(format!("{name}.gap"));
+        names.push(format!("{name}.state"));
+    }
+    // Where each unilateral joint's normal force channel is.
+    let normal_at: Vec<Option<usize>> = r
+        .contacts
+        .iter()
+        .map(|c| {
+            let name = format!("{}.normal_force", model.joints[c.joint].name);
+            names.iter().position(|n| *n == name)
+        })
+        .collect();
+    sink.begin(&names);
+    let mut values = vec![0.0; names.len()];
+    let mut scratch = Scratch::new(&r.full);
+    let mut snap = Snapshot::default();
+    let h_max = settings.step;
+    for (i, &t) in times.iter().enumerate() {
+        if i > 0 {
+            if t <= times[i - 1] || t.is_nan() {
+                return Err(AnalysisError::new(
+                    Kind::InvalidInput,
+                    t,
+                    format!("times must increase, but {t} follows {}", times[i - 1]),
+                ));
+            }
+            let done = (4.0 * f64::EPSILON * t.abs()).max(1e-12 * h_max.min(t.abs()));
+            while t - r.it().t > done {
+                sink.tick().map_err(|s| s.at(t))?;
+                let left = t - r.it().t;
+                let h = if left <= h_max * (1.0 + 1e-9) {
+                    left
+                } else {
+                    h_max
+                };
+                r.step(h, &mut snap)?;
+                let now = r.it().t;
+                r.track_flights(now);
+            }
+        }
+        r.pull()?;
+        run::fill_outputs(
+            model,
+            &r.full.asm,
+            &view,
+            [&r.q, &r.qd, &r.qdd],
+            points,
+            &mut values[..nk],
+        );
+        let tr = r.it().t;
+        output::fill(
+            &r.full,
+            &mut scratch,
+            &r.q,
+            &r.qd,
+            &r.lambda,
+            tr,
+            &mut values[nk..nd],
+        );
+        // Energy and drift of the model in force: its potential includes
+        // the compliant contacts' and an open joint's equations are released.
+        let it = r.its[r.mask].as_ref().expect("integrator");
+        let (kin, pot) = (it.sys.kinetic(&it.q, &it.qd), it.sys.potential(&it.q, tr));
+        let drift = drift(&it.sys, &it.q, &it.qd, tr);
+        values[nd - 5..nd].copy_from_slice(&[kin, pot, kin + pot, drift[0], drift[1]]);
+        for (k, c) in r.contacts.iter().enumerate() {
+            let gap = c.gap.map_or(0.0, |g| g.gap);
+            values[nd + 2 * k] = gap;
+            values[nd + 2 * k + 1] = if c.open { 0.0 } else { 1.0 };
+            // A compliant contact: its force, and closed while overlapping.
+            if let (Some(law), Some(g), Some(at)) = (c.law.compliant, c.gap, normal_at[k]) {
+                values[at] = law.force(-g.gap, -g.rate);
+                values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
+            }
+        }
+        sink.row(t, &values).map_err(|s| s.at(t))?;
+    }
+    // Flights under way at the end, then the solver counts of every model.
+    let mut summary = std::mem::take(&mut r.summary);
+    for c in &mut r.contacts {
+        if let Some(f) = c.flight.take() {
+            summary.flights.push(f);
+        }
+    }
+    summary
+        .flights
+        .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
+    for it in r.its.iter().flatten() {
+        summary.steps += it.summary.steps;
+        summary.newton_iterations += it.summary.newton_iterations;
+        summary.factorizations += it.summary.factorizations;
+        for w in &it.summary.warnings {
+            if !summary.warnings.contains(w) {
+                summary.warnings.push(w.clone());
+            }
+        }
+    }
+    Ok(summary)
+}
+
+/// max |Φ| and max |Φ_q q̇ − ν| of system `s`.
+fn drift(s: &System, q: &[f64], qd: &[f64], t: f64) -> [f64; 2] {
+    let m = s.m();
+    let mut phi = vec![0.0; m];
+    let mut nu = vec![0.0; m];
+    s.asm.phi(s.model, q, t, &mut phi);
+    s.asm.nu(s.model, q, t, &mut nu);
+    for v in nu.iter_mut() {
+        *v = -*v;
+    }
+    s.asm.jacobian(s.model, q, t, |r, c, v| nu[r] += v * qd[c]);
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    [max(&phi), max(&nu)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hermite_dip_finds_the_least_value_of_a_parabola() {
+        // g(t) = (t − 0.3)² − 0.01 on [0, 1]: least −0.01 at 0.3, ends
+        // positive, slopes −0.6 and 1.4. The cubic through these is g.
+        let g = |t: f64| (t - 0.3) * (t - 0.3) - 0.01;
+        let tau = hermite_dip(1.0, [g(0.0), -0.6, g(1.0), 1.4]).expect("a dip");
+        assert!((tau - 0.3).abs() < 1e-12, "{tau}");
+        // Shifted up by 0.02 it stays positive: no dip.
+        assert_eq!(
+            hermite_dip(1.0, [g(0.0) + 0.02, -0.6, g(1.0) + 0.02, 1.4]),
+            None
+        );
+        // Rising at the start: not an approach.
+        assert_eq!(hermite_dip(1.0, [0.1, 0.6, 0.1, 1.4]), None);
+    }
+
+    #[test]
+    fn parabola_dip_finds_the_vertex_between_the_last_two_points() {
+        // N(t) = 4 (t − 2.5)² − 1 through t = 1, 2, 3 (values 8, 0, 0):
+        // vertex at 2.5, N = −1, inside the last step [2, 3].
+        let n = |t: f64| 4.0 * (t - 2.5) * (t - 2.5) - 1.0;
+        let tau = parabola_dip([1.0, 2.0, 3.0], [n(1.0), n(2.0), n(3.0)]).expect("a dip");
+        assert!((tau - 0.5).abs() < 1e-12, "{tau}");
+        // The vertex in the step before: not this step's.
+        let m = |t: f64| 4.0 * (t - 1.5) * (t - 1.5) + 0.5;
+        assert_eq!(
+            parabola_dip([1.0, 2.0, 3.0], [m(1.0), m(2.0), m(3.0)]),
+            None
+        );
+        // A vertex above zero: no dip.
+        let p = |t: f64| 4.0 * (t - 2.5) * (t - 2.5) + 0.1;
+        assert_eq!(
+            parabola_dip([1.0, 2.0, 3.0], [p(1.0), p(2.0), p(3.0)]),
+            None
+        );
+    }
+}
