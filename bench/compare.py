@@ -2,7 +2,8 @@
 
     uv run --group bench python bench/compare.py [--quick] [--only NAME] [--no-cargo]
 
-NAME is one of four_bar, slider_crank, chain. Every figure in the table
+NAME is one of four_bar, slider_crank, chain, output (the cost of writing
+results: the four-bar kinematics with no output, to CSV and to Parquet). Every figure in the table
 comes from this run on this machine; ratios divide by camlink's core
 figure from the same run (camlink from Python when --no-cargo). The
 machine is shared: the load average is printed at the start and the end,
@@ -33,10 +34,11 @@ sys.path.insert(0, str(HERE))
 
 import camlink_models
 import divan
+import output_writing
 import slider_crank as sc
 import textbook_four_bar as tb
 
-BENCHES = ("four_bar", "slider_crank", "chain")
+BENCHES = ("four_bar", "slider_crank", "chain", "output")
 
 
 @dataclass
@@ -391,6 +393,20 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
 
 
 # ---------------------------------------------------------------------------
+
+
+def output(args: argparse.Namespace, rows: list[Row]) -> None:
+    """The cost of writing results: the base is the same run with no
+    output (targets: CSV within 2×, Parquet within 1.3×)."""
+    steps = 20_000 if args.quick else 200_000
+    reps = 1 if args.quick else 3
+    print(f"writing results: four-bar kinematics, {steps:,} steps of 10 µs")
+    for label, us in output_writing.measure(steps, reps).items():
+        target = {"CSV": "target ≤ 2×", "Parquet": "target ≤ 1.3×"}.get(label, "")
+        rows.append(
+            Row("output", "camlink from Python", f"kinematics, {label}", us,
+                note=target, base=label == "no output")
+        )
 
 
 def ratio(x: float) -> str:

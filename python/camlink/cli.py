@@ -12,10 +12,8 @@ import json
 import os
 import signal
 import sys
-import threading
 import warnings
 from pathlib import Path
-from typing import Any
 
 import camlink
 from camlink import cam_cli, cli_convert, cli_study, cli_visuals
@@ -24,6 +22,7 @@ from camlink.jump import flight_summary
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
 from camlink.settings import check_settings
+from camlink.signals import Terminated, stop_on_termination
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -113,8 +112,8 @@ def _parser() -> argparse.ArgumentParser:
         action="append",
         dest="points",
         metavar="BODY.POINT",
-        help="output this body point (repeatable); the points given replace "
-        "[analysis] points",
+        help="a body point to output instead of the model's [analysis] points "
+        "(repeatable: the points given are the only ones output)",
     )
     run.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
     run.add_argument(
@@ -372,42 +371,14 @@ def _cmd_schema(_args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM or SIGHUP, stopping a run as Ctrl-C does."""
-
-    def __init__(self, signum: int) -> None:
-        super().__init__(signum)
-        self.signum = signum
-
-
-def _terminate(signum: int, _frame: object) -> None:
-    raise Terminated(signum)
-
-
-def _handle_signals() -> dict[int, Any]:
-    """SIGTERM and SIGHUP stop a run as Ctrl-C does: the steps computed are
-    kept under the output's partial name. Returns the handlers replaced."""
-    old: dict[int, Any] = {}
-    if threading.current_thread() is not threading.main_thread():
-        return old
-    for name in ("SIGTERM", "SIGHUP"):
-        sig = getattr(signal, name, None)
-        if sig is not None:
-            old[sig] = signal.signal(sig, _terminate)
-    return old
-
-
 def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
-    old = _handle_signals()
-    try:
-        # The CLI prints camlink's warnings in its own words.
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", camlink.CamlinkWarning)
-            return _main(args)
-    finally:
-        for sig, handler in old.items():
-            signal.signal(sig, handler)
+    # SIGTERM and SIGHUP stop a run as Ctrl-C does: the steps computed are
+    # kept under the output's partial name. The CLI prints camlink's
+    # warnings in its own words.
+    with stop_on_termination(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", camlink.CamlinkWarning)
+        return _main(args)
 
 
 def _main(args: argparse.Namespace) -> int:

@@ -28,6 +28,7 @@ ERROR_KINDS: Final = (
     "off_curve",
     "undercut",
     "internal",
+    "force_failed",
     "stopped",
 )
 

@@ -17,8 +17,18 @@ from camlink import _core
 from camlink._core import AnalysisError, ModelError
 from camlink.errors import warnings_from
 from camlink.output import BackgroundWriter, check_not_input, open_writer
+from camlink.records import (
+    AnalysisSettings,
+    BodyRecord,
+    CheckReport,
+    DesignFinding,
+    ForceRecord,
+    JointRecord,
+)
 from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
+from camlink.signals import stop_on_termination
+from camlink.units import unit
 from camlink.warn import issue_design_warnings, issue_run_warnings
 
 __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
@@ -155,21 +165,21 @@ class Model:
         return files + list(self._core.data_files)
 
     @property
-    def bodies(self) -> list[dict[str, Any]]:
+    def bodies(self) -> list[BodyRecord]:
         """Moving bodies (the ground is implicit)."""
         return self._core.bodies
 
     @property
-    def joints(self) -> list[dict[str, Any]]:
+    def joints(self) -> list[JointRecord]:
         """Joints and drivers, with kind, bodies and equation count."""
         return self._core.joints
 
     @property
-    def analysis(self) -> dict[str, Any]:
+    def analysis(self) -> AnalysisSettings:
         """The file's ``[analysis]`` settings."""
         return self._core.analysis
 
-    def check(self) -> dict[str, Any]:
+    def check(self) -> CheckReport:
         """Counts of bodies, coordinates and equations, each constraint, and
         the degrees of freedom from the rank of Φ_q."""
         return self._core.check()
@@ -210,14 +220,15 @@ class Model:
         return (gx, gy)
 
     @property
-    def forces(self) -> list[dict[str, Any]]:
+    def forces(self) -> list[ForceRecord]:
         """Applied forces, with kind and bodies."""
         return self._core.forces
 
-    def design_check(self) -> list[dict[str, Any]]:
+    def design_check(self) -> list[DesignFinding]:
         """Design findings of the curve contacts (a flat follower on a
-        concave profile, an undercut roller): dicts with ``severity``,
-        ``joint``, ``message`` and ``text`` (one printable line)."""
+        concave profile, an undercut roller): `DesignFinding` records with
+        ``severity``, ``joint``, ``message`` and ``text`` (one printable
+        line)."""
         findings = self._core.design_check()
         issue_design_warnings(findings)
         return findings
@@ -237,8 +248,10 @@ class Model:
         (N·m, counter-clockwise); for a force F at a body point s′ add
         (A s′) × F to the torque. `f` is called at every Newton iteration of
         the dynamic analyses (kinematics ignores forces), so it costs far
-        more than a ``[[forces]]`` entry. An exception raised by `f` stops
-        the run and propagates.
+        more than a ``[[forces]]`` entry. An exception raised by `f` (or a
+        return value that is not three numbers) stops the run with an
+        `AnalysisError` of kind ``force_failed`` naming the force and the
+        time, the exception being its ``__cause__``.
         """
         if not callable(f):
             raise ModelError(f"force '{name}': f must be callable, not {type(f).__name__}")
@@ -522,7 +535,8 @@ class Model:
         writer = None
         if output is not None:
             check_not_input(Path(output), self.inputs)
-            writer = BackgroundWriter(open_writer(output))
+            head = {"camlink": _core.__version__, "model": self.name, "analysis": kind}
+            writer = BackgroundWriter(open_writer(output, head=head))
         names: list[str] = []
         complete = False
 
@@ -535,12 +549,18 @@ class Model:
 
         metadata: dict[str, Any] | None = None
         try:
-            names, data, summary = core(points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS)
+            # SIGTERM and SIGHUP, left at their defaults, stop the run as
+            # Ctrl-C does (camlink.signals).
+            with stop_on_termination(only_default=True):
+                names, data, summary = core(
+                    points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS
+                )
             complete = True
             metadata = {
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,
+                "units": {n: unit(n) for n in names},
                 "summary": {**summary, "analysis": kind},  # the binding's plain dict
             }
         except AnalysisError as e:
@@ -557,7 +577,7 @@ class Model:
                 e.output = None
             raise
         except KeyboardInterrupt as e:
-            # Ctrl-C, or SIGTERM/SIGHUP under the CLI: keep what was computed.
+            # Ctrl-C, SIGTERM or SIGHUP: keep what was computed.
             if writer is not None:
                 e.output = writer.close(names, complete=False)  # type: ignore[attr-defined]
                 writer = None

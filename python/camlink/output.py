@@ -12,6 +12,13 @@ output, named ``<stem>.partial-<random><suffix>``:
   (`read_arrow_stream`); the Parquet file is written from it at the end,
   in row groups of `ROW_GROUP_ROWS` rows.
 
+A CSV file starts with comment lines ``# key: value`` (the value as JSON)
+before its header line: ``camlink`` (the version), ``model``, ``analysis``
+and ``units`` (each channel's unit, ``""`` where the kind does not fix it);
+a complete run ends it with ``# summary: {...}``. Parquet keeps the same
+under its schema metadata key ``camlink``. `read_csv_metadata` reads them
+back.
+
 On success the temporary file is renamed over the output in one step (the
 last of two runs writing the same output wins, whole); on an analysis
 error or an interrupt it is renamed to ``<stem>.partial<suffix>``, so a
@@ -26,7 +33,7 @@ import io
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -123,19 +130,36 @@ class _Target:
         return final
 
 
-class CsvWriter:
-    """Writes a header line, then each chunk of rows with one write and a
-    flush: numbers in their shortest exact form, names quoted as CSV
-    requires."""
+#: The comment lines of a results CSV start with this.
+COMMENT = "# "
 
-    def __init__(self, path: Path) -> None:
+
+def _comment(key: str, value: object) -> bytes:
+    """One metadata line: ``# key: <JSON>`` (JSON escapes line breaks)."""
+    return f"{COMMENT}{key}: {json.dumps(value, default=str, ensure_ascii=False)}\n".encode()
+
+
+class CsvWriter:
+    """Writes the metadata comments of `head` (``camlink``, ``model``,
+    ``analysis``) with each channel's unit, a header line, then each chunk
+    of rows with one write and a flush: numbers in their shortest exact
+    form, names quoted as CSV requires."""
+
+    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
         self.path = path
+        self._head = head or {}
         self._target = _Target(path, path.suffix)
         self._file = self._target.temp.open("wb")
         self._header = False
 
     def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
         if not self._header:
+            from camlink.units import unit
+
+            for key in ("camlink", "model", "analysis"):
+                if key in self._head:
+                    self._file.write(_comment(key, self._head[key]))
+            self._file.write(_comment("units", {n: unit(n) for n in names}))
             line = io.StringIO()
             csv.writer(line, lineterminator="\n").writerow(names)
             self._file.write(line.getvalue().encode())
@@ -145,12 +169,15 @@ class CsvWriter:
         self._file.flush()
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
-        """Finishes the file; returns where it is (the output, or its
-        partial name when not `complete`). `metadata` is not written to CSV."""
+        """Finishes the file, ending a complete one with the ``summary`` of
+        `metadata`; returns where it is (the output, or its partial name
+        when not `complete`)."""
         if not self._header and names:
             self.write(names, np.empty((0, len(names))))
+        if complete and metadata is not None and "summary" in metadata:
+            self._file.write(_comment("summary", metadata["summary"]))
         self._file.close()
         self.path = self._target.finish(self._target.temp, complete)
         return self.path
@@ -177,7 +204,7 @@ class ParquetWriter:
         self._sink.flush()
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
         """Writes the Parquet file from the journal, with `metadata` as JSON
         under the schema metadata key ``camlink``; returns where it is (the
@@ -244,8 +271,17 @@ class BackgroundWriter:
         self._thread.start()
 
     def _work(self) -> None:
+        import queue
+
         while True:
-            item = self._queue.get()
+            # A signal handler that raises (Ctrl-C, SIGTERM) while the main
+            # thread is inside `Queue.put` can lose the wake-up of a
+            # waiting `get`: wait in short slices so that a lost wake-up
+            # costs 0.1 s, never a hang.
+            try:
+                item = self._queue.get(timeout=0.1)
+            except queue.Empty:
+                continue
             if item is None:
                 return
             if self._error is None:
@@ -264,7 +300,7 @@ class BackgroundWriter:
         self._queue.put((list(names), rows))
 
     def close(
-        self, names: Sequence[str], complete: bool = True, metadata: dict[str, Any] | None = None
+        self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
         """Waits for the queued chunks, then closes the file as
         `CsvWriter.close` / `ParquetWriter.close` do."""
@@ -278,11 +314,32 @@ class BackgroundWriter:
         return self.path
 
 
-def open_writer(path: str | os.PathLike[str]) -> CsvWriter | ParquetWriter:
+def open_writer(
+    path: str | os.PathLike[str], head: Mapping[str, Any] | None = None
+) -> CsvWriter | ParquetWriter:
     """A writer for `path` (CSV or Parquet by suffix), its temporary file
-    created now so that an unwritable folder fails before any work."""
+    created now so that an unwritable folder fails before any work; a CSV
+    starts with the metadata of `head` (Parquet gets its metadata at
+    `close`)."""
     path = Path(path)
     kind = kind_of(path)
     if path.is_dir():
         raise IsADirectoryError(21, "is a directory", str(path))
-    return CsvWriter(path) if kind == "csv" else ParquetWriter(path)
+    return CsvWriter(path, head) if kind == "csv" else ParquetWriter(path)
+
+
+def read_csv_metadata(lines: Iterable[str]) -> dict[str, Any]:
+    """The ``# key: <JSON>`` comment lines of a results CSV as a dict
+    (lines that are not metadata are skipped)."""
+    meta: dict[str, Any] = {}
+    for line in lines:
+        if not line.startswith(COMMENT):
+            continue
+        key, sep, value = line[len(COMMENT) :].partition(": ")
+        if not sep:
+            continue
+        try:
+            meta[key] = json.loads(value)
+        except ValueError:
+            continue
+    return meta

@@ -4,6 +4,7 @@ as the run goes."""
 from __future__ import annotations
 
 import csv
+import dataclasses
 import difflib
 import io
 import json
@@ -17,7 +18,15 @@ import numpy.typing as npt
 
 from camlink._core import ModelError
 from camlink.errors import RunWarning, warnings_from
-from camlink.output import READ_SUFFIXES, SUFFIXES, kind_of, open_writer, read_arrow_stream
+from camlink.output import (
+    READ_SUFFIXES,
+    SUFFIXES,
+    kind_of,
+    open_writer,
+    read_arrow_stream,
+    read_csv_metadata,
+)
+from camlink.units import unit
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -34,6 +43,7 @@ __all__ = [
     "ImpactRecord",
     "LiftOffRecord",
     "Results",
+    "ResultsMetadata",
     "RunSummary",
     "open_writer",
 ]
@@ -100,6 +110,21 @@ class ImpactRecord(TypedDict):
     separation_speed: float
     impulse: float
     closed: bool
+
+
+class ResultsMetadata(TypedDict, total=False):
+    """What a results file carries besides its rows (`Results.metadata`)."""
+
+    #: The camlink version that wrote it.
+    camlink: str
+    #: The model's name.
+    model: str
+    #: The analysis: one of `camlink.ANALYSES`.
+    analysis: str
+    #: Each channel's unit (``""`` where the kind does not fix it).
+    units: dict[str, str]
+    #: The run summary as plain JSON values (warnings as dicts).
+    summary: dict[str, Any]
 
 
 class RunSummary(TypedDict, total=False):
@@ -337,14 +362,35 @@ class Results:
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Writes the results as CSV or Parquet, chosen by the suffix, to a
         temporary file renamed over `path` once complete."""
-        writer = open_writer(path)
+        meta = self.metadata()
+        writer = open_writer(path, head=meta)
         complete = False
         try:
             writer.write(self._names, self._data)
             complete = True
         finally:
-            writer.close(self._names, complete)
+            writer.close(self._names, complete, metadata=meta)
         return writer.path
+
+    def metadata(self) -> ResultsMetadata:
+        """What a results file carries besides the rows: the ``camlink``
+        version, the ``model`` name, the ``analysis``, each channel's
+        ``units`` and the ``summary`` (warnings as plain dicts); the model,
+        analysis and summary only when known."""
+        from camlink import _core
+
+        summary: dict[str, Any] = dict(self.summary)
+        if "warnings" in summary:
+            summary["warnings"] = [dataclasses.asdict(w) for w in summary["warnings"]]
+        meta = ResultsMetadata(camlink=_core.__version__)
+        if self.model:
+            meta["model"] = self.model
+        if "analysis" in summary:
+            meta["analysis"] = summary["analysis"]
+        meta["units"] = {n: unit(n) for n in self._names}
+        if summary:
+            meta["summary"] = summary
+        return meta
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Results:
@@ -357,7 +403,7 @@ class Results:
         try:
             meta: dict[str, Any] = {}
             if kind == "csv":
-                names, data = _read_csv(path)
+                names, data, meta = _read_csv(path)
             else:
                 names, data, meta = _read_arrow(path, kind)
         except (ValueError, OSError, ImportError) as e:
@@ -365,29 +411,38 @@ class Results:
                 raise
             raise ModelError(f"cannot read results from '{path}': {e}") from None
         summary = meta.get("summary")
-        if summary is not None:
-            summary["warnings"] = warnings_from(summary.get("warnings", []))
+        if summary is not None and "warnings" in summary:
+            summary["warnings"] = warnings_from(summary["warnings"])
         return cls(names, data, model=meta.get("model", path.stem), summary=summary)
 
 
-def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64]]:
-    """Names and rows of a results CSV; an unfinished last line (a run
-    killed while writing) is dropped."""
+def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:
+    """Names, rows and metadata comments of a results CSV; an unfinished
+    last line (a run killed while writing) is dropped."""
     text = path.read_bytes().decode()
     if text and not text.endswith("\n"):
         text = text[: text.rfind("\n") + 1]
     lines = io.StringIO(text)
-    header = next(csv.reader([lines.readline()]), [])
+    comments = []
+    line = lines.readline()
+    while line.startswith("#"):
+        comments.append(line)
+        line = lines.readline()
+    header = next(csv.reader([line]), [])
     rest = lines.read()
-    if not rest.strip():
-        return header, np.empty((0, len(header)))
-    data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2)
+    tail = rest[rest.rfind("\n", 0, len(rest) - 1) + 1 :] if rest else ""
+    if tail.startswith("#"):
+        comments.append(tail)
+    meta = read_csv_metadata(comments)
+    if not rest.strip() or rest.lstrip().startswith("#"):
+        return header, np.empty((0, len(header))), meta
+    data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2, comments="#")
     if data.shape[1] != len(header):
         raise ModelError(
             f"cannot read results from '{path}': {data.shape[1]} columns but "
             f"{len(header)} names"
         )
-    return header, data
+    return header, data, meta
 
 
 def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:

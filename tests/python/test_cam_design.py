@@ -66,7 +66,7 @@ def test_valve_example_text_report(
     text = capsys.readouterr().out
     assert code == 0
     assert "jump speed vs redline" in text and "all limits hold" in text
-    assert "4-5-6-7" in text and "C3 at 150.000°" in text
+    assert "4-5-6-7" in text and "C3 at 150°" in text
 
 
 def test_valve_jump_speed_is_the_closed_form() -> None:

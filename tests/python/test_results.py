@@ -85,7 +85,7 @@ def test_save_and_load_round_trip_exactly(tmp_path, suffix):
 
 def test_csv_is_readable_by_pandas(tmp_path):
     path = synthetic().save(tmp_path / "out.csv")
-    df = pd.read_csv(path, index_col="t")
+    df = pd.read_csv(path, index_col="t", comment="#")
     assert df["arm.omega"].to_numpy() == pytest.approx(np.cos(df.index.to_numpy()) / 3)
 
 

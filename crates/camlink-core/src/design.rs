@@ -29,6 +29,7 @@ use crate::assembly::Assembly;
 use crate::constraint::Feature;
 use crate::contact::ContactView;
 use crate::curve::Curve;
+use crate::fmt_num::num;
 use crate::model::Model;
 use crate::run::{AnalysisError, Kind};
 
@@ -131,9 +132,11 @@ fn findings(model: &Model) -> Vec<(usize, Finding)> {
                             severity: Severity::Warning,
                             joint: j.name.clone(),
                             message: format!(
-                                "the roller's radius {r} m exceeds the cam's smallest concave \
-                             radius of curvature {rho:.6} m (at {name} = {}): the cam is \
+                                "the roller's radius {} m exceeds the cam's smallest concave \
+                             radius of curvature {} m (at {name} = {}): the cam is \
                              undercut for {}, where the roller cannot follow the profile",
+                                num(r),
+                                num(rho),
                                 value(cam, at),
                                 describe_ranges(cam, name, &bad)
                             ),
@@ -291,11 +294,11 @@ impl StepGuard {
                         Kind::Undercut,
                         format!(
                             "the flat-faced follower of joint '{}' touches the cam where it is \
-                         concave ({name} = {}, radius of curvature {:.6} m): a flat face \
+                         concave ({name} = {}, radius of curvature {} m): a flat face \
                          cannot follow this profile",
                             joint.name,
                             value(curve, a),
-                            -1.0 / k
+                            num(-1.0 / k)
                         ),
                     )
                 }
@@ -307,11 +310,12 @@ impl StepGuard {
                     (
                         Kind::Undercut,
                         format!(
-                            "the roller of joint '{}' (radius {r} m) reaches a hollow of the cam \
-                         with a smaller radius of curvature ({:.6} m at {name} = {}): the cam \
+                            "the roller of joint '{}' (radius {} m) reaches a hollow of the cam \
+                         with a smaller radius of curvature ({} m at {name} = {}): the cam \
                          is undercut there",
                             joint.name,
-                            -1.0 / k,
+                            num(r),
+                            num(-1.0 / k),
                             value(curve, a)
                         ),
                     )
@@ -339,8 +343,8 @@ fn roller_pair<'a>(ci: &'a Curve, cj: &'a Curve) -> Option<(&'a Curve, f64, usiz
 /// the curve's own parameter otherwise.
 fn value(c: &Curve, s: f64) -> String {
     match c {
-        Curve::Polar(_) => format!("{s:.6} rad ({:.3}°)", s.to_degrees()),
-        Curve::Parametric(_) => format!("{s:.6}"),
+        Curve::Polar(_) => format!("{} rad ({}°)", num(s), num(s.to_degrees())),
+        Curve::Parametric(_) => num(s),
     }
 }
 
@@ -348,11 +352,13 @@ fn value(c: &Curve, s: f64) -> String {
 fn describe_ranges(c: &Curve, name: &str, r: &[(f64, f64)]) -> String {
     let one = |&(a, b): &(f64, f64)| match c {
         Curve::Polar(_) => format!(
-            "{name} in [{a:.6}, {b:.6}] rad ([{:.3}°, {:.3}°])",
-            a.to_degrees(),
-            b.to_degrees()
+            "{name} in [{}, {}] rad ([{}°, {}°])",
+            num(a),
+            num(b),
+            num(a.to_degrees()),
+            num(b.to_degrees())
         ),
-        Curve::Parametric(_) => format!("{name} in [{a:.6}, {b:.6}]"),
+        Curve::Parametric(_) => format!("{name} in [{}, {}]", num(a), num(b)),
     };
     r.iter().map(one).collect::<Vec<_>>().join(", ")
 }
@@ -416,7 +422,7 @@ mod tests {
         let f = check(&with(1.1 * rho_min));
         assert_eq!(f.len(), 1, "{f:?}");
         assert!(f[0].message.contains("undercut"), "{}", f[0]);
-        assert!(f[0].message.contains(&format!("{rho_min:.6}")), "{}", f[0]);
+        assert!(f[0].message.contains(&num(rho_min)), "{}", f[0]);
     }
 
     #[test]

@@ -64,7 +64,10 @@ impl TimeFn {
         }
         match self.jet(t).iter().all(|v| v.is_finite()) {
             true => Ok(()),
-            false => Err(format!("the function of time is not finite at t = {t}")),
+            false => Err(format!(
+                "the function of time is not finite at t = {}",
+                crate::fmt_num::num(t)
+            )),
         }
     }
 

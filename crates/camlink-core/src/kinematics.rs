@@ -25,6 +25,7 @@ use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
+use crate::fmt_num::num;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2, rot_d};
 use crate::model::{BodyId, Model};
@@ -105,15 +106,7 @@ pub fn run(
     let mut values = vec![0.0; names.len()];
     let mut prev_t = None;
     for &t in times {
-        if let Some(p) = prev_t {
-            if t <= p || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {t} follows {p}"),
-                ));
-            }
-        }
+        crate::run::check_next_time(prev_t, t)?;
         match prev_t {
             None => solver.step(t, None).map(|_| ()),
             Some(p) => solver.advance(p, t, 0),
@@ -332,11 +325,12 @@ impl<'m> Solver<'m> {
         }
         worst.map(|(_, k)| {
             format!(
-                "the solution jumped away from continuous motion ({} moved {:.3} from its \
-                 predicted value at t = {t} s): the mechanism passed a singular position \
+                "the solution jumped away from continuous motion ({} moved {} from its \
+                 predicted value at t = {} s): the mechanism passed a singular position \
                  or changed assembly branch; a smaller step or a different driver may help",
                 self.asm.coordinate_name(self.model, k),
-                self.q[k] - self.predicted[k],
+                num(self.q[k] - self.predicted[k]),
+                num(t),
             )
         })
     }
@@ -353,10 +347,11 @@ impl<'m> Solver<'m> {
                 time: t,
                 joints: Vec::new(),
                 message: format!(
-                    "near-singular configuration (relative pivot {pivot:.1e}, \
-                     condition about {:.1e}): a toggle or dead-centre position; \
+                    "near-singular configuration (relative pivot {}, \
+                     condition about {}): a toggle or dead-centre position; \
                      accuracy of velocities and accelerations may suffer here",
-                    1.0 / pivot
+                    num(pivot),
+                    num(1.0 / pivot)
                 ),
             });
         }
@@ -508,9 +503,9 @@ impl<'m> Solver<'m> {
             Kind::LockUp,
             t,
             &format!(
-                "the constraint Jacobian is singular (relative pivot {:.1e}): \
+                "the constraint Jacobian is singular (relative pivot {}): \
                  the mechanism is locked, at a singular configuration, or over-constrained",
-                s.pivot
+                num(s.pivot)
             ),
         );
         let name = self.model.joints[j].name.clone();
@@ -536,7 +531,8 @@ impl<'m> Solver<'m> {
         }
         if !joints.is_empty() {
             message.push_str(&format!(
-                "; largest residual {residual:.3e} in {}",
+                "; largest residual {} in {}",
+                num(residual),
                 joints
                     .iter()
                     .map(|j| format!("'{j}'"))
@@ -551,7 +547,7 @@ impl<'m> Solver<'m> {
                     s.first().copied().unwrap_or(0.0),
                     s.last().copied().unwrap_or(0.0),
                 );
-                message.push_str(&format!("; condition of Φ_q {:.1e}", hi / lo));
+                message.push_str(&format!("; condition of Φ_q {}", num(hi / lo)));
             }
         }
         AnalysisError::new(kind, t, message).at_joints(joints, residual)

@@ -125,7 +125,7 @@ pub enum ModelError {
     NoSuchBody { joint: String, body: usize },
     #[error("joint '{0}' joins a body to itself")]
     SelfJoint(String),
-    #[error("{what} is not a finite number ({value})")]
+    #[error("{what} is not a finite number ({})", crate::fmt_num::num(*.value))]
     NotFinite { what: String, value: f64 },
     #[error("{0}")]
     Invalid(String),

@@ -5,6 +5,7 @@
 use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
+use crate::fmt_num::num;
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
 
@@ -219,6 +220,9 @@ pub enum Kind {
     /// A solver could not be set up (a matrix pattern faer refuses, or no
     /// memory for it): a bug to report.
     Internal,
+    /// A user function computing a force failed (a Python force callback
+    /// raised); the message names the force.
+    ForceFailed,
     /// The receiver of the results stopped the run (an interrupt, a failing
     /// callback that takes the rows).
     Stopped,
@@ -231,7 +235,7 @@ pub enum Kind {
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 15] = [
+    pub const ALL: [Kind; 16] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -244,6 +248,7 @@ impl Kind {
         Kind::OffCurve,
         Kind::Undercut,
         Kind::Internal,
+        Kind::ForceFailed,
         Kind::Stopped,
         Kind::NearSingular,
         Kind::LiftOff,
@@ -264,6 +269,7 @@ impl Kind {
             Kind::OffCurve => "off_curve",
             Kind::Undercut => "undercut",
             Kind::Internal => "internal",
+            Kind::ForceFailed => "force_failed",
             Kind::Stopped => "stopped",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
@@ -290,7 +296,7 @@ pub struct Warning {
 
 /// An analysis that cannot proceed.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
-#[error("at t = {time} s: {message}")]
+#[error("at t = {} s: {message}", crate::fmt_num::num(*.time))]
 pub struct AnalysisError {
     /// What went wrong, as a stable name (`docs/errors.md`).
     pub kind: Kind,
@@ -321,6 +327,20 @@ impl AnalysisError {
         self.joints = joints;
         self.residual = residual;
         self
+    }
+}
+
+/// Checks that output time `t` (s) follows the previous one, `prev`
+/// (`None` for the first): an `invalid_input` error when it does not
+/// increase or is NaN.
+pub fn check_next_time(prev: Option<f64>, t: f64) -> Result<(), AnalysisError> {
+    match prev {
+        Some(p) if t <= p || t.is_nan() => Err(AnalysisError::new(
+            Kind::InvalidInput,
+            t,
+            format!("times must increase, but {} follows {}", num(t), num(p)),
+        )),
+        _ => Ok(()),
     }
 }
 
@@ -497,18 +517,19 @@ impl LiftOff {
     /// The report, as the run summary's warning:
     ///
     /// `bucket: normal force < 0, the follower would leave cam 'camshaft'
-    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7°) to
-    /// t = 0.015 s (cam angle 1.9 rad, 108.9°); least −12.3 N at
-    /// t = 0.0137 s (cam angle 1.57 rad, 90.0°)`
+    /// (jump) from t = 0.012345 s (cam angle 1.2345 rad, 70.7316°) to
+    /// t = 0.015 s (cam angle 1.9 rad, 108.862°); least −12.3 N at
+    /// t = 0.0137 s (cam angle 1.57 rad, 89.9544°)`
     ///
-    /// The degrees are the cam angle folded into [0°, 360°).
+    /// The degrees are the cam angle folded into [0°, 360°); every number
+    /// has at most six significant digits ([`crate::fmt_num`]).
     pub fn message(&self) -> String {
         let at = |c: &Crossing| {
             format!(
-                "t = {:.6} s (cam angle {:.4} rad, {:.1}°)",
-                c.time,
-                c.cam_angle,
-                c.cam_angle.to_degrees().rem_euclid(360.0)
+                "t = {} s (cam angle {} rad, {}°)",
+                num(c.time),
+                num(c.cam_angle),
+                num(c.cam_angle.to_degrees().rem_euclid(360.0))
             )
         };
         let end = match &self.end {
@@ -517,12 +538,12 @@ impl LiftOff {
         };
         format!(
             "{}: normal force < 0, the follower would leave cam '{}' (jump) from {} {}; \
-             least {:.4} N at {}",
+             least {} N at {}",
             self.joint,
             self.cam,
             at(&self.start),
             end,
-            self.least,
+            num(self.least),
             at(&self.least_at)
         )
     }

@@ -310,10 +310,11 @@ fn fused_residual_and_phi_match_the_separate_ones() {
     let qdd: Vec<f64> = (0..n).map(|k| wave(k, 2.1)).collect();
     let lambda: Vec<f64> = (0..m).map(|k| 10.0 * wave(k, 0.4) + 1.0).collect();
     let (mut r1, mut phi1) = (vec![0.0; n], vec![0.0; m]);
-    sys.residual(&q, &qd, &qdd, &lambda, 0.2, &mut r1);
+    sys.residual(&q, &qd, &qdd, &lambda, 0.2, &mut r1).unwrap();
     sys.asm.phi(&model, &q, 0.2, &mut phi1);
     let (mut r2, mut phi2) = (vec![7.0; n], vec![7.0; m]);
-    sys.residual_and_phi(&q, &qd, &qdd, &lambda, 0.2, &mut r2, &mut phi2);
+    sys.residual_and_phi(&q, &qd, &qdd, &lambda, 0.2, &mut r2, &mut phi2)
+        .unwrap();
     assert_eq!(r1, r2);
     assert_eq!(phi1, phi2);
     assert!(

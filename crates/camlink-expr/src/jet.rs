@@ -14,50 +14,20 @@
 //! The value component of every operation is computed by the same `f64`
 //! operation that value-only evaluation uses, so `Expr::eval(x)` and
 //! `Expr::jet(x)[0]` agree bit for bit.
+//!
+//! Construction, the operations with a constant, sums, negation, uᵛ,
+//! atan2, hypot and mod are shared with the other jet order
+//! (`jet_common.rs`).
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
+use std::ops::{Div, Mul};
 
 /// `[u, u', u'', u''']` of a function u(x) at one point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Jet(pub [f64; 4]);
 
+jet_common!(Jet, 4);
+
 impl Jet {
-    /// The jet of the zero function.
-    pub const ZERO: Jet = Jet([0.0; 4]);
-
-    /// The jet of a constant c: `[c, 0, 0, 0]`.
-    #[inline]
-    pub const fn constant(c: f64) -> Jet {
-        Jet([c, 0.0, 0.0, 0.0])
-    }
-
-    /// The jet of the variable itself at x: `[x, 1, 0, 0]`.
-    #[inline]
-    pub const fn variable(x: f64) -> Jet {
-        Jet([x, 1.0, 0.0, 0.0])
-    }
-
-    /// The value u.
-    #[inline]
-    pub fn value(self) -> f64 {
-        self.0[0]
-    }
-
-    /// True when u', u'', u''' are all zero (u does not vary at this point).
-    #[inline]
-    pub fn is_flat(self) -> bool {
-        self.0[1] == 0.0 && self.0[2] == 0.0 && self.0[3] == 0.0
-    }
-
-    /// The first component that is not finite, as (order, value).
-    pub fn first_non_finite(self) -> Option<(usize, f64)> {
-        self.0
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !v.is_finite())
-            .map(|(k, v)| (k, *v))
-    }
-
     /// g(u) from `g = [g(u), g'(u), g''(u), g'''(u)]` by the chain rule.
     ///
     /// A flat u gives a flat result whatever g's derivatives are, so a
@@ -75,34 +45,6 @@ impl Jet {
             g[2] * u1s + g[1] * u2,
             g[3] * u1s * u1 + 3.0 * g[2] * u1 * u2 + g[1] * u3,
         ])
-    }
-
-    /// u + c.
-    #[inline]
-    pub fn add_c(self, c: f64) -> Jet {
-        let [u0, u1, u2, u3] = self.0;
-        Jet([u0 + c, u1, u2, u3])
-    }
-
-    /// u · c.
-    #[inline]
-    pub fn mul_c(self, c: f64) -> Jet {
-        let [u0, u1, u2, u3] = self.0;
-        Jet([u0 * c, u1 * c, u2 * c, u3 * c])
-    }
-
-    /// u / c.
-    #[inline]
-    pub fn div_c(self, c: f64) -> Jet {
-        let [u0, u1, u2, u3] = self.0;
-        Jet([u0 / c, u1 / c, u2 / c, u3 / c])
-    }
-
-    /// c − u.
-    #[inline]
-    pub fn rsub_c(self, c: f64) -> Jet {
-        let [u0, u1, u2, u3] = self.0;
-        Jet([c - u0, -u1, -u2, -u3])
     }
 
     /// c / u, the quotient rule with a constant numerator.
@@ -158,17 +100,6 @@ impl Jet {
             }
         };
         self.compose(g)
-    }
-
-    /// uᵛ for two jets: the constant-exponent rule when v is flat, otherwise
-    /// exp(v ln u), with the value taken from `powf`.
-    pub fn pow(self, v: Jet) -> Jet {
-        if v.is_flat() {
-            return self.pow_c(v.0[0]);
-        }
-        let mut w = (v * self.ln()).exp();
-        w.0[0] = self.0[0].powf(v.0[0]);
-        w
     }
 
     /// sin u.
@@ -267,45 +198,6 @@ impl Jet {
         let u = self.0[0];
         self.compose([u.abs(), sign(u), 0.0, 0.0])
     }
-
-    /// atan2(y, x) with y = self: the angle of the point (x, y).
-    ///
-    /// Its derivatives are those of atan(y/x) where |x| ≥ |y| and those of
-    /// −atan(x/y) elsewhere (the two differ by a constant there).
-    pub fn atan2(self, x: Jet) -> Jet {
-        let y = self;
-        let mut w = if x.0[0].abs() >= y.0[0].abs() {
-            (y / x).atan()
-        } else {
-            -(x / y).atan()
-        };
-        w.0[0] = y.0[0].atan2(x.0[0]);
-        w
-    }
-
-    /// √(u² + v²) with the value from `hypot`.
-    pub fn hypot(self, v: Jet) -> Jet {
-        let mut w = (self * self + v * v).sqrt();
-        w.0[0] = self.0[0].hypot(v.0[0]);
-        w
-    }
-
-    /// u mod v, floored: u − k v with k = ⌊u/v⌋ held constant, so the result
-    /// has the sign of v and its derivatives are u⁽ⁱ⁾ − k v⁽ⁱ⁾.
-    pub fn modulo(self, v: Jet) -> Jet {
-        let (u0, v0) = (self.0[0], v.0[0]);
-        let r = floor_mod(u0, v0);
-        if v.is_flat() {
-            return Jet([r, self.0[1], self.0[2], self.0[3]]);
-        }
-        let k = ((u0 - r) / v0).round();
-        Jet([
-            r,
-            self.0[1] - k * v.0[1],
-            self.0[2] - k * v.0[2],
-            self.0[3] - k * v.0[3],
-        ])
-    }
 }
 
 /// sign(u): −1, 0 or 1 (NaN for NaN).
@@ -330,33 +222,6 @@ pub(crate) fn floor_mod(u: f64, v: f64) -> f64 {
         r + v
     } else {
         r
-    }
-}
-
-impl Add for Jet {
-    type Output = Jet;
-    #[inline]
-    fn add(self, o: Jet) -> Jet {
-        let (a, b) = (self.0, o.0);
-        Jet([a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]])
-    }
-}
-
-impl Sub for Jet {
-    type Output = Jet;
-    #[inline]
-    fn sub(self, o: Jet) -> Jet {
-        let (a, b) = (self.0, o.0);
-        Jet([a[0] - b[0], a[1] - b[1], a[2] - b[2], a[3] - b[3]])
-    }
-}
-
-impl Neg for Jet {
-    type Output = Jet;
-    #[inline]
-    fn neg(self) -> Jet {
-        let a = self.0;
-        Jet([-a[0], -a[1], -a[2], -a[3]])
     }
 }
 

@@ -17,52 +17,22 @@
 //! Each operation computes its value and its first three derivatives with
 //! the same formulas as [`Jet`](crate::Jet), so the first four entries of
 //! `Expr::jet4(x)` equal `Expr::jet(x)` up to rounding.
+//!
+//! Construction, the operations with a constant, sums, negation, uᵛ,
+//! atan2, hypot and mod are shared with the other jet order
+//! (`jet_common.rs`).
 
-use std::ops::{Add, Div, Mul, Neg, Sub};
+use std::ops::{Div, Mul};
 
-use crate::jet::{floor_mod, sign};
+use crate::jet::sign;
 
 /// `[u, u', u'', u''', u'''']` of a function u(x) at one point.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Jet4(pub [f64; 5]);
 
+jet_common!(Jet4, 5);
+
 impl Jet4 {
-    /// The jet of the zero function.
-    pub const ZERO: Jet4 = Jet4([0.0; 5]);
-
-    /// The jet of a constant c.
-    #[inline]
-    pub const fn constant(c: f64) -> Jet4 {
-        Jet4([c, 0.0, 0.0, 0.0, 0.0])
-    }
-
-    /// The jet of the variable itself at x: `[x, 1, 0, 0, 0]`.
-    #[inline]
-    pub const fn variable(x: f64) -> Jet4 {
-        Jet4([x, 1.0, 0.0, 0.0, 0.0])
-    }
-
-    /// The value u.
-    #[inline]
-    pub fn value(self) -> f64 {
-        self.0[0]
-    }
-
-    /// True when every derivative is zero.
-    #[inline]
-    pub fn is_flat(self) -> bool {
-        self.0[1..].iter().all(|&d| d == 0.0)
-    }
-
-    /// The first component that is not finite, as (order, value).
-    pub fn first_non_finite(self) -> Option<(usize, f64)> {
-        self.0
-            .iter()
-            .enumerate()
-            .find(|(_, v)| !v.is_finite())
-            .map(|(k, v)| (k, *v))
-    }
-
     /// g(u) from `g = [g, g', g'', g''', g'''']` at u by Faà di Bruno's
     /// formula; a flat u gives a flat result.
     #[inline]
@@ -82,40 +52,6 @@ impl Jet4 {
                 + g[2] * (3.0 * u2 * u2 + 4.0 * u1 * u3)
                 + g[1] * u4,
         ])
-    }
-
-    /// Applies `f` to every component.
-    #[inline]
-    fn map(self, f: impl Fn(f64) -> f64) -> Jet4 {
-        Jet4(self.0.map(f))
-    }
-
-    /// u + c.
-    #[inline]
-    pub fn add_c(self, c: f64) -> Jet4 {
-        let mut w = self;
-        w.0[0] += c;
-        w
-    }
-
-    /// u · c.
-    #[inline]
-    pub fn mul_c(self, c: f64) -> Jet4 {
-        self.map(|u| u * c)
-    }
-
-    /// u / c.
-    #[inline]
-    pub fn div_c(self, c: f64) -> Jet4 {
-        self.map(|u| u / c)
-    }
-
-    /// c − u.
-    #[inline]
-    pub fn rsub_c(self, c: f64) -> Jet4 {
-        let mut w = -self;
-        w.0[0] = c - self.0[0];
-        w
     }
 
     /// c / u.
@@ -175,16 +111,6 @@ impl Jet4 {
             }
         };
         self.compose([u0.powi(n), term(1), term(2), term(3), term(4)])
-    }
-
-    /// uᵛ: the constant-exponent rule when v is flat, else exp(v ln u).
-    pub fn pow(self, v: Jet4) -> Jet4 {
-        if v.is_flat() {
-            return self.pow_c(v.0[0]);
-        }
-        let mut w = (v * self.ln()).exp();
-        w.0[0] = self.0[0].powf(v.0[0]);
-        w
     }
 
     /// sin u.
@@ -305,63 +231,6 @@ impl Jet4 {
     pub fn abs(self) -> Jet4 {
         let u = self.0[0];
         self.compose([u.abs(), sign(u), 0.0, 0.0, 0.0])
-    }
-
-    /// atan2(y, x) with y = self, by atan(y/x) or −atan(x/y).
-    pub fn atan2(self, x: Jet4) -> Jet4 {
-        let y = self;
-        let mut w = if x.0[0].abs() >= y.0[0].abs() {
-            (y / x).atan()
-        } else {
-            -(x / y).atan()
-        };
-        w.0[0] = y.0[0].atan2(x.0[0]);
-        w
-    }
-
-    /// √(u² + v²) with the value from `hypot`.
-    pub fn hypot(self, v: Jet4) -> Jet4 {
-        let mut w = (self * self + v * v).sqrt();
-        w.0[0] = self.0[0].hypot(v.0[0]);
-        w
-    }
-
-    /// u mod v, floored, with k = ⌊u/v⌋ held constant.
-    pub fn modulo(self, v: Jet4) -> Jet4 {
-        let (u0, v0) = (self.0[0], v.0[0]);
-        let r = floor_mod(u0, v0);
-        let k = if v.is_flat() {
-            0.0
-        } else {
-            ((u0 - r) / v0).round()
-        };
-        let mut w = self - v.mul_c(k);
-        w.0[0] = r;
-        w
-    }
-}
-
-impl Add for Jet4 {
-    type Output = Jet4;
-    #[inline]
-    fn add(self, o: Jet4) -> Jet4 {
-        Jet4(std::array::from_fn(|k| self.0[k] + o.0[k]))
-    }
-}
-
-impl Sub for Jet4 {
-    type Output = Jet4;
-    #[inline]
-    fn sub(self, o: Jet4) -> Jet4 {
-        Jet4(std::array::from_fn(|k| self.0[k] - o.0[k]))
-    }
-}
-
-impl Neg for Jet4 {
-    type Output = Jet4;
-    #[inline]
-    fn neg(self) -> Jet4 {
-        self.map(|u| -u)
     }
 }
 

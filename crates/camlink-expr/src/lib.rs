@@ -99,6 +99,8 @@
 mod compile;
 mod error;
 mod function;
+#[macro_use]
+mod jet_common;
 mod jet;
 mod jet4;
 mod lexer;

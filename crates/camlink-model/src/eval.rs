@@ -21,7 +21,10 @@ pub fn time_fn(src: &str, consts: &HashMap<String, f64>) -> Result<TimeFn, Strin
     if e.is_constant() {
         let v = e.eval(0.0);
         if !v.is_finite() {
-            return Err(format!("value is not a finite number ({v})"));
+            return Err(format!(
+                "value is not a finite number ({})",
+                camlink_core::fmt_num::num(v)
+            ));
         }
         return Ok(TimeFn::Const(v));
     }

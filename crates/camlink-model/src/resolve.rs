@@ -22,6 +22,7 @@ use crate::error::did_you_mean;
 use crate::eval;
 use crate::file::*;
 use camlink_core::dynamics::integrator::Adaptive;
+use camlink_core::fmt_num::num;
 
 use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
@@ -215,7 +216,7 @@ fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
             if !v.is_finite() {
                 return fail(
                     format!("parameters.{name}"),
-                    format!("value is not a finite number ({v})"),
+                    format!("value is not a finite number ({})", num(v)),
                 );
             }
             done.insert(name.clone(), v);
@@ -282,7 +283,7 @@ impl Ctx {
             },
         };
         if !v.is_finite() {
-            return fail(path, format!("value is not a finite number ({v})"));
+            return fail(path, format!("value is not a finite number ({})", num(v)));
         }
         Ok(v)
     }
@@ -548,7 +549,7 @@ impl Ctx {
     fn time_fn(&self, f: &Num, path: &str) -> R<TimeFn> {
         match f {
             Num::Value(v) if v.is_finite() => Ok(TimeFn::Const(*v)),
-            Num::Value(v) => fail(path, format!("value is not a finite number ({v})")),
+            Num::Value(v) => fail(path, format!("value is not a finite number ({})", num(*v))),
             Num::Expr(src) => eval::time_fn(src, &self.params).or_else(|e| fail(path, e)),
         }
     }
@@ -556,7 +557,7 @@ impl Ctx {
     fn positive(&self, n: &Num, path: &str, what: &str) -> R<f64> {
         let v = self.num(n, path)?;
         if v <= 0.0 {
-            return fail(path, format!("{what} must be positive ({v} m)"));
+            return fail(path, format!("{what} must be positive ({} m)", num(v)));
         }
         Ok(v)
     }
@@ -573,9 +574,8 @@ impl Ctx {
                 point_j,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 self.joints
                     .insert(name.clone(), JointInfo::Revolute { bi, s_i, bj, s_j });
                 self.add(
@@ -599,9 +599,8 @@ impl Ctx {
                 angle,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_i = self.axis(axis, &format!("{p}.axis"))?;
                 let mut c = Translational {
                     body_i: bi,
@@ -636,9 +635,8 @@ impl Ctx {
                 length,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let length = match length {
                     Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
                     None => {
@@ -676,9 +674,8 @@ impl Ctx {
                 offset,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_j = self.axis(axis, &format!("{p}.axis"))?;
                 let offset = match offset {
                     Some(c) => self.num(c, &format!("{p}.offset"))?,
@@ -837,9 +834,8 @@ impl Ctx {
                 phase,
             } => {
                 let name = self.name(name.as_ref(), format!("gear_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let mut c = Gear {
                     body_i: bi,
                     s_i,
@@ -877,9 +873,8 @@ impl Ctx {
                 phase,
             } => {
                 let name = self.name(name.as_ref(), format!("rack_pinion_{k}"), p)?;
-                let (bi, s_i) = self.at(body_i, point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(body_j, point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
+                let ((bi, s_i), (bj, s_j)) =
+                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let mut c = RackPinion {
                     body_i: bi,
                     s_i,
@@ -902,6 +897,22 @@ impl Ctx {
             JointSpec::PointFollower(c) => self.point_follower(c, k)?,
         }
         Ok(())
+    }
+
+    /// Body i and its point (`body_i`, `point_i`) and body j and its point
+    /// (`body_j`, `point_j`) of the joint at `path`, two different bodies.
+    fn two_bodies(
+        &self,
+        body_i: &str,
+        point_i: Option<&PointRef>,
+        body_j: &str,
+        point_j: Option<&PointRef>,
+        path: &str,
+    ) -> R<((BodyId, V2), (BodyId, V2))> {
+        let i = self.at(body_i, point_i, path, "body_i", "point_i")?;
+        let j = self.at(body_j, point_j, path, "body_j", "point_j")?;
+        self.distinct(i.0, j.0, path)?;
+        Ok((i, j))
     }
 
     fn distinct(&self, bi: BodyId, bj: BodyId, path: &str) -> R<()> {
@@ -1181,7 +1192,7 @@ impl Ctx {
                     if let Some(&last) = out.last().filter(|&&last| v <= last) {
                         return fail(
                             format!("analysis.times[{k}]"),
-                            format!("times must increase ({v} s follows {last} s)"),
+                            format!("times must increase ({} s follows {} s)", num(v), num(last)),
                         );
                     }
                     out.push(v);
@@ -1269,11 +1280,8 @@ impl Ctx {
             {
                 tols[k] = self.setting(n, key)?.unwrap_or(default);
             }
-            if tols == [0.0, 0.0] {
-                return fail(
-                    "analysis.atol",
-                    "atol and rtol are both 0: no step would pass",
-                );
+            if let Err(e) = camlink_core::setting::check_error_control(tols[0], tols[1]) {
+                return fail("analysis.atol", e);
             }
             let h_min = positive(a.h_min.as_ref(), Some(DynamicsSpec::DEFAULT_H_MIN), "h_min")?
                 .unwrap_or(DynamicsSpec::DEFAULT_H_MIN);

@@ -221,7 +221,10 @@ fn seed_example_with_a_too_large_roller_is_undercut() {
         text.contains("joint 'contact'") && text.contains("undercut"),
         "{text}"
     );
-    assert!(text.contains("0.800000 m"), "{text}");
+    assert!(
+        text.contains("radius 0.85 m") && text.contains("0.8 m"),
+        "{text}"
+    );
 }
 
 #[test]

@@ -9,6 +9,7 @@
 
 use std::path::{Path, PathBuf};
 
+use camlink_core::fmt_num::num;
 use camlink_model::{load_path, load_str, Format, Loaded};
 
 fn root() -> PathBuf {
@@ -204,7 +205,7 @@ fn outcome(loaded: &Loaded, stage: &str) -> String {
                 Ok(s) => s
                     .warnings
                     .iter()
-                    .map(|w| format!("warning at t = {} s: {}", w.time, w.message))
+                    .map(|w| format!("warning at t = {} s: {}", num(w.time), w.message))
                     .collect::<Vec<_>>()
                     .join("\n"),
             }

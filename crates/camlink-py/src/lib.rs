@@ -22,11 +22,13 @@ use camlink_core::dynamics::integrator::{self, Adaptive};
 use camlink_core::dynamics::{inverse, statics};
 use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
+use camlink_core::force::ForceError;
 use camlink_core::kinematics;
 use camlink_core::run::{
     self, AnalysisError as CoreAnalysisError, Kind, LiftOff, PointOutput, Settings, Sink, Stop,
     Summary,
 };
+use camlink_core::setting;
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
 use numpy::ndarray::Array2;
@@ -509,15 +511,20 @@ impl Model {
         chunk_rows: usize,
         jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
-        let times = times.as_array().to_vec();
         let settings = Settings {
             tol,
             max_iter,
             jerk,
         };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
-            kinematics::run(model, &times, &settings, points, sink)
-        })
+        self.run_grid(
+            py,
+            times,
+            settings,
+            points,
+            on_chunk,
+            chunk_rows,
+            kinematics::run,
+        )
     }
 
     /// Inverse dynamics at `times` (s) of a driven (zero-DOF) model: the
@@ -544,15 +551,20 @@ impl Model {
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
-        let times = times.as_array().to_vec();
         let settings = Settings {
             tol,
             max_iter,
             ..Settings::default()
         };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
-            inverse::run(model, &times, &settings, points, sink)
-        })
+        self.run_grid(
+            py,
+            times,
+            settings,
+            points,
+            on_chunk,
+            chunk_rows,
+            inverse::run,
+        )
     }
 
     /// The equilibrium at `time` (s), as one row with the channels of
@@ -597,15 +609,12 @@ impl Model {
         chunk_rows: usize,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        if !(h > 0.0 && h.is_finite()) {
-            return Err(ModelError::new_err(format!(
-                "h must be a positive time step ({h} s)"
-            )));
-        }
-        if !(0.0..=1.0).contains(&rho_inf) {
-            return Err(ModelError::new_err(format!(
-                "rho_inf must be between 0 and 1 ({rho_inf})"
-            )));
+        let check = |key: &str, v: f64| setting::check(key, v).map_err(ModelError::new_err);
+        check("h", h)?;
+        check("rho_inf", rho_inf)?;
+        if let Some((atol, rtol, h_min)) = adaptive {
+            setting::check_error_control(atol, rtol).map_err(ModelError::new_err)?;
+            check("h_min", h_min)?;
         }
         let settings = integrator::Settings {
             step: h,
@@ -647,7 +656,35 @@ impl Model {
     }
 }
 
+/// A core analysis over output times with the kinematic settings:
+/// `kinematics::run` or `inverse::run`.
+type GridAnalysis = fn(
+    &camlink_core::Model,
+    &[f64],
+    &Settings,
+    &[PointOutput],
+    &mut dyn camlink_core::run::Sink,
+) -> Result<Summary, CoreAnalysisError>;
+
 impl Model {
+    /// Runs `analysis` at `times` (s) with `settings`, as [`Model::run_with`].
+    #[allow(clippy::too_many_arguments)]
+    fn run_grid<'py>(
+        &self,
+        py: Python<'py>,
+        times: PyReadonlyArray1<'py, f64>,
+        settings: Settings,
+        points: Vec<String>,
+        on_chunk: Option<Py<PyAny>>,
+        chunk_rows: usize,
+        analysis: GridAnalysis,
+    ) -> PyResult<RunOutput<'py>> {
+        let times = times.as_array().to_vec();
+        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+            analysis(model, &times, &settings, points, sink)
+        })
+    }
+
     /// Runs `analysis` with the GIL released, rows going to a [`ChunkSink`];
     /// turns its outcome, a panic, a failing `on_chunk` or a failing
     /// callback force into the Python result or exception.
@@ -671,8 +708,10 @@ impl Model {
             let points = resolve_points(&self.loaded.model, points)?;
             let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
             let model = &self.loaded.model;
+            FORCE_ERROR.with(|slot| slot.borrow_mut().take());
             let outcome = py
                 .detach(|| catch_unwind(AssertUnwindSafe(|| analysis(model, &points, &mut sink))));
+            let force_error = FORCE_ERROR.with(|slot| slot.borrow_mut().take());
             sink.flush();
             let ChunkSink {
                 names,
@@ -681,13 +720,6 @@ impl Model {
                 ..
             } = sink;
             let data = to_array(py, all, names.len())?;
-            let outcome = match outcome {
-                Err(payload) => match payload.downcast::<ForceFailed>() {
-                    Ok(failed) => return Err(failed.0),
-                    Err(payload) => Err(payload),
-                },
-                Ok(result) => Ok(result),
-            };
             if let Some(e) = callback_error {
                 return Err(e);
             }
@@ -696,20 +728,30 @@ impl Model {
                 Ok(Err(e)) if e.kind == Kind::Stopped => Err(PyRuntimeError::new_err(format!(
                     "internal error: run stopped without a Python error ({e})"
                 ))),
-                Ok(Err(e)) => Err(analysis_error(py, &e, names, Some(data))),
+                Ok(Err(e)) => {
+                    let err = analysis_error(py, &e, names, Some(data));
+                    if e.kind == Kind::ForceFailed {
+                        err.set_cause(py, force_error);
+                    }
+                    Err(err)
+                }
                 Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
             }
         })
     }
 }
 
-/// Unwinding payload that stops a run when a Python force function raised:
-/// the exception travels with it to [`Model::run_with`].
-struct ForceFailed(PyErr);
+thread_local! {
+    /// The exception of the Python force function that stopped the run on
+    /// this thread, for [`Model::run_with`] to chain as the `__cause__` of
+    /// the `force_failed` error.
+    static FORCE_ERROR: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
+}
 
 /// Calls a Python force function `f(t, q, qd) -> (fx, fy, n)`; on an
-/// exception or a bad return value, unwinds with [`ForceFailed`].
-fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
+/// exception or a bad return value, keeps the exception in [`FORCE_ERROR`]
+/// and returns a [`ForceError`] that stops the run.
+fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> Result<[f64; 3], ForceError> {
     let result = Python::attach(|py| -> PyResult<[f64; 3]> {
         let out = f.call1(py, (t, (q[0], q[1], q[2]), (qd[0], qd[1], qd[2])))?;
         out.extract::<[f64; 3]>(py).map_err(|_| {
@@ -723,10 +765,24 @@ fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> [f64; 3] {
             ))
         })
     });
-    match result {
-        Ok(v) => v,
-        Err(e) => std::panic::resume_unwind(Box::new(ForceFailed(e))),
-    }
+    result.map_err(|e| {
+        let what = Python::attach(|py| {
+            let kind = e
+                .get_type(py)
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_else(|_| "exception".to_string());
+            let text = e.value(py).to_string();
+            let text: String = text.chars().take(200).collect();
+            if text.is_empty() {
+                kind
+            } else {
+                format!("{kind}: {text}")
+            }
+        });
+        FORCE_ERROR.with(|slot| *slot.borrow_mut() = Some(e));
+        ForceError(what)
+    })
 }
 
 /// `"body.point"` names to core point outputs; a name given twice is an

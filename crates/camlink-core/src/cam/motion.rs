@@ -94,11 +94,21 @@ pub struct Boundary {
 
 impl fmt::Display for Boundary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "C{} at {:.3}°", self.continuity, self.theta.to_degrees())?;
+        write!(
+            f,
+            "C{} at {}°",
+            self.continuity,
+            crate::fmt_num::num(self.theta.to_degrees())
+        )?;
         let names = ["velocity", "acceleration", "jerk"];
         if self.continuity < 3 {
             let k = self.continuity;
-            write!(f, ": {} jumps by {:.6e}", names[k], self.jumps[k])?;
+            write!(
+                f,
+                ": {} jumps by {}",
+                names[k],
+                crate::fmt_num::num(self.jumps[k])
+            )?;
             if k + 1 < 3 {
                 write!(f, " (infinite {} there)", names[k + 1])?;
             }
@@ -169,8 +179,8 @@ impl Program {
         }
         if (theta - TAU).abs() > 1e-9 {
             return Err(MotionError::NotClosed(format!(
-                "the spans add up to {:.9}° instead of 360°",
-                theta.to_degrees()
+                "the spans add up to {}° instead of 360°",
+                crate::fmt_num::num(theta.to_degrees())
             )));
         }
         if s.abs() > 1e-12 * scale.max(1e-300) {

@@ -398,10 +398,10 @@ mod tests {
             "{m}"
         );
         assert!(
-            m.contains("from t = 0.500000 s (cam angle 5.0000 rad, 286.5°)"),
+            m.contains("from t = 0.5 s (cam angle 5 rad, 286.479°)"),
             "{m}"
         );
-        assert!(m.contains("to t = 2.750000 s"), "{m}");
+        assert!(m.contains("to t = 2.75 s"), "{m}");
     }
 
     #[test]

@@ -383,7 +383,7 @@ impl<'m> Integrator<'m> {
             return Err(self.error(Kind::SingularMass, &message));
         }
         self.h_factored = 0.0;
-        s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n]);
+        s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n])?;
         s.asm
             .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
         self.aug.solve_refined(&mut self.rhs);
@@ -424,11 +424,12 @@ impl<'m> Integrator<'m> {
         Err(self.error(
             Kind::NotConverged,
             &format!(
-                "Newton did not converge in {} iterations at step {h:.3e} s, nor in {} \
+                "Newton did not converge in {} iterations at step {} s, nor in {} \
                  with a fresh matrix each iteration: near a singular position (a toggle, \
                  a dead centre, the flat position of a parallelogram) try another step h; \
                  with stiff springs or contacts, a smaller h",
                 self.settings.max_iter,
+                crate::fmt_num::num(h),
                 SINGULAR_ITER * self.settings.max_iter
             ),
         ))
@@ -504,7 +505,7 @@ impl<'m> Integrator<'m> {
                 t1,
                 r_motion,
                 r_phi,
-            );
+            )?;
             for v in r_motion {
                 *v *= -s;
             }
@@ -599,7 +600,7 @@ impl<'m> Integrator<'m> {
             // that stall have reached the noise of the solve, measured once.
             if dmax > STALL * last {
                 if fresh && !noise_known {
-                    self.measure_noise(t1, s);
+                    self.measure_noise(t1, s)?;
                     noise_known = true;
                 }
                 self.aug.invalidate();
@@ -623,11 +624,11 @@ impl<'m> Integrator<'m> {
     /// `s` in the equations of motion and ULPS ε_mach max |q| in Φ. Small
     /// where S is well conditioned, it sets the floor of the corrections
     /// near a singular position, where it is not.
-    fn measure_noise(&mut self, t: f64, s: f64) {
+    fn measure_noise(&mut self, t: f64, s: f64) -> Result<(), AnalysisError> {
         let n = self.sys.n();
         let u = newton::ULPS * f64::EPSILON;
         let (head, tail) = self.rhs.split_at_mut(n);
-        self.sys.forces(&self.q, &self.qd, t, head);
+        self.sys.forces(&self.q, &self.qd, t, head)?;
         head.iter_mut().for_each(|v| *v = v.abs());
         self.work.fill(0.0);
         self.sys.add_mass_times(&self.q, &self.qdd, &mut self.work);
@@ -641,6 +642,7 @@ impl<'m> Integrator<'m> {
         // One level for all: the pattern of the rounding errors is unknown.
         let level = NOISE_SAFETY * max_abs(&self.rhs[..n]);
         self.noise.fill(level);
+        Ok(())
     }
 
     /// The weighted local error estimate of the last step (≤ 1 to accept).
@@ -688,7 +690,17 @@ impl<'m> Integrator<'m> {
                     self.step(h)?;
                 }
                 Some(ad) => {
-                    let h = h_next.min(h_max).min(left);
+                    // The step lands on the output time, or leaves at least
+                    // a step's worth: two equal steps rather than one and
+                    // a sliver (a sliver's Newton matrix is ill conditioned).
+                    let h = h_next.min(h_max);
+                    let h = if h >= left {
+                        left
+                    } else if h > 0.5 * left {
+                        0.5 * left
+                    } else {
+                        h
+                    };
                     // A step below the rounding of t leaves t unchanged.
                     if h < 4.0 * f64::EPSILON * self.t.abs() || self.t + h == self.t {
                         return Err(self.error(
@@ -701,7 +713,17 @@ impl<'m> Integrator<'m> {
                             ),
                         ));
                     }
-                    self.step(h)?;
+                    // A step whose Newton fails is rejected like one whose
+                    // error is too large, down to h_min.
+                    match self.step(h) {
+                        Err(e) if e.kind == Kind::NotConverged && h > ad.h_min => {
+                            self.h_prev = 0.0;
+                            self.rejected += 1;
+                            *h_next = (0.25 * h).max(ad.h_min);
+                            continue;
+                        }
+                        outcome => outcome?,
+                    }
                     let err = self.local_error(h, &ad).max(1e-10);
                     // A PI controller on accepted steps (Gustafsson; Hairer
                     // & Wanner IV.2): the last accepted error damps the
@@ -762,13 +784,7 @@ pub fn run(
     let mut lambda = vec![0.0; it.sys.m()];
     for (k, &t) in times.iter().enumerate() {
         if k > 0 {
-            if t <= times[k - 1] || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {t} follows {}", times[k - 1]),
-                ));
-            }
+            run::check_next_time(Some(times[k - 1]), t)?;
             it.advance_watching(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
         }
         run::fill_outputs(

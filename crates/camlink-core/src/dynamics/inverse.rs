@@ -56,7 +56,7 @@ impl<'m> InverseSolver<'m> {
         self.kin.step(t, prev)?;
         let (q, qd, qdd) = (&self.kin.q, &self.kin.qd, &self.kin.qdd);
         // Φ_qᵀ λ = Q − M q̈.
-        self.sys.forces(q, qd, t, &mut self.rhs);
+        self.sys.forces(q, qd, t, &mut self.rhs)?;
         for v in self.rhs.iter_mut() {
             *v = -*v;
         }
@@ -110,15 +110,7 @@ pub fn run(
     let mut scratch = Scratch::new(&s.sys);
     let mut prev: Option<f64> = None;
     for &t in times {
-        if let Some(p) = prev {
-            if t <= p || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {t} follows {p}"),
-                ));
-            }
-        }
+        run::check_next_time(prev, t)?;
         s.step(t, prev)?;
         s.kin.outputs(points, &mut values[..nk]);
         output::fill(

@@ -55,6 +55,17 @@ pub struct Equilibrium {
 
 /// The equilibrium at time `t` (drivers at f(t)) nearest the model's placement.
 pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, AnalysisError> {
+    solve_watching(model, t, settings, &mut || Ok(()))
+}
+
+/// [`solve`], calling `tick` before every Newton iteration; an error from
+/// `tick` (an interrupt) stops the search.
+pub fn solve_watching(
+    model: &Model,
+    t: f64,
+    settings: &Settings,
+    tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+) -> Result<Equilibrium, AnalysisError> {
     let s = System::new(model);
     let (n, m) = (s.n(), s.m());
     let err = |kind: Kind, message: String, residual: f64| {
@@ -78,7 +89,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     let mut qf = vec![0.0; n];
     // Least-squares multipliers: [I Φ_qᵀ; Φ_q 0][x; λ] = [Q; 0].
     let mut rhs = vec![0.0; n + m];
-    s.forces(&q, &zeros, t, &mut qf);
+    s.forces(&q, &zeros, t, &mut qf)?;
     rhs[..n].copy_from_slice(&qf);
     let least_squares = Coefficients {
         identity: 1.0,
@@ -104,15 +115,20 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     };
     let mut res = vec![0.0; n + m];
     let (mut tq, mut tl) = (q.clone(), lambda.clone());
-    let residual = |q: &[f64], lambda: &[f64], res: &mut [f64], qf: &mut [f64]| -> (f64, f64) {
-        s.residual(q, &zeros, &zeros, lambda, t, &mut res[..n]);
+    let residual = |q: &[f64],
+                    lambda: &[f64],
+                    res: &mut [f64],
+                    qf: &mut [f64]|
+     -> Result<(f64, f64), AnalysisError> {
+        s.residual(q, &zeros, &zeros, lambda, t, &mut res[..n])?;
         s.asm.phi(model, q, t, &mut res[n..]);
-        s.forces(q, &zeros, t, qf);
+        s.forces(q, &zeros, t, qf)?;
         let scale = 1.0 + max_abs(qf);
-        (max_abs(&res[..n]) / scale, max_abs(&res[n..]))
+        Ok((max_abs(&res[..n]) / scale, max_abs(&res[n..])))
     };
     for it in 0..=settings.max_iter {
-        let (rf, rp) = residual(&q, &lambda, &mut res, &mut qf);
+        tick()?;
+        let (rf, rp) = residual(&q, &lambda, &mut res, &mut qf)?;
         if !(rf.is_finite() && rp.is_finite()) {
             return Err(err(
                 Kind::NotFinite,
@@ -160,8 +176,9 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
             return Err(err(
                 Kind::NotConverged,
                 format!(
-                    "no equilibrium found in {} iterations (force residual {rf:.2e}, relative)",
-                    settings.max_iter
+                    "no equilibrium found in {} iterations (force residual {}, relative)",
+                    settings.max_iter,
+                    crate::fmt_num::num(rf)
                 ),
                 rp,
             ));
@@ -200,7 +217,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
             for k in 0..m {
                 tl[k] = lambda[k] + step * res[n + k];
             }
-            residual(&tq, &tl, &mut trial, &mut qf);
+            residual(&tq, &tl, &mut trial, &mut qf)?;
             if norm2(&trial) <= (1.0 - 1e-4 * step) * r2 || step < 1e-3 {
                 break;
             }
@@ -221,7 +238,7 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
-    let e = solve(model, t, settings)?;
+    let e = solve_watching(model, t, settings, &mut || sink.tick().map_err(|s| s.at(t)))?;
     let s = System::new(model);
     let contacts = crate::contact::Contacts::new(model);
     let mut names = run::channels(model, points);

@@ -54,6 +54,7 @@ use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
 use crate::force::{Applied, BodyJac, BodyQ};
 use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
+use crate::run::{AnalysisError, Kind};
 
 /// The regularisation ε of the multiplier block relative to
 /// max(d, j²/d) (see the module documentation).
@@ -107,23 +108,43 @@ impl<'m> System<'m> {
         x
     }
 
-    /// Q(q, q̇, t) = Q_g + Q_v + Q_a into `out` (length n).
-    pub fn forces(&self, q: &[f64], qd: &[f64], t: f64, out: &mut [f64]) {
+    /// Q(q, q̇, t) = Q_g + Q_v + Q_a into `out` (length n); an error of
+    /// kind `force_failed` when a user force function fails.
+    pub fn forces(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Result<(), AnalysisError> {
         out.fill(0.0);
         let g = self.model.gravity;
         for &(c, inertia) in &self.bodies {
             let l = inertia.loads(body(q, c), body(qd, c), g);
             out[c..c + 3].copy_from_slice(&l);
         }
-        self.add_applied(q, qd, t, 1.0, out);
+        self.add_applied(q, qd, t, 1.0, out)
     }
 
     /// `out += w Q_a`, the applied forces times w.
-    fn add_applied(&self, q: &[f64], qd: &[f64], t: f64, w: f64, out: &mut [f64]) {
+    fn add_applied(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        t: f64,
+        w: f64,
+        out: &mut [f64],
+    ) -> Result<(), AnalysisError> {
         let mut qf = BodyQ::default();
         for (f, force) in self.model.forces.iter().enumerate() {
             let x = self.force_local(f, q, qd, t);
-            force.kind.generalized(&x, &mut qf);
+            force.kind.generalized(&x, &mut qf).map_err(|e| {
+                AnalysisError::new(
+                    Kind::ForceFailed,
+                    t,
+                    format!("force '{}' failed: {e}", force.name),
+                )
+            })?;
             for (k, b) in force.kind.bodies().iter().enumerate() {
                 if let Some(c) = self.asm.body_col(b.0) {
                     for d in 0..3 {
@@ -132,6 +153,7 @@ impl<'m> System<'m> {
                 }
             }
         }
+        Ok(())
     }
 
     /// `out += M(q) v` (length n).
@@ -160,9 +182,10 @@ impl<'m> System<'m> {
         lambda: &[f64],
         t: f64,
         out: &mut [f64],
-    ) {
-        self.motion_residual(q, qd, qdd, t, out);
+    ) -> Result<(), AnalysisError> {
+        self.motion_residual(q, qd, qdd, t, out)?;
         self.add_jt_lambda(q, t, lambda, out);
+        Ok(())
     }
 
     /// R as [`residual`](Self::residual) into `out` (length n), and Φ(q, t)
@@ -177,21 +200,29 @@ impl<'m> System<'m> {
         t: f64,
         out: &mut [f64],
         phi: &mut [f64],
-    ) {
-        self.motion_residual(q, qd, qdd, t, out);
+    ) -> Result<(), AnalysisError> {
+        self.motion_residual(q, qd, qdd, t, out)?;
         self.asm
             .phi_and_jacobian(self.model, q, t, phi, |r, c, v| out[c] += v * lambda[r]);
+        Ok(())
     }
 
     /// M q̈ − Q into `out`.
-    fn motion_residual(&self, q: &[f64], qd: &[f64], qdd: &[f64], t: f64, out: &mut [f64]) {
+    fn motion_residual(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) -> Result<(), AnalysisError> {
         out.fill(0.0);
         let g = self.model.gravity;
         for &(c, inertia) in &self.bodies {
             let r = inertia.residual(body(q, c), body(qd, c), body(qdd, c), g);
             out[c..c + 3].copy_from_slice(&r);
         }
-        self.add_applied(q, qd, t, -1.0, out);
+        self.add_applied(q, qd, t, -1.0, out)
     }
 
     /// Kinetic energy T = ½ q̇ᵀ M q̇ (J).

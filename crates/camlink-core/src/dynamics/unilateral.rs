@@ -411,7 +411,7 @@ impl<'a> Run<'a> {
         }
         let rhs = &mut self.rhs;
         rhs.resize(n + m, 0.0);
-        sys.forces(&it.q, &it.qd, t, &mut rhs[..n]);
+        sys.forces(&it.q, &it.qd, t, &mut rhs[..n])?;
         sys.asm.gamma(sys.model, &it.q, &it.qd, t, &mut rhs[n..]);
         aug.solve_refined(rhs);
         let layout = self.layouts[mask].as_ref().expect("layout");

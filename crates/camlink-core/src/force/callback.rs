@@ -8,9 +8,10 @@
 //! interpreter (the Python binding) costs far more than the built-in forces.
 //! Its derivatives are unknown and taken as zero in the Newton iteration
 //! matrix: the integrator still converges to the right answer, in more
-//! iterations when the force is stiff.
+//! iterations when the force is stiff. A function that fails returns a
+//! [`ForceError`], which stops the run.
 
-use super::{Applied, BodyJac, BodyQ, ForceFn};
+use super::{Applied, BodyJac, BodyQ, ForceError, ForceFn};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 
@@ -37,8 +38,9 @@ impl Applied for Callback {
         [self.body, BodyId::GROUND]
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
-        *out = [(self.f)(x.t, x.q[0], x.qd[0]), [0.0; 3]];
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
+        *out = [(self.f)(x.t, x.q[0], x.qd[0])?, [0.0; 3]];
+        Ok(())
     }
 
     fn derivatives(&self, _x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {

@@ -20,7 +20,7 @@
 //! and ∂Q/∂q̇ are central differences of Q (the witness points move with
 //! the bodies); the potential of the elastic part is V = k δⁿ⁺¹/(n + 1).
 
-use super::{Applied, BodyJac, BodyQ};
+use super::{Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::curve::distance::Features;
@@ -63,18 +63,10 @@ impl CompliantContact {
         let g = self.features.gap(x.q, x.qd, None);
         self.law.force(-g.gap, -g.rate)
     }
-}
 
-impl Applied for CompliantContact {
-    fn kind(&self) -> &'static str {
-        "compliant_contact"
-    }
-
-    fn bodies(&self) -> [BodyId; 2] {
-        self.bodies
-    }
-
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    /// Q_i and Q_j of the contact force at the local state (zero while
+    /// the gap is open).
+    fn contact_force(&self, x: &Local, out: &mut BodyQ) {
         *out = BodyQ::default();
         let g = self.features.gap(x.q, x.qd, None);
         let f = self.law.force(-g.gap, -g.rate);
@@ -86,6 +78,21 @@ impl Applied for CompliantContact {
             let arm = sub(g.points[k], [x.q[k][0], x.q[k][1]]);
             out[k] = [sign * fv[0], sign * fv[1], sign * cross(arm, fv)];
         }
+    }
+}
+
+impl Applied for CompliantContact {
+    fn kind(&self) -> &'static str {
+        "compliant_contact"
+    }
+
+    fn bodies(&self) -> [BodyId; 2] {
+        self.bodies
+    }
+
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
+        self.contact_force(x, out);
+        Ok(())
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
@@ -101,8 +108,8 @@ impl Applied for CompliantContact {
                     *p += H;
                     *m -= H;
                     let (mut qp, mut qm) = (BodyQ::default(), BodyQ::default());
-                    self.generalized(&xp, &mut qp);
-                    self.generalized(&xm, &mut qm);
+                    self.contact_force(&xp, &mut qp);
+                    self.contact_force(&xm, &mut qm);
                     let d = if vel { &mut *dqd } else { &mut *dq };
                     for a in 0..2 {
                         for r in 0..3 {
@@ -160,14 +167,14 @@ mod tests {
         // its centre (no moment about the body origin at the centre).
         let c = disc_on_floor(0.5);
         let mut q = BodyQ::default();
-        c.generalized(&at(0.099, -0.2), &mut q);
+        c.generalized(&at(0.099, -0.2), &mut q).unwrap();
         let f = 1e6 * 1e-3f64.powf(1.5) * 1.1;
         assert!((q[0][1] - f).abs() < 1e-9 * f, "{q:?}");
         assert!(q[0][0].abs() < 1e-12 && q[0][2].abs() < 1e-12 * f, "{q:?}");
         // Apart, or separating fast enough: no force.
-        c.generalized(&at(0.1001, -0.2), &mut q);
+        c.generalized(&at(0.1001, -0.2), &mut q).unwrap();
         assert_eq!(q, BodyQ::default());
-        c.generalized(&at(0.099, 3.0), &mut q);
+        c.generalized(&at(0.099, 3.0), &mut q).unwrap();
         assert_eq!(q, BodyQ::default());
     }
 
@@ -177,7 +184,7 @@ mod tests {
         let c = disc_on_floor(0.0);
         let h = 1e-7;
         let mut q = BodyQ::default();
-        c.generalized(&at(0.0985, 0.0), &mut q);
+        c.generalized(&at(0.0985, 0.0), &mut q).unwrap();
         let dv =
             (c.potential(&at(0.0985 + h, 0.0)) - c.potential(&at(0.0985 - h, 0.0))) / (2.0 * h);
         assert!(

@@ -48,8 +48,9 @@ pub trait Applied {
     fn validate(&self) -> Result<(), String> {
         Ok(())
     }
-    /// Q_i and Q_j at the local state (every entry of `out` is written).
-    fn generalized(&self, x: &Local, out: &mut BodyQ);
+    /// Q_i and Q_j at the local state (every entry of `out` is written);
+    /// an error when a user function fails.
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError>;
     /// ∂Q/∂q into `dq` and ∂Q/∂q̇ into `dqd` (every entry is written).
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac);
     /// Potential energy V (J) of a conservative part; 0 otherwise.
@@ -100,7 +101,7 @@ macro_rules! forces {
                 match self { $(ForceKind::$variant(c) => c.validate(),)* }
             }
             #[inline]
-            fn generalized(&self, x: &Local, out: &mut BodyQ) {
+            fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
                 match self { $(ForceKind::$variant(c) => c.generalized(x, out),)* }
             }
             #[inline]
@@ -124,8 +125,17 @@ forces! {
     CompliantContact(compliant_contact::CompliantContact),
 }
 
-/// A shared user function, for [`callback::Callback`].
-pub type ForceFn = Arc<dyn Fn(f64, [f64; 3], [f64; 3]) -> [f64; 3] + Send + Sync>;
+/// A force that could not be computed: a user function failed. The
+/// message says why; the run that meets it stops with an error of kind
+/// `force_failed` naming the force and the time.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct ForceError(pub String);
+
+/// A shared user function, for [`callback::Callback`]: (t, q_k, q̇_k) to
+/// Q_k, or an error that stops the run.
+pub type ForceFn =
+    Arc<dyn Fn(f64, [f64; 3], [f64; 3]) -> Result<[f64; 3], ForceError> + Send + Sync>;
 
 /// Finite-difference checks of `generalized` against `derivatives`, shared
 /// by the force kinds' tests.
@@ -177,8 +187,8 @@ pub(crate) mod check {
                         xm.q[b][c] -= h;
                     }
                     let (mut qp, mut qm) = (BodyQ::default(), BodyQ::default());
-                    f.generalized(&xp, &mut qp);
-                    f.generalized(&xm, &mut qm);
+                    f.generalized(&xp, &mut qp).unwrap();
+                    f.generalized(&xm, &mut qm).unwrap();
                     for a in 0..2 {
                         for r in 0..3 {
                             let fd = (qp[a][r] - qm[a][r]) / (2.0 * h);
@@ -199,7 +209,7 @@ pub(crate) mod check {
     /// Checks Q = −∂V/∂q for a force with no velocity or time dependence.
     pub fn potential<F: Applied>(f: &F, x: &Local) {
         let mut q = BodyQ::default();
-        f.generalized(x, &mut q);
+        f.generalized(x, &mut q).unwrap();
         let h = 1e-6;
         for b in 0..2 {
             for c in 0..3 {

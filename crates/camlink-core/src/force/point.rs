@@ -12,7 +12,7 @@
 //! Neither depends on q̇; neither has a potential (their work shows up as a
 //! change of the mechanism's energy).
 
-use super::{Applied, BodyJac, BodyQ};
+use super::{Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
@@ -58,10 +58,11 @@ impl Applied for PointForce {
         [self.body, BodyId::GROUND]
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
         let f = self.global(x);
         let b = rot_d(x.q[0][2], self.s);
         *out = [[f[0], f[1], dot(b, f)], [0.0; 3]];
+        Ok(())
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
@@ -88,8 +89,9 @@ impl Applied for Torque {
         [self.body, BodyId::GROUND]
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
         *out = [[0.0, 0.0, self.t.value(x.t)], [0.0; 3]];
+        Ok(())
     }
 
     fn derivatives(&self, _x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
@@ -139,12 +141,12 @@ mod tests {
             local: false,
         };
         let mut q = BodyQ::default();
-        f.generalized(&x, &mut q);
+        f.generalized(&x, &mut q).unwrap();
         assert!((q[0][2] + 1.0).abs() < 1e-15, "{q:?}");
         // The same force in the body frame points along the body's x axis,
         // now global +y: no moment, since it acts along s'.
         let fl = PointForce { local: true, ..f };
-        fl.generalized(&x, &mut q);
+        fl.generalized(&x, &mut q).unwrap();
         assert!(q[0][0].abs() < 1e-15 && (q[0][1] - 1.0).abs() < 1e-15);
         assert!(q[0][2].abs() < 1e-15);
     }

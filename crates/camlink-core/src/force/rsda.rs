@@ -14,7 +14,7 @@
 //! ∂Q/∂q has ±k in the (φ_a, φ_b) entries (−k on the diagonal), ∂Q/∂q̇
 //! likewise ±c. Potential V = ½ k (θ − θ₀)².
 
-use super::{Applied, BodyJac, BodyQ};
+use super::{Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
@@ -58,9 +58,10 @@ impl Applied for Rsda {
         Ok(())
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
         let t = self.twist(x);
         *out = [[0.0, 0.0, t], [0.0, 0.0, -t]];
+        Ok(())
     }
 
     fn derivatives(&self, _x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {

@@ -21,7 +21,7 @@
 //! ∂a_i/∂φ_j = a_j⊥ and ∂(a × u)/∂a = (u_y, −u_x). The force dissipates
 //! power c ṡ² and stores no energy.
 
-use super::{Applied, BodyJac, BodyQ};
+use super::{Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::math::{cross, norm, perp, rot, scale, V2};
@@ -109,12 +109,13 @@ impl Applied for TranslationalDamper {
         Ok(())
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
         let (w, _) = self.w(x);
         let f = -self.damping * self.speed(x);
         for k in 0..6 {
             out[k / 3][k % 3] = f * w[k];
         }
+        Ok(())
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
@@ -158,7 +159,7 @@ mod tests {
         x.q[1] = [0.4, 1.0, 0.0];
         x.qd[1] = [2.0, 0.0, 0.0];
         let mut q = BodyQ::default();
-        d.generalized(&x, &mut q);
+        d.generalized(&x, &mut q).unwrap();
         // F = −6 N along x at P_j, a_j = (0, 0.5) from j's origin:
         // moment a_j × F = 3 N·m.
         assert_eq!(q[1], [-6.0, 0.0, 3.0]);

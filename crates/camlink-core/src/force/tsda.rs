@@ -24,7 +24,7 @@
 //! Potential V = ½ k (l − l₀)²; the damper and actuator are not conservative.
 //! At l = 0 the direction u is undefined and the force is taken as zero.
 
-use super::{Applied, BodyJac, BodyQ};
+use super::{Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::function::TimeFn;
@@ -91,11 +91,11 @@ impl Applied for Tsda {
         Ok(())
     }
 
-    fn generalized(&self, x: &Local, out: &mut BodyQ) {
+    fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
         let (d, _, l, _) = self.geometry(x);
         *out = BodyQ::default();
         if l <= TINY {
-            return;
+            return Ok(());
         }
         let fu = scale(self.tension(x) / l, d);
         for (k, sign) in [(0, 1.0), (1, -1.0)] {
@@ -103,6 +103,7 @@ impl Applied for Tsda {
             let f = scale(sign, fu);
             out[k] = [f[0], f[1], dot(b, f)];
         }
+        Ok(())
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
@@ -220,7 +221,7 @@ mod tests {
         let mut x = Local::default();
         x.q[1] = [3.0, 0.0, 0.0];
         let mut q = BodyQ::default();
-        s.generalized(&x, &mut q);
+        s.generalized(&x, &mut q).unwrap();
         assert_eq!(q, [[20.0, 0.0, 0.0], [-20.0, 0.0, 0.0]]);
     }
 }

@@ -764,7 +764,10 @@ impl Builder {
                     return fail(
                         format!("{p}.R2"),
                         Some(&lab),
-                        format!("the pitch radius R2 must be positive ({r} m)"),
+                        format!(
+                            "the pitch radius R2 must be positive ({} m)",
+                            camlink_core::fmt_num::num(r)
+                        ),
                     );
                 }
                 let phase = length + r * (c.theta1.0 - c.theta2.0 + 1.5 * PI);

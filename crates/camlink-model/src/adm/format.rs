@@ -23,7 +23,8 @@ impl<'de> Deserialize<'de> for Number {
         };
         if !v.is_finite() {
             return Err(de::Error::custom(format_args!(
-                "value is not a finite number ({v})"
+                "value is not a finite number ({})",
+                camlink_core::fmt_num::num(v)
             )));
         }
         Ok(Number(v))

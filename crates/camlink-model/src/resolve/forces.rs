@@ -11,6 +11,7 @@ use camlink_core::TimeFn;
 use super::{check_name, fail, Ctx, JointInfo, R};
 use crate::error::did_you_mean;
 use crate::file::{ForceSpec, Num};
+use camlink_core::fmt_num::num;
 
 impl Ctx {
     /// Resolves `forces[k]` and adds it to the model.
@@ -193,7 +194,7 @@ impl Ctx {
     fn non_negative(&self, n: Option<&Num>, default: f64, path: &str) -> R<f64> {
         let v = self.opt(n, default, path)?;
         if v < 0.0 {
-            return fail(path, format!("must be ≥ 0 (got {v})"));
+            return fail(path, format!("must be ≥ 0 (got {})", num(v)));
         }
         Ok(v)
     }

@@ -1,0 +1,138 @@
+"""What a model says about itself, as typed records: its bodies, joints,
+forces and analysis settings, the check of its constraints and the design
+findings of its curve contacts (``Model.bodies``, ``joints``, ``forces``,
+``analysis``, ``check()``, ``design_check()``).
+
+Records are TypedDicts: plain dicts at run time, typed for mypy and the
+editor. Lengths in m, angles in rad, masses in kg, inertias in kg·m².
+"""
+
+from __future__ import annotations
+
+from typing import TypedDict
+
+__all__ = [
+    "AnalysisSettings",
+    "BodyRecord",
+    "CheckReport",
+    "ConstraintCount",
+    "DesignFinding",
+    "ForceRecord",
+    "JointRecord",
+    "RedundantEquation",
+]
+
+
+class BodyRecord(TypedDict):
+    """A moving body as placed in the model file."""
+
+    name: str
+    #: Body-frame origin (x, y) in the global frame (m).
+    position: list[float]
+    #: Body-frame angle φ (rad).
+    angle: float
+    mass: float
+    #: Centroidal moment of inertia (kg·m²).
+    inertia: float
+    #: Centroid in the body frame (m).
+    centroid: list[float]
+    #: Named points in the body frame (m).
+    points: dict[str, list[float]]
+
+
+class JointRecord(TypedDict):
+    """A joint or driver."""
+
+    name: str
+    #: The constraint kind, e.g. ``"revolute"``.
+    kind: str
+    #: Names of body i and body j (``"ground"`` for the ground).
+    bodies: list[str]
+    #: Number of scalar equations.
+    equations: int
+    #: True for a driver (a function of time).
+    driver: bool
+
+
+class ForceRecord(TypedDict):
+    """An applied force."""
+
+    name: str
+    #: The force kind, e.g. ``"tsda"`` or ``"callback"``.
+    kind: str
+    #: Names of body i and body j (``"ground"`` for a one-body force).
+    bodies: list[str]
+
+
+class ConstraintCount(TypedDict):
+    """A constraint in `CheckReport`."""
+
+    name: str
+    kind: str
+    equations: int
+    driver: bool
+
+
+class RedundantEquation(TypedDict):
+    """An equation of Φ that depends on others at the placement."""
+
+    #: ``"joint[row]"``.
+    equation: str
+    #: The equations it is a combination of, as (equation, coefficient).
+    depends_on: list[tuple[str, float]]
+
+
+class CheckReport(TypedDict):
+    """Counts of the model and the diagnosis of Φ_q at t = 0."""
+
+    bodies: int
+    coordinates: int
+    equations: int
+    joints: list[ConstraintCount]
+    #: Rank of Φ_q.
+    rank: int
+    #: Degrees of freedom: coordinates − rank.
+    dof: int
+    redundant: list[RedundantEquation]
+    #: Each free motion as (coordinate name, component) pairs.
+    free_motions: list[list[tuple[str, float]]]
+    #: Largest |Φ| at the placement (m or rad).
+    residual: float
+    #: Condition number of Φ_q.
+    condition: float
+    #: Joints that stay open after assembly, with their |Φ| (m or rad).
+    open_joints: list[tuple[str, float]]
+
+
+class DesignFinding(TypedDict):
+    """A design finding of a curve contact."""
+
+    #: ``"warning"`` or ``"error"``.
+    severity: str
+    joint: str
+    message: str
+    #: One printable line.
+    text: str
+
+
+class AnalysisSettings(TypedDict):
+    """The model file's ``[analysis]`` settings (None where not given;
+    `h` None when it follows the output step)."""
+
+    #: One of `camlink.ANALYSES`.
+    type: str
+    t_end: float | None
+    step: float | None
+    times: list[float] | None
+    time: float
+    tol: float | None
+    max_iter: int | None
+    points: list[str]
+    jerk: bool
+    h: float | None
+    rho_inf: float
+    projection_tol: float
+    adaptive: bool
+    atol: float
+    rtol: float
+    h_min: float

@@ -1,0 +1,66 @@
+"""Results files carry their metadata: the camlink version, the model name,
+the analysis, each channel's unit and the run summary, as comment lines in
+CSV and schema metadata in Parquet, and `Results.load` reads them back."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import camlink
+from camlink import Results
+from camlink.output import read_csv_metadata
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+
+
+def test_a_run_to_csv_writes_a_comment_header_that_load_reads_back(tmp_path: Path) -> None:
+    model = camlink.load(EXAMPLES / "dyn_pendulum.toml")
+    res = model.simulate(t_end=0.02, step=0.01, output=tmp_path / "out.csv")
+    lines = (tmp_path / "out.csv").read_text().splitlines()
+    assert lines[0] == f'# camlink: "{camlink.__version__}"'
+    assert lines[1] == f'# model: "{model.name}"'
+    assert lines[2] == '# analysis: "dynamics"'
+    assert lines[3].startswith("# units: ")
+    assert lines[4].startswith("t,arm.x,")
+    assert lines[-1].startswith("# summary: ")
+    meta = read_csv_metadata(lines)
+    assert meta["units"]["t"] == "s" and meta["units"]["arm.phi"] == "rad"
+    assert meta["units"]["arm.omega"] == "rad/s" and meta["units"]["energy.total"] == "J"
+    assert list(meta["units"]) == ["t", *res.channels]
+    back = Results.load(tmp_path / "out.csv")
+    assert back.model == model.name
+    np.testing.assert_array_equal(back.data, res.data)
+    for key in ("analysis", "steps", "newton_iterations", "factorizations"):
+        assert back.summary[key] == res.summary[key], key
+    # Other readers skip the comments.
+    frame = pd.read_csv(tmp_path / "out.csv", comment="#")
+    np.testing.assert_array_equal(frame.to_numpy(), res.data)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_saved_results_keep_model_analysis_units_and_summary(tmp_path: Path, suffix: str) -> None:
+    res = camlink.load(EXAMPLES / "four_bar.toml").run(t_end=0.05, step=0.01)
+    back = Results.load(res.save(tmp_path / f"out{suffix}"))
+    assert back.model == res.model
+    assert back.summary["analysis"] == "kinematics"
+    assert back.summary["steps"] == res.summary["steps"]
+    assert back.summary["warnings"] == res.summary["warnings"]
+    meta = res.metadata()
+    assert meta["units"]["crank.phi"] == "rad" and meta["camlink"] == camlink.__version__
+
+
+def test_a_failed_run_keeps_the_header_but_no_summary(stuck_file: Path, tmp_path: Path) -> None:
+    model = camlink.load(stuck_file)
+    with pytest.raises(camlink.AnalysisError) as info:
+        model.kinematics(t_end=0.3, step=0.01, output=tmp_path / "out.csv")
+    partial = info.value.output
+    assert partial is not None
+    text = Path(partial).read_text()
+    assert text.startswith("# camlink: ") and "# summary:" not in text
+    back = Results.load(partial)
+    assert back.model == model.name and back.summary == {}
+    assert len(back) == len(info.value.results)
