@@ -256,6 +256,14 @@ impl<'m> Solver<'m> {
         }
     }
 
+    /// Whether small Jacobians are refactored with the pivot order of the
+    /// last pivoted factorization ([`crate::lu_program`]; on by default).
+    /// Off, every factorization searches for pivots: the general path the
+    /// fast one is tested against.
+    pub fn set_fixed_pivots(&mut self, on: bool) {
+        self.jac.set_fixed_pivots(on);
+    }
+
     pub fn assembly(&self) -> &Assembly {
         &self.asm
     }
@@ -458,8 +466,15 @@ impl<'m> Solver<'m> {
 
     /// Fills and factors Φ_q at the current q.
     fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
-        refactor(self.model, &self.asm, &mut self.jac, &self.q, t, &mut self.summary)
-            .map_err(|s| self.singular(t, s))
+        refactor(
+            self.model,
+            &self.asm,
+            &mut self.jac,
+            &self.q,
+            t,
+            &mut self.summary,
+        )
+        .map_err(|s| self.singular(t, s))
     }
 
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {

@@ -36,7 +36,6 @@ pub fn settled(dx: f64, x: f64, tol: f64) -> bool {
     dx.abs() <= tol.max(rounding(x))
 }
 
-
 /// What a residual evaluation reports.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Measure {
@@ -220,12 +219,11 @@ pub fn solve<P: Problem>(
         previous = m.size;
         let mut s = match options.angle_limit {
             Some((limit, angles)) => {
-                let big = w
-                    .dx
-                    .iter()
-                    .zip(angles)
-                    .filter(|(_, &a)| a)
-                    .fold(0.0f64, |b, (d, _)| b.max(d.abs()));
+                let big =
+                    w.dx.iter()
+                        .zip(angles)
+                        .filter(|(_, &a)| a)
+                        .fold(0.0f64, |b, (d, _)| b.max(d.abs()));
                 if big > limit {
                     limit / big
                 } else {
@@ -297,7 +295,13 @@ mod tests {
                 size: r[0].abs(),
             }
         }
-        fn direction(&mut self, x: &[f64], r: &[f64], dx: &mut [f64], _: Progress) -> Result<(), ()> {
+        fn direction(
+            &mut self,
+            x: &[f64],
+            r: &[f64],
+            dx: &mut [f64],
+            _: Progress,
+        ) -> Result<(), ()> {
             self.directions += 1;
             dx[0] = -r[0] * (1.0 + x[0] * x[0]);
             Ok(())
@@ -339,7 +343,13 @@ mod tests {
         let mut w = Workspace::new(1, 1);
         let (mut a, mut b) = ([0.5], [0.5]);
         let da = solve(&mut Atan { directions: 0 }, &mut a, &mut w, &options(None)).unwrap();
-        let db = solve(&mut Atan { directions: 0 }, &mut b, &mut w, &options(Some(SEARCH))).unwrap();
+        let db = solve(
+            &mut Atan { directions: 0 },
+            &mut b,
+            &mut w,
+            &options(Some(SEARCH)),
+        )
+        .unwrap();
         assert_eq!(a, b);
         assert_eq!(da, db);
     }
@@ -376,7 +386,13 @@ mod tests {
                 size: r[0],
             }
         }
-        fn direction(&mut self, x: &[f64], r: &[f64], dx: &mut [f64], _: Progress) -> Result<(), ()> {
+        fn direction(
+            &mut self,
+            x: &[f64],
+            r: &[f64],
+            dx: &mut [f64],
+            _: Progress,
+        ) -> Result<(), ()> {
             if x[0] == 0.0 {
                 return Err(());
             }
@@ -398,7 +414,10 @@ mod tests {
         };
         let mut x = [1e-3];
         let e = solve(&mut NoRoot, &mut x, &mut w, &options(Some(accept))).unwrap_err();
-        assert!(matches!(e.why, Failure::Iterations | Failure::Direction(())), "{e:?}");
+        assert!(
+            matches!(e.why, Failure::Iterations | Failure::Direction(())),
+            "{e:?}"
+        );
     }
 
     /// A problem whose residual is not finite stops at once.
@@ -424,7 +443,13 @@ mod tests {
                 size: r[0].abs(),
             }
         }
-        fn direction(&mut self, _: &[f64], r: &[f64], dx: &mut [f64], _: Progress) -> Result<(), ()> {
+        fn direction(
+            &mut self,
+            _: &[f64],
+            r: &[f64],
+            dx: &mut [f64],
+            _: Progress,
+        ) -> Result<(), ()> {
             dx[0] = -0.5 * r[0];
             Ok(())
         }

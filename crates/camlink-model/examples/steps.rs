@@ -64,8 +64,7 @@ fn dynamics(model: &camlink_core::Model, steps: usize) -> Result<f64, String> {
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    let (Some(name), Some(steps)) = (args.first(), args.get(1).and_then(|s| s.parse().ok()))
-    else {
+    let (Some(name), Some(steps)) = (args.first(), args.get(1).and_then(|s| s.parse().ok())) else {
         eprintln!("usage: steps <four_bar|cam_roller|slider_crank|chainN> <steps>");
         return ExitCode::FAILURE;
     };

@@ -13,8 +13,8 @@ use std::path::Path;
 
 use camlink_core::dynamics::integrator::{self, Settings as DynSettings};
 use camlink_core::kinematics;
-use camlink_core::run::{time_grid, Settings, Sink, Stop};
 use camlink_core::run::PointOutput;
+use camlink_core::run::{time_grid, Settings, Sink, Stop};
 use camlink_core::Model;
 
 #[path = "../../camlink-core/tests/mechanisms/mod.rs"]
@@ -112,7 +112,11 @@ fn all_points(model: &Model) -> Vec<PointOutput> {
     model
         .bodies
         .iter()
-        .flat_map(|b| b.points.iter().map(move |p| format!("{}.{}", b.name, p.name)))
+        .flat_map(|b| {
+            b.points
+                .iter()
+                .map(move |p| format!("{}.{}", b.name, p.name))
+        })
         .map(|full| PointOutput::named(model, &full).unwrap())
         .collect()
 }
@@ -164,5 +168,8 @@ fn chain_dynamics_allocates_nothing_per_step() {
 #[test]
 fn slider_crank_example_dynamics_allocates_nothing_per_step() {
     let loaded = example("dyn_slider_crank.toml");
-    assert_eq!(dynamic_allocations(&loaded.model, &all_points(&loaded.model)), 0);
+    assert_eq!(
+        dynamic_allocations(&loaded.model, &all_points(&loaded.model)),
+        0
+    );
 }
