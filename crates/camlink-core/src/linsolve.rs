@@ -110,12 +110,14 @@ impl SmallLu {
     pub fn factor(&mut self) -> Result<(), Singular> {
         if self.fixed_pivots {
             let scale = self.program.scale(&self.a);
-            if let Ok(min_pivot) = self
-                .program
-                .replay(&self.a, &mut self.lu, scale, SINGULAR_PIVOT)
-            {
+            if let Ok(min_pivot) = self.program.replay(
+                &self.a,
+                &mut self.lu,
+                &mut self.inv_diag,
+                scale,
+                SINGULAR_PIVOT,
+            ) {
                 self.min_pivot = min_pivot;
-                self.compress();
                 self.valid = true;
                 self.replays += 1;
                 return Ok(());
@@ -225,6 +227,9 @@ impl SmallLu {
 
     /// Solves A x = b in place with the last factorization.
     pub fn solve(&self, b: &mut [f64], work: &mut [f64]) {
+        if self.fixed_pivots && self.program.is_recorded() {
+            return self.program.solve(&self.lu, &self.inv_diag, b, work);
+        }
         let n = self.n;
         let (nz, starts) = (&self.nonzeros, &self.starts);
         for (w, &p) in work.iter_mut().zip(&self.perm) {

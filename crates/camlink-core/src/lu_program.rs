@@ -41,6 +41,13 @@ pub struct Elimination {
     right_start: Vec<usize>,
     /// The entries of A in the pattern, as indices into the row-major matrix.
     entries: Vec<usize>,
+    /// The structural nonzeros of the factors, row by row, for the solves:
+    /// (column, index into the row-major factors) of L's strictly lower
+    /// part, rows starting at `lower_start`, and of U's strictly upper part.
+    lower: Vec<(usize, usize)>,
+    lower_start: Vec<usize>,
+    upper: Vec<(usize, usize)>,
+    upper_start: Vec<usize>,
     recorded: bool,
 }
 
@@ -67,6 +74,10 @@ impl Elimination {
             right: Vec::with_capacity(n * n),
             right_start: vec![0; n + 1],
             entries,
+            lower: Vec::with_capacity(n * n),
+            lower_start: vec![0; n + 1],
+            upper: Vec::with_capacity(n * n),
+            upper_start: vec![0; n + 1],
             recorded: false,
         }
     }
@@ -74,6 +85,11 @@ impl Elimination {
     /// Whether (r, c) is in the pattern.
     pub fn in_pattern(&self, r: usize, c: usize) -> bool {
         self.pattern[r * self.n + c]
+    }
+
+    /// Whether an order is recorded (and [`solve`](Self::solve) usable).
+    pub fn is_recorded(&self) -> bool {
+        self.recorded
     }
 
     /// Forgets the recorded order (the next replay refreshes).
@@ -117,17 +133,64 @@ impl Elimination {
         }
         self.below_start[n] = self.below.len();
         self.right_start[n] = self.right.len();
+        self.lower.clear();
+        self.upper.clear();
+        for i in 0..n {
+            self.lower_start[i] = self.lower.len();
+            self.upper_start[i] = self.upper.len();
+            for j in 0..i {
+                if self.filled[i * n + j] {
+                    self.lower.push((j, i * n + j));
+                }
+            }
+            for j in i + 1..n {
+                if self.filled[i * n + j] {
+                    self.upper.push((j, i * n + j));
+                }
+            }
+        }
+        self.lower_start[n] = self.lower.len();
+        self.upper_start[n] = self.upper.len();
         self.recorded = true;
     }
 
-    /// P A = L U of `a` (row-major) into `lu` with the recorded pivot order;
-    /// returns the smallest pivot relative to `scale`, or [`Refresh`] when
+    /// Solves A x = b in place with factors `lu` made in the recorded
+    /// order and the reciprocals of their pivots, `inv_diag`; `work` has
+    /// length n.
+    pub fn solve(&self, lu: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
+        let n = self.n;
+        for (w, &p) in work.iter_mut().zip(&self.perm) {
+            *w = b[p];
+        }
+        // L y = P b (unit diagonal).
+        for i in 1..n {
+            let mut s = work[i];
+            for &(j, k) in &self.lower[self.lower_start[i]..self.lower_start[i + 1]] {
+                s -= lu[k] * work[j];
+            }
+            work[i] = s;
+        }
+        // U x = y.
+        for i in (0..n).rev() {
+            let mut s = work[i];
+            for &(j, k) in &self.upper[self.upper_start[i]..self.upper_start[i + 1]] {
+                s -= lu[k] * work[j];
+            }
+            work[i] = s * inv_diag[i];
+        }
+        b.copy_from_slice(&work[..n]);
+    }
+
+    /// P A = L U of `a` (row-major) into `lu` with the recorded pivot order,
+    /// the reciprocals of the pivots into `inv_diag`; returns the smallest
+    /// pivot relative to `scale`, or [`Refresh`] when
     /// there is no recorded order or a pivot fails the threshold or
     /// singular test (`lu` is then meaningless).
     pub fn replay(
         &self,
         a: &[f64],
         lu: &mut [f64],
+        inv_diag: &mut [f64],
         scale: f64,
         singular: f64,
     ) -> Result<f64, Refresh> {
@@ -152,6 +215,7 @@ impl Elimination {
             }
             min_pivot = min_pivot.min(ratio);
             let inv = 1.0 / pivot;
+            inv_diag[k] = inv;
             let right = &self.right[self.right_start[k]..self.right_start[k + 1]];
             let (top, rest) = lu.split_at_mut((k + 1) * n);
             let pivot_row = &top[k * n..k * n + n];
@@ -176,16 +240,18 @@ mod tests {
     fn a_small_pivot_asks_for_a_refresh() {
         let mut e = super::Elimination::new(2, [(0, 0), (0, 1), (1, 0), (1, 1)]);
         e.record(&[0, 1]);
-        let mut lu = [0.0; 4];
-        assert!(e.replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, 2.0, 1e-12).is_ok());
+        let (mut lu, mut inv) = ([0.0; 4], [0.0; 2]);
+        assert!(e
+            .replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, &mut inv, 2.0, 1e-12)
+            .is_ok());
         assert_eq!(lu, [1.0, 1.0, 0.5, 1.5]);
         assert_eq!(
-            e.replay(&[0.01, 1.0, 1.0, 2.0], &mut lu, 2.0, 1e-12),
+            e.replay(&[0.01, 1.0, 1.0, 2.0], &mut lu, &mut inv, 2.0, 1e-12),
             Err(super::Refresh)
         );
         e.forget();
         assert_eq!(
-            e.replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, 2.0, 1e-12),
+            e.replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, &mut inv, 2.0, 1e-12),
             Err(super::Refresh)
         );
     }
