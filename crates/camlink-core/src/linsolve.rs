@@ -118,6 +118,8 @@ impl SmallLu {
                 SINGULAR_PIVOT,
             ) {
                 self.min_pivot = min_pivot;
+                self.program
+                    .gather(&self.lu, &mut self.nonzeros, &mut self.starts);
                 self.valid = true;
                 self.replays += 1;
                 return Ok(());
@@ -227,9 +229,6 @@ impl SmallLu {
 
     /// Solves A x = b in place with the last factorization.
     pub fn solve(&self, b: &mut [f64], work: &mut [f64]) {
-        if self.fixed_pivots && self.program.is_recorded() {
-            return self.program.solve(&self.lu, &self.inv_diag, b, work);
-        }
         let n = self.n;
         let (nz, starts) = (&self.nonzeros, &self.starts);
         for (w, &p) in work.iter_mut().zip(&self.perm) {

@@ -41,8 +41,8 @@ pub struct Elimination {
     right_start: Vec<usize>,
     /// The entries of A in the pattern, as indices into the row-major matrix.
     entries: Vec<usize>,
-    /// The structural nonzeros of the factors, row by row, for the solves:
-    /// (column, index into the row-major factors) of L's strictly lower
+    /// The structural nonzeros of the factors, row by row, for
+    /// [`gather`](Self::gather): (column, index into the row-major factors) of L's strictly lower
     /// part, rows starting at `lower_start`, and of U's strictly upper part.
     lower: Vec<(usize, usize)>,
     lower_start: Vec<usize>,
@@ -85,11 +85,6 @@ impl Elimination {
     /// Whether (r, c) is in the pattern.
     pub fn in_pattern(&self, r: usize, c: usize) -> bool {
         self.pattern[r * self.n + c]
-    }
-
-    /// Whether an order is recorded (and [`solve`](Self::solve) usable).
-    pub fn is_recorded(&self) -> bool {
-        self.recorded
     }
 
     /// Forgets the recorded order (the next replay refreshes).
@@ -154,31 +149,30 @@ impl Elimination {
         self.recorded = true;
     }
 
-    /// Solves A x = b in place with factors `lu` made in the recorded
-    /// order and the reciprocals of their pivots, `inv_diag`; `work` has
-    /// length n.
-    pub fn solve(&self, lu: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
+    /// Gathers the nonzeros of factors `lu` made in the recorded order,
+    /// visiting their structural nonzeros only: (column, value) of L's
+    /// strictly lower part and of U's strictly upper part, row by row, with
+    /// the start of each row in `starts` (L rows, then U rows), as
+    /// [`crate::linsolve::SmallLu`]'s solves read them.
+    pub fn gather(&self, lu: &[f64], nonzeros: &mut [(usize, f64)], starts: &mut [usize]) {
         let n = self.n;
-        for (w, &p) in work.iter_mut().zip(&self.perm) {
-            *w = b[p];
-        }
-        // L y = P b (unit diagonal).
-        for i in 1..n {
-            let mut s = work[i];
-            for &(j, k) in &self.lower[self.lower_start[i]..self.lower_start[i + 1]] {
-                s -= lu[k] * work[j];
+        let mut len = 0;
+        for (part, (list, first)) in [
+            (&self.lower, &self.lower_start),
+            (&self.upper, &self.upper_start),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            for i in 0..n {
+                starts[part * n + i] = len;
+                for &(j, k) in &list[first[i]..first[i + 1]] {
+                    nonzeros[len] = (j, lu[k]);
+                    len += usize::from(lu[k] != 0.0);
+                }
             }
-            work[i] = s;
         }
-        // U x = y.
-        for i in (0..n).rev() {
-            let mut s = work[i];
-            for &(j, k) in &self.upper[self.upper_start[i]..self.upper_start[i + 1]] {
-                s -= lu[k] * work[j];
-            }
-            work[i] = s * inv_diag[i];
-        }
-        b.copy_from_slice(&work[..n]);
+        starts[2 * n] = len;
     }
 
     /// P A = L U of `a` (row-major) into `lu` with the recorded pivot order,
