@@ -61,7 +61,7 @@ pub struct SmallLu {
     min_pivot: f64,
     /// The elimination of the last pivoted factorization, replayed by the
     /// next ones while its pivots stay acceptable ([`crate::lu_program`]).
-    program: Elimination,
+    program: Box<Elimination>,
     /// Whether [`factor`](Self::factor) replays the recorded elimination
     /// (true) or always searches for pivots.
     pub fixed_pivots: bool,
@@ -79,7 +79,7 @@ impl SmallLu {
     /// An n × n matrix whose nonzeros are at `pattern` (row, col).
     pub fn with_pattern(n: usize, pattern: impl IntoIterator<Item = (usize, usize)>) -> Self {
         SmallLu {
-            program: Elimination::new(n, pattern),
+            program: Box::new(Elimination::new(n, pattern)),
             fixed_pivots: true,
             replays: 0,
             pivoted: 0,

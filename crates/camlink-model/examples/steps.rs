@@ -18,7 +18,6 @@ use camlink_core::kinematics::run;
 use camlink_core::run::{time_grid, Settings, Sink, Stop};
 
 #[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-#[allow(dead_code)]
 mod mechanisms;
 
 /// Keeps the last row so that the solver's work cannot be optimised away.
