@@ -26,7 +26,7 @@ use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{max_abs, norm2, rot_d};
+use crate::math::rot_d;
 use crate::model::{BodyId, Model};
 use crate::motion;
 use crate::newton::{self, Failure};
@@ -380,26 +380,7 @@ impl<'m> Solver<'m> {
     /// Φ_q is singular (for models of at most [`DENSE_MAX`] coordinates; a
     /// larger one stops with the singular joint named).
     pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let options = newton::Options {
-            max_iter: ASSEMBLY_ITER,
-            line_search: Some(newton::LineSearch {
-                min_step: 1e-6,
-                stall: newton::Stall::Fail,
-            }),
-            angle_limit: Some((MAX_ANGLE_STEP, &self.angles)),
-            polish: false,
-        };
-        let mut problem = Positions {
-            model: self.model,
-            asm: &self.asm,
-            jac: &mut self.jac,
-            summary: &mut self.summary,
-            t,
-            tol: self.settings.tol,
-            assembling: true,
-        };
-        let outcome = newton::solve(&mut problem, &mut self.q, &mut self.newton, &options);
-        outcome.map(|_| ()).map_err(|e| match e.why {
+        self.solve_positions(t, true).map_err(|e| match e.why {
             Failure::NotFinite => self.failure(
                 Kind::NotFinite,
                 t,
@@ -428,23 +409,7 @@ impl<'m> Solver<'m> {
     /// positions are accurate well beyond what the residual test alone
     /// guarantees.
     fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let options = newton::Options {
-            max_iter: self.settings.max_iter,
-            line_search: None,
-            angle_limit: None,
-            polish: true,
-        };
-        let mut problem = Positions {
-            model: self.model,
-            asm: &self.asm,
-            jac: &mut self.jac,
-            summary: &mut self.summary,
-            t,
-            tol: self.settings.tol,
-            assembling: false,
-        };
-        let outcome = newton::solve(&mut problem, &mut self.q, &mut self.newton, &options);
-        outcome.map(|_| ()).map_err(|e| match e.why {
+        self.solve_positions(t, false).map_err(|e| match e.why {
             Failure::NotFinite => self.failure(
                 Kind::NotFinite,
                 t,
@@ -462,6 +427,46 @@ impl<'m> Solver<'m> {
             ),
             Failure::Direction(s) => self.singular(t, s),
         })
+    }
+
+    /// [`newton::solve`] on Φ(q, t) = 0 from the current q ([`Positions`]):
+    /// for assembly, up to [`ASSEMBLY_ITER`] iterations with a line search
+    /// that fails where it stalls and angle steps limited to
+    /// [`MAX_ANGLE_STEP`]; for a time step, up to `max_iter` full steps and
+    /// the converged correction.
+    fn solve_positions(
+        &mut self,
+        t: f64,
+        assembling: bool,
+    ) -> Result<(), newton::Failed<Singular>> {
+        let options = if assembling {
+            newton::Options {
+                max_iter: ASSEMBLY_ITER,
+                line_search: Some(newton::LineSearch {
+                    min_step: 1e-6,
+                    stall: newton::Stall::Fail,
+                }),
+                angle_limit: Some((MAX_ANGLE_STEP, &self.angles)),
+                polish: false,
+            }
+        } else {
+            newton::Options {
+                max_iter: self.settings.max_iter,
+                line_search: None,
+                angle_limit: None,
+                polish: true,
+            }
+        };
+        let mut problem = Positions {
+            model: self.model,
+            asm: &self.asm,
+            jac: &mut self.jac,
+            summary: &mut self.summary,
+            t,
+            tol: self.settings.tol,
+            assembling,
+        };
+        newton::solve(&mut problem, &mut self.q, &mut self.newton, &options).map(|_| ())
     }
 
     /// Fills and factors Φ_q at the current q.
@@ -633,12 +638,7 @@ impl newton::Problem for Positions<'_> {
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
         self.asm.phi(self.model, q, self.t, phi);
-        let size = max_abs(phi);
-        newton::Measure {
-            converged: size <= self.tol,
-            merit: if self.assembling { norm2(phi) } else { size },
-            size,
-        }
+        newton::Measure::max_abs(phi, self.tol)
     }
 
     fn direction(

@@ -48,6 +48,19 @@ pub struct Measure {
     pub size: f64,
 }
 
+impl Measure {
+    /// The usual measure of a residual `r`: size max |r|, merit ‖r‖₂,
+    /// converged when max |r| ≤ `tol`.
+    pub fn max_abs(r: &[f64], tol: f64) -> Self {
+        let size = crate::math::max_abs(r);
+        Measure {
+            converged: size <= tol,
+            merit: crate::math::norm2(r),
+            size,
+        }
+    }
+}
+
 /// Where the iteration is when a direction is asked for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Progress {

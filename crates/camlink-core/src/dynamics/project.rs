@@ -16,7 +16,6 @@
 use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Equations, Jac, MAX_OWN};
 use crate::kinematics::MAX_ANGLE_STEP;
-use crate::math::{max_abs, norm2};
 use crate::newton::{self, Failure};
 use crate::run::Kind;
 
@@ -114,12 +113,7 @@ impl newton::Problem for LeastChange<'_> {
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
         self.s.asm.phi(self.s.model, q, self.t, phi);
-        let size = max_abs(phi);
-        newton::Measure {
-            converged: size <= self.tol,
-            merit: norm2(phi),
-            size,
-        }
+        newton::Measure::max_abs(phi, self.tol)
     }
 
     fn direction(
