@@ -34,6 +34,8 @@ BENCHMARKS: list[tuple[str, int]] = [
     ("slider_crank", 3),
     ("chain10", 10),
     ("chain100", 100),
+    ("driven_chain100", 100),
+    ("driven_chain1000", 1000),
 ]
 
 
@@ -93,10 +95,10 @@ def main() -> int:
             check=True,
         )
     chosen = [(n, b) for n, b in BENCHMARKS if not args.only or n in args.only]
-    print(f"{'benchmark':<14} {'instructions/step':>18} {'per body':>12}")
+    print(f"{'benchmark':<18} {'instructions/step':>18} {'per body':>12}")
     for name, bodies in chosen:
         c = count(name, bodies, args.steps)
-        print(f"{c.name:<14} {c.per_step:>18,.0f} {c.per_body_step:>12,.0f}")
+        print(f"{c.name:<18} {c.per_step:>18,.0f} {c.per_body_step:>12,.0f}")
     return 0
 
 

@@ -7,8 +7,9 @@
 //! Benchmarks: `four_bar` and `cam_roller` (kinematics of
 //! `examples/four_bar.toml` and `examples/cam_seed_example_3_4_3.toml`,
 //! steps of 1 ms), `slider_crank` (forward dynamics, generalized-α, h = 1 ms,
-//! the `camlink-core` dynamics benchmark's model) and `chain<N>` (a chain of
-//! N pendulum links, h = 1 ms).
+//! the `camlink-core` dynamics benchmark's model), `chain<N>` (a chain of
+//! N pendulum links, h = 1 ms) and `driven_chain<N>` (kinematics of the
+//! same chain with every joint driven, steps of 1 ms).
 
 use std::path::Path;
 use std::process::ExitCode;
@@ -48,6 +49,14 @@ fn kinematics(file: &str, steps: usize) -> Result<f64, String> {
     Ok(sink.0)
 }
 
+/// Kinematics of a model built in code for `steps` steps of 1 ms.
+fn kinematics_of(model: &camlink_core::Model, steps: usize) -> Result<f64, String> {
+    let times = time_grid((steps - 1) as f64 * 1e-3, 1e-3).map_err(|e| e.to_string())?;
+    let mut sink = Last(0.0);
+    run(model, &times, &Settings::default(), &[], &mut sink).map_err(|e| e.to_string())?;
+    Ok(sink.0)
+}
+
 /// Forward dynamics of `model` for `steps` fixed steps of 1 ms.
 fn dynamics(model: &camlink_core::Model, steps: usize) -> Result<f64, String> {
     let settings = DynSettings {
@@ -64,7 +73,7 @@ fn dynamics(model: &camlink_core::Model, steps: usize) -> Result<f64, String> {
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let (Some(name), Some(steps)) = (args.first(), args.get(1).and_then(|s| s.parse().ok())) else {
-        eprintln!("usage: steps <four_bar|cam_roller|slider_crank|chainN> <steps>");
+        eprintln!("usage: steps <four_bar|cam_roller|slider_crank|chainN|driven_chainN> <steps>");
         return ExitCode::FAILURE;
     };
     let steps: usize = steps;
@@ -72,10 +81,14 @@ fn main() -> ExitCode {
         "four_bar" => kinematics("four_bar.toml", steps),
         "cam_roller" => kinematics("cam_seed_example_3_4_3.toml", steps),
         "slider_crank" => dynamics(&mechanisms::slider_crank(0.3, 10.0, false), steps),
-        other => match other.strip_prefix("chain").and_then(|n| n.parse().ok()) {
-            Some(n) => dynamics(&mechanisms::chain(n, 0.1), steps),
-            None => Err(format!("unknown benchmark '{other}'")),
-        },
+        other => {
+            let size = |prefix: &str| other.strip_prefix(prefix).and_then(|n| n.parse().ok());
+            match (size("chain"), size("driven_chain")) {
+                (Some(n), _) => dynamics(&mechanisms::chain(n, 0.1), steps),
+                (_, Some(n)) => kinematics_of(&mechanisms::driven_chain(n, 0.1), steps),
+                _ => Err(format!("unknown benchmark '{other}'")),
+            }
+        }
     };
     match out {
         Ok(v) => {

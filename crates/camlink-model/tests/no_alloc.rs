@@ -173,3 +173,19 @@ fn slider_crank_example_dynamics_allocates_nothing_per_step() {
         0
     );
 }
+
+/// 150 coordinates: the sparse LU's path.
+#[test]
+fn driven_chain_kinematics_allocates_nothing_per_step() {
+    let model = mechanisms::driven_chain(50, 0.1);
+    let n = allocations(|times, sink| {
+        kinematics::run(&model, times, &Settings::default(), &[], sink).unwrap();
+    });
+    assert_eq!(n, 0);
+}
+
+/// 250 unknowns in the augmented matrix: the sparse LU's path.
+#[test]
+fn long_chain_dynamics_allocates_nothing_per_step() {
+    assert_eq!(dynamic_allocations(&mechanisms::chain(50, 0.1), &[]), 0);
+}
