@@ -98,11 +98,6 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     let mut lambda = rhs[n..].to_vec();
 
     let angles = s.asm.angle_mask(model);
-    let newton = Coefficients {
-        stiffness: 1.0,
-        scale: 1.0,
-        ..Default::default()
-    };
     // Newton in x = (q, λ), damped by a line search that takes a short
     // step rather than stop where the residual does not fall.
     let mut x = [q.as_slice(), lambda.as_slice()].concat();
@@ -161,7 +156,7 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
     // A balance is an equilibrium only where the tangent stiffness holds
     // every free motion (a free motion with no force on it balances
     // everywhere).
-    aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
+    aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, TANGENT)
         .map_err(|_| neutral(rp))?;
     // The multipliers of minimum norm with the same forces Φ_qᵀλ (they
     // differ from λ only with redundant equations):
@@ -184,6 +179,15 @@ pub fn solve(model: &Model, t: f64, settings: &Settings) -> Result<Equilibrium, 
         iterations: solved.iterations,
     })
 }
+
+/// The Newton matrix of equilibrium, [ (Φ_qᵀλ)_q − Q_q  Φ_qᵀ ; Φ_q  0 ].
+const TANGENT: Coefficients = Coefficients {
+    mass: 0.0,
+    damping: 0.0,
+    stiffness: 1.0,
+    identity: 0.0,
+    scale: 1.0,
+};
 
 /// The equilibrium equations Φ_qᵀλ − Q(q, 0, t) = 0, Φ(q, t) = 0 as a
 /// [`newton::Problem`] in x = (q, λ), converged when the force residual
@@ -235,19 +239,14 @@ impl newton::Problem for Balance<'_> {
     ) -> Result<(), ()> {
         let (s, zeros, n, t) = (self.s, self.zeros, self.zeros.len(), self.t);
         let (q, lambda) = x.split_at(n);
-        let newton = Coefficients {
-            stiffness: 1.0,
-            scale: 1.0,
-            ..Default::default()
-        };
         if self
             .aug
-            .refactor(s, q, zeros, zeros, Some(lambda), t, newton)
+            .refactor(s, q, zeros, zeros, Some(lambda), t, TANGENT)
             .is_err()
         {
             let regularised = Coefficients {
                 identity: 1e-3 * (1.0 + max_abs(&self.qf)),
-                ..newton
+                ..TANGENT
             };
             self.aug
                 .refactor(s, q, zeros, zeros, Some(lambda), t, regularised)
