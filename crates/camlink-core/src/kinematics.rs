@@ -264,6 +264,12 @@ impl<'m> Solver<'m> {
         self.jac.set_fixed_pivots(on);
     }
 
+    /// (replayed, pivoted) factorizations of Φ_q so far, for Jacobians
+    /// small enough for the recorded pivot order; None for larger ones.
+    pub fn factorization_counts(&self) -> Option<(usize, usize)> {
+        self.jac.factorization_counts()
+    }
+
     pub fn assembly(&self) -> &Assembly {
         &self.asm
     }

@@ -586,6 +586,15 @@ impl SystemMatrix {
         }
     }
 
+    /// (replayed, pivoted) factorizations of the small kernel so far
+    /// ([`SmallLu::replays`], [`SmallLu::pivoted`]); None for the others.
+    pub fn factorization_counts(&self) -> Option<(usize, usize)> {
+        match self {
+            SystemMatrix::Small { lu, .. } => Some((lu.replays, lu.pivoted)),
+            _ => None,
+        }
+    }
+
     /// The smallest pivot of the last factorization relative to the largest
     /// entry, a cheap sign of near-singularity (dense kernels only).
     pub fn min_pivot(&self) -> Option<f64> {

@@ -15,7 +15,8 @@ const TOL: f64 = 1e-12;
 /// (q, q̇, q̈) at every time of the example's analysis.
 type States = Vec<[Vec<f64>; 3]>;
 
-fn states(loaded: &camlink_model::Loaded, times: &[f64], fixed: bool) -> States {
+/// The states, and the (replayed, pivoted) factorizations of Φ_q.
+fn states(loaded: &camlink_model::Loaded, times: &[f64], fixed: bool) -> (States, (usize, usize)) {
     let settings = Settings {
         tol: loaded.analysis.tol,
         max_iter: loaded.analysis.max_iter,
@@ -32,7 +33,10 @@ fn states(loaded: &camlink_model::Loaded, times: &[f64], fixed: bool) -> States 
         }
         out.push([solver.q.clone(), solver.qd.clone(), solver.qdd.clone()]);
     }
-    out
+    let counts = solver
+        .factorization_counts()
+        .expect("the examples are small");
+    (out, counts)
 }
 
 #[test]
@@ -62,10 +66,16 @@ fn fixed_pivots_agree_with_pivot_search_on_every_example() {
             Some(t) => t.clone(),
             None => time_grid(a.t_end.unwrap(), a.step.unwrap()).unwrap(),
         };
-        let (fast, general) = (
-            states(&loaded, &times, true),
-            states(&loaded, &times, false),
+        let (fast, counts) = states(&loaded, &times, true);
+        let (general, general_counts) = states(&loaded, &times, false);
+        // The fast path replays most factorizations; the general one none.
+        let name = path.display();
+        println!("{name}: (replayed, pivoted) factorizations {counts:?}");
+        assert!(
+            counts.0 > counts.1,
+            "{name}: (replayed, pivoted) {counts:?}"
         );
+        assert_eq!(general_counts.0, 0, "{name}");
         for (d, what) in ["q", "q̇", "q̈"].iter().enumerate() {
             let size = general
                 .iter()
