@@ -296,11 +296,20 @@ impl<'m> Solver<'m> {
             self.record_assembly_moves();
         }
 
-        // Velocity and acceleration share one factorization at the solution.
-        self.refactor(t)?;
+        // Velocity and acceleration share one factorization at the solution;
+        // ν is evaluated in the same pass over the joints as Φ_q.
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.h_prev = prev.map(|p| t - p);
-        self.asm.nu(self.model, &self.q, t, &mut self.qd);
+        refactor(
+            self.model,
+            &self.asm,
+            &mut self.jac,
+            &self.q,
+            t,
+            Some(&mut self.qd),
+            &mut self.summary,
+        )
+        .map_err(|s| self.singular(t, s))?;
         self.jac.solve(&mut self.qd);
         self.asm
             .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
@@ -475,19 +484,6 @@ impl<'m> Solver<'m> {
         newton::solve(&mut problem, &mut self.q, &mut self.newton, &options).map(|_| ())
     }
 
-    /// Fills and factors Φ_q at the current q.
-    fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
-        refactor(
-            self.model,
-            &self.asm,
-            &mut self.jac,
-            &self.q,
-            t,
-            &mut self.summary,
-        )
-        .map_err(|s| self.singular(t, s))
-    }
-
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
         let (j, _) = self.asm.joint_of_row(s.row);
         let mut e = self.failure(
@@ -605,20 +601,26 @@ impl<'m> Solver<'m> {
     }
 }
 
-/// Fills Φ_q at `q` into `jac` and factors it.
+/// Fills Φ_q at `q` into `jac` and factors it; with `nu`, writes ν(q, t)
+/// there in the same pass over the joints.
 fn refactor(
     model: &Model,
     asm: &Assembly,
     jac: &mut SystemMatrix,
     q: &[f64],
     t: f64,
+    nu: Option<&mut [f64]>,
     summary: &mut Summary,
 ) -> Result<(), Singular> {
     let mut k = 0;
-    asm.jacobian(model, q, t, |r, c, v| {
+    let put = |r, c, v| {
         jac.put(k, r, c, v);
         k += 1;
-    });
+    };
+    match nu {
+        Some(nu) => asm.jacobian_and_nu(model, q, t, nu, put),
+        None => asm.jacobian(model, q, t, put),
+    }
     summary.factorizations += 1;
     jac.factor()
 }
@@ -656,7 +658,15 @@ impl newton::Problem for Positions<'_> {
     ) -> Result<(), Singular> {
         dq.copy_from_slice(phi);
         if self.assembling {
-            match refactor(self.model, self.asm, self.jac, q, self.t, self.summary) {
+            match refactor(
+                self.model,
+                self.asm,
+                self.jac,
+                q,
+                self.t,
+                None,
+                self.summary,
+            ) {
                 Ok(()) => self.jac.solve(dq),
                 // Levenberg–Marquardt is dense: up to the diagnosis' size only.
                 Err(e) if self.asm.n > DENSE_MAX => return Err(e),
@@ -664,7 +674,15 @@ impl newton::Problem for Positions<'_> {
             }
         } else {
             if !self.jac.is_valid() || progress.size > 0.25 * progress.previous {
-                refactor(self.model, self.asm, self.jac, q, self.t, self.summary)?;
+                refactor(
+                    self.model,
+                    self.asm,
+                    self.jac,
+                    q,
+                    self.t,
+                    None,
+                    self.summary,
+                )?;
             }
             self.jac.solve(dq);
         }
