@@ -27,9 +27,10 @@ use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
 use crate::fmt_num::num;
 use crate::linsolve::{Singular, SystemMatrix};
-use crate::math::{max_abs, norm2, rot_d};
+use crate::math::rot_d;
 use crate::model::{BodyId, Model};
 use crate::motion;
+use crate::newton::{self, Failure};
 use crate::run::{
     channels, fill_outputs, jerk_channels, worst_joints, AnalysisError, Kind, PointOutput,
     Settings, Sink, Summary, Warning,
@@ -136,7 +137,6 @@ pub struct Solver<'m> {
     pub qdd: Vec<f64>,
     /// q⃛, solved by [`jerk`](Self::jerk) only.
     pub qddd: Vec<f64>,
-    rhs: Vec<f64>,
     /// The predicted q of the current step.
     predicted: Vec<f64>,
     /// q̈ of the step before the last, and the time from it to the last
@@ -154,6 +154,8 @@ pub struct Solver<'m> {
     pub summary: Summary,
     /// Contact points and pressure angles of the curve-contact joints.
     contacts: Contacts,
+    /// The vectors of the Newton iterations.
+    newton: newton::Workspace,
 }
 
 impl<'m> Solver<'m> {
@@ -198,7 +200,6 @@ impl<'m> Solver<'m> {
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             qddd: vec![0.0; n],
-            rhs: vec![0.0; n],
             predicted: vec![0.0; n],
             qdd_prev: vec![0.0; n],
             h_prev: None,
@@ -210,6 +211,7 @@ impl<'m> Solver<'m> {
             asm,
             summary: Summary::default(),
             contacts: Contacts::new(model),
+            newton: newton::Workspace::new(n, n),
         })
     }
 
@@ -247,6 +249,20 @@ impl<'m> Solver<'m> {
         }
     }
 
+    /// Whether small Jacobians are refactored with the pivot order of the
+    /// last pivoted factorization ([`crate::lu_program`]; on by default).
+    /// Off, every factorization searches for pivots: the general path the
+    /// fast one is tested against.
+    pub fn set_fixed_pivots(&mut self, on: bool) {
+        self.jac.set_fixed_pivots(on);
+    }
+
+    /// (replayed, pivoted) factorizations of Φ_q so far, for Jacobians
+    /// small enough for the recorded pivot order; None for larger ones.
+    pub fn factorization_counts(&self) -> Option<(usize, usize)> {
+        self.jac.factorization_counts()
+    }
+
     pub fn assembly(&self) -> &Assembly {
         &self.asm
     }
@@ -273,11 +289,20 @@ impl<'m> Solver<'m> {
             self.record_assembly_moves();
         }
 
-        // Velocity and acceleration share one factorization at the solution.
-        self.refactor(t)?;
+        // Velocity and acceleration share one factorization at the solution;
+        // ν is evaluated in the same pass over the joints as Φ_q.
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.h_prev = prev.map(|p| t - p);
-        self.asm.nu(self.model, &self.q, t, &mut self.qd);
+        refactor(
+            self.model,
+            &self.asm,
+            &mut self.jac,
+            &self.q,
+            t,
+            Some(&mut self.qd),
+            &mut self.summary,
+        )
+        .map_err(|s| self.singular(t, s))?;
         self.jac.solve(&mut self.qd);
         self.asm
             .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
@@ -359,142 +384,99 @@ impl<'m> Solver<'m> {
     }
 
     /// Assembles the mechanism at `t` from the model's rough placement:
-    /// Newton–Raphson globalised by a backtracking line search on ‖Φ‖₂, with
-    /// angle steps limited to [`MAX_ANGLE_STEP`] so that it stays on the
-    /// branch nearest the guess, and Levenberg–Marquardt steps where Φ_q is
-    /// singular (for models of at most [`DENSE_MAX`] coordinates; a larger
-    /// one stops with the singular joint named).
+    /// damped Newton ([`newton::solve`]) with a backtracking line search on
+    /// ‖Φ‖₂, with angle steps limited to [`MAX_ANGLE_STEP`] so that it stays
+    /// on the branch nearest the guess, and Levenberg–Marquardt steps where
+    /// Φ_q is singular (for models of at most [`DENSE_MAX`] coordinates; a
+    /// larger one stops with the singular joint named).
     pub fn assemble(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let angles = self.asm.angle_mask(self.model);
-        let mut trial = self.q.clone();
-        let mut phi = vec![0.0; self.asm.m];
-        for _ in 0..ASSEMBLY_ITER {
-            self.asm.phi(self.model, &self.q, t, &mut phi);
-            let r = max_abs(&phi);
-            if !r.is_finite() {
-                return Err(self.failure(
-                    Kind::NotFinite,
-                    t,
-                    "the constraint equations are not finite numbers",
-                ));
-            }
-            if r <= self.settings.tol {
-                return Ok(());
-            }
-            // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
-            self.rhs.copy_from_slice(&phi);
-            // Levenberg–Marquardt is dense: up to the diagnosis' size only.
-            match self.refactor(t) {
-                Ok(()) => self.jac.solve(&mut self.rhs),
-                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
-                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
-            }
-            self.summary.newton_iterations += 1;
-            let big = (0..self.q.len())
-                .filter(|&k| angles[k])
-                .fold(0.0f64, |a, k| a.max(self.rhs[k].abs()));
-            let mut s = if big > MAX_ANGLE_STEP {
-                MAX_ANGLE_STEP / big
-            } else {
-                1.0
-            };
-            // Backtrack until ‖Φ‖₂ decreases enough.
-            let r2 = norm2(&phi);
-            loop {
-                for ((t, q), d) in trial.iter_mut().zip(&self.q).zip(&self.rhs) {
-                    *t = q - s * d;
-                }
-                self.asm.phi(self.model, &trial, t, &mut phi);
-                let r2_new = norm2(&phi);
-                if r2_new.is_finite() && r2_new <= (1.0 - 1e-4 * s) * r2 {
-                    break;
-                }
-                s *= 0.5;
-                if s < 1e-6 {
-                    return Err(self.failure(
-                        Kind::NotAssembled,
-                        t,
-                        "the mechanism cannot be assembled from the given placement: \
-                         no step reduces the constraint residual (check the joints \
-                         named here, or place the bodies closer to a valid configuration)",
-                    ));
-                }
-            }
-            self.q.copy_from_slice(&trial);
-        }
-        Err(self.failure(
-            Kind::NotAssembled,
-            t,
-            &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
-        ))
-    }
-
-    /// Newton–Raphson on Φ(q, t) = 0 from the predicted q, reusing the last
-    /// factorization of Φ_q while the residual falls fast and refreshing it
-    /// when it does not. Once max |Φ| ≤ tol, the correction that residual
-    /// gives is applied too, so positions are accurate well beyond what the
-    /// residual test alone guarantees.
-    fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let mut last = f64::INFINITY;
-        for it in 0..=self.settings.max_iter {
-            self.asm.phi(self.model, &self.q, t, &mut self.rhs);
-            let r = max_abs(&self.rhs);
-            if !r.is_finite() {
-                return Err(self.failure(
-                    Kind::NotFinite,
-                    t,
-                    "the constraint equations are not finite numbers",
-                ));
-            }
-            if r <= self.settings.tol {
-                // Converged: still apply the correction this residual gives,
-                // which costs one solve and takes the error well below tol.
-                if self.jac.is_valid() {
-                    self.jac.solve(&mut self.rhs);
-                    for (q, d) in self.q.iter_mut().zip(&self.rhs) {
-                        *q -= d;
-                    }
-                }
-                return Ok(());
-            }
-            if it == self.settings.max_iter {
-                break;
-            }
-            if !self.jac.is_valid() || r > 0.25 * last {
-                self.refactor(t)?;
-            }
-            last = r;
-            self.summary.newton_iterations += 1;
-            self.jac.solve(&mut self.rhs);
-            for k in 0..self.q.len() {
-                self.q[k] -= self.rhs[k];
-            }
-        }
-        Err(self.failure(
-            Kind::NotConverged,
-            t,
-            &format!(
-                "positions did not converge in {} Newton iterations: the drivers may ask \
-                 for a position the mechanism cannot reach (past a limit or dead-centre \
-                 position)",
-                self.settings.max_iter
+        self.solve_positions(t, true).map_err(|e| match e.why {
+            Failure::NotFinite => self.failure(
+                Kind::NotFinite,
+                t,
+                "the constraint equations are not finite numbers",
             ),
-        ))
+            Failure::NoDescent => self.failure(
+                Kind::NotAssembled,
+                t,
+                "the mechanism cannot be assembled from the given placement: \
+                 no step reduces the constraint residual (check the joints \
+                 named here, or place the bodies closer to a valid configuration)",
+            ),
+            Failure::Iterations => self.failure(
+                Kind::NotAssembled,
+                t,
+                &format!("the mechanism did not assemble in {ASSEMBLY_ITER} iterations"),
+            ),
+            Failure::Direction(s) => self.singular(t, s),
+        })
     }
 
-    /// Fills and factors Φ_q at the current q.
-    fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let jac = &mut self.jac;
-        let mut k = 0;
-        self.asm.jacobian(self.model, &self.q, t, |r, c, v| {
-            jac.put(k, r, c, v);
-            k += 1;
-        });
-        self.summary.factorizations += 1;
-        match self.jac.factor() {
-            Ok(()) => Ok(()),
-            Err(s) => Err(self.singular(t, s)),
-        }
+    /// Newton–Raphson on Φ(q, t) = 0 from the predicted q ([`newton::solve`]
+    /// with full steps), reusing the last factorization of Φ_q while the
+    /// residual falls fast and refreshing it when it does not. Once
+    /// max |Φ| ≤ tol, the correction that residual gives is applied too, so
+    /// positions are accurate well beyond what the residual test alone
+    /// guarantees.
+    fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
+        self.solve_positions(t, false).map_err(|e| match e.why {
+            Failure::NotFinite => self.failure(
+                Kind::NotFinite,
+                t,
+                "the constraint equations are not finite numbers",
+            ),
+            Failure::Iterations | Failure::NoDescent => self.failure(
+                Kind::NotConverged,
+                t,
+                &format!(
+                    "positions did not converge in {} Newton iterations: the drivers may ask \
+                     for a position the mechanism cannot reach (past a limit or dead-centre \
+                     position)",
+                    self.settings.max_iter
+                ),
+            ),
+            Failure::Direction(s) => self.singular(t, s),
+        })
+    }
+
+    /// [`newton::solve`] on Φ(q, t) = 0 from the current q ([`Positions`]):
+    /// for assembly, up to [`ASSEMBLY_ITER`] iterations with a line search
+    /// that fails where it stalls and angle steps limited to
+    /// [`MAX_ANGLE_STEP`]; for a time step, up to `max_iter` full steps and
+    /// the converged correction.
+    fn solve_positions(
+        &mut self,
+        t: f64,
+        assembling: bool,
+    ) -> Result<(), newton::Failed<Singular>> {
+        let options = if assembling {
+            newton::Options {
+                max_iter: ASSEMBLY_ITER,
+                line_search: Some(newton::LineSearch {
+                    min_step: 1e-6,
+                    stall: newton::Stall::Fail,
+                }),
+                angle_limit: Some((MAX_ANGLE_STEP, &self.angles)),
+                polish: false,
+            }
+        } else {
+            newton::Options {
+                max_iter: self.settings.max_iter,
+                line_search: None,
+                angle_limit: None,
+                polish: true,
+            }
+        };
+        let mut problem = Positions {
+            model: self.model,
+            asm: &self.asm,
+            jac: &mut self.jac,
+            summary: &mut self.summary,
+            t,
+            tol: self.settings.tol,
+            assembling,
+        };
+        newton::solve(&mut problem, &mut self.q, &mut self.newton, &options).map(|_| ())
     }
 
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
@@ -612,6 +594,111 @@ impl<'m> Solver<'m> {
             ),
             None => ([0.0; 3], [0.0; 3], [0.0; 3]),
         }
+    }
+}
+
+/// Fills Φ_q at `q` into `jac` and factors it; with `nu`, writes ν(q, t)
+/// there in the same pass over the joints.
+fn refactor(
+    model: &Model,
+    asm: &Assembly,
+    jac: &mut SystemMatrix,
+    q: &[f64],
+    t: f64,
+    nu: Option<&mut [f64]>,
+    summary: &mut Summary,
+) -> Result<(), Singular> {
+    let mut k = 0;
+    let put = |r, c, v| {
+        jac.put(k, r, c, v);
+        k += 1;
+    };
+    match nu {
+        Some(nu) => asm.jacobian_and_nu(model, q, t, nu, put),
+        None => asm.jacobian(model, q, t, put),
+    }
+    summary.factorizations += 1;
+    jac.factor()
+}
+
+/// Φ(q, t) = 0 as a [`newton::Problem`], in q: a time step's chord
+/// iteration, or assembly from a placement.
+struct Positions<'a> {
+    model: &'a Model,
+    asm: &'a Assembly,
+    jac: &'a mut SystemMatrix,
+    summary: &'a mut Summary,
+    t: f64,
+    /// Converged when max |Φ| ≤ tol (m or rad).
+    tol: f64,
+    /// Assembly factors Φ_q at every iterate and takes a Levenberg–Marquardt
+    /// step where it is singular; a time step reuses the factorization while
+    /// the residual falls to a quarter per iteration.
+    assembling: bool,
+}
+
+impl newton::Problem for Positions<'_> {
+    type Error = Singular;
+
+    fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
+        self.asm.phi(self.model, q, self.t, phi);
+        newton::Measure::max_abs(phi, self.tol)
+    }
+
+    fn direction(
+        &mut self,
+        q: &[f64],
+        phi: &[f64],
+        dq: &mut [f64],
+        progress: newton::Progress,
+    ) -> Result<(), Singular> {
+        dq.copy_from_slice(phi);
+        if self.assembling {
+            match refactor(
+                self.model,
+                self.asm,
+                self.jac,
+                q,
+                self.t,
+                None,
+                self.summary,
+            ) {
+                Ok(()) => self.jac.solve(dq),
+                // Levenberg–Marquardt is dense: up to the diagnosis' size only.
+                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
+                Err(_) => levenberg_marquardt(&self.jac.to_dense(), phi, 1e-6, dq),
+            }
+        } else {
+            if !self.jac.is_valid() || progress.size > 0.25 * progress.previous {
+                refactor(
+                    self.model,
+                    self.asm,
+                    self.jac,
+                    q,
+                    self.t,
+                    None,
+                    self.summary,
+                )?;
+            }
+            self.jac.solve(dq);
+        }
+        self.summary.newton_iterations += 1;
+        for d in dq.iter_mut() {
+            *d = -*d;
+        }
+        Ok(())
+    }
+
+    fn correction(&mut self, phi: &[f64], dq: &mut [f64]) -> bool {
+        if !self.jac.is_valid() {
+            return false;
+        }
+        dq.copy_from_slice(phi);
+        self.jac.solve(dq);
+        for d in dq.iter_mut() {
+            *d = -*d;
+        }
+        true
     }
 }
 

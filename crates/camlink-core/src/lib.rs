@@ -38,6 +38,7 @@ pub mod setting;
 
 pub mod assembly;
 pub mod linsolve;
+pub mod lu_program;
 
 pub mod contact;
 

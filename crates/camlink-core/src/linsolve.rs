@@ -14,6 +14,8 @@ use faer::sparse::linalg::LuError;
 use faer::sparse::{Pair, SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, Mat, MatMut, MatRef, Par};
 
+use crate::lu_program::Elimination;
+
 /// Systems with at most this many unknowns are solved densely.
 pub const DENSE_MAX: usize = 120;
 /// Systems with at most this many unknowns use [`SmallLu`].
@@ -57,11 +59,30 @@ pub struct SmallLu {
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
+    /// The elimination of the last pivoted factorization, replayed by the
+    /// next ones while its pivots stay acceptable ([`crate::lu_program`]).
+    program: Box<Elimination>,
+    /// Whether [`factor`](Self::factor) replays the recorded elimination
+    /// (true) or always searches for pivots.
+    pub fixed_pivots: bool,
+    /// Factorizations done by replay and with a pivot search.
+    pub replays: usize,
+    pub pivoted: usize,
 }
 
 impl SmallLu {
+    /// A dense n × n matrix.
     pub fn new(n: usize) -> Self {
+        Self::with_pattern(n, (0..n).flat_map(|r| (0..n).map(move |c| (r, c))))
+    }
+
+    /// An n × n matrix whose nonzeros are at `pattern` (row, col).
+    pub fn with_pattern(n: usize, pattern: impl IntoIterator<Item = (usize, usize)>) -> Self {
         SmallLu {
+            program: Box::new(Elimination::new(n, pattern)),
+            fixed_pivots: true,
+            replays: 0,
+            pivoted: 0,
             n,
             a: vec![0.0; n * n],
             lu: vec![0.0; n * n],
@@ -76,10 +97,45 @@ impl SmallLu {
 
     #[inline]
     pub fn set(&mut self, r: usize, c: usize, v: f64) {
+        debug_assert!(
+            self.program.in_pattern(r, c),
+            "entry ({r}, {c}) is outside the pattern"
+        );
         self.a[r * self.n + c] = v;
     }
 
+    /// P A = L U: the recorded elimination replayed when its pivots pass
+    /// the threshold test, a pivoted factorization (recorded for the next
+    /// call) otherwise.
     pub fn factor(&mut self) -> Result<(), Singular> {
+        if self.fixed_pivots {
+            let scale = self.program.scale(&self.a);
+            if let Ok(min_pivot) = self.program.replay(
+                &self.a,
+                &mut self.lu,
+                &mut self.inv_diag,
+                scale,
+                SINGULAR_PIVOT,
+            ) {
+                self.min_pivot = min_pivot;
+                self.program
+                    .gather(&self.lu, &mut self.nonzeros, &mut self.starts);
+                self.valid = true;
+                self.replays += 1;
+                return Ok(());
+            }
+        }
+        self.pivoted += 1;
+        let outcome = self.factor_pivoted();
+        match outcome {
+            Ok(()) if self.fixed_pivots => self.program.record(&self.perm),
+            _ => self.program.forget(),
+        }
+        outcome
+    }
+
+    /// P A = L U with partial pivoting.
+    fn factor_pivoted(&mut self) -> Result<(), Singular> {
         let n = self.n;
         let mut scale = f64::MIN_POSITIVE;
         for x in &self.a {
@@ -463,7 +519,7 @@ impl SystemMatrix {
     pub fn try_new(n: usize, pattern: &[(usize, usize)]) -> Result<Self, SetupError> {
         Ok(if n <= SMALL_MAX {
             SystemMatrix::Small {
-                lu: SmallLu::new(n),
+                lu: SmallLu::with_pattern(n, pattern.iter().copied()),
                 work: vec![0.0; n],
             }
         } else if n <= DENSE_MAX {
@@ -518,6 +574,24 @@ impl SystemMatrix {
             SystemMatrix::Small { lu, .. } => lu.valid = false,
             SystemMatrix::Dense { lu, .. } => lu.invalidate(),
             SystemMatrix::Sparse(s) => s.valid = false,
+        }
+    }
+
+    /// Whether the small kernel replays its recorded pivot order
+    /// ([`crate::lu_program`]); on by default, off to search for pivots at
+    /// every factorization. The other kernels ignore it.
+    pub fn set_fixed_pivots(&mut self, on: bool) {
+        if let SystemMatrix::Small { lu, .. } = self {
+            lu.fixed_pivots = on;
+        }
+    }
+
+    /// (replayed, pivoted) factorizations of the small kernel so far
+    /// ([`SmallLu::replays`], [`SmallLu::pivoted`]); None for the others.
+    pub fn factorization_counts(&self) -> Option<(usize, usize)> {
+        match self {
+            SystemMatrix::Small { lu, .. } => Some((lu.replays, lu.pivoted)),
+            _ => None,
         }
     }
 
@@ -750,5 +824,89 @@ mod tests {
         let err = lu.factor(a.as_ref()).unwrap_err();
         assert!(err.pivot < 1e-12);
         assert!(!lu.is_valid());
+    }
+
+    // The recorded pivot order of the small kernel (crate::lu_program).
+
+    /// A four-bar-like sparse matrix: a band with a few off-band entries
+    /// whose values turn with `angle`, so that the pivot rows change over a
+    /// turn.
+    fn band_pattern(n: usize) -> Vec<(usize, usize)> {
+        let mut p = Vec::new();
+        for r in 0..n {
+            for c in 0..n {
+                if r.abs_diff(c) <= 1 || (r + 2 * c) % 5 == 0 {
+                    p.push((r, c));
+                }
+            }
+        }
+        p
+    }
+
+    fn fill(lu: &mut SmallLu, p: &[(usize, usize)], angle: f64) {
+        for &(r, c) in p {
+            let v =
+                (angle + 0.7 * r as f64 - 1.3 * c as f64).sin() + if r == c { 0.3 } else { 0.0 };
+            lu.set(r, c, v);
+        }
+    }
+
+    fn solve(lu: &mut SmallLu, n: usize) -> Vec<f64> {
+        let mut b: Vec<f64> = (0..n).map(|k| 1.0 + k as f64).collect();
+        let mut work = vec![0.0; n];
+        lu.solve(&mut b, &mut work);
+        b
+    }
+
+    /// Over a full turn of the values, the replayed factorizations solve
+    /// like pivoted ones (to rounding), and the pivot order is refreshed
+    /// where the pivots grow too small; the test fails if the replay is
+    /// wrong or if it never replays (same results and no saving).
+    #[test]
+    fn replayed_factorizations_solve_like_pivoted_ones() {
+        let n = 9;
+        let p = band_pattern(n);
+        let mut fixed = SmallLu::with_pattern(n, p.iter().copied());
+        let mut pivoted = SmallLu::with_pattern(n, p.iter().copied());
+        pivoted.fixed_pivots = false;
+        for step in 0..2000 {
+            let angle = step as f64 * 2e-3 * std::f64::consts::PI;
+            fill(&mut fixed, &p, angle);
+            fill(&mut pivoted, &p, angle);
+            fixed.factor().unwrap();
+            pivoted.factor().unwrap();
+            let (x, y) = (solve(&mut fixed, n), solve(&mut pivoted, n));
+            let size = y.iter().fold(1.0f64, |a, v| a.max(v.abs()));
+            for (a, b) in x.iter().zip(&y) {
+                assert!(
+                    (a - b).abs() <= 1e-12 * size,
+                    "step {step}: {x:?} against {y:?}"
+                );
+            }
+        }
+        let (replays, refreshes) = (fixed.replays, fixed.pivoted);
+        assert!(replays > 1500, "{replays} replays, {refreshes} refreshes");
+        assert!(refreshes > 1, "{replays} replays, {refreshes} refreshes");
+        assert_eq!(pivoted.replays, 0);
+    }
+
+    /// Where partial pivoting would keep the recorded order, the replay's
+    /// factors are those of the pivoted kernel, bit for bit.
+    #[test]
+    fn a_replay_in_the_pivoted_order_is_exact() {
+        let n = 9;
+        let p = band_pattern(n);
+        let mut fixed = SmallLu::with_pattern(n, p.iter().copied());
+        let mut pivoted = SmallLu::with_pattern(n, p.iter().copied());
+        pivoted.fixed_pivots = false;
+        fill(&mut fixed, &p, 0.1);
+        fixed.factor().unwrap();
+        fill(&mut fixed, &p, 0.1 + 1e-6);
+        fill(&mut pivoted, &p, 0.1 + 1e-6);
+        fixed.factor().unwrap();
+        pivoted.factor().unwrap();
+        assert_eq!(fixed.replays, 1);
+        let (x, y) = (solve(&mut fixed, n), solve(&mut pivoted, n));
+        assert_eq!(x, y);
     }
 }

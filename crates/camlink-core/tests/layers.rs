@@ -13,7 +13,14 @@ use std::path::{Path, PathBuf};
 /// The layers, first to last.
 const LAYERS: &[&[&str]] = &[
     &[
-        "math", "fmt_num", "cam", "curve", "function", "motion", "newton",
+        "math",
+        "fmt_num",
+        "cam",
+        "curve",
+        "function",
+        "motion",
+        "newton",
+        "lu_program",
     ],
     &["constraint", "force"],
     &["model"],

@@ -16,7 +16,7 @@
 use super::system::{Augmented, Coefficients, System};
 use crate::constraint::{Equations, Jac, MAX_OWN};
 use crate::kinematics::MAX_ANGLE_STEP;
-use crate::math::{max_abs, norm2};
+use crate::newton::{self, Failure};
 use crate::run::Kind;
 
 /// The projection matrix's coefficients: D = I.
@@ -48,73 +48,93 @@ pub fn positions(
 ) -> Result<usize, ProjectionError> {
     let (n, m) = (s.n(), s.m());
     let angles = s.asm.angle_mask(s.model);
-    let zeros = vec![0.0; n];
-    let mut phi = vec![0.0; m];
-    let mut rhs = vec![0.0; n + m];
-    let mut trial = q.to_vec();
-    for it in 0..=max_iter {
-        s.asm.phi(s.model, q, t, &mut phi);
-        let r = max_abs(&phi);
-        if r <= tol {
-            return Ok(it);
-        }
-        if !r.is_finite() || it == max_iter {
-            return Err(ProjectionError {
-                kind: if r.is_finite() {
-                    Kind::NotConverged
-                } else {
-                    Kind::NotFinite
-                },
-                message: if r.is_finite() {
-                    format!("the positions did not reach the constraints in {max_iter} iterations")
-                } else {
-                    "the constraint equations are not finite numbers".into()
-                },
-                residual: r,
-            });
-        }
-        aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
-            .map_err(|_| ProjectionError {
-                kind: Kind::LockUp,
-                message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
-                    .into(),
-                residual: r,
-            })?;
-        rhs[..n].fill(0.0);
-        for (k, p) in phi.iter().enumerate() {
-            rhs[n + k] = -p;
-        }
-        aug.solve(&mut rhs);
-        let big = (0..n)
-            .filter(|&k| angles[k])
-            .fold(0.0f64, |a, k| a.max(rhs[k].abs()));
-        let mut step = if big > MAX_ANGLE_STEP {
-            MAX_ANGLE_STEP / big
-        } else {
-            1.0
-        };
-        // Backtrack until ‖Φ‖₂ decreases.
-        let r2 = norm2(&phi);
-        loop {
-            for k in 0..n {
-                trial[k] = q[k] + step * rhs[k];
+    let mut problem = LeastChange {
+        s,
+        aug,
+        t,
+        tol,
+        zeros: vec![0.0; n],
+        rhs: vec![0.0; n + m],
+    };
+    let options = newton::Options {
+        max_iter,
+        line_search: Some(newton::LineSearch {
+            min_step: 1e-6,
+            stall: newton::Stall::Fail,
+        }),
+        angle_limit: Some((MAX_ANGLE_STEP, &angles)),
+        polish: false,
+    };
+    let mut work = newton::Workspace::new(n, m);
+    newton::solve(&mut problem, q, &mut work, &options)
+        .map(|solved| solved.iterations)
+        .map_err(|e| {
+            let (kind, message) = match e.why {
+                Failure::NotFinite => (
+                    Kind::NotFinite,
+                    "the constraint equations are not finite numbers".to_string(),
+                ),
+                Failure::Iterations => (
+                    Kind::NotConverged,
+                    format!("the positions did not reach the constraints in {max_iter} iterations"),
+                ),
+                Failure::NoDescent => (
+                    Kind::NotAssembled,
+                    "the mechanism cannot be assembled from the given placement".to_string(),
+                ),
+                Failure::Direction(()) => (
+                    Kind::LockUp,
+                    "the constraint Jacobian is rank deficient (redundant or locked joints)"
+                        .to_string(),
+                ),
+            };
+            ProjectionError {
+                kind,
+                message,
+                residual: e.size,
             }
-            s.asm.phi(s.model, &trial, t, &mut phi);
-            if norm2(&phi) <= (1.0 - 1e-4 * step) * r2 {
-                break;
-            }
-            step *= 0.5;
-            if step < 1e-6 {
-                return Err(ProjectionError {
-                    kind: Kind::NotAssembled,
-                    message: "the mechanism cannot be assembled from the given placement".into(),
-                    residual: r,
-                });
-            }
-        }
-        q.copy_from_slice(&trial);
+        })
+}
+
+/// Φ(q, t) = 0 as a [`newton::Problem`] in q with steps of least change,
+/// [ I  Φ_qᵀ ; Φ_q  0 ] [Δq ; μ] = [0 ; −Φ]; converged when max |Φ| ≤ tol.
+struct LeastChange<'a> {
+    s: &'a System<'a>,
+    aug: &'a mut Augmented,
+    t: f64,
+    tol: f64,
+    zeros: Vec<f64>,
+    /// [Δq ; μ] (length n + m).
+    rhs: Vec<f64>,
+}
+
+impl newton::Problem for LeastChange<'_> {
+    type Error = ();
+
+    fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
+        self.s.asm.phi(self.s.model, q, self.t, phi);
+        newton::Measure::max_abs(phi, self.tol)
     }
-    unreachable!("the loop returns")
+
+    fn direction(
+        &mut self,
+        q: &[f64],
+        phi: &[f64],
+        dq: &mut [f64],
+        _: newton::Progress,
+    ) -> Result<(), ()> {
+        let (s, n) = (self.s, self.zeros.len());
+        self.aug
+            .refactor(s, q, &self.zeros, &self.zeros, None, self.t, IDENTITY)
+            .map_err(|_| ())?;
+        self.rhs[..n].fill(0.0);
+        for (r, p) in self.rhs[n..].iter_mut().zip(phi) {
+            *r = -p;
+        }
+        self.aug.solve(&mut self.rhs);
+        dq.copy_from_slice(&self.rhs[..n]);
+        Ok(())
+    }
 }
 
 /// Sets the rates of the joints' own coordinates (contact parameters,

@@ -26,6 +26,7 @@ use super::system::{Augmented, Coefficients, System};
 use crate::kinematics::MAX_ANGLE_STEP;
 use crate::math::{max_abs, norm2};
 use crate::model::Model;
+use crate::newton::{self, Failure};
 use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 
 /// Equilibrium solver settings.
@@ -108,125 +109,197 @@ pub fn solve_watching(
     let mut lambda = rhs[n..].to_vec();
 
     let angles = s.asm.angle_mask(model);
-    let newton = Coefficients {
-        stiffness: 1.0,
-        scale: 1.0,
-        ..Default::default()
+    // Newton in x = (q, λ), damped by a line search that takes a short
+    // step rather than stop where the residual does not fall.
+    let mut x = [q.as_slice(), lambda.as_slice()].concat();
+    let mut balance = Balance {
+        s: &s,
+        aug: &mut aug,
+        t,
+        tol: settings.tol,
+        zeros: &zeros,
+        qf,
+        force_residual: 0.0,
+        tick,
+        failure: None,
     };
-    let mut res = vec![0.0; n + m];
-    let (mut tq, mut tl) = (q.clone(), lambda.clone());
-    let residual = |q: &[f64],
-                    lambda: &[f64],
-                    res: &mut [f64],
-                    qf: &mut [f64]|
-     -> Result<(f64, f64), AnalysisError> {
-        s.residual(q, &zeros, &zeros, lambda, t, &mut res[..n])?;
-        s.asm.phi(model, q, t, &mut res[n..]);
-        s.forces(q, &zeros, t, qf)?;
-        let scale = 1.0 + max_abs(qf);
-        Ok((max_abs(&res[..n]) / scale, max_abs(&res[n..])))
+    let options = newton::Options {
+        max_iter: settings.max_iter,
+        line_search: Some(newton::LineSearch {
+            min_step: 1e-3,
+            stall: newton::Stall::Accept,
+        }),
+        angle_limit: Some((MAX_ANGLE_STEP, &angles)),
+        polish: false,
     };
-    for it in 0..=settings.max_iter {
-        tick()?;
-        let (rf, rp) = residual(&q, &lambda, &mut res, &mut qf)?;
-        if !(rf.is_finite() && rp.is_finite()) {
-            return Err(err(
-                Kind::NotFinite,
-                "the equations are not finite numbers".into(),
-                rp,
-            ));
-        }
-        let neutral = || {
-            err(
-                Kind::LockUp,
-                "the equilibrium equations are singular: a degree of freedom is neither \
-                 restrained by a spring or gravity nor driven (neutral equilibrium)"
-                    .into(),
-                rp,
-            )
-        };
-        if rf <= settings.tol && rp <= settings.tol {
-            // A balance is an equilibrium only where the tangent stiffness
-            // holds every free motion (a free motion with no force on it
-            // balances everywhere).
-            aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
-                .map_err(|_| neutral())?;
-            // The multipliers of minimum norm with the same forces Φ_qᵀλ
-            // (they differ from λ only with redundant equations):
-            // [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0].
-            aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
-                .map_err(|_| {
-                    err(
-                        Kind::Redundant,
-                        "the constraint Jacobian is rank deficient".into(),
-                        rp,
-                    )
-                })?;
-            res.fill(0.0);
-            s.add_jt_lambda(&q, t, &lambda, &mut res[..n]);
-            aug.solve_refined(&mut res);
-            lambda.copy_from_slice(&res[n..]);
-            return Ok(Equilibrium {
-                q,
-                lambda,
-                iterations: it,
+    let mut work = newton::Workspace::new(n + m, n + m);
+    let neutral = |rp: f64| {
+        err(
+            Kind::LockUp,
+            "the equilibrium equations are singular: a degree of freedom is neither \
+             restrained by a spring or gravity nor driven (neutral equilibrium)"
+                .into(),
+            rp,
+        )
+    };
+    let solved = match newton::solve(&mut balance, &mut x, &mut work, &options) {
+        Ok(solved) => solved,
+        Err(e) => {
+            if let Some(failure) = balance.failure.take() {
+                return Err(failure);
+            }
+            return Err(match e.why {
+                Failure::NotFinite => err(
+                    Kind::NotFinite,
+                    "the equations are not finite numbers".into(),
+                    e.size,
+                ),
+                Failure::Iterations | Failure::NoDescent => err(
+                    Kind::NotConverged,
+                    format!(
+                        "no equilibrium found in {} iterations (force residual {}, relative)",
+                        settings.max_iter,
+                        crate::fmt_num::num(balance.force_residual)
+                    ),
+                    e.size,
+                ),
+                Failure::Direction(()) => neutral(e.size),
             });
         }
-        if it == settings.max_iter {
-            return Err(err(
-                Kind::NotConverged,
-                format!(
-                    "no equilibrium found in {} iterations (force residual {}, relative)",
-                    settings.max_iter,
-                    crate::fmt_num::num(rf)
-                ),
+    };
+    // A force that failed at a trial point of the line search is an error
+    // even where the search went on from elsewhere.
+    if let Some(failure) = balance.failure.take() {
+        return Err(failure);
+    }
+    let rp = solved.size;
+    q.copy_from_slice(&x[..n]);
+    lambda.copy_from_slice(&x[n..]);
+    // A balance is an equilibrium only where the tangent stiffness holds
+    // every free motion (a free motion with no force on it balances
+    // everywhere).
+    aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, TANGENT)
+        .map_err(|_| neutral(rp))?;
+    // The multipliers of minimum norm with the same forces Φ_qᵀλ (they
+    // differ from λ only with redundant equations):
+    // [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0].
+    aug.refactor(&s, &q, &zeros, &zeros, None, t, least_squares)
+        .map_err(|_| {
+            err(
+                Kind::Redundant,
+                "the constraint Jacobian is rank deficient".into(),
                 rp,
-            ));
+            )
+        })?;
+    let mut res = vec![0.0; n + m];
+    s.add_jt_lambda(&q, t, &lambda, &mut res[..n]);
+    aug.solve_refined(&mut res);
+    lambda.copy_from_slice(&res[n..]);
+    Ok(Equilibrium {
+        q,
+        lambda,
+        iterations: solved.iterations,
+    })
+}
+
+/// The Newton matrix of equilibrium, [ (Φ_qᵀλ)_q − Q_q  Φ_qᵀ ; Φ_q  0 ].
+const TANGENT: Coefficients = Coefficients {
+    mass: 0.0,
+    damping: 0.0,
+    stiffness: 1.0,
+    identity: 0.0,
+    scale: 1.0,
+};
+
+/// The equilibrium equations Φ_qᵀλ − Q(q, 0, t) = 0, Φ(q, t) = 0 as a
+/// [`newton::Problem`] in x = (q, λ), converged when the force residual
+/// relative to 1 + max |Q| and max |Φ| are both ≤ tol.
+struct Balance<'a> {
+    s: &'a System<'a>,
+    aug: &'a mut Augmented,
+    t: f64,
+    tol: f64,
+    /// Zero velocities and accelerations (length n).
+    zeros: &'a [f64],
+    /// Q at the last residual's q.
+    qf: Vec<f64>,
+    /// The relative force residual at the last residual's x.
+    force_residual: f64,
+    /// Called before every Newton direction; an error (an interrupt) stops
+    /// the search.
+    tick: &'a mut dyn FnMut() -> Result<(), AnalysisError>,
+    /// The error that stopped the search from inside the problem (a force
+    /// that failed, an interrupt), returned in place of Newton's failure.
+    failure: Option<AnalysisError>,
+}
+
+impl newton::Problem for Balance<'_> {
+    type Error = ();
+
+    fn residual(&mut self, x: &[f64], r: &mut [f64]) -> newton::Measure {
+        let (s, zeros, n) = (self.s, self.zeros, self.zeros.len());
+        let (q, lambda) = x.split_at(n);
+        let evaluated = s
+            .residual(q, zeros, zeros, lambda, self.t, &mut r[..n])
+            .and_then(|_| s.forces(q, zeros, self.t, &mut self.qf));
+        if let Err(e) = evaluated {
+            // A NaN merit ends the search; `solve` returns this error.
+            self.failure.get_or_insert(e);
+            return newton::Measure {
+                converged: false,
+                merit: f64::NAN,
+                size: f64::NAN,
+            };
         }
-        // Where the tangent stiffness is singular away from a balance (a
-        // pendulum lying horizontal), a regularised step K + μI leads on.
-        if aug
-            .refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, newton)
+        s.asm.phi(s.model, q, self.t, &mut r[n..]);
+        self.force_residual = max_abs(&r[..n]) / (1.0 + max_abs(&self.qf));
+        let rp = max_abs(&r[n..]);
+        newton::Measure {
+            converged: self.force_residual <= self.tol && rp <= self.tol,
+            merit: if self.force_residual.is_finite() {
+                norm2(r)
+            } else {
+                f64::NAN
+            },
+            size: rp,
+        }
+    }
+
+    /// The Newton step of [ (Φ_qᵀλ)_q − Q_q  Φ_qᵀ ; Φ_q  0 ]; where the
+    /// tangent stiffness is singular away from a balance (a pendulum lying
+    /// horizontal), a regularised step K + μI leads on.
+    fn direction(
+        &mut self,
+        x: &[f64],
+        r: &[f64],
+        dx: &mut [f64],
+        _: newton::Progress,
+    ) -> Result<(), ()> {
+        if let Err(e) = (self.tick)() {
+            self.failure = Some(e);
+            return Err(());
+        }
+        let (s, zeros, n, t) = (self.s, self.zeros, self.zeros.len(), self.t);
+        let (q, lambda) = x.split_at(n);
+        if self
+            .aug
+            .refactor(s, q, zeros, zeros, Some(lambda), t, TANGENT)
             .is_err()
         {
             let regularised = Coefficients {
-                identity: 1e-3 * (1.0 + max_abs(&qf)),
-                ..newton
+                identity: 1e-3 * (1.0 + max_abs(&self.qf)),
+                ..TANGENT
             };
-            aug.refactor(&s, &q, &zeros, &zeros, Some(&lambda), t, regularised)
-                .map_err(|_| neutral())?;
+            self.aug
+                .refactor(s, q, zeros, zeros, Some(lambda), t, regularised)
+                .map_err(|_| ())?;
         }
-        for v in res.iter_mut() {
-            *v = -*v;
+        for (d, r) in dx.iter_mut().zip(r) {
+            *d = -r;
         }
-        let r2 = norm2(&res);
-        aug.solve(&mut res);
-        let big = (0..n)
-            .filter(|&k| angles[k])
-            .fold(0.0f64, |a, k| a.max(res[k].abs()));
-        let mut step = if big > MAX_ANGLE_STEP {
-            MAX_ANGLE_STEP / big
-        } else {
-            1.0
-        };
-        let mut trial = vec![0.0; n + m];
-        loop {
-            for k in 0..n {
-                tq[k] = q[k] + step * res[k];
-            }
-            for k in 0..m {
-                tl[k] = lambda[k] + step * res[n + k];
-            }
-            residual(&tq, &tl, &mut trial, &mut qf)?;
-            if norm2(&trial) <= (1.0 - 1e-4 * step) * r2 || step < 1e-3 {
-                break;
-            }
-            step *= 0.5;
-        }
-        q.copy_from_slice(&tq);
-        lambda.copy_from_slice(&tl);
+        self.aug.solve(dx);
+        Ok(())
     }
-    unreachable!("the loop returns")
 }
 
 /// Equilibrium at `t`, written as one row: the kinematic channels (zero

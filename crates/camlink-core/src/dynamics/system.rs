@@ -237,7 +237,6 @@ impl<'m> System<'m> {
     /// frame at the origin and every spring at its free length.
     pub fn potential(&self, q: &[f64], t: f64) -> f64 {
         let g = self.model.gravity;
-        let zeros = vec![0.0; q.len()];
         let gravity: f64 = self
             .bodies
             .iter()
@@ -245,7 +244,11 @@ impl<'m> System<'m> {
             .sum();
         let springs: f64 = (0..self.model.forces.len())
             .map(|f| {
-                let x = self.force_local(f, q, &zeros, t);
+                // Positions only: the velocities are set to zero.
+                let x = Local {
+                    qd: Local::default().qd,
+                    ..self.force_local(f, q, q, t)
+                };
                 self.model.forces[f].kind.potential(&x)
             })
             .sum();

@@ -148,6 +148,31 @@ pub fn chain(n: usize, l: f64) -> Model {
     m
 }
 
+/// [`chain`] with every joint driven: the relative angle of link k to the
+/// link before it (to the ground for the first) is `rate_k` t, with rates of
+/// ±0.01 rad/s alternating in sign, so that the chain waves without coiling.
+pub fn driven_chain(n: usize, l: f64) -> Model {
+    let mut m = chain(n, l);
+    for k in 0..n {
+        let body_i = if k == 0 { BodyId::GROUND } else { BodyId(k) };
+        m.add_driver(
+            format!("D{k}"),
+            RelativeCoord {
+                body_i,
+                s_i: [0.0, 0.0],
+                body_j: BodyId(k + 1),
+                s_j: [0.0, 0.0],
+                coord: RelCoord::Phi,
+                f: TimeFn::Linear {
+                    value: 0.0,
+                    rate: if k % 2 == 0 { 0.01 } else { -0.01 },
+                },
+            },
+        );
+    }
+    m
+}
+
 /// A compound pendulum: one body pivoted at the origin, centroid at
 /// distance `l` (m) from the pivot, starting at angle `th0` from the
 /// downward vertical. `frame_at_pivot`: the body frame sits at the pivot
