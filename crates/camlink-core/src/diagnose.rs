@@ -123,6 +123,64 @@ pub fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> 
     redundant_rows(model, asm, &dense_jacobian(model, asm, q, t))
 }
 
+/// A joint counts among the weakest when its share of the weakest
+/// combination of equations is at least this fraction of the largest share.
+const WEAK_SHARE: f64 = 0.1;
+
+/// The joints whose equations lose rank first at `q` (m or rad), time `t`
+/// (s), in model order: u, the left singular vector of Φ_q for its
+/// smallest singular value among the min(m, n) largest, is the
+/// combination of equations that is nearest to dependent (Φ_qᵀu = σ_min v);
+/// a joint is named when the norm of u over its rows is at least
+/// [`WEAK_SHARE`] of the largest such norm. Empty for a model larger than
+/// [`DENSE_MAX`] coordinates or without equations.
+pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
+    let (n, m) = (asm.n, asm.m);
+    if n > DENSE_MAX || m == 0 || n == 0 {
+        return Vec::new();
+    }
+    let j = dense_jacobian(model, asm, q, t);
+    let Ok(svd) = j.svd() else {
+        return Vec::new();
+    };
+    let s = svd.S().column_vector();
+    let k = (0..s.nrows().min(m).min(n))
+        .min_by(|&a, &b| s[a].total_cmp(&s[b]))
+        .unwrap_or(0);
+    let u = svd.U();
+    let share: Vec<f64> = (0..model.joints.len())
+        .map(|jt| {
+            asm.rows_of(model, jt)
+                .map(|r| u[(r, k)] * u[(r, k)])
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let big = share.iter().fold(0.0f64, |a, &b| a.max(b));
+    model
+        .joints
+        .iter()
+        .zip(&share)
+        .filter(|&(_, &w)| big > 0.0 && w >= WEAK_SHARE * big)
+        .map(|(jt, _)| jt.name.clone())
+        .collect()
+}
+
+/// The clause of a warning naming the joints whose equations lose rank
+/// (empty when none are known): ` at joints O2, A, B, O4 (their equations
+/// lose rank)`.
+pub fn losing_rank(joints: &[String]) -> String {
+    if joints.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " at joint{} {} (their equations lose rank)",
+            if joints.len() > 1 { "s" } else { "" },
+            joints.join(", ")
+        )
+    }
+}
+
 /// Φ_q as a dense m × n matrix.
 pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f64> {
     let mut j = Mat::zeros(asm.m, asm.n);

@@ -348,16 +348,18 @@ impl<'m> Solver<'m> {
         };
         let near = pivot < NEAR_SINGULAR;
         if near && !self.near_singular {
+            let joints = crate::diagnose::weakest_joints(self.model, &self.asm, &self.q, t);
             self.summary.warnings.push(Warning {
                 kind: Kind::NearSingular,
                 time: t,
-                joints: Vec::new(),
                 message: format!(
                     "near-singular configuration (relative pivot {pivot:.1e}, \
-                     condition about {:.1e}): a toggle or dead-centre position; \
+                     condition about {:.1e}){}: a toggle or dead-centre position; \
                      accuracy of velocities and accelerations may suffer here",
-                    1.0 / pivot
+                    1.0 / pivot,
+                    crate::diagnose::losing_rank(&joints)
                 ),
+                joints,
             });
         }
         self.near_singular = near;

@@ -162,6 +162,9 @@ pub struct Integrator<'m> {
     pub rejected: usize,
     /// The weighted error of the last accepted error-controlled step.
     err_prev: Option<f64>,
+    /// Whether the last step ended at a singular position (warned once
+    /// per visit).
+    near_singular: bool,
 }
 
 impl<'m> Integrator<'m> {
@@ -250,9 +253,11 @@ impl<'m> Integrator<'m> {
             redundant,
             rejected: 0,
             err_prev: None,
+            near_singular: false,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
+        it.watch_singularity();
         Ok(it)
     }
 
@@ -342,6 +347,7 @@ impl<'m> Integrator<'m> {
         }
         self.save();
         if self.try_step(h, false)? {
+            self.watch_singularity();
             return Ok(());
         }
         // Slow convergence with an old matrix: retry from the constant
@@ -349,6 +355,7 @@ impl<'m> Integrator<'m> {
         self.restore();
         self.h_prev = 0.0;
         if self.try_step(h, true)? {
+            self.watch_singularity();
             return Ok(());
         }
         self.restore();
@@ -539,6 +546,29 @@ impl<'m> Integrator<'m> {
         }
         self.aug.invalidate();
         Ok(false)
+    }
+
+    /// Records a `near_singular` warning, naming the joints whose
+    /// equations lose rank ([`crate::diagnose::weakest_joints`]), when a
+    /// step ends at a singular position after one that did not.
+    fn watch_singularity(&mut self) {
+        let near = self.at_singular_position();
+        if near && !self.near_singular {
+            let (model, asm) = (self.sys.model, &self.sys.asm);
+            let joints = crate::diagnose::weakest_joints(model, asm, &self.q, self.t);
+            self.summary.warnings.push(run::Warning {
+                kind: Kind::NearSingular,
+                time: self.t,
+                message: format!(
+                    "near-singular configuration{}: the constraint Jacobian loses rank \
+                     (a toggle, a dead centre, the flat position of a parallelogram); \
+                     the multipliers of the lost direction are not determined here",
+                    crate::diagnose::losing_rank(&joints)
+                ),
+                joints,
+            });
+        }
+        self.near_singular = near;
     }
 
     /// True when the last factorization found S singular in a model
