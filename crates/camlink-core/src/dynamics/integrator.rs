@@ -60,6 +60,11 @@ const SINGULAR_ITER: usize = 4;
 /// solve counts as converged.
 const NOISE_SAFETY: f64 = 4.0;
 
+/// A step whose largest multiplier grew by more than this factor makes
+/// the next one start from the multipliers consistent with its predicted
+/// state (see `try_step`).
+const LAMBDA_JUMP: f64 = 1.5;
+
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -419,6 +424,18 @@ impl<'m> Integrator<'m> {
             self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
+        // Near a singular position the multipliers of the lost direction
+        // grow as 1/δ with the distance δ from it, and their tension pulls
+        // through the constraint curvature towards the position: started
+        // from the multipliers of a step nearer to it, Newton converges to
+        // a spurious root there (λ ~ 1e9), where the mechanism sticks.
+        // When λ grew fast in the last step, Newton starts instead from
+        // the multipliers consistent with the predicted state.
+        if self.lambda_jumps() {
+            self.consistent()?;
+            let n = self.sys.n();
+            self.lambda.copy_from_slice(&self.rhs[n..]);
+        }
         let mut last = f64::INFINITY;
         self.noise.fill(0.0);
         let mut noise_known = false;
@@ -569,6 +586,12 @@ impl<'m> Integrator<'m> {
             });
         }
         self.near_singular = near;
+    }
+
+    /// True when the largest multiplier grew by more than [`LAMBDA_JUMP`]
+    /// times in the last step (a sign of a nearby singular position).
+    fn lambda_jumps(&self) -> bool {
+        self.h_prev > 0.0 && max_abs(&self.saved[3]) > LAMBDA_JUMP * max_abs(&self.prev[1])
     }
 
     /// True when the last factorization found S singular in a model
