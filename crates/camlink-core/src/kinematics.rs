@@ -24,7 +24,7 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
-use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
+use crate::diagnose::{levenberg_marquardt, KeptRows, DENSE_MAX};
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::{max_abs, norm2, rot_d};
 use crate::model::{BodyId, Model};
@@ -158,6 +158,8 @@ pub struct Solver<'m> {
     size: f64,
     /// Whether the last factorization was near singular.
     near_singular: bool,
+    /// The rows solved for in a model with redundant equations (None: all).
+    kept: Option<KeptRows>,
     pub summary: Summary,
     /// Contact points and pressure angles of the curve-contact joints.
     contacts: Contacts,
@@ -184,19 +186,26 @@ impl<'m> Solver<'m> {
                 ),
             ));
         }
-        if m > n {
-            return Err(fail(
-                Kind::Redundant,
-                &format!(
-                    "{n} coordinates but {m} equations: {} equation(s) too many; \
-                     remove redundant joints or drivers (`camlink check` names them)",
-                    m - n
-                ),
-            ));
+        // Redundant equations are left out of the solve.
+        let kept = if m > n {
+            Some(
+                KeptRows::find(model, &asm, 0.0, settings.tol)
+                    .map_err(|e| fail(Kind::Redundant, &e))?,
+            )
+        } else {
+            None
+        };
+        let mut summary = Summary::default();
+        if let Some(k) = &kept {
+            summary.warnings.push(k.warning(0.0));
         }
         let q = asm.initial_q(model);
         let mut pattern = Vec::new();
-        asm.jacobian(model, &q, 0.0, |r, c, _| pattern.push((r, c)));
+        asm.jacobian(model, &q, 0.0, |r, c, _| {
+            if let Some(r) = reduced(&kept, r) {
+                pattern.push((r, c));
+            }
+        });
         Ok(Solver {
             model,
             settings,
@@ -213,9 +222,10 @@ impl<'m> Solver<'m> {
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
+            kept,
             q,
             asm,
-            summary: Summary::default(),
+            summary,
             contacts: Contacts::new(model),
         })
     }
@@ -284,10 +294,16 @@ impl<'m> Solver<'m> {
         self.refactor(t)?;
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.h_prev = prev.map(|p| t - p);
-        self.asm.nu(self.model, &self.q, t, &mut self.qd);
+        let (asm, model) = (&self.asm, self.model);
+        match &mut self.kept {
+            None => asm.nu(model, &self.q, t, &mut self.qd),
+            Some(k) => k.gather(|f| asm.nu(model, &self.q, t, f), &mut self.qd),
+        }
         self.jac.solve(&mut self.qd);
-        self.asm
-            .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
+        match &mut self.kept {
+            None => asm.gamma(model, &self.q, &self.qd, t, &mut self.qdd),
+            Some(k) => k.gather(|f| asm.gamma(model, &self.q, &self.qd, t, f), &mut self.qdd),
+        }
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(
@@ -389,12 +405,22 @@ impl<'m> Solver<'m> {
                 return Ok(());
             }
             // Newton direction, or a Levenberg–Marquardt one where Φ_q is singular.
-            self.rhs.copy_from_slice(&phi);
+            match &self.kept {
+                None => self.rhs.copy_from_slice(&phi),
+                Some(k) => {
+                    for (i, v) in self.rhs.iter_mut().enumerate() {
+                        *v = phi[k.full_row(i)];
+                    }
+                }
+            }
             // Levenberg–Marquardt is dense: up to the diagnosis' size only.
             match self.refactor(t) {
                 Ok(()) => self.jac.solve(&mut self.rhs),
                 Err(e) if self.asm.n > DENSE_MAX => return Err(e),
-                Err(_) => levenberg_marquardt(&self.jac.to_dense(), &phi, 1e-6, &mut self.rhs),
+                Err(_) => {
+                    let kept_phi = self.rhs.clone();
+                    levenberg_marquardt(&self.jac.to_dense(), &kept_phi, 1e-6, &mut self.rhs)
+                }
             }
             self.summary.newton_iterations += 1;
             let big = (0..self.q.len())
@@ -444,7 +470,11 @@ impl<'m> Solver<'m> {
     fn positions(&mut self, t: f64) -> Result<(), AnalysisError> {
         let mut last = f64::INFINITY;
         for it in 0..=self.settings.max_iter {
-            self.asm.phi(self.model, &self.q, t, &mut self.rhs);
+            let (asm, model) = (&self.asm, self.model);
+            match &mut self.kept {
+                None => asm.phi(model, &self.q, t, &mut self.rhs),
+                Some(k) => k.gather(|f| asm.phi(model, &self.q, t, f), &mut self.rhs),
+            }
             let r = max_abs(&self.rhs);
             if !r.is_finite() {
                 return Err(self.failure(
@@ -491,11 +521,13 @@ impl<'m> Solver<'m> {
 
     /// Fills and factors Φ_q at the current q.
     fn refactor(&mut self, t: f64) -> Result<(), AnalysisError> {
-        let jac = &mut self.jac;
+        let (jac, kept) = (&mut self.jac, &self.kept);
         let mut k = 0;
         self.asm.jacobian(self.model, &self.q, t, |r, c, v| {
-            jac.put(k, r, c, v);
-            k += 1;
+            if let Some(r) = reduced(kept, r) {
+                jac.put(k, r, c, v);
+                k += 1;
+            }
         });
         self.summary.factorizations += 1;
         match self.jac.factor() {
@@ -505,7 +537,8 @@ impl<'m> Solver<'m> {
     }
 
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
-        let (j, _) = self.asm.joint_of_row(s.row);
+        let row = self.kept.as_ref().map_or(s.row, |k| k.full_row(s.row));
+        let (j, _) = self.asm.joint_of_row(row);
         let mut e = self.failure(
             Kind::LockUp,
             t,
@@ -574,8 +607,12 @@ impl<'m> Solver<'m> {
     /// Solves Φ_q q⃛ = η at the solved state of time `t`, with the
     /// factorization of its acceleration step.
     pub fn jerk(&mut self, t: f64) -> Result<(), AnalysisError> {
-        self.asm
-            .eta(self.model, &self.q, &self.qd, &self.qdd, t, &mut self.qddd);
+        let (asm, model) = (&self.asm, self.model);
+        let (q, qd, qdd) = (&self.q, &self.qd, &self.qdd);
+        match &mut self.kept {
+            None => asm.eta(model, q, qd, qdd, t, &mut self.qddd),
+            Some(k) => k.gather(|f| asm.eta(model, q, qd, qdd, t, f), &mut self.qddd),
+        }
         self.jac.solve(&mut self.qddd);
         if self.qddd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(Kind::NotFinite, t, "jerks are not finite numbers"));
@@ -624,6 +661,16 @@ impl<'m> Solver<'m> {
 /// Largest model (coordinates) whose Jacobian condition is computed for an
 /// error message.
 const DIAGNOSE_MAX: usize = 600;
+
+/// The row of the solve that equation `r` fills: `r` itself, or its
+/// reduced index when redundant equations are left out (None: left out).
+#[inline]
+fn reduced(kept: &Option<KeptRows>, r: usize) -> Option<usize> {
+    match kept {
+        None => Some(r),
+        Some(k) => k.reduced(r),
+    }
+}
 
 /// A length that sizes the model: the largest distance of a body or point
 /// from the origin (m), at least 1 mm.
