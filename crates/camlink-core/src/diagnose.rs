@@ -524,6 +524,36 @@ impl KeptRows {
                 n - d.rank
             ));
         }
+        // A driver among the dependent equations fixes a motion that the
+        // others fix already: over-driven, consistent at most at time t.
+        let joint = |e: &str| e.rsplit_once('.').map_or(e, |(j, _)| j).to_string();
+        let is_driver = |e: &str| {
+            let name = joint(e);
+            model.joints.iter().any(|j| j.driver && j.name == name)
+        };
+        let drivers: Vec<String> = d
+            .redundant
+            .iter()
+            .flat_map(|r| {
+                std::iter::once(r.equation.as_str())
+                    .chain(r.depends_on.iter().map(|(e, _)| e.as_str()))
+            })
+            .filter(|e| is_driver(e))
+            .map(joint)
+            .fold(Vec::new(), |mut v, j| {
+                if !v.contains(&j) {
+                    v.push(j);
+                }
+                v
+            });
+        if !drivers.is_empty() {
+            return Err(format!(
+                "{n} coordinates but {m} equations: over-driven, driver(s) {} fix a motion \
+                 that the other equations fix already; remove one (`camlink check` names \
+                 the redundant equations)",
+                drivers.join(", ")
+            ));
+        }
         let equations: Vec<String> = d.redundant.iter().map(|r| r.equation.clone()).collect();
         let dropped: Vec<usize> = (0..m)
             .filter(|&r| equations.contains(&equation_name(model, asm, r)))
@@ -533,7 +563,6 @@ impl KeptRows {
         for (k, &r) in keep.iter().enumerate() {
             map[r] = Some(k);
         }
-        let joint = |e: &str| e.rsplit_once('.').map_or(e, |(j, _)| j).to_string();
         let involved: Vec<String> = d
             .redundant
             .iter()

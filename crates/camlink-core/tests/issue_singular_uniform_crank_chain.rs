@@ -59,35 +59,41 @@ fn crank_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), Str
 /// fall by more than a third of (h₁/h₂)² from one step to the next
 /// wherever the smaller step's error is above 100 tol.
 fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
+    let mut failures = Vec::new();
     for &tol in tols {
         let mut errs = Vec::new();
         for &h in steps {
-            let (err, spread) =
-                crank_error(n, h, tol, t_end).unwrap_or_else(|e| panic!("h {h}, tol {tol}: {e}"));
+            let (err, spread) = match crank_error(n, h, tol, t_end) {
+                Ok(r) => r,
+                Err(e) => {
+                    eprintln!("N = {n}, h = {h:e} s, tol = {tol:e}, {t_end} s: failed: {e}");
+                    failures.push(format!("h {h}, tol {tol}: {e}"));
+                    errs.push(f64::NAN);
+                    continue;
+                }
+            };
             eprintln!(
                 "N = {n}, h = {h:e} s, tol = {tol:e}, {t_end} s: max |θ − θ_exact| {err:.2e} rad, \
                  crank spread {spread:.1e} rad"
             );
-            assert!(
-                err <= 200.0 * h * h + 10.0 * tol,
-                "h {h}, tol {tol}: error {err}"
-            );
-            assert!(
-                spread < 1e-7,
-                "h {h}, tol {tol}: the cranks parted by {spread}"
-            );
+            if err > 200.0 * h * h + 10.0 * tol {
+                failures.push(format!("h {h}, tol {tol}: error {err}"));
+            }
+            if spread >= 1e-7 {
+                failures.push(format!("h {h}, tol {tol}: the cranks parted by {spread}"));
+            }
             errs.push(err);
         }
         for (w, hs) in errs.windows(2).zip(steps.windows(2)) {
             let ratio = hs[0] / hs[1];
-            if w[1] > 100.0 * tol {
-                assert!(
-                    w[0] / w[1] > ratio * ratio / 3.0,
+            if w[1] > 100.0 * tol && !(w[0] / w[1] > ratio * ratio / 3.0) {
+                failures.push(format!(
                     "tol {tol}: errors {errs:?} do not fall at second order"
-                );
+                ));
             }
         }
     }
+    assert!(failures.is_empty(), "N = {n}: {failures:#?}");
 }
 
 #[test]
