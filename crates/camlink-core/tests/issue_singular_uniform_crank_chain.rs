@@ -54,11 +54,18 @@ fn crank_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), Str
 
 /// Runs the chain at each h and tol; every run must stay on the
 /// parallelogram branch (cranks within 1e-7 rad of each other) with an
-/// error of a second-order method, ≤ C h² + 10 tol (C = 200 rad/s²; the
-/// Newton tolerance bounds what a step can resolve), and the error must
+/// error of a second-order method, ≤ C h² + 10 tol (C = 200 rad/s² per
+/// 1.2 s, the phase error growing with time; the Newton tolerance bounds
+/// what a step can resolve), and the error must
 /// fall by more than a third of (h₁/h₂)² from one step to the next
 /// wherever the smaller step's error is above 100 tol.
 fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
+    let failures = matrix_failures(n, steps, tols, t_end);
+    assert!(failures.is_empty(), "N = {n}: {failures:#?}");
+}
+
+/// The runs of [`check_matrix`] that fail its checks, described.
+fn matrix_failures(n: usize, steps: &[f64], tols: &[f64], t_end: f64) -> Vec<String> {
     let mut failures = Vec::new();
     for &tol in tols {
         let mut errs = Vec::new();
@@ -76,7 +83,7 @@ fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
                 "N = {n}, h = {h:e} s, tol = {tol:e}, {t_end} s: max |θ − θ_exact| {err:.2e} rad, \
                  crank spread {spread:.1e} rad"
             );
-            if err > 200.0 * h * h + 10.0 * tol {
+            if err > 200.0 * (t_end / 1.2).max(1.0) * h * h + 10.0 * tol {
                 failures.push(format!("h {h}, tol {tol}: error {err}"));
             }
             if spread >= 1e-7 {
@@ -93,7 +100,7 @@ fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
             }
         }
     }
-    assert!(failures.is_empty(), "N = {n}: {failures:#?}");
+    failures
 }
 
 #[test]
@@ -107,7 +114,13 @@ fn uniform_crank_chain_full_matrix_when_camlink_long() {
         eprintln!("skipped: set CAMLINK_LONG=1 to run the 20 s matrix");
         return;
     }
-    for n in [2, 40] {
-        check_matrix(n, &[1e-3, 1e-4], &[1e-6, 1e-8, 1e-10], 20.0);
-    }
+    let failures: Vec<String> = [2, 40]
+        .iter()
+        .flat_map(|&n| {
+            matrix_failures(n, &[1e-3, 1e-4], &[1e-6, 1e-8, 1e-10], 20.0)
+                .into_iter()
+                .map(move |f| format!("N = {n}: {f}"))
+        })
+        .collect();
+    assert!(failures.is_empty(), "{failures:#?}");
 }
