@@ -65,6 +65,10 @@ const NOISE_SAFETY: f64 = 4.0;
 /// state (see `try_step`).
 const LAMBDA_JUMP: f64 = 1.5;
 
+/// A growth of the largest multiplier by more than this factor in one
+/// step triggers the same restart even when it is not accelerating.
+const LAMBDA_LEAP: f64 = 3.0;
+
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -170,6 +174,8 @@ pub struct Integrator<'m> {
     /// Whether the last step ended at a singular position (warned once
     /// per visit).
     near_singular: bool,
+    /// max |λ| two steps back (0: not known).
+    lambda_max_before: f64,
 }
 
 impl<'m> Integrator<'m> {
@@ -259,6 +265,7 @@ impl<'m> Integrator<'m> {
             rejected: 0,
             err_prev: None,
             near_singular: false,
+            lambda_max_before: 0.0,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
@@ -429,8 +436,9 @@ impl<'m> Integrator<'m> {
         // through the constraint curvature towards the position: started
         // from the multipliers of a step nearer to it, Newton converges to
         // a spurious root there (λ ~ 1e9), where the mechanism sticks.
-        // When λ grew fast in the last step, Newton starts instead from
-        // the multipliers consistent with the predicted state.
+        // When λ grew fast, and faster and faster, in the last steps,
+        // Newton starts instead from the multipliers consistent with the
+        // predicted state.
         if self.lambda_jumps() {
             self.consistent()?;
             let n = self.sys.n();
@@ -544,6 +552,7 @@ impl<'m> Integrator<'m> {
                         / (1.0 - c.alpha_m);
                 }
                 self.prev[0].copy_from_slice(&self.saved[2]);
+                self.lambda_max_before = max_abs(&self.prev[1]);
                 self.prev[1].copy_from_slice(&self.saved[3]);
                 self.h_prev = h;
                 self.t = t1;
@@ -589,9 +598,16 @@ impl<'m> Integrator<'m> {
     }
 
     /// True when the largest multiplier grew by more than [`LAMBDA_JUMP`]
-    /// times in the last step (a sign of a nearby singular position).
+    /// times in the last step and faster than in the step before (the
+    /// 1/δ growth near a singular position, not that of loads building up
+    /// from rest, which slows), or by more than [`LAMBDA_LEAP`] times.
     fn lambda_jumps(&self) -> bool {
-        self.h_prev > 0.0 && max_abs(&self.saved[3]) > LAMBDA_JUMP * max_abs(&self.prev[1])
+        let (l0, l1, l2) = (
+            self.lambda_max_before,
+            max_abs(&self.prev[1]),
+            max_abs(&self.saved[3]),
+        );
+        self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
     }
 
     /// True when the last factorization found S singular in a model
