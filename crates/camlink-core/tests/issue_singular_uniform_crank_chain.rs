@@ -93,7 +93,8 @@ fn matrix_failures(n: usize, steps: &[f64], tols: &[f64], t_end: f64) -> Vec<Str
         }
         for (w, hs) in errs.windows(2).zip(steps.windows(2)) {
             let ratio = hs[0] / hs[1];
-            if w[1] > 100.0 * tol && !(w[0] / w[1] > ratio * ratio / 3.0) {
+            let falls = w[0] / w[1] > ratio * ratio / 3.0;
+            if w[1] > 100.0 * tol && !falls {
                 failures.push(format!(
                     "tol {tol}: errors {errs:?} do not fall at second order"
                 ));

@@ -46,7 +46,7 @@ enum Multipliers {
     /// Φ_q square: its transpose, factored.
     Square(SystemMatrix),
     /// Redundant equations (m > n): the minimum-norm λ.
-    MinNorm(Augmented),
+    MinNorm(Box<Augmented>),
 }
 
 /// D = I in the augmented matrix of the minimum-norm multipliers.
@@ -69,7 +69,7 @@ impl<'m> InverseSolver<'m> {
         let solve = if m > n {
             let mut aug = Augmented::new(&sys, &kin.q).map_err(internal)?;
             aug.set_regularised(true);
-            Multipliers::MinNorm(aug)
+            Multipliers::MinNorm(Box::new(aug))
         } else {
             let mut pattern = Vec::new();
             sys.asm
