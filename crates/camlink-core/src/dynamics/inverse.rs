@@ -20,7 +20,8 @@
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
-use super::system::{Augmented, Coefficients, System};
+use super::project::IDENTITY;
+use super::system::{Augmented, System};
 use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
@@ -48,15 +49,6 @@ enum Multipliers {
     /// Redundant equations (m > n): the minimum-norm λ.
     MinNorm(Box<Augmented>),
 }
-
-/// D = I in the augmented matrix of the minimum-norm multipliers.
-const IDENTITY: Coefficients = Coefficients {
-    mass: 0.0,
-    damping: 0.0,
-    stiffness: 0.0,
-    identity: 1.0,
-    scale: 1.0,
-};
 
 impl<'m> InverseSolver<'m> {
     /// Checks that the model is fully driven and lays it out.
