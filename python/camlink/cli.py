@@ -371,7 +371,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
         for f in design:
             print(f"design       {f['text']}")
         return EXIT_OK
-    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {_verdict(dof, bool(r['redundant']), _involves_driver(r))})")
+    verdict = _verdict(dof, bool(r["redundant"]), _involves_driver(r))
+    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
         print(f"  free motion {k}: {parts}")
