@@ -300,22 +300,40 @@ def _print_design(model: camlink.Model) -> None:
         print(f"camlink: {f['text']}", file=sys.stderr)
 
 
-def _verdict(dof: int, redundant: bool) -> str:
+def _verdict(dof: int, redundant: bool, redundant_driver: bool = False) -> str:
     """The analyses that accept a model with `dof` free motions: dynamics
-    and equilibrium accept redundant equations, kinematics and inverse
-    dynamics need as many independent equations as coordinates."""
+    and equilibrium accept redundant equations, and so do kinematics and
+    inverse dynamics once the model is fully driven (they leave the
+    redundant equations out), unless a driver is among them (over-driven)."""
+    if redundant_driver:
+        return (
+            "over-driven: a driver fixes a motion the other equations fix already; "
+            "remove it for kinematics and inverse dynamics"
+        )
     if dof == 0 and not redundant:
         return "fully driven: ready for kinematics and inverse dynamics"
     if dof == 0:
         return (
-            "fully driven, with redundant equations: remove them for kinematics and "
-            "inverse dynamics"
+            "fully driven, with redundant equations: ready for kinematics and inverse "
+            "dynamics (the redundant equations are left out; their joints' reactions "
+            "are not unique)"
         )
     plural = "s" if dof != 1 else ""
-    need = f"add {dof} driver{plural}" + (
-        " and remove the redundant equations" if redundant else ""
+    return (
+        f"{dof} free motion{plural}: ready for dynamics and equilibrium; "
+        f"add {dof} driver{plural} for kinematics"
     )
-    return f"{dof} free motion{plural}: ready for dynamics and equilibrium; {need} for kinematics"
+
+
+def _involves_driver(report: dict[str, Any]) -> bool:
+    """Whether a driver's equation is redundant or one a redundant
+    equation depends on."""
+    drivers = {j["name"] for j in report["joints"] if j["driver"]}
+    for red in report["redundant"]:
+        names = [red["equation"], *(n for n, _ in red["depends_on"])]
+        if any(n.rsplit(".", 1)[0] in drivers for n in names):
+            return True
+    return False
 
 
 def _cmd_check(args: argparse.Namespace) -> int:
@@ -357,7 +375,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
         for f in design:
             print(f"design       {f['text']}")
         return EXIT_OK
-    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {_verdict(dof, bool(r['redundant']))})")
+    verdict = _verdict(dof, bool(r["redundant"]), _involves_driver(r))
+    print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
         print(f"  free motion {k}: {parts}")

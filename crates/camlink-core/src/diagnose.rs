@@ -123,6 +123,64 @@ pub fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> 
     redundant_rows(model, asm, &dense_jacobian(model, asm, q, t))
 }
 
+/// A joint counts among the weakest when its share of the weakest
+/// combination of equations is at least this fraction of the largest share.
+const WEAK_SHARE: f64 = 0.1;
+
+/// The joints whose equations lose rank first at `q` (m or rad), time `t`
+/// (s), in model order: u, the left singular vector of Φ_q for its
+/// smallest singular value among the min(m, n) largest, is the
+/// combination of equations that is nearest to dependent (Φ_qᵀu = σ_min v);
+/// a joint is named when the norm of u over its rows is at least
+/// [`WEAK_SHARE`] of the largest such norm. Empty for a model larger than
+/// [`DENSE_MAX`] coordinates or without equations.
+pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
+    let (n, m) = (asm.n, asm.m);
+    if n > DENSE_MAX || m == 0 || n == 0 {
+        return Vec::new();
+    }
+    let j = dense_jacobian(model, asm, q, t);
+    let Ok(svd) = j.svd() else {
+        return Vec::new();
+    };
+    let s = svd.S().column_vector();
+    let k = (0..s.nrows().min(m).min(n))
+        .min_by(|&a, &b| s[a].total_cmp(&s[b]))
+        .unwrap_or(0);
+    let u = svd.U();
+    let share: Vec<f64> = (0..model.joints.len())
+        .map(|jt| {
+            asm.rows_of(model, jt)
+                .map(|r| u[(r, k)] * u[(r, k)])
+                .sum::<f64>()
+                .sqrt()
+        })
+        .collect();
+    let big = share.iter().fold(0.0f64, |a, &b| a.max(b));
+    model
+        .joints
+        .iter()
+        .zip(&share)
+        .filter(|&(_, &w)| big > 0.0 && w >= WEAK_SHARE * big)
+        .map(|(jt, _)| jt.name.clone())
+        .collect()
+}
+
+/// The clause of a warning naming the joints whose equations lose rank
+/// (empty when none are known): ` at joints O2, A, B, O4 (their equations
+/// lose rank)`.
+pub fn losing_rank(joints: &[String]) -> String {
+    if joints.is_empty() {
+        String::new()
+    } else {
+        format!(
+            " at joint{} {} (their equations lose rank)",
+            if joints.len() > 1 { "s" } else { "" },
+            joints.join(", ")
+        )
+    }
+}
+
 /// Φ_q as a dense m × n matrix.
 pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f64> {
     let mut j = Mat::zeros(asm.m, asm.n);
@@ -409,5 +467,162 @@ mod tests {
         let motion: Vec<&str> = d.free_motions[0].iter().map(|(n, _)| n.as_str()).collect();
         assert!(motion.contains(&"crank.phi"), "{motion:?}");
         assert!(motion.contains(&"rocker.phi"), "{motion:?}");
+    }
+}
+
+/// The independent equations of a model with redundant ones, for an
+/// analysis that needs a square Φ_q (kinematics): the redundant rows
+/// (dependent on earlier rows at the assembled configuration, as
+/// [`diagnose`] finds them) are left out of the solve; being combinations
+/// of the rows kept, they hold wherever those do.
+#[derive(Clone, Debug)]
+pub struct KeptRows {
+    /// The rows kept, in model order: reduced row k is row `keep[k]`.
+    keep: Vec<usize>,
+    /// For each of the m rows, its reduced index (None: left out).
+    map: Vec<Option<usize>>,
+    /// Scratch of length m.
+    full: Vec<f64>,
+    /// The redundant equations (`joint.equation`), in model order.
+    pub equations: Vec<String>,
+    /// The joints of the redundant rows and of the rows they depend on,
+    /// in model order: their reactions are not unique.
+    pub joints: Vec<String>,
+}
+
+impl KeptRows {
+    /// The rows to keep for a model with more equations than coordinates,
+    /// from its [`diagnose`] at time `t` (s) with assembly tolerance `tol`:
+    /// an error message when the dependent equations do not make up the
+    /// excess (a model that is locked or singular, not only redundant), or
+    /// the model is too large for the dense analysis.
+    pub fn find(model: &Model, asm: &Assembly, t: f64, tol: f64) -> Result<KeptRows, String> {
+        let (n, m) = (asm.n, asm.m);
+        let d = diagnose(model, t, tol);
+        if !d.exact {
+            return Err(format!(
+                "{n} coordinates but {m} equations, and the model is too large (more than \
+                 {DENSE_MAX} coordinates) to find its redundant equations; remove {} \
+                 equation(s)",
+                m - n
+            ));
+        }
+        if d.residual > tol {
+            return Err(format!(
+                "{n} coordinates but {m} equations, and the model does not assemble \
+                 (largest |Φ| {:.3e}), so its redundant equations cannot be told apart",
+                d.residual
+            ));
+        }
+        if d.rank < n || d.redundant.len() != m - n {
+            return Err(format!(
+                "{n} coordinates but {m} equations of rank {}: {} equation(s) too many \
+                 and {} degree(s) of freedom left; remove redundant joints or drivers \
+                 (`camlink check` names them)",
+                d.rank,
+                m - d.rank,
+                n - d.rank
+            ));
+        }
+        // A driver among the dependent equations fixes a motion that the
+        // others fix already: over-driven, consistent at most at time t.
+        let joint = |e: &str| e.rsplit_once('.').map_or(e, |(j, _)| j).to_string();
+        let is_driver = |e: &str| {
+            let name = joint(e);
+            model.joints.iter().any(|j| j.driver && j.name == name)
+        };
+        let drivers: Vec<String> = d
+            .redundant
+            .iter()
+            .flat_map(|r| {
+                std::iter::once(r.equation.as_str())
+                    .chain(r.depends_on.iter().map(|(e, _)| e.as_str()))
+            })
+            .filter(|e| is_driver(e))
+            .map(joint)
+            .fold(Vec::new(), |mut v, j| {
+                if !v.contains(&j) {
+                    v.push(j);
+                }
+                v
+            });
+        if !drivers.is_empty() {
+            return Err(format!(
+                "{n} coordinates but {m} equations: over-driven, driver(s) {} fix a motion \
+                 that the other equations fix already; remove one (`camlink check` names \
+                 the redundant equations)",
+                drivers.join(", ")
+            ));
+        }
+        let equations: Vec<String> = d.redundant.iter().map(|r| r.equation.clone()).collect();
+        let dropped: Vec<usize> = (0..m)
+            .filter(|&r| equations.contains(&equation_name(model, asm, r)))
+            .collect();
+        let keep: Vec<usize> = (0..m).filter(|r| !dropped.contains(r)).collect();
+        let mut map = vec![None; m];
+        for (k, &r) in keep.iter().enumerate() {
+            map[r] = Some(k);
+        }
+        let involved: Vec<String> = d
+            .redundant
+            .iter()
+            .flat_map(|r| {
+                std::iter::once(joint(&r.equation))
+                    .chain(r.depends_on.iter().map(|(e, _)| joint(e)))
+            })
+            .collect();
+        let joints = model
+            .joints
+            .iter()
+            .filter(|j| involved.contains(&j.name))
+            .map(|j| j.name.clone())
+            .collect();
+        Ok(KeptRows {
+            keep,
+            map,
+            full: vec![0.0; m],
+            equations,
+            joints,
+        })
+    }
+
+    /// The reduced index of row `r`, None when it is left out.
+    #[inline]
+    pub fn reduced(&self, r: usize) -> Option<usize> {
+        self.map[r]
+    }
+
+    /// The full row of reduced row `k`.
+    #[inline]
+    pub fn full_row(&self, k: usize) -> usize {
+        self.keep[k]
+    }
+
+    /// Fills the full scratch (length m) with `fill`, then copies the kept
+    /// rows into `out` (length m − redundant).
+    #[inline]
+    pub fn gather(&mut self, fill: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        fill(&mut self.full);
+        for (o, &r) in out.iter_mut().zip(&self.keep) {
+            *o = self.full[r];
+        }
+    }
+
+    /// The warning of a run that left the redundant equations out, at time
+    /// `t` (s).
+    pub fn warning(&self, t: f64) -> crate::run::Warning {
+        crate::run::Warning {
+            kind: crate::run::Kind::Redundant,
+            time: t,
+            joints: self.joints.clone(),
+            message: format!(
+                "{} redundant constraint equation(s) ({}) left out of the solve (they hold \
+                 wherever the others do): the motion is determined, but the reactions of \
+                 joints {} are not unique; the minimum-norm split is reported",
+                self.equations.len(),
+                self.equations.join(", "),
+                self.joints.join(", ")
+            ),
+        }
     }
 }

@@ -24,7 +24,7 @@ use crate::assembly::Assembly;
 use crate::constraint::Equations;
 use crate::contact::Contacts;
 use crate::design::StepGuard;
-use crate::diagnose::{levenberg_marquardt, DENSE_MAX};
+use crate::diagnose::{levenberg_marquardt, KeptRows, DENSE_MAX};
 use crate::fmt_num::num;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::rot_d;
@@ -151,6 +151,8 @@ pub struct Solver<'m> {
     size: f64,
     /// Whether the last factorization was near singular.
     near_singular: bool,
+    /// The rows solved for in a model with redundant equations (None: all).
+    kept: Option<KeptRows>,
     pub summary: Summary,
     /// Contact points and pressure angles of the curve-contact joints.
     contacts: Contacts,
@@ -179,19 +181,26 @@ impl<'m> Solver<'m> {
                 ),
             ));
         }
-        if m > n {
-            return Err(fail(
-                Kind::Redundant,
-                &format!(
-                    "{n} coordinates but {m} equations: {} equation(s) too many; \
-                     remove redundant joints or drivers (`camlink check` names them)",
-                    m - n
-                ),
-            ));
+        // Redundant equations are left out of the solve.
+        let kept = if m > n {
+            Some(
+                KeptRows::find(model, &asm, 0.0, settings.tol)
+                    .map_err(|e| fail(Kind::Redundant, &e))?,
+            )
+        } else {
+            None
+        };
+        let mut summary = Summary::default();
+        if let Some(k) = &kept {
+            summary.warnings.push(k.warning(0.0));
         }
         let q = asm.initial_q(model);
         let mut pattern = Vec::new();
-        asm.jacobian(model, &q, 0.0, |r, c, _| pattern.push((r, c)));
+        asm.jacobian(model, &q, 0.0, |r, c, _| {
+            if let Some(r) = reduced(kept.as_ref(), r) {
+                pattern.push((r, c));
+            }
+        });
         Ok(Solver {
             model,
             settings,
@@ -207,9 +216,10 @@ impl<'m> Solver<'m> {
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
+            kept,
             q,
             asm,
-            summary: Summary::default(),
+            summary,
             contacts: Contacts::new(model),
             newton: newton::Workspace::new(n, n),
         })
@@ -293,19 +303,39 @@ impl<'m> Solver<'m> {
         // ν is evaluated in the same pass over the joints as Φ_q.
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.h_prev = prev.map(|p| t - p);
-        refactor(
-            self.model,
-            &self.asm,
-            &mut self.jac,
-            &self.q,
-            t,
-            Some(&mut self.qd),
-            &mut self.summary,
-        )
+        let (asm, model) = (&self.asm, self.model);
+        match &mut self.kept {
+            None => refactor(
+                model,
+                asm,
+                &mut self.jac,
+                &self.q,
+                t,
+                None,
+                Some(&mut self.qd),
+                &mut self.summary,
+            ),
+            Some(k) => {
+                k.gather(|f| asm.nu(model, &self.q, t, f), &mut self.qd);
+                refactor(
+                    model,
+                    asm,
+                    &mut self.jac,
+                    &self.q,
+                    t,
+                    Some(k),
+                    None,
+                    &mut self.summary,
+                )
+            }
+        }
         .map_err(|s| self.singular(t, s))?;
         self.jac.solve(&mut self.qd);
-        self.asm
-            .gamma(self.model, &self.q, &self.qd, t, &mut self.qdd);
+        let (asm, model) = (&self.asm, self.model);
+        match &mut self.kept {
+            None => asm.gamma(model, &self.q, &self.qd, t, &mut self.qdd),
+            Some(k) => k.gather(|f| asm.gamma(model, &self.q, &self.qd, t, f), &mut self.qdd),
+        }
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(
@@ -367,17 +397,19 @@ impl<'m> Solver<'m> {
         };
         let near = pivot < NEAR_SINGULAR;
         if near && !self.near_singular {
+            let joints = crate::diagnose::weakest_joints(self.model, &self.asm, &self.q, t);
             self.summary.warnings.push(Warning {
                 kind: Kind::NearSingular,
                 time: t,
-                joints: Vec::new(),
                 message: format!(
                     "near-singular configuration (relative pivot {}, \
-                     condition about {}): a toggle or dead-centre position; \
+                     condition about {}){}: a toggle or dead-centre position; \
                      accuracy of velocities and accelerations may suffer here",
                     num(pivot),
-                    num(1.0 / pivot)
+                    num(1.0 / pivot),
+                    crate::diagnose::losing_rank(&joints)
                 ),
+                joints,
             });
         }
         self.near_singular = near;
@@ -470,6 +502,7 @@ impl<'m> Solver<'m> {
         let mut problem = Positions {
             model: self.model,
             asm: &self.asm,
+            kept: self.kept.as_mut(),
             jac: &mut self.jac,
             summary: &mut self.summary,
             t,
@@ -480,7 +513,8 @@ impl<'m> Solver<'m> {
     }
 
     fn singular(&self, t: f64, s: Singular) -> AnalysisError {
-        let (j, _) = self.asm.joint_of_row(s.row);
+        let row = self.kept.as_ref().map_or(s.row, |k| k.full_row(s.row));
+        let (j, _) = self.asm.joint_of_row(row);
         let mut e = self.failure(
             Kind::LockUp,
             t,
@@ -550,8 +584,12 @@ impl<'m> Solver<'m> {
     /// Solves Φ_q q⃛ = η at the solved state of time `t`, with the
     /// factorization of its acceleration step.
     pub fn jerk(&mut self, t: f64) -> Result<(), AnalysisError> {
-        self.asm
-            .eta(self.model, &self.q, &self.qd, &self.qdd, t, &mut self.qddd);
+        let (asm, model) = (&self.asm, self.model);
+        let (q, qd, qdd) = (&self.q, &self.qd, &self.qdd);
+        match &mut self.kept {
+            None => asm.eta(model, q, qd, qdd, t, &mut self.qddd),
+            Some(k) => k.gather(|f| asm.eta(model, q, qd, qdd, t, f), &mut self.qddd),
+        }
         self.jac.solve(&mut self.qddd);
         if self.qddd.iter().any(|v| !v.is_finite()) {
             return Err(self.failure(Kind::NotFinite, t, "jerks are not finite numbers"));
@@ -597,21 +635,26 @@ impl<'m> Solver<'m> {
     }
 }
 
-/// Fills Φ_q at `q` into `jac` and factors it; with `nu`, writes ν(q, t)
-/// there in the same pass over the joints.
+/// Fills Φ_q at `q` into `jac` (only the rows `kept`, when redundant
+/// equations are left out) and factors it; with `nu`, writes ν(q, t) there
+/// in the same pass over the joints (all rows: only without `kept`).
+#[allow(clippy::too_many_arguments)]
 fn refactor(
     model: &Model,
     asm: &Assembly,
     jac: &mut SystemMatrix,
     q: &[f64],
     t: f64,
+    kept: Option<&KeptRows>,
     nu: Option<&mut [f64]>,
     summary: &mut Summary,
 ) -> Result<(), Singular> {
     let mut k = 0;
     let put = |r, c, v| {
-        jac.put(k, r, c, v);
-        k += 1;
+        if let Some(r) = reduced(kept, r) {
+            jac.put(k, r, c, v);
+            k += 1;
+        }
     };
     match nu {
         Some(nu) => asm.jacobian_and_nu(model, q, t, nu, put),
@@ -626,6 +669,8 @@ fn refactor(
 struct Positions<'a> {
     model: &'a Model,
     asm: &'a Assembly,
+    /// The rows solved for when redundant equations are left out.
+    kept: Option<&'a mut KeptRows>,
     jac: &'a mut SystemMatrix,
     summary: &'a mut Summary,
     t: f64,
@@ -641,7 +686,11 @@ impl newton::Problem for Positions<'_> {
     type Error = Singular;
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
-        self.asm.phi(self.model, q, self.t, phi);
+        let (asm, model, t) = (self.asm, self.model, self.t);
+        match &mut self.kept {
+            None => asm.phi(model, q, t, phi),
+            Some(k) => k.gather(|f| asm.phi(model, q, t, f), phi),
+        }
         newton::Measure::max_abs(phi, self.tol)
     }
 
@@ -660,6 +709,7 @@ impl newton::Problem for Positions<'_> {
                 self.jac,
                 q,
                 self.t,
+                self.kept.as_deref(),
                 None,
                 self.summary,
             ) {
@@ -676,6 +726,7 @@ impl newton::Problem for Positions<'_> {
                     self.jac,
                     q,
                     self.t,
+                    self.kept.as_deref(),
                     None,
                     self.summary,
                 )?;
@@ -705,6 +756,16 @@ impl newton::Problem for Positions<'_> {
 /// Largest model (coordinates) whose Jacobian condition is computed for an
 /// error message.
 const DIAGNOSE_MAX: usize = 600;
+
+/// The row of the solve that equation `r` fills: `r` itself, or its
+/// reduced index when redundant equations are left out (None: left out).
+#[inline]
+fn reduced(kept: Option<&KeptRows>, r: usize) -> Option<usize> {
+    match kept {
+        None => Some(r),
+        Some(k) => k.reduced(r),
+    }
+}
 
 /// A length that sizes the model: the largest distance of a body or point
 /// from the origin (m), at least 1 mm.

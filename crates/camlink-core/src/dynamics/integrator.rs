@@ -60,6 +60,15 @@ const SINGULAR_ITER: usize = 4;
 /// solve counts as converged.
 const NOISE_SAFETY: f64 = 4.0;
 
+/// A step whose largest multiplier grew by more than this factor makes
+/// the next one start from the multipliers consistent with its predicted
+/// state (see `try_step`).
+const LAMBDA_JUMP: f64 = 1.5;
+
+/// A growth of the largest multiplier by more than this factor in one
+/// step triggers the same restart even when it is not accelerating.
+const LAMBDA_LEAP: f64 = 3.0;
+
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -171,6 +180,11 @@ pub struct Integrator<'m> {
     pub rejected: usize,
     /// The weighted error of the last accepted error-controlled step.
     err_prev: Option<f64>,
+    /// Whether the last step ended at a singular position (warned once
+    /// per visit).
+    near_singular: bool,
+    /// max |λ| two steps back (0: not known).
+    lambda_max_before: f64,
 }
 
 impl<'m> Integrator<'m> {
@@ -259,9 +273,12 @@ impl<'m> Integrator<'m> {
             redundant,
             rejected: 0,
             err_prev: None,
+            near_singular: false,
+            lambda_max_before: 0.0,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
+        it.watch_singularity();
         Ok(it)
     }
 
@@ -411,6 +428,7 @@ impl<'m> Integrator<'m> {
         }
         self.save();
         if self.try_step(h, false)? {
+            self.watch_singularity();
             return Ok(());
         }
         // Slow convergence with an old matrix: retry from the constant
@@ -418,6 +436,7 @@ impl<'m> Integrator<'m> {
         self.restore();
         self.h_prev = 0.0;
         if self.try_step(h, true)? {
+            self.watch_singularity();
             return Ok(());
         }
         self.restore();
@@ -481,6 +500,19 @@ impl<'m> Integrator<'m> {
                 / (1.0 - c.alpha_m);
             self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
+        }
+        // Near a singular position the multipliers of the lost direction
+        // grow as 1/δ with the distance δ from it, and their tension pulls
+        // through the constraint curvature towards the position: started
+        // from the multipliers of a step nearer to it, Newton converges to
+        // a spurious root there (λ ~ 1e9), where the mechanism sticks.
+        // When λ grew fast, and faster and faster, in the last steps,
+        // Newton starts instead from the multipliers consistent with the
+        // predicted state.
+        if self.lambda_jumps() {
+            self.consistent()?;
+            let n = self.sys.n();
+            self.lambda.copy_from_slice(&self.rhs[n..]);
         }
         let mut last = f64::INFINITY;
         self.noise.fill(0.0);
@@ -590,6 +622,7 @@ impl<'m> Integrator<'m> {
                         / (1.0 - c.alpha_m);
                 }
                 self.prev[0].copy_from_slice(&self.saved[2]);
+                self.lambda_max_before = max_abs(&self.prev[1]);
                 self.prev[1].copy_from_slice(&self.saved[3]);
                 self.h_prev = h;
                 self.t = t1;
@@ -609,6 +642,42 @@ impl<'m> Integrator<'m> {
         }
         self.aug.invalidate();
         Ok(false)
+    }
+
+    /// Records a `near_singular` warning, naming the joints whose
+    /// equations lose rank ([`crate::diagnose::weakest_joints`]), when a
+    /// step ends at a singular position after one that did not.
+    fn watch_singularity(&mut self) {
+        let near = self.at_singular_position();
+        if near && !self.near_singular {
+            let (model, asm) = (self.sys.model, &self.sys.asm);
+            let joints = crate::diagnose::weakest_joints(model, asm, &self.q, self.t);
+            self.summary.warnings.push(run::Warning {
+                kind: Kind::NearSingular,
+                time: self.t,
+                message: format!(
+                    "near-singular configuration{}: the constraint Jacobian loses rank \
+                     (a toggle, a dead centre, the flat position of a parallelogram); \
+                     the multipliers of the lost direction are not determined here",
+                    crate::diagnose::losing_rank(&joints)
+                ),
+                joints,
+            });
+        }
+        self.near_singular = near;
+    }
+
+    /// True when the largest multiplier grew by more than [`LAMBDA_JUMP`]
+    /// times in the last step and faster than in the step before (the
+    /// 1/δ growth near a singular position, not that of loads building up
+    /// from rest, which slows), or by more than [`LAMBDA_LEAP`] times.
+    fn lambda_jumps(&self) -> bool {
+        let (l0, l1, l2) = (
+            self.lambda_max_before,
+            max_abs(&self.prev[1]),
+            max_abs(&self.saved[3]),
+        );
+        self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
     }
 
     /// True when the last factorization found S singular in a model

@@ -7,7 +7,12 @@
 //!
 //! Φ_qᵀ λ = Q(q, q̇, t) − M(q) q̈,
 //!
-//! one solve with the transposed Jacobian (Haug §6.5). Joint reactions and
+//! one solve with the transposed Jacobian (Haug §6.5). A model with
+//! redundant equations (m > n, Φ_q of rank n; kinematics leaves the
+//! dependent rows out) has a family of multipliers λ + w, Φ_qᵀw = 0: the
+//! one reported is the minimum-norm λ, from
+//! [I Φ_qᵀ; Φ_q 0][x; λ] = [Q − M q̈; 0] (x = 0 as Φ_q has full column
+//! rank), solved by [`Augmented::solve_refined`]. Joint reactions and
 //! driver efforts follow from λ ([`super::reaction`]), and so do the curve
 //! contacts' normal forces, whose negative intervals (lift-off) become
 //! warnings and `lift_off` records of the run summary
@@ -15,7 +20,8 @@
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
-use super::system::System;
+use super::project::IDENTITY;
+use super::system::{Augmented, System};
 use crate::kinematics;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
@@ -25,11 +31,23 @@ use crate::run::{self, AnalysisError, Kind, PointOutput, Settings, Sink, Summary
 pub struct InverseSolver<'m> {
     pub kin: kinematics::Solver<'m>,
     pub sys: System<'m>,
-    /// Φ_qᵀ and its factorization.
-    jt: SystemMatrix,
+    /// Φ_qᵀ and its factorization, or the augmented matrix of the
+    /// minimum-norm multipliers of a model with redundant equations.
+    solve: Multipliers,
     /// λ at the last step (one per equation, in assembly order).
     pub lambda: Vec<f64>,
+    /// Q − M q̈ (length n; n + m for the augmented matrix).
     rhs: Vec<f64>,
+    /// n zeros: the rates the augmented matrix D = I is filled at.
+    zeros: Vec<f64>,
+}
+
+/// How λ is found from Φ_qᵀλ = Q − M q̈.
+enum Multipliers {
+    /// Φ_q square: its transpose, factored.
+    Square(SystemMatrix),
+    /// Redundant equations (m > n): the minimum-norm λ.
+    MinNorm(Box<Augmented>),
 }
 
 impl<'m> InverseSolver<'m> {
@@ -37,15 +55,24 @@ impl<'m> InverseSolver<'m> {
     pub fn new(model: &'m Model, settings: Settings) -> Result<Self, AnalysisError> {
         let kin = kinematics::Solver::new(model, settings)?;
         let sys = System::new(model);
-        let mut pattern = Vec::new();
-        sys.asm
-            .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
-        let n = sys.n();
+        let (n, m) = (sys.n(), sys.m());
+        let internal =
+            |e: crate::linsolve::SetupError| AnalysisError::new(Kind::Internal, 0.0, e.to_string());
+        let solve = if m > n {
+            let mut aug = Augmented::new(&sys, &kin.q).map_err(internal)?;
+            aug.set_regularised(true);
+            Multipliers::MinNorm(Box::new(aug))
+        } else {
+            let mut pattern = Vec::new();
+            sys.asm
+                .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
+            Multipliers::Square(SystemMatrix::try_new(n, &pattern).map_err(internal)?)
+        };
         Ok(InverseSolver {
-            jt: SystemMatrix::try_new(n, &pattern)
-                .map_err(|e| AnalysisError::new(Kind::Internal, 0.0, e.to_string()))?,
-            lambda: vec![0.0; n],
-            rhs: vec![0.0; n],
+            solve,
+            lambda: vec![0.0; m],
+            rhs: vec![0.0; if m > n { n + m } else { n }],
+            zeros: vec![0.0; n],
             kin,
             sys,
         })
@@ -56,29 +83,49 @@ impl<'m> InverseSolver<'m> {
         self.kin.step(t, prev)?;
         let (q, qd, qdd) = (&self.kin.q, &self.kin.qd, &self.kin.qdd);
         // Φ_qᵀ λ = Q − M q̈.
-        self.sys.forces(q, qd, t, &mut self.rhs)?;
-        for v in self.rhs.iter_mut() {
+        let n = self.sys.n();
+        let f = &mut self.rhs[..n];
+        self.sys.forces(q, qd, t, f)?;
+        for v in f.iter_mut() {
             *v = -*v;
         }
-        self.sys.add_mass_times(q, qdd, &mut self.rhs);
-        for v in self.rhs.iter_mut() {
+        self.sys.add_mass_times(q, qdd, f);
+        for v in f.iter_mut() {
             *v = -*v;
         }
-        let jt = &mut self.jt;
-        let mut k = 0;
-        self.sys.asm.jacobian(self.sys.model, q, t, |r, c, v| {
-            jt.put(k, c, r, v);
-            k += 1;
-        });
-        if self.jt.factor().is_err() {
-            return Err(AnalysisError::new(
+        let singular = || {
+            AnalysisError::new(
                 Kind::LockUp,
                 t,
                 "the constraint Jacobian is singular: reactions are not determined",
-            ));
+            )
+        };
+        match &mut self.solve {
+            Multipliers::Square(jt) => {
+                let mut k = 0;
+                self.sys.asm.jacobian(self.sys.model, q, t, |r, c, v| {
+                    jt.put(k, c, r, v);
+                    k += 1;
+                });
+                if jt.factor().is_err() {
+                    return Err(singular());
+                }
+                self.lambda.copy_from_slice(&self.rhs);
+                jt.solve(&mut self.lambda);
+            }
+            Multipliers::MinNorm(aug) => {
+                let zeros = &self.zeros;
+                if aug
+                    .refactor(&self.sys, q, zeros, zeros, None, t, IDENTITY)
+                    .is_err()
+                {
+                    return Err(singular());
+                }
+                self.rhs[n..].fill(0.0);
+                aug.solve_refined(&mut self.rhs);
+                self.lambda.copy_from_slice(&self.rhs[n..]);
+            }
         }
-        self.lambda.copy_from_slice(&self.rhs);
-        self.jt.solve(&mut self.lambda);
         if self.lambda.iter().any(|v| !v.is_finite()) {
             return Err(AnalysisError::new(
                 Kind::NotFinite,

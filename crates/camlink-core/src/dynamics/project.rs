@@ -20,7 +20,7 @@ use crate::newton::{self, Failure};
 use crate::run::Kind;
 
 /// The projection matrix's coefficients: D = I.
-const IDENTITY: Coefficients = Coefficients {
+pub const IDENTITY: Coefficients = Coefficients {
     mass: 0.0,
     damping: 0.0,
     stiffness: 0.0,
