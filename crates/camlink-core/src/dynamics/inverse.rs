@@ -45,7 +45,7 @@ pub struct InverseSolver<'m> {
 /// How λ is found from Φ_qᵀλ = Q − M q̈.
 enum Multipliers {
     /// Φ_q square: its transpose, factored.
-    Square(SystemMatrix),
+    Square(Box<SystemMatrix>),
     /// Redundant equations (m > n): the minimum-norm λ.
     MinNorm(Box<Augmented>),
 }
@@ -66,7 +66,9 @@ impl<'m> InverseSolver<'m> {
             let mut pattern = Vec::new();
             sys.asm
                 .jacobian(model, &kin.q, 0.0, |r, c, _| pattern.push((c, r)));
-            Multipliers::Square(SystemMatrix::try_new(n, &pattern).map_err(internal)?)
+            Multipliers::Square(Box::new(
+                SystemMatrix::try_new(n, &pattern).map_err(internal)?,
+            ))
         };
         Ok(InverseSolver {
             solve,
