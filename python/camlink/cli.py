@@ -21,6 +21,7 @@ from camlink._core import AnalysisError, ModelError
 from camlink.jump import flight_summary
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
+from camlink.records import CheckReport
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
 
@@ -325,7 +326,7 @@ def _verdict(dof: int, redundant: bool, redundant_driver: bool = False) -> str:
     )
 
 
-def _involves_driver(report: dict[str, Any]) -> bool:
+def _involves_driver(report: CheckReport) -> bool:
     """Whether a driver's equation is redundant or one a redundant
     equation depends on."""
     drivers = {j["name"] for j in report["joints"] if j["driver"]}

@@ -76,7 +76,7 @@ class ConstraintCount(TypedDict):
 class RedundantEquation(TypedDict):
     """An equation of Φ that depends on others at the placement."""
 
-    #: ``"joint[row]"``.
+    #: ``"joint.equation"``, e.g. ``"O4.x"``.
     equation: str
     #: The equations it is a combination of, as (equation, coefficient).
     depends_on: list[tuple[str, float]]
