@@ -79,7 +79,7 @@ READ_SUFFIXES = {**SUFFIXES, ".arrows": "arrows"}
 ROW_GROUP_ROWS = 1 << 16
 
 #: Most bytes of values per Parquet row group (fewer rows for a wide model).
-ROW_GROUP_BYTES = 8 << 20
+ROW_GROUP_BYTES = 4 << 20
 
 
 def _umask() -> int:
@@ -283,7 +283,7 @@ class ParquetWriter:
         if not len(rows):
             return
         batch = pa.record_batch(
-            [pa.array(rows[:, k]) for k in range(len(names))], schema=self._schema
+            [_float_array(rows[:, k]) for k in range(len(names))], schema=self._schema
         )
         self._journal.write_batch(batch)
         self._journal_sink.flush()
@@ -330,6 +330,16 @@ class ParquetWriter:
     def columns(self) -> ColumnSource:
         """The written file (after `close`), read column by column."""
         return ParquetColumns(self.path)
+
+
+def _float_array(values: npt.NDArray[np.float64]) -> Any:
+    """An Arrow double array over `values` (copied only when not
+    contiguous). `pyarrow.array` would import pandas, seconds at the first
+    chunk, to ask whether `values` is a pandas object."""
+    import pyarrow as pa
+
+    values = np.ascontiguousarray(values, dtype=np.float64)
+    return pa.Array.from_buffers(pa.float64(), len(values), [None, pa.py_buffer(values)])
 
 
 def read_arrow_stream(path: Path) -> Any:
