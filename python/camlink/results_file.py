@@ -7,15 +7,19 @@ of its rows when a run wrote them to a file (``output=``).
   for, by pyarrow's CSV reader over the byte range of the rows that the
   writer recorded (between the header line and the ``# summary`` line).
 
-The file's identity (device, inode, size, modification time) is taken when
-the source is made; a read after the file was replaced or changed (another
-run to the same output) raises `ModelError` instead of returning another
-run's numbers.
+A source holds its file open from when it is made (one file descriptor,
+closed when the source is garbage-collected) and reads through a read-only
+memory map of it: results keep reading the file their run wrote even after
+another run replaced the output, or the file was deleted. A file changed in
+place (its size or modification time differ) raises `ModelError` instead of
+returning other numbers.
 """
 
 from __future__ import annotations
 
+import mmap
 import os
+import weakref
 from pathlib import Path
 from typing import Any, Protocol
 
@@ -62,37 +66,37 @@ def _fill(out: npt.NDArray[np.float64], column: Any) -> None:
         start += n
 
 
-def _stamp(path: Path) -> tuple[int, int, int, int]:
-    st = os.stat(path)
-    return (st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns)
-
-
 class _File:
-    """A file whose identity is checked before each read."""
+    """A file held open, read through a memory map after checking that it
+    did not change."""
 
     def __init__(self, path: Path) -> None:
         self.path = path
         try:
-            self._stamp = _stamp(path)
+            fd = os.open(path, os.O_RDONLY)
         except OSError as e:
             raise ModelError(f"cannot read results from '{path}': {e.strerror}") from None
+        weakref.finalize(self, os.close, fd)
+        self._fd = fd
+        self._stamp = self._now()
 
-    def check(self) -> None:
-        """Raises `ModelError` when the file is gone or is no longer the
-        one the run wrote."""
-        try:
-            same = _stamp(self.path) == self._stamp
-        except OSError as e:
-            raise ModelError(
-                f"cannot read results from '{self.path}': {e.strerror}; the run's "
-                "results are read from its output file, which must stay in place"
-            ) from None
-        if not same:
+    def _now(self) -> tuple[int, int]:
+        st = os.fstat(self._fd)
+        return (st.st_size, st.st_mtime_ns)
+
+    def contents(self) -> Any:
+        """The file as a `pyarrow.Buffer` over a read-only memory map;
+        `ModelError` when the file changed since the source was made."""
+        import pyarrow as pa
+
+        if self._now() != self._stamp:
             raise ModelError(
                 f"cannot read results from '{self.path}': the file changed after the "
-                "run wrote it (another run to the same output?); load it again with "
-                "camlink.Results.load"
+                "run wrote it; load it again with camlink.Results.load"
             )
+        if self._stamp[0] == 0:
+            return pa.py_buffer(b"")
+        return pa.py_buffer(mmap.mmap(self._fd, 0, access=mmap.ACCESS_READ))
 
 
 class ParquetColumns(_File):
@@ -101,26 +105,24 @@ class ParquetColumns(_File):
     by_column = True
 
     def __init__(self, path: Path) -> None:
-        import pyarrow.parquet as pq
-
         super().__init__(path)
         #: Number of rows, from the file's footer.
-        self.rows = pq.read_metadata(path).num_rows
+        self.rows = self._file().metadata.num_rows
 
-    def column(self, name: str) -> npt.NDArray[np.float64]:
+    def _file(self) -> Any:
+        import pyarrow as pa
         import pyarrow.parquet as pq
 
-        self.check()
-        table = pq.ParquetFile(self.path, memory_map=True).read(columns=[name])
+        return pq.ParquetFile(pa.BufferReader(self.contents()))
+
+    def column(self, name: str) -> npt.NDArray[np.float64]:
+        table = self._file().read(columns=[name])
         out = np.empty(table.num_rows)
         _fill(out, table.column(0))
         return out
 
     def table(self, names: list[str]) -> npt.NDArray[np.float64]:
-        import pyarrow.parquet as pq
-
-        self.check()
-        table = pq.ParquetFile(self.path, memory_map=True).read(columns=names)
+        table = self._file().read(columns=names)
         out = np.empty((table.num_rows, len(names)))
         for k in range(len(names)):
             _fill(out[:, k], table.column(k))
@@ -147,22 +149,20 @@ class CsvColumns(_File):
         import pyarrow as pa
         import pyarrow.csv as pacsv
 
-        self.check()
+        contents = self.contents()
         if self.rows == 0:
             return np.empty((0, len(names)))
-        with pa.memory_map(str(self.path)) as source:
-            source.seek(self._start)
-            text = source.read_buffer(self._end - self._start)
-            table = pacsv.read_csv(
-                pa.BufferReader(text),
-                read_options=pacsv.ReadOptions(column_names=self._names),
-                convert_options=pacsv.ConvertOptions(
-                    column_types={n: pa.float64() for n in self._names},
-                    include_columns=names,
-                    null_values=[],
-                    strings_can_be_null=False,
-                ),
-            )
+        text = contents.slice(self._start, self._end - self._start)
+        table = pacsv.read_csv(
+            pa.BufferReader(text),
+            read_options=pacsv.ReadOptions(column_names=self._names),
+            convert_options=pacsv.ConvertOptions(
+                column_types={n: pa.float64() for n in self._names},
+                include_columns=names,
+                null_values=[],
+                strings_can_be_null=False,
+            ),
+        )
         if table.num_rows != self.rows:
             raise ModelError(
                 f"cannot read results from '{self.path}': {table.num_rows} rows where "
