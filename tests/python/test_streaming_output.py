@@ -65,7 +65,7 @@ def test_a_run_written_in_chunks_gives_the_in_memory_numbers_metadata_and_summar
     back = Results.load(out)
     np.testing.assert_array_equal(back.data, memory.data)
     for key in ("analysis", "steps", "newton_iterations", "factorizations", "warnings"):
-        assert back.summary[key] == memory.summary[key], key  # type: ignore[literal-required]
+        assert back.summary[key] == memory.summary[key], key
     assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]
     if suffix == ".parquet":
         assert pq.ParquetFile(out).num_row_groups == math.ceil(len(memory) / 16)
