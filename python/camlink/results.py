@@ -218,6 +218,16 @@ class Results:
         res._source = source
         return res
 
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickles with the rows: results read lazily read them all first
+        (an open file does not travel to another process)."""
+        state = self.__dict__.copy()
+        if self._source is not None:
+            state["_data"] = self._rows()
+            state["_source"] = None
+            state["_columns"] = {}
+        return state
+
     @property
     def source(self) -> Path | None:
         """The file these results read their rows from on access, or None

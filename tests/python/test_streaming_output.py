@@ -5,9 +5,11 @@ and the peak memory of a long run stays that of a short one."""
 
 from __future__ import annotations
 
+import gc
 import json
 import math
 import os
+import pickle
 import subprocess
 import sys
 from pathlib import Path
@@ -123,6 +125,19 @@ def test_lazy_results_read_their_own_file_after_it_is_replaced_or_deleted(
     np.testing.assert_array_equal(first["crank.phi"], memory["crank.phi"])
     out.unlink()
     np.testing.assert_array_equal(first.data, memory.data)
+
+
+@pytest.mark.parametrize("suffix", SUFFIXES)
+def test_lazy_results_pickle_with_their_rows(tmp_path: Path, suffix: str) -> None:
+    model = camlink.load(EXAMPLES / "four_bar.toml")
+    lazy = model.kinematics(t_end=0.1, step=0.01, output=tmp_path / f"run{suffix}")
+    back = pickle.loads(pickle.dumps(lazy))
+    assert back.source is None and lazy.source is not None
+    # The original, its open file and the file itself are gone.
+    del lazy
+    gc.collect()
+    (tmp_path / f"run{suffix}").unlink()
+    np.testing.assert_array_equal(back.data, model.kinematics(t_end=0.1, step=0.01).data)
 
 
 @pytest.mark.parametrize("suffix", SUFFIXES)
