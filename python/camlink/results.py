@@ -159,9 +159,9 @@ class Results:
     ``lift_off`` the intervals where a cam follower would leave its cam.
 
     The results of a run that wrote an ``output`` file hold no rows: they
-    read the file when a channel is first asked for (Parquet: that channel
-    alone; CSV: every row), and keep what they read. ``source`` is then
-    the file (None for results held in memory).
+    read a channel from the file when it is first asked for (``data`` and
+    `to_pandas` read every channel), and keep what they read. ``source``
+    is then the file (None for results held in memory).
     """
 
     def __init__(
@@ -260,9 +260,6 @@ class Results:
         """The values of channel `name` (which exists), read-only."""
         if self._data is not None:
             return self._data[:, self._index[name]]
-        assert self._source is not None
-        if not self._source.by_column:
-            return self._rows()[:, self._index[name]]
         column = self._columns.get(name)
         if column is None:
             column = self._read([name])

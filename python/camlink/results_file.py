@@ -1,11 +1,11 @@
 """A results file read back on access: what `camlink.Results` holds instead
 of its rows when a run wrote them to a file (``output=``).
 
-- Parquet (`ParquetColumns`): each channel is read when first asked for,
-  through pyarrow's column reads of the memory-mapped file.
-- CSV (`CsvColumns`): the rows are parsed, all at once, when first asked
-  for, by pyarrow's CSV reader over the byte range of the rows that the
-  writer recorded (between the header line and the ``# summary`` line).
+- Parquet (`ParquetColumns`): a channel is read through pyarrow's column
+  reads of the memory-mapped file.
+- CSV (`CsvColumns`): pyarrow's CSV reader parses the byte range of the
+  rows that the writer recorded (between the header line and the
+  ``# summary`` line), keeping only the channels asked for.
 
 A source holds its file open from when it is made (one file descriptor,
 closed when the source is garbage-collected) and reads through a read-only
@@ -38,8 +38,6 @@ class ColumnSource(Protocol):
     path: Path
     #: Number of rows (time steps).
     rows: int
-    #: True when single channels can be read without the others.
-    by_column: bool
 
     def column(self, name: str) -> npt.NDArray[np.float64]:
         """One channel's values, a new array."""
@@ -102,8 +100,6 @@ class _File:
 class ParquetColumns(_File):
     """A Parquet results file, read one channel at a time."""
 
-    by_column = True
-
     def __init__(self, path: Path) -> None:
         super().__init__(path)
         #: Number of rows, from the file's footer.
@@ -132,8 +128,6 @@ class ParquetColumns(_File):
 class CsvColumns(_File):
     """A results CSV whose rows lie between byte `start` (after the header
     line) and byte `end` (before the ``# summary`` line, if any)."""
-
-    by_column = False
 
     def __init__(self, path: Path, names: list[str], start: int, end: int, rows: int) -> None:
         super().__init__(path)

@@ -24,7 +24,7 @@ import camlink.model
 import camlink.output
 from camlink import ModelError, Results
 from camlink.output import read_csv_metadata
-from camlink.results_file import ParquetColumns
+from camlink.results_file import CsvColumns, ParquetColumns
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -92,23 +92,27 @@ def test_dynamics_with_impacts_streams_its_summary(
     assert_same_results(lazy, memory)
 
 
-def test_parquet_results_read_only_the_channels_asked_for(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize(("suffix", "source"), [(".csv", CsvColumns), (".parquet", ParquetColumns)])
+def test_lazy_results_read_only_the_channels_asked_for_once(
+    tmp_path: Path,
+    suffix: str,
+    source: type[CsvColumns] | type[ParquetColumns],
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     asked: list[str] = []
-    read = ParquetColumns.column
+    read = source.column
 
-    def spy(self: ParquetColumns, name: str) -> np.ndarray:
+    def spy(self: CsvColumns | ParquetColumns, name: str) -> np.ndarray:
         asked.append(name)
-        return read(self, name)
+        return read(self, name)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(ParquetColumns, "column", spy)
+    monkeypatch.setattr(source, "column", spy)
     res = camlink.load(EXAMPLES / "four_bar.toml").kinematics(
-        t_end=0.1, step=0.01, output=tmp_path / "run.parquet"
+        t_end=0.1, step=0.01, output=tmp_path / f"run{suffix}"
     )
     assert asked == [] and len(res) == 11
-    res["crank.phi"]
-    res["crank.phi"]
+    phi = res["crank.phi"]
+    assert res["crank.phi"] is phi
     assert asked == ["crank.phi"]
 
 
