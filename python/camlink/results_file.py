@@ -3,20 +3,21 @@ of its rows when a run wrote them to a file (``output=``).
 
 - Parquet (`ParquetColumns`): a channel is read through pyarrow's column
   reads of the memory-mapped file.
-- CSV (`CsvColumns`): pyarrow's CSV reader parses the byte range of the
-  rows that the writer recorded (between the header line and the
-  ``# summary`` line), keeping only the channels asked for.
+- CSV (`CsvColumns`): pyarrow's CSV reader parses, block by block, the
+  byte range of the rows that the writer recorded (between the header line
+  and the ``# summary`` line), keeping only the channels asked for.
 
 A source holds its file open from when it is made (one file descriptor,
-closed when the source is garbage-collected) and reads through a read-only
-memory map of it: results keep reading the file their run wrote even after
-another run replaced the output, or the file was deleted. A file changed in
+closed when the source is garbage-collected) and reads through it: results
+keep reading the file their run wrote even after another run replaced the
+output, or the file was deleted. A file changed in
 place (its size or modification time differ) raises `ModelError` instead of
 returning other numbers.
 """
 
 from __future__ import annotations
 
+import io
 import mmap
 import os
 import weakref
@@ -29,6 +30,10 @@ import numpy.typing as npt
 from camlink._core import ModelError
 
 __all__ = ["ColumnSource", "CsvColumns", "ParquetColumns"]
+
+#: Bytes of CSV text parsed at a time (more for rows longer than an
+#: eighth of it): pyarrow's reader holds several times a block per column.
+CSV_BLOCK = 256 << 10
 
 
 class ColumnSource(Protocol):
@@ -49,10 +54,11 @@ class ColumnSource(Protocol):
 
 
 def _fill(out: npt.NDArray[np.float64], column: Any) -> None:
-    """Copies an Arrow double column (a chunked array) into `out`.
-    pyarrow's own ``to_numpy`` would import pandas, seconds the first time."""
+    """Copies an Arrow double column (an array or a chunked array) into
+    `out`. pyarrow's own ``to_numpy`` would import pandas, seconds the
+    first time."""
     start = 0
-    for chunk in column.chunks:
+    for chunk in getattr(column, "chunks", [column]):
         n = len(chunk)
         if chunk.null_count:
             values = np.asarray(chunk.to_numpy(zero_copy_only=False), dtype=np.float64)
@@ -82,16 +88,20 @@ class _File:
         st = os.fstat(self._fd)
         return (st.st_size, st.st_mtime_ns)
 
-    def contents(self) -> Any:
-        """The file as a `pyarrow.Buffer` over a read-only memory map;
-        `ModelError` when the file changed since the source was made."""
-        import pyarrow as pa
-
+    def check(self) -> None:
+        """`ModelError` when the file changed since the source was made."""
         if self._now() != self._stamp:
             raise ModelError(
                 f"cannot read results from '{self.path}': the file changed after the "
                 "run wrote it; load it again with camlink.Results.load"
             )
+
+    def contents(self) -> Any:
+        """The file as a `pyarrow.Buffer` over a read-only memory map;
+        `ModelError` when the file changed since the source was made."""
+        import pyarrow as pa
+
+        self.check()
         if self._stamp[0] == 0:
             return pa.py_buffer(b"")
         return pa.py_buffer(mmap.mmap(self._fd, 0, access=mmap.ACCESS_READ))
@@ -143,13 +153,17 @@ class CsvColumns(_File):
         import pyarrow as pa
         import pyarrow.csv as pacsv
 
-        contents = self.contents()
+        self.check()
+        out = np.empty((self.rows, len(names)))
         if self.rows == 0:
-            return np.empty((0, len(names)))
-        text = contents.slice(self._start, self._end - self._start)
-        table = pacsv.read_csv(
-            pa.BufferReader(text),
-            read_options=pacsv.ReadOptions(column_names=self._names),
+            return out
+        # Parsed block by block from the file (not mapped: touching every
+        # page of a large CSV would count it all as resident memory).
+        block = max(CSV_BLOCK, 8 * (self._end - self._start) // self.rows)
+        rows = io.BufferedReader(_Range(self._fd, self._start, self._end), block)
+        reader = pacsv.open_csv(
+            rows,
+            read_options=pacsv.ReadOptions(column_names=self._names, block_size=block),
             convert_options=pacsv.ConvertOptions(
                 column_types={n: pa.float64() for n in self._names},
                 include_columns=names,
@@ -157,12 +171,40 @@ class CsvColumns(_File):
                 strings_can_be_null=False,
             ),
         )
-        if table.num_rows != self.rows:
+        done = 0
+        for batch in reader:
+            n = batch.num_rows
+            if done + n > self.rows:
+                break
+            for k in range(len(names)):
+                _fill(out[done : done + n, k], batch.column(k))
+            done += n
+        if done != self.rows:
             raise ModelError(
-                f"cannot read results from '{self.path}': {table.num_rows} rows where "
-                f"the run wrote {self.rows}"
+                f"cannot read results from '{self.path}': {done if done < self.rows else 'more'} "
+                f"rows where the run wrote {self.rows}"
             )
-        out = np.empty((table.num_rows, len(names)))
-        for k in range(len(names)):
-            _fill(out[:, k], table.column(k))
         return out
+
+
+class _Range(io.RawIOBase):
+    """Bytes `start` to `end` of the open file `fd`, read without moving
+    its offset."""
+
+    def __init__(self, fd: int, start: int, end: int) -> None:
+        super().__init__()
+        self._fd = fd
+        self._at = start
+        self._end = end
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer: Any) -> int:
+        n = min(len(buffer), self._end - self._at)
+        if n <= 0:
+            return 0
+        data = os.pread(self._fd, n, self._at)
+        buffer[: len(data)] = data
+        self._at += len(data)
+        return len(data)

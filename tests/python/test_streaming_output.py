@@ -22,6 +22,7 @@ import pytest
 import camlink
 import camlink.model
 import camlink.output
+import camlink.results_file
 from camlink import ModelError, Results
 from camlink.output import read_csv_metadata
 from camlink.results_file import CsvColumns, ParquetColumns
@@ -54,9 +55,11 @@ def assert_same_results(lazy: Results, memory: Results) -> None:
 def test_a_run_written_in_chunks_gives_the_in_memory_numbers_metadata_and_summary(
     tmp_path: Path, suffix: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    # Chunks of 7 rows, Parquet row groups of 16: many of both.
+    # Chunks of 7 rows, Parquet row groups of 16, CSV read back in blocks of
+    # 4 kB (a few rows): many of each.
     monkeypatch.setattr(camlink.model, "CHUNK_ROWS", 7)
     monkeypatch.setattr(camlink.output, "ROW_GROUP_ROWS", 16)
+    monkeypatch.setattr(camlink.results_file, "CSV_BLOCK", 4096)
     model = camlink.load(EXAMPLES / "four_bar.toml")
     memory = model.kinematics(t_end=0.5, step=0.01, jerk=True)
     out = tmp_path / f"run{suffix}"
