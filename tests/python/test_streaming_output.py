@@ -12,6 +12,8 @@ import os
 import pickle
 import subprocess
 import sys
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -24,7 +26,7 @@ import camlink.model
 import camlink.output
 import camlink.results_file
 from camlink import ModelError, Results
-from camlink.output import read_csv_metadata
+from camlink.output import BackgroundWriter, read_csv_metadata
 from camlink.results_file import CsvColumns, ParquetColumns
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -207,6 +209,36 @@ def test_a_chunk_holds_at_most_two_mebibytes_of_rows() -> None:
     cap = (2 << 20) // (8 * len(names))
     assert sizes[0] == cap and sum(sizes) == len(times)
     assert max(sizes) == cap
+
+
+def test_the_background_writer_writes_the_chunks_waiting_together() -> None:
+    gate = threading.Event()
+    calls: list[np.ndarray] = []
+
+    class Slow:
+        path = Path("slow.csv")
+
+        def write(self, names: list[str], rows: np.ndarray) -> None:
+            calls.append(rows.copy())
+            assert rows.flags.f_contiguous
+            gate.wait(60)
+
+        def close(self, names: list[str], complete: bool = True,
+                  metadata: dict[str, object] | None = None) -> Path:
+            return self.path
+
+    writer = BackgroundWriter(Slow())  # type: ignore[arg-type]
+    chunks = [np.asfortranarray(np.arange(6.0).reshape(3, 2) + 10 * k) for k in range(5)]
+    writer.write(["t", "x"], chunks[0])
+    # The thread is busy with the first chunk while the others queue up.
+    while not calls:
+        time.sleep(0.01)
+    for chunk in chunks[1:]:
+        writer.write(["t", "x"], chunk)
+    gate.set()
+    writer.close(["t", "x"])
+    assert [len(c) for c in calls] == [3, 12]
+    np.testing.assert_array_equal(np.vstack(calls), np.vstack(chunks))
 
 
 # -- memory of long runs -------------------------------------------------------
