@@ -21,16 +21,19 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 
-# Runs in a child process so that each figure is that process's own peak.
+# Runs in a child process so that each figure is that process's own peak:
+# its high-water mark VmHWM (Linux), not getrusage's ru_maxrss, which starts
+# from the parent's size at fork.
 CHILD = """
-import json, resource, sys, time
+import json, sys, time
 import camlink
 steps, output = int(sys.argv[1]), sys.argv[2] or None
 model = camlink.load(sys.argv[3])
 start = time.perf_counter()
 model.kinematics(t_end=steps * 1e-5, step=1e-5, output=output)
 seconds = time.perf_counter() - start
-peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+with open("/proc/self/status") as status:
+    peak = next(int(line.split()[1]) for line in status if line.startswith("VmHWM:")) / 1024
 print(json.dumps({"us_per_step": seconds / (steps + 1) * 1e6, "peak_mb": peak}))
 """
 

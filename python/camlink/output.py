@@ -195,7 +195,9 @@ class CsvWriter:
             self._names = list(names)
             self._start = self._end = self._file.tell()
         if len(rows):
-            text = _core.csv_rows(np.asarray(rows, dtype=np.float64))
+            # Row by row: a Fortran-order chunk would be read across its
+            # columns, far apart in memory.
+            text = _core.csv_rows(np.ascontiguousarray(rows, dtype=np.float64))
             self._file.write(text)
             self.rows += len(rows)
             self._end += len(text)
