@@ -79,7 +79,7 @@ READ_SUFFIXES = {**SUFFIXES, ".arrows": "arrows"}
 ROW_GROUP_ROWS = 1 << 16
 
 #: Most bytes of values per Parquet row group (fewer rows for a wide model).
-ROW_GROUP_BYTES = 4 << 20
+ROW_GROUP_BYTES = 2 << 20
 
 
 def _umask() -> int:
