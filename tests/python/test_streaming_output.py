@@ -268,6 +268,13 @@ def peak_mb(steps: int, output: Path) -> float:
     return float(out.stdout)
 
 
+def growth_mb(folder: Path, suffix: str, base: int, steps: int) -> float:
+    """How much higher (MB) the peak of a run of `steps` steps to a
+    `suffix` file is than that of a run of `base` steps."""
+    low = peak_mb(base, folder / f"base{suffix}")
+    return peak_mb(steps, folder / f"run{suffix}") - low
+
+
 @pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs Linux's /proc")
 @pytest.mark.parametrize("suffix", SUFFIXES)
 def test_memory_of_a_run_to_a_file_does_not_grow_with_its_length(
@@ -275,9 +282,7 @@ def test_memory_of_a_run_to_a_file_does_not_grow_with_its_length(
 ) -> None:
     # Past its first 10⁵ steps (the writer's buffers full), a run holds no
     # more: 2·10⁵ more rows of 40 channels would be 64 MB.
-    shorter = peak_mb(100_000, tmp_path / f"shorter{suffix}")
-    longer = peak_mb(300_000, tmp_path / f"longer{suffix}")
-    assert longer - shorter < 16, (shorter, longer)
+    assert growth_mb(tmp_path, suffix, 100_000, 300_000) < 16
 
 
 @pytest.mark.skipif(
@@ -288,6 +293,4 @@ def test_memory_of_a_run_to_a_file_does_not_grow_with_its_length(
 def test_memory_of_a_million_step_run_stays_within_50_mb_of_a_short_one(
     tmp_path: Path, suffix: str
 ) -> None:
-    short = peak_mb(1_000, tmp_path / f"short{suffix}")
-    long = peak_mb(1_000_000, tmp_path / f"long{suffix}")
-    assert long - short < 50, (short, long)
+    assert growth_mb(tmp_path, suffix, 1_000, 1_000_000) < 50
