@@ -7,6 +7,38 @@
 use crate::constraint::{Equations, Jac, Local, Rows};
 use crate::model::Model;
 
+/// Where each entry of Φ_q goes, worked out once: per joint, the entries
+/// of its [`Jac`] blocks that are in its pattern and their destinations
+/// (indices into a matrix's value storage), so that
+/// [`fill_jacobian`](Assembly::fill_jacobian) writes each value straight
+/// into place.
+#[derive(Clone, Debug, Default)]
+pub struct JacobianPlan {
+    /// (block entry, destination), joint by joint from `start`.
+    entries: Vec<(JacEntry, u32)>,
+    start: Vec<u32>,
+}
+
+/// An entry of a [`Jac`]: `body[k][r][d]` for k = 0, 1, `own[r][d]` for k = 2.
+#[derive(Clone, Copy, Debug)]
+struct JacEntry {
+    k: u8,
+    r: u8,
+    d: u8,
+}
+
+impl JacEntry {
+    #[inline]
+    fn of(self, jac: &Jac) -> f64 {
+        let (r, d) = (self.r as usize, self.d as usize);
+        match self.k {
+            0 => jac.body[0][r][d],
+            1 => jac.body[1][r][d],
+            _ => jac.own[r][d],
+        }
+    }
+}
+
 /// Where each body's and joint's coordinates and equations sit.
 #[derive(Clone, Debug)]
 pub struct Assembly {
@@ -255,6 +287,106 @@ impl Assembly {
                     }
                 }
             }
+        }
+    }
+
+    /// The plan of Φ_q's entries: `dest(row, col)` is called once for every
+    /// structural entry, in the order of [`jacobian`](Self::jacobian), and
+    /// gives its destination (None leaves the entry out).
+    pub fn jacobian_plan(
+        &self,
+        model: &Model,
+        mut dest: impl FnMut(usize, usize) -> Option<usize>,
+    ) -> JacobianPlan {
+        let mut plan = JacobianPlan::default();
+        for (j, joint) in model.joints.iter().enumerate() {
+            plan.start.push(plan.entries.len() as u32);
+            let c = &joint.constraint;
+            let bodies = c.bodies();
+            let r0 = self.row[j];
+            for (r, &row_pattern) in c.jacobian_pattern().iter().enumerate().take(c.rows()) {
+                let mut add = |k: usize, d: usize, col: usize| {
+                    if let Some(to) = dest(r0 + r, col) {
+                        let entry = JacEntry {
+                            k: k as u8,
+                            r: r as u8,
+                            d: d as u8,
+                        };
+                        plan.entries.push((entry, to as u32));
+                    }
+                };
+                for (k, b) in bodies.iter().enumerate() {
+                    if let Some(col) = self.body_col[b.0] {
+                        for d in 0..3 {
+                            if row_pattern & (1 << (3 * k + d)) != 0 {
+                                add(k, d, col + d);
+                            }
+                        }
+                    }
+                }
+                for o in 0..c.own_count() {
+                    if row_pattern & (1 << (6 + o)) != 0 {
+                        add(2, o, self.own_col[j] + o);
+                    }
+                }
+            }
+        }
+        plan.start.push(plan.entries.len() as u32);
+        plan
+    }
+
+    /// The local views of every joint at (q, t), velocities zero, into
+    /// `locals` (one per joint).
+    pub fn gather(&self, model: &Model, q: &[f64], t: f64, locals: &mut [Local]) {
+        for (j, x) in locals.iter_mut().enumerate() {
+            *x = self.local(model, j, q, &[], t);
+        }
+    }
+
+    /// Φ_q at the views `locals` ([`gather`](Self::gather)) written by
+    /// `plan` into `values`; with `nu`, ν there too, in the same pass.
+    pub fn fill_jacobian(
+        &self,
+        model: &Model,
+        plan: &JacobianPlan,
+        locals: &[Local],
+        values: &mut [f64],
+        mut nu: Option<&mut [f64]>,
+    ) {
+        let mut jac = Jac::default();
+        let mut rows: Rows = [0.0; 3];
+        for (j, (joint, x)) in model.joints.iter().zip(locals).enumerate() {
+            let c = &joint.constraint;
+            c.jacobian(x, &mut jac);
+            let entries = &plan.entries[plan.start[j] as usize..plan.start[j + 1] as usize];
+            for &(e, to) in entries {
+                values[to as usize] = e.of(&jac);
+            }
+            if let Some(out) = nu.as_deref_mut() {
+                c.nu(x, &mut rows);
+                let r0 = self.row[j];
+                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
+            }
+        }
+    }
+
+    /// γ at the views `locals` ([`gather`](Self::gather)) with the
+    /// velocities `qd`, which are set into the views, into `out`.
+    pub fn gamma_at(&self, model: &Model, locals: &mut [Local], qd: &[f64], out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, (joint, x)) in model.joints.iter().zip(locals.iter_mut()).enumerate() {
+            let (cols, own) = self.joint_cols[j];
+            for (k, col) in cols.iter().enumerate() {
+                if let Some(c) = *col {
+                    x.qd[k] = [qd[c], qd[c + 1], qd[c + 2]];
+                }
+            }
+            let o = self.own_col[j];
+            x.own_d[..own].copy_from_slice(&qd[o..o + own]);
+            joint.constraint.gamma(x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
         }
     }
 

@@ -20,8 +20,8 @@
 //! that the mechanism passes through (toggle, dead centre) are reported as
 //! warnings.
 
-use crate::assembly::Assembly;
-use crate::constraint::Equations;
+use crate::assembly::{Assembly, JacobianPlan};
+use crate::constraint::{Equations, Local};
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, KeptRows, DENSE_MAX};
@@ -132,6 +132,11 @@ pub struct Solver<'m> {
     settings: Settings,
     /// Φ_q and its factorization.
     jac: SystemMatrix,
+    /// Where each entry of Φ_q goes in `jac`'s storage.
+    plan: JacobianPlan,
+    /// Each joint's view of the state, gathered once per factorization and
+    /// read for Φ_q, ν and γ.
+    locals: Vec<Local>,
     pub q: Vec<f64>,
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
@@ -201,11 +206,20 @@ impl<'m> Solver<'m> {
                 pattern.push((r, c));
             }
         });
+        let jac = SystemMatrix::try_new(n, &pattern)
+            .map_err(|e| fail(Kind::Internal, &e.to_string()))?;
+        let mut k = 0;
+        let plan = asm.jacobian_plan(model, |r, c| {
+            let r = reduced(kept.as_ref(), r)?;
+            k += 1;
+            Some(jac.slot(k - 1, r, c))
+        });
         Ok(Solver {
             model,
             settings,
-            jac: SystemMatrix::try_new(n, &pattern)
-                .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
+            jac,
+            plan,
+            locals: vec![Local::default(); model.joints.len()],
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             qddd: vec![0.0; n],
@@ -304,37 +318,26 @@ impl<'m> Solver<'m> {
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.h_prev = prev.map(|p| t - p);
         let (asm, model) = (&self.asm, self.model);
+        let mut fit = Fit {
+            model,
+            asm,
+            plan: &self.plan,
+            jac: &mut self.jac,
+            locals: &mut self.locals,
+        };
         match &mut self.kept {
-            None => refactor(
-                model,
-                asm,
-                &mut self.jac,
-                &self.q,
-                t,
-                None,
-                Some(&mut self.qd),
-                &mut self.summary,
-            ),
+            None => fit.refactor(&self.q, t, Some(&mut self.qd), &mut self.summary),
             Some(k) => {
                 k.gather(|f| asm.nu(model, &self.q, t, f), &mut self.qd);
-                refactor(
-                    model,
-                    asm,
-                    &mut self.jac,
-                    &self.q,
-                    t,
-                    Some(k),
-                    None,
-                    &mut self.summary,
-                )
+                fit.refactor(&self.q, t, None, &mut self.summary)
             }
         }
         .map_err(|s| self.singular(t, s))?;
         self.jac.solve(&mut self.qd);
-        let (asm, model) = (&self.asm, self.model);
+        let (asm, model, locals) = (&self.asm, self.model, &mut self.locals);
         match &mut self.kept {
-            None => asm.gamma(model, &self.q, &self.qd, t, &mut self.qdd),
-            Some(k) => k.gather(|f| asm.gamma(model, &self.q, &self.qd, t, f), &mut self.qdd),
+            None => asm.gamma_at(model, locals, &self.qd, &mut self.qdd),
+            Some(k) => k.gather(|f| asm.gamma_at(model, locals, &self.qd, f), &mut self.qdd),
         }
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
@@ -500,10 +503,14 @@ impl<'m> Solver<'m> {
             }
         };
         let mut problem = Positions {
-            model: self.model,
-            asm: &self.asm,
+            fit: Fit {
+                model: self.model,
+                asm: &self.asm,
+                plan: &self.plan,
+                jac: &mut self.jac,
+                locals: &mut self.locals,
+            },
             kept: self.kept.as_mut(),
-            jac: &mut self.jac,
             summary: &mut self.summary,
             t,
             tol: self.settings.tol,
@@ -635,43 +642,48 @@ impl<'m> Solver<'m> {
     }
 }
 
-/// Fills Φ_q at `q` into `jac` (only the rows `kept`, when redundant
-/// equations are left out) and factors it; with `nu`, writes ν(q, t) there
-/// in the same pass over the joints (all rows: only without `kept`).
-#[allow(clippy::too_many_arguments)]
-fn refactor(
-    model: &Model,
-    asm: &Assembly,
-    jac: &mut SystemMatrix,
-    q: &[f64],
-    t: f64,
-    kept: Option<&KeptRows>,
-    nu: Option<&mut [f64]>,
-    summary: &mut Summary,
-) -> Result<(), Singular> {
-    let mut k = 0;
-    let put = |r, c, v| {
-        if let Some(r) = reduced(kept, r) {
-            jac.put(k, r, c, v);
-            k += 1;
-        }
-    };
-    match nu {
-        Some(nu) => asm.jacobian_and_nu(model, q, t, nu, put),
-        None => asm.jacobian(model, q, t, put),
+/// Φ_q written into a matrix by a plan, and its factorization.
+struct Fit<'a> {
+    model: &'a Model,
+    asm: &'a Assembly,
+    /// Where each entry of Φ_q (only the rows kept, when redundant
+    /// equations are left out) goes in `jac`.
+    plan: &'a JacobianPlan,
+    jac: &'a mut SystemMatrix,
+    locals: &'a mut [Local],
+}
+
+impl Fit<'_> {
+    /// Gathers the joints' views at (q, t), fills Φ_q into `jac` and
+    /// factors it; with `nu`, writes ν(q, t) there in the same pass over
+    /// the joints (all rows: only without kept rows).
+    fn refactor(
+        &mut self,
+        q: &[f64],
+        t: f64,
+        nu: Option<&mut [f64]>,
+        summary: &mut Summary,
+    ) -> Result<(), Singular> {
+        self.asm.gather(self.model, q, t, self.locals);
+        self.asm.fill_jacobian(
+            self.model,
+            self.plan,
+            self.locals,
+            self.jac.values_mut(),
+            nu,
+        );
+        summary.factorizations += 1;
+        self.jac.factor()
     }
-    summary.factorizations += 1;
-    jac.factor()
 }
 
 /// Φ(q, t) = 0 as a [`newton::Problem`], in q: a time step's chord
 /// iteration, or assembly from a placement.
 struct Positions<'a> {
-    model: &'a Model,
-    asm: &'a Assembly,
+    /// Φ_q and its factorization.
+    fit: Fit<'a>,
     /// The rows solved for when redundant equations are left out.
     kept: Option<&'a mut KeptRows>,
-    jac: &'a mut SystemMatrix,
     summary: &'a mut Summary,
     t: f64,
     /// Converged when max |Φ| ≤ tol (m or rad).
@@ -686,7 +698,7 @@ impl newton::Problem for Positions<'_> {
     type Error = Singular;
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
-        let (asm, model, t) = (self.asm, self.model, self.t);
+        let (asm, model, t) = (self.fit.asm, self.fit.model, self.t);
         match &mut self.kept {
             None => asm.phi(model, q, t, phi),
             Some(k) => k.gather(|f| asm.phi(model, q, t, f), phi),
@@ -703,35 +715,17 @@ impl newton::Problem for Positions<'_> {
     ) -> Result<(), Singular> {
         dq.copy_from_slice(phi);
         if self.assembling {
-            match refactor(
-                self.model,
-                self.asm,
-                self.jac,
-                q,
-                self.t,
-                self.kept.as_deref(),
-                None,
-                self.summary,
-            ) {
-                Ok(()) => self.jac.solve(dq),
+            match self.fit.refactor(q, self.t, None, self.summary) {
+                Ok(()) => self.fit.jac.solve(dq),
                 // Levenberg–Marquardt is dense: up to the diagnosis' size only.
-                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
-                Err(_) => levenberg_marquardt(&self.jac.to_dense(), phi, 1e-6, dq),
+                Err(e) if self.fit.asm.n > DENSE_MAX => return Err(e),
+                Err(_) => levenberg_marquardt(&self.fit.jac.to_dense(), phi, 1e-6, dq),
             }
         } else {
-            if !self.jac.is_valid() || progress.size > 0.25 * progress.previous {
-                refactor(
-                    self.model,
-                    self.asm,
-                    self.jac,
-                    q,
-                    self.t,
-                    self.kept.as_deref(),
-                    None,
-                    self.summary,
-                )?;
+            if !self.fit.jac.is_valid() || progress.size > 0.25 * progress.previous {
+                self.fit.refactor(q, self.t, None, self.summary)?;
             }
-            self.jac.solve(dq);
+            self.fit.jac.solve(dq);
         }
         self.summary.newton_iterations += 1;
         for d in dq.iter_mut() {
@@ -741,11 +735,11 @@ impl newton::Problem for Positions<'_> {
     }
 
     fn correction(&mut self, phi: &[f64], dq: &mut [f64]) -> bool {
-        if !self.jac.is_valid() {
+        if !self.fit.jac.is_valid() {
             return false;
         }
         dq.copy_from_slice(phi);
-        self.jac.solve(dq);
+        self.fit.jac.solve(dq);
         for d in dq.iter_mut() {
             *d = -*d;
         }
