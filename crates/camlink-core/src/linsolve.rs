@@ -65,12 +65,11 @@ pub struct SmallLu {
     inv_diag: Vec<f64>,
     /// Solves with the last factorization so far.
     solves: usize,
-    /// The factors' numerical nonzeros, made at the
-    /// [`COMPACT_AT`]-th solve of a factorization: (column, value) of L's
-    /// strictly lower part and of U's strictly upper part, row by row,
-    /// with the start of each row in `starts` (L rows, then U rows).
-    nonzeros: Vec<(u32, f64)>,
-    starts: Vec<usize>,
+    /// The factors' numerical nonzeros, gathered at the [`COMPACT_AT`]-th
+    /// solve of a factorization ([`Elimination::gather`]), and the number
+    /// of L's and of all.
+    nonzeros: Vec<(u32, u32, f64)>,
+    gathered: (usize, usize),
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
@@ -106,8 +105,8 @@ impl SmallLu {
             factors: vec![0.0; n * n],
             inv_diag: vec![0.0; n],
             solves: 0,
-            nonzeros: vec![(0, 0.0); n * n],
-            starts: vec![0; 2 * n + 1],
+            nonzeros: vec![(0, 0, 0.0); n * n],
+            gathered: (0, 0),
             valid: false,
             min_pivot: 0.0,
         }
@@ -243,30 +242,17 @@ impl SmallLu {
             return;
         }
         if self.solves == COMPACT_AT {
-            self.program
-                .gather(&self.factors, &mut self.nonzeros, &mut self.starts);
+            self.gathered = self.program.gather(&self.factors, &mut self.nonzeros);
         }
-        let n = self.n;
-        let (nz, starts) = (&self.nonzeros, &self.starts);
-        for (w, &p) in work.iter_mut().zip(self.program.perm()) {
-            *w = b[p];
-        }
-        // L y = P b (unit diagonal).
-        for i in 1..n {
-            let mut s = work[i];
-            for &(j, l) in &nz[starts[i]..starts[i + 1]] {
-                s -= l * work[j as usize];
-            }
-            work[i] = s;
-        }
-        // U x = y, x written into b.
-        for i in (0..n).rev() {
-            let mut s = work[i];
-            for &(j, u) in &nz[starts[n + i]..starts[n + i + 1]] {
-                s -= u * b[j as usize];
-            }
-            b[i] = s * self.inv_diag[i];
-        }
+        let (lower, len) = self.gathered;
+        crate::lu_program::solve_gathered(
+            &self.nonzeros[..len],
+            lower,
+            self.program.perm(),
+            &self.inv_diag,
+            b,
+            work,
+        );
     }
 
     /// The matrix as a faer matrix (for diagnostics).

@@ -49,7 +49,8 @@ pub struct Elimination {
     src: Vec<Ix>,
     /// For each slot, its index in row-major dense factors.
     dense: Vec<Ix>,
-    /// For each slot, its column.
+    /// For each slot, its row and its column.
+    rows: Vec<Ix>,
     cols: Vec<Ix>,
     /// The slot of U_kk.
     diag: Vec<Ix>,
@@ -61,11 +62,9 @@ pub struct Elimination {
     /// (slot of A_ij, slot of L_ik, slot of U_kj), A_ij −= L_ik U_kj.
     updates: Vec<[Ix; 3]>,
     update_start: Vec<Ix>,
-    /// Row i of L's strictly lower part is slots
-    /// `lower_start[i]..lower_start[i + 1]`, of U's strictly upper part
-    /// slots `upper_start[i]..upper_start[i + 1]`.
-    lower_start: Vec<Ix>,
-    upper_start: Vec<Ix>,
+    /// Slots `..lower` hold L's strictly lower part, `lower..lower + n` the
+    /// diagonal, the rest U's strictly upper part.
+    lower: usize,
     recorded: bool,
 }
 
@@ -92,14 +91,14 @@ impl Elimination {
             perm: (0..n).collect(),
             src: Vec::with_capacity(n * n),
             dense: Vec::with_capacity(n * n),
+            rows: Vec::with_capacity(n * n),
             cols: Vec::with_capacity(n * n),
             diag: vec![0; n],
             below: Vec::with_capacity(triangle),
             below_start: vec![0; n + 1],
             updates: Vec::with_capacity(products),
             update_start: vec![0; n + 1],
-            lower_start: vec![0; n + 1],
-            upper_start: vec![0; n + 1],
+            lower: 0,
             recorded: false,
         }
     }
@@ -149,14 +148,13 @@ impl Elimination {
         // strictly upper part row by row; with where each starts from.
         self.src.clear();
         self.dense.clear();
+        self.rows.clear();
         self.cols.clear();
         for part in 0..3 {
+            if part == 1 {
+                self.lower = self.src.len();
+            }
             for i in 0..n {
-                if part == 0 {
-                    self.lower_start[i] = self.src.len() as Ix;
-                } else if part == 2 {
-                    self.upper_start[i] = self.src.len() as Ix;
-                }
                 let columns = match part {
                     0 => 0..i,
                     1 => i..i + 1,
@@ -169,15 +167,12 @@ impl Elimination {
                         self.src
                             .push(if self.pattern[a] { a } else { n * n } as Ix);
                         self.dense.push((i * n + j) as Ix);
+                        self.rows.push(i as Ix);
                         self.cols.push(j as Ix);
                     }
                 }
             }
-            if part == 0 {
-                self.lower_start[n] = self.src.len() as Ix;
-            }
         }
-        self.upper_start[n] = self.src.len() as Ix;
         // The elimination, pivot by pivot.
         self.below.clear();
         self.updates.clear();
@@ -213,6 +208,16 @@ impl Elimination {
         }
         for (inv, &d) in inv_diag.iter_mut().zip(&self.diag) {
             *inv = 1.0 / factors[d as usize];
+        }
+        self.scale_upper(factors, inv_diag);
+    }
+
+    /// U_ij / U_ii in U's strictly upper slots (the solves' unit upper
+    /// factor), once the elimination no longer reads them.
+    fn scale_upper(&self, factors: &mut [f64], inv_diag: &[f64]) {
+        let upper = self.lower + self.n..self.src.len();
+        for (u, &i) in factors[upper.clone()].iter_mut().zip(&self.rows[upper]) {
+            *u *= inv_diag[i as usize];
         }
     }
 
@@ -264,6 +269,7 @@ impl Elimination {
                 f[t as usize] -= f[l as usize] * f[u as usize];
             }
         }
+        self.scale_upper(factors, inv_diag);
         Ok(min_pivot)
     }
 
@@ -272,53 +278,78 @@ impl Elimination {
         &self.perm
     }
 
-    /// Gathers the numerical nonzeros of `factors` (in the recorded slots):
-    /// (column, value) of L's strictly lower part and of U's strictly upper
-    /// part, row by row, with the start of each row in `starts` (L rows,
-    /// then U rows). Every entry is written and the end advances past
-    /// nonzeros only, without a branch on the value.
-    pub fn gather(&self, factors: &[f64], nonzeros: &mut [(u32, f64)], starts: &mut [usize]) {
-        let n = self.n;
+    /// Gathers the numerical nonzeros of `factors` (in the recorded
+    /// slots, as a factorization left them) as (row, column, value): L's
+    /// strictly lower part, then the scaled upper part; returns the number
+    /// of L's. Every entry is written and the end advances past nonzeros
+    /// only, without a branch on the value.
+    pub fn gather(&self, factors: &[f64], nonzeros: &mut [(Ix, Ix, f64)]) -> (usize, usize) {
         let mut len = 0;
-        for (part, first) in [&self.lower_start, &self.upper_start].into_iter().enumerate() {
-            for i in 0..n {
-                starts[part * n + i] = len;
-                let row = first[i] as usize..first[i + 1] as usize;
-                for (&v, &j) in factors[row.clone()].iter().zip(&self.cols[row]) {
-                    nonzeros[len] = (j, v);
-                    len += usize::from(v != 0.0);
-                }
+        let mut lower = 0;
+        let diag = self.lower..self.lower + self.n;
+        for (s, ((&v, &i), &j)) in factors.iter().zip(&self.rows).zip(&self.cols).enumerate() {
+            if s == diag.start {
+                lower = len;
             }
+            if diag.contains(&s) {
+                continue;
+            }
+            nonzeros[len] = (i, j, v);
+            len += usize::from(v != 0.0);
         }
-        starts[2 * n] = len;
+        (lower, len)
     }
 
     /// Solves A x = b in place with factors in the recorded slots
     /// (`factors`, `inv_diag` as [`replay`](Self::replay) or
     /// [`load`](Self::load) left them); `work` holds n values.
     pub fn solve(&self, factors: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
-        let n = self.n;
+        let (lower, upper) = (..self.lower, self.lower + self.n..self.src.len());
+        let entries = |range: std::ops::Range<usize>| {
+            factors[range.clone()]
+                .iter()
+                .zip(&self.rows[range.clone()])
+                .zip(&self.cols[range])
+        };
         for (w, &p) in work.iter_mut().zip(&self.perm) {
             *w = b[p];
         }
-        // L y = P b (unit diagonal).
-        for i in 1..n {
-            let row = self.lower_start[i] as usize..self.lower_start[i + 1] as usize;
-            let mut s = work[i];
-            for (&l, &j) in factors[row.clone()].iter().zip(&self.cols[row]) {
-                s -= l * work[j as usize];
-            }
-            work[i] = s;
+        // L y = P b (unit diagonal): row by row, each entry's y_j is final.
+        for ((&l, &i), &j) in entries(0..lower.end) {
+            work[i as usize] -= l * work[j as usize];
         }
-        // U x = y, x written into b.
-        for i in (0..n).rev() {
-            let row = self.upper_start[i] as usize..self.upper_start[i + 1] as usize;
-            let mut s = work[i];
-            for (&u, &j) in factors[row.clone()].iter().zip(&self.cols[row]) {
-                s -= u * b[j as usize];
-            }
-            b[i] = s * inv_diag[i];
+        // U x = y as D (I + D⁻¹U') x = y, rows from the last.
+        for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
+            *x = y * inv;
         }
+        for ((&u, &i), &j) in entries(upper).rev() {
+            b[i as usize] -= u * b[j as usize];
+        }
+    }
+}
+
+/// The solve of [`Elimination::solve`] over gathered nonzeros
+/// ([`Elimination::gather`]: L's entries up to `lower`, then the scaled
+/// upper ones) with the row order `perm`.
+pub fn solve_gathered(
+    nonzeros: &[(Ix, Ix, f64)],
+    lower: usize,
+    perm: &[usize],
+    inv_diag: &[f64],
+    b: &mut [f64],
+    work: &mut [f64],
+) {
+    for (w, &p) in work.iter_mut().zip(perm) {
+        *w = b[p];
+    }
+    for &(i, j, l) in &nonzeros[..lower] {
+        work[i as usize] -= l * work[j as usize];
+    }
+    for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
+        *x = y * inv;
+    }
+    for &(i, j, u) in nonzeros[lower..].iter().rev() {
+        b[i as usize] -= u * b[j as usize];
     }
 }
 
@@ -335,7 +366,7 @@ mod tests {
             .replay(&[1.0, 1.0, 0.5, 2.0, 0.0], &mut f, &mut inv, 1e-12)
             .is_ok());
         // Slots: L_10, U_00, U_11, U_01.
-        assert_eq!(f, [0.5, 1.0, 1.5, 1.0]);
+        assert_eq!(f, [0.5, 1.0, 1.5, 1.0]); // U_01 / U_00 = 1
         assert_eq!(
             e.replay(&[0.01, 1.0, 1.0, 2.0, 0.0], &mut f, &mut inv, 1e-12),
             Err(super::Refresh)
