@@ -2,10 +2,15 @@
 //! kinematic example run with the recorded pivot order
 //! ([`camlink_core::lu_program`]) and with a pivot search at every
 //! factorization agrees to 1e-12 in q, q̇ and q̈ at every step (relative to
-//! each quantity's largest size over the run, at least 1).
+//! each quantity's largest size over the run, at least 1); and on every
+//! example model, Φ_q, ν and γ filled through a [`JacobianPlan`] from joint
+//! views gathered once are, bit for bit, those of the general per-entry
+//! and per-joint evaluations.
 
 use std::path::Path;
 
+use camlink_core::assembly::{Assembly, JacobianPlan};
+use camlink_core::constraint::Local;
 use camlink_core::kinematics::Solver;
 use camlink_core::run::{time_grid, Settings};
 use camlink_model::AnalysisType;
@@ -39,8 +44,8 @@ fn states(loaded: &camlink_model::Loaded, times: &[f64], fixed: bool) -> (States
     (out, counts)
 }
 
-#[test]
-fn fixed_pivots_agree_with_pivot_search_on_every_example() {
+/// The example files that are models (cam design and study files are not).
+fn model_files() -> Vec<std::path::PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
@@ -53,6 +58,12 @@ fn fixed_pivots_agree_with_pivot_search_on_every_example() {
         })
         .collect();
     files.sort();
+    files
+}
+
+#[test]
+fn fixed_pivots_agree_with_pivot_search_on_every_example() {
+    let files = model_files();
     let mut compared = 0;
     for path in &files {
         let loaded = camlink_model::load_path(path).unwrap_or_else(|e| panic!("{e}"));
@@ -97,4 +108,63 @@ fn fixed_pivots_agree_with_pivot_search_on_every_example() {
         compared >= 15,
         "only {compared} kinematic examples compared"
     );
+}
+
+/// Φ_q (m × n, row-major) through a plan that leaves out the rows `skip`
+/// says, with ν and γ from views gathered once.
+fn planned(
+    model: &camlink_core::Model,
+    asm: &Assembly,
+    q: &[f64],
+    qd: &[f64],
+    t: f64,
+    skip: impl Fn(usize) -> bool,
+) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let n = asm.n;
+    let plan: JacobianPlan = asm.jacobian_plan(model, |r, c| (!skip(r)).then_some(r * n + c));
+    let mut locals = vec![Local::default(); model.joints.len()];
+    let (mut jac, mut nu, mut gamma) = (vec![0.0; asm.m * n], vec![0.0; asm.m], vec![0.0; asm.m]);
+    asm.gather(model, q, t, &mut locals);
+    asm.fill_jacobian(model, &plan, &locals, &mut jac, Some(&mut nu));
+    asm.gamma_at(model, &mut locals, qd, &mut gamma);
+    (jac, nu, gamma)
+}
+
+#[test]
+fn planned_jacobian_nu_and_gamma_match_the_general_evaluation_on_every_example() {
+    let mut compared = 0;
+    for path in model_files() {
+        let loaded = camlink_model::load_path(&path).unwrap_or_else(|e| panic!("{e}"));
+        let model = &loaded.model;
+        let asm = Assembly::new(model);
+        let (n, m) = (asm.n, asm.m);
+        // A configuration off the placement and velocities of every size.
+        let q: Vec<f64> = asm
+            .initial_q(model)
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v + 0.01 * (k as f64 * 1.7).sin())
+            .collect();
+        let qd: Vec<f64> = (0..n).map(|k| (k as f64 * 0.9 + 0.3).cos()).collect();
+        let t = 0.37;
+        let mut jac = vec![0.0; m * n];
+        asm.jacobian(model, &q, t, |r, c, v| jac[r * n + c] = v);
+        let (mut nu, mut gamma) = (vec![0.0; m], vec![0.0; m]);
+        asm.nu(model, &q, t, &mut nu);
+        asm.gamma(model, &q, &qd, t, &mut gamma);
+        let name = path.display();
+        let all = planned(model, &asm, &q, &qd, t, |_| false);
+        assert_eq!(all.0, jac, "{name}: Φ_q");
+        assert_eq!(all.1, nu, "{name}: ν");
+        assert_eq!(all.2, gamma, "{name}: γ");
+        // Rows left out (as redundant equations are) stay untouched.
+        let odd = planned(model, &asm, &q, &qd, t, |r| r % 2 == 1);
+        for (k, (a, b)) in odd.0.iter().zip(&jac).enumerate() {
+            let expected = if (k / n) % 2 == 1 { 0.0 } else { *b };
+            assert_eq!(*a, expected, "{name}: Φ_q entry ({}, {})", k / n, k % n);
+        }
+        assert!(jac.iter().any(|v| *v != 0.0), "{name}");
+        compared += 1;
+    }
+    assert!(compared >= 20, "only {compared} example models compared");
 }
