@@ -4,7 +4,7 @@
 //! stacked joint by joint in model order. Only this module knows global
 //! indices; constraints see a [`Local`] view and write per-body blocks.
 
-use crate::constraint::{Equations, Jac, Local, Rows};
+use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::model::Model;
 
 /// Where each entry of Φ_q goes, worked out once: per joint, the entries
@@ -337,9 +337,18 @@ impl Assembly {
 
     /// The local views of every joint at (q, t), velocities zero, into
     /// `locals` (one per joint).
-    pub fn gather(&self, model: &Model, q: &[f64], t: f64, locals: &mut [Local]) {
+    pub fn gather(&self, _model: &Model, q: &[f64], t: f64, locals: &mut [Local]) {
         for (j, x) in locals.iter_mut().enumerate() {
-            *x = self.local(model, j, q, &[], t);
+            let (cols, own) = self.joint_cols[j];
+            x.t = t;
+            for (k, col) in cols.iter().enumerate() {
+                x.q[k] = col.map_or([0.0; 3], |c| [q[c], q[c + 1], q[c + 2]]);
+                x.qd[k] = [0.0; 3];
+            }
+            let o = self.own_col[j];
+            x.own = [0.0; MAX_OWN];
+            x.own[..own].copy_from_slice(&q[o..o + own]);
+            x.own_d = [0.0; MAX_OWN];
         }
     }
 

@@ -49,9 +49,8 @@ pub struct Elimination {
     src: Vec<Ix>,
     /// For each slot, its index in row-major dense factors.
     dense: Vec<Ix>,
-    /// For each slot, its row and its column.
-    rows: Vec<Ix>,
-    cols: Vec<Ix>,
+    /// For each slot, its (row, column).
+    at: Vec<(Ix, Ix)>,
     /// The slot of U_kk.
     diag: Vec<Ix>,
     /// For pivot k, the slots `below[below_start[k]..below_start[k + 1]]`
@@ -91,8 +90,7 @@ impl Elimination {
             perm: (0..n).collect(),
             src: Vec::with_capacity(n * n),
             dense: Vec::with_capacity(n * n),
-            rows: Vec::with_capacity(n * n),
-            cols: Vec::with_capacity(n * n),
+            at: Vec::with_capacity(n * n),
             diag: vec![0; n],
             below: Vec::with_capacity(triangle),
             below_start: vec![0; n + 1],
@@ -148,8 +146,7 @@ impl Elimination {
         // strictly upper part row by row; with where each starts from.
         self.src.clear();
         self.dense.clear();
-        self.rows.clear();
-        self.cols.clear();
+        self.at.clear();
         for part in 0..3 {
             if part == 1 {
                 self.lower = self.src.len();
@@ -167,8 +164,7 @@ impl Elimination {
                         self.src
                             .push(if self.pattern[a] { a } else { n * n } as Ix);
                         self.dense.push((i * n + j) as Ix);
-                        self.rows.push(i as Ix);
-                        self.cols.push(j as Ix);
+                        self.at.push((i as Ix, j as Ix));
                     }
                 }
             }
@@ -216,7 +212,7 @@ impl Elimination {
     /// factor), once the elimination no longer reads them.
     fn scale_upper(&self, factors: &mut [f64], inv_diag: &[f64]) {
         let upper = self.lower + self.n..self.src.len();
-        for (u, &i) in factors[upper.clone()].iter_mut().zip(&self.rows[upper]) {
+        for (u, &(i, _)) in factors[upper.clone()].iter_mut().zip(&self.at[upper]) {
             *u *= inv_diag[i as usize];
         }
     }
@@ -242,16 +238,21 @@ impl Elimination {
         for (v, &s) in f.iter_mut().zip(&self.src) {
             let x = a[s as usize];
             *v = x;
-            scale = scale.max(x.abs());
+            if x.abs() > scale {
+                scale = x.abs();
+            }
         }
         let mut min_pivot = f64::INFINITY;
         for k in 0..self.n {
             let pivot = f[self.diag[k] as usize];
             let below =
                 &self.below[self.below_start[k] as usize..self.below_start[k + 1] as usize];
-            let big = below
-                .iter()
-                .fold(0.0f64, |b, &s| b.max(f[s as usize].abs()));
+            let mut big = 0.0f64;
+            for &s in below {
+                if f[s as usize].abs() > big {
+                    big = f[s as usize].abs();
+                }
+            }
             let ratio = pivot.abs() / scale;
             // Written so that a NaN fails.
             if !(pivot.abs() >= THRESHOLD * big && ratio > singular) {
@@ -287,7 +288,7 @@ impl Elimination {
         let mut len = 0;
         let mut lower = 0;
         let diag = self.lower..self.lower + self.n;
-        for (s, ((&v, &i), &j)) in factors.iter().zip(&self.rows).zip(&self.cols).enumerate() {
+        for (s, (&v, &(i, j))) in factors.iter().zip(&self.at).enumerate() {
             if s == diag.start {
                 lower = len;
             }
@@ -305,24 +306,20 @@ impl Elimination {
     /// [`load`](Self::load) left them); `work` holds n values.
     pub fn solve(&self, factors: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
         let (lower, upper) = (..self.lower, self.lower + self.n..self.src.len());
-        let entries = |range: std::ops::Range<usize>| {
-            factors[range.clone()]
-                .iter()
-                .zip(&self.rows[range.clone()])
-                .zip(&self.cols[range])
-        };
+        let entries =
+            |range: std::ops::Range<usize>| factors[range.clone()].iter().zip(&self.at[range]);
         for (w, &p) in work.iter_mut().zip(&self.perm) {
             *w = b[p];
         }
         // L y = P b (unit diagonal): row by row, each entry's y_j is final.
-        for ((&l, &i), &j) in entries(0..lower.end) {
+        for (&l, &(i, j)) in entries(0..lower.end) {
             work[i as usize] -= l * work[j as usize];
         }
         // U x = y as D (I + D⁻¹U') x = y, rows from the last.
         for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
             *x = y * inv;
         }
-        for ((&u, &i), &j) in entries(upper).rev() {
+        for (&u, &(i, j)) in entries(upper).rev() {
             b[i as usize] -= u * b[j as usize];
         }
     }
