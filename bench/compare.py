@@ -2,7 +2,7 @@
 
     uv run --group bench python bench/compare.py [--quick] [--only NAME] [--no-cargo]
 
-NAME is one of four_bar, slider_crank, chain, output (the cost of writing
+NAME is one of four_bar, cam_roller, slider_crank, chain, output (the cost of writing
 results: the four-bar kinematics with no output, to CSV and to Parquet). Every figure in the table
 comes from this run on this machine; ratios divide by camlink's core
 figure from the same run (camlink from Python when --no-cargo). The
@@ -38,7 +38,7 @@ import output_writing
 import slider_crank as sc
 import textbook_four_bar as tb
 
-BENCHES = ("four_bar", "slider_crank", "chain", "output")
+BENCHES = ("four_bar", "cam_roller", "slider_crank", "chain", "output")
 
 
 @dataclass
@@ -192,6 +192,49 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
 
 # ---------------------------------------------------------------------------
 # 2. Slider-crank forward dynamics.
+
+
+def cam_roller(args: argparse.Namespace, rows: list[Row]) -> None:
+    """The seed's Example 3.4.3 (a cam with a roller follower): the core's
+    divan benchmark and the binding's run, no peer."""
+    n = 1_000 if args.quick else 10_000
+    print(f"cam with roller follower kinematics, {n:,} steps of 1 ms (the core's bench: 10,000)")
+    reps = 1 if args.quick else 3
+    times = np.arange(n) * 1e-3
+    if not args.no_cargo:
+        try:
+            name = "cam_roller_10k_steps"
+            res = cargo("camlink-model", "examples", [name])[name]
+            rows.append(
+                Row(
+                    "cam_roller",
+                    "camlink core (Rust, divan)",
+                    "pos, vel, acc",
+                    res["median"] / 1e4 * 1e6,
+                    note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}",
+                    base=True,
+                )
+            )
+        except (RuntimeError, KeyError, OSError) as e:
+            print(f"  camlink core: failed ({e})")
+
+    import camlink
+
+    model = camlink.load(ROOT / "examples" / "cam_seed_example_3_4_3.toml")
+    tol, max_iter = camlink._core.Model.analysis_defaults()["kinematics"]
+    tol = model.analysis["tol"] or tol
+    elapsed, _ = best_of(
+        reps, lambda: model._core.run_kinematics(times, tol=tol, max_iter=max_iter, points=[])
+    )
+    rows.append(
+        Row(
+            "cam_roller",
+            "camlink binding (_core.run_kinematics)",
+            "pos, vel, acc",
+            elapsed / n * 1e6,
+            note="one call into Rust, arrays back",
+        )
+    )
 
 
 def camlink_slider_error() -> float | None:
