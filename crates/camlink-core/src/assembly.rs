@@ -4,7 +4,7 @@
 //! stacked joint by joint in model order. Only this module knows global
 //! indices; constraints see a [`Local`] view and write per-body blocks.
 
-use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN};
+use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN, MAX_ROWS};
 use crate::model::Model;
 
 /// Where each entry of Φ_q goes, worked out once: per joint, the entries
@@ -19,22 +19,30 @@ pub struct JacobianPlan {
     start: Vec<u32>,
 }
 
-/// An entry of a [`Jac`]: `body[k][r][d]` for k = 0, 1, `own[r][d]` for k = 2.
+/// An entry of a [`Jac`]: `body[k][r][d]` at index 3 MAX_ROWS k + 3r + d for body
+/// k = 0, 1, `own[r][d]` at 6 MAX_ROWS + MAX_OWN r + d.
 #[derive(Clone, Copy, Debug)]
-struct JacEntry {
-    k: u8,
-    r: u8,
-    d: u8,
-}
+struct JacEntry(u8);
+
+/// Entries of [`Jac::body`].
+const BODY_ENTRIES: usize = 2 * 3 * MAX_ROWS;
 
 impl JacEntry {
+    fn new(k: usize, r: usize, d: usize) -> Self {
+        JacEntry(if k < 2 {
+            3 * MAX_ROWS * k + 3 * r + d
+        } else {
+            BODY_ENTRIES + MAX_OWN * r + d
+        } as u8)
+    }
+
     #[inline]
     fn of(self, jac: &Jac) -> f64 {
-        let (r, d) = (self.r as usize, self.d as usize);
-        match self.k {
-            0 => jac.body[0][r][d],
-            1 => jac.body[1][r][d],
-            _ => jac.own[r][d],
+        let i = self.0 as usize;
+        if i < BODY_ENTRIES {
+            jac.body.as_flattened().as_flattened()[i]
+        } else {
+            jac.own.as_flattened()[i - BODY_ENTRIES]
         }
     }
 }
@@ -307,12 +315,7 @@ impl Assembly {
             for (r, &row_pattern) in c.jacobian_pattern().iter().enumerate().take(c.rows()) {
                 let mut add = |k: usize, d: usize, col: usize| {
                     if let Some(to) = dest(r0 + r, col) {
-                        let entry = JacEntry {
-                            k: k as u8,
-                            r: r as u8,
-                            d: d as u8,
-                        };
-                        plan.entries.push((entry, to as u32));
+                        plan.entries.push((JacEntry::new(k, r, d), to as u32));
                     }
                 };
                 for (k, b) in bodies.iter().enumerate() {

@@ -51,20 +51,27 @@ pub struct Elimination {
     dense: Vec<Ix>,
     /// For each slot, its (row, column).
     at: Vec<(Ix, Ix)>,
-    /// The slot of U_kk.
-    diag: Vec<Ix>,
-    /// For pivot k, the slots `below[below_start[k]..below_start[k + 1]]`
-    /// of L_ik, i > k.
+    /// For pivot k: the slot of U_kk and the ends of its lists in `below`
+    /// and `updates` (each list starts where the one of pivot k − 1 ends).
+    pivots: Vec<Pivot>,
+    /// The slots of L_ik, i > k, pivot by pivot.
     below: Vec<Ix>,
-    below_start: Vec<Ix>,
-    /// For pivot k, the updates `updates[update_start[k]..update_start[k + 1]]`:
-    /// (slot of A_ij, slot of L_ik, slot of U_kj), A_ij −= L_ik U_kj.
+    /// (slot of A_ij, slot of L_ik, slot of U_kj), A_ij −= L_ik U_kj, pivot
+    /// by pivot.
     updates: Vec<[Ix; 3]>,
-    update_start: Vec<Ix>,
     /// Slots `..lower` hold L's strictly lower part, `lower..lower + n` the
     /// diagonal, the rest U's strictly upper part.
     lower: usize,
     recorded: bool,
+}
+
+/// One pivot of the compiled elimination.
+#[derive(Clone, Copy, Debug, Default)]
+struct Pivot {
+    /// The slot of U_kk.
+    diag: Ix,
+    below_end: Ix,
+    update_end: Ix,
 }
 
 /// Why a replay stopped: the caller factors with pivoting instead.
@@ -91,11 +98,9 @@ impl Elimination {
             src: Vec::with_capacity(n * n),
             dense: Vec::with_capacity(n * n),
             at: Vec::with_capacity(n * n),
-            diag: vec![0; n],
+            pivots: vec![Pivot::default(); n],
             below: Vec::with_capacity(triangle),
-            below_start: vec![0; n + 1],
             updates: Vec::with_capacity(products),
-            update_start: vec![0; n + 1],
             lower: 0,
             recorded: false,
         }
@@ -173,9 +178,6 @@ impl Elimination {
         self.below.clear();
         self.updates.clear();
         for k in 0..n {
-            self.diag[k] = self.slot_of[k * n + k];
-            self.below_start[k] = self.below.len() as Ix;
-            self.update_start[k] = self.updates.len() as Ix;
             for i in k + 1..n {
                 if !self.filled[i * n + k] {
                     continue;
@@ -189,9 +191,12 @@ impl Elimination {
                     }
                 }
             }
+            self.pivots[k] = Pivot {
+                diag: self.slot_of[k * n + k],
+                below_end: self.below.len() as Ix,
+                update_end: self.updates.len() as Ix,
+            };
         }
-        self.below_start[n] = self.below.len() as Ix;
-        self.update_start[n] = self.updates.len() as Ix;
         self.recorded = true;
     }
 
@@ -202,8 +207,8 @@ impl Elimination {
         for (f, &d) in factors.iter_mut().zip(&self.dense) {
             *f = lu[d as usize];
         }
-        for (inv, &d) in inv_diag.iter_mut().zip(&self.diag) {
-            *inv = 1.0 / factors[d as usize];
+        for (inv, p) in inv_diag.iter_mut().zip(&self.pivots) {
+            *inv = 1.0 / factors[p.diag as usize];
         }
         self.scale_upper(factors, inv_diag);
     }
@@ -243,10 +248,13 @@ impl Elimination {
             }
         }
         let mut min_pivot = f64::INFINITY;
-        for k in 0..self.n {
-            let pivot = f[self.diag[k] as usize];
-            let below =
-                &self.below[self.below_start[k] as usize..self.below_start[k + 1] as usize];
+        let (mut below_start, mut update_start) = (0, 0);
+        for (p, inv_k) in self.pivots.iter().zip(inv_diag.iter_mut()) {
+            let pivot = f[p.diag as usize];
+            let below = &self.below[below_start..p.below_end as usize];
+            let updates = &self.updates[update_start..p.update_end as usize];
+            below_start = p.below_end as usize;
+            update_start = p.update_end as usize;
             let mut big = 0.0f64;
             for &s in below {
                 if f[s as usize].abs() > big {
@@ -258,14 +266,14 @@ impl Elimination {
             if !(pivot.abs() >= THRESHOLD * big && ratio > singular) {
                 return Err(Refresh);
             }
-            min_pivot = min_pivot.min(ratio);
+            if ratio < min_pivot {
+                min_pivot = ratio;
+            }
             let inv = 1.0 / pivot;
-            inv_diag[k] = inv;
+            *inv_k = inv;
             for &s in below {
                 f[s as usize] *= inv;
             }
-            let updates =
-                &self.updates[self.update_start[k] as usize..self.update_start[k + 1] as usize];
             for &[t, l, u] in updates {
                 f[t as usize] -= f[l as usize] * f[u as usize];
             }
