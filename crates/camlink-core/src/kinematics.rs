@@ -1,8 +1,9 @@
 //! Kinematic analysis of a fully driven model.
 //!
 //! At each time t_k:
-//! 1. predict q from the previous steps, q ≈ q + h q̇ + h²/2 q̈ + h³/6 q⃛,
-//!    with the jerk q⃛ estimated from the last two accelerations;
+//! 1. predict q from the previous steps: q̈ over the step extrapolated by
+//!    the quadratic through the last three accelerations (a line through
+//!    two, a constant from one), integrated twice from q and q̇;
 //! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
 //!    Φ_q while it keeps converging fast, refreshing it when it does not;
 //! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ;
@@ -148,8 +149,12 @@ pub struct Solver<'m> {
     /// step (s); `None` until two steps are solved.
     qdd_prev: Vec<f64>,
     h_prev: Option<f64>,
+    /// q̈ of the step before that, and the time from it to the step after
+    /// it (s); `None` until three steps are solved.
+    qdd_prev2: Vec<f64>,
+    h_prev2: Option<f64>,
     /// The state at the start of a step, to retry it.
-    saved: [Vec<f64>; 4],
+    saved: [Vec<f64>; 5],
     /// True for angle coordinates (bodies' φ, joints' own coordinates).
     angles: Vec<bool>,
     /// A length that sizes the model (m), for the jump test.
@@ -226,7 +231,9 @@ impl<'m> Solver<'m> {
             predicted: vec![0.0; n],
             qdd_prev: vec![0.0; n],
             h_prev: None,
-            saved: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            qdd_prev2: vec![0.0; n],
+            h_prev2: None,
+            saved: std::array::from_fn(|_| vec![0.0; n]),
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
@@ -246,11 +253,17 @@ impl<'m> Solver<'m> {
         for (s, v) in self
             .saved
             .iter_mut()
-            .zip([&self.q, &self.qd, &self.qdd, &self.qdd_prev])
+            .zip([
+                &self.q,
+                &self.qd,
+                &self.qdd,
+                &self.qdd_prev,
+                &self.qdd_prev2,
+            ])
         {
             s.copy_from_slice(v);
         }
-        let h_prev = self.h_prev;
+        let (h_prev, h_prev2) = (self.h_prev, self.h_prev2);
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
             Some(what) => Err(self.failure(Kind::BranchJump, t, &what)),
             None => Ok(()),
@@ -263,7 +276,8 @@ impl<'m> Solver<'m> {
                 self.qd.copy_from_slice(&self.saved[1]);
                 self.qdd.copy_from_slice(&self.saved[2]);
                 self.qdd_prev.copy_from_slice(&self.saved[3]);
-                self.h_prev = h_prev;
+                self.qdd_prev2.copy_from_slice(&self.saved[4]);
+                (self.h_prev, self.h_prev2) = (h_prev, h_prev2);
                 self.jac.invalidate();
                 self.summary.halvings += 1;
                 let mid = 0.5 * (prev + t);
@@ -299,11 +313,20 @@ impl<'m> Solver<'m> {
         let mut jump = None;
         if let Some(p) = prev {
             let h = t - p;
-            // Taylor predictor; the jerk term once two accelerations are known.
-            let c3 = self.h_prev.map_or(0.0, |hp| h * h * h / (6.0 * hp));
+            // q̈(τ) = a + b τ + c τ² through the last accelerations (τ ≤ 0 in
+            // the past; b = d₁ + c h₁ with d₁ the last divided difference),
+            // so q(h) = q + h q̇ + h²/2 a + h³/6 b + h⁴/12 c.
+            let (inv1, inv2, inv12, h1) = match (self.h_prev, self.h_prev2) {
+                (Some(h1), Some(h2)) => (1.0 / h1, 1.0 / h2, 1.0 / (h1 + h2), h1),
+                (Some(h1), None) => (1.0 / h1, 0.0, 0.0, h1),
+                _ => (0.0, 0.0, 0.0, 0.0),
+            };
+            let (w2, w3) = (0.5 * h * h, h * h * h / 6.0);
+            let w4 = w3 * h1 + 0.5 * w3 * h;
             for k in 0..self.q.len() {
-                let jerk = self.qdd[k] - self.qdd_prev[k];
-                self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k] + c3 * jerk;
+                let d1 = (self.qdd[k] - self.qdd_prev[k]) * inv1;
+                let c = (d1 - (self.qdd_prev[k] - self.qdd_prev2[k]) * inv2) * inv12;
+                self.q[k] += h * self.qd[k] + w2 * self.qdd[k] + w3 * d1 + w4 * c;
             }
             self.predicted.copy_from_slice(&self.q);
             self.positions(t)?;
@@ -315,7 +338,9 @@ impl<'m> Solver<'m> {
 
         // Velocity and acceleration share one factorization at the solution;
         // ν is evaluated in the same pass over the joints as Φ_q.
+        std::mem::swap(&mut self.qdd_prev2, &mut self.qdd_prev);
         self.qdd_prev.copy_from_slice(&self.qdd);
+        self.h_prev2 = self.h_prev;
         self.h_prev = prev.map(|p| t - p);
         let (asm, model) = (&self.asm, self.model);
         let mut fit = Fit {
@@ -699,9 +724,11 @@ impl newton::Problem for Positions<'_> {
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
         let (asm, model, t) = (self.fit.asm, self.fit.model, self.t);
+        let locals = &mut *self.fit.locals;
+        asm.gather(model, q, t, locals);
         match &mut self.kept {
-            None => asm.phi(model, q, t, phi),
-            Some(k) => k.gather(|f| asm.phi(model, q, t, f), phi),
+            None => asm.phi_at(model, locals, phi),
+            Some(k) => k.gather(|f| asm.phi_at(model, locals, f), phi),
         }
         newton::Measure::max_abs(phi, self.tol)
     }
