@@ -211,8 +211,8 @@ impl<'m> Solver<'m> {
                 pattern.push((r, c));
             }
         });
-        let jac = SystemMatrix::try_new(n, &pattern)
-            .map_err(|e| fail(Kind::Internal, &e.to_string()))?;
+        let jac =
+            SystemMatrix::try_new(n, &pattern).map_err(|e| fail(Kind::Internal, &e.to_string()))?;
         let mut k = 0;
         let plan = asm.jacobian_plan(model, |r, c| {
             let r = reduced(kept.as_ref(), r)?;
@@ -250,17 +250,13 @@ impl<'m> Solver<'m> {
     /// (up to [`MAX_HALVINGS`] times) where Newton fails or the solution
     /// jumps away from the prediction.
     pub fn advance(&mut self, prev: f64, t: f64, depth: u32) -> Result<(), AnalysisError> {
-        for (s, v) in self
-            .saved
-            .iter_mut()
-            .zip([
-                &self.q,
-                &self.qd,
-                &self.qdd,
-                &self.qdd_prev,
-                &self.qdd_prev2,
-            ])
-        {
+        for (s, v) in self.saved.iter_mut().zip([
+            &self.q,
+            &self.qd,
+            &self.qdd,
+            &self.qdd_prev,
+            &self.qdd_prev2,
+        ]) {
             s.copy_from_slice(v);
         }
         let (h_prev, h_prev2) = (self.h_prev, self.h_prev2);

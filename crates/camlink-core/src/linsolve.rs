@@ -237,8 +237,7 @@ impl SmallLu {
     pub fn solve(&mut self, b: &mut [f64], work: &mut [f64]) {
         self.solves += 1;
         if self.solves < COMPACT_AT {
-            self.program
-                .solve(&self.factors, &self.inv_diag, b, work);
+            self.program.solve(&self.factors, &self.inv_diag, b, work);
             return;
         }
         if self.solves == COMPACT_AT {
@@ -510,9 +509,15 @@ impl SparseLu {
 /// A square matrix of fixed pattern with its LU factorization, dense or
 /// sparse by size.
 pub enum SystemMatrix {
-    Small { lu: SmallLu, work: Vec<f64> },
+    Small {
+        lu: SmallLu,
+        work: Vec<f64>,
+    },
     /// `a` column-major.
-    Dense { a: Vec<f64>, lu: DenseLu },
+    Dense {
+        a: Vec<f64>,
+        lu: DenseLu,
+    },
     Sparse(Box<SparseLu>),
 }
 

@@ -166,8 +166,7 @@ impl Elimination {
                     if self.filled[i * n + j] {
                         self.slot_of[i * n + j] = self.src.len() as Ix;
                         let a = perm[i] * n + j;
-                        self.src
-                            .push(if self.pattern[a] { a } else { n * n } as Ix);
+                        self.src.push(if self.pattern[a] { a } else { n * n } as Ix);
                         self.dense.push((i * n + j) as Ix);
                         self.at.push((i as Ix, j as Ix));
                     }
