@@ -156,7 +156,7 @@ impl Elimination {
             if part == 1 {
                 self.lower = self.src.len();
             }
-            for i in 0..n {
+            for (i, &p) in perm.iter().enumerate() {
                 let columns = match part {
                     0 => 0..i,
                     1 => i..i + 1,
@@ -165,7 +165,7 @@ impl Elimination {
                 for j in columns {
                     if self.filled[i * n + j] {
                         self.slot_of[i * n + j] = self.src.len() as Ix;
-                        let a = perm[i] * n + j;
+                        let a = p * n + j;
                         self.src.push(if self.pattern[a] { a } else { n * n } as Ix);
                         self.dense.push((i * n + j) as Ix);
                         self.at.push((i as Ix, j as Ix));
