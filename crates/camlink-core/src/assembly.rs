@@ -355,17 +355,6 @@ impl Assembly {
         }
     }
 
-    /// Φ at the views `locals` ([`gather`](Self::gather)) into `out`.
-    pub fn phi_at(&self, model: &Model, locals: &[Local], out: &mut [f64]) {
-        let mut rows: Rows = [0.0; 3];
-        for (j, (joint, x)) in model.joints.iter().zip(locals).enumerate() {
-            joint.constraint.phi(x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
-        }
-    }
-
     /// Φ_q at the views `locals` ([`gather`](Self::gather)) written by
     /// `plan` into `values`; with `nu`, ν there too, in the same pass.
     pub fn fill_jacobian(

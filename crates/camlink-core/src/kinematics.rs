@@ -720,11 +720,9 @@ impl newton::Problem for Positions<'_> {
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
         let (asm, model, t) = (self.fit.asm, self.fit.model, self.t);
-        let locals = &mut *self.fit.locals;
-        asm.gather(model, q, t, locals);
         match &mut self.kept {
-            None => asm.phi_at(model, locals, phi),
-            Some(k) => k.gather(|f| asm.phi_at(model, locals, f), phi),
+            None => asm.phi(model, q, t, phi),
+            Some(k) => k.gather(|f| asm.phi(model, q, t, f), phi),
         }
         newton::Measure::max_abs(phi, self.tol)
     }

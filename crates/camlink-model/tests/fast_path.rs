@@ -3,7 +3,7 @@
 //! ([`camlink_core::lu_program`]) and with a pivot search at every
 //! factorization agrees to 1e-12 in q, q̇ and q̈ at every step (relative to
 //! each quantity's largest size over the run, at least 1); and on every
-//! example model, Φ, Φ_q, ν and γ filled through a [`JacobianPlan`] from joint
+//! example model, Φ_q, ν and γ filled through a [`JacobianPlan`] from joint
 //! views gathered once are, bit for bit, those of the general per-entry
 //! and per-joint evaluations.
 
@@ -110,8 +110,8 @@ fn fixed_pivots_agree_with_pivot_search_on_every_example() {
     );
 }
 
-/// Φ, Φ_q (m × n, row-major) through a plan that leaves out the rows
-/// `skip` says, ν and γ, from views gathered once.
+/// Φ_q (m × n, row-major) through a plan that leaves out the rows `skip`
+/// says, ν and γ, from views gathered once.
 fn planned(
     model: &camlink_core::Model,
     asm: &Assembly,
@@ -119,17 +119,15 @@ fn planned(
     qd: &[f64],
     t: f64,
     skip: impl Fn(usize) -> bool,
-) -> [Vec<f64>; 4] {
+) -> [Vec<f64>; 3] {
     let n = asm.n;
     let plan: JacobianPlan = asm.jacobian_plan(model, |r, c| (!skip(r)).then_some(r * n + c));
     let mut locals = vec![Local::default(); model.joints.len()];
     let (mut jac, mut nu, mut gamma) = (vec![0.0; asm.m * n], vec![0.0; asm.m], vec![0.0; asm.m]);
-    let mut phi = vec![0.0; asm.m];
     asm.gather(model, q, t, &mut locals);
-    asm.phi_at(model, &locals, &mut phi);
     asm.fill_jacobian(model, &plan, &locals, &mut jac, Some(&mut nu));
     asm.gamma_at(model, &mut locals, qd, &mut gamma);
-    [phi, jac, nu, gamma]
+    [jac, nu, gamma]
 }
 
 #[test]
@@ -151,18 +149,16 @@ fn planned_jacobian_nu_and_gamma_match_the_general_evaluation_on_every_example()
         let t = 0.37;
         let mut jac = vec![0.0; m * n];
         asm.jacobian(model, &q, t, |r, c, v| jac[r * n + c] = v);
-        let (mut phi, mut nu, mut gamma) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-        asm.phi(model, &q, t, &mut phi);
+        let (mut nu, mut gamma) = (vec![0.0; m], vec![0.0; m]);
         asm.nu(model, &q, t, &mut nu);
         asm.gamma(model, &q, &qd, t, &mut gamma);
         let name = path.display();
-        let [phi_p, jac_p, nu_p, gamma_p] = planned(model, &asm, &q, &qd, t, |_| false);
-        assert_eq!(phi_p, phi, "{name}: Φ");
+        let [jac_p, nu_p, gamma_p] = planned(model, &asm, &q, &qd, t, |_| false);
         assert_eq!(jac_p, jac, "{name}: Φ_q");
         assert_eq!(nu_p, nu, "{name}: ν");
         assert_eq!(gamma_p, gamma, "{name}: γ");
         // Rows left out (as redundant equations are) stay untouched.
-        let [_, odd, ..] = planned(model, &asm, &q, &qd, t, |r| r % 2 == 1);
+        let [odd, ..] = planned(model, &asm, &q, &qd, t, |r| r % 2 == 1);
         for (k, (a, b)) in odd.iter().zip(&jac).enumerate() {
             let expected = if (k / n) % 2 == 1 { 0.0 } else { *b };
             assert_eq!(*a, expected, "{name}: Φ_q entry ({}, {})", k / n, k % n);
