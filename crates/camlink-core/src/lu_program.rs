@@ -5,16 +5,16 @@
 //! A mechanism's Φ_q keeps its sparsity pattern, and from one step to the
 //! next its values change little, so the rows that partial pivoting picks
 //! rarely change. After a pivoted factorization P A = L U, the elimination
-//! is recorded symbolically over A's pattern (with fill-in) and compiled:
-//! the structural nonzeros of the factors get slots in a compact vector
-//! (L's strictly lower part row by row, the diagonal, U's strictly upper
-//! part row by row, so that a solve reads them in order), and the elimination becomes, for each pivot k, the list
-//! of slots of L_ik (i > k) and the list of updates (target, L_ik, U_kj),
-//! one per structural product L_ik U_kj. The next factorization fills the
-//! slots from A (finding A's largest entry in the same pass), then runs
-//! those lists, in the same order, with no pivot search and no dense
-//! storage; the solves read the factors from the same slots, so nothing is
-//! gathered after a factorization.
+//! is recorded symbolically over A's pattern (with fill-in) and compiled.
+//! The structural nonzeros of the factors get slots in a compact vector:
+//! L's strictly lower part row by row, the diagonal, U's strictly upper
+//! part row by row. The elimination becomes, for each pivot k, the list of
+//! slots of L_ik (i > k) and the list of updates (target, L_ik, U_kj), one
+//! per structural product L_ik U_kj. The next factorization fills the
+//! slots from A (finding A's largest entry in the same pass), runs those
+//! lists in the same order, with no pivot search and no dense storage, and
+//! divides U's strictly upper part by its pivots. The solves are then two
+//! flat loops over the slots in order: L forward, U backward.
 //!
 //! The replay accepts a pivot only while it is at least [`THRESHOLD`] times
 //! the largest entry below it in its column (threshold partial pivoting,
@@ -28,7 +28,7 @@
 /// entries below it before elimination).
 pub const THRESHOLD: f64 = 0.1;
 
-/// An index in the compiled lists (a slot, a row or a column; n ≤ 24).
+/// An index in the compiled lists (a slot, a row or a column).
 type Ix = u32;
 
 /// The compiled elimination of an n × n matrix with a fixed pattern.
