@@ -12,8 +12,12 @@ use std::path::Path;
 use camlink_core::assembly::{Assembly, JacobianPlan};
 use camlink_core::constraint::Local;
 use camlink_core::kinematics::Solver;
+use camlink_core::linsolve::SystemMatrix;
 use camlink_core::run::{time_grid, Settings};
 use camlink_model::AnalysisType;
+
+#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
+mod mechanisms;
 
 const TOL: f64 = 1e-12;
 
@@ -167,4 +171,56 @@ fn planned_jacobian_nu_and_gamma_match_the_general_evaluation_on_every_example()
         compared += 1;
     }
     assert!(compared >= 20, "only {compared} example models compared");
+}
+
+/// Φ_q of a square model at (q, t) put into a [`SystemMatrix`] entry by
+/// entry, and written through a plan into its storage: the same matrix.
+fn plan_fills_the_matrix_as_put_does(model: &camlink_core::Model, name: &str) -> bool {
+    let asm = Assembly::new(model);
+    let n = asm.n;
+    if asm.m != n {
+        return false;
+    }
+    let q: Vec<f64> = asm
+        .initial_q(model)
+        .iter()
+        .enumerate()
+        .map(|(k, v)| v + 0.01 * (k as f64 * 2.3).cos())
+        .collect();
+    let t = 0.61;
+    let mut pattern = Vec::new();
+    asm.jacobian(model, &q, t, |r, c, _| pattern.push((r, c)));
+    let mut put = SystemMatrix::try_new(n, &pattern).unwrap();
+    let mut k = 0;
+    asm.jacobian(model, &q, t, |r, c, v| {
+        put.put(k, r, c, v);
+        k += 1;
+    });
+    let mut planned = SystemMatrix::try_new(n, &pattern).unwrap();
+    let mut k = 0;
+    let plan = asm.jacobian_plan(model, |r, c| {
+        k += 1;
+        Some(planned.slot(k - 1, r, c))
+    });
+    let mut locals = vec![Local::default(); model.joints.len()];
+    asm.gather(model, &q, t, &mut locals);
+    asm.fill_jacobian(model, &plan, &locals, planned.values_mut(), None);
+    assert_eq!(planned.to_dense(), put.to_dense(), "{name}");
+    true
+}
+
+#[test]
+fn plans_fill_small_and_sparse_matrices_as_entry_by_entry_puts_do() {
+    let mut small = 0;
+    for path in model_files() {
+        let loaded = camlink_model::load_path(&path).unwrap_or_else(|e| panic!("{e}"));
+        small += usize::from(plan_fills_the_matrix_as_put_does(
+            &loaded.model,
+            &path.display().to_string(),
+        ));
+    }
+    assert!(small >= 15, "only {small} square example models");
+    // 60 driven links, 180 unknowns: the sparse LU's storage.
+    let chain = mechanisms::driven_chain(60, 0.1);
+    assert!(plan_fills_the_matrix_as_put_does(&chain, "driven chain"));
 }
