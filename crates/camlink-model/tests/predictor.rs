@@ -57,14 +57,11 @@ fn quartic_motion_is_predicted_without_newton_iterations() {
         let before = solver.summary.newton_iterations;
         solver.advance(w[0], w[1], 0).unwrap();
         let iterations = solver.summary.newton_iterations - before;
-        let q = exact(w[1]);
-        for c in 0..3 {
+        for (c, (got, want)) in solver.q.iter().zip(exact(w[1])).enumerate() {
             assert!(
-                (solver.q[c] - q[c]).abs() < 1e-12,
-                "t = {}: q[{c}] = {} against {}",
-                w[1],
-                solver.q[c],
-                q[c]
+                (got - want).abs() < 1e-12,
+                "t = {}: q[{c}] = {got} against {want}",
+                w[1]
             );
         }
         // Steps 1 and 2 predict from fewer than three accelerations.
