@@ -114,6 +114,16 @@ fn fixed_pivots_agree_with_pivot_search_on_every_example() {
     );
 }
 
+/// The model's starting coordinates, coordinate k moved by
+/// 0.01 sin(k · `spread`) (m or rad).
+fn off_placement(model: &camlink_core::Model, asm: &Assembly, spread: f64) -> Vec<f64> {
+    let q0 = asm.initial_q(model);
+    q0.iter()
+        .enumerate()
+        .map(|(k, v)| v + 0.01 * (k as f64 * spread).sin())
+        .collect()
+}
+
 /// Φ_q (m × n, row-major) through a plan that leaves out the rows `skip`
 /// says, ν and γ, from views gathered once.
 fn planned(
@@ -143,12 +153,7 @@ fn planned_jacobian_nu_and_gamma_match_the_general_evaluation_on_every_example()
         let asm = Assembly::new(model);
         let (n, m) = (asm.n, asm.m);
         // A configuration off the placement and velocities of every size.
-        let q: Vec<f64> = asm
-            .initial_q(model)
-            .iter()
-            .enumerate()
-            .map(|(k, v)| v + 0.01 * (k as f64 * 1.7).sin())
-            .collect();
+        let q = off_placement(model, &asm, 1.7);
         let qd: Vec<f64> = (0..n).map(|k| (k as f64 * 0.9 + 0.3).cos()).collect();
         let t = 0.37;
         let mut jac = vec![0.0; m * n];
@@ -181,12 +186,7 @@ fn plan_fills_the_matrix_as_put_does(model: &camlink_core::Model, name: &str) ->
     if asm.m != n {
         return false;
     }
-    let q: Vec<f64> = asm
-        .initial_q(model)
-        .iter()
-        .enumerate()
-        .map(|(k, v)| v + 0.01 * (k as f64 * 2.3).cos())
-        .collect();
+    let q = off_placement(model, &asm, 2.3);
     let t = 0.61;
     let mut pattern = Vec::new();
     asm.jacobian(model, &q, t, |r, c, _| pattern.push((r, c)));
