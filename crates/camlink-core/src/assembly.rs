@@ -382,19 +382,26 @@ impl Assembly {
         }
     }
 
+    /// Joint `j`'s entries of a rate vector `v` (q̇ or q̈): its bodies'
+    /// into `bodies` (the ground's left as they are) and its own into `own`.
+    #[inline]
+    fn rates_into(&self, j: usize, v: &[f64], bodies: &mut [[f64; 3]; 2], own: &mut [f64]) {
+        let (cols, n_own) = self.joint_cols[j];
+        for (k, col) in cols.iter().enumerate() {
+            if let Some(c) = *col {
+                bodies[k] = [v[c], v[c + 1], v[c + 2]];
+            }
+        }
+        let o = self.own_col[j];
+        own[..n_own].copy_from_slice(&v[o..o + n_own]);
+    }
+
     /// γ at the views `locals` ([`gather`](Self::gather)) with the
     /// velocities `qd`, which are set into the views, into `out`.
     pub fn gamma_at(&self, model: &Model, locals: &mut [Local], qd: &[f64], out: &mut [f64]) {
         let mut rows: Rows = [0.0; 3];
         for (j, (joint, x)) in model.joints.iter().zip(locals.iter_mut()).enumerate() {
-            let (cols, own) = self.joint_cols[j];
-            for (k, col) in cols.iter().enumerate() {
-                if let Some(c) = *col {
-                    x.qd[k] = [qd[c], qd[c + 1], qd[c + 2]];
-                }
-            }
-            let o = self.own_col[j];
-            x.own_d[..own].copy_from_slice(&qd[o..o + own]);
+            self.rates_into(j, qd, &mut x.qd, &mut x.own_d);
             joint.constraint.gamma(x, &mut rows);
             let r = self.row[j];
             let m = joint.constraint.rows();
@@ -419,14 +426,7 @@ impl Assembly {
         let mut rows: Rows = [0.0; 3];
         for (j, joint) in model.joints.iter().enumerate() {
             let mut x = self.local(model, j, q, qd, t);
-            let (cols, own) = self.joint_cols[j];
-            for (k, col) in cols.iter().enumerate() {
-                if let Some(c) = *col {
-                    x.qdd[k] = [qdd[c], qdd[c + 1], qdd[c + 2]];
-                }
-            }
-            let o = self.own_col[j];
-            x.own_dd[..own].copy_from_slice(&qdd[o..o + own]);
+            self.rates_into(j, qdd, &mut x.qdd, &mut x.own_dd);
             joint.constraint.eta(&x, &mut rows);
             let r = self.row[j];
             let m = joint.constraint.rows();
