@@ -108,6 +108,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
+        keep_rows: bool = True,
         jerk: bool = False,
     ) -> _RunOutput: ...
     def run_inverse_dynamics(
@@ -119,6 +120,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
+        keep_rows: bool = True,
     ) -> _RunOutput: ...
     def run_equilibrium(
         self,
@@ -129,6 +131,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
+        keep_rows: bool = True,
     ) -> _RunOutput: ...
     def run_dynamics(
         self,
@@ -143,6 +146,7 @@ class Model:
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
+        keep_rows: bool = True,
     ) -> _RunOutput: ...
 
 def json_schema() -> str: ...

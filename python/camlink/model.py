@@ -361,7 +361,8 @@ class Model:
         Arguments left as None come from the file's ``[analysis]``. With
         `output` (``.csv`` or ``.parquet``), results are written as the run
         goes, so a run that stops early leaves every step it computed in the
-        file.
+        file, and the returned `Results` read their rows back from the file
+        when asked for (memory stays flat however long the run).
 
         Raises `AnalysisError` when the mechanism cannot follow its drivers;
         the exception's ``results`` holds the steps before the failure.
@@ -527,7 +528,9 @@ class Model:
         on_rows: Callable[[int], object] | None = None,
     ) -> Results:
         """Calls a core run with the output points and a chunk writer; wraps
-        the outcome (or the partial results of a failure) as `Results`."""
+        the outcome (or the partial results of a failure) as `Results`:
+        held in memory without `output`, else read back from the file (the
+        binding then keeps only the chunk being handed over)."""
         if points is None:
             points = self.analysis["points"]
         # One name is one point, not a sequence of characters.
@@ -553,7 +556,10 @@ class Model:
             # Ctrl-C does (camlink.signals).
             with stop_on_termination(only_default=True):
                 names, data, summary = core(
-                    points=points, on_chunk=on_chunk, chunk_rows=CHUNK_ROWS
+                    points=points,
+                    on_chunk=on_chunk,
+                    chunk_rows=CHUNK_ROWS,
+                    keep_rows=writer is None,
                 )
             complete = True
             metadata = {
@@ -565,16 +571,20 @@ class Model:
             }
         except AnalysisError as e:
             names = list(e.names)
-            partial = e.data if e.data is not None else np.empty((0, len(names)))
-            e.results = Results(
-                names, partial, model=self.name, complete=False, summary={"analysis": kind}
-            )
-            e.results.mechanism = self
             if writer is not None:
                 e.output = writer.close(names, complete=False)
+                e.results = Results._from_file(
+                    writer.columns(), names, model=self.name, complete=False,
+                    summary={"analysis": kind},
+                )
                 writer = None
             else:
                 e.output = None
+                partial = e.data if e.data is not None else np.empty((0, len(names)))
+                e.results = Results(
+                    names, partial, model=self.name, complete=False, summary={"analysis": kind}
+                )
+            e.results.mechanism = self
             raise
         except KeyboardInterrupt as e:
             # Ctrl-C, SIGTERM or SIGHUP: keep what was computed.
@@ -587,7 +597,10 @@ class Model:
                 writer.close(names, complete=complete, metadata=metadata)
         typed = _summary(kind, summary)
         issue_run_warnings(typed)
-        results = Results(names, data, model=self.name, summary=typed)
+        if writer is not None:
+            results = Results._from_file(writer.columns(), names, model=self.name, summary=typed)
+        else:
+            results = Results(names, data, model=self.name, summary=typed)
         results.mechanism = self
         return results
 

@@ -7,23 +7,35 @@ output, named ``<stem>.partial-<random><suffix>``:
 
 - CSV: the file itself, one ``write`` and flush per chunk; a reader drops
   an unfinished last line (`read_csv`).
-- Parquet: an Arrow IPC stream (``.arrows``), one record batch per chunk,
+- Parquet: the Parquet file itself, row group by row group as the chunks
+  arrive (a hidden ``.<stem>.partial-<random><suffix>`` until the end), and
+  beside it an Arrow IPC stream (``.arrows``), one record batch per chunk,
   which any Arrow reader reads up to the last complete batch
-  (`read_arrow_stream`); the Parquet file is written from it at the end,
-  in row groups of `ROW_GROUP_ROWS` rows.
+  (`read_arrow_stream`) should the process be killed before the Parquet
+  file has its footer. Neither is read back: the journal is deleted when
+  the Parquet file is complete.
+
+Only the chunk being written (and, for Parquet, one row group) is held in
+memory, whatever the length of the run.
 
 A CSV file starts with comment lines ``# key: value`` (the value as JSON)
 before its header line: ``camlink`` (the version), ``model``, ``analysis``
 and ``units`` (each channel's unit, ``""`` where the kind does not fix it);
 a complete run ends it with ``# summary: {...}``. Parquet keeps the same
-under its schema metadata key ``camlink``. `read_csv_metadata` reads them
-back.
+as JSON under its key-value metadata key ``camlink``, written when the file
+is closed (the summary is known only then), which readers see as the schema
+metadata. `read_csv_metadata` reads them back.
 
 On success the temporary file is renamed over the output in one step (the
 last of two runs writing the same output wins, whole); on an analysis
 error or an interrupt it is renamed to ``<stem>.partial<suffix>``, so a
 good earlier output is never replaced by a failed run. After a SIGKILL or
-a power cut the temporary file stays, readable by `camlink.Results.load`.
+a power cut the temporary file stays, readable by `camlink.Results.load`
+(for Parquet, the journal; the hidden Parquet file without its footer stays
+too, and can be deleted).
+
+Each writer's `columns` gives the finished file as a
+`camlink.results_file.ColumnSource`, which `camlink.Results` reads lazily.
 """
 
 from __future__ import annotations
@@ -42,8 +54,10 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import ModelError
+from camlink.results_file import ColumnSource, CsvColumns, ParquetColumns
 
 __all__ = [
+    "ROW_GROUP_BYTES",
     "ROW_GROUP_ROWS",
     "SUFFIXES",
     "CsvWriter",
@@ -61,8 +75,11 @@ SUFFIXES = {".csv": "csv", ".parquet": "parquet", ".pq": "parquet"}
 #: unfinished Parquet output.
 READ_SUFFIXES = {**SUFFIXES, ".arrows": "arrows"}
 
-#: Rows per Parquet row group.
+#: Most rows per Parquet row group.
 ROW_GROUP_ROWS = 1 << 16
+
+#: Most bytes of values per Parquet row group (fewer rows for a wide model).
+ROW_GROUP_BYTES = 2 << 20
 
 
 def _umask() -> int:
@@ -134,6 +151,13 @@ class _Target:
 COMMENT = "# "
 
 
+def _units(names: Sequence[str]) -> dict[str, str]:
+    """Each channel's unit (``""`` where the kind does not fix it)."""
+    from camlink.units import unit
+
+    return {n: unit(n) for n in names}
+
+
 def _comment(key: str, value: object) -> bytes:
     """One metadata line: ``# key: <JSON>`` (JSON escapes line breaks)."""
     return f"{COMMENT}{key}: {json.dumps(value, default=str, ensure_ascii=False)}\n".encode()
@@ -151,21 +175,32 @@ class CsvWriter:
         self._target = _Target(path, path.suffix)
         self._file = self._target.temp.open("wb")
         self._header = False
+        self._names: list[str] = []
+        #: Rows written so far.
+        self.rows = 0
+        # Byte offsets of the rows: after the header line, after the last row.
+        self._start = 0
+        self._end = 0
 
     def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
         if not self._header:
-            from camlink.units import unit
-
             for key in ("camlink", "model", "analysis"):
                 if key in self._head:
                     self._file.write(_comment(key, self._head[key]))
-            self._file.write(_comment("units", {n: unit(n) for n in names}))
+            self._file.write(_comment("units", _units(names)))
             line = io.StringIO()
             csv.writer(line, lineterminator="\n").writerow(names)
             self._file.write(line.getvalue().encode())
             self._header = True
+            self._names = list(names)
+            self._start = self._end = self._file.tell()
         if len(rows):
-            self._file.write(_core.csv_rows(np.ascontiguousarray(rows, dtype=np.float64)))
+            # Row by row: a Fortran-order chunk would be read across its
+            # columns, far apart in memory.
+            text = _core.csv_rows(np.ascontiguousarray(rows, dtype=np.float64))
+            self._file.write(text)
+            self.rows += len(rows)
+            self._end += len(text)
         self._file.flush()
 
     def close(
@@ -182,51 +217,150 @@ class CsvWriter:
         self.path = self._target.finish(self._target.temp, complete)
         return self.path
 
+    def columns(self) -> ColumnSource:
+        """The written file (after `close`), parsed when first read."""
+        return CsvColumns(self.path, self._names, self._start, self._end, self.rows)
+
 
 class ParquetWriter:
-    """Journals each chunk as an Arrow record batch, then writes the
-    Parquet file from the journal when the run ends."""
+    """Writes each chunk as it arrives, twice: into the Parquet file through
+    `pyarrow.parquet.ParquetWriter` (chunks gathered into row groups of
+    `ROW_GROUP_ROWS` rows or `ROW_GROUP_BYTES` bytes, whichever is fewer)
+    and into the Arrow IPC journal, which stays readable if the process is
+    killed. Neither is read back: `close` writes the last row group and the
+    metadata, and deletes the journal. Memory stays that of one row group
+    whatever the length of the run.
 
-    def __init__(self, path: Path) -> None:
+    The Parquet file is written to a hidden ``.<journal stem>.parquet``
+    beside the journal until `close` renames it; files are LZ4-compressed
+    (the fastest of pyarrow's codecs on simulated doubles, and as small as
+    snappy) without dictionary encoding, and keep no Arrow schema (every
+    column is a double), so that the ``camlink`` key-value metadata, known
+    only at the end of the run, is what readers see as the schema
+    metadata."""
+
+    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
         self.path = path
+        self._head = dict(head or {})
         self._target = _Target(path, ".arrows")
-        self._sink: Any = None
+        journal = self._target.temp
+        self._parquet = journal.with_name(f".{journal.stem}{path.suffix}")
+        self._parquet.touch(mode=0o666 & ~_UMASK)
+        self._schema: Any = None
+        self._journal: Any = None
+        self._journal_sink: Any = None
         self._writer: Any = None
+        self._pending: list[Any] = []
+        self._pending_rows = 0
+        self._group_rows = ROW_GROUP_ROWS
+        #: Rows written so far.
+        self.rows = 0
+
+    def _open(self, names: Sequence[str]) -> None:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        self._schema = pa.schema([(n, pa.float64()) for n in names])
+        width = max(len(names), 1)
+        self._group_rows = max(1, min(ROW_GROUP_ROWS, ROW_GROUP_BYTES // (8 * width)))
+        head = {**self._head, "units": _units(names)}
+        # Buffered, flushed once per chunk: one system call instead of one
+        # per column.
+        self._journal_sink = pa.BufferedOutputStream(
+            pa.OSFile(str(self._target.temp), "wb"), buffer_size=1 << 20
+        )
+        self._journal = pa.ipc.new_stream(
+            self._journal_sink,
+            self._schema.with_metadata({"camlink": json.dumps(head, default=str)}),
+        )
+        # Simulated doubles seldom repeat: dictionary encoding costs time
+        # and saves nothing.
+        self._writer = pq.ParquetWriter(
+            str(self._parquet),
+            self._schema,
+            compression="lz4",
+            use_dictionary=False,
+            store_schema=False,
+        )
 
     def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
         import pyarrow as pa
 
-        batch = pa.record_batch([pa.array(rows[:, k]) for k in range(len(names))], names=list(names))
         if self._writer is None:
-            self._sink = pa.OSFile(str(self._target.temp), "wb")
-            self._writer = pa.ipc.new_stream(self._sink, batch.schema)
-        self._writer.write_batch(batch)
-        self._sink.flush()
+            self._open(names)
+        if not len(rows):
+            return
+        batch = pa.record_batch(
+            [_float_array(rows[:, k]) for k in range(len(names))], schema=self._schema
+        )
+        self._journal.write_batch(batch)
+        self._journal_sink.flush()
+        self._pending.append(batch)
+        self._pending_rows += len(rows)
+        self.rows += len(rows)
+        if self._pending_rows >= self._group_rows:
+            self._write_groups(whole_only=True)
+
+    def _write_groups(self, whole_only: bool) -> None:
+        """Writes the pending rows as row groups of `_group_rows` rows;
+        with `whole_only`, a last shorter group stays pending."""
+        import pyarrow as pa
+
+        table = pa.Table.from_batches(self._pending, schema=self._schema)
+        whole = table.num_rows - table.num_rows % self._group_rows
+        cut = whole if whole_only else table.num_rows
+        if cut:
+            self._writer.write_table(table.slice(0, cut), row_group_size=self._group_rows)
+        rest = table.slice(cut)
+        self._pending = rest.to_batches() if rest.num_rows else []
+        self._pending_rows = rest.num_rows
 
     def close(
         self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
-        """Writes the Parquet file from the journal, with `metadata` as JSON
-        under the schema metadata key ``camlink``; returns where it is (the
-        output, or its partial name when not `complete`)."""
-        import pyarrow.parquet as pq
-
+        """Writes the last row group and, as the Parquet key-value metadata
+        ``camlink``, `metadata` as JSON (for a run that stopped early, the
+        head given at open with each channel's unit); returns where the
+        file is (the output, or its partial name when not `complete`)."""
         if self._writer is None:
-            self.write(names, np.empty((0, len(names))))
+            self._open(names)
+        if self._pending_rows:
+            self._write_groups(whole_only=False)
+        meta = dict(metadata) if metadata is not None else {**self._head, "units": _units(names)}
+        self._writer.add_key_value_metadata({"camlink": json.dumps(meta, default=str)})
         self._writer.close()
-        self._sink.close()
-        table = read_arrow_stream(self._target.temp)
-        if metadata is not None:
-            text = json.dumps(metadata, default=str)
-            table = table.replace_schema_metadata({"camlink": text})
-        parquet = self._target.temp.with_suffix(self.path.suffix)
-        # Simulated doubles seldom repeat: dictionary encoding costs time
-        # and saves nothing.
-        pq.write_table(table, parquet, row_group_size=ROW_GROUP_ROWS, use_dictionary=False)
-        os.chmod(parquet, 0o666 & ~_UMASK)
-        self.path = self._target.finish(parquet, complete)
+        self._journal.close()
+        self._journal_sink.close()
+        self.path = self._target.finish(self._parquet, complete)
         self._target.temp.unlink()
         return self.path
+
+    def columns(self) -> ColumnSource:
+        """The written file (after `close`), read column by column."""
+        return ParquetColumns(self.path)
+
+
+def _stacked(chunks: list[npt.NDArray[np.float64]]) -> npt.NDArray[np.float64]:
+    """Chunks of rows one after the other, in Fortran order (each channel
+    contiguous); a single chunk as it is."""
+    if len(chunks) == 1:
+        return chunks[0]
+    out = np.empty((sum(len(c) for c in chunks), chunks[0].shape[1]), order="F")
+    start = 0
+    for c in chunks:
+        out[start : start + len(c)] = c
+        start += len(c)
+    return out
+
+
+def _float_array(values: npt.NDArray[np.float64]) -> Any:
+    """An Arrow double array over `values` (copied only when not
+    contiguous). `pyarrow.array` would import pandas, seconds at the first
+    chunk, to ask whether `values` is a pandas object."""
+    import pyarrow as pa
+
+    values = np.ascontiguousarray(values, dtype=np.float64)
+    return pa.Array.from_buffers(pa.float64(), len(values), [None, pa.py_buffer(values)])
 
 
 def read_arrow_stream(path: Path) -> Any:
@@ -255,7 +389,17 @@ def read_arrow_stream(path: Path) -> Any:
 class BackgroundWriter:
     """Hands each chunk to `writer` on a second thread, so that formatting
     and writing overlap the computation (which runs without the GIL). An
-    error in the thread surfaces at the next `write` or at `close`."""
+    error in the thread surfaces at the next `write` or at `close`.
+
+    At most `QUEUED_CHUNKS` chunks wait; when the thread falls behind, the
+    chunks waiting are written together, up to `BATCH_ROWS` rows, which
+    spares the writer's cost per chunk."""
+
+    #: Chunks that may wait for the thread.
+    QUEUED_CHUNKS = 8
+
+    #: Most rows written in one call when chunks are waiting.
+    BATCH_ROWS = 8192
 
     def __init__(self, writer: CsvWriter | ParquetWriter) -> None:
         import queue
@@ -264,7 +408,7 @@ class BackgroundWriter:
         self._writer = writer
         self.path = writer.path
         self._queue: queue.Queue[tuple[Sequence[str], npt.NDArray[np.float64]] | None] = (
-            queue.Queue(maxsize=4)
+            queue.Queue(maxsize=self.QUEUED_CHUNKS)
         )
         self._error: BaseException | None = None
         self._thread = threading.Thread(target=self._work, name="camlink-writer", daemon=True)
@@ -284,11 +428,25 @@ class BackgroundWriter:
                 continue
             if item is None:
                 return
+            names, rows = item
+            waiting = [rows]
+            end = False
+            while sum(len(r) for r in waiting) < self.BATCH_ROWS:
+                try:
+                    more = self._queue.get_nowait()
+                except queue.Empty:
+                    break
+                if more is None:
+                    end = True
+                    break
+                waiting.append(more[1])
             if self._error is None:
                 try:
-                    self._writer.write(*item)
+                    self._writer.write(names, _stacked(waiting))
                 except BaseException as e:
                     self._error = e
+            if end:
+                return
 
     def _raise(self) -> None:
         if self._error is not None:
@@ -313,6 +471,10 @@ class BackgroundWriter:
         self._raise()
         return self.path
 
+    def columns(self) -> ColumnSource:
+        """The written file (after `close`), read lazily."""
+        return self._writer.columns()
+
 
 def open_writer(
     path: str | os.PathLike[str], head: Mapping[str, Any] | None = None
@@ -320,12 +482,12 @@ def open_writer(
     """A writer for `path` (CSV or Parquet by suffix), its temporary file
     created now so that an unwritable folder fails before any work; a CSV
     starts with the metadata of `head` (Parquet gets its metadata at
-    `close`)."""
+    `close`, the `head` for a run that stopped early)."""
     path = Path(path)
     kind = kind_of(path)
     if path.is_dir():
         raise IsADirectoryError(21, "is a directory", str(path))
-    return CsvWriter(path, head) if kind == "csv" else ParquetWriter(path)
+    return CsvWriter(path, head) if kind == "csv" else ParquetWriter(path, head)
 
 
 def read_csv_metadata(lines: Iterable[str]) -> dict[str, Any]:

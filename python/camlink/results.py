@@ -35,6 +35,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from camlink.model import Model
+    from camlink.results_file import ColumnSource
 
 __all__ = [
     "IMPACT_COLUMNS",
@@ -156,6 +157,11 @@ class Results:
     A run that stopped early has ``complete == False`` and keeps every step
     it computed. ``summary`` holds the solver's counts and warnings;
     ``lift_off`` the intervals where a cam follower would leave its cam.
+
+    The results of a run that wrote an ``output`` file hold no rows: they
+    read a channel from the file when it is first asked for (``data`` and
+    `to_pandas` read every channel), and keep what they read. ``source``
+    is then the file (None for results held in memory).
     """
 
     def __init__(
@@ -176,8 +182,11 @@ class Results:
         self._index = {n: k for k, n in enumerate(self._names)}
         # A read-only view: results are not edited in place (the caller's
         # array keeps its own flags).
-        self._data = data.view()
+        self._data: npt.NDArray[np.float64] | None = data.view()
         self._data.flags.writeable = False
+        # Results read lazily: the file, and the channels read from it.
+        self._source: ColumnSource | None = None
+        self._columns: dict[str, npt.NDArray[np.float64]] = {}
         self.model = model
         self.complete = complete
         #: The ``analysis`` run, solver counts (steps, newton_iterations,
@@ -192,12 +201,78 @@ class Results:
         #: file); drawings and animations take their geometry from it.
         self.mechanism: Model | None = None
 
+    @classmethod
+    def _from_file(
+        cls,
+        source: ColumnSource,
+        names: list[str],
+        *,
+        model: str = "",
+        complete: bool = True,
+        summary: RunSummary | None = None,
+    ) -> Results:
+        """Results whose rows stay in the file `source` until asked for."""
+        res = cls(names, np.empty((0, len(names))), model=model, complete=complete,
+                  summary=summary)
+        res._data = None
+        res._source = source
+        return res
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickles with the rows: results read lazily read them all first
+        (an open file does not travel to another process)."""
+        state = self.__dict__.copy()
+        if self._source is not None:
+            state["_data"] = self._rows()
+            state["_source"] = None
+            state["_columns"] = {}
+        return state
+
+    @property
+    def source(self) -> Path | None:
+        """The file these results read their rows from on access, or None
+        when they hold them in memory."""
+        return None if self._source is None else self._source.path
+
+    def _read(self, names: list[str] | None) -> npt.NDArray[np.float64]:
+        """Reads one channel (`names` of one) or every row (None) from the
+        source file; `ModelError` naming the file when it cannot."""
+        assert self._source is not None
+        try:
+            if names is None:
+                return self._source.table(self._names)
+            return self._source.column(names[0])
+        except (ValueError, OSError) as e:
+            if isinstance(e, ModelError):
+                raise
+            raise ModelError(f"cannot read results from '{self._source.path}': {e}") from None
+
+    def _rows(self) -> npt.NDArray[np.float64]:
+        """Every row, read from the source file the first time."""
+        if self._data is None:
+            data = self._read(None)
+            data.flags.writeable = False
+            self._data = data
+            self._columns.clear()
+        return self._data
+
+    def _column(self, name: str) -> npt.NDArray[np.float64]:
+        """The values of channel `name` (which exists), read-only."""
+        if self._data is not None:
+            return self._data[:, self._index[name]]
+        column = self._columns.get(name)
+        if column is None:
+            column = self._read([name])
+            column.flags.writeable = False
+            self._columns[name] = column
+        return column
+
     @property
     def t(self) -> npt.NDArray[np.float64]:
         """Times (s) of the steps."""
         if "t" not in self._index:
             return np.empty(0)
-        return self._data[:, self._index["t"]]
+        return self._column("t")
 
     @property
     def channels(self) -> list[str]:
@@ -207,7 +282,7 @@ class Results:
     @property
     def data(self) -> npt.NDArray[np.float64]:
         """All values, one row per step, columns ``["t", *channels]``."""
-        return self._data
+        return self._rows()
 
     @property
     def lift_off(self) -> pd.DataFrame:
@@ -268,12 +343,11 @@ class Results:
                 f"{type(name).__name__}; for rows use res.data[{name!r}] "
                 "(columns 't' and res.channels) or res.to_pandas()"
             )
-        try:
-            return self._data[:, self._index[name]]
-        except KeyError:
-            close = difflib.get_close_matches(name, self._names, n=3)
-            hint = f" (did you mean {', '.join(repr(c) for c in close)}?)" if close else ""
-            raise KeyError(f"no channel named {name!r}{hint}") from None
+        if name in self._index:
+            return self._column(name)
+        close = difflib.get_close_matches(name, self._names, n=3)
+        hint = f" (did you mean {', '.join(repr(c) for c in close)}?)" if close else ""
+        raise KeyError(f"no channel named {name!r}{hint}")
 
     def __iter__(self) -> Iterator[str]:
         raise TypeError(
@@ -286,6 +360,9 @@ class Results:
 
     def __len__(self) -> int:
         """Number of time steps."""
+        if self._data is None:
+            assert self._source is not None
+            return self._source.rows
         return self._data.shape[0]
 
     def __repr__(self) -> str:
@@ -306,7 +383,7 @@ class Results:
         index = (
             pd.Index(self.t, name="t") if "t" in self._index else pd.RangeIndex(len(self), name="step")
         )
-        return pd.DataFrame(self._data[:, columns], index=index, columns=self.channels)
+        return pd.DataFrame(self.data[:, columns], index=index, columns=self.channels)
 
     def plot(self, y: str | Sequence[str], x: str = "t") -> Figure:
         """Channels `y` against time or the channel `x`; see `camlink.plot`."""
@@ -366,7 +443,7 @@ class Results:
         writer = open_writer(path, head=meta)
         complete = False
         try:
-            writer.write(self._names, self._data)
+            writer.write(self._names, self.data)
             complete = True
         finally:
             writer.close(self._names, complete, metadata=meta)

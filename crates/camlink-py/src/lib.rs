@@ -31,7 +31,7 @@ use camlink_core::run::{
 use camlink_core::setting;
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
-use numpy::ndarray::Array2;
+use numpy::ndarray::{Array2, ShapeBuilder};
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
@@ -54,6 +54,11 @@ create_exception!(
 
 /// Rows buffered between two calls of `on_chunk`, unless the caller says.
 const DEFAULT_CHUNK_ROWS: usize = 1024;
+
+/// Most bytes of rows buffered between two calls of `on_chunk`, whatever
+/// `chunk_rows` says: a chunk holds at least one row and at most this many
+/// bytes of values, so that a wide model's chunk stays small.
+const CHUNK_BYTES: usize = 2 << 20;
 
 /// Runs `f`, turning a Rust panic into a Python `RuntimeError`.
 fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
@@ -493,12 +498,17 @@ impl Model {
     /// solved too and the jerk channels `<body>.jx .jy .jphi` and
     /// `<point>.jx .jy` follow the others.
     ///
-    /// `on_chunk(names, rows)` is called every `chunk_rows` rows and once at
-    /// the end, also when the analysis fails, so a caller can write results
-    /// as the run goes. The GIL is released while the core computes. An
+    /// `on_chunk(names, rows)` is called every `chunk_rows` rows (fewer
+    /// when that many would exceed [`CHUNK_BYTES`]) and once at the end,
+    /// also when the analysis fails, so a caller can write results as the
+    /// run goes; `rows` is a column-major (Fortran-order) array, so that
+    /// each channel `rows[:, k]` is contiguous. With `keep_rows = False`
+    /// the binding keeps only the current chunk and the returned array (and
+    /// an `AnalysisError`'s `data`) has no rows: the caller has them from
+    /// `on_chunk`. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, jerk = false))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true, jerk = false))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -509,6 +519,7 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        keep_rows: bool,
         jerk: bool,
     ) -> PyResult<RunOutput<'py>> {
         let settings = Settings {
@@ -521,8 +532,7 @@ impl Model {
             times,
             settings,
             points,
-            on_chunk,
-            chunk_rows,
+            Delivery::new(on_chunk, chunk_rows, keep_rows),
             kinematics::run,
         )
     }
@@ -539,7 +549,7 @@ impl Model {
     /// where it rises again (None when the run ends in lift-off),
     /// `least_force` (N, negative) and where it is, `least_time` (s) and
     /// `least_cam_angle` (rad). The cam angle is φ of the cam body.
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_inverse_dynamics<'py>(
         &self,
@@ -550,6 +560,7 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
         let settings = Settings {
             tol,
@@ -561,15 +572,14 @@ impl Model {
             times,
             settings,
             points,
-            on_chunk,
-            chunk_rows,
+            Delivery::new(on_chunk, chunk_rows, keep_rows),
             inverse::run,
         )
     }
 
     /// The equilibrium at `time` (s), as one row with the channels of
     /// `run_inverse_dynamics` (velocities and accelerations zero).
-    #[pyo3(signature = (time = 0.0, *, tol = statics::Settings::default().tol, max_iter = statics::Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (time = 0.0, *, tol = statics::Settings::default().tol, max_iter = statics::Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_equilibrium<'py>(
         &self,
@@ -580,9 +590,11 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
         let settings = statics::Settings { tol, max_iter };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+        let delivery = Delivery::new(on_chunk, chunk_rows, keep_rows);
+        self.run_with(py, &points, delivery, |model, points, sink| {
             statics::run(model, time, &settings, points, sink)
         })
     }
@@ -592,7 +604,7 @@ impl Model {
     /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
     /// `h` is the largest step). Channels and the summary's `lift_off` as
     /// `run_inverse_dynamics`.
-    #[pyo3(signature = (times, *, h = integrator::Settings::default().step, rho_inf = integrator::Settings::default().rho_inf, tol = integrator::Settings::default().tol, max_iter = integrator::Settings::default().max_iter, projection_tol = integrator::Settings::default().projection_tol, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS))]
+    #[pyo3(signature = (times, *, h = integrator::Settings::default().step, rho_inf = integrator::Settings::default().rho_inf, tol = integrator::Settings::default().tol, max_iter = integrator::Settings::default().max_iter, projection_tol = integrator::Settings::default().projection_tol, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_dynamics<'py>(
         &self,
@@ -607,6 +619,7 @@ impl Model {
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
+        keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
         let check = |key: &str, v: f64| setting::check(key, v).map_err(ModelError::new_err);
@@ -624,7 +637,8 @@ impl Model {
             projection_tol,
             adaptive: adaptive.map(|(atol, rtol, h_min)| Adaptive { atol, rtol, h_min }),
         };
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+        let delivery = Delivery::new(on_chunk, chunk_rows, keep_rows);
+        self.run_with(py, &points, delivery, |model, points, sink| {
             integrator::run(model, &times, &settings, points, sink)
         })
     }
@@ -675,12 +689,11 @@ impl Model {
         times: PyReadonlyArray1<'py, f64>,
         settings: Settings,
         points: Vec<String>,
-        on_chunk: Option<Py<PyAny>>,
-        chunk_rows: usize,
+        delivery: Delivery,
         analysis: GridAnalysis,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        self.run_with(py, &points, on_chunk, chunk_rows, |model, points, sink| {
+        self.run_with(py, &points, delivery, |model, points, sink| {
             analysis(model, &times, &settings, points, sink)
         })
     }
@@ -692,8 +705,7 @@ impl Model {
         &self,
         py: Python<'py>,
         points: &[String],
-        on_chunk: Option<Py<PyAny>>,
-        chunk_rows: usize,
+        delivery: Delivery,
         analysis: F,
     ) -> PyResult<RunOutput<'py>>
     where
@@ -706,7 +718,7 @@ impl Model {
     {
         guard(|| {
             let points = resolve_points(&self.loaded.model, points)?;
-            let mut sink = ChunkSink::new(on_chunk, chunk_rows.max(1));
+            let mut sink = ChunkSink::new(delivery);
             let model = &self.loaded.model;
             FORCE_ERROR.with(|slot| slot.borrow_mut().take());
             let outcome = py
@@ -949,13 +961,33 @@ fn analysis_error(
     }
 }
 
+/// Where a run's rows go: to `on_chunk` every `chunk_rows` rows and, with
+/// `keep_rows`, into the array the run returns.
+struct Delivery {
+    on_chunk: Option<Py<PyAny>>,
+    chunk_rows: usize,
+    keep_rows: bool,
+}
+
+impl Delivery {
+    fn new(on_chunk: Option<Py<PyAny>>, chunk_rows: usize, keep_rows: bool) -> Self {
+        Delivery {
+            on_chunk,
+            chunk_rows: chunk_rows.max(1),
+            keep_rows,
+        }
+    }
+}
+
 /// Collects rows and hands them to Python in chunks.
 struct ChunkSink {
     names: Vec<String>,
     /// Rows of the current chunk, row-major.
     chunk: Vec<f64>,
-    /// Every row so far, row-major.
+    /// Every row so far, row-major, when `keep_rows`; else empty.
     all: Vec<f64>,
+    keep_rows: bool,
+    /// Rows per chunk: the caller's `chunk_rows`, capped by [`CHUNK_BYTES`].
     chunk_rows: usize,
     on_chunk: Option<Py<PyAny>>,
     callback_error: Option<PyErr>,
@@ -969,13 +1001,14 @@ struct ChunkSink {
 const SIGNAL_INTERVAL: std::time::Duration = std::time::Duration::from_millis(50);
 
 impl ChunkSink {
-    fn new(on_chunk: Option<Py<PyAny>>, chunk_rows: usize) -> Self {
+    fn new(delivery: Delivery) -> Self {
         ChunkSink {
             names: Vec::new(),
             chunk: Vec::new(),
             all: Vec::new(),
-            chunk_rows,
-            on_chunk,
+            keep_rows: delivery.keep_rows,
+            chunk_rows: delivery.chunk_rows,
+            on_chunk: delivery.on_chunk,
             callback_error: None,
             checked: std::time::Instant::now(),
             ticks: 0,
@@ -1008,7 +1041,8 @@ impl ChunkSink {
         self.names.len()
     }
 
-    /// Calls `on_chunk` with the buffered rows (if any) and moves them to `all`.
+    /// Calls `on_chunk` with the buffered rows (if any), column-major, then
+    /// moves them to `all` (with `keep_rows`) or drops them.
     fn flush(&mut self) {
         if self.chunk.is_empty() {
             return;
@@ -1017,7 +1051,7 @@ impl ChunkSink {
             // Ctrl-C raises KeyboardInterrupt here even without a callback.
             py.check_signals()?;
             if let Some(cb) = &self.on_chunk {
-                let rows = to_array(py, self.chunk.clone(), self.width())?;
+                let rows = to_column_major_array(py, &self.chunk, self.width())?;
                 cb.call1(py, (self.names.clone(), rows))?;
             }
             Ok(())
@@ -1026,8 +1060,27 @@ impl ChunkSink {
             self.callback_error.get_or_insert(e);
             self.on_chunk = None;
         }
-        self.all.append(&mut self.chunk);
+        if self.keep_rows {
+            self.all.extend_from_slice(&self.chunk);
+        }
+        self.chunk.clear();
     }
+}
+
+/// A `rows × width` NumPy array in Fortran order from row-major values.
+fn to_column_major_array<'py>(
+    py: Python<'py>,
+    values: &[f64],
+    width: usize,
+) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    let rows = values.len().checked_div(width).unwrap_or(0);
+    let mut columns = Vec::with_capacity(values.len());
+    for k in 0..width {
+        columns.extend(values.iter().skip(k).step_by(width));
+    }
+    let a = Array2::from_shape_vec((rows, width).f(), columns)
+        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
+    Ok(a.into_pyarray(py))
 }
 
 impl Sink for ChunkSink {
@@ -1035,7 +1088,11 @@ impl Sink for ChunkSink {
         self.names = std::iter::once("t".to_string())
             .chain(channels.iter().cloned())
             .collect();
-        let width = self.width();
+        let width = self.width().max(1);
+        self.chunk_rows = self
+            .chunk_rows
+            .min(CHUNK_BYTES / (width * std::mem::size_of::<f64>()))
+            .max(1);
         self.chunk.reserve(self.chunk_rows * width);
     }
 

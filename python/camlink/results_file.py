@@ -1,0 +1,210 @@
+"""A results file read back on access: what `camlink.Results` holds instead
+of its rows when a run wrote them to a file (``output=``).
+
+- Parquet (`ParquetColumns`): a channel is read through pyarrow's column
+  reads of the memory-mapped file.
+- CSV (`CsvColumns`): pyarrow's CSV reader parses, block by block, the
+  byte range of the rows that the writer recorded (between the header line
+  and the ``# summary`` line), keeping only the channels asked for.
+
+A source holds its file open from when it is made (one file descriptor,
+closed when the source is garbage-collected) and reads through it: results
+keep reading the file their run wrote even after another run replaced the
+output, or the file was deleted. A file changed in
+place (its size or modification time differ) raises `ModelError` instead of
+returning other numbers.
+"""
+
+from __future__ import annotations
+
+import io
+import mmap
+import os
+import weakref
+from pathlib import Path
+from typing import Any, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from camlink._core import ModelError
+
+__all__ = ["ColumnSource", "CsvColumns", "ParquetColumns"]
+
+#: Bytes of CSV text parsed at a time (more for rows longer than an
+#: eighth of it): pyarrow's reader holds several times a block per column.
+CSV_BLOCK = 256 << 10
+
+
+class ColumnSource(Protocol):
+    """Where the rows of lazily read `camlink.Results` are."""
+
+    #: The file.
+    path: Path
+    #: Number of rows (time steps).
+    rows: int
+
+    def column(self, name: str) -> npt.NDArray[np.float64]:
+        """One channel's values, a new array."""
+        ...
+
+    def table(self, names: list[str]) -> npt.NDArray[np.float64]:
+        """All rows, columns in the order of `names`, a new array."""
+        ...
+
+
+def _fill(out: npt.NDArray[np.float64], column: Any) -> None:
+    """Copies an Arrow double column (an array or a chunked array) into
+    `out`. pyarrow's own ``to_numpy`` would import pandas, seconds the
+    first time."""
+    start = 0
+    for chunk in getattr(column, "chunks", [column]):
+        n = len(chunk)
+        if chunk.null_count:
+            values = np.asarray(chunk.to_numpy(zero_copy_only=False), dtype=np.float64)
+        else:
+            values = np.frombuffer(
+                chunk.buffers()[1], dtype=np.float64, count=n, offset=chunk.offset * 8
+            )
+        out[start : start + n] = values
+        start += n
+
+
+class _File:
+    """A file held open, read through a memory map after checking that it
+    did not change."""
+
+    def __init__(self, path: Path) -> None:
+        self.path = path
+        try:
+            fd = os.open(path, os.O_RDONLY)
+        except OSError as e:
+            raise ModelError(f"cannot read results from '{path}': {e.strerror}") from None
+        weakref.finalize(self, os.close, fd)
+        self._fd = fd
+        self._stamp = self._now()
+
+    def _now(self) -> tuple[int, int]:
+        st = os.fstat(self._fd)
+        return (st.st_size, st.st_mtime_ns)
+
+    def check(self) -> None:
+        """`ModelError` when the file changed since the source was made."""
+        if self._now() != self._stamp:
+            raise ModelError(
+                f"cannot read results from '{self.path}': the file changed after the "
+                "run wrote it; load it again with camlink.Results.load"
+            )
+
+    def contents(self) -> Any:
+        """The file as a `pyarrow.Buffer` over a read-only memory map;
+        `ModelError` when the file changed since the source was made."""
+        import pyarrow as pa
+
+        self.check()
+        if self._stamp[0] == 0:
+            return pa.py_buffer(b"")
+        return pa.py_buffer(mmap.mmap(self._fd, 0, access=mmap.ACCESS_READ))
+
+
+class ParquetColumns(_File):
+    """A Parquet results file, read one channel at a time."""
+
+    def __init__(self, path: Path) -> None:
+        super().__init__(path)
+        #: Number of rows, from the file's footer.
+        self.rows = self._file().metadata.num_rows
+
+    def _file(self) -> Any:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        return pq.ParquetFile(pa.BufferReader(self.contents()))
+
+    def column(self, name: str) -> npt.NDArray[np.float64]:
+        table = self._file().read(columns=[name])
+        out = np.empty(table.num_rows)
+        _fill(out, table.column(0))
+        return out
+
+    def table(self, names: list[str]) -> npt.NDArray[np.float64]:
+        table = self._file().read(columns=names)
+        out = np.empty((table.num_rows, len(names)))
+        for k in range(len(names)):
+            _fill(out[:, k], table.column(k))
+        return out
+
+
+class CsvColumns(_File):
+    """A results CSV whose rows lie between byte `start` (after the header
+    line) and byte `end` (before the ``# summary`` line, if any)."""
+
+    def __init__(self, path: Path, names: list[str], start: int, end: int, rows: int) -> None:
+        super().__init__(path)
+        self._names = list(names)
+        self._start = start
+        self._end = end
+        self.rows = rows
+
+    def column(self, name: str) -> npt.NDArray[np.float64]:
+        return self.table([name])[:, 0]
+
+    def table(self, names: list[str]) -> npt.NDArray[np.float64]:
+        import pyarrow as pa
+        import pyarrow.csv as pacsv
+
+        self.check()
+        out = np.empty((self.rows, len(names)))
+        if self.rows == 0:
+            return out
+        # Parsed block by block from the file (not mapped: touching every
+        # page of a large CSV would count it all as resident memory).
+        block = max(CSV_BLOCK, 8 * (self._end - self._start) // self.rows)
+        rows = io.BufferedReader(_Range(self._fd, self._start, self._end), block)
+        reader = pacsv.open_csv(
+            rows,
+            read_options=pacsv.ReadOptions(column_names=self._names, block_size=block),
+            convert_options=pacsv.ConvertOptions(
+                column_types={n: pa.float64() for n in self._names},
+                include_columns=names,
+                null_values=[],
+                strings_can_be_null=False,
+            ),
+        )
+        done = 0
+        for batch in reader:
+            n = batch.num_rows
+            if done + n > self.rows:
+                break
+            for k in range(len(names)):
+                _fill(out[done : done + n, k], batch.column(k))
+            done += n
+        if done != self.rows:
+            raise ModelError(
+                f"cannot read results from '{self.path}': {done if done < self.rows else 'more'} "
+                f"rows where the run wrote {self.rows}"
+            )
+        return out
+
+
+class _Range(io.RawIOBase):
+    """Bytes `start` to `end` of the open file `fd`, read without moving
+    its offset."""
+
+    def __init__(self, fd: int, start: int, end: int) -> None:
+        super().__init__()
+        self._fd = fd
+        self._at = start
+        self._end = end
+
+    def readable(self) -> bool:
+        return True
+
+    def readinto(self, buffer: Any) -> int:
+        n = min(len(buffer), self._end - self._at)
+        if n <= 0:
+            return 0
+        data = os.pread(self._fd, n, self._at)
+        buffer[: len(data)] = data
+        self._at += len(data)
+        return len(data)
