@@ -2,7 +2,7 @@
 
     uv run --group bench python bench/compare.py [--quick] [--only NAME] [--no-cargo]
 
-NAME is one of four_bar, slider_crank, chain, output (the cost of writing
+NAME is one of four_bar, cam_roller, slider_crank, chain, output (the cost of writing
 results: the four-bar kinematics with no output, to CSV and to Parquet). Every figure in the table
 comes from this run on this machine; ratios divide by camlink's core
 figure from the same run (camlink from Python when --no-cargo). The
@@ -38,7 +38,7 @@ import output_writing
 import slider_crank as sc
 import textbook_four_bar as tb
 
-BENCHES = ("four_bar", "slider_crank", "chain", "output")
+BENCHES = ("four_bar", "cam_roller", "slider_crank", "chain", "output")
 
 
 @dataclass
@@ -92,20 +92,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
     times = np.arange(n) * 1e-3
 
     if not args.no_cargo:
-        try:
-            res = cargo("camlink-model", "examples", ["four_bar_10k_steps"])["four_bar_10k_steps"]
-            rows.append(
-                Row(
-                    "four_bar",
-                    "camlink core (Rust, divan)",
-                    "pos, vel, acc",
-                    res["median"] / 1e4 * 1e6,
-                    note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}",
-                    base=True,
-                )
-            )
-        except (RuntimeError, KeyError, OSError) as e:
-            print(f"  camlink core: failed ({e})")
+        core_kinematics_row("four_bar", "four_bar_10k_steps", rows)
 
     import camlink
 
@@ -122,21 +109,7 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
             note="whole call: set-up, solve, channels, Results",
         )
     )
-    # The binding alone: no point channels, no chunk callback.
-    tol, max_iter = camlink._core.Model.analysis_defaults()["kinematics"]
-    tol = model.analysis["tol"] or tol
-    elapsed, _ = best_of(
-        reps, lambda: model._core.run_kinematics(times, tol=tol, max_iter=max_iter, points=[])
-    )
-    rows.append(
-        Row(
-            "four_bar",
-            "camlink binding (_core.run_kinematics)",
-            "pos, vel, acc",
-            elapsed / n * 1e6,
-            note="one call into Rust, arrays back",
-        )
-    )
+    binding_kinematics_row("four_bar", model, times, reps, rows)
 
     # Textbook NumPy: the same grid (fewer steps: it is slow), checked
     # against camlink's results.
@@ -192,6 +165,64 @@ def four_bar(args: argparse.Namespace, rows: list[Row]) -> None:
 
 # ---------------------------------------------------------------------------
 # 2. Slider-crank forward dynamics.
+
+
+def core_kinematics_row(bench: str, divan_name: str, rows: list[Row]) -> None:
+    """The core's divan benchmark `divan_name` (10,000 kinematic steps of an
+    example file) as the base row of `bench`."""
+    try:
+        res = cargo("camlink-model", "examples", [divan_name])[divan_name]
+    except (RuntimeError, KeyError, OSError) as e:
+        print(f"  camlink core: failed ({e})")
+        return
+    rows.append(
+        Row(
+            bench,
+            "camlink core (Rust, divan)",
+            "pos, vel, acc",
+            res["median"] / 1e4 * 1e6,
+            note=f"fastest {res['fastest'] / 1e4 * 1e6:.2f}",
+            base=True,
+        )
+    )
+
+
+def binding_kinematics_row(
+    bench: str, model: Any, times: np.ndarray, reps: int, rows: list[Row]
+) -> None:
+    """The binding alone (`_core.run_kinematics`: no point channels, no chunk
+    callback) over `times`, best of `reps`."""
+    import camlink
+
+    tol, max_iter = camlink._core.Model.analysis_defaults()["kinematics"]
+    tol = model.analysis["tol"] or tol
+    elapsed, _ = best_of(
+        reps, lambda: model._core.run_kinematics(times, tol=tol, max_iter=max_iter, points=[])
+    )
+    rows.append(
+        Row(
+            bench,
+            "camlink binding (_core.run_kinematics)",
+            "pos, vel, acc",
+            elapsed / len(times) * 1e6,
+            note="one call into Rust, arrays back",
+        )
+    )
+
+
+def cam_roller(args: argparse.Namespace, rows: list[Row]) -> None:
+    """The seed's Example 3.4.3 (a cam with a roller follower): the core's
+    divan benchmark and the binding's run, no peer."""
+    n = 1_000 if args.quick else 10_000
+    print(f"cam with roller follower kinematics, {n:,} steps of 1 ms (the core's bench: 10,000)")
+    if not args.no_cargo:
+        core_kinematics_row("cam_roller", "cam_roller_10k_steps", rows)
+
+    import camlink
+
+    model = camlink.load(ROOT / "examples" / "cam_seed_example_3_4_3.toml")
+    reps = 1 if args.quick else 3
+    binding_kinematics_row("cam_roller", model, np.arange(n) * 1e-3, reps, rows)
 
 
 def camlink_slider_error() -> float | None:

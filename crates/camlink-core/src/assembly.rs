@@ -4,8 +4,48 @@
 //! stacked joint by joint in model order. Only this module knows global
 //! indices; constraints see a [`Local`] view and write per-body blocks.
 
-use crate::constraint::{Equations, Jac, Local, Rows};
+use crate::constraint::{Equations, Jac, Local, Rows, MAX_OWN, MAX_ROWS};
 use crate::model::Model;
+
+/// Where each entry of Φ_q goes, worked out once: per joint, the entries
+/// of its [`Jac`] blocks that are in its pattern and their destinations
+/// (indices into a matrix's value storage), so that
+/// [`fill_jacobian`](Assembly::fill_jacobian) writes each value straight
+/// into place.
+#[derive(Clone, Debug, Default)]
+pub struct JacobianPlan {
+    /// (block entry, destination), joint by joint from `start`.
+    entries: Vec<(JacEntry, u32)>,
+    start: Vec<u32>,
+}
+
+/// An entry of a [`Jac`]: `body[k][r][d]` at index 3 MAX_ROWS k + 3r + d for body
+/// k = 0, 1, `own[r][d]` at 6 MAX_ROWS + MAX_OWN r + d.
+#[derive(Clone, Copy, Debug)]
+struct JacEntry(u8);
+
+/// Entries of [`Jac::body`].
+const BODY_ENTRIES: usize = 2 * 3 * MAX_ROWS;
+
+impl JacEntry {
+    fn new(k: usize, r: usize, d: usize) -> Self {
+        JacEntry(if k < 2 {
+            3 * MAX_ROWS * k + 3 * r + d
+        } else {
+            BODY_ENTRIES + MAX_OWN * r + d
+        } as u8)
+    }
+
+    #[inline]
+    fn of(self, jac: &Jac) -> f64 {
+        let i = self.0 as usize;
+        if i < BODY_ENTRIES {
+            jac.body.as_flattened().as_flattened()[i]
+        } else {
+            jac.own.as_flattened()[i - BODY_ENTRIES]
+        }
+    }
+}
 
 /// Where each body's and joint's coordinates and equations sit.
 #[derive(Clone, Debug)]
@@ -258,6 +298,117 @@ impl Assembly {
         }
     }
 
+    /// The plan of Φ_q's entries: `dest(row, col)` is called once for every
+    /// structural entry, in the order of [`jacobian`](Self::jacobian), and
+    /// gives its destination (None leaves the entry out).
+    pub fn jacobian_plan(
+        &self,
+        model: &Model,
+        mut dest: impl FnMut(usize, usize) -> Option<usize>,
+    ) -> JacobianPlan {
+        let mut plan = JacobianPlan::default();
+        for (j, joint) in model.joints.iter().enumerate() {
+            plan.start.push(plan.entries.len() as u32);
+            let c = &joint.constraint;
+            let bodies = c.bodies();
+            let r0 = self.row[j];
+            for (r, &row_pattern) in c.jacobian_pattern().iter().enumerate().take(c.rows()) {
+                let mut add = |k: usize, d: usize, col: usize| {
+                    if let Some(to) = dest(r0 + r, col) {
+                        plan.entries.push((JacEntry::new(k, r, d), to as u32));
+                    }
+                };
+                for (k, b) in bodies.iter().enumerate() {
+                    if let Some(col) = self.body_col[b.0] {
+                        for d in 0..3 {
+                            if row_pattern & (1 << (3 * k + d)) != 0 {
+                                add(k, d, col + d);
+                            }
+                        }
+                    }
+                }
+                for o in 0..c.own_count() {
+                    if row_pattern & (1 << (6 + o)) != 0 {
+                        add(2, o, self.own_col[j] + o);
+                    }
+                }
+            }
+        }
+        plan.start.push(plan.entries.len() as u32);
+        plan
+    }
+
+    /// The local views of every joint at (q, t), velocities zero, into
+    /// `locals` (one per joint).
+    pub fn gather(&self, _model: &Model, q: &[f64], t: f64, locals: &mut [Local]) {
+        for (j, x) in locals.iter_mut().enumerate() {
+            let (cols, own) = self.joint_cols[j];
+            x.t = t;
+            for (k, col) in cols.iter().enumerate() {
+                x.q[k] = col.map_or([0.0; 3], |c| [q[c], q[c + 1], q[c + 2]]);
+                x.qd[k] = [0.0; 3];
+            }
+            let o = self.own_col[j];
+            x.own = [0.0; MAX_OWN];
+            x.own[..own].copy_from_slice(&q[o..o + own]);
+            x.own_d = [0.0; MAX_OWN];
+        }
+    }
+
+    /// Φ_q at the views `locals` ([`gather`](Self::gather)) written by
+    /// `plan` into `values`; with `nu`, ν there too, in the same pass.
+    pub fn fill_jacobian(
+        &self,
+        model: &Model,
+        plan: &JacobianPlan,
+        locals: &[Local],
+        values: &mut [f64],
+        mut nu: Option<&mut [f64]>,
+    ) {
+        let mut jac = Jac::default();
+        let mut rows: Rows = [0.0; 3];
+        for (j, (joint, x)) in model.joints.iter().zip(locals).enumerate() {
+            let c = &joint.constraint;
+            c.jacobian(x, &mut jac);
+            let entries = &plan.entries[plan.start[j] as usize..plan.start[j + 1] as usize];
+            for &(e, to) in entries {
+                values[to as usize] = e.of(&jac);
+            }
+            if let Some(out) = nu.as_deref_mut() {
+                c.nu(x, &mut rows);
+                let r0 = self.row[j];
+                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
+            }
+        }
+    }
+
+    /// Joint `j`'s entries of a rate vector `v` (q̇ or q̈): its bodies'
+    /// into `bodies` (the ground's left as they are) and its own into `own`.
+    #[inline]
+    fn rates_into(&self, j: usize, v: &[f64], bodies: &mut [[f64; 3]; 2], own: &mut [f64]) {
+        let (cols, n_own) = self.joint_cols[j];
+        for (k, col) in cols.iter().enumerate() {
+            if let Some(c) = *col {
+                bodies[k] = [v[c], v[c + 1], v[c + 2]];
+            }
+        }
+        let o = self.own_col[j];
+        own[..n_own].copy_from_slice(&v[o..o + n_own]);
+    }
+
+    /// γ at the views `locals` ([`gather`](Self::gather)) with the
+    /// velocities `qd`, which are set into the views, into `out`.
+    pub fn gamma_at(&self, model: &Model, locals: &mut [Local], qd: &[f64], out: &mut [f64]) {
+        let mut rows: Rows = [0.0; 3];
+        for (j, (joint, x)) in model.joints.iter().zip(locals.iter_mut()).enumerate() {
+            self.rates_into(j, qd, &mut x.qd, &mut x.own_d);
+            joint.constraint.gamma(x, &mut rows);
+            let r = self.row[j];
+            let m = joint.constraint.rows();
+            out[r..r + m].copy_from_slice(&rows[..m]);
+        }
+    }
+
     /// ν(q, t) into `out`.
     pub fn nu(&self, model: &Model, q: &[f64], t: f64, out: &mut [f64]) {
         let mut rows: Rows = [0.0; 3];
@@ -275,14 +426,7 @@ impl Assembly {
         let mut rows: Rows = [0.0; 3];
         for (j, joint) in model.joints.iter().enumerate() {
             let mut x = self.local(model, j, q, qd, t);
-            let (cols, own) = self.joint_cols[j];
-            for (k, col) in cols.iter().enumerate() {
-                if let Some(c) = *col {
-                    x.qdd[k] = [qdd[c], qdd[c + 1], qdd[c + 2]];
-                }
-            }
-            let o = self.own_col[j];
-            x.own_dd[..own].copy_from_slice(&qdd[o..o + own]);
+            self.rates_into(j, qdd, &mut x.qdd, &mut x.own_dd);
             joint.constraint.eta(&x, &mut rows);
             let r = self.row[j];
             let m = joint.constraint.rows();

@@ -1,8 +1,9 @@
 //! Kinematic analysis of a fully driven model.
 //!
 //! At each time t_k:
-//! 1. predict q from the previous steps, q ≈ q + h q̇ + h²/2 q̈ + h³/6 q⃛,
-//!    with the jerk q⃛ estimated from the last two accelerations;
+//! 1. predict q from the previous steps: q̈ over the step extrapolated by
+//!    the quadratic through the last three accelerations (a line through
+//!    two, a constant from one), integrated twice from q and q̇;
 //! 2. Newton–Raphson on Φ(q, t_k) = 0, reusing the last factorization of
 //!    Φ_q while it keeps converging fast, refreshing it when it does not;
 //! 3. factor Φ_q at the solution, solve Φ_q q̇ = ν and Φ_q q̈ = γ;
@@ -20,8 +21,8 @@
 //! that the mechanism passes through (toggle, dead centre) are reported as
 //! warnings.
 
-use crate::assembly::Assembly;
-use crate::constraint::Equations;
+use crate::assembly::{Assembly, JacobianPlan};
+use crate::constraint::{Equations, Local};
 use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, KeptRows, DENSE_MAX};
@@ -132,6 +133,11 @@ pub struct Solver<'m> {
     settings: Settings,
     /// Φ_q and its factorization.
     jac: SystemMatrix,
+    /// Where each entry of Φ_q goes in `jac`'s storage.
+    plan: JacobianPlan,
+    /// Each joint's view of the state, gathered once per factorization and
+    /// read for Φ_q, ν and γ.
+    locals: Vec<Local>,
     pub q: Vec<f64>,
     pub qd: Vec<f64>,
     pub qdd: Vec<f64>,
@@ -143,8 +149,12 @@ pub struct Solver<'m> {
     /// step (s); `None` until two steps are solved.
     qdd_prev: Vec<f64>,
     h_prev: Option<f64>,
+    /// q̈ of the step before that, and the time from it to the step after
+    /// it (s); `None` until three steps are solved.
+    qdd_prev2: Vec<f64>,
+    h_prev2: Option<f64>,
     /// The state at the start of a step, to retry it.
-    saved: [Vec<f64>; 4],
+    saved: [Vec<f64>; 5],
     /// True for angle coordinates (bodies' φ, joints' own coordinates).
     angles: Vec<bool>,
     /// A length that sizes the model (m), for the jump test.
@@ -201,18 +211,29 @@ impl<'m> Solver<'m> {
                 pattern.push((r, c));
             }
         });
+        let jac =
+            SystemMatrix::try_new(n, &pattern).map_err(|e| fail(Kind::Internal, &e.to_string()))?;
+        let mut k = 0;
+        let plan = asm.jacobian_plan(model, |r, c| {
+            let r = reduced(kept.as_ref(), r)?;
+            k += 1;
+            Some(jac.slot(k - 1, r, c))
+        });
         Ok(Solver {
             model,
             settings,
-            jac: SystemMatrix::try_new(n, &pattern)
-                .map_err(|e| fail(Kind::Internal, &e.to_string()))?,
+            jac,
+            plan,
+            locals: vec![Local::default(); model.joints.len()],
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
             qddd: vec![0.0; n],
             predicted: vec![0.0; n],
             qdd_prev: vec![0.0; n],
             h_prev: None,
-            saved: [vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            qdd_prev2: vec![0.0; n],
+            h_prev2: None,
+            saved: std::array::from_fn(|_| vec![0.0; n]),
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
@@ -229,14 +250,16 @@ impl<'m> Solver<'m> {
     /// (up to [`MAX_HALVINGS`] times) where Newton fails or the solution
     /// jumps away from the prediction.
     pub fn advance(&mut self, prev: f64, t: f64, depth: u32) -> Result<(), AnalysisError> {
-        for (s, v) in self
-            .saved
-            .iter_mut()
-            .zip([&self.q, &self.qd, &self.qdd, &self.qdd_prev])
-        {
+        for (s, v) in self.saved.iter_mut().zip([
+            &self.q,
+            &self.qd,
+            &self.qdd,
+            &self.qdd_prev,
+            &self.qdd_prev2,
+        ]) {
             s.copy_from_slice(v);
         }
-        let h_prev = self.h_prev;
+        let (h_prev, h_prev2) = (self.h_prev, self.h_prev2);
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
             Some(what) => Err(self.failure(Kind::BranchJump, t, &what)),
             None => Ok(()),
@@ -249,7 +272,8 @@ impl<'m> Solver<'m> {
                 self.qd.copy_from_slice(&self.saved[1]);
                 self.qdd.copy_from_slice(&self.saved[2]);
                 self.qdd_prev.copy_from_slice(&self.saved[3]);
-                self.h_prev = h_prev;
+                self.qdd_prev2.copy_from_slice(&self.saved[4]);
+                (self.h_prev, self.h_prev2) = (h_prev, h_prev2);
                 self.jac.invalidate();
                 self.summary.halvings += 1;
                 let mid = 0.5 * (prev + t);
@@ -285,11 +309,20 @@ impl<'m> Solver<'m> {
         let mut jump = None;
         if let Some(p) = prev {
             let h = t - p;
-            // Taylor predictor; the jerk term once two accelerations are known.
-            let c3 = self.h_prev.map_or(0.0, |hp| h * h * h / (6.0 * hp));
+            // q̈(τ) = a + b τ + c τ² through the last accelerations (τ ≤ 0 in
+            // the past; b = d₁ + c h₁ with d₁ the last divided difference),
+            // so q(h) = q + h q̇ + h²/2 a + h³/6 b + h⁴/12 c.
+            let (inv1, inv2, inv12, h1) = match (self.h_prev, self.h_prev2) {
+                (Some(h1), Some(h2)) => (1.0 / h1, 1.0 / h2, 1.0 / (h1 + h2), h1),
+                (Some(h1), None) => (1.0 / h1, 0.0, 0.0, h1),
+                _ => (0.0, 0.0, 0.0, 0.0),
+            };
+            let (w2, w3) = (0.5 * h * h, h * h * h / 6.0);
+            let w4 = w3 * h1 + 0.5 * w3 * h;
             for k in 0..self.q.len() {
-                let jerk = self.qdd[k] - self.qdd_prev[k];
-                self.q[k] += h * self.qd[k] + 0.5 * h * h * self.qdd[k] + c3 * jerk;
+                let d1 = (self.qdd[k] - self.qdd_prev[k]) * inv1;
+                let c = (d1 - (self.qdd_prev[k] - self.qdd_prev2[k]) * inv2) * inv12;
+                self.q[k] += h * self.qd[k] + w2 * self.qdd[k] + w3 * d1 + w4 * c;
             }
             self.predicted.copy_from_slice(&self.q);
             self.positions(t)?;
@@ -301,40 +334,31 @@ impl<'m> Solver<'m> {
 
         // Velocity and acceleration share one factorization at the solution;
         // ν is evaluated in the same pass over the joints as Φ_q.
+        std::mem::swap(&mut self.qdd_prev2, &mut self.qdd_prev);
         self.qdd_prev.copy_from_slice(&self.qdd);
+        self.h_prev2 = self.h_prev;
         self.h_prev = prev.map(|p| t - p);
         let (asm, model) = (&self.asm, self.model);
+        let mut fit = Fit {
+            model,
+            asm,
+            plan: &self.plan,
+            jac: &mut self.jac,
+            locals: &mut self.locals,
+        };
         match &mut self.kept {
-            None => refactor(
-                model,
-                asm,
-                &mut self.jac,
-                &self.q,
-                t,
-                None,
-                Some(&mut self.qd),
-                &mut self.summary,
-            ),
+            None => fit.refactor(&self.q, t, Some(&mut self.qd), &mut self.summary),
             Some(k) => {
                 k.gather(|f| asm.nu(model, &self.q, t, f), &mut self.qd);
-                refactor(
-                    model,
-                    asm,
-                    &mut self.jac,
-                    &self.q,
-                    t,
-                    Some(k),
-                    None,
-                    &mut self.summary,
-                )
+                fit.refactor(&self.q, t, None, &mut self.summary)
             }
         }
         .map_err(|s| self.singular(t, s))?;
         self.jac.solve(&mut self.qd);
-        let (asm, model) = (&self.asm, self.model);
+        let (asm, model, locals) = (&self.asm, self.model, &mut self.locals);
         match &mut self.kept {
-            None => asm.gamma(model, &self.q, &self.qd, t, &mut self.qdd),
-            Some(k) => k.gather(|f| asm.gamma(model, &self.q, &self.qd, t, f), &mut self.qdd),
+            None => asm.gamma_at(model, locals, &self.qd, &mut self.qdd),
+            Some(k) => k.gather(|f| asm.gamma_at(model, locals, &self.qd, f), &mut self.qdd),
         }
         self.jac.solve(&mut self.qdd);
         if self.qdd.iter().any(|v| !v.is_finite()) || self.qd.iter().any(|v| !v.is_finite()) {
@@ -500,10 +524,14 @@ impl<'m> Solver<'m> {
             }
         };
         let mut problem = Positions {
-            model: self.model,
-            asm: &self.asm,
+            fit: Fit {
+                model: self.model,
+                asm: &self.asm,
+                plan: &self.plan,
+                jac: &mut self.jac,
+                locals: &mut self.locals,
+            },
             kept: self.kept.as_mut(),
-            jac: &mut self.jac,
             summary: &mut self.summary,
             t,
             tol: self.settings.tol,
@@ -635,43 +663,48 @@ impl<'m> Solver<'m> {
     }
 }
 
-/// Fills Φ_q at `q` into `jac` (only the rows `kept`, when redundant
-/// equations are left out) and factors it; with `nu`, writes ν(q, t) there
-/// in the same pass over the joints (all rows: only without `kept`).
-#[allow(clippy::too_many_arguments)]
-fn refactor(
-    model: &Model,
-    asm: &Assembly,
-    jac: &mut SystemMatrix,
-    q: &[f64],
-    t: f64,
-    kept: Option<&KeptRows>,
-    nu: Option<&mut [f64]>,
-    summary: &mut Summary,
-) -> Result<(), Singular> {
-    let mut k = 0;
-    let put = |r, c, v| {
-        if let Some(r) = reduced(kept, r) {
-            jac.put(k, r, c, v);
-            k += 1;
-        }
-    };
-    match nu {
-        Some(nu) => asm.jacobian_and_nu(model, q, t, nu, put),
-        None => asm.jacobian(model, q, t, put),
+/// Φ_q written into a matrix by a plan, and its factorization.
+struct Fit<'a> {
+    model: &'a Model,
+    asm: &'a Assembly,
+    /// Where each entry of Φ_q (only the rows kept, when redundant
+    /// equations are left out) goes in `jac`.
+    plan: &'a JacobianPlan,
+    jac: &'a mut SystemMatrix,
+    locals: &'a mut [Local],
+}
+
+impl Fit<'_> {
+    /// Gathers the joints' views at (q, t), fills Φ_q into `jac` and
+    /// factors it; with `nu`, writes ν(q, t) there in the same pass over
+    /// the joints (all rows: only without kept rows).
+    fn refactor(
+        &mut self,
+        q: &[f64],
+        t: f64,
+        nu: Option<&mut [f64]>,
+        summary: &mut Summary,
+    ) -> Result<(), Singular> {
+        self.asm.gather(self.model, q, t, self.locals);
+        self.asm.fill_jacobian(
+            self.model,
+            self.plan,
+            self.locals,
+            self.jac.values_mut(),
+            nu,
+        );
+        summary.factorizations += 1;
+        self.jac.factor()
     }
-    summary.factorizations += 1;
-    jac.factor()
 }
 
 /// Φ(q, t) = 0 as a [`newton::Problem`], in q: a time step's chord
 /// iteration, or assembly from a placement.
 struct Positions<'a> {
-    model: &'a Model,
-    asm: &'a Assembly,
+    /// Φ_q and its factorization.
+    fit: Fit<'a>,
     /// The rows solved for when redundant equations are left out.
     kept: Option<&'a mut KeptRows>,
-    jac: &'a mut SystemMatrix,
     summary: &'a mut Summary,
     t: f64,
     /// Converged when max |Φ| ≤ tol (m or rad).
@@ -686,7 +719,7 @@ impl newton::Problem for Positions<'_> {
     type Error = Singular;
 
     fn residual(&mut self, q: &[f64], phi: &mut [f64]) -> newton::Measure {
-        let (asm, model, t) = (self.asm, self.model, self.t);
+        let (asm, model, t) = (self.fit.asm, self.fit.model, self.t);
         match &mut self.kept {
             None => asm.phi(model, q, t, phi),
             Some(k) => k.gather(|f| asm.phi(model, q, t, f), phi),
@@ -703,35 +736,17 @@ impl newton::Problem for Positions<'_> {
     ) -> Result<(), Singular> {
         dq.copy_from_slice(phi);
         if self.assembling {
-            match refactor(
-                self.model,
-                self.asm,
-                self.jac,
-                q,
-                self.t,
-                self.kept.as_deref(),
-                None,
-                self.summary,
-            ) {
-                Ok(()) => self.jac.solve(dq),
+            match self.fit.refactor(q, self.t, None, self.summary) {
+                Ok(()) => self.fit.jac.solve(dq),
                 // Levenberg–Marquardt is dense: up to the diagnosis' size only.
-                Err(e) if self.asm.n > DENSE_MAX => return Err(e),
-                Err(_) => levenberg_marquardt(&self.jac.to_dense(), phi, 1e-6, dq),
+                Err(e) if self.fit.asm.n > DENSE_MAX => return Err(e),
+                Err(_) => levenberg_marquardt(&self.fit.jac.to_dense(), phi, 1e-6, dq),
             }
         } else {
-            if !self.jac.is_valid() || progress.size > 0.25 * progress.previous {
-                refactor(
-                    self.model,
-                    self.asm,
-                    self.jac,
-                    q,
-                    self.t,
-                    self.kept.as_deref(),
-                    None,
-                    self.summary,
-                )?;
+            if !self.fit.jac.is_valid() || progress.size > 0.25 * progress.previous {
+                self.fit.refactor(q, self.t, None, self.summary)?;
             }
-            self.jac.solve(dq);
+            self.fit.jac.solve(dq);
         }
         self.summary.newton_iterations += 1;
         for d in dq.iter_mut() {
@@ -741,11 +756,11 @@ impl newton::Problem for Positions<'_> {
     }
 
     fn correction(&mut self, phi: &[f64], dq: &mut [f64]) -> bool {
-        if !self.jac.is_valid() {
+        if !self.fit.jac.is_valid() {
             return false;
         }
         dq.copy_from_slice(phi);
-        self.jac.solve(dq);
+        self.fit.jac.solve(dq);
         for d in dq.iter_mut() {
             *d = -*d;
         }

@@ -21,6 +21,13 @@ pub const DENSE_MAX: usize = 120;
 /// Systems with at most this many unknowns use [`SmallLu`].
 pub const SMALL_MAX: usize = 24;
 
+/// The solve of a factorization from which [`SmallLu`] skips the factors'
+/// numerical zeros: the augmented matrices of dynamics, solved many times
+/// per factorization, have many (68 of the slider-crank's 162 structural
+/// nonzeros); kinematics solves three times per factorization, where
+/// gathering them costs more than it saves.
+const COMPACT_AT: usize = 4;
+
 /// A pivot smaller than this, relative to the largest entry of the matrix,
 /// marks the matrix as singular.
 const SINGULAR_PIVOT: f64 = 1e-12;
@@ -35,7 +42,8 @@ pub struct Singular {
 }
 
 /// P A = L U of a small square matrix: a direct row-major kernel with
-/// partial pivoting.
+/// partial pivoting, and the compiled elimination of [`crate::lu_program`]
+/// that refactors with its pivot order.
 ///
 /// For the handful of unknowns of a typical mechanism (9 for a four-bar),
 /// faer's general LU spends most of its time in dispatch and set-up (about
@@ -43,24 +51,31 @@ pub struct Singular {
 /// here); above [`SMALL_MAX`] unknowns faer's blocked kernels take over.
 pub struct SmallLu {
     n: usize,
-    /// The matrix being filled, row-major.
+    /// The matrix being filled, row-major, then one zero (index n²) that
+    /// the compiled elimination reads for fill-in.
     a: Vec<f64>,
-    /// Its factors: unit lower L below the diagonal, U on and above.
+    /// Dense factors of the pivoted kernel: unit lower L below the
+    /// diagonal, U on and above.
     lu: Vec<f64>,
-    /// Row k of the factors is row `perm[k]` of the matrix.
+    /// Row k of the pivoted kernel's factors is row `perm[k]` of the matrix.
     perm: Vec<usize>,
-    /// The nonzeros of the factors, row by row, for the solves (a
-    /// mechanism's factors are mostly zeros): (column, value) of L's
-    /// strictly lower part and of U's strictly upper part, with the start
-    /// of each row in `starts` (L rows, then U rows), and 1/U_kk.
-    nonzeros: Vec<(usize, f64)>,
-    starts: Vec<usize>,
+    /// The factors' structural nonzeros, in the slots of `program` (a
+    /// mechanism's factors are mostly zeros), and 1/U_kk.
+    factors: Vec<f64>,
     inv_diag: Vec<f64>,
+    /// Solves with the last factorization so far.
+    solves: usize,
+    /// The factors' numerical nonzeros, gathered at the [`COMPACT_AT`]-th
+    /// solve of a factorization ([`Elimination::gather`]), and the number
+    /// of L's and of all.
+    nonzeros: Vec<(u32, u32, f64)>,
+    gathered: (usize, usize),
     valid: bool,
     /// Smallest pivot of the last factorization relative to the largest entry.
     min_pivot: f64,
-    /// The elimination of the last pivoted factorization, replayed by the
-    /// next ones while its pivots stay acceptable ([`crate::lu_program`]).
+    /// The compiled elimination of the last pivoted factorization: the
+    /// solves' structure, replayed by the next factorizations while its
+    /// pivots stay acceptable ([`crate::lu_program`]).
     program: Box<Elimination>,
     /// Whether [`factor`](Self::factor) replays the recorded elimination
     /// (true) or always searches for pivots.
@@ -84,12 +99,14 @@ impl SmallLu {
             replays: 0,
             pivoted: 0,
             n,
-            a: vec![0.0; n * n],
+            a: vec![0.0; n * n + 1],
             lu: vec![0.0; n * n],
             perm: (0..n).collect(),
-            nonzeros: vec![(0, 0.0); n * n],
-            starts: vec![0; 2 * n + 1],
+            factors: vec![0.0; n * n],
             inv_diag: vec![0.0; n],
+            solves: 0,
+            nonzeros: vec![(0, 0, 0.0); n * n],
+            gathered: (0, 0),
             valid: false,
             min_pivot: 0.0,
         }
@@ -104,22 +121,30 @@ impl SmallLu {
         self.a[r * self.n + c] = v;
     }
 
+    /// The index of entry (r, c) in [`values_mut`](Self::values_mut).
+    pub fn slot(&self, r: usize, c: usize) -> usize {
+        r * self.n + c
+    }
+
+    /// The matrix's entries, row-major (only pattern entries may be set).
+    pub fn values_mut(&mut self) -> &mut [f64] {
+        let n = self.n;
+        &mut self.a[..n * n]
+    }
+
     /// P A = L U: the recorded elimination replayed when its pivots pass
     /// the threshold test, a pivoted factorization (recorded for the next
     /// call) otherwise.
     pub fn factor(&mut self) -> Result<(), Singular> {
+        self.solves = 0;
         if self.fixed_pivots {
-            let scale = self.program.scale(&self.a);
             if let Ok(min_pivot) = self.program.replay(
                 &self.a,
-                &mut self.lu,
+                &mut self.factors,
                 &mut self.inv_diag,
-                scale,
                 SINGULAR_PIVOT,
             ) {
                 self.min_pivot = min_pivot;
-                self.program
-                    .gather(&self.lu, &mut self.nonzeros, &mut self.starts);
                 self.valid = true;
                 self.replays += 1;
                 return Ok(());
@@ -128,23 +153,27 @@ impl SmallLu {
         self.pivoted += 1;
         let outcome = self.factor_pivoted();
         match outcome {
-            Ok(()) if self.fixed_pivots => self.program.record(&self.perm),
-            _ => self.program.forget(),
+            Ok(()) => {
+                self.program.record(&self.perm);
+                self.program
+                    .load(&self.lu, &mut self.factors, &mut self.inv_diag);
+            }
+            Err(_) => self.program.forget(),
         }
         outcome
     }
 
-    /// P A = L U with partial pivoting.
+    /// P A = L U with partial pivoting, into the dense `lu`.
     fn factor_pivoted(&mut self) -> Result<(), Singular> {
         let n = self.n;
         let mut scale = f64::MIN_POSITIVE;
-        for x in &self.a {
+        for x in &self.a[..n * n] {
             let v = x.abs();
             if v > scale {
                 scale = v;
             }
         }
-        self.lu.copy_from_slice(&self.a);
+        self.lu.copy_from_slice(&self.a[..n * n]);
         for (k, p) in self.perm.iter_mut().enumerate() {
             *p = k;
         }
@@ -197,60 +226,32 @@ impl SmallLu {
             }
         }
         self.min_pivot = min_pivot;
-        self.compress();
         self.valid = true;
         Ok(())
     }
 
-    /// Gathers the nonzeros of the factors for [`solve`](Self::solve);
-    /// every entry is written and the end advances past nonzeros only,
-    /// without a branch on the value.
-    fn compress(&mut self) {
-        let n = self.n;
-        let (lu, nz) = (&self.lu, &mut self.nonzeros);
-        let mut len = 0;
-        for i in 0..n {
-            self.starts[i] = len;
-            for (j, &v) in lu[i * n..i * n + i].iter().enumerate() {
-                nz[len] = (j, v);
-                len += usize::from(v != 0.0);
-            }
+    /// Solves A x = b in place with the last factorization: over the
+    /// factors' structural nonzeros for the first solves, over their
+    /// numerical nonzeros (gathered once) from the [`COMPACT_AT`]-th on.
+    #[inline]
+    pub fn solve(&mut self, b: &mut [f64], work: &mut [f64]) {
+        self.solves += 1;
+        if self.solves < COMPACT_AT {
+            self.program.solve(&self.factors, &self.inv_diag, b, work);
+            return;
         }
-        for i in 0..n {
-            self.starts[n + i] = len;
-            for (j, &v) in lu[i * n + i + 1..i * n + n].iter().enumerate() {
-                nz[len] = (i + 1 + j, v);
-                len += usize::from(v != 0.0);
-            }
-            self.inv_diag[i] = 1.0 / lu[i * n + i];
+        if self.solves == COMPACT_AT {
+            self.gathered = self.program.gather(&self.factors, &mut self.nonzeros);
         }
-        self.starts[2 * n] = len;
-    }
-
-    /// Solves A x = b in place with the last factorization.
-    pub fn solve(&self, b: &mut [f64], work: &mut [f64]) {
-        let n = self.n;
-        let (nz, starts) = (&self.nonzeros, &self.starts);
-        for (w, &p) in work.iter_mut().zip(&self.perm) {
-            *w = b[p];
-        }
-        // L y = P b (unit diagonal).
-        for i in 1..n {
-            let mut s = work[i];
-            for &(j, l) in &nz[starts[i]..starts[i + 1]] {
-                s -= l * work[j];
-            }
-            work[i] = s;
-        }
-        // U x = y.
-        for i in (0..n).rev() {
-            let mut s = work[i];
-            for &(j, u) in &nz[starts[n + i]..starts[n + i + 1]] {
-                s -= u * work[j];
-            }
-            work[i] = s * self.inv_diag[i];
-        }
-        b.copy_from_slice(&work[..n]);
+        let (lower, len) = self.gathered;
+        crate::lu_program::solve_gathered(
+            &self.nonzeros[..len],
+            lower,
+            self.program.perm(),
+            &self.inv_diag,
+            b,
+            work,
+        );
     }
 
     /// The matrix as a faer matrix (for diagnostics).
@@ -508,8 +509,15 @@ impl SparseLu {
 /// A square matrix of fixed pattern with its LU factorization, dense or
 /// sparse by size.
 pub enum SystemMatrix {
-    Small { lu: SmallLu, work: Vec<f64> },
-    Dense { a: Mat<f64>, lu: DenseLu },
+    Small {
+        lu: SmallLu,
+        work: Vec<f64>,
+    },
+    /// `a` column-major.
+    Dense {
+        a: Vec<f64>,
+        lu: DenseLu,
+    },
     Sparse(Box<SparseLu>),
 }
 
@@ -524,7 +532,7 @@ impl SystemMatrix {
             }
         } else if n <= DENSE_MAX {
             SystemMatrix::Dense {
-                a: Mat::zeros(n, n),
+                a: vec![0.0; n * n],
                 lu: DenseLu::new(n),
             }
         } else {
@@ -537,8 +545,29 @@ impl SystemMatrix {
     pub fn put(&mut self, k: usize, r: usize, c: usize, v: f64) {
         match self {
             SystemMatrix::Small { lu, .. } => lu.set(r, c, v),
-            SystemMatrix::Dense { a, .. } => a[(r, c)] = v,
+            SystemMatrix::Dense { a, lu } => a[c * lu.dim() + r] = v,
             SystemMatrix::Sparse(s) => s.put(k, v),
+        }
+    }
+
+    /// The index in [`values_mut`](Self::values_mut) of entry k of the
+    /// pattern, at (r, c): a destination that a fill computed once writes
+    /// straight into.
+    pub fn slot(&self, k: usize, r: usize, c: usize) -> usize {
+        match self {
+            SystemMatrix::Small { lu, .. } => lu.slot(r, c),
+            SystemMatrix::Dense { lu, .. } => c * lu.dim() + r,
+            SystemMatrix::Sparse(s) => s.pos[k],
+        }
+    }
+
+    /// The storage of the matrix's values, indexed by [`slot`](Self::slot).
+    #[inline]
+    pub fn values_mut(&mut self) -> &mut [f64] {
+        match self {
+            SystemMatrix::Small { lu, .. } => lu.values_mut(),
+            SystemMatrix::Dense { a, .. } => a,
+            SystemMatrix::Sparse(s) => &mut s.values,
         }
     }
 
@@ -546,7 +575,10 @@ impl SystemMatrix {
     pub fn factor(&mut self) -> Result<(), Singular> {
         match self {
             SystemMatrix::Small { lu, .. } => lu.factor(),
-            SystemMatrix::Dense { a, lu } => lu.factor(a.as_ref()),
+            SystemMatrix::Dense { a, lu } => {
+                let n = lu.dim();
+                lu.factor(MatRef::from_column_major_slice(a, n, n))
+            }
             SystemMatrix::Sparse(s) => s.factor(),
         }
     }
@@ -609,7 +641,9 @@ impl SystemMatrix {
     pub fn to_dense(&self) -> Mat<f64> {
         match self {
             SystemMatrix::Small { lu, .. } => lu.to_dense(),
-            SystemMatrix::Dense { a, .. } => a.clone(),
+            SystemMatrix::Dense { a, lu } => {
+                MatRef::from_column_major_slice(a, lu.dim(), lu.dim()).to_owned()
+            }
             SystemMatrix::Sparse(s) => s.to_dense(),
         }
     }
@@ -695,11 +729,10 @@ mod tests {
     }
 
     /// A sparse saddle-point matrix (zero diagonal block, pivoting needed):
-    /// the small kernel's solve uses only the factors' nonzeros.
+    /// the small kernel's solve visits only the factors' structural nonzeros.
     #[test]
     fn small_kernel_solves_a_sparse_saddle_point_system() {
         let n = 11;
-        let mut lu = SmallLu::new(n);
         let mut a = vec![0.0; n * n];
         for i in 0..7 {
             a[i * n + i] = 2.0 + i as f64;
@@ -710,22 +743,34 @@ mod tests {
                 a[c * n + 7 + r] = 1.0 + 0.1 * (r + c) as f64;
             }
         }
+        let nonzeros = (0..n * n).filter(|&k| a[k] != 0.0);
+        let mut lu = SmallLu::with_pattern(n, nonzeros.map(|k| (k / n, k % n)));
         for (k, &v) in a.iter().enumerate() {
-            lu.set(k / n, k % n, v);
+            if v != 0.0 {
+                lu.set(k / n, k % n, v);
+            }
         }
         lu.factor().unwrap();
-        assert!(lu.nonzeros[..lu.starts[2 * n]].iter().all(|e| e.1 != 0.0));
         assert!(
-            lu.starts[2 * n] < n * (n - 1),
+            lu.program.solve_entries() < n * (n - 1),
             "the factors have zeros to skip"
         );
         let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.9).cos()).collect();
-        let mut b: Vec<f64> = (0..n)
+        let ax: Vec<f64> = (0..n)
             .map(|i| (0..n).map(|j| a[i * n + j] * x[j]).sum())
             .collect();
-        lu.solve(&mut b, &mut vec![0.0; n]);
-        for i in 0..n {
-            assert!((b[i] - x[i]).abs() < 1e-13, "{i}: {} vs {}", b[i], x[i]);
+        // Solves over the structural nonzeros, then over the gathered ones.
+        for solve in 1..=COMPACT_AT + 1 {
+            let mut b = ax.clone();
+            lu.solve(&mut b, &mut vec![0.0; n]);
+            for i in 0..n {
+                assert!(
+                    (b[i] - x[i]).abs() < 1e-13,
+                    "solve {solve}, {i}: {} vs {}",
+                    b[i],
+                    x[i]
+                );
+            }
         }
     }
 

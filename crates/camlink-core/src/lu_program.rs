@@ -1,13 +1,20 @@
-//! A recorded elimination for the small dense LU ([`crate::linsolve::SmallLu`]):
-//! refactor with the pivot order of the last pivoted factorization.
+//! A compiled elimination for the small dense LU ([`crate::linsolve::SmallLu`]):
+//! the factors' structure as flat index lists, and refactorization with the
+//! pivot order of the last pivoted factorization.
 //!
 //! A mechanism's Φ_q keeps its sparsity pattern, and from one step to the
 //! next its values change little, so the rows that partial pivoting picks
 //! rarely change. After a pivoted factorization P A = L U, the elimination
-//! is recorded symbolically over A's pattern (with fill-in): for each pivot
-//! k, the rows i > k with L_ik structurally nonzero and the columns j > k
-//! with U_kj structurally nonzero. The next factorization replays only
-//! those updates, in the same order, with no pivot search.
+//! is recorded symbolically over A's pattern (with fill-in) and compiled.
+//! The structural nonzeros of the factors get slots in a compact vector:
+//! L's strictly lower part row by row, the diagonal, U's strictly upper
+//! part row by row. The elimination becomes, for each pivot k, the list of
+//! slots of L_ik (i > k) and the list of updates (target, L_ik, U_kj), one
+//! per structural product L_ik U_kj. The next factorization fills the
+//! slots from A (finding A's largest entry in the same pass), runs those
+//! lists in the same order, with no pivot search and no dense storage, and
+//! divides U's strictly upper part by its pivots. The solves are then two
+//! flat loops over the slots in order: L forward, U backward.
 //!
 //! The replay accepts a pivot only while it is at least [`THRESHOLD`] times
 //! the largest entry below it in its column (threshold partial pivoting,
@@ -21,34 +28,50 @@
 /// entries below it before elimination).
 pub const THRESHOLD: f64 = 0.1;
 
-/// The recorded elimination of an n × n matrix with a fixed pattern.
+/// An index in the compiled lists (a slot, a row or a column).
+type Ix = u32;
+
+/// The compiled elimination of an n × n matrix with a fixed pattern.
 #[derive(Clone, Debug)]
 pub struct Elimination {
     n: usize,
     /// The structural nonzeros of A, row-major.
     pattern: Vec<bool>,
-    /// Scratch: the pattern of the factors being recorded, row-major.
+    /// Scratch: the pattern of the factors being recorded, row-major, in
+    /// the permuted row order.
     filled: Vec<bool>,
+    /// Scratch: the slot of each entry of `filled`.
+    slot_of: Vec<Ix>,
     /// Row k of the factors is row `perm[k]` of A.
     perm: Vec<usize>,
-    /// For pivot k, rows `below[below_start[k]..below_start[k + 1]]`
-    /// (indices in the permuted order) have L_ik ≠ 0.
-    below: Vec<usize>,
-    below_start: Vec<usize>,
-    /// For pivot k, columns `right[right_start[k]..right_start[k + 1]]`
-    /// have U_kj ≠ 0 (j > k).
-    right: Vec<usize>,
-    right_start: Vec<usize>,
-    /// The entries of A in the pattern, as indices into the row-major matrix.
-    entries: Vec<usize>,
-    /// The structural nonzeros of the factors, row by row, for
-    /// [`gather`](Self::gather): (column, index into the row-major factors) of L's strictly lower
-    /// part, rows starting at `lower_start`, and of U's strictly upper part.
-    lower: Vec<(usize, usize)>,
-    lower_start: Vec<usize>,
-    upper: Vec<(usize, usize)>,
-    upper_start: Vec<usize>,
+    /// For each slot, the index in the row-major A (with its trailing zero,
+    /// index n², for fill-in) it starts from.
+    src: Vec<Ix>,
+    /// For each slot, its index in row-major dense factors.
+    dense: Vec<Ix>,
+    /// For each slot, its (row, column).
+    at: Vec<(Ix, Ix)>,
+    /// For pivot k: the slot of U_kk and the ends of its lists in `below`
+    /// and `updates` (each list starts where the one of pivot k − 1 ends).
+    pivots: Vec<Pivot>,
+    /// The slots of L_ik, i > k, pivot by pivot.
+    below: Vec<Ix>,
+    /// (slot of A_ij, slot of L_ik, slot of U_kj), A_ij −= L_ik U_kj, pivot
+    /// by pivot.
+    updates: Vec<[Ix; 3]>,
+    /// Slots `..lower` hold L's strictly lower part, `lower..lower + n` the
+    /// diagonal, the rest U's strictly upper part.
+    lower: usize,
     recorded: bool,
+}
+
+/// One pivot of the compiled elimination.
+#[derive(Clone, Copy, Debug, Default)]
+struct Pivot {
+    /// The slot of U_kk.
+    diag: Ix,
+    below_end: Ix,
+    update_end: Ix,
 }
 
 /// Why a replay stopped: the caller factors with pivoting instead.
@@ -63,21 +86,22 @@ impl Elimination {
         for (r, c) in pattern {
             p[r * n + c] = true;
         }
-        let entries = (0..n * n).filter(|&k| p[k]).collect();
+        let triangle = n * n.saturating_sub(1) / 2;
+        // Σ_k (n − 1 − k)², the most updates a dense matrix needs.
+        let products = n.saturating_sub(1) * n * (2 * n).saturating_sub(1) / 6;
         Elimination {
             n,
             pattern: p,
             filled: vec![false; n * n],
+            slot_of: vec![0; n * n],
             perm: (0..n).collect(),
-            below: Vec::with_capacity(n * n),
-            below_start: vec![0; n + 1],
-            right: Vec::with_capacity(n * n),
-            right_start: vec![0; n + 1],
-            entries,
-            lower: Vec::with_capacity(n * n),
-            lower_start: vec![0; n + 1],
-            upper: Vec::with_capacity(n * n),
-            upper_start: vec![0; n + 1],
+            src: Vec::with_capacity(n * n),
+            dense: Vec::with_capacity(n * n),
+            at: Vec::with_capacity(n * n),
+            pivots: vec![Pivot::default(); n],
+            below: Vec::with_capacity(triangle),
+            updates: Vec::with_capacity(products),
+            lower: 0,
             recorded: false,
         }
     }
@@ -92,137 +116,244 @@ impl Elimination {
         self.recorded = false;
     }
 
-    /// The largest |a_rc| over the pattern (at least the smallest normal number).
-    pub fn scale(&self, a: &[f64]) -> f64 {
-        self.entries
-            .iter()
-            .fold(f64::MIN_POSITIVE, |s, &k| s.max(a[k].abs()))
+    /// Number of slots: the structural nonzeros of the recorded factors.
+    pub fn slots(&self) -> usize {
+        self.src.len()
     }
 
-    /// Records the elimination of a pivoted factorization whose row k is
-    /// row `perm[k]` of A.
+    /// Number of off-diagonal factor entries a solve visits.
+    pub fn solve_entries(&self) -> usize {
+        self.src.len() - self.n
+    }
+
+    /// Records and compiles the elimination of a pivoted factorization
+    /// whose row k is row `perm[k]` of A.
     pub fn record(&mut self, perm: &[usize]) {
         let n = self.n;
         self.perm.copy_from_slice(perm);
+        // The factors' pattern: A's rows permuted, the diagonal, fill-in.
         for (k, &p) in perm.iter().enumerate() {
             self.filled[k * n..k * n + n].copy_from_slice(&self.pattern[p * n..p * n + n]);
+            self.filled[k * n + k] = true;
         }
-        self.below.clear();
-        self.right.clear();
         for k in 0..n {
-            self.below_start[k] = self.below.len();
-            self.right_start[k] = self.right.len();
-            for j in k + 1..n {
-                if self.filled[k * n + j] {
-                    self.right.push(j);
-                }
-            }
             for i in k + 1..n {
                 if self.filled[i * n + k] {
-                    self.below.push(i);
-                    for &j in &self.right[self.right_start[k]..] {
-                        self.filled[i * n + j] = true;
+                    for j in k + 1..n {
+                        if self.filled[k * n + j] {
+                            self.filled[i * n + j] = true;
+                        }
                     }
                 }
             }
         }
-        self.below_start[n] = self.below.len();
-        self.right_start[n] = self.right.len();
-        self.lower.clear();
-        self.upper.clear();
-        for i in 0..n {
-            self.lower_start[i] = self.lower.len();
-            self.upper_start[i] = self.upper.len();
-            for j in 0..i {
-                if self.filled[i * n + j] {
-                    self.lower.push((j, i * n + j));
-                }
+        // Slots: L's strictly lower part row by row, the diagonal, U's
+        // strictly upper part row by row; with where each starts from.
+        self.src.clear();
+        self.dense.clear();
+        self.at.clear();
+        for part in 0..3 {
+            if part == 1 {
+                self.lower = self.src.len();
             }
-            for j in i + 1..n {
-                if self.filled[i * n + j] {
-                    self.upper.push((j, i * n + j));
+            for (i, &p) in perm.iter().enumerate() {
+                let columns = match part {
+                    0 => 0..i,
+                    1 => i..i + 1,
+                    _ => i + 1..n,
+                };
+                for j in columns {
+                    if self.filled[i * n + j] {
+                        self.slot_of[i * n + j] = self.src.len() as Ix;
+                        let a = p * n + j;
+                        self.src.push(if self.pattern[a] { a } else { n * n } as Ix);
+                        self.dense.push((i * n + j) as Ix);
+                        self.at.push((i as Ix, j as Ix));
+                    }
                 }
             }
         }
-        self.lower_start[n] = self.lower.len();
-        self.upper_start[n] = self.upper.len();
+        // The elimination, pivot by pivot.
+        self.below.clear();
+        self.updates.clear();
+        for k in 0..n {
+            for i in k + 1..n {
+                if !self.filled[i * n + k] {
+                    continue;
+                }
+                let l = self.slot_of[i * n + k];
+                self.below.push(l);
+                for j in k + 1..n {
+                    if self.filled[k * n + j] {
+                        self.updates
+                            .push([self.slot_of[i * n + j], l, self.slot_of[k * n + j]]);
+                    }
+                }
+            }
+            self.pivots[k] = Pivot {
+                diag: self.slot_of[k * n + k],
+                below_end: self.below.len() as Ix,
+                update_end: self.updates.len() as Ix,
+            };
+        }
         self.recorded = true;
     }
 
-    /// Gathers the nonzeros of factors `lu` made in the recorded order,
-    /// visiting their structural nonzeros only: (column, value) of L's
-    /// strictly lower part and of U's strictly upper part, row by row, with
-    /// the start of each row in `starts` (L rows, then U rows), as
-    /// [`crate::linsolve::SmallLu`]'s solves read them.
-    pub fn gather(&self, lu: &[f64], nonzeros: &mut [(usize, f64)], starts: &mut [usize]) {
-        let n = self.n;
-        let mut len = 0;
-        for (part, (list, first)) in [
-            (&self.lower, &self.lower_start),
-            (&self.upper, &self.upper_start),
-        ]
-        .into_iter()
-        .enumerate()
-        {
-            for i in 0..n {
-                starts[part * n + i] = len;
-                for &(j, k) in &list[first[i]..first[i + 1]] {
-                    nonzeros[len] = (j, lu[k]);
-                    len += usize::from(lu[k] != 0.0);
-                }
-            }
+    /// Copies row-major dense factors `lu`, made in the recorded order,
+    /// into the slots of `factors`, and the reciprocals of their pivots
+    /// into `inv_diag`.
+    pub fn load(&self, lu: &[f64], factors: &mut [f64], inv_diag: &mut [f64]) {
+        for (f, &d) in factors.iter_mut().zip(&self.dense) {
+            *f = lu[d as usize];
         }
-        starts[2 * n] = len;
+        for (inv, p) in inv_diag.iter_mut().zip(&self.pivots) {
+            *inv = 1.0 / factors[p.diag as usize];
+        }
+        self.scale_upper(factors, inv_diag);
     }
 
-    /// P A = L U of `a` (row-major) into `lu` with the recorded pivot order,
-    /// the reciprocals of the pivots into `inv_diag`; returns the smallest
-    /// pivot relative to `scale`, or [`Refresh`] when
-    /// there is no recorded order or a pivot fails the threshold or
-    /// singular test (`lu` is then meaningless).
+    /// U_ij / U_ii in U's strictly upper slots (the solves' unit upper
+    /// factor), once the elimination no longer reads them.
+    fn scale_upper(&self, factors: &mut [f64], inv_diag: &[f64]) {
+        let upper = self.lower + self.n..self.src.len();
+        for (u, &(i, _)) in factors[upper.clone()].iter_mut().zip(&self.at[upper]) {
+            *u *= inv_diag[i as usize];
+        }
+    }
+
+    /// P A = L U of `a` (row-major, with a trailing zero at index n²) into
+    /// the slots of `factors` with the recorded pivot order, the
+    /// reciprocals of the pivots into `inv_diag`; returns the smallest
+    /// pivot relative to the largest |a_rc| over the pattern, or
+    /// [`Refresh`] when there is no recorded order or a pivot fails the
+    /// threshold or singular test (`factors` is then meaningless).
     pub fn replay(
         &self,
         a: &[f64],
-        lu: &mut [f64],
+        factors: &mut [f64],
         inv_diag: &mut [f64],
-        scale: f64,
         singular: f64,
     ) -> Result<f64, Refresh> {
         if !self.recorded {
             return Err(Refresh);
         }
-        let n = self.n;
-        for (k, &p) in self.perm.iter().enumerate() {
-            lu[k * n..k * n + n].copy_from_slice(&a[p * n..p * n + n]);
+        let f = &mut factors[..self.src.len()];
+        let mut scale = f64::MIN_POSITIVE;
+        for (v, &s) in f.iter_mut().zip(&self.src) {
+            let x = a[s as usize];
+            *v = x;
+            if x.abs() > scale {
+                scale = x.abs();
+            }
         }
         let mut min_pivot = f64::INFINITY;
-        for k in 0..n {
-            let pivot = lu[k * n + k];
-            let below = &self.below[self.below_start[k]..self.below_start[k + 1]];
-            let big = below
-                .iter()
-                .fold(0.0f64, |b, &i| b.max(lu[i * n + k].abs()));
+        let (mut below_start, mut update_start) = (0, 0);
+        for (p, inv_k) in self.pivots.iter().zip(inv_diag.iter_mut()) {
+            let pivot = f[p.diag as usize];
+            let below = &self.below[below_start..p.below_end as usize];
+            let updates = &self.updates[update_start..p.update_end as usize];
+            below_start = p.below_end as usize;
+            update_start = p.update_end as usize;
+            let mut big = 0.0f64;
+            for &s in below {
+                if f[s as usize].abs() > big {
+                    big = f[s as usize].abs();
+                }
+            }
             let ratio = pivot.abs() / scale;
             // Written so that a NaN fails.
             if !(pivot.abs() >= THRESHOLD * big && ratio > singular) {
                 return Err(Refresh);
             }
-            min_pivot = min_pivot.min(ratio);
+            if ratio < min_pivot {
+                min_pivot = ratio;
+            }
             let inv = 1.0 / pivot;
-            inv_diag[k] = inv;
-            let right = &self.right[self.right_start[k]..self.right_start[k + 1]];
-            let (top, rest) = lu.split_at_mut((k + 1) * n);
-            let pivot_row = &top[k * n..k * n + n];
-            for &i in below {
-                let row = &mut rest[(i - k - 1) * n..(i - k) * n];
-                let l = row[k] * inv;
-                row[k] = l;
-                for &j in right {
-                    row[j] -= l * pivot_row[j];
-                }
+            *inv_k = inv;
+            for &s in below {
+                f[s as usize] *= inv;
+            }
+            for &[t, l, u] in updates {
+                f[t as usize] -= f[l as usize] * f[u as usize];
             }
         }
+        self.scale_upper(factors, inv_diag);
         Ok(min_pivot)
+    }
+
+    /// Row k of the factors is row `perm()[k]` of A.
+    pub fn perm(&self) -> &[usize] {
+        &self.perm
+    }
+
+    /// Gathers the numerical nonzeros of `factors` (in the recorded
+    /// slots, as a factorization left them) as (row, column, value): L's
+    /// strictly lower part, then the scaled upper part; returns the number
+    /// of L's. Every entry is written and the end advances past nonzeros
+    /// only, without a branch on the value.
+    pub fn gather(&self, factors: &[f64], nonzeros: &mut [(Ix, Ix, f64)]) -> (usize, usize) {
+        let mut len = 0;
+        let mut lower = 0;
+        let diag = self.lower..self.lower + self.n;
+        for (s, (&v, &(i, j))) in factors.iter().zip(&self.at).enumerate() {
+            if s == diag.start {
+                lower = len;
+            }
+            if diag.contains(&s) {
+                continue;
+            }
+            nonzeros[len] = (i, j, v);
+            len += usize::from(v != 0.0);
+        }
+        (lower, len)
+    }
+
+    /// Solves A x = b in place with factors in the recorded slots
+    /// (`factors`, `inv_diag` as [`replay`](Self::replay) or
+    /// [`load`](Self::load) left them); `work` holds n values.
+    pub fn solve(&self, factors: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
+        let (lower, upper) = (..self.lower, self.lower + self.n..self.src.len());
+        let entries =
+            |range: std::ops::Range<usize>| factors[range.clone()].iter().zip(&self.at[range]);
+        for (w, &p) in work.iter_mut().zip(&self.perm) {
+            *w = b[p];
+        }
+        // L y = P b (unit diagonal): row by row, each entry's y_j is final.
+        for (&l, &(i, j)) in entries(0..lower.end) {
+            work[i as usize] -= l * work[j as usize];
+        }
+        // U x = y as D (I + D⁻¹U') x = y, rows from the last.
+        for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
+            *x = y * inv;
+        }
+        for (&u, &(i, j)) in entries(upper).rev() {
+            b[i as usize] -= u * b[j as usize];
+        }
+    }
+}
+
+/// The solve of [`Elimination::solve`] over gathered nonzeros
+/// ([`Elimination::gather`]: L's entries up to `lower`, then the scaled
+/// upper ones) with the row order `perm`.
+pub fn solve_gathered(
+    nonzeros: &[(Ix, Ix, f64)],
+    lower: usize,
+    perm: &[usize],
+    inv_diag: &[f64],
+    b: &mut [f64],
+    work: &mut [f64],
+) {
+    for (w, &p) in work.iter_mut().zip(perm) {
+        *w = b[p];
+    }
+    for &(i, j, l) in &nonzeros[..lower] {
+        work[i as usize] -= l * work[j as usize];
+    }
+    for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
+        *x = y * inv;
+    }
+    for &(i, j, u) in nonzeros[lower..].iter().rev() {
+        b[i as usize] -= u * b[j as usize];
     }
 }
 
@@ -234,19 +365,37 @@ mod tests {
     fn a_small_pivot_asks_for_a_refresh() {
         let mut e = super::Elimination::new(2, [(0, 0), (0, 1), (1, 0), (1, 1)]);
         e.record(&[0, 1]);
-        let (mut lu, mut inv) = ([0.0; 4], [0.0; 2]);
+        let (mut f, mut inv) = ([0.0; 4], [0.0; 2]);
         assert!(e
-            .replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, &mut inv, 2.0, 1e-12)
+            .replay(&[1.0, 1.0, 0.5, 2.0, 0.0], &mut f, &mut inv, 1e-12)
             .is_ok());
-        assert_eq!(lu, [1.0, 1.0, 0.5, 1.5]);
+        // Slots: L_10, U_00, U_11, U_01.
+        assert_eq!(f, [0.5, 1.0, 1.5, 1.0]); // U_01 / U_00 = 1
         assert_eq!(
-            e.replay(&[0.01, 1.0, 1.0, 2.0], &mut lu, &mut inv, 2.0, 1e-12),
+            e.replay(&[0.01, 1.0, 1.0, 2.0, 0.0], &mut f, &mut inv, 1e-12),
             Err(super::Refresh)
         );
         e.forget();
         assert_eq!(
-            e.replay(&[1.0, 1.0, 0.5, 2.0], &mut lu, &mut inv, 2.0, 1e-12),
+            e.replay(&[1.0, 1.0, 0.5, 2.0, 0.0], &mut f, &mut inv, 1e-12),
             Err(super::Refresh)
         );
+    }
+
+    /// The compiled lists hold the factors' structure with fill-in: a
+    /// tridiagonal matrix in its natural order has none, the same matrix
+    /// with its first row moved last fills the rows below the moved one.
+    #[test]
+    fn fill_in_follows_the_pivot_order() {
+        let n: usize = 5;
+        let band = (0..n).flat_map(|i| (i.saturating_sub(1)..(i + 2).min(n)).map(move |j| (i, j)));
+        let mut e = super::Elimination::new(n, band);
+        e.record(&[0, 1, 2, 3, 4]);
+        assert_eq!(e.slots(), 3 * n - 2);
+        assert_eq!(e.solve_entries(), 2 * n - 2);
+        // Rows 1, 2, 3, 4, 0: an upper Hessenberg-like order whose last
+        // row (A's row 0: columns 0, 1) fills towards the end.
+        e.record(&[1, 2, 3, 4, 0]);
+        assert!(e.slots() > 3 * n - 2, "{} slots", e.slots());
     }
 }
