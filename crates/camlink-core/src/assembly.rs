@@ -221,21 +221,7 @@ impl Assembly {
     /// the same order every time.
     #[inline]
     pub fn jacobian(&self, model: &Model, q: &[f64], t: f64, put: impl FnMut(usize, usize, f64)) {
-        self.jacobian_pass(model, q, t, None, None, put);
-    }
-
-    /// Φ_q as [`jacobian`](Self::jacobian) does and ν(q, t) into `nu`
-    /// (length m), in one pass over the joints.
-    #[inline]
-    pub fn jacobian_and_nu(
-        &self,
-        model: &Model,
-        q: &[f64],
-        t: f64,
-        nu: &mut [f64],
-        put: impl FnMut(usize, usize, f64),
-    ) {
-        self.jacobian_pass(model, q, t, None, Some(nu), put);
+        self.jacobian_pass(model, q, t, None, put);
     }
 
     /// Φ(q, t) into `phi` (length m) and Φ_q as [`jacobian`](Self::jacobian)
@@ -249,7 +235,7 @@ impl Assembly {
         phi: &mut [f64],
         put: impl FnMut(usize, usize, f64),
     ) {
-        self.jacobian_pass(model, q, t, Some(phi), None, put);
+        self.jacobian_pass(model, q, t, Some(phi), put);
     }
 
     #[inline]
@@ -259,7 +245,6 @@ impl Assembly {
         q: &[f64],
         t: f64,
         mut phi: Option<&mut [f64]>,
-        mut nu: Option<&mut [f64]>,
         mut put: impl FnMut(usize, usize, f64),
     ) {
         let mut jac = Jac::default();
@@ -270,10 +255,6 @@ impl Assembly {
             let r0 = self.row[j];
             if let Some(out) = phi.as_deref_mut() {
                 c.phi(&x, &mut rows);
-                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
-            }
-            if let Some(out) = nu.as_deref_mut() {
-                c.nu(&x, &mut rows);
                 out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
             }
             c.jacobian(&x, &mut jac);

@@ -296,9 +296,10 @@ struct Run<'a> {
     /// time of the last.
     burst: (usize, f64),
     /// Scratch: the right-hand side of [`watch_forces`](Self::watch_forces)
-    /// and the gaps at the start of a step.
+    /// the gaps at the start of a step and the watched values there.
     rhs: Vec<f64>,
     gaps: Vec<Option<Gap>>,
+    n0: Vec<Option<f64>>,
     summary: Summary,
 }
 
@@ -511,9 +512,24 @@ impl<'a> Run<'a> {
     ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
         let t0 = self.it().t;
-        let n0: Vec<Option<f64>> = (0..self.contacts.len())
-            .map(|k| self.watched(k).then(|| self.value(k)))
-            .collect();
+        let mut n0 = std::mem::take(&mut self.n0);
+        n0.clear();
+        n0.extend((0..self.contacts.len()).map(|k| self.watched(k).then(|| self.value(k))));
+        let done = self.step_watched(h, snap, gaps, t0, &n0);
+        self.n0 = n0;
+        done
+    }
+
+    /// [`step_from`](Self::step_from) with `n0`, the watched values at its
+    /// start (t0, s).
+    fn step_watched(
+        &mut self,
+        h: f64,
+        snap: &mut Snapshot,
+        gaps: &[Option<Gap>],
+        t0: f64,
+        n0: &[Option<f64>],
+    ) -> Result<(), AnalysisError> {
         self.it().step(h)?;
         self.pull()?;
         let t1 = self.it().t;
@@ -881,6 +897,7 @@ pub fn run(
         burst: (0, f64::NEG_INFINITY),
         rhs: Vec::new(),
         gaps: Vec::new(),
+        n0: Vec::new(),
         summary: Summary::default(),
     };
     // Compliant contacts are always released; contacts apart at the given
