@@ -6,14 +6,14 @@
 //! to the gravity torque of the exact one-degree-of-freedom model, and a
 //! `redundant` warning naming the equations and joints.
 
+mod common;
 mod mechanisms;
 
-use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
 use camlink_core::diagnose::dense_jacobian;
 use camlink_core::dynamics::inverse;
 use camlink_core::kinematics;
 use camlink_core::run::{time_grid, Kind, Settings, Table, Warning};
-use camlink_core::{BodyId, Model, TimeFn};
+use camlink_core::Model;
 use mechanisms::{parallelogram_chain, CrankMass, PAR_COUPLER_MASS, PAR_CRANK, PAR_CRANK_MASS};
 
 const G: f64 = 9.81;
@@ -26,20 +26,7 @@ const OMEGA: f64 = -1.0;
 fn driven_chain(n: usize) -> Model {
     let mut m = parallelogram_chain(n, TH0, true, CrankMass::Uniform);
     let crank = m.body_id("crank0").unwrap();
-    m.add_driver(
-        "motor",
-        RelativeCoord {
-            body_i: BodyId::GROUND,
-            s_i: [0.0, 0.0],
-            body_j: crank,
-            s_j: [0.0, 0.0],
-            coord: RelCoord::Phi,
-            f: TimeFn::Linear {
-                value: TH0,
-                rate: OMEGA,
-            },
-        },
-    );
+    m.add_driver("motor", common::crank_motor(crank, TH0, OMEGA));
     m
 }
 

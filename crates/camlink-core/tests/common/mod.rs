@@ -90,7 +90,7 @@ pub fn freudenstein(l: [f64; 4], th2: f64, w2: f64, sign: f64) -> ([f64; 2], [f6
 }
 
 /// The crank's angle relative to the ground driven at θ = `start` + ω t.
-fn crank_motor(crank: BodyId, start: f64, omega: f64) -> RelativeCoord {
+pub fn crank_motor(crank: BodyId, start: f64, omega: f64) -> RelativeCoord {
     RelativeCoord {
         body_i: BodyId::GROUND,
         s_i: [0.0, 0.0],
