@@ -279,10 +279,10 @@ class Model:
         for name, value in values.items():
             if isinstance(value, bool) or not isinstance(value, int | float):
                 raise ModelError(f"parameter '{name}' = {value!r} is not a number")
-        model = Model(self._core.with_parameters({k: float(v) for k, v in values.items()}),
-                      source=self.source)
+        numbers = {k: float(v) for k, v in values.items()}
+        model = Model(self._core.with_parameters(numbers), source=self.source)
         model._recipe = self._recipe
-        model._overrides = {**self._overrides, **{k: float(v) for k, v in values.items()}}
+        model._overrides = {**self._overrides, **numbers}
         return model
 
     def run(

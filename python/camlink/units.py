@@ -25,6 +25,4 @@ def unit(channel: str) -> str:
     """The unit of a channel from its kind (``"crank.omega"`` → ``"rad/s"``),
     or ``""`` when the kind does not fix it (a driver's effort is a force or
     a torque)."""
-    if channel == "t":
-        return "s"
     return UNITS.get(channel.rsplit(".", 1)[-1], "")

@@ -66,9 +66,6 @@ class Output:
         """The declaration as the Rust batch runner reads it."""
         return json.dumps({"kind": self.kind, **dict(self.fields)})
 
-    def as_dict(self) -> dict[str, Any]:
-        return {"kind": self.kind, **dict(self.fields)}
-
 
 def max_abs(channel: str) -> Output:
     """Largest |value| of `channel` over the run."""
