@@ -567,13 +567,13 @@ impl<'a> Run<'a> {
             if self.event().is_none() {
                 // The interpolant dipped, the motion did not: keep the step.
                 self.trial(snap, gaps, h)?;
-                self.remember(t0, &n0);
+                self.remember(t0, n0);
                 return Ok(());
             }
             span = tau;
         }
         if self.event().is_none() {
-            self.remember(t0, &n0);
+            self.remember(t0, n0);
             return Ok(());
         }
         for c in &mut self.contacts {
