@@ -322,3 +322,17 @@ fn fused_residual_and_phi_match_the_separate_ones() {
         "an inconsistent state: {phi1:?}"
     );
 }
+
+/// Fixed steps that do not divide an output interval exactly in binary
+/// (h = 1e-5 s, outputs every 0.01 s) land on every output time without a
+/// sliver of a step left over from the rounding of t: 60,000 steps to
+/// 0.6 s, no more. A sliver (~1e-14 s) has a Newton matrix scaled by 1/h²
+/// and used to end runs with "the Newton iteration matrix is singular".
+#[test]
+fn fixed_steps_leave_no_sliver_before_an_output_time() {
+    let model = pendulum(0.5, 1.0, 0.02, 0.3, false);
+    let times = time_grid(0.6, 0.01).unwrap();
+    let mut table = Table::default();
+    let summary = run(&model, &times, &settings(1e-5, 0.8), &[], &mut table).unwrap();
+    assert_eq!(summary.steps, 60_000);
+}

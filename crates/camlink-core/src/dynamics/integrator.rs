@@ -69,6 +69,10 @@ const LAMBDA_JUMP: f64 = 1.5;
 /// step triggers the same restart even when it is not accelerating.
 const LAMBDA_LEAP: f64 = 3.0;
 
+/// The fixed-step mode stretches a step by up to this fraction of h rather
+/// than leave a sliver before an output time.
+const SLIVER: f64 = 1e-6;
+
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
 #[derive(Clone, Debug, PartialEq)]
@@ -750,8 +754,13 @@ impl<'m> Integrator<'m> {
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
                 None => {
-                    // Steps of h_max, the last one landing on t_end.
-                    let h = if left <= h_max * (1.0 + 1e-9) {
+                    // Steps of h_max, the last one landing on t_end; a step
+                    // that would leave less than [`SLIVER`] h_max (the
+                    // rounding of t accumulated over the steps of an
+                    // output interval) is stretched to land instead, since a
+                    // sliver of a step has a hopelessly ill-conditioned
+                    // Newton matrix (β' ∝ 1/h²).
+                    let h = if left <= h_max * (1.0 + SLIVER) {
                         left
                     } else {
                         h_max
