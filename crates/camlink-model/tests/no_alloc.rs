@@ -1,5 +1,6 @@
 //! No allocation in the time loop: 1,000 kinematic steps and 1,000 dynamic
-//! steps of each benchmark model, after the first, allocate nothing.
+//! steps of each benchmark model, after the first, allocate nothing; nor
+//! do those of a run with unilateral contacts between its events.
 //!
 //! A counting global allocator counts the allocations made on the thread
 //! that runs the analysis while counting is switched on; the sink switches
@@ -188,4 +189,80 @@ fn driven_chain_kinematics_allocates_nothing_per_step() {
 #[test]
 fn long_chain_dynamics_allocates_nothing_per_step() {
     assert_eq!(dynamic_allocations(&mechanisms::chain(50, 0.1), &[]), 0);
+}
+
+/// A ball of radius 0.1 m on a vertical guide above a unilateral floor:
+/// its centre at `height` (m) and `contact` the rest of the floor joint.
+fn ball_over_floor(height: f64, contact: &str) -> Model {
+    let text = format!(
+        r#"
+[model]
+name = "ball over a floor"
+gravity = [0, -9.81]
+
+[[bodies]]
+name = "ball"
+position = [0, {height}]
+mass = 2
+inertia = 0.008
+
+[[curves]]
+name = "rim"
+body = "ball"
+source = "circle"
+centre = [0, 0]
+radius = 0.1
+
+[[joints]]
+type = "translational"
+name = "guide"
+body_i = "ground"
+axis = [0, 1]
+body_j = "ball"
+
+[[joints]]
+type = "flat_follower"
+name = "floor"
+curve_i = "rim"
+body_j = "ground"
+axis = [1, 0]
+unilateral = true
+{contact}
+"#
+    );
+    camlink_model::load_str(&text, camlink_model::Format::Toml, "ball.toml")
+        .unwrap()
+        .model
+}
+
+/// The valve-jump example below its jump speed: the unilateral contact
+/// stays closed and its normal force is watched at every step.
+#[test]
+fn closed_unilateral_contact_dynamics_allocates_nothing_per_step() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cam_valve_jump.toml");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("rpm = 6000 ", "rpm = 600 ");
+    let loaded = camlink_model::load_str(&text, camlink_model::Format::Toml, "valve.toml").unwrap();
+    assert_eq!(
+        dynamic_allocations(&loaded.model, &all_points(&loaded.model)),
+        0
+    );
+}
+
+/// A ball falling for a second from 10 m: the contact open throughout,
+/// its gap watched and the rows' energy and drift those of the model
+/// without the contact (the guide's two equations).
+#[test]
+fn open_unilateral_contact_dynamics_allocates_nothing_per_step() {
+    let model = ball_over_floor(10.0, "restitution = 0.5");
+    assert_eq!(dynamic_allocations(&model, &[]), 0);
+}
+
+/// A ball settling on a compliant (Hunt–Crossley) floor, its force one of
+/// the model's.
+#[test]
+fn compliant_contact_dynamics_allocates_nothing_per_step() {
+    let model = ball_over_floor(0.1, "stiffness = 1e5\nexponent = 1.5\ndamping = 0.2");
+    assert_eq!(dynamic_allocations(&model, &[]), 0);
 }
