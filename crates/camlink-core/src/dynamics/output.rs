@@ -52,7 +52,7 @@ pub fn channels(model: &Model) -> Vec<String> {
 /// Scratch for [`fill`], allocated once.
 pub struct Scratch {
     nu: Vec<f64>,
-    drift: Drift,
+    drift: DriftScratch,
     contacts: ContactForces,
 }
 
@@ -60,7 +60,7 @@ impl Scratch {
     pub fn new(s: &System) -> Self {
         Scratch {
             nu: vec![0.0; s.m()],
-            drift: Drift::new(s.m()),
+            drift: DriftScratch::new(s.m()),
             contacts: ContactForces::new(s.model),
         }
     }
@@ -68,15 +68,15 @@ impl Scratch {
 
 /// Scratch for [`energy_and_drift`]: Φ and Φ_q q̇ − ν, resized to the
 /// system's m (no allocation for systems of at most the m it was made for).
-pub struct Drift {
+pub struct DriftScratch {
     phi: Vec<f64>,
     nu: Vec<f64>,
 }
 
-impl Drift {
+impl DriftScratch {
     /// Scratch for systems of up to `m` equations.
     pub fn new(m: usize) -> Self {
-        Drift {
+        DriftScratch {
             phi: Vec::with_capacity(m),
             nu: Vec::with_capacity(m),
         }
@@ -143,7 +143,13 @@ pub fn fill_forces(
 /// The channels `energy.kinetic` T, `energy.potential` V, `energy.total`
 /// T + V (J), `constraint.residual` max |Φ| and `constraint.velocity`
 /// max |Φ_q q̇ − ν| (m or rad, m/s or rad/s) of system `s` at (q, q̇, t).
-pub fn energy_and_drift(s: &System, w: &mut Drift, q: &[f64], qd: &[f64], t: f64) -> [f64; 5] {
+pub fn energy_and_drift(
+    s: &System,
+    w: &mut DriftScratch,
+    q: &[f64],
+    qd: &[f64],
+    t: f64,
+) -> [f64; 5] {
     let (model, asm, m) = (s.model, &s.asm, s.m());
     let kin = s.kinetic(q, qd);
     let pot = s.potential(q, t);

@@ -42,7 +42,7 @@
 
 use super::impact;
 use super::integrator::{Integrator, Settings, Snapshot};
-use super::output::{self, Drift, Scratch};
+use super::output::{self, DriftScratch, Scratch};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
@@ -927,7 +927,7 @@ pub fn run(
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&r.full);
-    let mut drift = Drift::new(m);
+    let mut drift = DriftScratch::new(m);
     let mut snap = Snapshot::default();
     let h_max = settings.step;
     for (i, &t) in times.iter().enumerate() {
