@@ -822,3 +822,18 @@ fn a_normal_force_dipping_below_zero_inside_one_step_is_caught() {
     // Within the event tolerance: ω · 1e-9 s, twice.
     assert!((start - th1).abs() < 2.0 * w * 1e-9, "{start} vs {th1}");
 }
+
+/// Fixed steps of a run with a unilateral contact land on every output
+/// time without a sliver of a step left by the rounding of t (h = 1e-5 s,
+/// outputs every 0.01 s): the ball of tests/no_alloc/ball_over_floor.toml
+/// falls for 0.6 s, before it meets the floor, in exactly 60,000 steps.
+#[test]
+fn fixed_steps_leave_no_sliver_before_an_output_time() {
+    let text = include_str!("no_alloc/ball_over_floor.toml");
+    let (t, s) = forward(&load(text), 0.6, 0.01, 1e-5);
+    assert_eq!(
+        ch(&t, "ball.y").last().copied().map(|y| y > 8.0),
+        Some(true)
+    );
+    assert_eq!(s.steps, 60_000);
+}

@@ -71,7 +71,7 @@ const LAMBDA_LEAP: f64 = 3.0;
 
 /// The fixed-step mode stretches a step by up to this fraction of h rather
 /// than leave a sliver before an output time.
-const SLIVER: f64 = 1e-6;
+pub(crate) const SLIVER: f64 = 1e-6;
 
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.

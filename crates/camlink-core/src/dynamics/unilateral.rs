@@ -41,7 +41,7 @@
 //! contacts.
 
 use super::impact;
-use super::integrator::{Integrator, Settings, Snapshot};
+use super::integrator::{Integrator, Settings, Snapshot, SLIVER};
 use super::output::{self, DriftScratch, Scratch};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
@@ -943,7 +943,9 @@ pub fn run(
             while t - r.it().t > done {
                 sink.tick().map_err(|s| s.at(t))?;
                 let left = t - r.it().t;
-                let h = if left <= h_max * (1.0 + 1e-9) {
+                // The last step lands on t, stretched rather than leave a
+                // sliver (see [`SLIVER`]).
+                let h = if left <= h_max * (1.0 + SLIVER) {
                     left
                 } else {
                     h_max
