@@ -8,9 +8,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from conftest import ROOT, run_cli
-
 import camlink
+from conftest import ROOT, run_cli
 
 MODELS = ROOT / "tests" / "models" / "misbehave"
 
