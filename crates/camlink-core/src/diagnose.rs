@@ -434,6 +434,23 @@ mod tests {
         m
     }
 
+    /// The four-bar with a fifth revolute at the rocker pivot, `O4_again`,
+    /// whose equations duplicate O4's.
+    fn four_bar_with_second_rocker_pivot() -> Model {
+        let mut m = four_bar(false);
+        let rocker = m.body_id("rocker").unwrap();
+        m.add_joint(
+            "O4_again",
+            Revolute {
+                body_i: BodyId::GROUND,
+                s_i: [0.4, 0.0],
+                body_j: rocker,
+                s_j: [0.0, 0.0],
+            },
+        );
+        m
+    }
+
     #[test]
     fn four_bar_has_one_dof_and_no_redundancy() {
         let d = diagnose(&four_bar(false), 0.0, 1e-10);
@@ -472,18 +489,7 @@ mod tests {
 
     #[test]
     fn extra_revolute_is_named_redundant() {
-        // A fifth revolute at the rocker pivot duplicates O4's equations.
-        let mut m = four_bar(false);
-        let rocker = m.body_id("rocker").unwrap();
-        m.add_joint(
-            "O4_again",
-            Revolute {
-                body_i: BodyId::GROUND,
-                s_i: [0.4, 0.0],
-                body_j: rocker,
-                s_j: [0.0, 0.0],
-            },
-        );
+        let m = four_bar_with_second_rocker_pivot();
         let d = diagnose(&m, 0.0, 1e-10);
         assert_eq!(d.equations, 10);
         assert_eq!(d.rank, 8);
@@ -495,17 +501,7 @@ mod tests {
 
     #[test]
     fn a_redundant_joint_involves_no_driver() {
-        let mut m = four_bar(false);
-        let rocker = m.body_id("rocker").unwrap();
-        m.add_joint(
-            "O4_again",
-            Revolute {
-                body_i: BodyId::GROUND,
-                s_i: [0.4, 0.0],
-                body_j: rocker,
-                s_j: [0.0, 0.0],
-            },
-        );
+        let mut m = four_bar_with_second_rocker_pivot();
         let crank = m.body_id("crank").unwrap();
         m.add_driver("motor", crank_angle(crank, 1.2));
         let d = diagnose(&m, 0.0, 1e-10);
