@@ -22,8 +22,9 @@ fn crank_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), Str
 
 /// Runs the chain at each h and tol; checks that every run passes the
 /// flat positions on the parallelogram branch, with an error of a
-/// second-order method (≤ C h², C = 120 rad/s² from the h = 1e-3 s run),
-/// falling by more than half of (h₁/h₂)² from one step to the next.
+/// second-order method (≤ C h² max(t/0.6 s, 1), C = 120 rad/s² from the
+/// h = 1e-3 s run over 0.6 s; the phase error grows with t), falling by
+/// more than half of (h₁/h₂)² from one step to the next.
 fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
     for &tol in tols {
         let mut errs = Vec::new();
@@ -31,7 +32,8 @@ fn check_matrix(n: usize, steps: &[f64], tols: &[f64], t_end: f64) {
             let (err, spread) =
                 crank_error(n, h, tol, t_end).unwrap_or_else(|e| panic!("h {h}, tol {tol}: {e}"));
             eprintln!("N = {n}, h = {h:e} s, tol = {tol:e}: max |θ − θ_exact| {err:.2e} rad, crank spread {spread:.1e} rad");
-            assert!(err <= 120.0 * h * h, "h {h}, tol {tol}: error {err}");
+            let bound = 120.0 * h * h * (t_end / 0.6).max(1.0);
+            assert!(err <= bound, "h {h}, tol {tol}: error {err} > {bound}");
             assert!(
                 spread < 1e-8,
                 "h {h}, tol {tol}: the cranks parted by {spread}"

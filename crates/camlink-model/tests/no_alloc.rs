@@ -1,5 +1,6 @@
 //! No allocation in the time loop: 1,000 kinematic steps and 1,000 dynamic
-//! steps of each benchmark model, after the first, allocate nothing.
+//! steps of each benchmark model, after the first, allocate nothing; nor
+//! do those of a run with unilateral contacts between its events.
 //!
 //! A counting global allocator counts the allocations made on the thread
 //! that runs the analysis while counting is switched on; the sink switches
@@ -188,4 +189,56 @@ fn driven_chain_kinematics_allocates_nothing_per_step() {
 #[test]
 fn long_chain_dynamics_allocates_nothing_per_step() {
     assert_eq!(dynamic_allocations(&mechanisms::chain(50, 0.1), &[]), 0);
+}
+
+/// `tests/no_alloc/ball_over_floor.toml` with the text `from` replaced by
+/// `to` in each pair.
+fn ball_over_floor(edits: &[(&str, &str)]) -> Model {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/no_alloc/ball_over_floor.toml");
+    let mut text = std::fs::read_to_string(path).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "no {from:?} in the ball model");
+        text = text.replace(from, to);
+    }
+    camlink_model::load_str(&text, camlink_model::Format::Toml, "ball_over_floor.toml")
+        .unwrap()
+        .model
+}
+
+/// The valve-jump example below its jump speed: the unilateral contact
+/// stays closed and its normal force is watched at every step.
+#[test]
+fn closed_unilateral_contact_dynamics_allocates_nothing_per_step() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cam_valve_jump.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains("rpm = 6000 "), "the example's speed moved");
+    let text = text.replace("rpm = 6000 ", "rpm = 600 ");
+    let loaded = camlink_model::load_str(&text, camlink_model::Format::Toml, "valve.toml").unwrap();
+    assert_eq!(
+        dynamic_allocations(&loaded.model, &all_points(&loaded.model)),
+        0
+    );
+}
+
+/// A ball falling for a second from 10 m: the contact open throughout,
+/// its gap watched and the rows' energy and drift those of the model
+/// without the contact (the guide's two equations).
+#[test]
+fn open_unilateral_contact_dynamics_allocates_nothing_per_step() {
+    let model = ball_over_floor(&[]);
+    assert_eq!(dynamic_allocations(&model, &[]), 0);
+}
+
+/// A ball settling on a compliant (Hunt–Crossley) floor, its force one of
+/// the model's.
+#[test]
+fn compliant_contact_dynamics_allocates_nothing_per_step() {
+    let model = ball_over_floor(&[
+        ("position = [0, 10]", "position = [0, 0.1]"),
+        (
+            "restitution = 0.5",
+            "stiffness = 1e5\nexponent = 1.5\ndamping = 0.2",
+        ),
+    ]);
+    assert_eq!(dynamic_allocations(&model, &[]), 0);
 }

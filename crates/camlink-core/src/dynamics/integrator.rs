@@ -384,40 +384,29 @@ impl<'m> Integrator<'m> {
 
     /// Solves [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] into `rhs`, λ of minimum norm.
     fn consistent(&mut self) -> Result<(), AnalysisError> {
-        let (n, s) = (self.sys.n(), &self.sys);
-        let k = Coefficients {
-            mass: 1.0,
-            scale: 1.0,
-            ..Default::default()
-        };
-        if self
-            .aug
-            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
-            .is_err()
-        {
-            let mut message = "the mass matrix is singular on the constraints: give every \
-                 moving body a mass and an inertia, or constrain the massless ones"
-                .to_string();
-            if let Err(e) = s.model.check_mass_properties() {
-                message.push_str(&format!(" ({e})"));
-            }
-            return Err(self.error(Kind::SingularMass, &message));
-        }
         self.h_factored = 0.0;
-        s.forces(&self.q, &self.qd, self.t, &mut self.rhs[..n])?;
-        s.asm
-            .gamma(s.model, &self.q, &self.qd, self.t, &mut self.rhs[n..]);
-        self.aug.solve_refined(&mut self.rhs);
-        Ok(())
+        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
+        solve_consistent(&self.sys, &mut self.aug, t, q, qd, qdd, &mut self.rhs)
+    }
+
+    /// [`consistent`](Self::consistent) at the current state with the
+    /// caller's matrix `aug` (made for this system) into the caller's
+    /// `rhs` (resized to n + m: q̈, then λ); the integrator and its
+    /// factorization are unchanged.
+    pub(crate) fn consistent_into(
+        &self,
+        aug: &mut Augmented,
+        rhs: &mut Vec<f64>,
+    ) -> Result<(), AnalysisError> {
+        rhs.resize(self.sys.n() + self.sys.m(), 0.0);
+        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
+        solve_consistent(&self.sys, aug, t, q, qd, qdd, rhs)
     }
 
     /// An error at the current state, naming the joints furthest from
     /// Φ = 0 (at most five) and the largest |Φ|.
     fn error(&self, kind: Kind, what: &str) -> AnalysisError {
-        let mut phi = vec![0.0; self.sys.m()];
-        self.sys.asm.phi(self.sys.model, &self.q, self.t, &mut phi);
-        let (joints, _) = run::worst_joints(self.sys.model, &self.sys.asm, &phi, 0.0);
-        AnalysisError::new(kind, self.t, what).at_joints(joints, max_abs(&phi))
+        error_at(&self.sys, self.t, &self.q, kind, what)
     }
 
     /// Advances one step of size `h`; the state is unchanged on failure.
@@ -832,6 +821,48 @@ impl<'m> Integrator<'m> {
         self.t = t_end.max(self.t);
         Ok(())
     }
+}
+
+/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] of system `s` at (t, q, q̇) into `rhs`
+/// (length n + m), λ of minimum norm; `aug` is refactored for it (q̈
+/// enters only terms the coefficients leave out).
+fn solve_consistent(
+    s: &System,
+    aug: &mut Augmented,
+    t: f64,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    rhs: &mut [f64],
+) -> Result<(), AnalysisError> {
+    let n = s.n();
+    let k = Coefficients {
+        mass: 1.0,
+        scale: 1.0,
+        ..Default::default()
+    };
+    if aug.refactor(s, q, qd, qdd, None, t, k).is_err() {
+        let mut message = "the mass matrix is singular on the constraints: give every \
+             moving body a mass and an inertia, or constrain the massless ones"
+            .to_string();
+        if let Err(e) = s.model.check_mass_properties() {
+            message.push_str(&format!(" ({e})"));
+        }
+        return Err(error_at(s, t, q, Kind::SingularMass, &message));
+    }
+    s.forces(q, qd, t, &mut rhs[..n])?;
+    s.asm.gamma(s.model, q, qd, t, &mut rhs[n..]);
+    aug.solve_refined(rhs);
+    Ok(())
+}
+
+/// An error at (t, q) of system `s`, naming the joints furthest from
+/// Φ = 0 (at most five) and the largest |Φ|.
+fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisError {
+    let mut phi = vec![0.0; s.m()];
+    s.asm.phi(s.model, q, t, &mut phi);
+    let (joints, _) = run::worst_joints(s.model, &s.asm, &phi, 0.0);
+    AnalysisError::new(kind, t, what).at_joints(joints, max_abs(&phi))
 }
 
 /// Forward dynamics with output at `times` (increasing; the first is the

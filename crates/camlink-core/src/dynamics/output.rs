@@ -51,17 +51,34 @@ pub fn channels(model: &Model) -> Vec<String> {
 
 /// Scratch for [`fill`], allocated once.
 pub struct Scratch {
-    phi: Vec<f64>,
     nu: Vec<f64>,
+    drift: DriftScratch,
     contacts: ContactForces,
 }
 
 impl Scratch {
     pub fn new(s: &System) -> Self {
         Scratch {
-            phi: vec![0.0; s.m()],
             nu: vec![0.0; s.m()],
+            drift: DriftScratch::new(s.m()),
             contacts: ContactForces::new(s.model),
+        }
+    }
+}
+
+/// Scratch for [`energy_and_drift`]: Φ and Φ_q q̇ − ν, resized to the
+/// system's m (no allocation for systems of at most the m it was made for).
+pub struct DriftScratch {
+    phi: Vec<f64>,
+    nu: Vec<f64>,
+}
+
+impl DriftScratch {
+    /// Scratch for systems of up to `m` equations.
+    pub fn new(m: usize) -> Self {
+        DriftScratch {
+            phi: Vec::with_capacity(m),
+            nu: Vec::with_capacity(m),
         }
     }
 }
@@ -76,6 +93,21 @@ pub fn fill(
     t: f64,
     out: &mut [f64],
 ) {
+    let k = fill_forces(s, w, q, lambda, t, out);
+    out[k..k + 5].copy_from_slice(&energy_and_drift(s, &mut w.drift, q, qd, t));
+}
+
+/// Fills the channels of [`fill`] before the energy and drift: the
+/// reactions, contact forces, driver efforts and powers. Returns how many
+/// it wrote.
+pub fn fill_forces(
+    s: &System,
+    w: &mut Scratch,
+    q: &[f64],
+    lambda: &[f64],
+    t: f64,
+    out: &mut [f64],
+) -> usize {
     let (model, asm) = (s.model, &s.asm);
     s.asm.nu(model, q, t, &mut w.nu);
     let mut k = 0;
@@ -105,16 +137,32 @@ pub fn fill(
             }
         }
     }
+    k
+}
+
+/// The channels `energy.kinetic` T, `energy.potential` V, `energy.total`
+/// T + V (J), `constraint.residual` max |Φ| and `constraint.velocity`
+/// max |Φ_q q̇ − ν| (m or rad, m/s or rad/s) of system `s` at (q, q̇, t).
+pub fn energy_and_drift(
+    s: &System,
+    w: &mut DriftScratch,
+    q: &[f64],
+    qd: &[f64],
+    t: f64,
+) -> [f64; 5] {
+    let (model, asm, m) = (s.model, &s.asm, s.m());
     let kin = s.kinetic(q, qd);
     let pot = s.potential(q, t);
-    // Drift: Φ and Φ_q q̇ − ν.
+    w.phi.resize(m, 0.0);
+    w.nu.resize(m, 0.0);
     asm.phi(model, q, t, &mut w.phi);
-    let res = w.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    // Φ_q q̇ − ν, from −ν.
+    asm.nu(model, q, t, &mut w.nu);
     for v in w.nu.iter_mut() {
         *v = -*v;
     }
     let nu = &mut w.nu;
     asm.jacobian(model, q, t, |r, c, v| nu[r] += v * qd[c]);
-    let vel = w.nu.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-    out[k..k + 5].copy_from_slice(&[kin, pot, kin + pot, res, vel]);
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    [kin, pot, kin + pot, max(&w.phi), max(&w.nu)]
 }

@@ -42,8 +42,8 @@
 
 use super::impact;
 use super::integrator::{Integrator, Settings, Snapshot};
-use super::output::{self, Scratch};
-use super::system::{Augmented, Coefficients, System};
+use super::output::{self, DriftScratch, Scratch};
+use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
 use crate::curve::distance::{Features, Gap};
@@ -290,8 +290,10 @@ struct Run<'a> {
     /// λ of the consistent accelerations (full layout), which the
     /// lift-off events watch.
     lam_watch: Vec<f64>,
-    /// Per active set, its system and an augmented matrix for them.
-    watch: Vec<Option<(System<'a>, Augmented)>>,
+    /// Per active set, an augmented matrix of its integrator's system for
+    /// [`watch_forces`](Self::watch_forces), apart from the integrator's
+    /// own, whose step factorization is kept.
+    watch: Vec<Option<Augmented>>,
     /// Events in a row within 100 event tolerances of each other, and the
     /// time of the last.
     burst: (usize, f64),
@@ -386,38 +388,17 @@ impl<'a> Run<'a> {
     fn watch_forces(&mut self) -> Result<(), AnalysisError> {
         let mask = self.mask;
         let it = self.its[mask].as_ref().expect("integrator");
-        let t = it.t;
         if self.watch[mask].is_none() {
-            let sys = System::new(&self.models[mask]);
-            let aug = Augmented::new(&sys, &it.q)
-                .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
-            self.watch[mask] = Some((sys, aug));
+            let aug = Augmented::new(&it.sys, &it.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, it.t, e.to_string()))?;
+            self.watch[mask] = Some(aug);
         }
-        let (sys, aug) = self.watch[mask].as_mut().expect("watch");
-        let (n, m) = (sys.n(), sys.m());
-        let k = Coefficients {
-            mass: 1.0,
-            scale: 1.0,
-            ..Default::default()
-        };
-        if aug
-            .refactor(sys, &it.q, &it.qd, &it.qdd, None, t, k)
-            .is_err()
-        {
-            return Err(AnalysisError::new(
-                Kind::SingularMass,
-                t,
-                "the mass matrix is singular on the constraints",
-            ));
-        }
-        let rhs = &mut self.rhs;
-        rhs.resize(n + m, 0.0);
-        sys.forces(&it.q, &it.qd, t, &mut rhs[..n])?;
-        sys.asm.gamma(sys.model, &it.q, &it.qd, t, &mut rhs[n..]);
-        aug.solve_refined(rhs);
+        let aug = self.watch[mask].as_mut().expect("watch");
+        it.consistent_into(aug, &mut self.rhs)?;
+        let n = it.sys.n();
         let layout = self.layouts[mask].as_ref().expect("layout");
         for (f, r) in layout.rows.iter().enumerate() {
-            self.lam_watch[f] = r.map_or(0.0, |r| rhs[n + r]);
+            self.lam_watch[f] = r.map_or(0.0, |r| self.rhs[n + r]);
         }
         Ok(())
     }
@@ -946,6 +927,7 @@ pub fn run(
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&r.full);
+    let mut drift = DriftScratch::new(m);
     let mut snap = Snapshot::default();
     let h_max = settings.step;
     for (i, &t) in times.iter().enumerate() {
@@ -981,21 +963,20 @@ pub fn run(
             &mut values[..nk],
         );
         let tr = r.it().t;
-        output::fill(
+        output::fill_forces(
             &r.full,
             &mut scratch,
             &r.q,
-            &r.qd,
             &r.lambda,
             tr,
-            &mut values[nk..nd],
+            &mut values[nk..nd - 5],
         );
         // Energy and drift of the model in force: its potential includes
         // the compliant contacts' and an open joint's equations are released.
         let it = r.its[r.mask].as_ref().expect("integrator");
-        let (kin, pot) = (it.sys.kinetic(&it.q, &it.qd), it.sys.potential(&it.q, tr));
-        let drift = drift(&it.sys, &it.q, &it.qd, tr);
-        values[nd - 5..nd].copy_from_slice(&[kin, pot, kin + pot, drift[0], drift[1]]);
+        values[nd - 5..nd].copy_from_slice(&output::energy_and_drift(
+            &it.sys, &mut drift, &it.q, &it.qd, tr,
+        ));
         for (k, c) in r.contacts.iter().enumerate() {
             let gap = c.gap.map_or(0.0, |g| g.gap);
             values[nd + 2 * k] = gap;
@@ -1029,21 +1010,6 @@ pub fn run(
         }
     }
     Ok(summary)
-}
-
-/// max |Φ| and max |Φ_q q̇ − ν| of system `s`.
-fn drift(s: &System, q: &[f64], qd: &[f64], t: f64) -> [f64; 2] {
-    let m = s.m();
-    let mut phi = vec![0.0; m];
-    let mut nu = vec![0.0; m];
-    s.asm.phi(s.model, q, t, &mut phi);
-    s.asm.nu(s.model, q, t, &mut nu);
-    for v in nu.iter_mut() {
-        *v = -*v;
-    }
-    s.asm.jacobian(s.model, q, t, |r, c, v| nu[r] += v * qd[c]);
-    let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-    [max(&phi), max(&nu)]
 }
 
 #[cfg(test)]

@@ -363,3 +363,114 @@ pub fn parallelogram_chain_error(
     }
     Ok((err, spread))
 }
+
+/// The N-four-bar mechanism of the IFToMM multibody benchmark library
+/// (problem A02; González, Dopico, Luaces & Cuadrado 2006): `n` parallelogram
+/// four-bars of 2n + 1 uniform links of 1 m and 1 kg (n + 1 cranks pivoted
+/// on the ground at (k, 0) m, frames at the pivots; n couplers, frames at
+/// their left pin), all cranks upright (θ = 90°), the pin B₀ of crank 0
+/// moving at 1 m/s along +x (θ̇ = −1 rad/s), gravity 9.81 m/s² along −y.
+/// The mechanism turns over and over, through the flat positions θ = 0
+/// and θ = −π (where Φ_q loses one rank per four-bar) at speed.
+pub fn benchmark_a02(n: usize) -> Model {
+    let (len, mass) = (1.0, 1.0);
+    let jc = mass * len * len / 12.0;
+    let (th0, omega) = (std::f64::consts::FRAC_PI_2, -1.0);
+    let mut m = Model::new("IFToMM A02 N-four-bar");
+    let g = BodyId::GROUND;
+    let tip = [len * th0.cos(), len * th0.sin()];
+    let cranks: Vec<BodyId> = (0..=n)
+        .map(|k| {
+            let x = k as f64 * len;
+            let mut b = body(
+                &format!("crank{k}"),
+                [x, 0.0, th0],
+                mass,
+                jc,
+                [len / 2.0, 0.0],
+            );
+            b.qd0 = [0.0, 0.0, omega];
+            let id = m.add_body(b);
+            m.add_joint(format!("O{k}"), rev(g, [x, 0.0], id, [0.0, 0.0]));
+            id
+        })
+        .collect();
+    for k in 0..n {
+        let mut b = body(
+            &format!("coupler{k}"),
+            [k as f64 * len + tip[0], tip[1], 0.0],
+            mass,
+            jc,
+            [len / 2.0, 0.0],
+        );
+        b.qd0 = [-omega * len * th0.sin(), omega * len * th0.cos(), 0.0];
+        let id = m.add_body(b);
+        m.add_joint(format!("L{k}"), rev(cranks[k], [len, 0.0], id, [0.0, 0.0]));
+        m.add_joint(
+            format!("R{k}"),
+            rev(id, [len, 0.0], cranks[k + 1], [len, 0.0]),
+        );
+    }
+    m
+}
+
+/// θ(t) at `times` of θ̈ = −κ cos θ from (θ₀, θ̇₀), by the classical
+/// Runge–Kutta method as in [`parallelogram_reference`].
+pub fn pendulum_like_reference(kappa: f64, th0: f64, omega0: f64, times: &[f64]) -> Vec<f64> {
+    let f = |y: [f64; 2]| [y[1], -kappa * y[0].cos()];
+    let mut y = [th0, omega0];
+    let mut t = 0.0;
+    let mut out = Vec::with_capacity(times.len());
+    for &te in times {
+        let steps = ((te - t) / 1e-4).ceil().max(0.0) as usize;
+        if steps > 0 {
+            let h = (te - t) / steps as f64;
+            for _ in 0..steps {
+                let k1 = f(y);
+                let k2 = f([y[0] + 0.5 * h * k1[0], y[1] + 0.5 * h * k1[1]]);
+                let k3 = f([y[0] + 0.5 * h * k2[0], y[1] + 0.5 * h * k2[1]]);
+                let k4 = f([y[0] + h * k3[0], y[1] + h * k3[1]]);
+                for i in 0..2 {
+                    y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+                }
+            }
+            t = te;
+        }
+        out.push(y[0]);
+    }
+    out
+}
+
+/// Forward dynamics of [`benchmark_a02`] with `n` four-bars, step `h` (s)
+/// and Newton tolerance `tol` for `t_end` (s), output every 0.01 s: the
+/// largest |θ − θ_exact| of crank 0 and the largest difference between the
+/// cranks' angles (rad), or the run's error. Exact: θ̈ = −κ cos θ with
+/// κ = g (n_c m c + n m a)/(n_c J_O + n m a²), c = a/2, J_O = m a²/3.
+pub fn benchmark_a02_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), String> {
+    use camlink_core::dynamics::integrator::{run, Settings};
+    let model = benchmark_a02(n);
+    let times = camlink_core::run::time_grid(t_end, 0.01).unwrap();
+    let settings = Settings {
+        step: h,
+        tol,
+        ..Settings::default()
+    };
+    let mut table = Table::default();
+    run(&model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
+    let (nc, nb) = ((n + 1) as f64, n as f64);
+    let kappa = 9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb);
+    let want = pendulum_like_reference(kappa, std::f64::consts::FRAC_PI_2, -1.0, &table.t);
+    let th0 = table.channel("crank0.phi").unwrap();
+    let err = th0
+        .iter()
+        .zip(&want)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0, f64::max);
+    let mut spread = 0.0f64;
+    for k in 1..=n {
+        let thk = table.channel(&format!("crank{k}.phi")).unwrap();
+        let d = thk.iter().zip(&th0).map(|(a, b)| (a - b).abs());
+        spread = spread.max(d.fold(0.0, f64::max));
+    }
+    Ok((err, spread))
+}
