@@ -21,7 +21,6 @@ from camlink._core import AnalysisError, ModelError
 from camlink.jump import flight_summary
 from camlink.model import ANALYSES
 from camlink.output import check_not_input
-from camlink.records import CheckReport
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
 
@@ -326,17 +325,6 @@ def _verdict(dof: int, redundant: bool, redundant_driver: bool = False) -> str:
     )
 
 
-def _involves_driver(report: CheckReport) -> bool:
-    """Whether a driver's equation is redundant or one a redundant
-    equation depends on."""
-    drivers = {j["name"] for j in report["joints"] if j["driver"]}
-    for red in report["redundant"]:
-        names = [red["equation"], *(n for n, _ in red["depends_on"])]
-        if any(n.rsplit(".", 1)[0] in drivers for n in names):
-            return True
-    return False
-
-
 def _cmd_check(args: argparse.Namespace) -> int:
     model = _load(args)
     r = model.check()
@@ -376,7 +364,7 @@ def _cmd_check(args: argparse.Namespace) -> int:
         for f in design:
             print(f"design       {f['text']}")
         return EXIT_OK
-    verdict = _verdict(dof, bool(r["redundant"]), _involves_driver(r))
+    verdict = _verdict(dof, bool(r["redundant"]), bool(r["redundant_drivers"]))
     print(f"degrees of freedom  {dof} (rank of Φ_q {r['rank']}; {verdict})")
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)

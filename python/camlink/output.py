@@ -195,9 +195,9 @@ class CsvWriter:
             self._names = list(names)
             self._start = self._end = self._file.tell()
         if len(rows):
-            # Row by row: a Fortran-order chunk would be read across its
-            # columns, far apart in memory.
-            text = _core.csv_rows(np.ascontiguousarray(rows, dtype=np.float64))
+            # The column-major chunk as it came: `csv_rows` reads it row by
+            # row through its strides, without a copy.
+            text = _core.csv_rows(rows)
             self._file.write(text)
             self.rows += len(rows)
             self._end += len(text)

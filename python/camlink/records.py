@@ -94,6 +94,9 @@ class CheckReport(TypedDict):
     #: Degrees of freedom: coordinates − rank.
     dof: int
     redundant: list[RedundantEquation]
+    #: The drivers among the redundant equations and those they depend on
+    #: (the model is over-driven when there is one).
+    redundant_drivers: list[str]
     #: Each free motion as (coordinate name, component) pairs.
     free_motions: list[list[tuple[str, float]]]
     #: Largest |Φ| at the placement (m or rad).

@@ -5,8 +5,10 @@ among the redundant equations (over-driven)."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
+import camlink
 from conftest import ROOT, run_cli
 
 MODELS = ROOT / "tests" / "models" / "misbehave"
@@ -55,3 +57,21 @@ def test_over_driven_model_is_not_ready_for_kinematics() -> None:
 def test_independent_driven_model_is_ready_for_kinematics() -> None:
     line = verdict(ROOT / "examples" / "four_bar.toml")
     assert "fully driven: ready for kinematics and inverse dynamics" in line, line
+
+
+def test_check_names_the_drivers_among_the_redundant_equations(tmp_path: Path) -> None:
+    # motor.phi depends on brake.phi: both drivers are named, the
+    # redundant one first.
+    over = camlink.load(ROOT / "tests" / "models" / "errors" / "over_driven.toml").check()
+    assert [r["equation"] for r in over["redundant"]] == ["motor.phi"]
+    assert over["redundant_drivers"] == ["motor", "brake"]
+    # A redundant revolute beside a driver involves no driver.
+    fine = camlink.load(driven(tmp_path, "1.2 + t")).check()
+    assert [r["equation"] for r in fine["redundant"]] == ["O4_again.x", "O4_again.y"]
+    assert fine["redundant_drivers"] == []
+
+
+def test_check_json_carries_the_redundant_drivers() -> None:
+    proc = run_cli("check", str(ROOT / "tests" / "models" / "errors" / "over_driven.toml"), "--json")
+    assert proc.returncode == 0, proc.stderr
+    assert json.loads(proc.stdout)["redundant_drivers"] == ["motor", "brake"]

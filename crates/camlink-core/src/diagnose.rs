@@ -35,6 +35,11 @@ pub struct Diagnosis {
     pub dof: usize,
     /// Equations that depend on earlier ones (in model order).
     pub redundant: Vec<Redundancy>,
+    /// The drivers among the `redundant` equations and the equations they
+    /// depend on, each once, in the order `redundant` names them: a driver
+    /// there fixes a motion the other equations fix already (the model is
+    /// over-driven). Empty when none is.
+    pub redundant_drivers: Vec<String>,
     /// A basis of the motions the constraints leave free, each as the
     /// coordinates that move most (name, relative amount; largest = ±1).
     pub free_motions: Vec<Vec<(String, f64)>>,
@@ -72,6 +77,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
             rank: m.min(n),
             dof: n - m.min(n),
             redundant: Vec::new(),
+            redundant_drivers: Vec::new(),
             free_motions: Vec::new(),
             residual: f64::NAN,
             condition: f64::NAN,
@@ -94,6 +100,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
         svd_rank(&j)
     };
     let redundant = redundant_rows(model, &asm, &j);
+    let redundant_drivers = drivers_among(model, &redundant);
     let free_motions = null
         .iter()
         .map(|v| describe_motion(model, &asm, v))
@@ -104,6 +111,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
         rank,
         dof: n - rank,
         redundant,
+        redundant_drivers,
         free_motions,
         residual,
         condition,
@@ -328,6 +336,28 @@ fn redundant_rows(model: &Model, asm: &Assembly, j: &Mat<f64>) -> Vec<Redundancy
     out
 }
 
+/// The joint of an equation name `joint.equation` (`O4` of `O4.x`).
+fn joint_of(equation: &str) -> &str {
+    equation.rsplit_once('.').map_or(equation, |(j, _)| j)
+}
+
+/// The drivers whose equations are among `redundant` (the dependent
+/// equations and those they depend on), each once, in the order the
+/// redundancies name them.
+fn drivers_among(model: &Model, redundant: &[Redundancy]) -> Vec<String> {
+    let mut drivers: Vec<String> = Vec::new();
+    let named = redundant.iter().flat_map(|r| {
+        std::iter::once(r.equation.as_str()).chain(r.depends_on.iter().map(|(e, _)| e.as_str()))
+    });
+    for joint in named.map(joint_of) {
+        let driver = model.joints.iter().any(|j| j.driver && j.name == joint);
+        if driver && !drivers.iter().any(|d| d == joint) {
+            drivers.push(joint.to_string());
+        }
+    }
+    drivers
+}
+
 /// `joint.equation` for row `r`, e.g. `O4.x`.
 pub fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
     let (j, e) = asm.joint_of_row(r);
@@ -361,7 +391,9 @@ fn describe_motion(model: &Model, asm: &Assembly, v: &[f64]) -> Vec<(String, f64
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::constraint::absolute::{AbsoluteCoord, Coord};
     use crate::constraint::revolute::Revolute;
+    use crate::function::TimeFn;
     use crate::model::{Body, BodyId};
 
     /// A four-bar with its links placed exactly, undriven.
@@ -399,6 +431,23 @@ mod tests {
         m.add_joint("B", rev(crank, [a, 0.0], coupler, [0.0, 0.0]));
         m.add_joint("C", rev(coupler, [b, 0.0], rocker, [c, 0.0]));
         m.add_joint("O4", rev(g, [d, 0.0], rocker, [0.0, 0.0]));
+        m
+    }
+
+    /// The four-bar with a fifth revolute at the rocker pivot, `O4_again`,
+    /// whose equations duplicate O4's.
+    fn four_bar_with_second_rocker_pivot() -> Model {
+        let mut m = four_bar(false);
+        let rocker = m.body_id("rocker").unwrap();
+        m.add_joint(
+            "O4_again",
+            Revolute {
+                body_i: BodyId::GROUND,
+                s_i: [0.4, 0.0],
+                body_j: rocker,
+                s_j: [0.0, 0.0],
+            },
+        );
         m
     }
 
@@ -440,18 +489,7 @@ mod tests {
 
     #[test]
     fn extra_revolute_is_named_redundant() {
-        // A fifth revolute at the rocker pivot duplicates O4's equations.
-        let mut m = four_bar(false);
-        let rocker = m.body_id("rocker").unwrap();
-        m.add_joint(
-            "O4_again",
-            Revolute {
-                body_i: BodyId::GROUND,
-                s_i: [0.4, 0.0],
-                body_j: rocker,
-                s_j: [0.0, 0.0],
-            },
-        );
+        let m = four_bar_with_second_rocker_pivot();
         let d = diagnose(&m, 0.0, 1e-10);
         assert_eq!(d.equations, 10);
         assert_eq!(d.rank, 8);
@@ -459,6 +497,40 @@ mod tests {
         let names: Vec<&str> = d.redundant.iter().map(|r| r.equation.as_str()).collect();
         assert_eq!(names, ["O4_again.x", "O4_again.y"]);
         assert!(d.redundant[0].depends_on.iter().any(|(e, _)| e == "O4.x"));
+    }
+
+    #[test]
+    fn a_redundant_joint_involves_no_driver() {
+        let mut m = four_bar_with_second_rocker_pivot();
+        let crank = m.body_id("crank").unwrap();
+        m.add_driver("motor", crank_angle(crank, 1.2));
+        let d = diagnose(&m, 0.0, 1e-10);
+        assert_eq!(d.dof, 0);
+        assert_eq!(d.redundant.len(), 2);
+        assert!(d.redundant_drivers.is_empty(), "{:?}", d.redundant_drivers);
+    }
+
+    #[test]
+    fn two_drivers_on_one_angle_are_named_redundant_drivers() {
+        // The second driver's equation depends on the first's.
+        let mut m = four_bar(false);
+        let crank = m.body_id("crank").unwrap();
+        m.add_driver("brake", crank_angle(crank, 1.2));
+        m.add_driver("motor", crank_angle(crank, 1.2));
+        let d = diagnose(&m, 0.0, 1e-10);
+        let names: Vec<&str> = d.redundant.iter().map(|r| r.equation.as_str()).collect();
+        assert_eq!(names, ["motor.phi"]);
+        assert_eq!(d.redundant_drivers, ["motor", "brake"]);
+    }
+
+    /// The crank's absolute angle φ = `phi` (rad) as a driver.
+    fn crank_angle(crank: BodyId, phi: f64) -> AbsoluteCoord {
+        AbsoluteCoord {
+            body: crank,
+            s: [0.0, 0.0],
+            coord: Coord::Phi,
+            f: TimeFn::Const(phi),
+        }
     }
 
     #[test]
@@ -526,32 +598,12 @@ impl KeptRows {
         }
         // A driver among the dependent equations fixes a motion that the
         // others fix already: over-driven, consistent at most at time t.
-        let joint = |e: &str| e.rsplit_once('.').map_or(e, |(j, _)| j).to_string();
-        let is_driver = |e: &str| {
-            let name = joint(e);
-            model.joints.iter().any(|j| j.driver && j.name == name)
-        };
-        let drivers: Vec<String> = d
-            .redundant
-            .iter()
-            .flat_map(|r| {
-                std::iter::once(r.equation.as_str())
-                    .chain(r.depends_on.iter().map(|(e, _)| e.as_str()))
-            })
-            .filter(|e| is_driver(e))
-            .map(joint)
-            .fold(Vec::new(), |mut v, j| {
-                if !v.contains(&j) {
-                    v.push(j);
-                }
-                v
-            });
-        if !drivers.is_empty() {
+        if !d.redundant_drivers.is_empty() {
             return Err(format!(
                 "{n} coordinates but {m} equations: over-driven, driver(s) {} fix a motion \
                  that the other equations fix already; remove one (`camlink check` names \
                  the redundant equations)",
-                drivers.join(", ")
+                d.redundant_drivers.join(", ")
             ));
         }
         let equations: Vec<String> = d.redundant.iter().map(|r| r.equation.clone()).collect();
@@ -563,18 +615,18 @@ impl KeptRows {
         for (k, &r) in keep.iter().enumerate() {
             map[r] = Some(k);
         }
-        let involved: Vec<String> = d
+        let involved: Vec<&str> = d
             .redundant
             .iter()
             .flat_map(|r| {
-                std::iter::once(joint(&r.equation))
-                    .chain(r.depends_on.iter().map(|(e, _)| joint(e)))
+                std::iter::once(joint_of(&r.equation))
+                    .chain(r.depends_on.iter().map(|(e, _)| joint_of(e)))
             })
             .collect();
         let joints = model
             .joints
             .iter()
-            .filter(|j| involved.contains(&j.name))
+            .filter(|j| involved.contains(&j.name.as_str()))
             .map(|j| j.name.clone())
             .collect();
         Ok(KeptRows {

@@ -22,7 +22,10 @@ pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
 }
 
 /// The rows of a 2-D array as CSV lines (comma-separated, `\n`-ended),
-/// formatted with the GIL released.
+/// formatted with the GIL released. The array is read in place through its
+/// strides, whatever its layout: a run's column-major chunk is not copied
+/// (the few rows sharing a cache line across its columns are read one
+/// after another).
 #[pyfunction]
 pub fn csv_rows<'py>(
     py: Python<'py>,

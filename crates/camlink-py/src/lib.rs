@@ -449,7 +449,8 @@ impl Model {
 
     /// Counts of bodies, coordinates and equations, every constraint with
     /// its kind and equation count, and the diagnosis of Φ_q at t = 0:
-    /// rank, degrees of freedom, redundant equations and free motions.
+    /// rank, degrees of freedom, redundant equations (and the drivers among
+    /// them, which make the model over-driven) and free motions.
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
             let model = &self.loaded.model;
@@ -483,6 +484,7 @@ impl Model {
                 redundant.append(e)?;
             }
             d.set_item("redundant", redundant)?;
+            d.set_item("redundant_drivers", diagnosis.redundant_drivers.clone())?;
             d.set_item("free_motions", diagnosis.free_motions.clone())?;
             d.set_item("residual", diagnosis.residual)?;
             d.set_item("condition", diagnosis.condition)?;
