@@ -295,28 +295,7 @@ pub fn parallelogram_kappa(n: usize, crank: CrankMass, g: f64) -> f64 {
 /// Runge–Kutta with at most 1e-4 s steps, landing on every output time
 /// (global error ~ (√κ h)⁴ ≈ 1e-13 rad over 20 s for κ ≈ 50 s⁻²).
 pub fn parallelogram_reference(kappa: f64, th0: f64, times: &[f64]) -> Vec<f64> {
-    let f = |y: [f64; 2]| [y[1], -kappa * y[0].cos()];
-    let mut y = [th0, 0.0];
-    let mut t = 0.0;
-    let mut out = Vec::with_capacity(times.len());
-    for &te in times {
-        let steps = ((te - t) / 1e-4).ceil().max(0.0) as usize;
-        if steps > 0 {
-            let h = (te - t) / steps as f64;
-            for _ in 0..steps {
-                let k1 = f(y);
-                let k2 = f([y[0] + 0.5 * h * k1[0], y[1] + 0.5 * h * k1[1]]);
-                let k3 = f([y[0] + 0.5 * h * k2[0], y[1] + 0.5 * h * k2[1]]);
-                let k4 = f([y[0] + h * k3[0], y[1] + h * k3[1]]);
-                for i in 0..2 {
-                    y[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
-                }
-            }
-            t = te;
-        }
-        out.push(y[0]);
-    }
-    out
+    pendulum_like_reference(kappa, th0, 0.0, times)
 }
 
 /// Largest |θ − θ_exact| (rad) of crank 0 of a [`parallelogram_chain`]
@@ -343,8 +322,15 @@ pub fn parallelogram_chain_error(
     tol: f64,
     t_end: f64,
 ) -> Result<(f64, f64), String> {
+    let table = forward(&parallelogram_chain(n, 0.0, false, crank), h, tol, t_end)?;
+    let err = parallelogram_error(&table, n, crank, 0.0, 9.81);
+    Ok((err, crank_spread(&table, n)))
+}
+
+/// Forward dynamics of `model` with fixed step `h` (s) and Newton
+/// tolerance `tol` to `t_end` (s), output every 0.01 s, or the run's error.
+pub fn forward(model: &Model, h: f64, tol: f64, t_end: f64) -> Result<Table, String> {
     use camlink_core::dynamics::integrator::{run, Settings};
-    let model = parallelogram_chain(n, 0.0, false, crank);
     let times = camlink_core::run::time_grid(t_end, 0.01).unwrap();
     let settings = Settings {
         step: h,
@@ -352,8 +338,13 @@ pub fn parallelogram_chain_error(
         ..Settings::default()
     };
     let mut table = Table::default();
-    run(&model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
-    let err = parallelogram_error(&table, n, crank, 0.0, 9.81);
+    run(model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
+    Ok(table)
+}
+
+/// The largest difference (rad) between the angles of cranks 1..=n and
+/// crank 0 over the rows of `table`: 0 on the parallelogram branch.
+pub fn crank_spread(table: &Table, n: usize) -> f64 {
     let th0 = table.channel("crank0.phi").unwrap();
     let mut spread = 0.0f64;
     for k in 1..=n {
@@ -361,7 +352,7 @@ pub fn parallelogram_chain_error(
         let d = thk.iter().zip(&th0).map(|(a, b)| (a - b).abs());
         spread = spread.max(d.fold(0.0, f64::max));
     }
-    Ok((err, spread))
+    spread
 }
 
 /// The N-four-bar mechanism of the IFToMM multibody benchmark library
@@ -414,8 +405,8 @@ pub fn benchmark_a02(n: usize) -> Model {
     m
 }
 
-/// θ(t) at `times` of θ̈ = −κ cos θ from (θ₀, θ̇₀), by the classical
-/// Runge–Kutta method as in [`parallelogram_reference`].
+/// θ(t) at `times` of θ̈ = −κ cos θ from (θ₀, θ̇₀): classical Runge–Kutta
+/// with at most 1e-4 s steps, landing on every output time.
 pub fn pendulum_like_reference(kappa: f64, th0: f64, omega0: f64, times: &[f64]) -> Vec<f64> {
     let f = |y: [f64; 2]| [y[1], -kappa * y[0].cos()];
     let mut y = [th0, omega0];
@@ -447,16 +438,7 @@ pub fn pendulum_like_reference(kappa: f64, th0: f64, omega0: f64, times: &[f64])
 /// cranks' angles (rad), or the run's error. Exact: θ̈ = −κ cos θ with
 /// κ = g (n_c m c + n m a)/(n_c J_O + n m a²), c = a/2, J_O = m a²/3.
 pub fn benchmark_a02_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), String> {
-    use camlink_core::dynamics::integrator::{run, Settings};
-    let model = benchmark_a02(n);
-    let times = camlink_core::run::time_grid(t_end, 0.01).unwrap();
-    let settings = Settings {
-        step: h,
-        tol,
-        ..Settings::default()
-    };
-    let mut table = Table::default();
-    run(&model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
+    let table = forward(&benchmark_a02(n), h, tol, t_end)?;
     let (nc, nb) = ((n + 1) as f64, n as f64);
     let kappa = 9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb);
     let want = pendulum_like_reference(kappa, std::f64::consts::FRAC_PI_2, -1.0, &table.t);
@@ -466,11 +448,5 @@ pub fn benchmark_a02_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f6
         .zip(&want)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0, f64::max);
-    let mut spread = 0.0f64;
-    for k in 1..=n {
-        let thk = table.channel(&format!("crank{k}.phi")).unwrap();
-        let d = thk.iter().zip(&th0).map(|(a, b)| (a - b).abs());
-        spread = spread.max(d.fold(0.0, f64::max));
-    }
-    Ok((err, spread))
+    Ok((err, crank_spread(&table, n)))
 }
