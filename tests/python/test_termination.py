@@ -17,9 +17,13 @@ from camlink import Results
 from camlink.signals import Terminated, stop_on_termination
 from conftest import four_bar_toml
 
+# The child leaves SIGTERM and SIGHUP at their defaults whatever it
+# inherits (a suite started under nohup passes SIGHUP on ignored).
 RUN = """
-import sys, camlink
+import signal, sys, camlink
 from camlink.signals import Terminated
+signal.signal(signal.SIGTERM, signal.SIG_DFL)
+signal.signal(signal.SIGHUP, signal.SIG_DFL)
 camlink.model.CHUNK_ROWS = 64
 try:
     camlink.load(sys.argv[1]).simulate(t_end=1000, step=0.001, h=0.001, output=sys.argv[2])
