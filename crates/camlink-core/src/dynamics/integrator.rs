@@ -71,7 +71,29 @@ const LAMBDA_LEAP: f64 = 3.0;
 
 /// The fixed-step mode stretches a step by up to this fraction of h rather
 /// than leave a sliver before an output time.
-pub(crate) const SLIVER: f64 = 1e-6;
+const SLIVER: f64 = 1e-6;
+
+/// How close to `t_end` (s) a run of steps of at most `h_max` (s) counts
+/// as there: a few ulps of t_end, or a trillionth of the step (a step
+/// larger than the interval counts as the interval, so a huge h still
+/// steps).
+pub(crate) fn arrived_within(t_end: f64, h_max: f64) -> f64 {
+    let scale = h_max.min(t_end.abs()).max(f64::MIN_POSITIVE);
+    (4.0 * f64::EPSILON * t_end.abs()).max(1e-12 * scale)
+}
+
+/// The next fixed step with `left` (s) to go: `h_max`, or the whole of
+/// `left` when it is at most [`SLIVER`] longer than `h_max`. The rounding
+/// of t accumulated over the steps of an output interval would otherwise
+/// leave a sliver of a step (~1e-14 s at h = 1e-5 s), whose Newton matrix
+/// (β' ∝ 1/h²) cannot be factored.
+pub(crate) fn fixed_step(left: f64, h_max: f64) -> f64 {
+    if left <= h_max * (1.0 + SLIVER) {
+        left
+    } else {
+        h_max
+    }
+}
 
 /// Error control of the variable-step mode: the weighted local error
 /// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
@@ -733,29 +755,12 @@ impl<'m> Integrator<'m> {
         tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
     ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
-        // Done when what is left is below a few ulps of t_end, or a
-        // trillionth of the step (a step larger than the interval counts
-        // as the interval, so a huge h still steps).
-        let scale = h_max.min(t_end.abs()).max(f64::MIN_POSITIVE);
-        let done = (4.0 * f64::EPSILON * t_end.abs()).max(1e-12 * scale);
+        let done = arrived_within(t_end, h_max);
         while t_end - self.t > done {
             tick()?;
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
-                None => {
-                    // Steps of h_max, the last one landing on t_end; a step
-                    // that would leave less than [`SLIVER`] h_max (the
-                    // rounding of t accumulated over the steps of an
-                    // output interval) is stretched to land instead, since a
-                    // sliver of a step has a hopelessly ill-conditioned
-                    // Newton matrix (β' ∝ 1/h²).
-                    let h = if left <= h_max * (1.0 + SLIVER) {
-                        left
-                    } else {
-                        h_max
-                    };
-                    self.step(h)?;
-                }
+                None => self.step(fixed_step(left, h_max))?,
                 Some(ad) => {
                     // The step lands on the output time, or leaves at least
                     // a step's worth: two equal steps rather than one and

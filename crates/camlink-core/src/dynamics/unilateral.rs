@@ -41,7 +41,7 @@
 //! contacts.
 
 use super::impact;
-use super::integrator::{Integrator, Settings, Snapshot, SLIVER};
+use super::integrator::{arrived_within, fixed_step, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
@@ -939,17 +939,10 @@ pub fn run(
                     format!("times must increase, but {t} follows {}", times[i - 1]),
                 ));
             }
-            let done = (4.0 * f64::EPSILON * t.abs()).max(1e-12 * h_max.min(t.abs()));
+            let done = arrived_within(t, h_max);
             while t - r.it().t > done {
                 sink.tick().map_err(|s| s.at(t))?;
-                let left = t - r.it().t;
-                // The last step lands on t, stretched rather than leave a
-                // sliver (see [`SLIVER`]).
-                let h = if left <= h_max * (1.0 + SLIVER) {
-                    left
-                } else {
-                    h_max
-                };
+                let h = fixed_step(t - r.it().t, h_max);
                 r.step(h, &mut snap)?;
                 let now = r.it().t;
                 r.track_flights(now);
