@@ -106,6 +106,15 @@ def test_a_worker_killed_mid_batch_has_its_batch_run_again(client, tmp_path):
     finally:
         killer.join()
     assert killed, "no worker was busy to kill"
+    # The sweep may finish before the scheduler notices the dead worker; a
+    # broadcast to it then fails on its closed connection. Wait until the
+    # scheduler has dropped it and the nanny's replacement has joined.
+    dead = next(w for w, pid in pids.items() if pid == killed[0])
+    deadline = time.monotonic() + 60
+    while dead in client.scheduler_info()["workers"] and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert dead not in client.scheduler_info()["workers"], "the scheduler still lists the killed worker"
+    client.wait_for_workers(2, timeout=60)
     assert killed[0] not in client.run(os.getpid).values()
     local = camlink.sweep(model, values, OUTPUTS, batch_size=4)
     pd.testing.assert_frame_equal(on_dask, local)
