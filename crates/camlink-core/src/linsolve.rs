@@ -362,6 +362,8 @@ pub struct SparseLu {
     valid: bool,
     /// The probe of the pivot check: A·1, then its solution.
     probe: Vec<f64>,
+    /// The probe's largest error in the last factorization's check.
+    probe_err: f64,
 }
 
 /// Largest error of the probe solve A x = A·1 (in x, against 1) that a
@@ -412,6 +414,7 @@ impl SparseLu {
             scratch: MemBuffer::new(req),
             valid: false,
             probe: vec![0.0; n],
+            probe_err: 0.0,
         })
     }
 
@@ -465,6 +468,7 @@ impl SparseLu {
             }
         });
         self.probe = probe;
+        self.probe_err = err;
         if err <= PROBE_TOL {
             return Ok(());
         }
@@ -628,12 +632,15 @@ impl SystemMatrix {
     }
 
     /// The smallest pivot of the last factorization relative to the largest
-    /// entry, a cheap sign of near-singularity (dense kernels only).
+    /// entry, a cheap sign of near-singularity. The sparse kernel has no
+    /// pivot order to read: its figure is ε_mach over the error of the
+    /// probe solve of its pivot check, an estimate of 1/cond of the same
+    /// order.
     pub fn min_pivot(&self) -> Option<f64> {
         match self {
             SystemMatrix::Small { lu, .. } => Some(lu.min_pivot),
             SystemMatrix::Dense { lu, .. } => Some(lu.min_pivot),
-            SystemMatrix::Sparse(_) => None,
+            SystemMatrix::Sparse(s) => Some((f64::EPSILON / s.probe_err).min(1.0)),
         }
     }
 

@@ -27,6 +27,13 @@
 //! springs converge. The factorization is kept from step to step and
 //! refreshed only when Newton converges slowly (chord iterations).
 //!
+//! Where Φ_q loses rank S is singular and S_ε, the regularised matrix of
+//! the augmented Lagrangian formulation, is factored instead
+//! ([`super::system::Augmented`]). Within a small window around a
+//! bifurcation point, where two branches of Φ = 0 cross (the flat position
+//! of a parallelogram), the lost equations are joined by branch rows that
+//! hold the branch being followed ([`super::branch`]).
+//!
 //! Initial conditions are made consistent: positions and velocities
 //! projected onto Φ = 0 and Φ_q q̇ = ν ([`super::project`]), then q̈₀ and λ₀
 //! from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], and a₀ = q̈₀.
@@ -38,11 +45,13 @@
 //! whose weighted norm exceeds 1 and changes h by a PI controller on the
 //! errors of the last two accepted steps.
 
+use super::branch::{self, BranchRows};
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
 use super::project;
 use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
+use crate::linsolve::DenseLu;
 use crate::math::max_abs;
 use crate::model::Model;
 use crate::newton;
@@ -72,6 +81,10 @@ const LAMBDA_LEAP: f64 = 3.0;
 /// The fixed-step mode stretches a step by up to this fraction of h rather
 /// than leave a sliver before an output time.
 const SLIVER: f64 = 1e-6;
+
+/// A factorization whose smallest relative pivot falls below this makes
+/// the step look for a lost rank of Φ_q ([`branch`]).
+const PIVOT_WATCH: f64 = 1e-6;
 
 /// How close to `t_end` (s) a run of steps of at most `h_max` (s) counts
 /// as there: a few ulps of t_end, or a trillionth of the step (a step
@@ -211,6 +224,19 @@ pub struct Integrator<'m> {
     near_singular: bool,
     /// max |λ| two steps back (0: not known).
     lambda_max_before: f64,
+    /// Near a bifurcation point: the branch rows in use ([`branch`]),
+    /// their multipliers μ, and the bordered matrix [S_ε Bᵀ; B −ε I]
+    /// (B = [A 0]) solved through S_ε's factorization: X = S_ε⁻¹ Bᵀ
+    /// (k columns of n + m) and the LU of the Schur complement
+    /// C = −ε I − B X; `ext` is scratch.
+    branch: Option<BranchRows>,
+    /// At the last look for a lost rank after a plain step: the smallest
+    /// pivot over σ_rel² there.
+    seen: Option<f64>,
+    mu: Vec<f64>,
+    border: Vec<f64>,
+    schur: Option<DenseLu>,
+    ext: Vec<f64>,
 }
 
 impl<'m> Integrator<'m> {
@@ -301,6 +327,12 @@ impl<'m> Integrator<'m> {
             err_prev: None,
             near_singular: false,
             lambda_max_before: 0.0,
+            branch: None,
+            seen: None,
+            mu: Vec::new(),
+            border: Vec::new(),
+            schur: None,
+            ext: Vec::new(),
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
@@ -313,6 +345,7 @@ impl<'m> Integrator<'m> {
     /// model's constraints, q̈ and λ consistent, the predictor's history
     /// dropped.
     pub fn restart(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Result<(), AnalysisError> {
+        self.leave_branch();
         self.t = t;
         self.q.copy_from_slice(q);
         self.qd.copy_from_slice(qd);
@@ -356,6 +389,7 @@ impl<'m> Integrator<'m> {
 
     /// Returns to the state of a [`snapshot`](Self::snapshot).
     pub fn resume(&mut self, s: &Snapshot) {
+        self.leave_branch();
         self.t = s.t;
         self.h_prev = s.h_prev;
         let [q, qd, qdd, l, a, p0, p1] = &s.vectors;
@@ -433,28 +467,54 @@ impl<'m> Integrator<'m> {
 
     /// Advances one step of size `h`; the state is unchanged on failure.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
-        // At a singular position (S_ε factored last) the multipliers of the
-        // lost direction are not determined, and the ones carried over can
-        // be arbitrarily large: start from the consistent q̈ and the
-        // minimum-norm λ instead.
-        if self.at_singular_position() {
-            self.accelerations()?;
+        if self.branch.is_some() {
+            self.save();
+            if self.try_step(h, true)? {
+                self.after_branch_step()?;
+                self.watch_singularity();
+                return Ok(());
+            }
+            self.restore();
+        } else {
+            // At a singular position (S_ε factored last) the multipliers of
+            // the lost direction are not determined, and the ones carried
+            // over can be arbitrarily large: follow the branch with its
+            // rows, or start from the consistent q̈ and the minimum-norm λ.
+            if self.at_singular_position() && !self.enter_branch() {
+                self.accelerations()?;
+                self.h_prev = 0.0;
+            }
+            self.save();
+            if self.try_step(h, self.branch.is_some())? {
+                if self.branch.is_some() {
+                    self.after_branch_step()?;
+                } else if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) {
+                    self.watch_branch();
+                } else {
+                    self.seen = None;
+                }
+                self.watch_singularity();
+                return Ok(());
+            }
+            // Slow convergence with an old matrix: retry from the constant
+            // predictor with a fresh matrix each iteration.
+            self.restore();
             self.h_prev = 0.0;
+            if self.try_step(h, true)? {
+                self.watch_singularity();
+                return Ok(());
+            }
+            self.restore();
+            // Near a bifurcation point: retry along the branch.
+            if self.branch.is_none() && self.enter_branch() {
+                if self.try_step(h, true)? {
+                    self.after_branch_step()?;
+                    self.watch_singularity();
+                    return Ok(());
+                }
+                self.restore();
+            }
         }
-        self.save();
-        if self.try_step(h, false)? {
-            self.watch_singularity();
-            return Ok(());
-        }
-        // Slow convergence with an old matrix: retry from the constant
-        // predictor with a fresh matrix each iteration.
-        self.restore();
-        self.h_prev = 0.0;
-        if self.try_step(h, true)? {
-            self.watch_singularity();
-            return Ok(());
-        }
-        self.restore();
         Err(self.error(
             Kind::NotConverged,
             &format!(
@@ -467,6 +527,108 @@ impl<'m> Integrator<'m> {
                 SINGULAR_ITER * self.settings.max_iter
             ),
         ))
+    }
+
+    /// Starts following the branch with its rows ([`branch`]) when Φ_q
+    /// has lost rank here; false when it has not (or the model has
+    /// redundant equations, whose lost directions are exact).
+    fn enter_branch(&mut self) -> bool {
+        if self.redundant.is_some() {
+            return false;
+        }
+        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+            return false;
+        };
+        let (n, m, k) = (self.sys.n(), self.sys.m(), rows.k);
+        self.mu = vec![0.0; k];
+        self.ext = vec![0.0; (n + m).max(m * k)];
+        self.border = vec![0.0; k * (n + m)];
+        self.schur = Some(DenseLu::new(k));
+        self.branch = Some(rows);
+        self.aug.set_regularised(true);
+        self.aug.invalidate();
+        self.h_prev = 0.0;
+        true
+    }
+
+    /// The direction of motion: the velocity, or at rest the acceleration.
+    fn direction(&self) -> &[f64] {
+        if max_abs(&self.qd) > 0.0 {
+            &self.qd
+        } else {
+            &self.qdd
+        }
+    }
+
+    /// Stops following a branch: Φ alone from here.
+    fn leave_branch(&mut self) {
+        if self.branch.take().is_some() {
+            self.schur = None;
+            self.aug.set_regularised(false);
+            self.aug.invalidate();
+        }
+        self.seen = None;
+    }
+
+    /// After a plain step that ended near a singular position: follows
+    /// the branch with its rows from here when inside the window.
+    fn watch_branch(&mut self) {
+        if self.redundant.is_some() {
+            return;
+        }
+        let Some(pivot) = self.aug.min_pivot() else {
+            return;
+        };
+        // The smallest pivot falls as σ² near the point: scaled by the
+        // ratio found at the last look, it tells cheaply whether a new
+        // look is due.
+        if let Some(ratio) = self.seen {
+            let sigma = (pivot / ratio).sqrt();
+            if sigma > 2.0 * branch::WINDOW {
+                return;
+            }
+        }
+        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+            self.seen = None;
+            return;
+        };
+        let inside = rows.sigma_rel < branch::WINDOW;
+        self.seen = Some(pivot / (rows.sigma_rel * rows.sigma_rel));
+        if inside {
+            self.enter_branch();
+        }
+    }
+
+    /// After a step along the branch: out of the window
+    /// ([`branch::WINDOW_EXIT`]), back to Φ alone from the consistent q̈
+    /// and λ.
+    fn after_branch_step(&mut self) -> Result<(), AnalysisError> {
+        let Some(old) = &self.branch else {
+            return Ok(());
+        };
+        let next = branch::analyse(&self.sys, &self.q, self.t, &old.tangent);
+        match next {
+            Some(rows) if rows.k == old.k && rows.sigma_rel < branch::WINDOW_EXIT => {
+                // The same forces Aᵀμ on the new rows (orthonormal).
+                let n = self.sys.n();
+                let mut force = vec![0.0; n];
+                for (row, mu) in old.a.chunks(n).zip(&self.mu) {
+                    for (f, x) in force.iter_mut().zip(row) {
+                        *f += x * mu;
+                    }
+                }
+                for (row, mu) in rows.a.chunks(n).zip(self.mu.iter_mut()) {
+                    *mu = row.iter().zip(&force).map(|(x, f)| x * f).sum();
+                }
+                self.branch = Some(rows);
+            }
+            _ => {
+                self.leave_branch();
+                self.accelerations()?;
+                self.h_prev = 0.0;
+            }
+        }
+        Ok(())
     }
 
     fn save(&mut self) {
@@ -553,6 +715,13 @@ impl<'m> Integrator<'m> {
                 r_motion,
                 r_phi,
             )?;
+            if let Some(b) = &self.branch {
+                for (row, mu) in b.a.chunks(n).zip(&self.mu) {
+                    for (r, x) in r_motion.iter_mut().zip(row) {
+                        *r += x * mu;
+                    }
+                }
+            }
             for v in r_motion {
                 *v *= -s;
             }
@@ -561,7 +730,7 @@ impl<'m> Integrator<'m> {
             }
             // The factorization serves steps within rounding of its own.
             let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
-            if fresh || !self.aug.is_valid() || !same_h {
+            if fresh || !self.aug.is_valid() || !same_h || self.branch.is_some() {
                 let k = Coefficients {
                     mass: bp,
                     damping: gp,
@@ -579,8 +748,56 @@ impl<'m> Integrator<'m> {
                 }
                 self.h_factored = h;
                 self.summary.factorizations += 1;
+                if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
+                    // X = S_ε⁻¹ Bᵀ, C = −ε I − B X.
+                    let nm = self.rhs.len();
+                    for (x, row) in self.border.chunks_mut(nm).zip(b.a.chunks(n)) {
+                        x[..n].copy_from_slice(row);
+                        x[n..].fill(0.0);
+                        self.aug.solve(x);
+                    }
+                    let eps = self.aug.eps();
+                    let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
+                        let bx: f64 = b.a[v * n..(v + 1) * n]
+                            .iter()
+                            .zip(&self.border[w * nm..w * nm + n])
+                            .map(|(p, q)| p * q)
+                            .sum();
+                        -bx - if v == w { eps } else { 0.0 }
+                    });
+                    if lu.factor(c.as_ref()).is_err() {
+                        self.h_factored = 0.0;
+                        return Err(
+                            self.error(Kind::LockUp, "the Newton iteration matrix is singular")
+                        );
+                    }
+                }
             }
             self.aug.solve(&mut self.rhs);
+            if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
+                // With z = S_ε⁻¹ b₁ in `rhs`: y = C⁻¹ (b₂ − B z) for the
+                // rows A (q − q_n) = 0 from the start of the step, then
+                // x = z − X y.
+                let nm = self.rhs.len();
+                let y = &mut self.ext[..b.k];
+                for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
+                    let moved = self.q.iter().zip(&self.saved[0]).zip(&self.rhs);
+                    *yw = -row
+                        .iter()
+                        .zip(moved)
+                        .map(|(a, ((q, q0), dq))| a * (q - q0 + dq))
+                        .sum::<f64>();
+                }
+                lu.solve(y);
+                for (x, &yw) in self.border.chunks(nm).zip(y.iter()) {
+                    for (r, xi) in self.rhs.iter_mut().zip(x) {
+                        *r -= xi * yw;
+                    }
+                }
+                for (mu, d) in self.mu.iter_mut().zip(y.iter()) {
+                    *mu += d / s;
+                }
+            }
             self.summary.newton_iterations += 1;
             // Converged when every position and velocity correction is
             // within tol or the rounding of its value ([`newton::settled`]);
@@ -602,7 +819,7 @@ impl<'m> Integrator<'m> {
             // At a singular position (S_ε factored) the lost direction
             // converges as slowly as an augmented-Lagrangian update; the
             // iteration stops when the position corrections are within tol.
-            let lost = self.at_singular_position();
+            let lost = self.at_singular_position() || self.branch.is_some();
             let mut dmax = 0.0f64;
             let mut converged = true;
             for k in 0..n {
@@ -673,8 +890,13 @@ impl<'m> Integrator<'m> {
                 message: format!(
                     "near-singular configuration{}: the constraint Jacobian loses rank \
                      (a toggle, a dead centre, the flat position of a parallelogram); \
-                     the multipliers of the lost direction are not determined here",
-                    crate::diagnose::losing_rank(&joints)
+                     the multipliers of the lost direction are not determined here{}",
+                    crate::diagnose::losing_rank(&joints),
+                    if self.branch.is_some() {
+                        "; the motion keeps to the branch nearest to its direction of motion"
+                    } else {
+                        ""
+                    }
                 ),
                 joints,
             });

@@ -18,9 +18,11 @@
 //! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
 //! - equilibrium, in [`statics`];
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`],
+//!   through bifurcation points with the branch rows of [`branch`],
 //!   with unilateral cam contacts (lift-off, flight, impact) in
 //!   [`unilateral`] and the impact law in [`impact`].
 
+pub(crate) mod branch;
 pub mod contact_force;
 pub mod impact;
 pub mod integrator;
