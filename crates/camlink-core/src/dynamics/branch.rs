@@ -259,7 +259,7 @@ fn norm(a: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use crate::constraint::revolute::Revolute;
-    use crate::{Body, BodyId, Model};
+    use crate::model::{Body, BodyId, Model};
 
     /// Crank length a and pitch d (m) of the four-bar below.
     const A: f64 = 0.2;
