@@ -73,6 +73,9 @@ pub(crate) struct BranchRows {
     pub tangent: Vec<f64>,
     /// The smallest lost singular value of Φ_q over the largest.
     pub sigma_rel: f64,
+    /// The lost left singular vectors w, k × m row-major: the rows take
+    /// the place of the equations wᵀΦ = 0.
+    pub lost: Vec<f64>,
 }
 
 /// The branch rows at `q` (time `t`) for the branch whose tangent is
@@ -181,11 +184,16 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
         row.iter_mut().for_each(|x| *x /= after);
         a.extend_from_slice(&row);
     }
+    let lost = lost
+        .iter()
+        .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
+        .collect();
     Some(BranchRows {
         k,
         a,
         tangent,
         sigma_rel,
+        lost,
     })
 }
 

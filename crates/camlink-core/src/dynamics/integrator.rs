@@ -86,6 +86,10 @@ const SLIVER: f64 = 1e-6;
 /// the step look for a lost rank of Φ_q ([`branch`]).
 const PIVOT_WATCH: f64 = 1e-6;
 
+/// The first plain step past a window of branch rows has kept to the
+/// branch when its motion across the rows is within this fraction of it.
+const GUARD: f64 = 0.1;
+
 /// How close to `t_end` (s) a run of steps of at most `h_max` (s) counts
 /// as there: a few ulps of t_end, or a trillionth of the step (a step
 /// larger than the interval counts as the interval, so a huge h still
@@ -233,6 +237,8 @@ pub struct Integrator<'m> {
     /// At the last look for a lost rank after a plain step: the smallest
     /// pivot over σ_rel² there.
     seen: Option<f64>,
+    /// The last rows of a window just left, to check the first plain step.
+    guard: Option<BranchRows>,
     mu: Vec<f64>,
     border: Vec<f64>,
     schur: Option<DenseLu>,
@@ -329,6 +335,7 @@ impl<'m> Integrator<'m> {
             lambda_max_before: 0.0,
             branch: None,
             seen: None,
+            guard: None,
             mu: Vec::new(),
             border: Vec::new(),
             schur: None,
@@ -467,50 +474,50 @@ impl<'m> Integrator<'m> {
 
     /// Advances one step of size `h`; the state is unchanged on failure.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        // At a singular position (S_ε factored last) the multipliers of the
+        // lost direction are not determined, and the ones carried over can
+        // be arbitrarily large: follow the branch with its rows, or start
+        // from the consistent q̈ and the minimum-norm λ.
+        if self.branch.is_none() && self.at_singular_position() && !self.enter_branch() {
+            self.accelerations()?;
+            self.h_prev = 0.0;
+        }
+        self.save();
         if self.branch.is_some() {
+            // Along the branch, with a fresh matrix each iteration; then
+            // from the constant predictor; then with Φ alone from the
+            // consistent q̈ and λ.
+            for _ in 0..2 {
+                if self.try_step(h, true)? {
+                    return self.after_branch_step();
+                }
+                self.restore();
+                self.h_prev = 0.0;
+            }
+            self.leave_branch();
+            self.guard = None;
+            self.accelerations()?;
             self.save();
             if self.try_step(h, true)? {
-                self.after_branch_step()?;
-                self.watch_singularity();
-                return Ok(());
+                return self.after_plain_step(h);
             }
             self.restore();
         } else {
-            // At a singular position (S_ε factored last) the multipliers of
-            // the lost direction are not determined, and the ones carried
-            // over can be arbitrarily large: follow the branch with its
-            // rows, or start from the consistent q̈ and the minimum-norm λ.
-            if self.at_singular_position() && !self.enter_branch() {
-                self.accelerations()?;
-                self.h_prev = 0.0;
-            }
-            self.save();
-            if self.try_step(h, self.branch.is_some())? {
-                if self.branch.is_some() {
-                    self.after_branch_step()?;
-                } else if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) {
-                    self.watch_branch();
-                } else {
-                    self.seen = None;
-                }
-                self.watch_singularity();
-                return Ok(());
+            if self.try_step(h, false)? {
+                return self.after_plain_step(h);
             }
             // Slow convergence with an old matrix: retry from the constant
             // predictor with a fresh matrix each iteration.
             self.restore();
             self.h_prev = 0.0;
             if self.try_step(h, true)? {
-                self.watch_singularity();
-                return Ok(());
+                return self.after_plain_step(h);
             }
             self.restore();
             // Near a bifurcation point: retry along the branch.
-            if self.branch.is_none() && self.enter_branch() {
+            if self.enter_branch() {
                 if self.try_step(h, true)? {
-                    self.after_branch_step()?;
-                    self.watch_singularity();
-                    return Ok(());
+                    return self.after_branch_step();
                 }
                 self.restore();
             }
@@ -529,6 +536,33 @@ impl<'m> Integrator<'m> {
         ))
     }
 
+    /// After a step with Φ alone: the first one past a window of branch
+    /// rows that crossed to the other branch is taken again along the
+    /// branch; a step that ends near a singular position looks for a lost
+    /// rank.
+    fn after_plain_step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        if let Some(rows) = self.crossed_branch() {
+            self.restore();
+            self.use_rows(rows);
+            self.save();
+            if !self.try_step(h, true)? {
+                self.restore();
+                return Err(self.error(
+                    Kind::NotConverged,
+                    "Newton did not converge along the branch past a singular position",
+                ));
+            }
+            return self.after_branch_step();
+        }
+        if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) {
+            self.watch_branch();
+        } else {
+            self.seen = None;
+        }
+        self.watch_singularity();
+        Ok(())
+    }
+
     /// Starts following the branch with its rows ([`branch`]) when Φ_q
     /// has lost rank here; false when it has not (or the model has
     /// redundant equations, whose lost directions are exact).
@@ -539,6 +573,12 @@ impl<'m> Integrator<'m> {
         let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
             return false;
         };
+        self.use_rows(rows);
+        true
+    }
+
+    /// Follows the branch with `rows` from the current state.
+    fn use_rows(&mut self, rows: BranchRows) {
         let (n, m, k) = (self.sys.n(), self.sys.m(), rows.k);
         self.mu = vec![0.0; k];
         self.ext = vec![0.0; (n + m).max(m * k)];
@@ -548,7 +588,6 @@ impl<'m> Integrator<'m> {
         self.aug.set_regularised(true);
         self.aug.invalidate();
         self.h_prev = 0.0;
-        true
     }
 
     /// The direction of motion: the velocity, or at rest the acceleration.
@@ -562,12 +601,35 @@ impl<'m> Integrator<'m> {
 
     /// Stops following a branch: Φ alone from here.
     fn leave_branch(&mut self) {
-        if self.branch.take().is_some() {
+        if let Some(rows) = self.branch.take() {
             self.schur = None;
             self.aug.set_regularised(false);
             self.aug.invalidate();
+            self.guard = Some(rows);
         }
         self.seen = None;
+    }
+
+    /// After the first plain step past a window: the window's last rows
+    /// A when the step crossed to the other branch, moving across them
+    /// (|A Δq| > [`GUARD`] |Δq|; along the branch A Δq is of second order).
+    fn crossed_branch(&mut self) -> Option<BranchRows> {
+        let rows = self.guard.take()?;
+        let n = self.sys.n();
+        let step = self
+            .q
+            .iter()
+            .zip(&self.saved[0])
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        let across = rows
+            .a
+            .chunks(n)
+            .map(|row| {
+                let moved = self.q.iter().zip(&self.saved[0]).map(|(a, b)| a - b);
+                row.iter().zip(moved).map(|(x, d)| x * d).sum::<f64>().abs()
+            })
+            .fold(0.0, f64::max);
+        (across > GUARD * step).then_some(rows)
     }
 
     /// After a plain step that ended near a singular position: follows
@@ -628,6 +690,7 @@ impl<'m> Integrator<'m> {
                 self.h_prev = 0.0;
             }
         }
+        self.watch_singularity();
         Ok(())
     }
 
@@ -725,8 +788,19 @@ impl<'m> Integrator<'m> {
             for v in r_motion {
                 *v *= -s;
             }
-            for v in r_phi {
+            for v in r_phi.iter_mut() {
                 *v = -*v;
+            }
+            // The rows take the place of the lost equations wᵀΦ = 0, which
+            // hold along the branch only to the rows' linearisation: their
+            // residual is left out, so the two do not pull against each other.
+            if let Some(b) = &self.branch {
+                for w in b.lost.chunks(r_phi.len()) {
+                    let c: f64 = w.iter().zip(r_phi.iter()).map(|(x, r)| x * r).sum();
+                    for (r, x) in r_phi.iter_mut().zip(w) {
+                        *r -= c * x;
+                    }
+                }
             }
             // The factorization serves steps within rounding of its own.
             let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
