@@ -90,6 +90,10 @@ const PIVOT_WATCH: f64 = 1e-6;
 /// branch when its motion across the rows is within this fraction of it.
 const GUARD: f64 = 0.1;
 
+/// A step that moves a coordinate by this much (m or rad) or more passes a
+/// bifurcation point at speed, without branch rows.
+const SLOW_STEP: f64 = 1e-4;
+
 /// How close to `t_end` (s) a run of steps of at most `h_max` (s) counts
 /// as there: a few ulps of t_end, or a trillionth of the step (a step
 /// larger than the interval counts as the interval, so a huge h still
@@ -478,7 +482,10 @@ impl<'m> Integrator<'m> {
         // lost direction are not determined, and the ones carried over can
         // be arbitrarily large: follow the branch with its rows, or start
         // from the consistent q̈ and the minimum-norm λ.
-        if self.branch.is_none() && self.at_singular_position() && !self.enter_branch() {
+        if self.branch.is_none()
+            && self.at_singular_position()
+            && !(self.slow(h) && self.enter_branch())
+        {
             self.accelerations()?;
             self.h_prev = 0.0;
         }
@@ -554,7 +561,7 @@ impl<'m> Integrator<'m> {
             }
             return self.after_branch_step();
         }
-        if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) {
+        if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) && self.slow(h) {
             self.watch_branch();
         } else {
             self.seen = None;
@@ -588,6 +595,15 @@ impl<'m> Integrator<'m> {
         self.aug.set_regularised(true);
         self.aug.invalidate();
         self.h_prev = 0.0;
+    }
+
+    /// True when a step of `h` moves every coordinate by less than
+    /// [`SLOW_STEP`]: the branch rows serve a mechanism that reaches a
+    /// bifurcation point at rest or nearly; one that passes it at speed
+    /// steps over it with Φ alone, whose roots are then a step's motion
+    /// apart, while the rows' linearisation would err by the square of it.
+    fn slow(&self, h: f64) -> bool {
+        h * max_abs(&self.qd) < SLOW_STEP
     }
 
     /// The direction of motion: the velocity, or at rest the acceleration.
