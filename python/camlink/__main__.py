@@ -1,7 +1,5 @@
 """`python -m camlink` runs the command-line interface."""
 
-import sys
+from camlink.cli import run
 
-from camlink.cli import main
-
-sys.exit(main())
+run()

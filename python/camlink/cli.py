@@ -14,6 +14,7 @@ import signal
 import sys
 import warnings
 from pathlib import Path
+from typing import NoReturn
 
 import camlink
 from camlink import cam_cli, cli_convert, cli_study, cli_visuals
@@ -423,5 +424,18 @@ def _main(args: argparse.Namespace) -> int:
         return EXIT_INTERNAL
 
 
+def run() -> NoReturn:
+    """The `camlink` command: `main`, then the process ends with its exit
+    code at once. Everything the command writes is closed by then; what is
+    skipped is the interpreter's teardown, in which Arrow's native thread
+    pools (Parquet output) can abort the process with SIGABRT ("terminate
+    called without an active exception", apache/arrow#34314) after a run
+    that has finished."""
+    code = main()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    run()
