@@ -35,9 +35,12 @@
 //! tangent of the step before, so A_n (q − q_n) = 0 holds along the
 //! branch to second order in the step's own length (the branch is curved);
 //! past the window the full equations alone hold the state on the branch.
-//! The window is entered when a step ends with σ_rel, the smallest lost
-//! singular value of Φ_q over the largest, below [`WINDOW`] (or when Newton
-//! fails near a lost rank), and left when σ_rel rises above
+//! Inside the window the rows take the place of the lost equations: the
+//! integrator leaves their residual wᵀΦ out of the Newton iteration, since
+//! they hold along the branch only to the rows' linearisation. The window
+//! is entered when a step of a slowly moving mechanism ends with σ_rel, the
+//! smallest lost singular value of Φ_q over the largest, below [`WINDOW`]
+//! (or when Newton fails near a lost rank), and left when σ_rel rises above
 //! [`WINDOW_EXIT`]: at σ_rel = 1e-5 the branches are far enough apart for
 //! Φ to tell them apart (their distance, of order σ_rel, is well above the
 //! rounding of Φ over it), and the multipliers of order 1/σ_rel are
