@@ -670,10 +670,9 @@ impl<'m> Integrator<'m> {
             self.seen = None;
             return;
         };
-        let inside = rows.sigma_rel < branch::WINDOW;
         self.seen = Some(pivot / (rows.sigma_rel * rows.sigma_rel));
-        if inside {
-            self.enter_branch();
+        if rows.sigma_rel < branch::WINDOW {
+            self.use_rows(rows);
         }
     }
 
