@@ -98,6 +98,11 @@ pub fn norm(a: V2) -> f64 {
     a[0].hypot(a[1])
 }
 
+/// aᵀb of two vectors of the same length.
+pub fn inner(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
 /// Euclidean norm ‖v‖₂ of a vector of any length.
 pub fn norm2(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()

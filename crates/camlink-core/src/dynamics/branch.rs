@@ -51,6 +51,7 @@ use faer::Mat;
 
 use super::system::System;
 use crate::diagnose::dense_jacobian;
+use crate::math::{inner, norm2};
 
 /// Singular values of Φ_q below this fraction of the largest count as
 /// lost directions.
@@ -117,14 +118,12 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
     let eps = DIFF * q.iter().fold(1.0f64, |a, x| a.max(x.abs()));
     let mut g = vec![vec![vec![0.0; d]; d]; k];
     let mut qp = q.to_vec();
-    // The lost left singular vectors, m × k row-major, and the kernel
-    // basis as a matrix, n × d.
-    let mut wrow = vec![0.0; m * k];
-    for row in 0..m {
-        for (w, &lw) in lost.iter().enumerate() {
-            wrow[row * k + w] = u[(row, lw)];
-        }
-    }
+    // The lost left singular vectors w, k × m row-major.
+    let w_rows: Vec<f64> = lost
+        .iter()
+        .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
+        .collect();
+    // The kernel basis as a matrix, n × d.
     let vk = Mat::from_fn(n, d, |i, a| basis[a][i]);
     // (wᵀ Φ_q)_q v_b for every lost w from wᵀ Φ_q at q ± ε v_b (n × k,
     // from the Jacobian's entries), then G_w[a][b] = v_a · that.
@@ -137,9 +136,8 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
             let out = &mut wj[side];
             out.fill(0.0);
             asm.jacobian(model, &qp, t, |row, c, x| {
-                let o = &mut out[c * k..(c + 1) * k];
-                for (o, uw) in o.iter_mut().zip(&wrow[row * k..(row + 1) * k]) {
-                    *o += uw * x;
+                for (w, o) in out[c * k..(c + 1) * k].iter_mut().enumerate() {
+                    *o += w_rows[w * m + row] * x;
                 }
             });
         }
@@ -167,36 +165,32 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
     // A rows: V G_w y, orthonormalised, each orthogonal to t.
     let mut a = Vec::with_capacity(k * n);
     for gw in &g {
-        let gy: Vec<f64> = (0..d).map(|r| dot(&gw[r], &y)).collect();
+        let gy: Vec<f64> = (0..d).map(|r| inner(&gw[r], &y)).collect();
         let mut row = combine(&basis, &gy);
-        let along = dot(&row, &tangent);
+        let along = inner(&row, &tangent);
         for i in 0..n {
             row[i] -= along * tangent[i];
         }
-        let before = norm(&row);
+        let before = norm2(&row);
         for prev in a.chunks(n) {
-            let c = dot(&row, prev);
+            let c = inner(&row, prev);
             for i in 0..n {
                 row[i] -= c * prev[i];
             }
         }
-        let after = norm(&row);
+        let after = norm2(&row);
         if !(after > 1e-6 * before && before > 0.0) {
             return None;
         }
         row.iter_mut().for_each(|x| *x /= after);
         a.extend_from_slice(&row);
     }
-    let lost = lost
-        .iter()
-        .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
-        .collect();
     Some(BranchRows {
         k,
         a,
         tangent,
         sigma_rel,
-        lost,
+        lost: w_rows,
     })
 }
 
@@ -205,8 +199,8 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
 /// minimum-norm corrections.
 fn tangent_on_cone(g: &[Vec<Vec<f64>>], basis: &[Vec<f64>], hint: &[f64]) -> Option<Vec<f64>> {
     let (k, d) = (g.len(), basis.len());
-    let mut y: Vec<f64> = basis.iter().map(|v| dot(v, hint)).collect();
-    let ny = norm(&y);
+    let mut y: Vec<f64> = basis.iter().map(|v| inner(v, hint)).collect();
+    let ny = norm2(&y);
     if ny.is_nan() || ny <= 0.0 {
         return None;
     }
@@ -223,22 +217,22 @@ fn tangent_on_cone(g: &[Vec<Vec<f64>>], basis: &[Vec<f64>], hint: &[f64]) -> Opt
         // F_w = yᵀ G_w y, J = 2 (G_w y)ᵀ.
         let gy: Vec<Vec<f64>> = g
             .iter()
-            .map(|gw| (0..d).map(|r| dot(&gw[r], &y)).collect())
+            .map(|gw| (0..d).map(|r| inner(&gw[r], &y)).collect())
             .collect();
-        let f: Vec<f64> = gy.iter().map(|row| dot(row, &y)).collect();
+        let f: Vec<f64> = gy.iter().map(|row| inner(row, &y)).collect();
         let fmax = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
         if fmax <= 1e-14 * gmax {
             return Some(y);
         }
         // Δy = Jᵀ (J Jᵀ)⁻¹ F.
-        let jjt = Mat::from_fn(k, k, |a, b| 4.0 * dot(&gy[a], &gy[b]));
+        let jjt = Mat::from_fn(k, k, |a, b| 4.0 * inner(&gy[a], &gy[b]));
         let rhs = Mat::from_fn(k, 1, |a, _| f[a]);
         let z = jjt.partial_piv_lu().solve(&rhs);
         for c in 0..d {
             let step: f64 = (0..k).map(|w| 2.0 * gy[w][c] * z[(w, 0)]).sum();
             y[c] -= step;
         }
-        let ny = norm(&y);
+        let ny = norm2(&y);
         if !ny.is_finite() || ny == 0.0 {
             return None;
         }
@@ -256,14 +250,6 @@ fn combine(basis: &[Vec<f64>], c: &[f64]) -> Vec<f64> {
         }
     }
     out
-}
-
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
-}
-
-fn norm(a: &[f64]) -> f64 {
-    dot(a, a).sqrt()
 }
 
 #[cfg(test)]

@@ -52,7 +52,7 @@ use super::project;
 use super::redundant::Redundant;
 use super::system::{Augmented, Coefficients, System};
 use crate::linsolve::DenseLu;
-use crate::math::max_abs;
+use crate::math::{inner, max_abs};
 use crate::model::Model;
 use crate::newton;
 use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
@@ -236,7 +236,7 @@ pub struct Integrator<'m> {
     /// their multipliers μ, and the bordered matrix [S_ε Bᵀ; B −ε I]
     /// (B = [A 0]) solved through S_ε's factorization: X = S_ε⁻¹ Bᵀ
     /// (k columns of n + m) and the LU of the Schur complement
-    /// C = −ε I − B X; `ext` is scratch.
+    /// C = −ε I − B X; `ext` holds the k row corrections of a solve.
     branch: Option<BranchRows>,
     /// At the last look for a lost rank after a plain step: the smallest
     /// pivot over σ_rel² there.
@@ -502,7 +502,6 @@ impl<'m> Integrator<'m> {
                 self.h_prev = 0.0;
             }
             self.leave_branch();
-            self.guard = None;
             self.accelerations()?;
             self.save();
             if self.try_step(h, true)? {
@@ -588,7 +587,7 @@ impl<'m> Integrator<'m> {
     fn use_rows(&mut self, rows: BranchRows) {
         let (n, m, k) = (self.sys.n(), self.sys.m(), rows.k);
         self.mu = vec![0.0; k];
-        self.ext = vec![0.0; (n + m).max(m * k)];
+        self.ext = vec![0.0; k];
         self.border = vec![0.0; k * (n + m)];
         self.schur = Some(DenseLu::new(k));
         self.branch = Some(rows);
@@ -615,15 +614,16 @@ impl<'m> Integrator<'m> {
         }
     }
 
-    /// Stops following a branch: Φ alone from here.
-    fn leave_branch(&mut self) {
-        if let Some(rows) = self.branch.take() {
-            self.schur = None;
-            self.aug.set_regularised(false);
-            self.aug.invalidate();
-            self.guard = Some(rows);
-        }
+    /// Stops following a branch (Φ alone from here); the rows that were
+    /// in use.
+    fn leave_branch(&mut self) -> Option<BranchRows> {
         self.seen = None;
+        self.guard = None;
+        let rows = self.branch.take()?;
+        self.schur = None;
+        self.aug.set_regularised(false);
+        self.aug.invalidate();
+        Some(rows)
     }
 
     /// After the first plain step past a window: the window's last rows
@@ -632,20 +632,15 @@ impl<'m> Integrator<'m> {
     fn crossed_branch(&mut self) -> Option<BranchRows> {
         let rows = self.guard.take()?;
         let n = self.sys.n();
-        let step = self
-            .q
-            .iter()
-            .zip(&self.saved[0])
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.saved[0]) {
+            *d = q - q0;
+        }
         let across = rows
             .a
             .chunks(n)
-            .map(|row| {
-                let moved = self.q.iter().zip(&self.saved[0]).map(|(a, b)| a - b);
-                row.iter().zip(moved).map(|(x, d)| x * d).sum::<f64>().abs()
-            })
+            .map(|row| inner(row, &self.work).abs())
             .fold(0.0, f64::max);
-        (across > GUARD * step).then_some(rows)
+        (across > GUARD * max_abs(&self.work)).then_some(rows)
     }
 
     /// After a plain step that ended near a singular position: follows
@@ -695,12 +690,13 @@ impl<'m> Integrator<'m> {
                     }
                 }
                 for (row, mu) in rows.a.chunks(n).zip(self.mu.iter_mut()) {
-                    *mu = row.iter().zip(&force).map(|(x, f)| x * f).sum();
+                    *mu = inner(row, &force);
                 }
                 self.branch = Some(rows);
             }
             _ => {
-                self.leave_branch();
+                // The first plain step is checked against the last rows.
+                self.guard = self.leave_branch();
                 self.accelerations()?;
                 self.h_prev = 0.0;
             }
@@ -811,7 +807,7 @@ impl<'m> Integrator<'m> {
             // residual is left out, so the two do not pull against each other.
             if let Some(b) = &self.branch {
                 for w in b.lost.chunks(r_phi.len()) {
-                    let c: f64 = w.iter().zip(r_phi.iter()).map(|(x, r)| x * r).sum();
+                    let c = inner(w, r_phi);
                     for (r, x) in r_phi.iter_mut().zip(w) {
                         *r -= c * x;
                     }
@@ -847,11 +843,7 @@ impl<'m> Integrator<'m> {
                     }
                     let eps = self.aug.eps();
                     let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
-                        let bx: f64 = b.a[v * n..(v + 1) * n]
-                            .iter()
-                            .zip(&self.border[w * nm..w * nm + n])
-                            .map(|(p, q)| p * q)
-                            .sum();
+                        let bx = inner(&b.a[v * n..(v + 1) * n], &self.border[w * nm..w * nm + n]);
                         -bx - if v == w { eps } else { 0.0 }
                     });
                     if lu.factor(c.as_ref()).is_err() {

@@ -636,24 +636,11 @@ impl Augmented {
         b.copy_from_slice(x);
     }
 
-    /// The matrix of the last factorization (S or S_ε) as a dense one.
-    pub fn to_dense(&self) -> faer::Mat<f64> {
-        let mut a = faer::Mat::zeros(self.n + self.m, self.n + self.m);
-        for (&(r, c), &v) in self.pattern.iter().zip(&self.vals) {
-            a[(r, c)] = v;
-        }
-        a
-    }
-
     /// The smallest pivot of the last factorization relative to the
-    /// largest entry (small and dense kernels; None for the sparse one).
+    /// largest entry, or its estimate for the sparse kernel
+    /// ([`crate::linsolve::SystemMatrix::min_pivot`]).
     pub fn min_pivot(&self) -> Option<f64> {
         self.sys.min_pivot()
-    }
-
-    /// Whether S_ε is factored at once ([`set_regularised`](Self::set_regularised)).
-    pub fn regularised(&self) -> bool {
-        self.regularised
     }
 
     pub fn is_valid(&self) -> bool {
