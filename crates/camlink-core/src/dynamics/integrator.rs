@@ -243,6 +243,10 @@ pub struct Integrator<'m> {
     seen: Option<f64>,
     /// The last rows of a window just left, to check the first plain step.
     guard: Option<BranchRows>,
+    /// Set for a step's first attempt with Φ alone: a slow one that finds
+    /// S singular stops ([`Integrator::try_step`]) and sets `met_singular`.
+    stop_at_singular: bool,
+    met_singular: bool,
     mu: Vec<f64>,
     border: Vec<f64>,
     schur: Option<DenseLu>,
@@ -340,6 +344,8 @@ impl<'m> Integrator<'m> {
             branch: None,
             seen: None,
             guard: None,
+            stop_at_singular: false,
+            met_singular: false,
             mu: Vec::new(),
             border: Vec::new(),
             schur: None,
@@ -509,12 +515,27 @@ impl<'m> Integrator<'m> {
             }
             self.restore();
         } else {
-            if self.try_step(h, false)? {
+            self.stop_at_singular = true;
+            self.met_singular = false;
+            let done = self.try_step(h, false);
+            self.stop_at_singular = false;
+            if done? {
                 return self.after_plain_step(h);
+            }
+            self.restore();
+            // A slow mechanism that reaches a lost rank within the step:
+            // along the branch from the start of the step.
+            if std::mem::take(&mut self.met_singular) && self.enter_branch() {
+                if self.try_step(h, true)? {
+                    return self.after_branch_step();
+                }
+                self.restore();
+                self.leave_branch();
+                self.accelerations()?;
+                self.save();
             }
             // Slow convergence with an old matrix: retry from the constant
             // predictor with a fresh matrix each iteration.
-            self.restore();
             self.h_prev = 0.0;
             if self.try_step(h, true)? {
                 return self.after_plain_step(h);
@@ -833,6 +854,19 @@ impl<'m> Integrator<'m> {
                 }
                 self.h_factored = h;
                 self.summary.factorizations += 1;
+                // Near a bifurcation point S_ε's regularisation damps the
+                // lost direction's correction while Φ barely sees it: a
+                // slow mechanism's step would stop on a point off both
+                // branches. It is taken along the branch instead
+                // ([`Integrator::step`]).
+                if self.stop_at_singular
+                    && self.branch.is_none()
+                    && self.at_singular_position()
+                    && self.slow(h)
+                {
+                    self.met_singular = true;
+                    return Ok(false);
+                }
                 if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
                     // X = S_ε⁻¹ Bᵀ, C = −ε I − B X.
                     let nm = self.rhs.len();
@@ -889,8 +923,15 @@ impl<'m> Integrator<'m> {
             // A slow iteration's correction understates its error: with
             // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
             // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
+            // At a singular position without branch rows S_ε's
+            // regularisation damps the lost direction's correction (by
+            // σ²/(σ² + ε) at singular value σ): a first correction within
+            // tol does not bound the error there: the iteration goes on
+            // at least once more.
             let tol = self.settings.tol;
             let dnew = max_abs(&self.rhs[..n]);
+            let unproven =
+                self.at_singular_position() && self.branch.is_none() && last.is_infinite();
             let theta = dnew / last;
             let eta = if theta < 1.0 {
                 (theta / (1.0 - theta)).max(1.0)
@@ -916,7 +957,7 @@ impl<'m> Integrator<'m> {
                 let velocity = newton::settled(gp * de, self.qd[k], tol)
                     || d.abs() <= round.max(self.noise[k]);
                 converged &= if lost {
-                    newton::settled(d, self.q[k], tol)
+                    !unproven && newton::settled(d, self.q[k], tol)
                 } else {
                     position && velocity
                 };
