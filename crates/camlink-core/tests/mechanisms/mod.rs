@@ -512,7 +512,7 @@ pub fn released_chain_failures(
     failures
 }
 
-/// The long matrix of [`released_chain_failures`] (`CAMLINK_LONG=1`):
+/// The long matrix of [`released_chain_failures`] (run with `--ignored`):
 /// N = 2 at h = 1e-3, 1e-4 and 1e-5 s and N = 40 at h = 1e-3 and 1e-4 s,
 /// 20 s each, and N = 40 at h = 1e-5 s over 1.2 s (two flat positions),
 /// at `tol` = 1e-6, 1e-8 and 1e-10.
