@@ -123,6 +123,10 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
         .iter()
         .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
         .collect();
+    // The same, m × k row-major: the k weights of each equation together.
+    let w_by_row: Vec<f64> = (0..m)
+        .flat_map(|row| lost.iter().map(move |&lw| u[(row, lw)]))
+        .collect();
     // The kernel basis as a matrix, n × d.
     let vk = Mat::from_fn(n, d, |i, a| basis[a][i]);
     // (wᵀ Φ_q)_q v_b for every lost w from wᵀ Φ_q at q ± ε v_b (n × k,
@@ -136,8 +140,9 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
             let out = &mut wj[side];
             out.fill(0.0);
             asm.jacobian(model, &qp, t, |row, c, x| {
-                for (w, o) in out[c * k..(c + 1) * k].iter_mut().enumerate() {
-                    *o += w_rows[w * m + row] * x;
+                let ws = &w_by_row[row * k..(row + 1) * k];
+                for (o, w) in out[c * k..(c + 1) * k].iter_mut().zip(ws) {
+                    *o += w * x;
                 }
             });
         }
