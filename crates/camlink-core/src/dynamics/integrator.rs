@@ -71,7 +71,7 @@ const NOISE_SAFETY: f64 = 4.0;
 
 /// A step whose largest multiplier grew by more than this factor makes
 /// the next one start from the multipliers consistent with its predicted
-/// state (see `try_step`).
+/// state (see `Integrator::attempt`).
 const LAMBDA_JUMP: f64 = 1.5;
 
 /// A growth of the largest multiplier by more than this factor in one
@@ -194,6 +194,16 @@ pub struct Snapshot {
     vectors: [Vec<f64>; 7],
 }
 
+/// How an attempt at a step ended.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Attempt {
+    Converged,
+    /// Newton did not converge.
+    Failed,
+    /// A slow step found S singular: to be taken along the branch.
+    MetSingular,
+}
+
 /// The state and scratch of a forward-dynamics run; allocated once.
 pub struct Integrator<'m> {
     pub sys: System<'m>,
@@ -243,10 +253,6 @@ pub struct Integrator<'m> {
     seen: Option<f64>,
     /// The last rows of a window just left, to check the first plain step.
     guard: Option<BranchRows>,
-    /// Set for a step's first attempt with Φ alone: a slow one that finds
-    /// S singular stops ([`Integrator::try_step`]) and sets `met_singular`.
-    stop_at_singular: bool,
-    met_singular: bool,
     mu: Vec<f64>,
     border: Vec<f64>,
     schur: Option<DenseLu>,
@@ -344,8 +350,6 @@ impl<'m> Integrator<'m> {
             branch: None,
             seen: None,
             guard: None,
-            stop_at_singular: false,
-            met_singular: false,
             mu: Vec::new(),
             border: Vec::new(),
             schur: None,
@@ -515,17 +519,14 @@ impl<'m> Integrator<'m> {
             }
             self.restore();
         } else {
-            self.stop_at_singular = true;
-            self.met_singular = false;
-            let done = self.try_step(h, false);
-            self.stop_at_singular = false;
-            if done? {
+            let first = self.attempt(h, false, true)?;
+            if first == Attempt::Converged {
                 return self.after_plain_step(h);
             }
             self.restore();
             // A slow mechanism that reaches a lost rank within the step:
             // along the branch from the start of the step.
-            if std::mem::take(&mut self.met_singular) && self.enter_branch() {
+            if first == Attempt::MetSingular && self.enter_branch() {
                 if self.try_step(h, true)? {
                     return self.after_branch_step();
                 }
@@ -704,14 +705,15 @@ impl<'m> Integrator<'m> {
             Some(rows) if rows.k == old.k && rows.sigma_rel < branch::WINDOW_EXIT => {
                 // The same forces Aᵀμ on the new rows (orthonormal).
                 let n = self.sys.n();
-                let mut force = vec![0.0; n];
+                let force = &mut self.work;
+                force.fill(0.0);
                 for (row, mu) in old.a.chunks(n).zip(&self.mu) {
                     for (f, x) in force.iter_mut().zip(row) {
                         *f += x * mu;
                     }
                 }
                 for (row, mu) in rows.a.chunks(n).zip(self.mu.iter_mut()) {
-                    *mu = inner(row, &force);
+                    *mu = inner(row, force);
                 }
                 self.branch = Some(rows);
             }
@@ -746,6 +748,18 @@ impl<'m> Integrator<'m> {
 
     /// One step; Ok(false) when Newton did not converge.
     fn try_step(&mut self, h: f64, fresh: bool) -> Result<bool, AnalysisError> {
+        Ok(self.attempt(h, fresh, false)? == Attempt::Converged)
+    }
+
+    /// One step, with a fresh matrix each iteration when `fresh`; with
+    /// `stop_at_singular`, a slow step that finds S singular stops at once
+    /// ([`Attempt::MetSingular`]).
+    fn attempt(
+        &mut self,
+        h: f64,
+        fresh: bool,
+        stop_at_singular: bool,
+    ) -> Result<Attempt, AnalysisError> {
         let c = self.c;
         let n = self.sys.n();
         let t1 = self.t + h;
@@ -859,13 +873,12 @@ impl<'m> Integrator<'m> {
                 // slow mechanism's step would stop on a point off both
                 // branches. It is taken along the branch instead
                 // ([`Integrator::step`]).
-                if self.stop_at_singular
+                if stop_at_singular
                     && self.branch.is_none()
                     && self.at_singular_position()
                     && self.slow(h)
                 {
-                    self.met_singular = true;
-                    return Ok(false);
+                    return Ok(Attempt::MetSingular);
                 }
                 if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
                     // X = S_ε⁻¹ Bᵀ, C = −ε I − B X.
@@ -966,7 +979,7 @@ impl<'m> Integrator<'m> {
                 *l += d / s;
             }
             if !dmax.is_finite() {
-                return Ok(false);
+                return Ok(Attempt::Failed);
             }
             if converged {
                 // a_{n+1} from the converged q̈_{n+1}.
@@ -981,7 +994,7 @@ impl<'m> Integrator<'m> {
                 self.h_prev = h;
                 self.t = t1;
                 self.summary.steps += 1;
-                return Ok(true);
+                return Ok(Attempt::Converged);
             }
             // Chord iterations that stall get a fresh matrix; fresh ones
             // that stall have reached the noise of the solve, measured once.
@@ -995,7 +1008,7 @@ impl<'m> Integrator<'m> {
             last = dmax;
         }
         self.aug.invalidate();
-        Ok(false)
+        Ok(Attempt::Failed)
     }
 
     /// Records a `near_singular` warning, naming the joints whose
