@@ -226,10 +226,11 @@ pub struct Integrator<'m> {
     prev: [Vec<f64>; 2],
     h_prev: f64,
     rhs: Vec<f64>,
-    /// Scratch of length n, and the rounding noise of a correction per
-    /// coordinate (zero until measured in a step).
+    /// Scratch of length n.
     work: Vec<f64>,
-    noise: Vec<f64>,
+    /// The rounding noise of a Newton correction, the same level for
+    /// every coordinate (zero until measured in an attempt at a step).
+    noise: f64,
     pub summary: Summary,
     /// The model's redundant equations, if any.
     pub redundant: Option<Redundant>,
@@ -337,7 +338,7 @@ impl<'m> Integrator<'m> {
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
             work: vec![0.0; n],
-            noise: vec![0.0; n],
+            noise: 0.0,
             q,
             qd,
             sys,
@@ -801,7 +802,8 @@ impl<'m> Integrator<'m> {
             self.lambda.copy_from_slice(&self.rhs[n..]);
         }
         let mut last = f64::INFINITY;
-        self.noise.fill(0.0);
+        let qmax = max_abs(&self.q);
+        self.noise = 0.0;
         let mut noise_known = false;
         // Near a singular position Newton converges only linearly (the
         // root is singular); the retry with a fresh matrix each iteration
@@ -928,11 +930,16 @@ impl<'m> Integrator<'m> {
             }
             self.summary.newton_iterations += 1;
             // Converged when every position and velocity correction is
-            // within tol or the rounding of its value ([`newton::settled`]);
-            // a position settled at its rounding settles its velocity too.
-            // Near a singular position a velocity's floor is γ' times the
-            // rounding of the residual carried through the ill-conditioned
-            // solve, `noise`.
+            // within tol or the rounding of its value ([`newton::settled`]),
+            // or within the rounding of the largest coordinate: the
+            // equations mix the coordinates, so the rounding of their
+            // residual, carried into every correction, is at that scale.
+            // A position settled at its rounding settles its velocity too.
+            // A correction's floor is the rounding of the residual carried
+            // through the solve, `noise`, measured once the iteration
+            // stalls: at small steps (γ' = γ/(βh) large) or near a
+            // singular position (S ill-conditioned) a velocity's tol can
+            // lie below it.
             // A slow iteration's correction understates its error: with
             // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
             // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
@@ -956,7 +963,12 @@ impl<'m> Integrator<'m> {
             // iteration stops when the position corrections are within tol.
             let lost = self.at_singular_position() || self.branch.is_some();
             let mut dmax = 0.0f64;
-            let mut converged = true;
+            // The largest correction of a coordinate whose position or
+            // velocity has not settled by tol or its rounding: within the
+            // noise, it has settled too.
+            let mut pending = 0.0f64;
+            let mut settled = true;
+            let floor = newton::rounding(qmax);
             for k in 0..n {
                 let d = self.rhs[k];
                 let de = eta * d;
@@ -964,16 +976,16 @@ impl<'m> Integrator<'m> {
                 self.qd[k] += gp * d;
                 self.qdd[k] += bp * d;
                 dmax = dmax.max(d.abs());
-                let round = newton::rounding(self.q[k]);
-                let position =
-                    newton::settled(de, self.q[k], tol) || d.abs() <= round.max(self.noise[k]);
-                let velocity = newton::settled(gp * de, self.qd[k], tol)
-                    || d.abs() <= round.max(self.noise[k]);
-                converged &= if lost {
-                    !unproven && newton::settled(d, self.q[k], tol)
+                if lost {
+                    settled &= !unproven && newton::settled(d, self.q[k], tol);
                 } else {
-                    position && velocity
-                };
+                    let round = newton::rounding(self.q[k]).max(floor);
+                    let position = newton::settled(de, self.q[k], tol) || d.abs() <= round;
+                    let velocity = newton::settled(gp * de, self.qd[k], tol) || d.abs() <= round;
+                    if !(position && velocity) {
+                        pending = pending.max(d.abs());
+                    }
+                }
             }
             for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
                 *l += d / s;
@@ -981,7 +993,7 @@ impl<'m> Integrator<'m> {
             if !dmax.is_finite() {
                 return Ok(Attempt::Failed);
             }
-            if converged {
+            if settled && pending <= self.noise {
                 // a_{n+1} from the converged q̈_{n+1}.
                 for k in 0..n {
                     self.a[k] = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
@@ -996,10 +1008,11 @@ impl<'m> Integrator<'m> {
                 self.summary.steps += 1;
                 return Ok(Attempt::Converged);
             }
-            // Chord iterations that stall get a fresh matrix; fresh ones
-            // that stall have reached the noise of the solve, measured once.
+            // An iteration that stalls has reached the noise of the solve
+            // (measured once per attempt; it applies from the next
+            // iteration) or needs a fresh matrix: it gets both.
             if dmax > STALL * last {
-                if fresh && !noise_known {
+                if !noise_known {
                     self.measure_noise(t1, s)?;
                     noise_known = true;
                 }
@@ -1081,8 +1094,7 @@ impl<'m> Integrator<'m> {
         tail.fill(u * max_abs(&self.q));
         self.aug.solve(&mut self.rhs);
         // One level for all: the pattern of the rounding errors is unknown.
-        let level = NOISE_SAFETY * max_abs(&self.rhs[..n]);
-        self.noise.fill(level);
+        self.noise = NOISE_SAFETY * max_abs(&self.rhs[..n]);
         Ok(())
     }
 
