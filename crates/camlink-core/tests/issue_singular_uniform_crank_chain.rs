@@ -19,8 +19,7 @@
 //! 1e-10, for 0.6 s (which failed within 0.5 ms before the rows), and
 //! N = 20 at h = 1e-3 s, `tol` = 1e-6, for 3.2 s.
 //! `--ignored` runs the full matrix (use `--release`): N = 2 and 40,
-//! h = 1e-3, 1e-4 and 1e-5 s, the same tolerances, 20 s each, except N = 40
-//! at h = 1e-5 s, over 1.2 s (two flat positions).
+//! h = 1e-3, 1e-4 and 1e-5 s, the same tolerances, 20 s each.
 
 mod mechanisms;
 
