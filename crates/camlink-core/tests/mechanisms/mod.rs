@@ -330,6 +330,16 @@ pub fn parallelogram_chain_error(
 /// Forward dynamics of `model` with fixed step `h` (s) and Newton
 /// tolerance `tol` to `t_end` (s), output every 0.01 s, or the run's error.
 pub fn forward(model: &Model, h: f64, tol: f64, t_end: f64) -> Result<Table, String> {
+    forward_with_summary(model, h, tol, t_end).map(|(table, _)| table)
+}
+
+/// [`forward`], with the run's summary (its step and Newton counts).
+pub fn forward_with_summary(
+    model: &Model,
+    h: f64,
+    tol: f64,
+    t_end: f64,
+) -> Result<(Table, camlink_core::run::Summary), String> {
     use camlink_core::dynamics::integrator::{run, Settings};
     let times = camlink_core::run::time_grid(t_end, 0.01).unwrap();
     let settings = Settings {
@@ -338,8 +348,8 @@ pub fn forward(model: &Model, h: f64, tol: f64, t_end: f64) -> Result<Table, Str
         ..Settings::default()
     };
     let mut table = Table::default();
-    run(model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
-    Ok(table)
+    let summary = run(model, &times, &settings, &[], &mut table).map_err(|e| e.to_string())?;
+    Ok((table, summary))
 }
 
 /// The largest difference (rad) between the angles of cranks 1..=n and
