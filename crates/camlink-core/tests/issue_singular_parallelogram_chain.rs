@@ -39,14 +39,15 @@ fn parallelogram_chain_turns_at_rest_at_the_smallest_step() {
 
 /// At h = 1e-5 s and `tol` = 1e-10 a velocity correction is γ/(βh) ≈ 2e5
 /// times its position correction, so a velocity settles only when the
-/// position correction reaches the rounding of the residual: about
-/// 8 ε_mach times the largest coordinate (20 m here), not of the
-/// coordinate itself (an angle of 0.5 rad). Newton then stops in two or
-/// three iterations with the matrix of an earlier step; asked for the
-/// rounding of each coordinate it iterated on noise to its cap, 12.6
-/// iterations and 8.6 factorizations per step.
+/// position correction reaches the rounding of the angle itself (9e-16
+/// rad at 0.5 rad), below the rounding of equations that mix it with
+/// coordinates of 40 m: the chord iteration stalls on that noise. The
+/// noise of the solve is measured at the first stall, the matrix is
+/// refreshed, and the next correction within the noise ends the step.
+/// Measuring it only in a retry with a fresh matrix each iteration cost
+/// 12.6 iterations and 8.6 factorizations per step.
 #[test]
-fn a_tight_tolerance_at_a_small_step_settles_at_the_rounding_of_the_equations() {
+fn a_tight_tolerance_at_a_small_step_settles_at_the_noise_of_the_solve() {
     let n = 40;
     let th0 = 0.5;
     let model = parallelogram_chain(n, th0, false, CRANK);
@@ -54,9 +55,9 @@ fn a_tight_tolerance_at_a_small_step_settles_at_the_rounding_of_the_equations() 
     assert_eq!(summary.steps, 2000);
     let per_step = summary.newton_iterations as f64 / summary.steps as f64;
     let factor_per_step = summary.factorizations as f64 / summary.steps as f64;
-    assert!(per_step <= 3.0, "{per_step} Newton iterations per step");
+    assert!(per_step <= 5.0, "{per_step} Newton iterations per step");
     assert!(
-        factor_per_step <= 0.2,
+        factor_per_step <= 1.2,
         "{factor_per_step} factorizations per step"
     );
     // Against the exact motion: the discretisation error 250 h² t is

@@ -802,7 +802,6 @@ impl<'m> Integrator<'m> {
             self.lambda.copy_from_slice(&self.rhs[n..]);
         }
         let mut last = f64::INFINITY;
-        let qmax = max_abs(&self.q);
         self.noise = 0.0;
         let mut noise_known = false;
         // Near a singular position Newton converges only linearly (the
@@ -930,16 +929,19 @@ impl<'m> Integrator<'m> {
             }
             self.summary.newton_iterations += 1;
             // Converged when every position and velocity correction is
-            // within tol or the rounding of its value ([`newton::settled`]),
-            // or within the rounding of the largest coordinate: the
-            // equations mix the coordinates, so the rounding of their
-            // residual, carried into every correction, is at that scale.
-            // A position settled at its rounding settles its velocity too.
-            // A correction's floor is the rounding of the residual carried
-            // through the solve, `noise`, measured once the iteration
-            // stalls: at small steps (γ' = γ/(βh) large) or near a
-            // singular position (S ill-conditioned) a velocity's tol can
-            // lie below it.
+            // within tol or the rounding of its own value
+            // ([`newton::settled`]); a position settled at its rounding
+            // settles its velocity too. A correction's floor is the
+            // rounding of the residual carried through the solve, `noise`,
+            // measured when the iteration first stalls, and applied from
+            // the next iteration, whose matrix is fresh: at small steps
+            // (γ' = γ/(βh) large) or near a singular position (S
+            // ill-conditioned) a velocity's tol can lie below it. A chord
+            // iteration is not stopped at a coarser floor (such as the
+            // rounding of the largest coordinate): it contracts slowly,
+            // so what it leaves is systematic, and at small steps its
+            // acceleration β'Δq adds up over the steps into a drift of
+            // the energy and the phase.
             // A slow iteration's correction understates its error: with
             // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
             // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
@@ -968,7 +970,6 @@ impl<'m> Integrator<'m> {
             // noise, it has settled too.
             let mut pending = 0.0f64;
             let mut settled = true;
-            let floor = newton::rounding(qmax);
             for k in 0..n {
                 let d = self.rhs[k];
                 let de = eta * d;
@@ -979,7 +980,7 @@ impl<'m> Integrator<'m> {
                 if lost {
                     settled &= !unproven && newton::settled(d, self.q[k], tol);
                 } else {
-                    let round = newton::rounding(self.q[k]).max(floor);
+                    let round = newton::rounding(self.q[k]);
                     let position = newton::settled(de, self.q[k], tol) || d.abs() <= round;
                     let velocity = newton::settled(gp * de, self.qd[k], tol) || d.abs() <= round;
                     if !(position && velocity) {
