@@ -323,6 +323,55 @@ fn fused_residual_and_phi_match_the_separate_ones() {
     );
 }
 
+/// The drift channels of `output::fill` on an arbitrary (inconsistent)
+/// state of a driven slider-crank: `constraint.residual` is max |Φ| and
+/// `constraint.velocity` is max |Φ_q q̇ − ν| = max |dΦ/dt| along (q̇, 1),
+/// here from central differences of Φ; `fill` (which reuses the ν of its
+/// driver efforts) and `energy_and_drift` (which computes its own) agree.
+#[test]
+fn fill_reports_the_drift_of_phi_and_of_its_time_derivative() {
+    use camlink_core::dynamics::output;
+    use camlink_core::dynamics::system::System;
+    let model = slider_crank(0.3, 10.0, true);
+    let sys = System::new(&model);
+    let (n, m) = (sys.n(), sys.m());
+    let wave = |k: usize, a: f64| (k as f64 * a).sin();
+    let q: Vec<f64> = (0..n).map(|k| wave(k, 1.3)).collect();
+    let qd: Vec<f64> = (0..n).map(|k| 2.0 * wave(k + 1, 0.7)).collect();
+    let lambda: Vec<f64> = (0..m).map(|k| 10.0 * wave(k, 0.4) + 1.0).collect();
+    let t = 0.2;
+    let width = output::channels(&model).len();
+    let mut out = vec![f64::NAN; width];
+    let mut scratch = output::Scratch::new(&sys);
+    output::fill(&sys, &mut scratch, &q, &qd, &lambda, t, &mut out);
+
+    let phi_at = |s: f64| {
+        let qs: Vec<f64> = q.iter().zip(&qd).map(|(a, b)| a + s * b).collect();
+        let mut phi = vec![0.0; m];
+        sys.asm.phi(&model, &qs, t + s, &mut phi);
+        phi
+    };
+    let max = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let eps = 1e-6;
+    let (ahead, behind) = (phi_at(eps), phi_at(-eps));
+    let rate: Vec<f64> = ahead
+        .iter()
+        .zip(&behind)
+        .map(|(a, b)| (a - b) / (2.0 * eps))
+        .collect();
+    let (residual, velocity) = (out[width - 2], out[width - 1]);
+    assert_eq!(residual, max(&phi_at(0.0)));
+    assert!(velocity > 1.0, "an inconsistent velocity: {velocity}");
+    assert!(
+        (velocity - max(&rate)).abs() < 1e-7 * max(&rate),
+        "constraint.velocity {velocity} against dΦ/dt {}",
+        max(&rate)
+    );
+    let mut drift = output::DriftScratch::new(m);
+    let alone = output::energy_and_drift(&sys, &mut drift, &q, &qd, t);
+    assert_eq!(&out[width - 5..], &alone[..]);
+}
+
 /// Fixed steps that do not divide an output interval exactly in binary
 /// (h = 1e-5 s, outputs every 0.01 s) land on every output time without a
 /// sliver of a step left over from the rounding of t: 60,000 steps to

@@ -94,7 +94,10 @@ pub fn fill(
     out: &mut [f64],
 ) {
     let k = fill_forces(s, w, q, lambda, t, out);
-    out[k..k + 5].copy_from_slice(&energy_and_drift(s, &mut w.drift, q, qd, t));
+    // ν of the same (q, t), already computed for the driver efforts.
+    w.drift.nu.clear();
+    w.drift.nu.extend_from_slice(&w.nu);
+    out[k..k + 5].copy_from_slice(&energy_and_drift_from_nu(s, &mut w.drift, q, qd, t));
 }
 
 /// Fills the channels of [`fill`] before the energy and drift: the
@@ -150,14 +153,26 @@ pub fn energy_and_drift(
     qd: &[f64],
     t: f64,
 ) -> [f64; 5] {
+    w.nu.resize(s.m(), 0.0);
+    s.asm.nu(s.model, q, t, &mut w.nu);
+    energy_and_drift_from_nu(s, w, q, qd, t)
+}
+
+/// [`energy_and_drift`] with `w.nu` already holding ν at (q, t).
+fn energy_and_drift_from_nu(
+    s: &System,
+    w: &mut DriftScratch,
+    q: &[f64],
+    qd: &[f64],
+    t: f64,
+) -> [f64; 5] {
     let (model, asm, m) = (s.model, &s.asm, s.m());
+    debug_assert_eq!(w.nu.len(), m, "ν of every equation");
     let kin = s.kinetic(q, qd);
     let pot = s.potential(q, t);
     w.phi.resize(m, 0.0);
-    w.nu.resize(m, 0.0);
     asm.phi(model, q, t, &mut w.phi);
     // Φ_q q̇ − ν, from −ν.
-    asm.nu(model, q, t, &mut w.nu);
     for v in w.nu.iter_mut() {
         *v = -*v;
     }
