@@ -49,9 +49,9 @@ pub fn channels(model: &Model) -> Vec<String> {
     names
 }
 
-/// Scratch for [`fill`], allocated once.
+/// Scratch for [`fill`], allocated once. [`fill_forces`] leaves ν at
+/// (q, t) in `drift.nu`, where [`fill`] turns it into the drift.
 pub struct Scratch {
-    nu: Vec<f64>,
     drift: DriftScratch,
     contacts: ContactForces,
 }
@@ -59,7 +59,6 @@ pub struct Scratch {
 impl Scratch {
     pub fn new(s: &System) -> Self {
         Scratch {
-            nu: vec![0.0; s.m()],
             drift: DriftScratch::new(s.m()),
             contacts: ContactForces::new(s.model),
         }
@@ -93,16 +92,14 @@ pub fn fill(
     t: f64,
     out: &mut [f64],
 ) {
+    // fill_forces leaves ν of the same (q, t) in w.drift.nu.
     let k = fill_forces(s, w, q, lambda, t, out);
-    // ν of the same (q, t), already computed for the driver efforts.
-    w.drift.nu.clear();
-    w.drift.nu.extend_from_slice(&w.nu);
     out[k..k + 5].copy_from_slice(&energy_and_drift_from_nu(s, &mut w.drift, q, qd, t));
 }
 
 /// Fills the channels of [`fill`] before the energy and drift: the
 /// reactions, contact forces, driver efforts and powers. Returns how many
-/// it wrote.
+/// it wrote, and leaves ν at (q, t) in the scratch.
 pub fn fill_forces(
     s: &System,
     w: &mut Scratch,
@@ -112,12 +109,14 @@ pub fn fill_forces(
     out: &mut [f64],
 ) -> usize {
     let (model, asm) = (s.model, &s.asm);
-    s.asm.nu(model, q, t, &mut w.nu);
+    let nu = &mut w.drift.nu;
+    nu.resize(s.m(), 0.0);
+    asm.nu(model, q, t, nu);
     let mut k = 0;
     for (j, joint) in model.joints.iter().enumerate() {
         if joint.driver {
             let r = asm.rows_of(model, j).start;
-            let (e, p) = effort(model, j, lambda[r], w.nu[r], t);
+            let (e, p) = effort(model, j, lambda[r], w.drift.nu[r], t);
             out[k] = e;
             out[k + 1] = p;
             k += 2;
