@@ -8,15 +8,26 @@ and data are all inside the file; the page loads nothing from a network
 (its Content-Security-Policy forbids it).
 
 Body poses and plotted channels are stored as base64 float32 (times as
-float64): a 200-body, 10,000-row run is about 32 MB.
+float64): a 200-body, 10,000-row run is about 32 MB. A run of more than
+`MOST_ROWS` rows is thinned to that many, evenly, keeping the first and
+the last.
+
+The page is filled in one pass, each value escaped for where it goes: the
+model's name as HTML text, the data as JSON in which ``<``, ``>``, ``&``
+and the line separators U+2028 and U+2029 are ``\\u`` escapes, so that no
+string in it can end the script element or open a comment or another
+script. The page's policy lets only its own viewer script run (by its
+SHA-256), and allows no fetch, form, base URL or resource from anywhere.
 """
 
 from __future__ import annotations
 
 import base64
+import hashlib
 import html
 import json
 import os
+import re
 from collections.abc import Sequence
 from importlib import resources
 from pathlib import Path
@@ -27,17 +38,29 @@ import numpy.typing as npt
 
 from camlink._core import ModelError
 from camlink.drawing import Drawing, resolve
+from camlink.output import _Target, check_not_input
+from camlink.results import Results
 
 if TYPE_CHECKING:
     from camlink.model import Model
-    from camlink.results import Results
 
-__all__ = ["PLOT", "STAGE", "default_plots", "to_html"]
+__all__ = ["MOST_ROWS", "PLOT", "STAGE", "default_plots", "fill", "thin", "to_html"]
 
 #: Stage canvas size (CSS px).
 STAGE = (640, 480)
 #: Plot canvas size (CSS px).
 PLOT = (420, 170)
+#: Most output rows a page holds: at this many, each moving body adds
+#: about 320 kB to the page.
+MOST_ROWS = 20_000
+
+# JSON text that no HTML parser reads as markup inside <script>.
+_SCRIPT_SAFE = str.maketrans({
+    "<": "\\u003c", ">": "\\u003e", "&": "\\u0026",
+    "\u2028": "\\u2028", "\u2029": "\\u2029",
+})
+_PLACEHOLDER = re.compile(r"__([A-Z_]+?)__")
+_VIEWER_SCRIPT = re.compile(r"<script>(.*?)</script>", re.DOTALL)
 
 
 def _b64(a: npt.ArrayLike, dtype: type) -> str:
@@ -111,6 +134,55 @@ def view_pixel(box: Sequence[float], x: float, y: float) -> tuple[float, float]:
     return ox + (x - x0) * scale, oy + (y1 - y) * scale
 
 
+def thin(results: Results, most: int = MOST_ROWS) -> Results:
+    """`results` with at most `most` rows, evenly spread over the run and
+    keeping the first and the last (the same results when they have no
+    more)."""
+    n = len(results)
+    if n <= most:
+        return results
+    rows = np.unique(np.linspace(0, n - 1, most).round().astype(np.intp))
+    names = ["t", *results.channels]
+    data = np.column_stack([results[c][rows] for c in names])
+    out = Results(names, data, model=results.model, complete=results.complete,
+                  summary=results.summary)
+    out.mechanism = results.mechanism
+    return out
+
+
+def fill(template: str, values: dict[str, str]) -> str:
+    """`template` with each ``__NAME__`` replaced by ``values["NAME"]``, in
+    one pass: text a value brings in is never searched again."""
+    def value(m: re.Match[str]) -> str:
+        try:
+            return values[m.group(1)]
+        except KeyError:
+            raise ValueError(f"viewer template: no value for {m.group(0)}") from None
+
+    return _PLACEHOLDER.sub(value, template)
+
+
+def script_json(data: object) -> str:
+    """`data` as JSON to put inside a ``<script>`` element: ``<``, ``>``,
+    ``&``, U+2028 and U+2029 written as ``\\u`` escapes, so that no value
+    can end the element or open a comment or a script in it."""
+    return json.dumps(data, separators=(",", ":")).translate(_SCRIPT_SAFE)
+
+
+def page(template: str, title: str, data: object) -> str:
+    """The viewer page of `template` for the model named `title` with the
+    page's `data`; its policy allows only the template's own script."""
+    script = _VIEWER_SCRIPT.search(template)
+    if script is None or _PLACEHOLDER.search(script.group(1)):
+        raise ValueError("viewer template: no <script> element, or one with a placeholder")
+    digest = hashlib.sha256(script.group(1).encode("utf-8")).digest()
+    return fill(template, {
+        "SCRIPT_HASH": f"'sha256-{base64.b64encode(digest).decode('ascii')}'",
+        "TITLE": html.escape(title, quote=True),
+        "DATA": script_json(data),
+    })
+
+
 def to_html(
     source: Model | Results,
     path: str | os.PathLike[str] | None = None,
@@ -120,22 +192,33 @@ def to_html(
     """Writes the viewer of a run (or of a model's kinematic run over its
     file's times) to `path` and returns the path; without `path` returns the
     page's text. `plots` names the channels of the linked plots (default
-    `default_plots`)."""
+    `default_plots`). A run of more than `MOST_ROWS` rows is thinned to
+    that many.
+
+    The page is written to a temporary file beside `path` and renamed over
+    it when complete; `ModelError` when `path` is one of the model's inputs
+    (its file, its data files)."""
     from camlink.drawing import motion_of
 
     model, res = resolve(source)
+    if path is not None:
+        check_not_input(Path(path), model.inputs)
     if res is None:
         res = motion_of(model)
     if res is None or len(res) == 0:
         raise ModelError(f"model '{model.name}' has no motion to show (not fully driven)")
     chosen = list(plots) if plots else default_plots(res)
+    res = thin(res)
     data = page_data(res, model, chosen)
     template = resources.files("camlink").joinpath("viewer.html").read_text(encoding="utf-8")
-    # JSON inside <script>: "</" must not end the element.
-    text = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
-    page = template.replace("__TITLE__", html.escape(model.name)).replace("__DATA__", text)
+    text = page(template, model.name, data)
     if path is None:
-        return page
+        return text
     path = Path(path)
-    path.write_text(page, encoding="utf-8")
-    return path
+    target = _Target(path, path.suffix)
+    try:
+        target.temp.write_text(text, encoding="utf-8")
+    except BaseException:
+        target.temp.unlink(missing_ok=True)
+        raise
+    return target.finish(target.temp, True)
