@@ -208,6 +208,12 @@ def to_html(
     if res is None or len(res) == 0:
         raise ModelError(f"model '{model.name}' has no motion to show (not fully driven)")
     chosen = list(plots) if plots else default_plots(res)
+    for name in chosen:
+        if name not in res:
+            try:
+                res[name]
+            except KeyError as e:
+                raise ModelError(f"cannot plot {name!r}: {e.args[0]}") from None
     res = thin(res)
     data = page_data(res, model, chosen)
     template = resources.files("camlink").joinpath("viewer.html").read_text(encoding="utf-8")

@@ -94,7 +94,10 @@ def test_ctrl_c_keeps_the_frames_drawn(four_bar: camlink.Results, tmp_path: Path
     with pytest.raises(Interrupted) as e:
         animate(four_bar, tmp_path / "cut.gif", fps=10, width=2.5, dpi=40)
     assert e.value.frames == 3
-    assert len(_gif_frames(tmp_path / "cut.gif")) == 3
+    # Kept under the partial name, beside the output (never over it).
+    assert e.value.path == tmp_path / "cut.partial.gif"
+    assert len(_gif_frames(tmp_path / "cut.partial.gif")) == 3
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cut.partial.gif"]
 
 
 def test_cli_animate_and_view(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
