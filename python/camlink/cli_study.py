@@ -39,6 +39,7 @@ def run(args: argparse.Namespace) -> int:
     """Runs the study; bad input raises ModelError or OSError (exit 2)."""
     import pandas as pd
 
+    from camlink.study.runner import ERROR, STATUS, VARIANT
     from camlink.study.sampling import monte_carlo
     from camlink.study.study_file import read_study
     from camlink.study.sweeps import sweep
@@ -69,13 +70,13 @@ def run(args: argparse.Namespace) -> int:
         e.output = f"{output} (run the same command again to resume)"  # type: ignore[attr-defined]
         raise
     if not args.quiet:
-        failed = table[table["status"] != "ok"]
+        failed = table[table[STATUS] != "ok"]
         where = f"on {scheduler}" if scheduler else "on local cores"
         print(f"{len(table)} variants of {model.name} {where}: {len(table) - len(failed)} ok, "
               f"{len(failed)} failed → {output}")
         if len(failed):
             first = failed.iloc[0]
-            print(f"  first failure, variant {first['variant']}: {first['status']}: {first['error']}")
+            print(f"  first failure, variant {first[VARIANT]}: {first[STATUS]}: {first[ERROR]}")
         if stats is not None:
             with pd.option_context("display.width", 120, "display.max_columns", 20):
                 print(stats.to_string(float_format=lambda v: f"{v:.6g}"))

@@ -110,7 +110,7 @@ def test_crank_sweep_matches_freudensteins_rocker_swing():
         {"swing": range_of("rocker.phi"), "hi": max_of("rocker.phi"), "lo": min_of("rocker.phi"),
          "alpha": max_abs("rocker.alpha")},
     )
-    assert list(table["status"]) == ["ok"] * len(a)
+    assert list(table["study.status"]) == ["ok"] * len(a)
     extended, folded = rocker_limits(a)
     # Sampled every Δθ2 = 0.36° of crank, an extreme is missed by at most
     # ½·max|d²θ4/dθ2²|·(Δθ2/2)², with d²θ4/dθ2² = α4/ω2² (ω2 = 2π rad/s).
@@ -170,8 +170,8 @@ def test_optimisation_finds_the_crank_for_a_required_swing():
     # dswing/da ≈ 7; the swing sampled every 1.8° of crank is within 3e-5 rad.
     assert best.parameters["a"] == pytest.approx(0.1, abs=2e-5)
     assert best.outputs["swing"] == pytest.approx(target, abs=5e-5)
-    assert best.objective == best.history["objective"].min()
-    assert set(best.history["status"]) == {"ok"}
+    assert best.objective == best.history["study.objective"].min()
+    assert set(best.history["study.status"]) == {"ok"}
 
 
 def test_optimisation_with_a_scipy_minimize_method():
@@ -191,18 +191,18 @@ def test_a_failing_variant_is_recorded_and_the_study_goes_on():
     # not a model.
     table = camlink.sweep(camlink.load(FOUR_BAR), {"a": [0.1, 0.3, float("inf"), 0.12]},
                           {"swing": range_of("rocker.phi")})
-    assert list(table["status"]) == ["ok", "analysis_error", "model_error", "ok"]
-    assert table["error"][0] == "" and np.isnan(table["swing"][1])
-    assert "t = " in table["error"][1] or "time" in table["error"][1], table["error"][1]
-    assert "parameters.a" in table["error"][2] and "not a finite number" in table["error"][2]
+    assert list(table["study.status"]) == ["ok", "analysis_error", "model_error", "ok"]
+    assert table["study.error"][0] == "" and np.isnan(table["swing"][1])
+    assert "t = " in table["study.error"][1] or "time" in table["study.error"][1], table["study.error"][1]
+    assert "parameters.a" in table["study.error"][2] and "not a finite number" in table["study.error"][2]
     assert table["swing"][3] == pytest.approx(np.subtract(*rocker_limits(0.12)[::-1]), abs=5e-5)
 
 
 def test_a_variant_past_the_time_limit_is_stopped():
     table = camlink.sweep(fine_four_bar(), {"a": [0.1]}, {"swing": range_of("rocker.phi")},
                           time_limit=1e-6)
-    assert table["status"][0] == "analysis_error"
-    assert "time limit" in table["error"][0]
+    assert table["study.status"][0] == "analysis_error"
+    assert "time limit" in table["study.error"][0]
 
 
 def test_outputs_are_checked_before_the_study_runs():
@@ -231,7 +231,7 @@ def test_grid_and_zip_and_transmission_angle():
     mu = [np.arccos((B**2 + C**2 - (D - s * a) ** 2) / (2 * B * C)) for s in (1, -1)]
     least = min(min(m, np.pi - m) for m in mu)
     assert grid["mu"][2] == pytest.approx(least, abs=2e-3)
-    assert set(grid["status"]) == {"ok"}
+    assert set(grid["study.status"]) == {"ok"}
 
 
 def test_one_thread_and_all_cores_give_identical_results():
@@ -240,7 +240,7 @@ def test_one_thread_and_all_cores_give_identical_results():
     out = {"swing": range_of("rocker.phi"), "mu": least_transmission_angle("coupler", "rocker")}
     one = camlink.sweep(model, values, out, threads=1, batch_size=3)
     many = camlink.sweep(model, values, out, threads=4, batch_size=100)
-    pd.testing.assert_frame_equal(one.drop(columns="batch"), many.drop(columns="batch"))
+    pd.testing.assert_frame_equal(one.drop(columns="study.batch"), many.drop(columns="study.batch"))
 
 
 # --- nothing lost ----------------------------------------------------------
@@ -271,9 +271,9 @@ def test_an_interrupted_study_resumes_without_recomputing(tmp_path, monkeypatch)
     assert sorted(ran) == sorted(v["a"] for v in variants[6:])
     monkeypatch.setattr(_core, "run_batch", real)
     whole = run_variants(model, variants, out, check_outputs=False)
-    pd.testing.assert_frame_equal(table.drop(columns="batch"), whole.drop(columns="batch"))
+    pd.testing.assert_frame_equal(table.drop(columns="study.batch"), whole.drop(columns="study.batch"))
     # The folder reads back as one table.
-    back = pd.read_parquet(folder).sort_values("variant", ignore_index=True)
+    back = pd.read_parquet(folder).sort_values("study.variant", ignore_index=True)
     np.testing.assert_array_equal(back["swing"], whole["swing"])
 
 
@@ -281,11 +281,11 @@ def test_variants_are_keyed_by_model_text_and_parameters():
     model = camlink.load(FOUR_BAR)
     text = FOUR_BAR.read_text()
     table = camlink.sweep(model, {"a": [0.1]}, {"swing": range_of("rocker.phi")})
-    assert table["key"][0] == camlink.study.variant_key(text, {"a": 0.1})
+    assert table["study.key"][0] == camlink.study.variant_key(text, {"a": 0.1})
     # A model changed by with_parameters keys its own changes too.
     other = camlink.sweep(model.with_parameters(c=0.31), {"a": [0.1]}, {"swing": range_of("rocker.phi")})
-    assert other["key"][0] == camlink.study.variant_key(text, {"a": 0.1, "c": 0.31})
-    assert other["key"][0] != table["key"][0]
+    assert other["study.key"][0] == camlink.study.variant_key(text, {"a": 0.1, "c": 0.31})
+    assert other["study.key"][0] != table["study.key"][0]
 
 
 # --- study files and the command -------------------------------------------
@@ -295,7 +295,7 @@ def test_the_example_study_runs_from_the_command_line(tmp_path, capsys):
     out = tmp_path / "sweep.parquet"
     assert main(["study", str(ROOT / "examples" / "study_four_bar.toml"), "-o", str(out)]) == 0
     assert "9 variants of four_bar on local cores: 9 ok, 0 failed" in capsys.readouterr().out
-    table = pd.read_parquet(out).sort_values("variant", ignore_index=True)
+    table = pd.read_parquet(out).sort_values("study.variant", ignore_index=True)
     a = np.linspace(0.08, 0.16, 9)
     np.testing.assert_allclose(table["a"], a)
     extended, folded = rocker_limits(a)
@@ -437,7 +437,7 @@ def test_cam_outputs_agree_with_the_full_results():
         "force": at("bucket.normal_force", 0.003),
     }
     table = camlink.sweep(model, {"rpm": [3000.0, 5000.0]}, outputs)
-    assert set(table["status"]) == {"ok"}
+    assert set(table["study.status"]) == {"ok"}
     with pytest.warns(camlink.LiftOffWarning):
         full = [model.with_parameters(rpm=rpm).run() for rpm in (3000.0, 5000.0)]
     assert np.isnan(table["lift"][0]) and full[0].lift_off.empty

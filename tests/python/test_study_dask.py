@@ -69,8 +69,8 @@ def test_the_example_study_runs_on_a_scheduler_address(client, tmp_path, capsys)
     assert f"9 variants of four_bar on {address}: 9 ok" in capsys.readouterr().out
     local = tmp_path / "local.parquet"
     assert main(["study", str(ROOT / "examples" / "study_four_bar.toml"), "-o", str(local), "-q"]) == 0
-    a = pd.read_parquet(out).sort_values("variant", ignore_index=True)
-    b = pd.read_parquet(local).sort_values("variant", ignore_index=True)
+    a = pd.read_parquet(out).sort_values("study.variant", ignore_index=True)
+    b = pd.read_parquet(local).sort_values("study.variant", ignore_index=True)
     pd.testing.assert_frame_equal(a, b)
 
 
@@ -118,6 +118,6 @@ def test_a_worker_killed_mid_batch_has_its_batch_run_again(client, tmp_path):
     assert killed[0] not in client.run(os.getpid).values()
     local = camlink.sweep(model, values, OUTPUTS, batch_size=4)
     pd.testing.assert_frame_equal(on_dask, local)
-    assert set(on_dask["status"]) == {"ok"}
+    assert set(on_dask["study.status"]) == {"ok"}
     assert len(list(out.glob("batch-*.parquet"))) == 6
     client.wait_for_workers(2, timeout=60)

@@ -14,9 +14,12 @@ import pandas as pd
 from camlink._core import ModelError
 from camlink.model import Model
 from camlink.study.outputs import Output
-from camlink.study.runner import run_variants
+from camlink.study.runner import BATCH, ERROR, KEY, STATUS, VARIANT, run_variants
 
-__all__ = ["Optimum", "optimize"]
+__all__ = ["OBJECTIVE", "Optimum", "optimize"]
+
+#: The column of `Optimum.history` that holds each variant's objective.
+OBJECTIVE = "study.objective"
 
 #: The objective: a variant's row (each parameter and output by name) → a number.
 Objective = Callable[[Mapping[str, float]], float]
@@ -28,7 +31,8 @@ class Optimum:
 
     `parameters` and `outputs` are its values by name, `objective` its
     objective; `history` has one row per variant run (parameters,
-    outputs, status, error, ``objective``), in the order run; `result` is
+    outputs, ``study.status``, ``study.error``, ``study.objective``), in
+    the order run; `result` is
     scipy's ``OptimizeResult`` (``success``, ``message``, ``nfev``, …).
     """
 
@@ -93,10 +97,10 @@ def optimize(
         first[0] = False
         values = np.full(len(table), np.inf)
         for k, row in enumerate(table.to_dict("records")):
-            if row["status"] == "ok":
+            if row[STATUS] == "ok":
                 v = float(objective({str(c): x for c, x in row.items()}))
                 values[k] = v if np.isfinite(v) else np.inf
-        table = table.drop(columns=["variant", "key", "batch"]).assign(objective=values)
+        table = table.drop(columns=[VARIANT, KEY, BATCH]).assign(**{OBJECTIVE: values})
         history.append(table)
         return values
 
@@ -112,15 +116,15 @@ def optimize(
         result = so.minimize(lambda x: float(evaluate(x)[0]), start, method=method,
                              bounds=list(zip(lo, hi, strict=True)), options=opts)
     hist = pd.concat(history, ignore_index=True)
-    ok = hist[np.isfinite(hist["objective"])]
+    ok = hist[np.isfinite(hist[OBJECTIVE])]
     if ok.empty:
         raise ModelError("optimize: no variant ran; see the errors of Optimum.history")
-    best = ok.loc[ok["objective"].idxmin()]
-    out_names = [c for c in hist.columns if c not in (*names, "status", "error", "objective")]
+    best = ok.loc[ok[OBJECTIVE].idxmin()]
+    out_names = [c for c in hist.columns if c not in (*names, STATUS, ERROR, OBJECTIVE)]
     return Optimum(
         parameters={n: float(best[n]) for n in names},
         outputs={n: float(best[n]) for n in out_names},
-        objective=float(best["objective"]),
+        objective=float(best[OBJECTIVE]),
         history=hist,
         result=result,
     )

@@ -37,10 +37,44 @@ from camlink.study.outputs import Output, parse_outputs
 if TYPE_CHECKING:
     from distributed import Client
 
-__all__ = ["RESERVED", "STATUSES", "run_variants", "variant_key"]
+__all__ = [
+    "BATCH",
+    "ERROR",
+    "KEY",
+    "RESERVED",
+    "STATUS",
+    "STATUSES",
+    "VARIANT",
+    "check_size",
+    "run_variants",
+    "variant_key",
+]
 
-#: Columns every study table has besides its parameters and outputs.
-RESERVED = ("variant", "status", "error", "key", "batch")
+#: The study's own columns of every study table, besides its parameters
+#: and outputs. A parameter name is an identifier, so no parameter is
+#: named like them; an output may not be.
+VARIANT = "study.variant"
+STATUS = "study.status"
+ERROR = "study.error"
+KEY = "study.key"
+BATCH = "study.batch"
+RESERVED = (VARIANT, STATUS, ERROR, KEY, BATCH)
+
+#: The same columns as batch files name them without the ``study.``
+#: prefix (files written before it; read, and rewritten, on resuming).
+_UNPREFIXED = {"variant": VARIANT, "status": STATUS, "error": ERROR, "key": KEY, "batch": BATCH}
+
+#: Memory a study takes per variant (bytes): its parameter set, its key,
+#: its row of the table and the frames that build it. Measured with
+#: tracemalloc over 10⁴ to 3·10⁴ variants: about 660 bytes with one
+#: parameter and one output, about 100 more per parameter; these allow
+#: twice that.
+BYTES_PER_VARIANT = 1024
+#: More per parameter or output of each variant (bytes).
+BYTES_PER_VALUE = 128
+
+#: Seconds allowed to connect to a Dask scheduler, its handshake included.
+CONNECT_TIMEOUT = 20.0
 
 #: What a variant's ``status`` can be.
 STATUSES = ("ok", "model_error", "analysis_error", "output_error", "internal_error")
@@ -78,19 +112,22 @@ def run_variants(
     """Runs each parameter set of `variants` on `model` (its file's
     ``[analysis]``) and reduces each run to `outputs`.
 
-    Returns one row per variant, in order: ``variant`` (its index), the
-    parameters, the outputs, ``status`` (one of `STATUSES`), ``error``
-    ("" when ok), ``key`` and ``batch``. With `output` (a folder, e.g.
-    ``sweep.parquet``), each batch is written there as one Parquet file as
-    it arrives, and the variants already there are not run again.
-    `client` (a ``dask.distributed.Client``) or `scheduler` (an address
-    such as ``tcp://host:8786``) sends the batches to Dask workers;
-    otherwise they run on `threads` local cores (default all).
-    `time_limit` (s) stops a variant that runs longer. Unless
+    Returns one row per variant, in order: ``study.variant`` (its index),
+    the parameters, the outputs, ``study.status`` (one of `STATUSES`),
+    ``study.error`` ("" when ok), ``study.key`` and ``study.batch``. With
+    `output` (a folder, e.g. ``sweep.parquet``), each batch is written
+    there as one Parquet file as it arrives, and the variants already
+    there are not run again. `client` (a ``dask.distributed.Client``) or
+    `scheduler` (an address such as ``tcp://host:8786``) sends the batches
+    to Dask workers; otherwise they run on `threads` local cores (default
+    all). `time_limit` (s) stops a variant that runs longer. Unless
     `check_outputs` is false, the model itself is run once first, so that
-    an output naming a channel the run lacks is an error at once.
+    an output naming a channel the run lacks is an error at once. A study
+    whose table cannot fit in the memory available is refused
+    (`check_size`).
     """
     named = parse_outputs(outputs)
+    check_size(len(variants), len(named) + (len(variants[0]) if len(variants) else 0), "study")
     recipe, overrides = _recipe_of(model)
     params = _parameter_names(model, variants)
     for name in named:
@@ -102,16 +139,19 @@ def run_variants(
         _check_outputs(model, overrides, spec)
     keys = [variant_key(recipe[0], v) for v in full]
 
+    columns = list(params)
+    out_names = list(named)
     folder = None if output is None else _study_folder(Path(output))
-    done = _read_done(folder, set(keys), ["status", "error", "batch", *named]) if folder is not None else {}
+    done = {}
+    if folder is not None:
+        index = {key: k for k, key in enumerate(keys)}
+        done = _read_done(folder, index, variants, columns, out_names)
     todo = [k for k, key in enumerate(keys) if key not in done]
     size = batch_size or _default_batch_size(len(todo), threads)
     if size < 1:
         raise ModelError(f"batch_size must be at least 1 ({size})")
     batches = [todo[i : i + size] for i in range(0, len(todo), size)]
 
-    columns = list(params)
-    out_names = list(named)
     frames: list[pd.DataFrame] = []
     progress = Progress(len(variants), "study", unit="variant", quiet=quiet)
     progress.update(len(variants) - len(todo))
@@ -138,14 +178,56 @@ def run_variants(
     old = _frame(
         found, [variants[k] for k in found], [keys[k] for k in found], columns, out_names,
         (np.array([[float(r[o]) for o in out_names] for r in rows]).reshape(len(rows), len(out_names)),
-         [str(r["status"]) for r in rows], [str(r["error"]) for r in rows]),
-        batch=[str(r["batch"]) for r in rows],
+         [str(r[STATUS]) for r in rows], [str(r[ERROR]) for r in rows]),
+        batch=[str(r[BATCH]) for r in rows],
     )
     parts = [f for f in [old, *frames] if len(f)]
     table = (pd.concat(parts, ignore_index=True) if parts
              else _frame([], [], [], columns, out_names, (np.empty((0, len(out_names))), [], [])))
-    table = table.sort_values("variant", kind="stable").reset_index(drop=True)
-    return table[["variant", *columns, *out_names, "status", "error", "key", "batch"]]
+    table = table.sort_values(VARIANT, kind="stable").reset_index(drop=True)
+    return table[[VARIANT, *columns, *out_names, STATUS, ERROR, KEY, BATCH]]
+
+
+def check_size(n: int, values: int, what: str) -> None:
+    """`ModelError` when a study of `n` variants, each with `values`
+    parameters and outputs, would need more memory than the machine has
+    available: its parameter sets and its table are held in memory
+    (`BYTES_PER_VARIANT`, `BYTES_PER_VALUE`). Called before the variants
+    are built."""
+    need = n * (BYTES_PER_VARIANT + BYTES_PER_VALUE * max(values, 1))
+    have = _available_memory()
+    if have is None or need <= have:
+        return
+    most = max(have // (BYTES_PER_VARIANT + BYTES_PER_VALUE * max(values, 1)), 1)
+    raise ModelError(
+        f"{what}: {n:,} variants need about {_bytes(need)} of memory for their parameter sets "
+        f"and table, and {_bytes(have)} is available; split the study into parts of at most "
+        f"{most:,} variants (parts written to one output folder read as one table)"
+    )
+
+
+def _available_memory() -> int | None:
+    """Bytes of memory available to a new allocation (Linux's
+    MemAvailable, else the physical memory), or None when unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
+    except (AttributeError, ValueError, OSError):
+        return None
+
+
+def _bytes(n: float) -> str:
+    for unit in ("B", "kB", "MB", "GB", "TB"):
+        if n < 1000 or unit == "TB":
+            return f"{n:.3g} {unit}"
+        n /= 1000
+    return f"{n:.3g} TB"
 
 
 def _recipe_of(model: Model) -> tuple[Recipe, dict[str, float]]:
@@ -206,15 +288,15 @@ def _frame(
     """One row per variant of a batch: index, parameters, outputs, status,
     error, key and the batch's id (the start of its first key)."""
     values, status, errors = result
-    data: dict[str, Any] = {"variant": np.asarray(indices, dtype=np.int64)}
+    data: dict[str, Any] = {VARIANT: np.asarray(indices, dtype=np.int64)}
     for c in columns:
         data[c] = np.array([float(v.get(c, np.nan)) for v in variants], dtype=np.float64)
     for j, name in enumerate(outputs):
         data[name] = np.asarray(values[:, j], dtype=np.float64)
-    data["status"] = list(status)
-    data["error"] = list(errors)
-    data["key"] = keys
-    data["batch"] = batch if batch is not None else [keys[0][:12]] * len(keys)
+    data[STATUS] = list(status)
+    data[ERROR] = list(errors)
+    data[KEY] = keys
+    data[BATCH] = batch if batch is not None else [keys[0][:12]] * len(keys)
     return pd.DataFrame(data)
 
 
@@ -228,10 +310,21 @@ def _study_folder(path: Path) -> Path:
     return path
 
 
-def _read_done(folder: Path, wanted: set[str], needed: list[str]) -> dict[str, dict[str, Any]]:
-    """The rows already in `folder` for the keys in `wanted` that hold the
-    `needed` columns (a row of a study with other outputs runs again)."""
+def _read_done(
+    folder: Path,
+    index: Mapping[str, int],
+    variants: Sequence[Mapping[str, float]],
+    params: list[str],
+    outputs: list[str],
+) -> dict[str, dict[str, Any]]:
+    """The rows already in `folder` for the keys of `index` (key → the
+    variant's index in `variants`) that hold every one of `outputs` (a row
+    of a study with other outputs runs again). A batch file without the
+    ``study.`` prefix on its own columns is rewritten with it first. A
+    file that cannot be read, or whose columns do not hold what a batch
+    file holds, is a `ModelError` naming it."""
     done: dict[str, dict[str, Any]] = {}
+    needed = {STATUS, ERROR, BATCH, *outputs}
     for f in sorted(folder.glob("batch-*.parquet")):
         try:
             frame = pd.read_parquet(f)
@@ -239,18 +332,85 @@ def _read_done(folder: Path, wanted: set[str], needed: list[str]) -> dict[str, d
             raise ModelError(
                 f"{f}: cannot read this batch file ({e}); delete it to run its variants again"
             ) from None
-        if "key" not in frame.columns or not set(needed) <= set(frame.columns):
+        if KEY not in frame.columns and "key" in frame.columns:
+            frame = _upgrade(f, frame, index, variants, params)
+        if KEY not in frame.columns or not needed <= set(frame.columns):
             continue
+        _check_batch_file(f, frame, outputs)
         for row in frame.to_dict("records"):
-            if row["key"] in wanted:
-                done[str(row["key"])] = {str(k): v for k, v in row.items()}
+            if row[KEY] in index:
+                done[str(row[KEY])] = {str(k): v for k, v in row.items()}
     return done
+
+
+def _check_batch_file(f: Path, frame: pd.DataFrame, outputs: list[str]) -> None:
+    """`ModelError` naming `f` and the column when a column a study reads
+    back does not hold what it wrote: text for its own columns, a known
+    status, numbers for the outputs."""
+
+    def bad(column: str, what: str) -> ModelError:
+        return ModelError(
+            f"{f}: column '{column}' {what}: this is not a batch file of a study, or it was "
+            "damaged; delete it to run its variants again"
+        )
+
+    for c in (KEY, STATUS, ERROR, BATCH):
+        for v in frame[c]:
+            if not isinstance(v, str):
+                raise bad(c, f"holds {_plain(v)!r}, not text")
+    for v in frame[STATUS]:
+        if v not in STATUSES:
+            raise bad(STATUS, f"holds {v!r}, not one of {', '.join(STATUSES)}")
+    for o in outputs:
+        dtype = frame[o].dtype
+        if pd.api.types.is_bool_dtype(dtype) or not pd.api.types.is_numeric_dtype(dtype):
+            first = next((v for v in frame[o] if not isinstance(v, float | int) or isinstance(v, bool)),
+                         frame[o].iloc[0] if len(frame) else None)
+            raise bad(o, f"holds {_plain(first)!r}, not a number")
+
+
+def _plain(v: Any) -> Any:
+    """A NumPy scalar as the Python value it holds (for messages)."""
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def _upgrade(
+    f: Path,
+    frame: pd.DataFrame,
+    index: Mapping[str, int],
+    variants: Sequence[Mapping[str, float]],
+    params: list[str],
+) -> pd.DataFrame:
+    """A batch file whose own columns lack the ``study.`` prefix, with it,
+    written back over `f` (whole, as `_write_batch` writes). In such a file
+    a parameter named like one of those columns lost its values to it (or,
+    for ``variant``, the index to the parameter): the rows of variants of
+    this study get their index and parameter values back from them."""
+    frame = frame.rename(columns=_UNPREFIXED)
+    if not all(isinstance(v, str) for v in frame[KEY]):
+        return frame
+    ks = [index.get(key) for key in frame[KEY]]
+    if any(k is not None for k in ks):
+        variant = frame[VARIANT] if VARIANT in frame.columns else pd.Series(np.nan, index=frame.index)
+        frame[VARIANT] = [k if k is not None else v for k, v in zip(ks, variant, strict=True)]
+        for p in params:
+            have = frame[p] if p in frame.columns else pd.Series(np.nan, index=frame.index)
+            frame[p] = [float(variants[k].get(p, np.nan)) if k is not None else v
+                        for k, v in zip(ks, have, strict=True)]
+    own = [c for c in RESERVED if c in frame.columns]
+    first = [c for c in [VARIANT, *params] if c in frame.columns]
+    frame = frame[first + [c for c in frame.columns if c not in own and c not in first]
+                  + [c for c in own if c != VARIANT]]
+    tmp = f.with_name(f".{f.name}.{uuid.uuid4().hex[:8]}.tmp")
+    frame.to_parquet(tmp, index=False)
+    os.replace(tmp, f)
+    return frame
 
 
 def _write_batch(folder: Path, frame: pd.DataFrame) -> None:
     """Writes one batch as ``batch-<id>.parquet``, whole or not at all
     (written under a temporary name, then renamed)."""
-    name = f"batch-{frame['batch'].iloc[0]}-{len(frame)}.parquet"
+    name = f"batch-{frame[BATCH].iloc[0]}-{len(frame)}.parquet"
     tmp = folder / f".{name}.{uuid.uuid4().hex[:8]}.tmp"
     frame.to_parquet(tmp, index=False)
     os.replace(tmp, folder / name)
@@ -293,9 +453,12 @@ def _run_dask(
     recipe = (text, fmt, source, os.path.abspath(folder or "."), allow_outside)
     own = client is None
     if client is None:
+        assert scheduler is not None
+        connection = _connection_args(scheduler)
+        _probe_scheduler(scheduler, connection, CONNECT_TIMEOUT)
         try:
-            client = Client(scheduler, timeout="20s")
-        except (OSError, TimeoutError, ValueError) as e:
+            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
+        except (OSError, TimeoutError, ValueError, TypeError) as e:
             raise ModelError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({e})") from None
     try:
         futures = {}
@@ -314,3 +477,93 @@ def _run_dask(
     finally:
         if own:
             client.close()
+
+
+def _connection_args(address: str) -> dict[str, Any]:
+    """How a client connects to `address`: `ModelError` for an address
+    that is not one, a scheme camlink cannot use, or TLS without
+    certificates in Dask's configuration."""
+    from distributed.comm import parse_address
+    from distributed.security import Security
+
+    where = f"--scheduler {address}"
+    if not isinstance(address, str) or not address.strip():
+        raise ModelError(f"{where}: give a Dask scheduler's address, such as tcp://host:8786")
+    try:
+        scheme, location = parse_address(address)
+    except (ValueError, TypeError) as e:
+        raise ModelError(f"{where}: not a Dask scheduler address ({e})") from None
+    if scheme not in ("tcp", "tls", "ws", "wss"):
+        raise ModelError(
+            f"{where}: camlink connects to tcp:// (or tls://, ws://, wss://) schedulers, not "
+            f"{scheme}://; for another transport, connect a dask.distributed.Client in Python "
+            "and pass it as client="
+        )
+    if not location or ":" not in location:
+        raise ModelError(f"{where}: give the scheduler's host and port, such as tcp://host:8786")
+    try:
+        args: dict[str, Any] = Security().get_connection_args("client")
+    except (ValueError, TypeError, OSError) as e:
+        raise ModelError(f"{where}: Dask's TLS configuration cannot be used ({e})") from None
+    if scheme in ("tls", "wss") and args.get("ssl_context") is None:
+        raise ModelError(
+            f"{where}: a {scheme}:// scheduler needs certificates, and Dask's configuration "
+            "(distributed.comm.tls) gives none; set them there, or connect a "
+            "dask.distributed.Client with its Security in Python and pass it as client="
+        )
+    return args
+
+
+def _probe_scheduler(address: str, connection: dict[str, Any], timeout: float) -> None:
+    """Connects to `address` and asks for its identity, all within
+    `timeout` seconds (Dask bounds the connection but not its handshake, so
+    an address that answers something else would hang the client):
+    `ModelError` unless a Dask scheduler answers in time. Runs on a thread
+    of its own, with its own event loop, so that it works where a loop
+    runs already (Jupyter)."""
+    import asyncio
+    import threading
+
+    from distributed.comm import connect
+
+    async def identity() -> Any:
+        comm = await connect(address, timeout=timeout, **connection)
+        try:
+            await comm.write({"op": "identity", "reply": True})
+            return await comm.read()
+        finally:
+            comm.abort()
+
+    async def bounded() -> Any:
+        return await asyncio.wait_for(identity(), timeout)
+
+    outcome: dict[str, Any] = {}
+
+    def probe() -> None:
+        try:
+            outcome["reply"] = asyncio.run(bounded())
+        except BaseException as e:  # handed to the caller's thread below
+            outcome["error"] = e
+
+    thread = threading.Thread(target=probe, name="camlink-scheduler-probe", daemon=True)
+    thread.start()
+    thread.join(timeout + 5)
+    where = f"--scheduler {address}"
+    error = outcome.get("error")
+    if thread.is_alive() or isinstance(error, asyncio.TimeoutError | TimeoutError):
+        raise ModelError(
+            f"{where}: cannot reach the Dask scheduler (no answer within {timeout:g} s: the address "
+            "takes connections but does not answer as a Dask scheduler does; a dashboard's "
+            "HTTP port, 8787 by default, is not the scheduler's, 8786 by default)"
+        )
+    if isinstance(error, Exception):
+        raise ModelError(f"{where}: cannot reach the Dask scheduler ({error})") from None
+    if error is not None:
+        raise error
+    reply = outcome.get("reply")
+    if not isinstance(reply, dict) or reply.get("type") != "Scheduler":
+        kind = reply.get("type") if isinstance(reply, dict) else None
+        raise ModelError(
+            f"{where}: cannot reach the Dask scheduler (what answers there is "
+            f"{'a Dask ' + str(kind) if kind else 'not a Dask scheduler'})"
+        )

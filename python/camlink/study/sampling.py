@@ -16,7 +16,7 @@ import pandas as pd
 from camlink._core import ModelError
 from camlink.model import Model
 from camlink.study.outputs import Output
-from camlink.study.runner import run_variants
+from camlink.study.runner import BATCH, ERROR, KEY, STATUS, VARIANT, check_size, run_variants
 
 __all__ = ["MonteCarlo", "monte_carlo", "sample", "sensitivity", "statistics"]
 
@@ -27,7 +27,8 @@ Sampling = Literal["random", "sobol", "lhs"]
 class MonteCarlo:
     """The outcome of a Monte Carlo study.
 
-    `table`: one row per variant (parameters, outputs, status, error).
+    `table`: one row per variant (parameters, outputs, ``study.status``,
+    ``study.error``, …; see `camlink.study.run_variants`).
     `statistics`: one row per output, over the variants that ran (``n``):
     ``mean``, ``std`` (with n − 1), ``sem`` (standard error of the mean,
     std/√n), ``min``, ``p05``, ``median``, ``p95``, ``max``.
@@ -63,6 +64,7 @@ def sample(
                 f"(such as scipy.stats.norm(0.12, 0.0005)), not {type(dist).__name__}"
             )
     d = len(distributions)
+    check_size(n, d + 1, "monte_carlo")
     if sampling == "random":
         u = np.random.default_rng(seed).random((n, d))
     elif sampling == "sobol":
@@ -84,7 +86,7 @@ def sample(
 
 def statistics(table: pd.DataFrame, outputs: list[str]) -> pd.DataFrame:
     """Statistics of each output over the variants whose status is ok."""
-    ok = table[table["status"] == "ok"]
+    ok = table[table[STATUS] == "ok"]
     rows = []
     for name in outputs:
         x = ok[name].to_numpy(dtype=np.float64)
@@ -106,7 +108,7 @@ def sensitivity(table: pd.DataFrame, params: list[str], outputs: list[str]) -> p
     rank correlations, over the variants whose status is ok."""
     from scipy.stats import spearmanr
 
-    ok = table[table["status"] == "ok"]
+    ok = table[table[STATUS] == "ok"]
     rows = []
     x = ok[params].to_numpy(dtype=np.float64)
     for name in outputs:
@@ -152,5 +154,5 @@ def monte_carlo(
     params = list(drawn.columns)
     variants = [{p: float(row[k]) for k, p in enumerate(params)} for row in drawn.to_numpy()]
     table = run_variants(model, variants, outputs, **execution)
-    names = [c for c in table.columns if c not in (*params, "variant", "status", "error", "key", "batch")]
+    names = [c for c in table.columns if c not in (*params, VARIANT, STATUS, ERROR, KEY, BATCH)]
     return MonteCarlo(table, statistics(table, names), sensitivity(table, params, names))

@@ -22,6 +22,7 @@ line and the field.
 
 from __future__ import annotations
 
+import math
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -32,6 +33,7 @@ import numpy as np
 from camlink import _core
 from camlink._core import ModelError
 from camlink.study.outputs import Output, parse_outputs
+from camlink.study.runner import check_size
 
 __all__ = ["StudyFile", "read_study"]
 
@@ -114,6 +116,10 @@ def read_study(path: str | Path) -> StudyFile:
         mode = study.get("mode", "grid")
         if mode not in ("grid", "zip"):
             raise where.error("study.mode", f"expected \"grid\" or \"zip\", not {mode!r}")
+        counts = [c for c in (_count(spec) for spec in params.values()) if c is not None]
+        if len(counts) == len(params):
+            total = math.prod(counts) if mode == "grid" else max(counts)
+            check_size(total, len(params) + len(outputs), f"{path}: study.parameters")
         values = {name: _values(name, spec, where) for name, spec in params.items()}
         if mode == "zip" and len({len(v) for v in values.values()}) > 1:
             raise where.error("study.parameters", "with mode = \"zip\" every list must have one length")
@@ -129,6 +135,7 @@ def read_study(path: str | Path) -> StudyFile:
     seed = study.get("seed")
     if seed is not None and (isinstance(seed, bool) or not isinstance(seed, int) or seed < 0):
         raise where.error("study.seed", f"expected a whole number ≥ 0, not {seed!r}")
+    check_size(n, len(params) + len(outputs), f"{path}: study.n")
     dists = {name: _distribution(name, spec, where) for name, spec in params.items()}
     return StudyFile(**common, distributions=dists, n=n, seed=seed, sampling=sampling)
 
@@ -142,6 +149,18 @@ def _outputs(spec: Any, where: _Where) -> dict[str, Output]:
     except ModelError as e:
         fieldpath, _, message = str(e).partition(": ")
         raise where.error(fieldpath, message) from None
+
+
+def _count(spec: Any) -> int | None:
+    """How many values a parameter of a sweep gives, before they are made
+    (None when `spec` is not valid; `_values` says why)."""
+    if isinstance(spec, list):
+        return len(spec)
+    if isinstance(spec, dict):
+        num = spec.get("num")
+        if isinstance(num, int) and not isinstance(num, bool) and num >= 1:
+            return num
+    return None
 
 
 def _values(name: str, spec: Any, where: _Where) -> list[float]:

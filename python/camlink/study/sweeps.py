@@ -4,6 +4,7 @@ lists of values taken together."""
 from __future__ import annotations
 
 import itertools
+import math
 from collections.abc import Iterable, Mapping
 from typing import Any, Literal
 
@@ -12,7 +13,7 @@ import pandas as pd
 from camlink._core import ModelError
 from camlink.model import Model
 from camlink.study.outputs import Output
-from camlink.study.runner import run_variants
+from camlink.study.runner import check_size, run_variants
 
 __all__ = ["sweep", "sweep_variants"]
 
@@ -22,7 +23,9 @@ def sweep_variants(
 ) -> list[dict[str, float]]:
     """The parameter sets of a sweep: every combination of the lists
     (``"grid"``, the last name varying fastest), or the i-th value of each
-    list together (``"zip"``, lists of one length)."""
+    list together (``"zip"``, lists of one length). A sweep too large for
+    the memory available is refused before it is built
+    (`camlink.study.runner.check_size`)."""
     if not values:
         raise ModelError("sweep: give at least one parameter and its values")
     lists: dict[str, list[float]] = {}
@@ -34,6 +37,9 @@ def sweep_variants(
         if not lists[name]:
             raise ModelError(f"sweep: '{name}' has no values")
     names = list(lists)
+    if mode in ("grid", "zip"):
+        n = math.prod(len(v) for v in lists.values()) if mode == "grid" else len(lists[names[0]])
+        check_size(n, len(names) + 1, f"sweep ({mode})")
     if mode == "grid":
         return [dict(zip(names, combo, strict=True)) for combo in itertools.product(*lists.values())]
     if mode == "zip":
