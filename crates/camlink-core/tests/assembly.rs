@@ -1,7 +1,7 @@
 //! Assembly from rough placements: converge, and stay on the branch nearest
 //! the guess.
 
-mod common;
+use crate::common;
 
 use camlink_core::kinematics::run;
 use camlink_core::run::{Settings, Table};

@@ -2,7 +2,7 @@
 //! against an independent minimal-coordinate solution, measured order of
 //! convergence.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::dynamics::integrator::{run, Adaptive, Integrator, Settings};
 use camlink_core::force::tsda::Tsda;

@@ -1,7 +1,7 @@
 //! Inverse dynamics: driver torque against power balance, reactions of a
 //! static two-bar truss against hand statics.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::dynamics::inverse::run;
 use camlink_core::force::point::PointForce;

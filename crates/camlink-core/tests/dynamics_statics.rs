@@ -1,6 +1,6 @@
 //! Equilibrium: pendulums held by a torque, a mass hanging on a spring.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::constraint::translational::Translational;
 use camlink_core::dynamics::statics::{run, solve, Settings};

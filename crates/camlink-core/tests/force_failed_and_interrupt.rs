@@ -2,7 +2,7 @@
 //! kind `force_failed` naming the force and the time; equilibrium's Newton
 //! search lets its sink stop it between iterations.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use std::sync::Arc;
 

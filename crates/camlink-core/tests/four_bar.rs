@@ -1,6 +1,6 @@
 //! The four-bar crank-rocker against Freudenstein's closed form.
 
-mod common;
+use crate::common;
 
 use camlink_core::kinematics::run;
 use camlink_core::run::{time_grid, PointOutput, Settings, Table};

@@ -2,8 +2,8 @@
 //! the joints of the weakest combination of equations of Φ_q, in its
 //! `joints` field and its text, in kinematics and in forward dynamics.
 
-mod common;
-mod mechanisms;
+use crate::common;
+use crate::mechanisms;
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, Coord};
 use camlink_core::dynamics::integrator::{self, Settings as DynSettings};

@@ -6,8 +6,8 @@
 //! to the gravity torque of the exact one-degree-of-freedom model, and a
 //! `redundant` warning naming the equations and joints.
 
-mod common;
-mod mechanisms;
+use crate::common;
+use crate::mechanisms;
 
 use camlink_core::diagnose::dense_jacobian;
 use camlink_core::dynamics::inverse;

@@ -4,7 +4,7 @@
 //! equilibrium, names its redundant equations, and reports the
 //! minimum-norm multipliers.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::assembly::Assembly;
 use camlink_core::diagnose::dense_jacobian;

@@ -15,7 +15,7 @@
 //! h = 1e-3, 1e-4, 1e-5 s and the same tolerances (use `--release`; 15
 //! minutes on a 2-core machine).
 
-mod mechanisms;
+use crate::mechanisms;
 
 use mechanisms::benchmark_a02_error;
 

@@ -16,7 +16,7 @@
 //! A tight `tol` at a small step is also checked for its cost in Newton
 //! iterations away from the flat positions.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use mechanisms::{
     forward_with_summary, parallelogram_chain, parallelogram_error, released_chain_failures,

@@ -21,7 +21,7 @@
 //! `--ignored` runs the full matrix (use `--release`): N = 2 and 40,
 //! h = 1e-3, 1e-4 and 1e-5 s, the same tolerances, 20 s each.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use mechanisms::{
     parallelogram_chain_error, released_chain_failures, released_chain_long_failures, CrankMass,

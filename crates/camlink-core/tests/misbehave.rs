@@ -1,7 +1,7 @@
 //! Mechanisms that misbehave: drivers past reach, singular and change-point
 //! configurations. The solver must explain itself and keep what it computed.
 
-mod common;
+use crate::common;
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, Coord};
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};

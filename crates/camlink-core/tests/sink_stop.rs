@@ -1,7 +1,7 @@
 //! A sink that fails stops the run with an error of kind `stopped` at the
 //! time of the row it refused; the rows before it were delivered.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::dynamics::integrator;
 use camlink_core::kinematics;

@@ -1,7 +1,7 @@
 //! A large model (sparse path, over 120 unknowns) whose Jacobian is
 //! singular at one joint that is not the first: the error names that joint.
 
-mod mechanisms;
+use crate::mechanisms;
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
 use camlink_core::kinematics::run;

@@ -1,6 +1,6 @@
 //! `Expr::check`: the first failing operation, named and quoted.
 
-mod common;
+use crate::common;
 
 use camlink_expr::{eval_constant, EvalError, Expr};
 use common::expr;

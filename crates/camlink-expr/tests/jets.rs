@@ -1,7 +1,7 @@
 //! Jets of every function against closed-form derivatives and against
 //! Richardson-extrapolated finite differences.
 
-mod common;
+use crate::common;
 
 use camlink_expr::Expr;
 use common::{assert_close, assert_jet, assert_jet_matches_differences, expr};

@@ -2,7 +2,7 @@
 //! derivatives, against Richardson-extrapolated finite differences of the
 //! order below, and against the third-order jets.
 
-mod common;
+use crate::common;
 
 use camlink_expr::{Expr, Law};
 use common::{assert_close, expr, richardson};

@@ -1,6 +1,6 @@
 //! The expression language: precedence, logic, branches, names, constants.
 
-mod common;
+use crate::common;
 
 use camlink_expr::{eval_constant, Expr};
 use common::expr;

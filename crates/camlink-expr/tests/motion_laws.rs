@@ -1,6 +1,6 @@
 //! Motion laws called from expressions: end values, smoothness, jets.
 
-mod common;
+use crate::common;
 
 use camlink_expr::Law;
 use common::{assert_close, assert_jet_matches_differences, expr};

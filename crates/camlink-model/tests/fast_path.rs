@@ -16,8 +16,7 @@ use camlink_core::linsolve::SystemMatrix;
 use camlink_core::run::{time_grid, Settings};
 use camlink_model::AnalysisType;
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use crate::mechanisms;
 
 const TOL: f64 = 1e-12;
 

@@ -5,13 +5,12 @@
 //! truncations, splices, token insertions) runs a few thousand cases.
 //!
 //! The long run: `CAMLINK_FUZZ_ITERS=1000000 cargo test --release -p
-//! camlink-model --test fuzz_corpus` (and `CAMLINK_FUZZ_SEED=<n>` for other
+//! camlink-model --test integration fuzz_corpus::` (and `CAMLINK_FUZZ_SEED=<n>` for other
 //! cases); coverage-guided fuzzing with cargo-fuzz is in `fuzz/README.md`.
 //! A failing case is written to `target/fuzz-failures/` so it can be added
 //! to the regressions.
 
-#[path = "../../../fuzz/src/lib.rs"]
-mod targets;
+use crate::targets;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};

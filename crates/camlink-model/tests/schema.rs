@@ -1,7 +1,7 @@
 //! The committed JSON Schema equals what the serde structs generate.
 //!
 //! After changing the file format, regenerate it with
-//! `CAMLINK_BLESS=1 cargo test -p camlink-model --test schema`.
+//! `CAMLINK_BLESS=1 cargo test -p camlink-model --test integration schema::`.
 
 use std::path::Path;
 
@@ -16,7 +16,7 @@ fn committed_schema_is_current() {
     assert!(
         committed == generated,
         "schema/camlink-model.schema.json is out of date; run \
-         `CAMLINK_BLESS=1 cargo test -p camlink-model --test schema`"
+         `CAMLINK_BLESS=1 cargo test -p camlink-model --test integration schema::`"
     );
 }
 

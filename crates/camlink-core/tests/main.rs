@@ -1,0 +1,52 @@
+//! The crate's integration tests, one module per file, in one test binary
+//! (one link instead of one per file). A test of this file checks that
+//! every file in `tests/` is listed here or built on its own.
+
+mod common;
+mod mechanisms;
+
+mod assembly;
+mod cam_contact_force;
+mod cam_round_trip;
+mod dynamics_forward;
+mod dynamics_inverse;
+mod dynamics_mass_check;
+mod dynamics_statics;
+mod dynamics_stiff_spring;
+mod force_failed_and_interrupt;
+mod four_bar;
+mod issue_dynamics_contact_channels;
+mod issue_near_singular_joints;
+mod issue_neutral_equilibrium;
+mod issue_projection_own_rates;
+mod issue_redundant_kinematics;
+mod issue_redundant_parallelogram_chain;
+mod issue_singular_benchmark_a02;
+mod issue_singular_parallelogram_chain;
+mod issue_singular_uniform_crank_chain;
+mod layers;
+mod misbehave;
+mod sink_stop;
+mod sparse_singular;
+
+/// Test files built as binaries of their own (see Cargo.toml).
+const APART: &[&str] = &[];
+
+#[test]
+fn every_test_file_is_a_module() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests");
+    let this = std::fs::read_to_string(dir.join("main.rs")).unwrap();
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "rs") {
+            let stem = path.file_stem().unwrap().to_str().unwrap();
+            if stem == "main" || APART.contains(&stem) {
+                continue;
+            }
+            assert!(
+                this.contains(&format!("\nmod {stem};\n")),
+                "tests/{stem}.rs is not a module of tests/main.rs, so it never runs"
+            );
+        }
+    }
+}
