@@ -24,6 +24,11 @@ __all__ = ["model_html", "png", "results_html"]
 
 #: Channels shown in the head of a results table.
 HEAD_COLUMNS = 8
+#: Rows shown in the head of a results table.
+HEAD_ROWS = 5
+#: Most rows a results plot draws: a longer run is drawn as the least and
+#: greatest value of each channel over each of a quarter as many spans.
+PLOT_ROWS = 2000
 
 
 def png(fig: Figure, dpi: int = 72) -> str:
@@ -67,17 +72,56 @@ def model_html(model: Model) -> str:
 
 
 def results_html(results: Results) -> str:
-    """The head of the results table beside a plot of two channels."""
+    """The head of the results table beside a plot of two channels.
+
+    Results read lazily from a file read the head's rows only, and the
+    whole of the channels plotted (and ``t``); the plot of a long run
+    draws each channel's envelope (`PLOT_ROWS`)."""
+    import pandas as pd
+
     from camlink.plots import plot
     from camlink.viewer import default_plots
 
-    frame = results.to_pandas()
-    shown = frame.iloc[:, :HEAD_COLUMNS].head()
+    channels = results.channels[:HEAD_COLUMNS]
+    timed = "t" in results
+    rows = results._head((["t"] if timed else []) + channels, HEAD_ROWS)
+    index = (pd.Index(rows[:, 0], name="t") if timed
+             else pd.RangeIndex(len(rows), name="step"))
+    shown = pd.DataFrame(rows[:, int(timed):], index=index, columns=channels)
     more = len(results.channels) - shown.shape[1]
     caption = html.escape(repr(results)) + (f" ({more} more channels)" if more > 0 else "")
     table = f"<p><code>{caption}</code></p>" + shown.to_html(float_format=lambda v: f"{v:.6g}")
     if len(results) < 2:
         return table
-    channels = default_plots(results)
-    picture = png(plot(results, channels[:2], width=4.5, height=2.6), dpi=72)
+    plotted = default_plots(results)[:2]
+    picture = png(plot(_envelope(results, plotted), plotted, width=4.5, height=2.6), dpi=72)
     return _side_by_side(table, picture)
+
+
+def _envelope(results: Results, channels: list[str]) -> Results:
+    """`results` itself when it has at most `PLOT_ROWS` rows; otherwise
+    results in memory holding, of ``t`` and `channels`, the first and last
+    rows and the rows where each channel is least and greatest over each
+    of ``PLOT_ROWS // 4`` spans, in time order: drawn at a plot's width,
+    the same lines as every row."""
+    import numpy as np
+
+    from camlink.results import Results
+
+    n = len(results)
+    if n <= PLOT_ROWS or "t" not in results:
+        return results
+    spans = PLOT_ROWS // 4
+    width = n // spans
+    whole = spans * width
+    starts = np.arange(spans) * width
+    picks = [np.array([0, n - 1]), np.arange(whole, n)]
+    columns = [results[c] for c in channels]
+    for y in columns:
+        block = y[:whole].reshape(spans, width)
+        picks += [starts + np.argmin(block, axis=1), starts + np.argmax(block, axis=1)]
+    rows = np.unique(np.concatenate(picks))
+    data = np.column_stack([results.t[rows], *(y[rows] for y in columns)])
+    out = Results(["t", *channels], data, model=results.model, complete=results.complete)
+    out.mechanism = results.mechanism
+    return out

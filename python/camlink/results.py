@@ -234,18 +234,28 @@ class Results:
         when they hold them in memory."""
         return None if self._source is None else self._source.path
 
-    def _read(self, names: list[str] | None) -> npt.NDArray[np.float64]:
+    def _read(self, names: list[str] | None, head: int | None = None) -> npt.NDArray[np.float64]:
         """Reads one channel (`names` of one) or every row (None) from the
-        source file; `ModelError` naming the file when it cannot."""
+        source file, or with `head` the first `head` rows of the channels
+        `names`; `ModelError` naming the file when it cannot."""
         assert self._source is not None
         try:
+            if head is not None:
+                return self._source.head(self._names if names is None else names, head)
             if names is None:
                 return self._source.table(self._names)
             return self._source.column(names[0])
-        except (ValueError, OSError) as e:
+        except (ValueError, OSError, EOFError) as e:
             if isinstance(e, ModelError):
                 raise
             raise ModelError(f"cannot read results from '{self._source.path}': {e}") from None
+
+    def _head(self, names: list[str], n: int) -> npt.NDArray[np.float64]:
+        """The first `n` rows of the columns `names` (which exist), a new
+        array; results read lazily read only those rows from the file."""
+        if self._data is None:
+            return self._read(names, head=n)
+        return self._data[:n, [self._index[c] for c in names]]
 
     def _rows(self) -> npt.NDArray[np.float64]:
         """Every row, read from the source file the first time."""
@@ -478,19 +488,63 @@ class Results:
         path = Path(path)
         kind = kind_of(path, "read", READ_SUFFIXES)
         try:
-            meta: dict[str, Any] = {}
             if kind == "csv":
                 names, data, meta = _read_csv(path)
             else:
                 names, data, meta = _read_arrow(path, kind)
-        except (ValueError, OSError, ImportError) as e:
-            if isinstance(e, ModelError):
-                raise
+            model, summary = _file_metadata(meta, path)
+            return cls(names, data, model=model, summary=summary)
+        except ModelError:
+            raise
+        except (ValueError, OSError, ImportError, EOFError, RecursionError) as e:
+            # RecursionError: metadata nested deeper than JSON can be read.
             raise ModelError(f"cannot read results from '{path}': {e}") from None
-        summary = meta.get("summary")
-        if summary is not None and "warnings" in summary:
-            summary["warnings"] = warnings_from(summary["warnings"])
-        return cls(names, data, model=meta.get("model", path.stem), summary=summary)
+        except Exception as e:
+            import pyarrow as pa
+
+            if isinstance(e, pa.ArrowException):
+                raise ModelError(f"cannot read results from '{path}': {e}") from None
+            raise
+
+
+def _file_metadata(meta: Any, path: Path) -> tuple[str, RunSummary | None]:
+    """The model name and run summary of a results file's ``camlink``
+    metadata (the file's stem for a file without a model name);
+    `ModelError` naming the field that does not hold what `save` writes."""
+
+    def bad(field: str, what: str) -> ModelError:
+        return ModelError(f"cannot read results from '{path}': its camlink metadata: {field}: {what}")
+
+    if not isinstance(meta, dict):
+        raise bad("camlink", f"expected a JSON object, got {type(meta).__name__}")
+    model = meta.get("model", path.stem)
+    if not isinstance(model, str):
+        raise bad("model", f"expected a name, got {type(model).__name__}")
+    summary = meta.get("summary")
+    if summary is None:
+        return model, None
+    if not isinstance(summary, dict):
+        raise bad("summary", f"expected a JSON object, got {type(summary).__name__}")
+    if "warnings" in summary:
+        raw = summary["warnings"]
+        fields = ("kind", "time", "joints", "message")
+        if not isinstance(raw, list) or not all(
+            isinstance(w, dict) and all(f in w for f in fields)
+            and isinstance(w["joints"], list) and _is_time(w["time"])
+            for w in raw
+        ):
+            raise bad("summary.warnings", f"expected a list of warnings with {', '.join(fields)}")
+        summary["warnings"] = warnings_from(raw)
+    for key in ("lift_off", "impacts"):
+        if key in summary and not (
+            isinstance(summary[key], list) and all(isinstance(r, dict) for r in summary[key])
+        ):
+            raise bad(f"summary.{key}", "expected a list of JSON objects")
+    return model, summary  # type: ignore[return-value]
+
+
+def _is_time(v: Any) -> bool:
+    return isinstance(v, int | float) and not isinstance(v, bool)
 
 
 def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:
@@ -534,6 +588,13 @@ def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float6
     raw = (table.schema.metadata or {}).get(b"camlink")
     meta = json.loads(raw) if raw else {}
     names = list(table.column_names)
+    import pyarrow as pa
+
+    for name, field in zip(names, table.schema, strict=True):
+        if not (pa.types.is_floating(field.type) or pa.types.is_integer(field.type)):
+            raise ModelError(
+                f"cannot read results from '{path}': column '{name}' holds {field.type}, not numbers"
+            )
     if not table.num_rows:
         return names, np.empty((0, len(names))), meta
     data = np.column_stack([table.column(n).to_numpy() for n in names])

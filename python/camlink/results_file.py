@@ -2,7 +2,9 @@
 of its rows when a run wrote them to a file (``output=``).
 
 - Parquet (`ParquetColumns`): a channel is read through pyarrow's column
-  reads of the memory-mapped file.
+  reads of the byte ranges it needs, read from the open file (not mapped
+  into memory: a mapped file cut short while it is read kills the
+  process with SIGBUS).
 - CSV (`CsvColumns`): pyarrow's CSV reader parses, block by block, the
   byte range of the rows that the writer recorded (between the header line
   and the ``# summary`` line), keeping only the channels asked for.
@@ -11,18 +13,18 @@ A source holds its file open from when it is made (one file descriptor,
 closed when the source is garbage-collected) and reads through it: results
 keep reading the file their run wrote even after another run replaced the
 output, or the file was deleted. A file changed in
-place (its size or modification time differ) raises `ModelError` instead of
-returning other numbers.
+place (its size or modification time differ, before or after a read)
+raises `ModelError` instead of returning other numbers.
 """
 
 from __future__ import annotations
 
 import io
-import mmap
 import os
 import weakref
+from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any, Protocol, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -30,6 +32,8 @@ import numpy.typing as npt
 from camlink._core import ModelError
 
 __all__ = ["ColumnSource", "CsvColumns", "ParquetColumns"]
+
+T = TypeVar("T")
 
 #: Bytes of CSV text parsed at a time (more for rows longer than an
 #: eighth of it): pyarrow's reader holds several times a block per column.
@@ -52,6 +56,11 @@ class ColumnSource(Protocol):
         """All rows, columns in the order of `names`, a new array."""
         ...
 
+    def head(self, names: list[str], n: int) -> npt.NDArray[np.float64]:
+        """The first `n` rows (fewer when the file has fewer), columns in
+        the order of `names`, reading no more of the file than they need."""
+        ...
+
 
 def _fill(out: npt.NDArray[np.float64], column: Any) -> None:
     """Copies an Arrow double column (an array or a chunked array) into
@@ -71,8 +80,7 @@ def _fill(out: npt.NDArray[np.float64], column: Any) -> None:
 
 
 class _File:
-    """A file held open, read through a memory map after checking that it
-    did not change."""
+    """A file held open, read after checking that it did not change."""
 
     def __init__(self, path: Path) -> None:
         self.path = path
@@ -96,15 +104,18 @@ class _File:
                 "run wrote it; load it again with camlink.Results.load"
             )
 
-    def contents(self) -> Any:
-        """The file as a `pyarrow.Buffer` over a read-only memory map;
-        `ModelError` when the file changed since the source was made."""
-        import pyarrow as pa
-
+    def guarded(self, read: Callable[[], T]) -> T:
+        """`read()`, with the file checked before and after: `ModelError`
+        when it changed, so that a read the change cut short or mixed up
+        is not returned (nor its own error raised)."""
         self.check()
-        if self._stamp[0] == 0:
-            return pa.py_buffer(b"")
-        return pa.py_buffer(mmap.mmap(self._fd, 0, access=mmap.ACCESS_READ))
+        try:
+            out = read()
+        except (ValueError, OSError, EOFError):
+            self.check()
+            raise
+        self.check()
+        return out
 
 
 class ParquetColumns(_File):
@@ -113,26 +124,42 @@ class ParquetColumns(_File):
     def __init__(self, path: Path) -> None:
         super().__init__(path)
         #: Number of rows, from the file's footer.
-        self.rows = self._file().metadata.num_rows
+        self.rows = self.guarded(lambda: self._file().metadata.num_rows)
 
     def _file(self) -> Any:
-        import pyarrow as pa
         import pyarrow.parquet as pq
 
-        return pq.ParquetFile(pa.BufferReader(self.contents()))
+        return pq.ParquetFile(_Range(self._fd, 0, self._stamp[0]))
 
     def column(self, name: str) -> npt.NDArray[np.float64]:
-        table = self._file().read(columns=[name])
-        out = np.empty(table.num_rows)
-        _fill(out, table.column(0))
-        return out
+        return self.table([name])[:, 0]
 
     def table(self, names: list[str]) -> npt.NDArray[np.float64]:
-        table = self._file().read(columns=names)
-        out = np.empty((table.num_rows, len(names)))
-        for k in range(len(names)):
-            _fill(out[:, k], table.column(k))
-        return out
+        def read() -> npt.NDArray[np.float64]:
+            table = self._file().read(columns=names)
+            out = np.empty((table.num_rows, len(names)))
+            for k in range(len(names)):
+                _fill(out[:, k], table.column(k))
+            return out
+
+        return self.guarded(read)
+
+    def head(self, names: list[str], n: int) -> npt.NDArray[np.float64]:
+        def read() -> npt.NDArray[np.float64]:
+            out = np.empty((min(n, self.rows), len(names)))
+            if not len(out):
+                return out
+            done = 0
+            for batch in self._file().iter_batches(batch_size=len(out), columns=names):
+                m = min(batch.num_rows, len(out) - done)
+                for k in range(len(names)):
+                    _fill(out[done : done + m, k], batch.column(k).slice(0, m))
+                done += m
+                if done == len(out):
+                    break
+            return out
+
+        return self.guarded(read)
 
 
 class CsvColumns(_File):
@@ -150,12 +177,18 @@ class CsvColumns(_File):
         return self.table([name])[:, 0]
 
     def table(self, names: list[str]) -> npt.NDArray[np.float64]:
+        return self.guarded(lambda: self._read(names, self.rows))
+
+    def head(self, names: list[str], n: int) -> npt.NDArray[np.float64]:
+        return self.guarded(lambda: self._read(names, min(n, self.rows)))
+
+    def _read(self, names: list[str], wanted: int) -> npt.NDArray[np.float64]:
+        """The first `wanted` rows of the channels `names`."""
         import pyarrow as pa
         import pyarrow.csv as pacsv
 
-        self.check()
-        out = np.empty((self.rows, len(names)))
-        if self.rows == 0:
+        out = np.empty((wanted, len(names)))
+        if wanted == 0:
             return out
         # Parsed block by block from the file (not mapped: touching every
         # page of a large CSV would count it all as resident memory).
@@ -176,9 +209,12 @@ class CsvColumns(_File):
             n = batch.num_rows
             if done + n > self.rows:
                 break
+            m = min(n, wanted - done)
             for k in range(len(names)):
-                _fill(out[done : done + n, k], batch.column(k))
-            done += n
+                _fill(out[done : done + m, k], batch.column(k).slice(0, m))
+            done += m
+            if done == wanted < self.rows:
+                return out
         if done != self.rows:
             raise ModelError(
                 f"cannot read results from '{self.path}': {done if done < self.rows else 'more'} "
@@ -188,17 +224,29 @@ class CsvColumns(_File):
 
 
 class _Range(io.RawIOBase):
-    """Bytes `start` to `end` of the open file `fd`, read without moving
-    its offset."""
+    """Bytes `start` to `end` of the open file `fd`, read (and seekable)
+    without moving the file's offset."""
 
     def __init__(self, fd: int, start: int, end: int) -> None:
         super().__init__()
         self._fd = fd
+        self._start = start
         self._at = start
         self._end = end
 
     def readable(self) -> bool:
         return True
+
+    def seekable(self) -> bool:
+        return True
+
+    def tell(self) -> int:
+        return self._at - self._start
+
+    def seek(self, offset: int, whence: int = io.SEEK_SET) -> int:
+        base = {io.SEEK_SET: self._start, io.SEEK_CUR: self._at, io.SEEK_END: self._end}[whence]
+        self._at = max(base + offset, self._start)
+        return self._at - self._start
 
     def readinto(self, buffer: Any) -> int:
         n = min(len(buffer), self._end - self._at)

@@ -8,6 +8,7 @@ import http.server
 import socket
 import threading
 import time
+from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
@@ -223,7 +224,7 @@ def test_issue27_study_too_many_variants_is_refused_before_building():
         camlink.monte_carlo(model, {"a": stats.norm(0.12, 0.001)}, {"swing": range_of("rocker.phi")},
                             n=10**9)
 
-    class Lazy:
+    class Lazy(Sequence[dict[str, float]]):
         """10⁹ parameter sets, none built."""
 
         def __len__(self):
