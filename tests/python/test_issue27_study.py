@@ -10,6 +10,7 @@ import threading
 import time
 from collections.abc import Sequence
 
+import distributed.comm  # noqa: F401 (imported here, so that timings measure the connection)
 import numpy as np
 import pandas as pd
 import pytest
@@ -136,6 +137,22 @@ def test_issue27_scheduler_bound_holds_in_python(monkeypatch):
     finally:
         sock.close()
     assert time.monotonic() - start < 4
+
+
+def test_issue27_scheduler_refused_and_worker_addresses(monkeypatch, capsys, tmp_path):
+    from distributed import LocalCluster
+
+    sock, address = _silent_listener()
+    sock.close()  # nothing listens there now
+    code, took, err = _run_bounded(monkeypatch, capsys, tmp_path, address, bound=1.0)
+    assert code == 2 and took < 1.0 + 3, (code, took)
+    assert f"cannot reach the Dask scheduler (Timed out trying to connect to {address}" in err
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
+                      dashboard_address=None) as cluster:
+        worker = next(iter(cluster.scheduler.workers))
+        code, took, err = _run_bounded(monkeypatch, capsys, tmp_path, worker, bound=5.0)
+    assert code == 2, err
+    assert "cannot reach the Dask scheduler (what answers there is a Dask Worker)" in err
 
 
 # --- 2. parameters named like the study's own columns ---------------------

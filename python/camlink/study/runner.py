@@ -527,7 +527,11 @@ def _probe_scheduler(address: str, connection: dict[str, Any], timeout: float) -
     from distributed.comm import connect
 
     async def identity() -> Any:
-        comm = await connect(address, timeout=timeout, **connection)
+        # Dask's connect gives up on a connection not made in its timeout
+        # (an OSError), before the bound of the whole: a timeout of the
+        # whole is then an address that took the connection and did not
+        # answer the handshake.
+        comm = await connect(address, timeout=0.75 * timeout, **connection)
         try:
             await comm.write({"op": "identity", "reply": True})
             return await comm.read()
