@@ -237,6 +237,8 @@ def test_issue27_study_too_many_variants_is_refused_before_building():
     start = time.monotonic()
     with pytest.raises(camlink.ModelError, match=r"sweep \(grid\): 1,000,000,000 variants need about"):
         camlink.sweep(model, grid, {"swing": range_of("rocker.phi")})
+    with pytest.raises(camlink.ModelError, match=r"sweep \(zip\): 1,000,000,000 variants need about"):
+        camlink.sweep(model, {"a": range(10**9)}, {"swing": range_of("rocker.phi")}, mode="zip")
     with pytest.raises(camlink.ModelError, match="monte_carlo: 1,000,000,000 variants need about"):
         camlink.monte_carlo(model, {"a": stats.norm(0.12, 0.001)}, {"swing": range_of("rocker.phi")},
                             n=10**9)

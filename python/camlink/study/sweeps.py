@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sized
 from typing import Any, Literal
 
 import pandas as pd
@@ -28,6 +28,10 @@ def sweep_variants(
     (`camlink.study.runner.check_size`)."""
     if not values:
         raise ModelError("sweep: give at least one parameter and its values")
+    sizes = [len(vs) for vs in values.values() if isinstance(vs, Sized)]
+    if len(sizes) == len(values) and mode in ("grid", "zip"):
+        # Before the lists are copied: one of 10⁹ values is itself too many.
+        check_size(math.prod(sizes) if mode == "grid" else max(sizes), len(values) + 1, f"sweep ({mode})")
     lists: dict[str, list[float]] = {}
     for name, vs in values.items():
         try:
