@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 
 from camlink import simengine2d
+from camlink._core import ModelError
 
 
 def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None:
@@ -25,12 +26,22 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None
         "in the current directory)",
     )
     p.add_argument("--acf", metavar="FILE", help="analysis file (default: MODEL with .acf, if present)")
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace the default output when it exists (a file named with -o is replaced anyway; "
+        "an input never is)",
+    )
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
 
 
 def run(args: argparse.Namespace) -> int:
     """Converts; errors propagate to the CLI's handler (exit 2 for bad input)."""
     output = Path(args.output) if args.output else Path(Path(args.model).stem + ".toml")
+    if not args.output and not args.force and output.exists():
+        raise ModelError(
+            f"{output} exists; pass --force to replace it, or -o to name another output"
+        )
     written = simengine2d.convert(args.model, output, acf=args.acf)
     if not args.quiet:
         print(f"{args.model} → {written}")

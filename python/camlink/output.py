@@ -40,12 +40,13 @@ Each writer's `columns` gives the finished file as a
 
 from __future__ import annotations
 
+import contextlib
 import csv
 import io
 import json
 import os
 import tempfile
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -66,6 +67,7 @@ __all__ = [
     "kind_of",
     "open_writer",
     "partial_path",
+    "replacing",
 ]
 
 #: File name suffixes results are written as.
@@ -123,6 +125,24 @@ def check_not_input(path: Path, inputs: Iterable[str | os.PathLike[str]]) -> Non
                 f"output '{path}' is an input of the model ('{item}'); "
                 "choose another output file name"
             )
+
+
+@contextlib.contextmanager
+def replacing(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """A temporary file beside `path` (same suffix) for the block to write;
+    renamed over `path` in one step when the block ends normally, deleted
+    when it raises. A reader never sees a half-written `path`, and of two
+    writers of the same `path` the last to finish wins, whole."""
+    path = Path(path)
+    if path.is_dir():
+        raise IsADirectoryError(21, "is a directory", str(path))
+    target = _Target(path, path.suffix)
+    try:
+        yield target.temp
+    except BaseException:
+        target.temp.unlink(missing_ok=True)
+        raise
+    target.finish(target.temp, True)
 
 
 class _Target:

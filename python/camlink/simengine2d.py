@@ -13,6 +13,7 @@ from pathlib import Path
 
 from camlink import _core
 from camlink._core import ModelError
+from camlink.output import check_not_input, replacing
 
 __all__ = ["convert"]
 
@@ -30,7 +31,9 @@ def convert(
     `output`'s suffix (``.toml`` or ``.json``). Returns the path written.
 
     The model is loaded first: a model that does not load is not converted
-    (`ModelError` names the file, the entry and the field).
+    (`ModelError` names the file, the entry and the field). `output` is
+    never one of the inputs (the ``.adm``, the ``.acf`` read), and it is
+    written to a temporary file beside it and renamed over it in one step.
     """
     adm, out = Path(adm), Path(output)
     fmt = _FORMATS.get(out.suffix.lower())
@@ -39,6 +42,9 @@ def convert(
     for p in (adm, None if acf is None else Path(acf)):
         if p is not None and not p.is_file():
             raise FileNotFoundError(errno.ENOENT, "no such file", str(p))
+    beside = adm.with_suffix(".acf")
+    check_not_input(out, [adm, acf if acf is not None else beside])
     text = _core.convert_adm(adm, fmt, acf)
-    out.write_text(text, encoding="utf-8")
+    with replacing(out) as temp:
+        temp.write_text(text, encoding="utf-8")
     return out
