@@ -13,6 +13,8 @@ import sys
 from pathlib import Path
 
 from camlink import cam_design, cam_export, cam_plots
+from camlink._core import ModelError
+from camlink.output import check_not_input, replacing
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 
@@ -38,45 +40,88 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None
     p.add_argument(
         "--no-files", action="store_true", help="write no pictures or exports"
     )
+    p.add_argument(
+        "--force",
+        action="store_true",
+        help="replace existing files of the default names (<design>.csv, …); files named in "
+        "[export] are replaced anyway, the design file never",
+    )
 
 
-def _write_files(design: cam_design.Design, out: Path) -> list[str]:
+def _targets(design: cam_design.Design, out: Path, force: bool) -> dict[str, Path]:
+    """The files to write by their ``[export]`` key, checked before any is
+    written: none is the design file, and none of a default name exists
+    unless `force`."""
+    ex = design.export
+    names = {
+        "svaj_plot": ex.svaj,
+        "profile_plot": ex.profile,
+        "csv": ex.csv,
+        "dxf": ex.dxf,
+        "svg": ex.svg,
+    }
+    targets: dict[str, Path] = {}
+    existing: list[str] = []
+    for key, name in names.items():
+        if name is None:
+            continue
+        path = out / name
+        try:
+            check_not_input(path, [design.path])
+        except ModelError:
+            raise cam_design.CamDesignError(
+                f"{design.path}: export.{key}: '{path}' is the design file; "
+                "choose another file name"
+            ) from None
+        if key not in ex.given and not force and path.exists():
+            existing.append(f"{path} (export.{key})")
+        targets[key] = path
+    if existing:
+        raise cam_design.CamDesignError(
+            f"{', '.join(existing)} {'exists' if len(existing) == 1 else 'exist'}; pass --force "
+            f"to replace the files of default names, or name them in [export] of {design.path}"
+        )
+    return targets
+
+
+def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> list[str]:
+    """Writes the pictures and exports into `out`, each to a temporary file
+    renamed over its name when complete; returns the paths written."""
     core = design.core()
     ex = design.export
+    if out.exists() and not out.is_dir():
+        raise cam_design.CamDesignError(f"--out {out}: not a folder")
+    targets = _targets(design, out, force)
     out.mkdir(parents=True, exist_ok=True)
     written: list[str] = []
-    if ex.svaj:
-        fig = cam_plots.svaj(
-            core, oscillating=design.oscillating, title=f"{design.name}: SVAJ"
-        )
-        cam_plots.save(fig, out / ex.svaj)
-        written.append(str(out / ex.svaj))
-    if ex.profile:
-        colour = "rho" if design.follower.endswith("flat") else "pressure_angle"
-        fig = cam_plots.profile(
-            core,
-            base_radius=design.base_radius,
-            colour_by=colour,
-            title=f"{design.name}: profile",
-        )
-        cam_plots.save(fig, out / ex.profile)
-        written.append(str(out / ex.profile))
-    if ex.csv:
-        th = (
-            cam_export.angles_by_chord(core, ex.csv_chord)
-            if ex.csv_chord is not None
-            else cam_export.angles_by_step(ex.csv_step)
-        )
-        cam_export.write_csv(core, out / ex.csv, th, ex.tool_radius)
-        written.append(str(out / ex.csv))
-    if ex.dxf:
-        cam_export.write_dxf(
-            core, out / ex.dxf, ex.tolerance, ex.dxf_mode, ex.tool_radius
-        )
-        written.append(str(out / ex.dxf))
-    if ex.svg:
-        cam_export.write_svg(core, out / ex.svg, ex.tolerance, ex.tool_radius)
-        written.append(str(out / ex.svg))
+    for key, path in targets.items():
+        with replacing(path) as temp:
+            if key == "svaj_plot":
+                fig = cam_plots.svaj(
+                    core, oscillating=design.oscillating, title=f"{design.name}: SVAJ"
+                )
+                cam_plots.save(fig, temp)
+            elif key == "profile_plot":
+                colour = "rho" if design.follower.endswith("flat") else "pressure_angle"
+                fig = cam_plots.profile(
+                    core,
+                    base_radius=design.base_radius,
+                    colour_by=colour,
+                    title=f"{design.name}: profile",
+                )
+                cam_plots.save(fig, temp)
+            elif key == "csv":
+                th = (
+                    cam_export.angles_by_chord(core, ex.csv_chord)
+                    if ex.csv_chord is not None
+                    else cam_export.angles_by_step(ex.csv_step)
+                )
+                cam_export.write_csv(core, temp, th, ex.tool_radius)
+            elif key == "dxf":
+                cam_export.write_dxf(core, temp, ex.tolerance, ex.dxf_mode, ex.tool_radius)
+            else:
+                cam_export.write_svg(core, temp, ex.tolerance, ex.tool_radius)
+        written.append(str(path))
     return written
 
 
@@ -96,12 +141,12 @@ def run(args: argparse.Namespace) -> int:
     try:
         design = cam_design.load(args.design)
         report = cam_design.analyse(design)
+        if not args.no_files:
+            files = _write_files(design, Path(args.out), args.force)
+            report = cam_design.Report(**{**report.__dict__, "files": tuple(files)})
     except cam_design.CamDesignError as e:
         print(f"camlink: error: {e}", file=sys.stderr)
         return EXIT_INPUT
-    if not args.no_files:
-        files = _write_files(design, Path(args.out))
-        report = cam_design.Report(**{**report.__dict__, "files": tuple(files)})
     if args.json:
         print(json.dumps(_clean(report.to_dict()), indent=2))
     else:

@@ -14,13 +14,14 @@ from __future__ import annotations
 import math
 import tomllib
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from camlink._core import CamCore
+from camlink.cam_export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
 
 FOLLOWERS: dict[str, tuple[str, ...]] = {
     "translating-roller": ("offset", "roller_radius"),
@@ -40,6 +41,20 @@ LAWS = (
     "polynomial",
 )
 RPM = 2.0 * math.pi / 60.0
+
+#: Highest cam speed (rev/min) a design file may give.
+MAX_RPM = 1e6
+
+#: Most segments in a motion program (a real program has tens; each one
+#: costs its share of every sample, report line and picture).
+MAX_SEGMENTS = 1000
+
+#: Least span (deg) of a segment.
+MIN_SPAN_DEG = 1e-3
+
+#: Largest length (m) a design file may give: base radius, follower
+#: dimensions, lifts, limits, tool radius, search range.
+MAX_LENGTH = 1e3
 
 
 class CamDesignError(ValueError):
@@ -103,6 +118,9 @@ class Export:
     tool_radius: float | None
     svaj: str | None
     profile: str | None
+    given: frozenset[str] = frozenset()
+    """The export keys whose file names the design file gives (the others
+    are default names, never replaced without ``--force``)."""
 
 
 @dataclass(frozen=True)
@@ -154,8 +172,15 @@ class _Table:
         return CamDesignError(f"{self.path}: {self.where}.{key}: {message}")
 
     def number(
-        self, key: str, default: float | None = None, *, positive: bool = False
+        self,
+        key: str,
+        default: float | None = None,
+        *,
+        positive: bool = False,
+        most: float | None = None,
+        unit: str = "",
     ) -> float:
+        """The number at `key`; with `most`, |value| ≤ `most` (`unit`)."""
         self.used.add(key)
         v = self.data.get(key, default)
         if v is None:
@@ -168,13 +193,21 @@ class _Table:
             raise self.fail(key, f"must be a number, got {v!r}")
         if positive and v <= 0:
             raise self.fail(key, f"must be positive, got {v}")
+        if most is not None and abs(v) > most:
+            raise self.fail(key, f"must be at most {most:g}{unit} in size, got {v}")
         return float(v)
 
-    def optional(self, key: str, *, positive: bool = False) -> float | None:
+    def length(self, key: str, default: float | None = None, *, positive: bool = False) -> float:
+        """A length (m) at `key`: at most `MAX_LENGTH` in size."""
+        return self.number(key, default, positive=positive, most=MAX_LENGTH, unit=" m")
+
+    def optional(
+        self, key: str, *, positive: bool = False, most: float | None = None, unit: str = ""
+    ) -> float | None:
         if key not in self.data:
             self.used.add(key)
             return None
-        return self.number(key, positive=positive)
+        return self.number(key, positive=positive, most=most, unit=unit)
 
     def text(
         self, key: str, default: str | None = None, choices: tuple[str, ...] = ()
@@ -223,7 +256,7 @@ def load(path: str | Path) -> Design:
     name = top.text("name", p.stem)
     cam = _Table(p, "cam", doc.get("cam", {}))
     top.used.add("cam")
-    base = cam.number("base_radius", positive=True)
+    base = cam.length("base_radius", positive=True)
     rotation = cam.text("rotation", "ccw", ("ccw", "cw"))
     cam.finish()
     fol = _Table(p, "follower", doc.get("follower", {}))
@@ -232,7 +265,7 @@ def load(path: str | Path) -> Design:
     dims = []
     for k in FOLLOWERS[kind]:
         dims.append(
-            fol.number(
+            fol.length(
                 k,
                 0.0 if k in ("offset", "face_offset") else None,
                 positive=k not in ("offset", "face_offset"),
@@ -246,23 +279,31 @@ def load(path: str | Path) -> Design:
         raise CamDesignError(
             f"{p}: [[segments]]: the motion program needs at least one segment"
         )
+    if len(raw) > MAX_SEGMENTS:
+        raise CamDesignError(
+            f"{p}: [[segments]]: {len(raw)} segments; a motion program has at most "
+            f"{MAX_SEGMENTS}"
+        )
     segments = []
     for i, r in enumerate(raw):
         s = _Table(p, f"segments[{i}]", r)
         law = s.text("law", None, LAWS)
-        span = math.radians(s.number("span_deg", positive=True))
+        span_deg = s.number("span_deg", positive=True, most=360.0, unit="°")
+        if span_deg < MIN_SPAN_DEG:
+            raise s.fail("span_deg", f"must be at least {MIN_SPAN_DEG:g}°, got {span_deg:g}")
+        span = math.radians(span_deg)
         if oscillating:
-            lift = math.radians(s.number("swing_deg", 0.0))
+            lift = math.radians(s.number("swing_deg", 0.0, most=180.0, unit="°"))
             scale = 1.0
         else:
-            lift = s.number("lift", 0.0)
+            lift = s.length("lift", 0.0)
             scale = 1.0
         start, end = _ends(s, "start", scale), _ends(s, "end", scale)
         s.finish()
         segments.append(Segment(law, span, lift, start, end))
     lim = _Table(p, "limits", doc.get("limits", {}))
     top.used.add("limits")
-    phi = lim.optional("max_pressure_angle_deg", positive=True)
+    phi = lim.optional("max_pressure_angle_deg", positive=True, most=90.0, unit="°")
     rng = None
     if "base_radius_search" in lim.data:
         lim.used.add("base_radius_search")
@@ -270,18 +311,18 @@ def load(path: str | Path) -> Design:
         if not (
             isinstance(v, list)
             and len(v) == 2
-            and all(isinstance(x, (int, float)) for x in v)
-            and 0 < v[0] < v[1]
+            and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
+            and 0 < v[0] < v[1] <= MAX_LENGTH
         ):
             raise lim.fail(
                 "base_radius_search",
-                f"must be [lo, hi] with 0 < lo < hi (m), got {v!r}",
+                f"must be [lo, hi] with 0 < lo < hi ≤ {MAX_LENGTH:g} (m), got {v!r}",
             )
         rng = (float(v[0]), float(v[1]))
     limits = Limits(
         max_pressure_angle=None if phi is None else math.radians(phi),
-        min_radius=lim.optional("min_radius", positive=True),
-        max_face_width=lim.optional("max_face_width", positive=True),
+        min_radius=lim.optional("min_radius", positive=True, most=MAX_LENGTH, unit=" m"),
+        max_face_width=lim.optional("max_face_width", positive=True, most=MAX_LENGTH, unit=" m"),
         base_radius_range=rng,
     )
     lim.finish()
@@ -289,13 +330,13 @@ def load(path: str | Path) -> Design:
     if "dynamics" in doc:
         top.used.add("dynamics")
         d = _Table(p, "dynamics", doc["dynamics"])
-        red = d.optional("redline_rpm", positive=True)
+        red = d.optional("redline_rpm", positive=True, most=MAX_RPM, unit=" rpm")
         dynamics = Dynamics(
             mass=d.number("mass", positive=True),
             spring_rate=d.number("spring_rate", 0.0),
             preload=d.number("preload", 0.0),
             damping=d.number("damping", 0.0),
-            speed=d.number("speed_rpm", positive=True) * RPM,
+            speed=d.number("speed_rpm", positive=True, most=MAX_RPM, unit=" rpm") * RPM,
             redline=None if red is None else red * RPM,
         )
         for k in ("spring_rate", "preload", "damping"):
@@ -306,31 +347,52 @@ def load(path: str | Path) -> Design:
     top.used.add("export")
     stem = p.stem
 
-    def out(key: str, default: str | None) -> str | None:
+    names: dict[str, str] = {}
+    given: set[str] = set()
+
+    def out(key: str, default: str) -> str | None:
         ex.used.add(key)
         v = ex.data.get(key, default)
         if v is False:
             return None
         if not isinstance(v, str) or not v:
             raise ex.fail(key, f"must be a file name or false, got {v!r}")
+        problem = _not_plain(v)
+        if problem:
+            raise ex.fail(
+                key, f"'{v}' {problem}; an export is a plain file name inside the output folder"
+            )
+        if v == p.name:
+            raise ex.fail(key, f"'{v}' is the design file's name; choose another file name")
+        if v in names:
+            raise ex.fail(key, f"'{v}' is also export.{names[v]}; each export needs its own file")
+        names[v] = key
+        if key in ex.data:
+            given.add(key)
         return v
 
-    chord = ex.optional("csv_chord_tolerance", positive=True)
+    chord = ex.optional("csv_chord_tolerance", positive=True, most=MAX_LENGTH, unit=" m")
+    step_deg = None if chord is not None else ex.number("csv_step_deg", 1.0, positive=True)
+    if step_deg is not None and 360.0 / step_deg > MAX_CSV_ROWS:
+        raise ex.fail(
+            "csv_step_deg",
+            f"{step_deg:g}° makes {360.0 / step_deg:.3g} rows; the CSV holds at most "
+            f"{MAX_CSV_ROWS} (a step of at least {360.0 / MAX_CSV_ROWS:g}°)",
+        )
     export = Export(
         csv=out("csv", f"{stem}.csv"),
-        csv_step=0.0
-        if chord is not None
-        else math.radians(ex.number("csv_step_deg", 1.0, positive=True)),
+        csv_step=0.0 if step_deg is None else math.radians(step_deg),
         csv_chord=chord,
         dxf=out("dxf", f"{stem}.dxf"),
         dxf_mode="arcs"
         if ex.text("dxf_mode", "polyline", ("polyline", "arcs")) == "arcs"
         else "polyline",
-        tolerance=ex.number("tolerance", 1e-5, positive=True),
+        tolerance=ex.number("tolerance", 1e-5, positive=True, most=MAX_LENGTH, unit=" m"),
         svg=out("svg", f"{stem}.svg"),
-        tool_radius=ex.optional("tool_radius", positive=True),
+        tool_radius=ex.optional("tool_radius", positive=True, most=MAX_LENGTH, unit=" m"),
         svaj=out("svaj_plot", f"{stem}_svaj.png"),
         profile=out("profile_plot", f"{stem}_profile.png"),
+        given=frozenset(given),
     )
     ex.finish()
     top.finish()
@@ -346,8 +408,38 @@ def load(path: str | Path) -> Design:
         dynamics,
         export,
     )
-    design.core()  # checks the program and the follower's geometry
+    core = design.core()  # checks the program and the follower's geometry
+    th = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
+    bad = ~np.all(np.isfinite(np.asarray(core.surface(th))), axis=1)
+    if bad.any():
+        raise CamDesignError(
+            f"{p}: the synthesised profile is not finite at θ = "
+            f"{math.degrees(th[np.argmax(bad)]):.2f}° (check the base radius, the follower's "
+            "dimensions, the lifts and the end conditions)"
+        )
+    size = float(core.geometry()["max_radius"]) + (export.tool_radius or 0.0)
+    for key, tol in (("tolerance", export.tolerance), ("csv_chord_tolerance", export.csv_chord)):
+        least = MIN_RELATIVE_TOLERANCE * size
+        if tol is not None and tol < least:
+            raise ex.fail(
+                key,
+                f"{tol:g} m is finer than {MIN_RELATIVE_TOLERANCE:g} of the profile's size "
+                f"({size:.6g} m); use at least {least:.3g} m",
+            )
     return design
+
+
+def _not_plain(name: str) -> str:
+    """Why `name` is not a plain file name ("" when it is)."""
+    if "/" in name or "\\" in name:
+        return "holds a path separator"
+    if name in (".", ".."):
+        return "is a folder"
+    if any(ord(c) < 32 for c in name):
+        return "holds a control character"
+    if Path(name).is_absolute() or PureWindowsPath(name).drive:
+        return "is an absolute path"
+    return ""
 
 
 @dataclass(frozen=True)
@@ -384,6 +476,24 @@ class FactorReport:
 
 
 @dataclass(frozen=True)
+class FaceTravel:
+    """Where the contact runs along a flat face over a turn: its least and
+    greatest position (m) from the stem axis (translating) or from the foot
+    of the perpendicular from the pivot (oscillating), and the cam angles
+    (deg) where it gets there; the face must span them."""
+
+    lo: float
+    hi: float
+    lo_at_deg: float
+    hi_at_deg: float
+
+    @property
+    def width(self) -> float:
+        """The face width needed (m)."""
+        return self.hi - self.lo
+
+
+@dataclass(frozen=True)
 class Report:
     """Everything `camlink cam` prints."""
 
@@ -397,7 +507,12 @@ class Report:
     undercut_deg: tuple[tuple[float, float], ...]
     tool_undercut_deg: tuple[tuple[float, float], ...]
     smallest_base_radius: float | None
-    round_trip: tuple[float, float, float]
+    round_trip: tuple[float, float, float] | None
+    """Largest relative errors of displacement, velocity, acceleration;
+    None when the kinematics could not run the cam (a failing check says
+    where)."""
+    face_travel: FaceTravel | None = None
+    """A flat face's contact travel; None for a roller."""
     files: tuple[str, ...] = field(default=())
 
     @property
@@ -409,6 +524,8 @@ class Report:
 
         d = asdict(self)
         d["ok"] = self.ok
+        if self.face_travel is not None:
+            d["face_travel"]["width"] = self.face_travel.width
         return d
 
 
@@ -497,8 +614,10 @@ def analyse(design: Design) -> Report:
     checks.append(
         Check("undercut ranges", float(len(und)), None, None, "", None, not und)
     )
+    travel = None
     if design.follower.endswith("flat"):
-        (lo, _), (hi, _) = g["face_travel"]
+        (lo, lo_at), (hi, hi_at) = g["face_travel"]
+        travel = FaceTravel(lo, hi, deg(lo_at), deg(hi_at))
         width = hi - lo
         limit = lim.max_face_width
         margin = None if limit is None else limit - width
@@ -533,7 +652,7 @@ def analyse(design: Design) -> Report:
         fmin, at = f["min_normal"]
         checks.append(
             Check(
-                f"least contact force at {d.speed / RPM:.0f} rpm",
+                f"least contact force at {d.speed / RPM:.6g} rpm",
                 fmin,
                 0.0,
                 fmin,
@@ -589,7 +708,13 @@ def analyse(design: Design) -> Report:
                 smallest is not None and smallest <= limit,
             )
         )
-    rt = core.round_trip(1.0, 720)
+    try:
+        rt: tuple[float, float, float] | None = core.round_trip(1.0, 720)
+    except ValueError as e:
+        rt = None
+        checks.append(
+            Check("round trip", math.nan, None, None, "", None, False, str(e))
+        )
     return Report(
         name=design.name,
         follower=design.follower,
@@ -612,6 +737,7 @@ def analyse(design: Design) -> Report:
         tool_undercut_deg=_deg_ranges(tool),
         smallest_base_radius=smallest,
         round_trip=rt,
+        face_travel=travel,
     )
 
 
@@ -646,8 +772,9 @@ def format_report(r: Report) -> str:
             "" if c.margin is None or c.limit is None else f", margin {c.margin:.6g})"
         )
         lim += ")" if c.limit is not None and c.margin is None else ""
-        note = f"; {c.note}" if c.note else ""
-        lines.append(f"  {mark} {c.name}: {c.value:.6g} {c.unit}{where}{lim}{note}")
+        value = "" if math.isnan(c.value) else f": {c.value:.6g} {c.unit}"
+        note = "" if not c.note else f"; {c.note}" if value else f": {c.note}"
+        lines.append(f"  {mark} {c.name}{value}{where}{lim}{note}")
     for label, ranges in (
         ("concave", r.concave_deg),
         ("undercut", r.undercut_deg),
@@ -659,13 +786,14 @@ def format_report(r: Report) -> str:
     if r.smallest_base_radius is not None:
         lines.append(f"  smallest base circle: {r.smallest_base_radius:.6g} m")
     lines.append("")
-    d, v, a = r.round_trip
-    lines.append(
-        "round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):"
-    )
-    lines.append(
-        f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)"
-    )
+    if r.round_trip is not None:
+        d, v, a = r.round_trip
+        lines.append(
+            "round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):"
+        )
+        lines.append(
+            f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)"
+        )
     for path in r.files:
         lines.append(f"wrote {path}")
     lines.append("")

@@ -1,7 +1,8 @@
 """Pictures of a cam design: the SVAJ diagram and the cam profile.
 
 Both take a synthesised cam (``camlink._core.CamCore``), draw with
-matplotlib (Agg) and return the figure; ``save`` writes a PNG.
+matplotlib (Agg) and return the figure; ``save`` writes a PNG. Titles are
+shown literally (a ``$`` in a design's name is not mathtext).
 """
 
 from __future__ import annotations
@@ -19,6 +20,12 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Circle
 
 from camlink._core import CamCore
+
+
+def _literal(text: str) -> str:
+    """`text` as matplotlib shows it literally: a ``$`` would start
+    mathtext (and an unmatched one fails to draw)."""
+    return text.replace("$", r"\$")
 
 
 def svaj(
@@ -48,7 +55,7 @@ def svaj(
     axes[-1].set_xlim(0.0, 360.0)
     axes[-1].set_xticks(np.arange(0, 361, 30))
     if title:
-        axes[0].set_title(title)
+        axes[0].set_title(_literal(title))
     return fig
 
 
@@ -123,7 +130,7 @@ def profile(
     ax.set_ylabel("y (m, cam frame)")
     ax.grid(True, lw=0.3)
     if title:
-        ax.set_title(title)
+        ax.set_title(_literal(title))
     return fig
 
 

@@ -227,7 +227,7 @@ def test_dxf_lies_on_the_profile_within_tolerance(tmp_path: Path, mode: str) -> 
                 c, r = e.dxf.center, e.dxf.radius
                 pts = np.column_stack([c[0] + r * np.cos(t), c[1] + r * np.sin(t)])
             else:
-                pts = np.array([e.dxf.start[:2], e.dxf.end[:2]])
+                pts = np.array([tuple(e.dxf.start)[:2], tuple(e.dxf.end)[:2]])
             assert _distance_to(pts, dense).max() < 1.5 * tol
     tool = [e for e in msp if e.dxf.layer == "TOOL"]
     assert len(tool) == 1

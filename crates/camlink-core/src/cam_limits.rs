@@ -110,7 +110,13 @@ fn angles(n: usize) -> impl Iterator<Item = f64> {
 /// Maximum of f near θ by golden-section search on [θ − h, θ + h]; the
 /// sample itself when it is higher.
 fn refine_max(f: impl Fn(f64) -> f64, theta: f64, h: f64) -> Extreme {
-    let m = golden_max(&f, theta - h, theta + h);
+    refine_max_within(f, theta, theta - h, theta + h)
+}
+
+/// Maximum of f near θ by golden-section search on [a, b] (a ≤ θ ≤ b,
+/// rad); the sample itself when it is higher.
+fn refine_max_within(f: impl Fn(f64) -> f64, theta: f64, a: f64, b: f64) -> Extreme {
+    let m = golden_max(&f, a, b);
     if f(m) >= f(theta) {
         Extreme {
             value: f(m),
@@ -134,8 +140,10 @@ pub fn geometry(cam: &Cam) -> Geometry {
     });
     let h = TAU / n as f64;
     let contacts: Vec<Contact> = angles(n).map(|t| cam.contact(t)).collect();
-    // Largest |φ| over the samples of rise (lift > 0) or return segments.
+    // Largest |φ| over the samples of rise (lift > 0) or return segments,
+    // refined inside the segment of the best sample.
     let specs = cam.program.specs();
+    let starts = cam.program.starts();
     let pressure = |rise: bool| {
         let inside = |c: &Contact| {
             let l = specs[cam.program.segment_at(c.theta)].lift;
@@ -149,7 +157,19 @@ pub fn geometry(cam: &Cam) -> Geometry {
             .iter()
             .filter(|c| inside(c))
             .max_by(|a, b| a.pressure_angle.abs().total_cmp(&b.pressure_angle.abs()))?;
-        let e = refine_max(|t| cam.contact(t).pressure_angle.abs(), best.theta, h);
+        // The segment's end belongs to the next segment: the search stops
+        // just short of it.
+        let k = cam.program.segment_at(best.theta);
+        let (a, b) = (
+            starts[k],
+            (starts[k] + specs[k].span - 1e-12).max(starts[k]),
+        );
+        let e = refine_max_within(
+            |t| cam.contact(t).pressure_angle.abs(),
+            best.theta,
+            (best.theta - h).max(a),
+            (best.theta + h).min(b),
+        );
         let c = cam.contact(e.theta);
         Some(Extreme {
             value: c.pressure_angle,
@@ -541,6 +561,48 @@ mod tests {
         let slow = force(&cam, &train, 1e-9).unwrap();
         assert!((slow.min_normal.value - 200.0).abs() < 1e-6);
         assert!((slow.max_normal.value - (200.0 + 20_000.0 * 0.008)).abs() < 1e-6);
+    }
+
+    /// Issue 27: each pressure angle extreme is reported at an angle inside
+    /// a segment of its kind (a rise for the rise, a return for the
+    /// return), also where |φ| grows towards the segment's ends (the
+    /// golden-section search used to step over them into the dwells: to
+    /// 359.95° for a rise from 0°, to 270° for a return ending there).
+    #[test]
+    fn issue27_pressure_extreme_inside_its_segment() {
+        let mut checked = 0;
+        for (rb, pivot, arm, swing, ccw) in [
+            (0.05, 0.1, 0.06, 15.0, true),
+            (0.03, 0.1, 0.06, 15.0, true),
+            (0.03, 0.12, 0.08, 30.0, false),
+            (0.05, 0.12, 0.08, 30.0, true),
+        ] {
+            let f = Follower::OscillatingRoller {
+                pivot,
+                arm,
+                roller: 0.01,
+            };
+            let Ok(cam) = Cam::new(program(deg(swing), 90.0), f, rb, ccw) else {
+                continue;
+            };
+            let g = geometry(&cam);
+            let starts = cam.program.starts();
+            let specs = cam.program.specs();
+            for (e, rise) in [(g.pressure_rise, true), (g.pressure_return, false)] {
+                let e = e.unwrap();
+                let k = cam.program.segment_at(e.theta);
+                assert!(
+                    e.theta >= starts[k] && e.theta < starts[k] + specs[k].span,
+                    "{e:?}"
+                );
+                assert_eq!(specs[k].lift > 0.0, rise, "{e:?} in segment {k}");
+                assert_eq!(specs[k].lift < 0.0, !rise, "{e:?} in segment {k}");
+                // The value is the pressure angle there.
+                assert_eq!(e.value, cam.contact(e.theta).pressure_angle);
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 8);
     }
 
     /// Base circle sizing: the smallest R_b keeps a centred roller's

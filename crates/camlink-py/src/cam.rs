@@ -8,6 +8,8 @@ use camlink_core::cam::motion::EndConditions;
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
 use camlink_core::cam_limits::{self, Extreme, Train};
 use camlink_core::cam_mechanism::round_trip;
+use camlink_core::fmt_num;
+use camlink_core::run::Kind;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -288,11 +290,24 @@ impl CamCore {
     }
 
     /// Round trip at ω (rad/s) in `steps` steps: (displacement, velocity,
-    /// acceleration) relative errors.
+    /// acceleration) relative errors. When the kinematic analysis of the
+    /// cam mechanism stops, a `ValueError` says at which cam angle and why,
+    /// in the design's terms (the mechanism's joints are camlink's own).
     fn round_trip(&self, py: Python<'_>, omega: f64, steps: usize) -> PyResult<(f64, f64, f64)> {
         let r = py
             .detach(|| round_trip(&self.cam, omega, steps))
-            .map_err(value_error)?;
+            .map_err(|e| {
+                let why = match e.kind {
+                    Kind::NotFinite => "the profile's geometry is not finite there",
+                    Kind::Undercut => "the follower meets an undercut or concave part of the profile",
+                    _ => "the follower cannot stay on the profile there (a steep, cusped or undercut part)",
+                };
+                value_error(format!(
+                    "camlink's kinematics of the synthesised cam stops at θ = {}° ({}): {why}",
+                    fmt_num::num((omega * e.time).to_degrees()),
+                    e.kind.name()
+                ))
+            })?;
         Ok((r.displacement, r.velocity, r.acceleration))
     }
 }

@@ -210,13 +210,13 @@ impl Program {
         self.segments.iter().map(|s| s.theta0).collect()
     }
 
-    /// The segment that holds θ (wrapped into [0, 2π)).
+    /// The segment that holds θ (wrapped into [0, 2π)), by bisection of
+    /// the start angles.
     pub fn segment_at(&self, theta: f64) -> usize {
         let th = theta.rem_euclid(TAU);
         self.segments
-            .iter()
-            .rposition(|s| s.theta0 <= th)
-            .unwrap_or(0)
+            .partition_point(|s| s.theta0 <= th)
+            .saturating_sub(1)
     }
 
     /// `[s, s′, s″, s‴, s⁗, s⁽⁵⁾]` at θ (rad, wrapped), from the segment
