@@ -11,7 +11,7 @@ import csv
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TypeAlias
+from typing import Any, TypeAlias
 
 import ezdxf
 import numpy as np
@@ -22,7 +22,7 @@ from camlink._core import CamCore
 Points: TypeAlias = NDArray[np.float64]
 
 #: Finest chord or arc-fit tolerance, relative to the size of the curve
-#: (its largest distance from the cam centre): about 70,000 points for a
+#: (its largest distance from the cam centre): about 80,000 points for a
 #: closed profile at the limit.
 MIN_RELATIVE_TOLERANCE = 1e-9
 
@@ -34,8 +34,16 @@ MAX_POINTS = 2_000_000
 
 
 def angles_by_step(step: float) -> NDArray[np.float64]:
-    """Cam angles θ (rad) over one turn at `step` (rad), the end excluded."""
+    """Cam angles θ (rad) over one turn at `step` (rad), the end excluded;
+    at most `MAX_CSV_ROWS` of them (ValueError for a finer step)."""
+    if not (step > 0 and math.isfinite(step)):
+        raise ValueError(f"the step must be positive, got {step} rad")
     n = max(3, math.ceil(2.0 * math.pi / step - 1e-9))
+    if n > MAX_CSV_ROWS:
+        raise ValueError(
+            f"a step of {math.degrees(step):g}° makes {n} rows; at most {MAX_CSV_ROWS} "
+            f"(a step of at least {360.0 / MAX_CSV_ROWS:g}°)"
+        )
     return np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
 
 
@@ -63,6 +71,11 @@ def angles_by_chord(
     `tolerance` is at least `MIN_RELATIVE_TOLERANCE` of the curve's size
     (`check_tolerance`), which keeps the count below `MAX_POINTS`."""
     check_tolerance(core, tolerance, offset)
+    return _chord_angles(core, tolerance, offset)
+
+
+def _chord_angles(core: CamCore, tolerance: float, offset: float = 0.0) -> NDArray[np.float64]:
+    """`angles_by_chord` without the check of the tolerance."""
     edges = np.linspace(0.0, 2.0 * math.pi, 73)
     done: list[NDArray[np.float64]] = []
     a, b = edges[:-1], edges[1:]
@@ -212,6 +225,13 @@ def fit_arcs(points: Points, tolerance: float, slack: float = 0.0) -> list[Arc]:
     return arcs
 
 
+def _polyline(msp: Any, points: Points, layer: str) -> None:
+    """A closed LWPOLYLINE through `points` on `layer`, its vertex array
+    set in one step (ezdxf's own appending copies the array per point)."""
+    poly = msp.add_lwpolyline([], close=True, dxfattribs={"layer": layer})
+    poly.lwpoints.set(np.column_stack([points, np.zeros((len(points), 3))]))
+
+
 def write_dxf(
     core: CamCore,
     path: str | Path,
@@ -225,13 +245,12 @@ def write_dxf(
     doc = ezdxf.new("R2010", units=6)  # 6: metres
     msp = doc.modelspace()
     doc.layers.add("CAM", color=7)
-    th = angles_by_chord(core, tolerance)
-    pts = np.asarray(core.surface(th))
     count = 0
     if mode == "arcs":
         # Between the points the curve leaves their chord by at most 0.1
         # of the tolerance: the fit keeps the polygon within the rest.
-        dense = np.asarray(core.surface(angles_by_chord(core, 0.1 * tolerance)))
+        check_tolerance(core, tolerance)
+        dense = np.asarray(core.surface(_chord_angles(core, 0.1 * tolerance)))
         for a in fit_arcs(dense, tolerance, slack=0.1 * tolerance):
             if math.isinf(a.radius):
                 msp.add_line(a.p0, a.p1, dxfattribs={"layer": "CAM"})
@@ -241,18 +260,14 @@ def write_dxf(
                 )
             count += 1
     else:
-        msp.add_lwpolyline(
-            [tuple(p) for p in pts], close=True, dxfattribs={"layer": "CAM"}
-        )
+        _polyline(msp, np.asarray(core.surface(angles_by_chord(core, tolerance))), "CAM")
         count = 1
     if tool_radius is not None:
         doc.layers.add("TOOL", color=1)
         tp = np.asarray(
             core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius)
         )
-        msp.add_lwpolyline(
-            [tuple(p) for p in tp], close=True, dxfattribs={"layer": "TOOL"}
-        )
+        _polyline(msp, tp, "TOOL")
     doc.saveas(path)
     return count
 

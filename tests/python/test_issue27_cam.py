@@ -210,6 +210,11 @@ def test_issue27_export_bounds_hold_from_python_too() -> None:
         cam_export.angles_by_chord(core, 1e-300)
     with pytest.raises(ValueError, match="finer than"):
         cam_export.write_dxf(core, os.devnull, 0.5 * cam_export.MIN_RELATIVE_TOLERANCE * size)
+    with pytest.raises(ValueError, match="rows"):
+        cam_export.angles_by_step(math.radians(1e-7))
+    assert len(cam_export.angles_by_step(math.radians(360.0 / cam_export.MAX_CSV_ROWS))) == (
+        cam_export.MAX_CSV_ROWS
+    )
     # At the bound the count stays far below MAX_POINTS.
     th = cam_export.angles_by_chord(core, cam_export.MIN_RELATIVE_TOLERANCE * size)
     assert 10_000 < len(th) < cam_export.MAX_POINTS // 10
