@@ -1,10 +1,12 @@
 """Drawing a mechanism from its own model, at any instant of a run.
 
 `draw(model_or_results, t=...)` returns a matplotlib `Figure`: links through
-each body's joint and named points, pins, ground anchors, guides and
-sliders, cam and roller curves (sampled so that the drawn outline is within
-a quarter pixel of the exact curve), flat faces, slots as double lines and
-gear pitch circles, with optional traces of body points and force vectors.
+each body's joint and named points, pins, ground anchors (turned away from
+their links), guides and sliders, cam and roller curves (sampled so that the
+drawn outline is within a quarter pixel of the exact curve), flat faces,
+slots as double lines, gear pitch circles, springs and dampers, with
+optional traces of body points (each marked where it is), force vectors and
+body and joint names; labels are moved apart so that none overlaps another.
 The frame holds the whole motion; both axes share one scale, in metres.
 
 `Drawing` keeps the artists of one figure and moves them to any output row
@@ -20,20 +22,24 @@ from typing import TYPE_CHECKING
 import numpy as np
 import numpy.typing as npt
 from matplotlib.artist import Artist
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import FancyArrowPatch, Polygon
+from matplotlib.text import Text
+from matplotlib.transforms import Bbox
 
 from camlink._core import AnalysisError, ModelError
-from camlink.scene import GROUND, Guide, Rod, Scene, place
+from camlink.scene import GROUND, Guide, Pin, Rod, Scene, place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.backend_bases import RendererBase
 
     from camlink.model import Model
     from camlink.results import Results
 
-__all__ = ["Drawing", "Frame", "Shape", "draw", "resolve"]
+__all__ = ["Drawing", "Frame", "Shape", "angle_text", "draw", "number_text", "resolve"]
 
 Array = npt.NDArray[np.float64]
 
@@ -43,6 +49,12 @@ CAM_COLOR = "#c9d3de"
 EDGE = "#1a1a1a"
 TRACE_COLOR = "#b03a2e"
 FORCE_COLOR = "#1f5f99"
+SPRING_COLOR = "#2e6b30"
+LABEL_COLOR = "#333333"
+#: Half-coils of a drawn spring.
+SPRING_ZIGS = 12
+#: Font size (pt) of the title.
+TITLE_SIZE = 10.0
 #: Rows over which the frame is fitted to the motion (evenly spaced).
 FRAMING_ROWS = 240
 
@@ -143,9 +155,12 @@ class Drawing:
     """A figure of a mechanism whose artists move to any output row.
 
     `results` gives the motion (None: the file's placement); `traces` names
-    body points (``"coupler.P"``) whose paths are drawn; `forces` names
-    joints whose force on body j (``<joint>.fx_j``, ``.fy_j``, N) is drawn
-    as an arrow at the joint; `width` is the figure width (in) at `dpi`.
+    body points (``"coupler.P"``) whose paths are drawn, each marked where
+    the point is; `forces` names joints whose force on body j
+    (``<joint>.fx_j``, ``.fy_j``, N) is drawn as an arrow at the joint;
+    `labels` writes each body's name on it and each joint's beside it;
+    `width` is the figure width (in) at `dpi`; `title` is written above the
+    frame, wrapped to its width.
     """
 
     def __init__(
@@ -158,6 +173,7 @@ class Drawing:
         width: float = 6.4,
         dpi: int = 100,
         title: str | None = None,
+        labels: bool = False,
     ) -> None:
         self.model = model
         self.results = results
@@ -171,9 +187,14 @@ class Drawing:
         pad = 0.08 * size
         lo, hi = lo - pad, hi + pad
         self.figure = Figure(dpi=dpi)
+        FigureCanvasAgg(self.figure)
         self.ax = self.figure.add_axes((0.1, 0.1, 0.8, 0.8))
         _style(self.ax)
-        self.frame = _layout(self.figure, self.ax, lo, hi, width, dpi)
+        self.title = _wrap(title, width) if title else None
+        # Room above the frame for the title's lines and its pad.
+        self._top = 0.15 + (
+            (self.title.count("\n") + 1) * 1.25 * TITLE_SIZE + 8.0) / 72 if self.title else 0.0
+        self.frame = _layout(self.figure, self.ax, lo, hi, width, dpi, self._top)
         tol = 0.25 / self.frame.px_per_m
         self.scene = Scene.of(model, tol=tol)
         self.poses = self.scene.poses(results)
@@ -181,9 +202,15 @@ class Drawing:
         #: The artists that move, by id, with their body and local points.
         self._moving: dict[int, tuple[str, Array, Artist]] = {}
         self._growing: list[tuple[Line2D, Array]] = []
-        self._arrows: list[tuple[FancyArrowPatch, Array, Array, object, str]] = []
+        self._arrows: list[tuple[FancyArrowPatch, Array, Array, Text, str]] = []
         self._static: list[Array] = []
         self._rods: list[tuple[Rod, Line2D]] = []
+        #: Springs and dampers: the line, its kind, and the global paths
+        #: (rows × 2, m) of its two ends.
+        self._springs: list[tuple[Line2D, str, Array, Array]] = []
+        #: Body and joint names: the text and the global path (rows × 2,
+        #: m) of the point it names.
+        self._names: list[tuple[Text, Array]] = []
         self._width, self._dpi = width, dpi
         self.pin_radius = 0.012 * size
         self.half_width = 0.022 * size
@@ -194,8 +221,10 @@ class Drawing:
             fontsize=9, family="monospace", color="#333333", zorder=10,
             bbox={"facecolor": "white", "edgecolor": "none", "pad": 1.5, "alpha": 0.85},
         )
-        if title:
-            self.ax.set_title(title, fontsize=10)
+        if labels:
+            self._draw_names()
+        if self.title:
+            self.ax.set_title(self.title, fontsize=TITLE_SIZE)
         self._fit()
 
     def _fit(self) -> None:
@@ -216,13 +245,15 @@ class Drawing:
         for _, at, vec, _, _ in self._arrows:
             found.append(at)
             found.append(at + vec)
+        for _, _, a, b in self._springs:
+            found.extend((a, b))
         pts = np.vstack(found)
         lo, hi = pts.min(axis=0), pts.max(axis=0)
         pad = 0.05 * self.size
         lo, hi = lo - pad, hi + pad
         # Room above for the time read-out.
         hi = hi + np.array([0.0, 0.06 * float(hi[1] - lo[1])])
-        self.frame = _layout(self.figure, self.ax, lo, hi, self._width, self._dpi)
+        self.frame = _layout(self.figure, self.ax, lo, hi, self._width, self._dpi, self._top)
 
     # -- building -------------------------------------------------------------
 
@@ -248,7 +279,9 @@ class Drawing:
         viewer draws."""
         out: list[Shape] = []
         for artist in [*self.ax.patches, *self.ax.lines]:
-            if isinstance(artist, FancyArrowPatch):
+            # Arrows, springs and dampers change shape from row to row.
+            if isinstance(artist, FancyArrowPatch) or (artist.get_gid() or "").startswith(
+                    ("spring", "damper")):
                 continue
             moving = self._moving.get(id(artist))
             if moving is not None:
@@ -324,18 +357,164 @@ class Drawing:
             if p.grounded:
                 body, s = (p.body_i, p.s_i) if p.body_i == GROUND else (p.body_j, p.s_j)
                 if body == GROUND:
-                    self._static.append(_ground_anchor(ax, np.asarray(s), r_pin, self.size))
+                    away = self._away_from_links(p)
+                    self._static.append(_ground_anchor(ax, np.asarray(s), r_pin, self.size, away,
+                                                       f"ground:{p.joint}"))
         for rod in scene.rods:
             self._draw_pin(rod.body_i, rod.s_i, f"pin:{rod.joint}:i")
             self._draw_pin(rod.body_j, rod.s_j, f"pin:{rod.joint}:j")
-        # Traces of body points over the whole run, grown as time goes.
+        # Springs and dampers between their attachment points.
+        self._draw_springs()
+        # Traces of body points over the whole run, grown as time goes,
+        # each with a mark where the point is.
         for name in traces:
             path = self.scene.point_path(name, self.poses)
             (line,) = ax.plot(path[:, 0], path[:, 1], color=TRACE_COLOR, linewidth=1.1,
                               zorder=5.8, gid=f"trace:{name}")
             self._growing.append((line, path))
+            body, _, point = name.partition(".")
+            self._line(body, np.array([self.scene.points[body][point]]), 6.8, marker="o",
+                       markersize=5.0, markerfacecolor=TRACE_COLOR, markeredgecolor="white",
+                       markeredgewidth=0.8, linestyle="none", color=TRACE_COLOR,
+                       gid=f"mark:{name}")
         # Forces on body j at each joint, scaled to the largest over the run.
         self._draw_forces(forces)
+
+    def _away_from_links(self, pin: Pin) -> Array:
+        """The unit direction in which a ground pin's anchor stands: the
+        first of down, up, left, right and the diagonals that stays 60° or
+        more from every direction in which the pinned body reaches over
+        the run, else the one farthest from them (down when the body
+        reaches every way, as a full-turning crank does)."""
+        body, s = (pin.body_j, pin.s_j) if pin.body_i == GROUND else (pin.body_i, pin.s_i)
+        local = [np.array(list(self.scene.points.get(body, {}).values())).reshape(-1, 2)]
+        local += [link.points for link in self.scene.links if link.body == body]
+        local += [c.points for c in self.scene.curves if c.body == body]
+        if body in self.scene.outlines:
+            local.append(self.scene.outlines[body])
+        pts = np.vstack(local)
+        pts = pts[np.hypot(*(pts - np.asarray(s)).T) > 2.0 * self.pin_radius]
+        down = np.array([0.0, -1.0])
+        if not len(pts):
+            return down
+        n = len(self.poses[body])
+        rows = np.unique(np.linspace(0, n - 1, min(n, FRAMING_ROWS)).astype(int))
+        origin = np.asarray(pin.s_i if pin.body_i == GROUND else pin.s_j)
+        reach = np.vstack([place(pts, self.poses[body][k]) for k in rows]) - origin
+        angles = np.arctan2(reach[:, 1], reach[:, 0])
+        best, best_gap = down, -1.0
+        for deg in (-90.0, 90.0, 180.0, 0.0, -135.0, -45.0, 135.0, 45.0):
+            a = np.radians(deg)
+            gap = float(np.min(np.abs(np.angle(np.exp(1j * (angles - a))))))
+            if gap >= np.radians(60.0):
+                return np.array([np.cos(a), np.sin(a)])
+            if gap > best_gap + 1e-9:
+                best, best_gap = np.array([np.cos(a), np.sin(a)]), gap
+        return best if best_gap >= np.radians(20.0) else down
+
+    def _draw_springs(self) -> None:
+        """Springs (zigzags) and dampers (dashpots) of the model's
+        spring–damper–actuators, and torsion springs (spirals round the pin
+        joining their bodies)."""
+        for f in self.model._core.forces:
+            bi, bj = f["bodies"]
+            k, c = float(f["stiffness"] or 0.0), float(f["damping"] or 0.0)
+            if f["kind"] == "tsda":
+                assert f["s_i"] is not None and f["s_j"] is not None
+                a = np.stack([place(np.asarray(f["s_i"])[None, :], q)[0] for q in self.poses[bi]])
+                b = np.stack([place(np.asarray(f["s_j"])[None, :], q)[0] for q in self.poses[bj]])
+                # Spring and damper side by side when it has both; an
+                # actuator alone is drawn as a spring.
+                kinds = ["spring"] * (k != 0.0 or c == 0.0) + ["damper"] * (c != 0.0)
+                for kind in kinds:
+                    (line,) = self.ax.plot([], [], color=SPRING_COLOR, linewidth=1.2, zorder=4.2,
+                                           solid_joinstyle="miter", gid=f"{kind}:{f['name']}")
+                    self._springs.append((line, kind if len(kinds) == 1 else f"{kind}+", a, b))
+                for end, path in (("i", a), ("j", b)):
+                    (dot,) = self.ax.plot([], [], marker="o", markersize=3.0, color=SPRING_COLOR,
+                                          linestyle="none", zorder=4.3,
+                                          gid=f"spring-end:{f['name']}:{end}")
+                    self._springs.append((dot, "end", path, path))
+            elif f["kind"] == "rsda":
+                pin = next((p for p in self.scene.pins if {p.body_i, p.body_j} == {bi, bj}), None)
+                if pin is None:
+                    continue
+                turns = np.linspace(0.0, 2.5 * 2 * np.pi, 160)
+                r = self.pin_radius * (1.4 + 1.6 * turns / turns[-1])
+                spiral = np.column_stack([pin.s_i[0] + r * np.cos(turns),
+                                          pin.s_i[1] + r * np.sin(turns)])
+                self._line(pin.body_i, spiral, 5.5, color=SPRING_COLOR, linewidth=1.1,
+                           gid=f"torsion:{f['name']}")
+
+    def _draw_names(self) -> None:
+        """Each body's name at the middle of its shape, each joint's beside
+        its point (a pin's centre, a slider's block, a gear pair's pitch
+        point, a curve contact's contact point when the run has it)."""
+        scene = self.scene
+        middles: dict[str, Array] = {}
+        for link in scene.links:
+            middles[link.body] = link.points.mean(axis=0)
+        for body, outline in scene.outlines.items():
+            middles[body] = outline.mean(axis=0)
+        for c in scene.curves:
+            if c.role in ("cam", "roller"):
+                middles.setdefault(c.body, c.points.mean(axis=0))
+        for g in scene.gears:
+            middles.setdefault(g.body, np.asarray(g.centre))
+        for body in scene.bodies:
+            middle = middles.get(body, np.zeros(2))
+            self._name("body", body, self._path(body, middle))
+        named: set[str] = set()
+        ends: list[Pin | Rod] = [*scene.pins, *scene.rods]
+        for end in ends:
+            if end.joint not in named:
+                named.add(end.joint)
+                self._name("joint", end.joint, self._path(end.body_i, np.asarray(end.s_i)))
+        for guide in scene.guides:
+            named.add(guide.joint)
+            block = next(a for a in self.ax.patches if a.get_gid() == f"slider:{guide.joint}")
+            local = self._moving[id(block)][1]
+            self._name("joint", guide.joint, self._path(guide.body_j, local.mean(axis=0)))
+        res = self.results
+        for joint in dict.fromkeys(c.joint for c in scene.curves):
+            if joint not in named and res is not None and f"{joint}.cx" in res:
+                named.add(joint)
+                self._name("joint", joint, np.column_stack([res[f"{joint}.cx"], res[f"{joint}.cy"]]))
+        gears = scene.gears
+        for g in gears:
+            if g.joint in named:
+                continue
+            other = next((h for h in gears if h.joint == g.joint and h is not g), None)
+            if other is None:
+                continue
+            named.add(g.joint)
+            ci = self._path(g.body, np.asarray(g.centre))
+            cj = self._path(other.body, np.asarray(other.centre))
+            d = cj - ci
+            dist = np.hypot(d[:, 0], d[:, 1])
+            dist[dist == 0] = 1.0
+            # The pitch point: on the line of centres, a pitch radius from
+            # the first gear's centre (outside it for a ring gear's mate).
+            sign = -1.0 if other.internal else 1.0
+            self._name("joint", g.joint, ci + sign * g.radius * d / dist[:, None])
+
+    def _path(self, body: str, local: Array) -> Array:
+        """Global path (rows × 2, m) of the point `local` of `body`."""
+        q = self.poses[body]
+        c, s = np.cos(q[:, 2]), np.sin(q[:, 2])
+        return np.column_stack([q[:, 0] + c * local[0] - s * local[1],
+                                q[:, 1] + s * local[0] + c * local[1]])
+
+    def _name(self, kind: str, text: str, path: Array) -> None:
+        """A body's name (bold, centred on its point) or a joint's (beside
+        its point) at the global `path` (rows × 2, m)."""
+        label = self.ax.text(0, 0, text, fontsize=9.0 if kind == "body" else 8.0,
+                             fontweight="bold" if kind == "body" else "normal",
+                             color=LABEL_COLOR, ha="left", va="bottom", zorder=9.5,
+                             gid=f"{kind}:{text}",
+                             bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.8,
+                                   "alpha": 0.75})
+        self._names.append((label, path))
 
     def _draw_pin(self, body: str, s: tuple[float, float], gid: str) -> None:
         a = np.linspace(0.0, 2 * np.pi, 33)
@@ -390,7 +569,8 @@ class Drawing:
             rail = np.array([off + a0 * v, off + a1 * v])
             self._line(g.body_i, rail, 4, color=EDGE, linewidth=1.1, gid=f"guide:{g.joint}")
             if g.body_i == GROUND:
-                self._static.append(_hatch(self.ax, rail[0], rail[1], side * n, self.size))
+                self._static.append(_hatch(self.ax, rail[0], rail[1], side * n, self.size,
+                                           f"ground:{g.joint}:hatch"))
 
     def _contact_other(self, body: str) -> Array:
         """Global position (row 0) of the body on the other side of `body`'s
@@ -442,7 +622,9 @@ class Drawing:
             arrow = FancyArrowPatch((0, 0), (0, 0), arrowstyle="-|>", mutation_scale=12,
                                     color=FORCE_COLOR, linewidth=1.6, zorder=8, gid=f"force:{j}")
             self.ax.add_patch(arrow)
-            text = self.ax.text(0, 0, "", fontsize=8, color=FORCE_COLOR, zorder=9)
+            text = self.ax.text(0, 0, "", fontsize=8, color=FORCE_COLOR, zorder=9, gid=f"force-label:{j}",
+                                bbox={"facecolor": "white", "edgecolor": "none", "pad": 0.8,
+                                      "alpha": 0.75})
             self._arrows.append((arrow, at, vec * scale, text, j))
 
     def _joint_path(self, joint: str) -> Array:
@@ -478,18 +660,90 @@ class Drawing:
         for line, path in self._growing:
             shown = path[: k + 1] if grow else path
             line.set_data(shown[:, 0], shown[:, 1])
+        for line, kind, a, b in self._springs:
+            if kind == "end":
+                line.set_data([a[k, 0]], [a[k, 1]])
+                continue
+            amp = 0.6 * self.half_width
+            # A spring and a damper side by side sit apart on bars.
+            shift = 0.0 if not kind.endswith("+") else (1.3 if kind.startswith("spring") else -1.3)
+            xy = _zigzag(a[k], b[k], amp, shift * amp) if kind.startswith("spring") else _dashpot(
+                a[k], b[k], amp, shift * amp)
+            line.set_data(xy[:, 0], xy[:, 1])
+        parts = [f"t = {number_text(float(self.times[k]), '.3f')} s"] if self.results is not None else []
+        for cam in self.cams[:1]:
+            parts.append(f"θ = {angle_text(float(self.poses[cam][k, 2]))}")
+        self.label.set_text("   ".join(parts))
+        # Labels, placed one after another clear of those before them.
+        placed = [self._extent(self.label)] if parts else []
+        # A joint's name clears its pin.
+        pin_px = 1.15 * self.pin_radius * self.frame.px_per_m
+        for name_text, path in self._names:
+            on_body = (name_text.get_gid() or "").startswith("body:")
+            self._place(name_text, path[k], placed, centred=on_body, clear=0.0 if on_body else pin_px)
         for arrow, at, vec, text, name in self._arrows:
             p, f = at[k], vec[k]
             arrow.set_positions(tuple(p), tuple(p + f))
             assert self.results is not None
             mag = float(np.hypot(self.results[f"{name}.fx_j"][k], self.results[f"{name}.fy_j"][k]))
-            text.set_position(tuple(p + f))  # type: ignore[attr-defined]
-            text.set_text(f" {name}: {mag:.3g} N")  # type: ignore[attr-defined]
-        parts = [f"t = {self.times[k]:.3f} s"] if self.results is not None else []
-        for cam in self.cams[:1]:
-            angle = np.degrees(self.poses[cam][k, 2]) % 360.0
-            parts.append(f"θ = {angle:.1f}°")
-        self.label.set_text("   ".join(parts))
+            text.set_text(f"{name}: {number_text(mag, '.3g')} N")
+            self._place(text, p + f, placed, centred=False, clear=0.0)
+
+    def _renderer(self) -> RendererBase:
+        get = getattr(self.figure.canvas, "get_renderer", None)
+        return get() if get is not None else FigureCanvasAgg(self.figure).get_renderer()
+
+    def _extent(self, text: Text) -> Bbox:
+        """A text's box (display pixels) with its background patch."""
+        renderer = self._renderer()
+        box = text.get_window_extent(renderer)
+        patch = text.get_bbox_patch()
+        if patch is not None:
+            text.update_bbox_position_size(renderer)
+            box = Bbox.union([box, patch.get_window_extent(renderer)])
+        return box
+
+    def _place(self, text: Text, at: Array, placed: list[Bbox], centred: bool, clear: float) -> None:
+        """Puts `text` near the global point `at` (m) where its box overlaps
+        none of `placed` (display pixels) and stays in the frame: centred
+        on the point (for `centred`) or beside it, `clear` pixels and a
+        small gap away, then ever farther round it. The box is added to
+        `placed`."""
+        anchor = self.ax.transData.transform(np.asarray(at, dtype=np.float64).reshape(1, 2))[0]
+        inverse = self.ax.transData.inverted()
+        text.set_horizontalalignment("left")
+        text.set_verticalalignment("bottom")
+        text.set_position(tuple(inverse.transform(anchor)))
+        box = self._extent(text)
+        w, h = box.width, box.height
+        # Where the box's lower left goes, relative to its text's lower left.
+        lift = np.array([box.x0, box.y0]) - anchor
+        gap = clear + 2.0 * self.figure.dpi / 72.0
+        spots = [(-w / 2, -h / 2)] if centred else []
+        for ring in range(6):
+            d = gap + ring * h
+            # Diagonal spots clear a round pin at d / √2 across and up.
+            for sx, sy in ((1, 1), (1, -1), (-1, 1), (-1, -1), (1, 0), (-1, 0), (0, 1), (0, -1)):
+                e = d / np.sqrt(2.0) if sx and sy else d
+                x = e if sx > 0 else (-e - w if sx < 0 else -w / 2)
+                y = e if sy > 0 else (-e - h if sy < 0 else -h / 2)
+                spots.append((x, y))
+        frame = self.ax.bbox
+        fits = None
+        for dx, dy in spots:
+            cand = Bbox.from_bounds(anchor[0] + dx, anchor[1] + dy, w, h)
+            if any(cand.overlaps(other) for other in placed):
+                continue
+            inside = (cand.x0 >= frame.x0 and cand.x1 <= frame.x1
+                      and cand.y0 >= frame.y0 and cand.y1 <= frame.y1)
+            if inside:
+                fits = (dx, dy)
+                break
+            if fits is None:
+                fits = (dx, dy)
+        dx, dy = fits if fits is not None else spots[0]
+        text.set_position(tuple(inverse.transform(anchor + np.array([dx, dy]) - lift)))
+        placed.append(self._extent(text))
 
     def pixel(self, xy: npt.ArrayLike) -> Array:
         """Pixel positions (k × 2, from the image's top left) of global
@@ -509,6 +763,7 @@ def draw(
     width: float = 6.4,
     dpi: int = 100,
     title: str | None = None,
+    labels: bool = False,
 ) -> Figure:
     """A figure of the mechanism at time `t` (s; the output row nearest it,
     default the first).
@@ -518,20 +773,95 @@ def draw(
     placement) or `Results` (drawn with the model that produced them).
     `traces` names body points (``"coupler.P"``) whose whole path is drawn;
     `forces` names joints whose force on body j (N) is drawn as an arrow,
-    scaled to the largest over the run and labelled. The frame holds the
-    whole motion; axes in metres on one scale.
+    scaled to the largest over the run and labelled; `labels` writes the
+    bodies' and joints' names. The frame holds the whole motion; axes in
+    metres on one scale.
     """
     model, res = resolve(source)
     if results is not None:
         res = results
     if res is None:
         res = motion_of(model)
-    drawing = Drawing(model, res, traces=traces, forces=forces, width=width, dpi=dpi, title=title)
+    drawing = Drawing(model, res, traces=traces, forces=forces, width=width, dpi=dpi, title=title,
+                      labels=labels)
     drawing.show(drawing.row(t))
     return drawing.figure
 
 
+def number_text(value: float, spec: str) -> str:
+    """`value` formatted by `spec`, never as a negative zero (``-0.000``
+    is written ``0.000``)."""
+    text = format(value, spec)
+    if text.startswith("-") and float(text) == 0.0:
+        return text[1:]
+    return text
+
+
+def angle_text(phi: float) -> str:
+    """An angle φ (rad) in degrees on [0, 360) to one decimal: an angle
+    that rounds to 360.0° or to −0.0° is written 0.0°."""
+    deg = round(float(np.degrees(phi)), 1) % 360.0
+    return f"{0.0 if deg >= 359.95 else deg + 0.0:.1f}°"
+
+
+def _wrap(title: str, width: float) -> str:
+    """`title` broken at spaces into lines that fit a figure `width` (in)
+    wide at `TITLE_SIZE`; a word longer than a line stays whole."""
+    import textwrap
+
+    # Sans-serif glyphs average under 0.62 em; the title is centred over
+    # the axes, whose centre is 0.3 in right of the figure's.
+    chars = max(8, int((width - 0.6) * 72 / (0.62 * TITLE_SIZE)))
+    return "\n".join(textwrap.wrap(title, chars, break_long_words=False)) or title
+
+
 # -- geometry helpers ----------------------------------------------------------
+
+
+def _zigzag(a: Array, b: Array, amp: float, shift: float) -> Array:
+    """A spring from `a` to `b` (m): straight ends of a sixth of its length,
+    `SPRING_ZIGS` half-coils between of half-width `amp` (m); `shift` (m)
+    moves the coils sideways, joined to the ends by bars."""
+    d = b - a
+    length = float(np.hypot(*d)) or 1e-12
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    lead = length / 6
+    t = lead + (np.arange(SPRING_ZIGS) + 0.5) / SPRING_ZIGS * (length - 2 * lead)
+    side = np.where(np.arange(SPRING_ZIGS) % 2 == 0, 1.0, -1.0)
+    coils = a + t[:, None] * u + (shift + side[:, None] * amp) * n
+    ends = [a, a + lead * u + shift * n], [b - lead * u + shift * n, b]
+    if shift:
+        ends = ([a, a + 0.5 * lead * u, a + 0.5 * lead * u + shift * n, a + lead * u + shift * n],
+                [b - lead * u + shift * n, b - 0.5 * lead * u + shift * n, b - 0.5 * lead * u, b])
+    return np.vstack([*ends[0], coils, *ends[1]])
+
+
+def _dashpot(a: Array, b: Array, amp: float, shift: float) -> Array:
+    """A damper from `a` to `b` (m): a cylinder (open towards `b`,
+    half-width `amp`) on a rod from `a`, a piston on a rod from `b`;
+    `shift` (m) moves it sideways, joined to the ends by bars. Pieces are
+    separated by NaN rows."""
+    d = b - a
+    length = float(np.hypot(*d)) or 1e-12
+    u = d / length
+    n = np.array([-u[1], u[0]])
+    c = a + shift * n
+    e = b + shift * n
+
+    def at(f: float, side: float = 0.0) -> Array:
+        return c + f * length * u + side * amp * n
+
+    gap = np.full(2, np.nan)
+    rod_a = [a, a + 0.15 * length * u, c + 0.15 * length * u] if shift else [a]
+    rod_b = [b, b - 0.15 * length * u, e - 0.15 * length * u] if shift else [b]
+    return np.vstack([
+        *rod_a, at(0.3), gap,
+        at(0.7, 1.0), at(0.3, 1.0), at(0.3, -1.0), at(0.7, -1.0), gap,
+        at(0.55, 0.8), at(0.55, -0.8), gap,
+        at(0.55), *rod_b[::-1],
+    ])
+
 
 
 def _v(v: Array) -> Array:
@@ -598,11 +928,13 @@ def _style(ax: Axes) -> None:
         spine.set_color("#777777")
 
 
-def _layout(fig: Figure, ax: Axes, lo: Array, hi: Array, width: float, dpi: int) -> Frame:
+def _layout(fig: Figure, ax: Axes, lo: Array, hi: Array, width: float, dpi: int,
+            title: float = 0.0) -> Frame:
     """Sizes the figure and its axes box to the aspect of the data limits
-    `lo`–`hi` (m), so that one metre is as many pixels across as up. The
-    pixel size truncates as the Agg canvas does."""
-    left, right, bottom, top = 0.75, 0.15, 0.5, 0.15
+    `lo`–`hi` (m), so that one metre is as many pixels across as up, with
+    `title` (in) more above the axes for a title. The pixel size truncates
+    as the Agg canvas does."""
+    left, right, bottom, top = 0.75, 0.15, 0.5, 0.15 + title
     aw = width - left - right
     w, h = float(hi[0] - lo[0]), float(hi[1] - lo[1])
     ah = aw * h / w
@@ -673,7 +1005,7 @@ def _circle_count(r: float, tol: float) -> int:
     return max(16, int(np.ceil(np.pi / np.arccos(1.0 - tol / r))))
 
 
-def _hatch(ax: Axes, a: Array, b: Array, side: Array, size: float) -> Array:
+def _hatch(ax: Axes, a: Array, b: Array, side: Array, size: float, gid: str | None = None) -> Array:
     """Short slanted strokes along the segment a–b on its `side`: the
     textbook sign of the ground."""
     length = 0.014 * size
@@ -685,17 +1017,20 @@ def _hatch(ax: Axes, a: Array, b: Array, side: Array, size: float) -> Array:
     for f in np.linspace(0.0, 1.0, count):
         p = a + f * d
         q = p + length * slant
-        ax.plot([p[0], q[0]], [p[1], q[1]], color=EDGE, linewidth=0.7, zorder=1)
+        ax.plot([p[0], q[0]], [p[1], q[1]], color=EDGE, linewidth=0.7, zorder=1, gid=gid)
         ends.append(q)
     return np.asarray(ends)
 
 
-def _ground_anchor(ax: Axes, s: Array, r: float, size: float) -> Array:
-    """A fixed pivot: a triangle under the pin on a hatched base."""
+def _ground_anchor(ax: Axes, s: Array, r: float, size: float, away: Array, gid: str) -> Array:
+    """A fixed pivot: a triangle from the pin to a hatched base, standing
+    in the unit direction `away` from it."""
     h = 3.2 * r
-    tri = np.array([s, s + np.array([-1.6 * r, -h]), s + np.array([1.6 * r, -h])])
+    across = np.array([away[1], -away[0]])
+    foot = s + h * away
+    tri = np.array([s, foot + 1.6 * r * across, foot - 1.6 * r * across])
     ax.add_patch(Polygon(tri, closed=True, facecolor="white", edgecolor=EDGE, linewidth=1.0,
-                         zorder=1.2))
-    base = np.array([s + np.array([-2.6 * r, -h]), s + np.array([2.6 * r, -h])])
-    ax.plot(base[:, 0], base[:, 1], color=EDGE, linewidth=1.2, zorder=1.3)
-    return np.vstack([base, _hatch(ax, base[0], base[1], np.array([0.0, -1.0]), size)])
+                         zorder=1.2, gid=gid))
+    base = np.array([foot + 2.6 * r * across, foot - 2.6 * r * across])
+    ax.plot(base[:, 0], base[:, 1], color=EDGE, linewidth=1.2, zorder=1.3, gid=f"{gid}:base")
+    return np.vstack([base, _hatch(ax, base[0], base[1], away, size, f"{gid}:hatch")])

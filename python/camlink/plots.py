@@ -3,7 +3,8 @@ overlaid, a joint's reactions, and a cam's SVAJ diagram and pressure angle
 against the cam angle in degrees.
 
 Every function returns a matplotlib `Figure`; labels carry the channel's
-unit, taken from its kind (`unit`).
+unit, taken from its kind (`unit`) and, for a driver's effort, from what
+the driver drives.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from camlink._core import ModelError
+from camlink.records import JointRecord
 from camlink.results import Results
 from camlink.units import unit
 
@@ -25,9 +27,10 @@ __all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj"
 Array = npt.NDArray[np.float64]
 
 
-def label(channel: str) -> str:
-    """An axis label: the channel and its unit in parentheses."""
-    u = unit(channel)
+def label(channel: str, joints: Sequence[JointRecord] | None = None) -> str:
+    """An axis label: the channel and its unit in parentheses (`joints`,
+    the model's, give a driver's effort its unit)."""
+    u = unit(channel, joints)
     return f"{channel} ({u})" if u else channel
 
 
@@ -64,6 +67,8 @@ def plot(
     run_labels = list(labels) if labels is not None else [
         r.model or f"run {k + 1}" for k, r in enumerate(runs)
     ]
+    model = runs[0].mechanism
+    joints = model.joints if model is not None else None
     fig = Figure(figsize=(width, height), dpi=100, layout="constrained")
     (ax,) = _axes(fig)
     for r, run_label in zip(runs, run_labels, strict=True):
@@ -71,9 +76,9 @@ def plot(
         for name in names:
             tag = [run_label] * (len(runs) > 1) + [name] * (len(names) > 1)
             ax.plot(xs, r[name], linewidth=1.3, label=", ".join(tag) or None, gid=f"{run_label}:{name}")
-    ax.set_xlabel(label(x), fontsize=9)
-    units = {unit(n) for n in names}
-    ax.set_ylabel(label(names[0]) if len(names) == 1 else
+    ax.set_xlabel(label(x, joints), fontsize=9)
+    units = {unit(n, joints) for n in names}
+    ax.set_ylabel(label(names[0], joints) if len(names) == 1 else
                   (f"({units.pop()})" if len(units) == 1 else "value"), fontsize=9)
     if len(runs) > 1 or len(names) > 1:
         ax.legend(fontsize=8, frameon=False)

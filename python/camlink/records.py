@@ -50,6 +50,10 @@ class JointRecord(TypedDict):
     bodies: list[str]
     #: Number of scalar equations.
     equations: int
+    #: The equations' names in order, e.g. ``["x", "y"]``; a driver's say
+    #: what it drives (``"phi"`` an angle; ``"x"``, ``"y"``, ``"along"``,
+    #: ``"distance"`` a length).
+    equation_names: list[str]
     #: True for a driver (a function of time).
     driver: bool
 
@@ -62,6 +66,14 @@ class ForceRecord(TypedDict):
     kind: str
     #: Names of body i and body j (``"ground"`` for a one-body force).
     bodies: list[str]
+    #: A ``tsda``'s attachment points P_i on body i and P_j on body j
+    #: (body frames, m); None for other kinds.
+    s_i: list[float] | None
+    s_j: list[float] | None
+    #: A ``tsda``'s k (N/m) or an ``rsda``'s (N·m/rad); None for others.
+    stiffness: float | None
+    #: A ``tsda``'s c (N·s/m) or an ``rsda``'s (N·m·s/rad); None for others.
+    damping: float | None
 
 
 class ConstraintCount(TypedDict):

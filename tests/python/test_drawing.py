@@ -162,6 +162,10 @@ def test_time_and_cam_angle_are_written_on_the_frame() -> None:
     drawing = Drawing(model, res)
     for k in (0, 57, 399):
         drawing.show(k)
-        theta = np.degrees(res["cam.phi"][k]) % 360.0
-        assert drawing.label.get_text() == f"t = {res.t[k]:.3f} s   θ = {theta:.1f}°"
+        theta = f"{np.degrees(res['cam.phi'][k]) % 360.0:.1f}"
+        # An angle a hair under a whole turn reads 0.0°, not 360.0°.
+        theta = "0.0" if theta == "360.0" else theta
+        assert drawing.label.get_text() == f"t = {res.t[k]:.3f} s   θ = {theta}°"
+    drawing.show(0)
+    assert drawing.label.get_text().endswith("θ = 0.0°")
     assert drawing.row(0.2501) == 100

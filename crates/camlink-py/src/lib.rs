@@ -203,6 +203,7 @@ impl Model {
             d.set_item("kind", j.constraint.kind())?;
             d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
             d.set_item("equations", j.constraint.rows())?;
+            d.set_item("equation_names", j.constraint.equations())?;
             d.set_item("driver", j.driver)?;
             list.append(d)?;
         }
@@ -269,10 +270,14 @@ impl Model {
         self.loaded.model.gravity
     }
 
-    /// Applied forces: a list of dicts with name, kind and bodies.
+    /// Applied forces: a list of dicts with name, kind and bodies, and
+    /// what a drawing shows: a spring–damper–actuator's (`tsda`) attachment
+    /// points `s_i`, `s_j` (body frames, m), `stiffness` (N/m) and
+    /// `damping` (N·s/m); a rotational one's (`rsda`) `stiffness`
+    /// (N·m/rad) and `damping` (N·m·s/rad); None where the kind has none.
     #[getter]
     fn forces<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
-        use camlink_core::force::Applied;
+        use camlink_core::force::{Applied, ForceKind};
         let model = &self.loaded.model;
         let list = PyList::empty(py);
         for f in &model.forces {
@@ -281,6 +286,15 @@ impl Model {
             d.set_item("name", &f.name)?;
             d.set_item("kind", f.kind.kind())?;
             d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+            let (points, stiffness, damping) = match &f.kind {
+                ForceKind::Tsda(s) => (Some([s.s_i, s.s_j]), Some(s.stiffness), Some(s.damping)),
+                ForceKind::Rsda(s) => (None, Some(s.stiffness), Some(s.damping)),
+                _ => (None, None, None),
+            };
+            d.set_item("s_i", points.map(|p| p[0]))?;
+            d.set_item("s_j", points.map(|p| p[1]))?;
+            d.set_item("stiffness", stiffness)?;
+            d.set_item("damping", damping)?;
             list.append(d)?;
         }
         Ok(list)
