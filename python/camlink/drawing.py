@@ -485,10 +485,21 @@ class Drawing:
             if g.joint in named:
                 continue
             other = next((h for h in gears if h.joint == g.joint and h is not g), None)
+            ci = self._path(g.body, np.asarray(g.centre))
             if other is None:
+                rack = next((f for f in scene.faces if f.joint == g.joint), None)
+                if rack is None:
+                    continue
+                named.add(g.joint)
+                # The pitch point: the pinion's centre dropped onto the
+                # rack's pitch line.
+                on = self._path(rack.body, np.asarray(rack.s))
+                u = self._path(rack.body, np.asarray(rack.s) + np.asarray(rack.u)) - on
+                u /= np.hypot(u[:, 0], u[:, 1])[:, None]
+                along = np.sum((ci - on) * u, axis=1)
+                self._name("joint", g.joint, on + along[:, None] * u)
                 continue
             named.add(g.joint)
-            ci = self._path(g.body, np.asarray(g.centre))
             cj = self._path(other.body, np.asarray(other.centre))
             d = cj - ci
             dist = np.hypot(d[:, 0], d[:, 1])
