@@ -421,8 +421,8 @@ class Drawing:
             k, c = float(f["stiffness"] or 0.0), float(f["damping"] or 0.0)
             if f["kind"] == "tsda":
                 assert f["s_i"] is not None and f["s_j"] is not None
-                a = np.stack([place(np.asarray(f["s_i"])[None, :], q)[0] for q in self.poses[bi]])
-                b = np.stack([place(np.asarray(f["s_j"])[None, :], q)[0] for q in self.poses[bj]])
+                a = self._path(bi, np.asarray(f["s_i"], dtype=np.float64))
+                b = self._path(bj, np.asarray(f["s_j"], dtype=np.float64))
                 # Spring and damper side by side when it has both; an
                 # actuator alone is drawn as a spring.
                 kinds = ["spring"] * (k != 0.0 or c == 0.0) + ["damper"] * (c != 0.0)
