@@ -207,6 +207,34 @@ pub fn geometry(cam: &Cam) -> Geometry {
             _ => c.rho < 0.0,
         }
     };
+    let min_pitch = min_over(&|c: &Contact| c.rho_pitch.filter(|r| *r > 0.0));
+    let mut undercut_ranges = curve.ranges_where(n, undercut);
+    // A roller's undercut narrower than the samples holds no sample, but
+    // the refined least pitch radius lies in it: its edges by bisection
+    // within a sample step either side.
+    if let (Some(r), Some(e)) = (roller, min_pitch) {
+        let covered = undercut_ranges
+            .iter()
+            .any(|&(a, b)| (a..=b).contains(&e.theta) || (a..=b).contains(&(e.theta + TAU)));
+        let edge = |mut inside: f64, mut outside: f64| {
+            for _ in 0..60 {
+                let m = 0.5 * (inside + outside);
+                if undercut(m) {
+                    inside = m;
+                } else {
+                    outside = m;
+                }
+            }
+            0.5 * (inside + outside)
+        };
+        let (before, after) = (e.theta - h, e.theta + h);
+        if e.value < r && undercut(e.theta) && !covered && !undercut(before) && !undercut(after) {
+            let (a, b) = (edge(e.theta, before), edge(e.theta, after));
+            let shift = if a < 0.0 { TAU } else { 0.0 };
+            undercut_ranges.push((a + shift, b + shift));
+            undercut_ranges.sort_by(|x, y| x.0.total_cmp(&y.0));
+        }
+    }
     let face_travel = contacts[0].face_position.map(|_| {
         let pos = |t: f64| cam.contact(t).face_position.unwrap_or(0.0);
         let lo = contacts
@@ -243,9 +271,9 @@ pub fn geometry(cam: &Cam) -> Geometry {
             theta: 0.0,
         }),
         min_concave_radius: min_over(&concave),
-        min_pitch_radius: min_over(&|c: &Contact| c.rho_pitch.filter(|r| *r > 0.0)),
+        min_pitch_radius: min_pitch,
         concave: curve.ranges_where(n, |t| cam.contact(t).rho_pitch.is_some_and(|rp| rp < 0.0)),
-        undercut: curve.ranges_where(n, undercut),
+        undercut: undercut_ranges,
         face_travel,
         max_radius: contacts.iter().map(|c| norm(c.point)).fold(0.0, f64::max),
     }
@@ -603,6 +631,44 @@ mod tests {
             }
         }
         assert_eq!(checked, 8);
+    }
+
+    /// Issue 27: a rise so steep that the roller's undercut is narrower
+    /// than the samples (0.1°) is still reported as an undercut range, in
+    /// agreement with the least pitch radius below the roller radius; its
+    /// edges are where ρ_pitch = R_r.
+    #[test]
+    fn issue27_narrow_undercut_is_reported() {
+        let roller = 0.01;
+        let f = Follower::TranslatingRoller {
+            offset: 0.0,
+            roller,
+        };
+        let program = Program::new(&[
+            SegmentSpec::new(LawKind::Cycloidal, deg(0.5), 0.01),
+            SegmentSpec::new(LawKind::Dwell, deg(179.5), 0.0),
+            SegmentSpec::new(LawKind::Cycloidal, deg(90.0), -0.01),
+            SegmentSpec::new(LawKind::Dwell, deg(90.0), 0.0),
+        ])
+        .unwrap();
+        let cam = Cam::new(program, f, 0.03, true).unwrap();
+        let g = geometry(&cam);
+        let least = g.min_pitch_radius.unwrap();
+        assert!(least.value < roller, "{least:?}");
+        assert!(!g.undercut.is_empty());
+        assert!(g
+            .undercut
+            .iter()
+            .any(|&(a, b)| a <= least.theta && least.theta <= b));
+        for &(a, b) in &g.undercut {
+            assert!(a < b);
+            let rp = |t: f64| cam.contact(t).rho_pitch.unwrap();
+            let mid = rp(0.5 * (a + b));
+            assert!(mid > 0.0 && mid < roller, "{mid}");
+            for t in [a, b] {
+                assert!((rp(t) - roller).abs() < 1e-6 * roller, "{} at {t}", rp(t));
+            }
+        }
     }
 
     /// Base circle sizing: the smallest R_b keeps a centred roller's
