@@ -273,6 +273,9 @@ def test_issue27_steep_rise_ends_in_a_report(tmp_path: Path, capsys: pytest.Capt
     assert not check["ok"] and "θ = " in check["note"]
     for joint in ("'contact'", "'motor'", "follower-guide"):
         assert joint not in check["note"]
+    # The undercut, narrower than the samples, is reported too.
+    undercut = next(c for c in report["checks"] if c["name"] == "undercut ranges")
+    assert not undercut["ok"] and report["undercut_deg"]
     code, out, _ = _cam([str(design), "--out", str(tmp_path), "--force"], capsys)
     assert code == 1 and "FAIL round trip: camlink's kinematics" in out
 
