@@ -26,9 +26,7 @@ def course(tmp_path: Path) -> Path:
     return tmp_path / "m.adm"
 
 
-def test_issue27_convert_never_writes_over_its_acf(
-    course: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_issue27_convert_never_writes_over_its_acf(course: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """`convert --acf a.json -o a.json` used to replace its own input."""
     acf = course.with_name("a.json")
     shutil.copy(course.with_suffix(".acf"), acf)
