@@ -274,7 +274,10 @@ def _load(args: argparse.Namespace) -> camlink.Model:
     """The model of `args.model`; ``-`` reads TOML (or JSON, if it starts
     with ``{``) from standard input, with data files in the current folder."""
     if args.model != "-":
-        return camlink.load(args.model, acf=args.acf, allow_outside=args.allow_outside_data)
+        model = camlink.load(args.model, acf=args.acf, allow_outside=args.allow_outside_data)
+        for w in model.load_warnings:
+            print(f"camlink: warning: {w}", file=sys.stderr)
+        return model
     text = sys.stdin.read()
     fmt = "json" if text.lstrip().startswith("{") else "toml"
     return camlink.loads(
@@ -337,6 +340,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
     print(f"bodies       {r['bodies']} moving (plus ground)")
     print(f"coordinates  {r['coordinates']}")
     print(f"equations    {r['equations']}")
+    for c in r["released"]:
+        print(f"  {c['text']}")
     joints = r["joints"]
     if joints:
         w_name = max(len(j["name"]) for j in joints)
