@@ -419,7 +419,7 @@ pub fn analysis(acf: &Value) -> R<Item> {
                     Some("analysis file"),
                     format!(
                         "outputSteps is a whole number of output intervals ≥ 1, not {}",
-                        n.0
+                        camlink_core::fmt_num::num(n.0)
                     ),
                 );
             }
