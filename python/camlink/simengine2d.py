@@ -9,10 +9,12 @@ from __future__ import annotations
 
 import errno
 import os
+import warnings
 from pathlib import Path
 
 from camlink import _core
 from camlink._core import ModelError
+from camlink.warn import CourseFileWarning
 
 __all__ = ["convert"]
 
@@ -30,7 +32,8 @@ def convert(
     `output`'s suffix (``.toml`` or ``.json``). Returns the path written.
 
     The model is loaded first: a model that does not load is not converted
-    (`ModelError` names the file, the entry and the field).
+    (`ModelError` names the file, the entry and the field). Parts of the
+    course file that are read past are issued as `CourseFileWarning`s.
     """
     adm, out = Path(adm), Path(output)
     fmt = _FORMATS.get(out.suffix.lower())
@@ -40,5 +43,7 @@ def convert(
         if p is not None and not p.is_file():
             raise FileNotFoundError(errno.ENOENT, "no such file", str(p))
     text = _core.convert_adm(adm, fmt, acf)
+    for w in _core.Model.load_adm(adm, acf).load_warnings:
+        warnings.warn(w, CourseFileWarning, stacklevel=2)
     out.write_text(text, encoding="utf-8")
     return out

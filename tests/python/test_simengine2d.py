@@ -216,6 +216,10 @@ def test_issue27_course_file_parts_ignored_with_warnings(tmp_path: Path) -> None
     out = run_cli("check", course / "slotted_lever.adm")
     assert out.returncode == 0, out.stderr
     assert out.stderr.count("camlink: warning: ") == 2, out.stderr
+    out = run_cli("convert", course / "slotted_lever.adm", "-o", tmp_path / "lever.toml")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.count("camlink: warning: ") == 2, out.stderr
+    assert "Traceback" not in out.stderr and "CourseFileWarning" not in out.stderr
     bad = tmp_path / "bad.adm"
     bad.write_text(
         (course / "rack_pinion_fun.adm")

@@ -400,8 +400,17 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
         }
         let j = dense_jacobian(model, asm, q, t);
         levenberg_marquardt(&j, &phi, mu, &mut dq);
+        // The step keeps its direction, shortened so that no angle turns by
+        // more than MAX_TURN; lengths are not limited, whatever their unit
+        // (a course model in mm moves its bodies by hundreds).
+        let turn = angle_columns(model, asm).fold(0.0f64, |a, c| a.max(dq[c].abs()));
+        let scale = if turn > MAX_TURN {
+            MAX_TURN / turn
+        } else {
+            1.0
+        };
         for k in 0..asm.n {
-            trial[k] = q[k] - dq[k].clamp(-0.5, 0.5);
+            trial[k] = q[k] - scale * dq[k];
         }
         asm.phi(model, &trial, t, &mut trial_phi);
         if norm2(&trial_phi) < norm2(&phi) {
@@ -416,6 +425,14 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
         }
     }
     phi.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+/// Largest turn (rad) of a body in one step of [`least_squares_assembly`].
+const MAX_TURN: f64 = 0.5;
+
+/// The columns of the bodies' angles φ in q.
+fn angle_columns<'a>(model: &'a Model, asm: &'a Assembly) -> impl Iterator<Item = usize> + 'a {
+    (0..model.bodies.len()).filter_map(|b| asm.body_col(b).map(|c| c + 2))
 }
 
 fn unit(n: usize, k: usize) -> Vec<f64> {

@@ -232,3 +232,34 @@ fn issue27_course_repository_models_run() {
         .to_string();
     assert!(e.contains("PointForceFile"), "{e}");
 }
+
+/// `camlink check` assembles a course model in millimetres whose crank is
+/// placed 0.444 rad from its driven angle, as the course's catapult is: the
+/// least-squares assembly moves lengths by hundreds of units (it limits
+/// only how far an angle turns in one step), and the model is fully driven.
+#[test]
+fn issue27_check_assembles_a_course_model_in_millimetres() {
+    let adm = r#"{"name": "crank_slider_mm", "gravity": [0, 0],
+      "bodies": [
+        {"name": "crank", "id": 1, "mass": 5, "jbar": 900, "q0": [97, -46.2, -0.444]},
+        {"name": "rod", "id": 2, "mass": 5, "jbar": 900, "q0": [450, -46, 0.185]},
+        {"name": "slider", "id": 3, "mass": 5, "jbar": 900, "q0": [700, 0, 0]}
+      ],
+      "constraints": [
+        {"name": "O_x", "id": 1, "type": "AbsoluteX", "body1": 1, "sP1": [-107.5, 0], "fun": "0"},
+        {"name": "O_y", "id": 2, "type": "AbsoluteY", "body1": 1, "sP1": [-107.5, 0], "fun": "0"},
+        {"name": "A", "id": 3, "type": "RevoluteJoint", "body1": 1, "sP1": [107.5, 0], "body2": 2, "sP2": [-250, 0], "fun": "NONE"},
+        {"name": "B", "id": 4, "type": "RevoluteJoint", "body1": 2, "sP1": [250, 0], "body2": 3, "sP2": [0, 0], "fun": "NONE"},
+        {"name": "rail", "id": 5, "type": "AbsoluteY", "body1": 3, "sP1": [0, 0], "fun": "0"},
+        {"name": "level", "id": 6, "type": "AbsoluteAngle", "body1": 3, "fun": "0"},
+        {"name": "motor", "id": 7, "type": "AbsoluteAngle", "body1": 1, "fun": "15*t"}
+      ]}"#;
+    let l = describe_str(adm, "mm.adm", None)
+        .unwrap()
+        .resolve()
+        .unwrap();
+    let d = camlink_core::diagnose::diagnose(&l.model, 0.0, l.analysis.tol);
+    assert!(d.open_joints.is_empty(), "{:?}", d.open_joints);
+    assert!(d.residual <= l.analysis.tol, "{}", d.residual);
+    assert_eq!(d.dof, 0);
+}
