@@ -14,7 +14,7 @@ import signal
 import sys
 import warnings
 from pathlib import Path
-from typing import NoReturn
+from typing import NoReturn, TextIO
 
 import camlink
 from camlink import cam_cli, cli_convert, cli_study, cli_visuals
@@ -337,6 +337,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
     print(f"bodies       {r['bodies']} moving (plus ground)")
     print(f"coordinates  {r['coordinates']}")
     print(f"equations    {r['equations']}")
+    for c in r["released"]:
+        print(f"  {c['text']}")
     joints = r["joints"]
     if joints:
         w_name = max(len(j["name"]) for j in joints)
@@ -384,10 +386,32 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     # SIGTERM and SIGHUP stop a run as Ctrl-C does: the steps computed are
     # kept under the output's partial name. The CLI prints camlink's
-    # warnings in its own words.
+    # warnings in its own words; a course file's, issued while loading by
+    # every command, as `camlink: warning: …`.
     with stop_on_termination(), warnings.catch_warnings():
         warnings.simplefilter("ignore", camlink.CamlinkWarning)
+        warnings.simplefilter("always", camlink.CourseFileWarning)
+        warnings.showwarning = _show_warning
         return _main(args)
+
+
+_python_showwarning = warnings.showwarning
+
+
+def _show_warning(
+    message: Warning | str,
+    category: type[Warning],
+    filename: str,
+    lineno: int,
+    file: TextIO | None = None,
+    line: str | None = None,
+) -> None:
+    """Prints a `CourseFileWarning` as the CLI's other warnings; any other
+    warning as Python does."""
+    if issubclass(category, camlink.CourseFileWarning):
+        print(f"camlink: warning: {message}", file=sys.stderr)
+    else:
+        _python_showwarning(message, category, filename, lineno, file, line)
 
 
 def _main(args: argparse.Namespace) -> int:

@@ -6,6 +6,7 @@ import errno
 import json
 import math
 import os
+import warnings
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -29,7 +30,7 @@ from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
 from camlink.units import unit
-from camlink.warn import issue_design_warnings, issue_run_warnings
+from camlink.warn import CourseFileWarning, issue_design_warnings, issue_run_warnings
 
 __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 
@@ -80,7 +81,10 @@ def load(
                 raise IsADirectoryError(errno.EISDIR, "is a directory, not a model file", str(p))
             raise FileNotFoundError(errno.ENOENT, "no such model file", str(p))
     if path.suffix.lower() == ".adm":
-        return Model(_core.Model.load_adm(path, acf), source=path)
+        model = Model(_core.Model.load_adm(path, acf), source=path)
+        for w in model.load_warnings:
+            warnings.warn(w, CourseFileWarning, stacklevel=2)
+        return model
     if acf is not None:
         raise ModelError(f"{path}: an .acf analysis file goes with a simEngine2D .adm model only")
     model = Model(_core.Model.load(path, allow_outside), source=path)
@@ -163,6 +167,13 @@ class Model:
         the data files it names. A run refuses to write its output over one."""
         files = [self.source] if self.source is not None else []
         return files + list(self._core.data_files)
+
+    @property
+    def load_warnings(self) -> list[str]:
+        """What loading read past, one line each naming the file, line and
+        field: parts of a simEngine2D file that the course engine does not
+        use either (empty for camlink's own files)."""
+        return list(self._core.load_warnings)
 
     @property
     def bodies(self) -> list[BodyRecord]:

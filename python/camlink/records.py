@@ -117,6 +117,20 @@ class CheckReport(TypedDict):
     condition: float
     #: Joints that stay open after assembly, with their |Φ| (m or rad).
     open_joints: list[tuple[str, float]]
+    #: Unilateral contacts that remove no freedom at the start (open at the
+    #: placement, or compliant), left out of rank and degrees of freedom.
+    released: list[ReleasedContact]
+
+
+class ReleasedContact(TypedDict):
+    """A unilateral contact left out of the count of `CheckReport`."""
+
+    joint: str
+    #: Its gap at the placement (m); None for a compliant contact.
+    gap: float | None
+    #: One line, e.g. ``contact 'floor': open at t = 0 s (gap 0.1 m): its 2
+    #: equations and 1 own coordinate are not counted``.
+    text: str
 
 
 class DesignFinding(TypedDict):

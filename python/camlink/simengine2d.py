@@ -9,11 +9,13 @@ from __future__ import annotations
 
 import errno
 import os
+import warnings
 from pathlib import Path
 
 from camlink import _core
 from camlink._core import ModelError
 from camlink.output import check_not_input, replacing
+from camlink.warn import CourseFileWarning
 
 __all__ = ["convert"]
 
@@ -31,9 +33,11 @@ def convert(
     `output`'s suffix (``.toml`` or ``.json``). Returns the path written.
 
     The model is loaded first: a model that does not load is not converted
-    (`ModelError` names the file, the entry and the field). `output` is
-    never one of the inputs (the ``.adm``, the ``.acf`` read), and it is
-    written to a temporary file beside it and renamed over it in one step.
+    (`ModelError` names the file, the entry and the field). Parts of the
+    course file that are read past are issued as `CourseFileWarning`s.
+    `output` is never one of the inputs (the ``.adm``, the ``.acf`` read),
+    and it is written to a temporary file beside it and renamed over it in
+    one step.
     """
     adm, out = Path(adm), Path(output)
     fmt = _FORMATS.get(out.suffix.lower())
@@ -45,6 +49,8 @@ def convert(
     beside = adm.with_suffix(".acf")
     check_not_input(out, [adm, acf if acf is not None else beside])
     text = _core.convert_adm(adm, fmt, acf)
+    for w in _core.Model.load_adm(adm, acf).load_warnings:
+        warnings.warn(w, CourseFileWarning, stacklevel=2)
     with replacing(out) as temp:
         temp.write_text(text, encoding="utf-8")
     return out

@@ -11,6 +11,7 @@ from typing import Any
 
 __all__ = [
     "CamlinkWarning",
+    "CourseFileWarning",
     "DesignWarning",
     "LiftOffWarning",
     "NearSingularWarning",
@@ -31,6 +32,12 @@ class NearSingularWarning(CamlinkWarning):
 class LiftOffWarning(CamlinkWarning):
     """A cam contact's normal force went negative: the follower would leave
     its cam (see `Results.lift_off`)."""
+
+
+class CourseFileWarning(CamlinkWarning):
+    """A simEngine2D course file holds something that is read past, as the
+    course engine reads past it (a joint's constant ``fun``, an empty force
+    entry, a ``contacts`` list); the message names the file, line and field."""
 
 
 class DesignWarning(CamlinkWarning):

@@ -191,3 +191,42 @@ def test_cli_convert_default_output_and_a_bad_suffix(tmp_path: Path) -> None:
     assert proc.returncode == 2
     assert "m.yaml" in proc.stderr and ".toml or .json" in proc.stderr
     assert "Traceback" not in proc.stderr
+
+
+def test_issue27_course_file_parts_ignored_with_warnings(tmp_path: Path) -> None:
+    """A course file with a rack and pinion's ``"fun": "0"``, a ``forces``
+    list holding ``{}`` and a ``contacts`` list loads and runs, with one
+    `CourseFileWarning` per part read past (file, line and field named);
+    the command line prints them as warnings and exits 0."""
+    course = FIXTURES / "course"
+    with pytest.warns(camlink.CourseFileWarning) as caught:
+        model = camlink.load(course / "slotted_lever.adm")
+    texts = [str(w.message) for w in caught]
+    assert len(texts) == 2, texts
+    assert "slotted_lever.adm:20:3: forces[0]: an empty entry {} is ignored" in texts[0]
+    assert "contacts: 2 contact entries are ignored" in texts[1]
+    assert model.load_warnings == texts
+    assert len(model.run()) == 151
+    with pytest.warns(camlink.CourseFileWarning, match=r"RackPinion's fun"):
+        camlink.load(course / "rack_pinion_fun.adm")
+    out = run_cli("run", course / "rack_pinion_fun.adm", "-o", tmp_path / "rp.csv")
+    assert out.returncode == 0, out.stderr
+    assert "camlink: warning: " in out.stderr
+    assert "constraints[3].fun: constraint 'mesh' (id 4): fun \"0\" is ignored" in out.stderr
+    out = run_cli("check", course / "slotted_lever.adm")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.count("camlink: warning: ") == 2, out.stderr
+    out = run_cli("convert", course / "slotted_lever.adm", "-o", tmp_path / "lever.toml")
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.count("camlink: warning: ") == 2, out.stderr
+    assert "Traceback" not in out.stderr and "CourseFileWarning" not in out.stderr
+    bad = tmp_path / "bad.adm"
+    bad.write_text(
+        (course / "rack_pinion_fun.adm")
+        .read_text()
+        .replace('"R2": 0.15, "fun": "0"', '"R2": 0.15, "fun": "sin(t)"')
+    )
+    out = run_cli("run", bad)
+    assert out.returncode == 2
+    assert "a RackPinion takes no function of time" in out.stderr
+    assert "Traceback" not in out.stderr

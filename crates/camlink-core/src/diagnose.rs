@@ -11,9 +11,84 @@ use faer::linalg::solvers::{Solve, SolveLstsq};
 use faer::Mat;
 
 use crate::assembly::Assembly;
-use crate::constraint::Equations;
-use crate::math::norm2;
+use crate::constraint::{Constraint, Equations};
+use crate::curve::distance::Features;
+use crate::curve::Curve;
+use crate::fmt_num::num;
+use crate::math::{dot, norm2, perp, point, rot, sub, V2};
 use crate::model::Model;
+
+/// A unilateral contact whose gap at the model's placement exceeds this
+/// (m) starts open: it removes no freedom until it closes. A smaller gap
+/// is closed by the assembly.
+pub const OPEN_AT_START: f64 = 1e-6;
+
+/// The two features whose gap is measured while unilateral joint `j` is
+/// open, with a face's normal on the side of the cam's mean point at body
+/// coordinates `q` = (q_i, q_j); an error for a joint that cannot open (not
+/// a cam contact, or no closed curve to tell the solid side).
+pub fn gap_features(model: &Model, j: usize, q: [[f64; 3]; 2]) -> Result<Features, &'static str> {
+    match &model.joints[j].constraint {
+        Constraint::FlatFollower(f) => {
+            if f.curve_i.orientation().is_none() {
+                return Err("a unilateral flat_follower needs a closed cam curve");
+            }
+            let cam_mean = point(q[0], sample_mean(&f.curve_i));
+            let face = point(q[1], f.s_j);
+            let nf = perp(f.u_j);
+            let s = if dot(rot(q[1][2], nf), sub(cam_mean, face)) < 0.0 {
+                -1.0
+            } else {
+                1.0
+            };
+            Ok(Features::Face {
+                curve: f.curve_i.clone(),
+                point: f.s_j,
+                m: [s * nf[0], s * nf[1]],
+            })
+        }
+        Constraint::CamFollower(c) => {
+            let curves = [c.curve_i.clone(), c.curve_j.clone()];
+            match (c.curve_i.orientation(), c.curve_j.orientation()) {
+                (Some(sigma), _) => Ok(Features::Curves {
+                    curves,
+                    side: 0,
+                    sigma,
+                }),
+                (None, Some(sigma)) => Ok(Features::Curves {
+                    curves,
+                    side: 1,
+                    sigma,
+                }),
+                _ => Err("a unilateral cam_follower needs a closed curve on one side"),
+            }
+        }
+        _ => Err("only cam_follower and flat_follower joints can be unilateral"),
+    }
+}
+
+/// The mean of 64 samples of a curve (body frame, m).
+fn sample_mean(c: &Curve) -> V2 {
+    let (s0, s1) = c.range();
+    (0..64).fold([0.0; 2], |m, k| {
+        let p = c.jet(s0 + (s1 - s0) * k as f64 / 64.0).p;
+        [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
+    })
+}
+
+/// The gap (m) of unilateral joint `j` at the placement `q` (layout
+/// `asm`), before any assembly: what a forward dynamics run starts from.
+/// `None` for a joint that cannot open.
+pub fn gap_at(model: &Model, asm: &Assembly, j: usize, q: &[f64]) -> Option<f64> {
+    let mut qb = [[0.0; 3]; 2];
+    for (s, b) in model.joints[j].constraint.bodies().iter().enumerate() {
+        if let Some(c) = asm.body_col(b.0) {
+            qb[s].copy_from_slice(&q[c..c + 3]);
+        }
+    }
+    let features = gap_features(model, j, qb).ok()?;
+    Some(features.gap(qb, [[0.0; 3]; 2], None).gap)
+}
 
 /// One equation that depends on others.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,6 +97,76 @@ pub struct Redundancy {
     pub equation: String,
     /// The independent equations it is a combination of, with coefficients.
     pub depends_on: Vec<(String, f64)>,
+}
+
+/// A unilateral contact that removes no freedom at the start and is left
+/// out of the analysis: one open at the placement (its gap above
+/// [`OPEN_AT_START`]), as a forward dynamics run starts it, or a compliant
+/// one, which acts through a force and is never a constraint.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Released {
+    /// The contact joint's name.
+    pub joint: String,
+    /// Its gap at the placement (m); `None` for a compliant contact.
+    pub gap: Option<f64>,
+    /// One line for a report, e.g. `contact 'floor': open at t = 0 s (gap
+    /// 0.1 m): its 2 equations and 1 own coordinate are not counted`.
+    pub text: String,
+}
+
+/// The unilateral contacts of `model` that are open at the placement or
+/// compliant, at time `t` (s, for the text), with their joint indices.
+pub fn released_at_start(model: &Model, t: f64) -> Vec<(usize, Released)> {
+    let asm = Assembly::new(model);
+    let q = asm.initial_q(model);
+    let mut out = Vec::new();
+    for (j, joint) in model.joints.iter().enumerate() {
+        let Some(law) = joint.unilateral else {
+            continue;
+        };
+        if joint.driver {
+            continue;
+        }
+        let name = &joint.name;
+        let (rows, own) = (joint.constraint.rows(), joint.constraint.own_count());
+        let not_counted = format!(
+            "its {rows} equation{} and {own} own coordinate{} are not counted",
+            if rows == 1 { "" } else { "s" },
+            if own == 1 { "" } else { "s" }
+        );
+        if law.compliant.is_some() {
+            out.push((
+                j,
+                Released {
+                    joint: name.clone(),
+                    gap: None,
+                    text: format!(
+                        "contact '{name}': compliant, a force from the overlap rather than a \
+                         constraint: {not_counted}"
+                    ),
+                },
+            ));
+            continue;
+        }
+        let Some(gap) = gap_at(model, &asm, j, &q) else {
+            continue;
+        };
+        if gap > OPEN_AT_START {
+            out.push((
+                j,
+                Released {
+                    joint: name.clone(),
+                    gap: Some(gap),
+                    text: format!(
+                        "contact '{name}': open at t = {} s (gap {} m): {not_counted}",
+                        num(t),
+                        num(gap)
+                    ),
+                },
+            ));
+        }
+    }
+    out
 }
 
 /// The result of [`diagnose`].
@@ -56,6 +201,10 @@ pub struct Diagnosis {
     /// [`DENSE_MAX`] coordinates): rank and degrees of freedom then come from
     /// counting, and no redundancy or free motion is reported.
     pub exact: bool,
+    /// The unilateral contacts left out because they remove no freedom at
+    /// the start ([`released_at_start`]); `coordinates`, `equations`,
+    /// `rank` and `dof` are those of the model without them.
+    pub released: Vec<Released>,
 }
 
 /// Largest model (coordinates) analysed by a dense singular value
@@ -67,7 +216,29 @@ const RANK_TOL: f64 = 1e-9;
 
 /// Assembles in the least-squares sense from the model's placement (so that
 /// an under-driven model assembles too), then analyses Φ_q at time `t`.
+///
+/// Unilateral contacts that are open at the placement, or compliant, remove
+/// no freedom at the start: they are left out ([`Diagnosis::released`]).
 pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
+    let released = released_at_start(model, t);
+    if released.is_empty() {
+        return diagnose_all(model, t, tol);
+    }
+    let mut reduced = model.clone();
+    reduced.joints = model
+        .joints
+        .iter()
+        .enumerate()
+        .filter(|(j, _)| !released.iter().any(|(r, _)| r == j))
+        .map(|(_, joint)| joint.clone())
+        .collect();
+    let mut d = diagnose_all(&reduced, t, tol);
+    d.released = released.into_iter().map(|(_, r)| r).collect();
+    d
+}
+
+/// [`diagnose`] with every joint counted.
+fn diagnose_all(model: &Model, t: f64, tol: f64) -> Diagnosis {
     let asm = Assembly::new(model);
     let (n, m) = (asm.n, asm.m);
     if n > DENSE_MAX {
@@ -83,6 +254,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
             condition: f64::NAN,
             open_joints: Vec::new(),
             exact: false,
+            released: Vec::new(),
         };
     }
     let mut q = asm.initial_q(model);
@@ -117,6 +289,7 @@ pub fn diagnose(model: &Model, t: f64, tol: f64) -> Diagnosis {
         condition,
         open_joints,
         exact: true,
+        released: Vec::new(),
     }
 }
 
@@ -227,8 +400,17 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
         }
         let j = dense_jacobian(model, asm, q, t);
         levenberg_marquardt(&j, &phi, mu, &mut dq);
+        // The step keeps its direction, shortened so that no angle turns by
+        // more than MAX_TURN; lengths are not limited, whatever their unit
+        // (a course model in mm moves its bodies by hundreds).
+        let turn = angle_columns(model, asm).fold(0.0f64, |a, c| a.max(dq[c].abs()));
+        let scale = if turn > MAX_TURN {
+            MAX_TURN / turn
+        } else {
+            1.0
+        };
         for k in 0..asm.n {
-            trial[k] = q[k] - dq[k].clamp(-0.5, 0.5);
+            trial[k] = q[k] - scale * dq[k];
         }
         asm.phi(model, &trial, t, &mut trial_phi);
         if norm2(&trial_phi) < norm2(&phi) {
@@ -243,6 +425,14 @@ fn least_squares_assembly(model: &Model, asm: &Assembly, q: &mut [f64], t: f64, 
         }
     }
     phi.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+/// Largest turn (rad) of a body in one step of [`least_squares_assembly`].
+const MAX_TURN: f64 = 0.5;
+
+/// The columns of the bodies' angles φ in q.
+fn angle_columns<'a>(model: &'a Model, asm: &'a Assembly) -> impl Iterator<Item = usize> + 'a {
+    (0..model.bodies.len()).filter_map(|b| asm.body_col(b).map(|c| c + 2))
 }
 
 fn unit(n: usize, k: usize) -> Vec<f64> {

@@ -98,6 +98,7 @@
 
 mod compile;
 mod error;
+pub mod fmt_num;
 mod function;
 #[macro_use]
 mod jet_common;
@@ -216,7 +217,7 @@ impl Expr {
         self.fault(x).map_or(Ok(()), |(what, span)| {
             let mut message = format!("{what} in `{}`", self.snippet(span));
             if let Some(v) = &self.var {
-                message += &format!(" at {v} = {x}");
+                message += &format!(" at {v} = {}", fmt_num::num(x));
             }
             Err(EvalError { message, x })
         })

@@ -6,6 +6,7 @@
 //! The same loop runs over plain values (`f64`) and over jets ([`Jet`]), and
 //! in a checked mode that stops at the first operation leaving its domain.
 
+use crate::fmt_num::{apart, num};
 use crate::jet::{floor_mod, sign, Jet};
 use crate::jet4::Jet4;
 use crate::motion::Law;
@@ -532,41 +533,48 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
 
 fn non_finite(order: usize, v: f64) -> String {
     match order {
-        0 => format!("result is not finite ({v})"),
-        1 => format!("first derivative is not finite ({v})"),
-        2 => format!("second derivative is not finite ({v})"),
-        _ => format!("third derivative is not finite ({v})"),
+        0 => format!("result is not finite ({})", num(v)),
+        1 => format!("first derivative is not finite ({})", num(v)),
+        2 => format!("second derivative is not finite ({})", num(v)),
+        _ => format!("third derivative is not finite ({})", num(v)),
     }
 }
 
-/// The domain failure of `op` on the operands at the top of `stack`, if any.
+/// The domain failure of `op` on the operands at the top of `stack`, if any;
+/// a number near a limit (1.0000000000000002 for asin) is written with the
+/// digits that tell it from the limit.
 fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
     let n = stack.len();
     let top = || stack[n - 1].value();
     let pair = || (stack[n - 2].value(), stack[n - 1].value());
     let outside = |name: &str, u: f64| {
-        (!(-1.0..=1.0).contains(&u)).then(|| format!("{name} of {u}, outside [-1, 1]"))
+        (!(-1.0..=1.0).contains(&u))
+            .then(|| format!("{name} of {}, outside [-1, 1]", apart(u, u.signum()).0))
     };
     let power = |u: f64, c: f64| {
         if u < 0.0 && c.fract() != 0.0 {
             Some(format!(
-                "negative number ({u}) raised to the non-integer power {c}"
+                "negative number ({}) raised to the non-integer power {}",
+                num(u),
+                apart(c, c.round()).0
             ))
         } else if u == 0.0 && c < 0.0 {
-            Some(format!("zero raised to a negative power ({c})"))
+            Some(format!("zero raised to a negative power ({})", num(c)))
         } else {
             None
         }
     };
     match op {
-        Op::Var if !x.is_finite() => Some(format!("the variable is not finite ({x})")),
+        Op::Var if !x.is_finite() => Some(format!("the variable is not finite ({})", num(x))),
         Op::Div if pair().1 == 0.0 => Some("division by zero".into()),
         Op::DivC(0.0) => Some("division by zero".into()),
         Op::RDivC(_) if top() == 0.0 => Some("division by zero".into()),
         Op::Mod if pair().1 == 0.0 => Some("mod by zero".into()),
-        Op::Ln if top() < 0.0 => Some(format!("log of a negative number ({})", top())),
+        Op::Ln if top() < 0.0 => Some(format!("log of a negative number ({})", num(top()))),
         Op::Ln if top() == 0.0 => Some("log of zero".into()),
-        Op::Sqrt if top() < 0.0 => Some(format!("square root of a negative number ({})", top())),
+        Op::Sqrt if top() < 0.0 => {
+            Some(format!("square root of a negative number ({})", num(top())))
+        }
         Op::Asin => outside("asin", top()),
         Op::Acos => outside("acos", top()),
         Op::Pow => {
@@ -580,7 +588,7 @@ fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
         Op::Atan2 if pair() == (0.0, 0.0) => Some("atan2(0, 0) is undefined".into()),
         Op::Motion(_) => {
             let (x0, x1) = (stack[n - 4].value(), stack[n - 2].value());
-            (x0 == x1).then(|| format!("motion law with x0 = x1 (= {x0})"))
+            (x0 == x1).then(|| format!("motion law with x0 = x1 (= {})", num(x0)))
         }
         _ => None,
     }

@@ -137,3 +137,22 @@ fn unchecked_evaluation_gives_nan_or_infinity() {
     assert_eq!(j[1], f64::INFINITY);
     assert!(expr("asin(t)").jet(2.0).iter().all(|v| v.is_nan()));
 }
+
+/// Issue 27: a time in an evaluation error is written short: `1e-300`, not
+/// 298 digits; `1e-7`, not `0.00000010000000000000001`. A value just past a
+/// limit keeps the digits that tell it from the limit.
+#[test]
+fn issue27_times_and_values_in_errors_are_readable() {
+    assert_eq!(
+        message("log(-t)", 1e-300),
+        "log of a negative number (-1e-300) in `log(-t)` at t = 1e-300"
+    );
+    assert_eq!(
+        message("sqrt(-t)", 1.0000000000000001e-7),
+        "square root of a negative number (-1e-7) in `sqrt(-t)` at t = 1e-7"
+    );
+    assert_eq!(
+        message("asin(1 + t)", 2.220446049250313e-16),
+        "asin of 1.0000000000000002, outside [-1, 1] in `asin(1 + t)` at t = 2.22045e-16"
+    );
+}

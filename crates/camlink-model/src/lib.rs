@@ -63,6 +63,10 @@ pub struct Loaded {
     /// The parsed file, kept to build variants with other `[parameters]`
     /// ([`Loaded::with_parameters`]); `None` for a simEngine2D model.
     pub recipe: Option<std::sync::Arc<Recipe>>,
+    /// What the loader read and ignored, one line each naming the file,
+    /// line and field (a simEngine2D file's entries that the course engine
+    /// does not use either); empty for camlink's own files.
+    pub warnings: Vec<String>,
 }
 
 /// A body's drawn outline from the model file, in the body frame.

@@ -42,6 +42,7 @@ impl Recipe {
             outlines,
             data_files: data.into_read(),
             recipe: Some(Arc::clone(recipe)),
+            warnings: Vec::new(),
         })
     }
 

@@ -160,6 +160,9 @@ fn converted_files_give_the_same_results() {
     converted_files_agree(&fixture("rack_pinion.adm"), false);
     converted_files_agree(&fixture("forces.adm"), true);
     converted_files_agree(&fixture("translational.adm"), false);
+    converted_files_agree(&fixture("course/slotted_lever.adm"), false);
+    converted_files_agree(&fixture("course/rack_pinion_fun.adm"), false);
+    converted_files_agree(&fixture("course/pendulum_forces.adm"), true);
 }
 
 /// The course's rack-and-pinion equations, evaluated on camlink's results,

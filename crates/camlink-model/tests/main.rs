@@ -8,10 +8,12 @@ mod mechanisms;
 mod targets;
 
 mod adm;
+mod adm_course;
 mod analysis;
 mod bad_models;
 mod cam_dynamics;
 mod cam_examples;
+mod check_contacts;
 mod examples;
 mod fast_path;
 mod forces;
@@ -26,6 +28,7 @@ mod load_scale;
 mod outline;
 mod predictor;
 mod schema;
+mod time_messages;
 mod unilateral;
 
 /// Test files built as binaries of their own (see Cargo.toml).

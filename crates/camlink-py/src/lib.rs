@@ -169,6 +169,14 @@ impl Model {
         self.loaded.data_files.clone()
     }
 
+    /// What the loader read and ignored, one line each naming the file,
+    /// line and field (a simEngine2D file's parts the course engine does
+    /// not use either).
+    #[getter]
+    fn load_warnings(&self) -> Vec<String> {
+        self.loaded.warnings.clone()
+    }
+
     /// Moving bodies (the ground is implicit): a list of dicts.
     #[getter]
     fn bodies<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
@@ -464,7 +472,10 @@ impl Model {
     /// Counts of bodies, coordinates and equations, every constraint with
     /// its kind and equation count, and the diagnosis of Φ_q at t = 0:
     /// rank, degrees of freedom, redundant equations (and the drivers among
-    /// them, which make the model over-driven) and free motions.
+    /// them, which make the model over-driven) and free motions. Unilateral
+    /// contacts open at the placement (or compliant) remove no freedom at
+    /// the start: `released` lists them (`joint`, `gap` in m or None for a
+    /// compliant one, `text`), and rank and degrees of freedom leave them out.
     fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         guard(|| {
             let model = &self.loaded.model;
@@ -503,6 +514,15 @@ impl Model {
             d.set_item("residual", diagnosis.residual)?;
             d.set_item("condition", diagnosis.condition)?;
             d.set_item("open_joints", diagnosis.open_joints.clone())?;
+            let released = PyList::empty(py);
+            for r in &diagnosis.released {
+                let e = PyDict::new(py);
+                e.set_item("joint", &r.joint)?;
+                e.set_item("gap", r.gap)?;
+                e.set_item("text", &r.text)?;
+                released.append(e)?;
+            }
+            d.set_item("released", released)?;
             Ok(d)
         })
     }

@@ -54,7 +54,8 @@ pub(crate) fn run_batch<'py>(
             Some(s) if s > 0.0 && s.is_finite() => Some(Duration::from_secs_f64(s)),
             Some(s) => {
                 return Err(ModelError::new_err(format!(
-                    "time_limit must be a positive number of seconds ({s})"
+                    "time_limit must be a positive number of seconds ({})",
+                    camlink_core::fmt_num::num(s)
                 )))
             }
         };

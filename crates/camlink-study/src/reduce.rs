@@ -10,6 +10,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
+use camlink_core::fmt_num::apart;
 use camlink_core::run::{Sink, Stop, Summary};
 use serde::Deserialize;
 
@@ -55,7 +56,8 @@ impl Reduction {
         if let Reduction::At { time, .. } = &r {
             if !time.is_finite() {
                 return Err(format!(
-                    "output '{name}': time must be a finite number ({time})"
+                    "output '{name}': time must be a finite number ({})",
+                    camlink_core::fmt_num::num(*time)
                 ));
             }
         }
@@ -158,9 +160,13 @@ impl Reducer {
                 Reduction::Range { .. } => Ok(s.value - s.low),
                 Reduction::At { time, .. } => {
                     if s.value.is_nan() {
+                        // Enough digits to show how the time misses the run.
+                        let (t_lo, lo) = apart(*time, s.first_t);
+                        let (t_hi, hi) = apart(*time, self.last_t);
+                        let t = if t_lo.len() >= t_hi.len() { t_lo } else { t_hi };
                         Err(format!(
-                            "output '{}': time {time} s is outside the run ({} to {} s)",
-                            s.name, s.first_t, self.last_t
+                            "output '{}': time {t} s is outside the run ({lo} to {hi} s)",
+                            s.name
                         ))
                     } else {
                         Ok(s.value)
@@ -355,5 +361,28 @@ mod tests {
         )
         .unwrap_err();
         assert_eq!(e, "output 's': time 5 s is outside the run (0 to 1 s)");
+    }
+
+    /// Issue 27: a time outside the run is written short (1e-300, not 298
+    /// digits), with the digits that tell it from the run's first time.
+    #[test]
+    fn issue27_time_outside_the_run_is_readable() {
+        let at = |t: &str| format!(r#"{{"kind": "at", "channel": "a.phi", "time": {t}}}"#);
+        let rows = [(1e-7, [1.0, 0.0]), (1.0, [2.0, 0.5])];
+        let e = reduce(&[("s", &at("1e-300"))], &rows).unwrap_err();
+        assert_eq!(
+            e,
+            "output 's': time 1e-300 s is outside the run (1e-7 to 1 s)"
+        );
+        let e = reduce(
+            &[("s", &at("1.0000000000000001e-7"))],
+            &[(1.0000000000000002e-7, [1.0, 0.0]), (1.0, [2.0, 0.5])],
+        )
+        .unwrap_err();
+        assert_eq!(
+            e,
+            "output 's': time 1.0000000000000001e-7 s is outside the run \
+             (1.0000000000000002e-7 to 1 s)"
+        );
     }
 }

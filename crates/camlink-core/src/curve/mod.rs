@@ -34,6 +34,7 @@
 
 use std::f64::consts::TAU;
 
+use crate::fmt_num::num;
 use crate::math::{cross, norm, sub, V2};
 
 pub mod carried;
@@ -291,19 +292,23 @@ impl Curve {
             let all = [j.p, j.d1, j.d2, j.d3];
             if all.iter().flatten().any(|v| !v.is_finite()) {
                 return Err(CurveError::Invalid(format!(
-                    "the curve is not finite at parameter {s}"
+                    "the curve is not finite at parameter {}",
+                    num(s)
                 )));
             }
             if norm(j.d1) == 0.0 {
                 return Err(CurveError::Invalid(format!(
-                    "the curve has no tangent (p′ = 0) at parameter {s}"
+                    "the curve has no tangent (p′ = 0) at parameter {}",
+                    num(s)
                 )));
             }
             if let Curve::Polar(p) = self {
                 let rho = p.rho.jet(s)[0];
                 if rho <= 0.0 {
                     return Err(CurveError::Invalid(format!(
-                        "the polar profile has ρ = {rho} ≤ 0 at α = {s}"
+                        "the polar profile has ρ = {} ≤ 0 at α = {}",
+                        num(rho),
+                        num(s)
                     )));
                 }
             }
@@ -317,7 +322,6 @@ impl Curve {
     /// p and the tangent direction at the end of the range meet those at
     /// its start. Errors name the parameter.
     fn check_continuity(&self, samples: usize) -> Result<(), CurveError> {
-        use crate::fmt_num::num;
         let (s0, s1) = self.range();
         let h = (s1 - s0) / samples as f64;
         let jets: Vec<(f64, CurveJet)> = (0..=samples)

@@ -58,6 +58,9 @@ pub struct Origin {
 pub struct Built {
     pub doc: Item,
     pub origins: Vec<Origin>,
+    /// What was read and ignored, as the course engine ignores it: each at
+    /// its field, as an error would be.
+    pub warnings: Vec<AdmFail>,
 }
 
 /// The constraint types read, as the error for an unknown type lists them.
@@ -111,6 +114,7 @@ struct Builder {
     drivers: Vec<Item>,
     forces: Vec<Item>,
     origins: Vec<Origin>,
+    warnings: Vec<AdmFail>,
 }
 
 fn fail<T>(path: impl Into<String>, label: Option<&str>, message: impl Into<String>) -> R<T> {
@@ -139,15 +143,18 @@ fn parse<T: DeserializeOwned>(v: &Value, path: &str, label: Option<&str>) -> R<T
     })
 }
 
-/// A name usable in camlink: no `.`, `[`, `]` or control characters.
+/// A name usable in camlink (letters, digits, `_` and `-`, not starting
+/// with `-`): every other character, such as the space of `Long Rod`,
+/// becomes `_`.
 fn clean(name: &str) -> String {
     name.trim()
         .chars()
-        .map(|c| {
-            if c == '.' || c == '[' || c == ']' || c.is_control() {
-                '_'
-            } else {
+        .enumerate()
+        .map(|(k, c)| {
+            if c.is_alphanumeric() || c == '_' || (c == '-' && k > 0) {
                 c
+            } else {
+                '_'
             }
         })
         .collect()
@@ -225,6 +232,7 @@ pub fn build(adm: &Value) -> R<Built> {
         drivers: Vec::new(),
         forces: Vec::new(),
         origins: Vec::new(),
+        warnings: Vec::new(),
     };
     let list = |key: &str| -> R<Vec<Value>> {
         match top.get(key) {
@@ -246,7 +254,33 @@ pub fn build(adm: &Value) -> R<Built> {
     }
     b.pair_pins(pins);
     for (k, f) in list("forces")?.iter().enumerate() {
+        if f.as_object().is_some_and(|o| o.is_empty()) {
+            b.warn(
+                format!("forces[{k}]"),
+                None,
+                "an empty entry {} is ignored: it names no force".to_string(),
+            );
+            continue;
+        }
         b.force(f, k)?;
+    }
+    if let Some(contacts) = top.get("contacts") {
+        let n = match contacts {
+            Value::Array(a) => a.len(),
+            Value::Null => 0,
+            _ => 1,
+        };
+        if n > 0 {
+            b.warn(
+                "contacts".to_string(),
+                None,
+                format!(
+                    "{n} contact entr{} ignored: the course engine does not read `contacts`, \
+                     and neither does camlink",
+                    if n == 1 { "y is" } else { "ies are" }
+                ),
+            );
+        }
     }
 
     let mut model = Item::Table(Vec::new());
@@ -281,6 +315,7 @@ pub fn build(adm: &Value) -> R<Built> {
     Ok(Built {
         doc,
         origins: b.origins,
+        warnings: b.warnings,
     })
 }
 
@@ -384,7 +419,7 @@ pub fn analysis(acf: &Value) -> R<Item> {
                     Some("analysis file"),
                     format!(
                         "outputSteps is a whole number of output intervals ≥ 1, not {}",
-                        n.0
+                        camlink_core::fmt_num::num(n.0)
                     ),
                 );
             }
@@ -410,6 +445,14 @@ pub fn analysis(acf: &Value) -> R<Item> {
 }
 
 impl Builder {
+    fn warn(&mut self, path: String, label: Option<&str>, message: String) {
+        self.warnings.push(AdmFail {
+            path,
+            label: label.map(str::to_string),
+            message,
+        });
+    }
+
     /// Registers a joint, driver or force name: the file's, else `fallback`;
     /// a name already taken gets `_<id>`, then a counter.
     fn unique(&mut self, given: Option<&str>, fallback: &str, id: Option<&str>) -> String {
@@ -831,21 +874,37 @@ impl Builder {
         Ok(())
     }
 
-    /// A joint between `body1` and `body2` read from `v`, with its bodies;
-    /// joints take no function (`fun` left out or `NONE`).
+    /// A joint between `body1` and `body2` read from `v`, with its bodies.
+    /// The course engine reads every constraint's `fun` and never uses a
+    /// joint's: a constant `fun` is ignored with a warning, a function of t
+    /// (which would mean a motion the joint cannot impose) is refused.
     fn joint_of<T: DeserializeOwned + format::TwoBodies>(
-        &self,
+        &mut self,
         v: &Value,
         p: &str,
         lab: &str,
         kind: &str,
     ) -> R<(T, Option<usize>, Option<usize>)> {
         let c: T = parse(v, p, Some(lab))?;
-        if !is_none(c.fun()) {
-            return fail(
-                format!("{p}.fun"),
+        if let Some(fun) = c.fun().filter(|f| !is_none(Some(f))) {
+            let path = format!("{p}.fun");
+            let (_, uses_t) = fun_item(fun, &path, lab)?;
+            if uses_t {
+                return fail(
+                    path,
+                    Some(lab),
+                    format!(
+                        "a {kind} takes no function of time, but fun is \"{fun}\"; the course \
+                         engine ignores a {kind}'s fun, so this motion would not be imposed: \
+                         drive it with an AbsoluteX, AbsoluteY or AbsoluteAngle, and write \
+                         \"NONE\" here"
+                    ),
+                );
+            }
+            self.warn(
+                path,
                 Some(lab),
-                format!("a {kind} takes no function; write \"NONE\" or leave fun out"),
+                format!("fun \"{fun}\" is ignored: the course engine does not use a {kind}'s fun"),
             );
         }
         let (b1, b2) = c.bodies();

@@ -47,7 +47,8 @@ impl<'de> Deserialize<'de> for Id {
         let Number(v) = Number::deserialize(d)?;
         if v.fract() != 0.0 || v.abs() > 1e15 {
             return Err(de::Error::custom(format_args!(
-                "an id is an integer, not {v}"
+                "an id is an integer, not {}",
+                camlink_core::fmt_num::num(v)
             )));
         }
         Ok(Id(v as i64))

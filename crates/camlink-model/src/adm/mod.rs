@@ -127,6 +127,10 @@ pub struct Described {
     /// The description (a model file's tables), `[analysis]` included when
     /// an `.acf` was read.
     pub doc: Item,
+    /// What the file holds that is read and ignored, as the course engine
+    /// ignores it (a joint's constant `fun`, an empty force entry,
+    /// `contacts`): one line each, placed as an error would be.
+    pub warnings: Vec<String>,
     adm: Json,
     acf: Option<Json>,
     origins: Vec<build::Origin>,
@@ -173,6 +177,14 @@ fn describe_json(adm: Json, acf: Option<Json>) -> Result<Described, LoadError> {
     let built =
         build::build(&adm.value).map_err(|f| adm.error(&f.path, f.label.as_deref(), &f.message))?;
     let mut doc = built.doc;
+    let warnings = built
+        .warnings
+        .iter()
+        .map(|w| {
+            adm.error(&w.path, w.label.as_deref(), &w.message)
+                .to_string()
+        })
+        .collect();
     if let Some(acf) = &acf {
         let table =
             build::analysis(&acf.value).map_err(|f| acf.error(&f.path, None, &f.message))?;
@@ -180,6 +192,7 @@ fn describe_json(adm: Json, acf: Option<Json>) -> Result<Described, LoadError> {
     }
     Ok(Described {
         doc,
+        warnings,
         adm,
         acf,
         origins: built.origins,
@@ -219,6 +232,7 @@ impl Described {
             outlines,
             data_files: data.into_read(),
             recipe: None,
+            warnings: self.warnings.clone(),
         })
     }
 

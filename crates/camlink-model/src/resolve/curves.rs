@@ -14,6 +14,7 @@ use camlink_core::constraint::flat_follower::FlatFollower;
 use camlink_core::constraint::point_follower::PointFollower;
 use camlink_core::constraint::{Constraint, MAX_OWN};
 use camlink_core::curve::{read_points_csv, search, Curve, Parametric, Polar, Radius};
+use camlink_core::fmt_num::num;
 use camlink_core::force::compliant_contact::HuntCrossley;
 use camlink_core::math::{point, rot_t, sub, V2};
 use camlink_core::model::Unilateral;
@@ -205,7 +206,7 @@ impl Ctx {
                         if s1 <= s0 {
                             return fail(
                                 format!("{p}.range"),
-                                format!("the range must increase, got [{s0}, {s1}]"),
+                                format!("the range must increase, got [{}, {}]", num(s0), num(s1)),
                             );
                         }
                         let f = |src: &str, key: &str| {
@@ -572,13 +573,19 @@ impl Ctx {
         }
         if let Some(rest) = rest {
             if !(rest >= 0.0 && rest.is_finite()) {
-                return fail(field(1), format!("must be a speed ≥ 0 (m/s), not {rest}"));
+                return fail(
+                    field(1),
+                    format!("must be a speed ≥ 0 (m/s), not {}", num(rest)),
+                );
             }
             u.rest_speed = rest;
         }
         if let Some(tol) = tol {
             if !(tol > 0.0 && tol.is_finite()) {
-                return fail(field(2), format!("must be a time > 0 (s), not {tol}"));
+                return fail(
+                    field(2),
+                    format!("must be a time > 0 (s), not {}", num(tol)),
+                );
             }
             u.event_tol = tol;
         }
