@@ -1,0 +1,112 @@
+//! Issue 27: forward-dynamics outputs at any time, between step ends as at
+//! them, come from the state at that time; forces and accelerations are
+//! checked against inverse dynamics along the same motion.
+
+use camlink_core::dynamics::{integrator, inverse};
+use camlink_core::run::{Settings, Table};
+use camlink_model::Loaded;
+
+fn example(name: &str) -> Loaded {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name);
+    camlink_model::load_path(&path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn ch(t: &Table, name: &str) -> Vec<f64> {
+    t.channel(name)
+        .unwrap_or_else(|| panic!("no channel {name} in {:?}", t.channels))
+}
+
+/// Forward dynamics of `l` at fixed steps `h` (s), output at `times`.
+fn forward(l: &Loaded, times: &[f64], h: f64) -> Table {
+    let settings = integrator::Settings {
+        step: h,
+        ..integrator::Settings::default()
+    };
+    let mut t = Table::default();
+    integrator::run(&l.model, times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
+    t
+}
+
+/// Inverse dynamics of `l` at `times`.
+fn inverse_at(l: &Loaded, times: &[f64]) -> Table {
+    let mut t = Table::default();
+    inverse::run(&l.model, times, &Settings::default(), &[], &mut t)
+        .unwrap_or_else(|e| panic!("{e}"));
+    t
+}
+
+#[test]
+fn issue27_effort_just_past_a_step_end_is_inverse_dynamics() {
+    let l = example("dyn_slider_crank.toml");
+    for d in [0.0, 1e-6, 1e-8, 1e-9] {
+        let t = 0.05 + d;
+        let f = forward(&l, &[0.0, t], 1e-4);
+        let i = inverse_at(&l, &[0.0, t]);
+        let (ef, ei) = (ch(&f, "motor.effort")[1], ch(&i, "motor.effort")[1]);
+        eprintln!(
+            "d = {d:e}: forward {ef}, inverse {ei}, rel {:e}",
+            (ef - ei) / ei
+        );
+    }
+}
+
+/// The valve-jump example's tappet on its cam: N(θ) = k (y − y_free) + m g
+/// − m e ω² sin θ (N) and ÿ = −e ω² sin θ (m/s²) at y = R + e sin θ,
+/// θ = ω t, the cam turning at ω (rad/s).
+fn valve_on_cam(w: f64, t: f64) -> (f64, f64) {
+    let (r, e, m, k, preload, g) = (0.02, 0.004, 0.1, 5000.0, 50.0, 9.81);
+    let y_free = r - e - preload / k;
+    let s = (w * t).sin();
+    let y = r + e * s;
+    (k * (y - y_free) + m * g - m * e * w * w * s, -e * w * w * s)
+}
+
+#[test]
+fn issue27_contact_force_just_past_a_landing_is_the_cam_s() {
+    // The valve-jump example: the tappet leaves its cam, bounces and
+    // comes to rest on it (a landing slower than rest_speed closes the
+    // contact). Outputs d = 1e-10 … 1e-6 s past that landing, where the
+    // integrator restarts, are the cam's closed form: the steps are the
+    // same with and without those output times.
+    let l = example("cam_valve_jump.toml");
+    let w = 6000.0 * std::f64::consts::TAU / 60.0;
+    let h = 1e-5;
+    let mut times = camlink_core::run::time_grid(0.02, 1e-4).unwrap();
+    let settings = integrator::Settings {
+        step: h,
+        ..integrator::Settings::default()
+    };
+    let mut t = Table::default();
+    let s = integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap();
+    let landing = s
+        .impacts
+        .iter()
+        .find(|i| i.closed)
+        .expect("the tappet comes to rest on its cam")
+        .at
+        .time;
+    let ds = [1e-10, 1e-9, 1e-8, 1e-6];
+    times.extend(ds.iter().map(|d| landing + d));
+    times.sort_by(f64::total_cmp);
+    let mut t = Table::default();
+    let s2 = integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap();
+    assert_eq!(s2.impacts, s.impacts);
+    let (n, ay) = (ch(&t, "bucket.normal_force"), ch(&t, "tappet.ay"));
+    for d in ds {
+        let k = t.t.iter().position(|&x| x == landing + d).unwrap();
+        let (nf, af) = valve_on_cam(w, landing + d);
+        eprintln!("d = {d:e}: N {} vs {nf} N, ÿ {} vs {af} m/s²", n[k], ay[k]);
+        assert!(
+            (n[k] - nf).abs() < 1e-9 * nf.abs().max(1.0),
+            "N {} vs {nf}",
+            n[k]
+        );
+        assert!(
+            (ay[k] - af).abs() < 1e-9 * af.abs().max(1.0),
+            "ÿ {} vs {af}",
+            ay[k]
+        );
+    }
+}
