@@ -389,3 +389,24 @@ fn fixed_steps_leave_no_sliver_before_an_output_time() {
     let summary = run(&model, &times, &settings(1e-5, 0.8), &[], &mut table).unwrap();
     assert_eq!(summary.steps, 60_000);
 }
+
+/// A fixed step longer than the output interval is cut to it: outputs
+/// every 0.01 s at h = 1e15 s are those at h = 0.01 s, bit for bit (issue
+/// 27: steps go past an output time only within the longest interval).
+#[test]
+fn issue27_a_huge_fixed_step_is_cut_to_the_output_interval() {
+    let model = pendulum(0.5, 1.0, 0.02, 1.0, false);
+    let times = time_grid(0.5, 0.01).unwrap();
+    let table = |h: f64| {
+        let settings = Settings {
+            step: h,
+            ..Settings::default()
+        };
+        let mut t = Table::default();
+        run(&model, &times, &settings, &[], &mut t).unwrap();
+        t
+    };
+    let (a, b) = (table(1e15), table(0.01));
+    assert_eq!(a.t, b.t);
+    assert_eq!(a.values, b.values);
+}

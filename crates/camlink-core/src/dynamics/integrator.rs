@@ -38,6 +38,11 @@
 //! projected onto Φ = 0 and Φ_q q̇ = ν ([`super::project`]), then q̈₀ and λ₀
 //! from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], and a₀ = q̈₀.
 //!
+//! Steps keep to their own grid: an output time inside a step, short of
+//! its end, is served by [`Integrator::dense_output`] (cubic Hermite
+//! interpolants of q and q̇, projected onto the constraints, then the
+//! consistent q̈ and λ), never by a step cut short to meet it.
+//!
 //! The error-controlled mode estimates the local error of a step as
 //! h² |β − 1/6| |q̈_{n+1} − q̈_n| per coordinate, the leading term of the
 //! Newmark truncation error (with q̈ for a, whose parasitic oscillation
@@ -1427,6 +1432,18 @@ fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisEr
     AnalysisError::new(kind, t, what).at_joints(joints, max_abs(&phi))
 }
 
+/// `settings` for a run with output at `times`: a fixed step longer than
+/// the longest output interval is cut to it (steps between output times,
+/// landing on them, rather than one step past many).
+fn on_output_times(settings: &Settings, times: &[f64]) -> Settings {
+    let longest = times.windows(2).map(|w| w[1] - w[0]).fold(0.0f64, f64::max);
+    let mut s = settings.clone();
+    if s.adaptive.is_none() && longest > 0.0 {
+        s.step = s.step.min(longest);
+    }
+    s
+}
+
 /// Forward dynamics with output at `times` (increasing; the first is the
 /// start time): the kinematic channels, then reactions, driver efforts,
 /// energy and drift ([`super::output`]). Rows reach `sink` as each output
@@ -1438,6 +1455,7 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
+    let settings = &on_output_times(settings, times);
     if model.joints.iter().any(|j| j.unilateral.is_some()) {
         return super::unilateral::run(model, times, settings, points, sink);
     }

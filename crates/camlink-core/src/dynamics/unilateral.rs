@@ -21,7 +21,9 @@
 //! from the parabola through N at the last three step ends.
 //!
 //! At lift-off the joint opens and the integration restarts from the
-//! event. At impact the impulse of Newton's law with restitution e is
+//! end of the located interval. An impact is taken at the secant zero of
+//! the gap inside that interval, from the step's interpolated state
+//! there: the impulse of Newton's law with restitution e is
 //! applied ([`super::impact`]); the contact stays open when the follower
 //! separates, and closes (a plastic impact) when e = 0 or when the
 //! approach speed is below the joint's `rest_speed`: a follower bouncing
@@ -36,9 +38,10 @@
 //! integrator, created at the first switch to it. The full model's state
 //! is kept for the outputs: an open joint's contact parameters are those
 //! of the gap's witness points, their rates and its multipliers zero.
-//! Steps are of the fixed size `settings.step` (landing on the output
-//! times); the error-controlled mode is refused in a run with unilateral
-//! contacts.
+//! Steps are of the fixed size `settings.step` from the last event; an
+//! output time inside a step is served by its interpolant
+//! ([`Integrator::dense_between`]) in the model of that step. The
+//! error-controlled mode is refused in a run with unilateral contacts.
 
 use super::impact;
 use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
