@@ -208,3 +208,38 @@ fn issue27_valve_contact_force_between_step_ends_is_the_cam_s() {
         );
     }
 }
+
+#[test]
+fn issue27_adaptive_effort_just_past_an_output_time_is_inverse_dynamics() {
+    // The error-controlled mode lands on 0.05 s, then has 1e-9 s to the
+    // next output time: it steps past it and interpolates, instead of a
+    // step of 1e-9 s.
+    let l = example("dyn_slider_crank.toml");
+    let settings = integrator::Settings {
+        step: 1e-3,
+        adaptive: Some(integrator::Adaptive {
+            atol: 1e-8,
+            rtol: 1e-8,
+            h_min: 1e-12,
+        }),
+        ..integrator::Settings::default()
+    };
+    let times = [0.0, 0.05, 0.05 + 1e-9, 0.05 + 2e-9];
+    let mut f = Table::default();
+    integrator::run(&l.model, &times, &settings, &[], &mut f).unwrap();
+    let i = inverse_at(&l, &times);
+    let (ef, ei) = (ch(&f, "motor.effort"), ch(&i, "motor.effort"));
+    // 0.05 s is a step end (the step's multipliers: -4.9747 N·m, 8e-3 off
+    // at these tolerances); the two rows after it are interpolated.
+    for k in 1..times.len() {
+        eprintln!("t = {}: forward {}, inverse {}", times[k], ef[k], ei[k]);
+    }
+    for k in 2..times.len() {
+        assert!(
+            (ef[k] - ei[k]).abs() < 1e-9 * ei[k].abs(),
+            "{} vs {}",
+            ef[k],
+            ei[k]
+        );
+    }
+}
