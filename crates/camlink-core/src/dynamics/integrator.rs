@@ -38,6 +38,11 @@
 //! projected onto Φ = 0 and Φ_q q̇ = ν ([`super::project`]), then q̈₀ and λ₀
 //! from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], and a₀ = q̈₀.
 //!
+//! Steps keep to their own grid: an output time inside a step, short of
+//! its end, is served by [`Integrator::dense_output`] (cubic Hermite
+//! interpolants of q and q̇, projected onto the constraints, then the
+//! consistent q̈ and λ), never by a step cut short to meet it.
+//!
 //! The error-controlled mode estimates the local error of a step as
 //! h² |β − 1/6| |q̈_{n+1} − q̈_n| per coordinate, the leading term of the
 //! Newmark truncation error (with q̈ for a, whose parasitic oscillation
@@ -114,6 +119,14 @@ pub(crate) fn fixed_step(left: f64, h_max: f64) -> f64 {
     } else {
         h_max
     }
+}
+
+/// True when an output time `left` (s) ahead lies inside the next fixed
+/// step of `h_max` (s), short of a whole step by more than [`SLIVER`]: the
+/// step goes past it and the output is interpolated
+/// ([`Integrator::dense_output`]).
+pub(crate) fn steps_over(left: f64, h_max: f64) -> bool {
+    left < h_max * (1.0 - SLIVER)
 }
 
 /// Error control of the variable-step mode: the weighted local error
@@ -194,6 +207,22 @@ pub struct Snapshot {
     vectors: [Vec<f64>; 7],
 }
 
+impl Snapshot {
+    /// Copies `s` into this snapshot, reusing its vectors.
+    pub fn copy_from(&mut self, s: &Snapshot) {
+        self.t = s.t;
+        self.h_prev = s.h_prev;
+        for (to, from) in self.vectors.iter_mut().zip(&s.vectors) {
+            to.clone_from(from);
+        }
+    }
+
+    /// Its time (s).
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+}
+
 /// How an attempt at a step ended.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Attempt {
@@ -220,8 +249,10 @@ pub struct Integrator<'m> {
     a: Vec<f64>,
     /// The step h the factorization was made for (0: none).
     h_factored: f64,
-    /// Start-of-step copies (q, q̇, q̈, λ, a), to retry a step.
+    /// Start-of-step copies (q, q̇, q̈, λ, a), to retry a step, and the
+    /// time they hold (s).
     saved: [Vec<f64>; 5],
+    t_saved: f64,
     /// q̈ and λ of the step before, and its length (0: none), for the predictor.
     prev: [Vec<f64>; 2],
     h_prev: f64,
@@ -258,6 +289,25 @@ pub struct Integrator<'m> {
     border: Vec<f64>,
     schur: Option<DenseLu>,
     ext: Vec<f64>,
+    /// The state at an output time inside the last step
+    /// ([`dense_output`](Self::dense_output)); made at its first use.
+    pub dense: Option<Dense>,
+}
+
+/// The state at an output time t inside a step [t₀, t₁]: q and q̇ from the
+/// cubic Hermite interpolants of (q, q̇) and (q̇, q̈) at the step's ends,
+/// projected onto Φ = 0 and Φ_q q̇ = ν, then q̈ and λ consistent with them,
+/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ]. Its own matrix leaves the step's
+/// factorization alone.
+pub struct Dense {
+    /// Time (s).
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    aug: Augmented,
+    rhs: Vec<f64>,
 }
 
 impl<'m> Integrator<'m> {
@@ -334,6 +384,7 @@ impl<'m> Integrator<'m> {
                 vec![0.0; m],
                 vec![0.0; n],
             ],
+            t_saved: t0,
             prev: [vec![0.0; n], vec![0.0; m]],
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
@@ -355,6 +406,7 @@ impl<'m> Integrator<'m> {
             border: Vec::new(),
             schur: None,
             ext: Vec::new(),
+            dense: None,
         };
         it.accelerations()?;
         it.a.copy_from_slice(&it.qdd);
@@ -479,6 +531,103 @@ impl<'m> Integrator<'m> {
         rhs.resize(self.sys.n() + self.sys.m(), 0.0);
         let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
         solve_consistent(&self.sys, aug, t, q, qd, qdd, rhs)
+    }
+
+    /// The state at `t` (s) inside the last step, t₀ ≤ t ≤ t₁ = `self.t`,
+    /// into [`dense`](Self::dense) ([`Dense`]). The accelerations and
+    /// multipliers of a step scale like 1/h², so a step cut short to land
+    /// on t would not give them; the integrator's state and factorization
+    /// are unchanged.
+    pub fn dense_output(&mut self, t: f64) -> Result<(), AnalysisError> {
+        self.make_dense(t)?;
+        // Projected, or where the projection fails, as interpolated.
+        for project in [true, false] {
+            let d = self.dense.as_mut().expect("dense output");
+            let [q0, v0, a0, ..] = &self.saved;
+            let start = (self.t_saved, [&q0[..], v0, a0]);
+            hermite(d, t, start, (self.t, [&self.q, &self.qd, &self.qdd]));
+            let settled = self.settle_dense(project);
+            if settled.is_ok() || !project {
+                return settled;
+            }
+        }
+        unreachable!("the unprojected state returns")
+    }
+
+    /// [`dense_output`](Self::dense_output) at `t` (s) between the states
+    /// of two snapshots of this integrator, `start` and `end`, the ends of
+    /// one step.
+    pub fn dense_between(
+        &mut self,
+        start: &Snapshot,
+        end: &Snapshot,
+        t: f64,
+    ) -> Result<(), AnalysisError> {
+        self.make_dense(t)?;
+        // Projected, or where the projection fails, as interpolated.
+        for project in [true, false] {
+            let d = self.dense.as_mut().expect("dense output");
+            let [q0, v0, a0, ..] = &start.vectors;
+            let [q1, v1, a1, ..] = &end.vectors;
+            hermite(d, t, (start.t, [q0, v0, a0]), (end.t, [q1, v1, a1]));
+            let settled = self.settle_dense(project);
+            if settled.is_ok() || !project {
+                return settled;
+            }
+        }
+        unreachable!("the unprojected state returns")
+    }
+
+    /// Makes [`dense`](Self::dense) at its first use.
+    fn make_dense(&mut self, t: f64) -> Result<(), AnalysisError> {
+        if self.dense.is_none() {
+            let (n, m) = (self.sys.n(), self.sys.m());
+            let aug = Augmented::new(&self.sys, &self.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
+            self.dense = Some(Dense {
+                t,
+                q: vec![0.0; n],
+                qd: vec![0.0; n],
+                qdd: vec![0.0; n],
+                lambda: vec![0.0; m],
+                aug,
+                rhs: vec![0.0; n + m],
+            });
+        }
+        Ok(())
+    }
+
+    /// The interpolated (q, q̇) of [`dense`](Self::dense) projected onto
+    /// Φ = 0 (to `projection_tol`) and Φ_q q̇ = ν when `project`, then q̈
+    /// and λ (of minimum norm) from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] there.
+    /// (The interpolant is off the constraints by its O(h⁴) error only: at
+    /// a singular position, where the projection can fail, it serves
+    /// unprojected.)
+    fn settle_dense(&mut self, project: bool) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (sys, tol) = (&self.sys, self.settings.projection_tol);
+        let Dense {
+            t,
+            q,
+            qd,
+            qdd,
+            lambda,
+            aug,
+            rhs,
+        } = self.dense.as_mut().expect("dense output");
+        let t = *t;
+        aug.set_regularised(self.redundant.is_some());
+        if project {
+            let projected = project::positions(sys, aug, q, t, tol, 100)
+                .and_then(|_| project::velocities(sys, aug, q, qd, t));
+            if let Err(e) = projected {
+                return Err(error_at(sys, t, q, e.kind, &e.message));
+            }
+        }
+        solve_consistent(sys, aug, t, q, qd, qdd, rhs)?;
+        qdd.copy_from_slice(&rhs[..n]);
+        lambda.copy_from_slice(&rhs[n..]);
+        Ok(())
     }
 
     /// An error at the current state, naming the joints furthest from
@@ -730,6 +879,7 @@ impl<'m> Integrator<'m> {
     }
 
     fn save(&mut self) {
+        self.t_saved = self.t;
         let [q, qd, qdd, l, a] = &mut self.saved;
         q.copy_from_slice(&self.q);
         qd.copy_from_slice(&self.qd);
@@ -1124,19 +1274,55 @@ impl<'m> Integrator<'m> {
         h_next: &mut f64,
         tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
     ) -> Result<(), AnalysisError> {
+        self.advance(t_end, h_next, tick, false)
+    }
+
+    /// Advances for an output at `t_out` (s), calling `tick` before every
+    /// step; true when `t_out` lies inside the last step, whose state there
+    /// is then in [`dense`](Self::dense) ([`dense_output`](Self::dense_output)).
+    /// A step lands on `t_out` only when it is within [`SLIVER`] of a whole
+    /// fixed step, or at least a quarter of the step the error control
+    /// proposes; otherwise the integrator steps on past `t_out`. A later
+    /// output time inside the same step is served from it without a step.
+    pub fn advance_to_output(
+        &mut self,
+        t_out: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+    ) -> Result<bool, AnalysisError> {
+        self.advance(t_out, h_next, tick, true)?;
+        if t_out - self.t >= -arrived_within(t_out, self.settings.step) {
+            return Ok(false);
+        }
+        self.dense_output(t_out)?;
+        Ok(true)
+    }
+
+    /// [`advance_watching`](Self::advance_watching); with `over`, a step
+    /// that would land on `t_end` short of a whole step goes past it.
+    fn advance(
+        &mut self,
+        t_end: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+        over: bool,
+    ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
         let done = arrived_within(t_end, h_max);
         while t_end - self.t > done {
             tick()?;
             let left = t_end - self.t;
             match self.settings.adaptive.clone() {
+                None if over && steps_over(left, h_max) => self.step(h_max)?,
                 None => self.step(fixed_step(left, h_max))?,
                 Some(ad) => {
                     // The step lands on the output time, or leaves at least
                     // a step's worth: two equal steps rather than one and
                     // a sliver (a sliver's Newton matrix is ill conditioned).
                     let h = h_next.min(h_max);
-                    let h = if h >= left {
+                    let h = if over && 4.0 * left < h {
+                        h
+                    } else if h >= left {
                         left
                     } else if h > 0.5 * left {
                         0.5 * left
@@ -1187,7 +1373,7 @@ impl<'m> Integrator<'m> {
                         continue;
                     }
                     self.err_prev = Some(err);
-                    if h < left {
+                    if h != left {
                         *h_next = (h * factor).max(ad.h_min);
                     }
                 }
@@ -1197,6 +1383,31 @@ impl<'m> Integrator<'m> {
         Ok(())
     }
 }
+
+/// The step's state at `t` (s) into `d`: q from the cubic Hermite
+/// interpolant of (q, q̇) at the step's ends (t₀, [q, q̇, q̈]₀) and
+/// (t₁, [q, q̇, q̈]₁), q̇ from that of (q̇, q̈).
+fn hermite(d: &mut Dense, t: f64, (t0, [q0, v0, a0]): End, (t1, [q1, v1, a1]): End) {
+    d.t = t;
+    let h = t1 - t0;
+    let th = if h > 0.0 {
+        ((t - t0) / h).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let (t2, t3) = (th * th, th * th * th);
+    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+    let h10 = (t3 - 2.0 * t2 + th) * h;
+    let h01 = 3.0 * t2 - 2.0 * t3;
+    let h11 = (t3 - t2) * h;
+    for k in 0..d.q.len() {
+        d.q[k] = h00 * q0[k] + h10 * v0[k] + h01 * q1[k] + h11 * v1[k];
+        d.qd[k] = h00 * v0[k] + h10 * a0[k] + h01 * v1[k] + h11 * a1[k];
+    }
+}
+
+/// One end of a step: its time (s) and [q, q̇, q̈].
+type End<'a> = (f64, [&'a [f64]; 3]);
 
 /// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] of system `s` at (t, q, q̇) into `rhs`
 /// (length n + m), λ of minimum norm; `aug` is refactored for it (q̈
@@ -1240,6 +1451,18 @@ fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisEr
     AnalysisError::new(kind, t, what).at_joints(joints, max_abs(&phi))
 }
 
+/// `settings` for a run with output at `times`: a fixed step longer than
+/// the longest output interval is cut to it (steps between output times,
+/// landing on them, rather than one step past many).
+fn on_output_times(settings: &Settings, times: &[f64]) -> Settings {
+    let longest = times.windows(2).map(|w| w[1] - w[0]).fold(0.0f64, f64::max);
+    let mut s = settings.clone();
+    if s.adaptive.is_none() && longest > 0.0 {
+        s.step = s.step.min(longest);
+    }
+    s
+}
+
 /// Forward dynamics with output at `times` (increasing; the first is the
 /// start time): the kinematic channels, then reactions, driver efforts,
 /// energy and drift ([`super::output`]). Rows reach `sink` as each output
@@ -1251,6 +1474,7 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
+    let settings = &on_output_times(settings, times);
     if model.joints.iter().any(|j| j.unilateral.is_some()) {
         return super::unilateral::run(model, times, settings, points, sink);
     }
@@ -1267,9 +1491,28 @@ pub fn run(
     let mut h_next = settings.step;
     let mut lambda = vec![0.0; it.sys.m()];
     for (k, &t) in times.iter().enumerate() {
+        let mut inside = false;
         if k > 0 {
             run::check_next_time(Some(times[k - 1]), t)?;
-            it.advance_watching(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
+            inside =
+                it.advance_to_output(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
+        }
+        // An output time inside a step: the state there, its multipliers
+        // of minimum norm ([`Integrator::dense_output`]).
+        if let (true, Some(d)) = (inside, &it.dense) {
+            run::fill_outputs(
+                model,
+                &it.sys.asm,
+                &contacts,
+                [&d.q, &d.qd, &d.qdd],
+                points,
+                &mut values[..nk],
+            );
+            let (q, qd, lam) = (&d.q, &d.qd, &d.lambda);
+            output::fill(&it.sys, &mut scratch, q, qd, lam, d.t, &mut values[nk..]);
+            sink.row(t, &values).map_err(|s| s.at(t))?;
+            lift_off.observe(t, &values);
+            continue;
         }
         run::fill_outputs(
             model,

@@ -21,7 +21,9 @@
 //! from the parabola through N at the last three step ends.
 //!
 //! At lift-off the joint opens and the integration restarts from the
-//! event. At impact the impulse of Newton's law with restitution e is
+//! end of the located interval. An impact is taken at the secant zero of
+//! the gap inside that interval, from the step's interpolated state
+//! there: the impulse of Newton's law with restitution e is
 //! applied ([`super::impact`]); the contact stays open when the follower
 //! separates, and closes (a plastic impact) when e = 0 or when the
 //! approach speed is below the joint's `rest_speed`: a follower bouncing
@@ -36,12 +38,13 @@
 //! integrator, created at the first switch to it. The full model's state
 //! is kept for the outputs: an open joint's contact parameters are those
 //! of the gap's witness points, their rates and its multipliers zero.
-//! Steps are of the fixed size `settings.step` (landing on the output
-//! times); the error-controlled mode is refused in a run with unilateral
-//! contacts.
+//! Steps are of the fixed size `settings.step` from the last event; an
+//! output time inside a step is served by its interpolant
+//! ([`Integrator::dense_between`]) in the model of that step. The
+//! error-controlled mode is refused in a run with unilateral contacts.
 
 use super::impact;
-use super::integrator::{arrived_within, fixed_step, Integrator, Settings, Snapshot};
+use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
@@ -158,7 +161,15 @@ fn sample_mean(c: &Curve) -> V2 {
 }
 
 /// The unilateral joints of `model`, checked.
-fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, AnalysisError> {
+/// `h` is the time step (s) and `t_span` the largest |t| of the run (s),
+/// which bound each joint's `event_tol` ([`event_tol_bounds`]).
+fn contacts(
+    model: &Model,
+    sys: &System,
+    q: &[f64],
+    h: f64,
+    t_span: f64,
+) -> Result<Vec<Contact>, AnalysisError> {
     let bad = |j: usize, what: &str| {
         AnalysisError::new(
             Kind::InvalidInput,
@@ -187,6 +198,20 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
             return Err(bad(
                 j,
                 "event_tol must be positive and rest_speed not negative",
+            ));
+        }
+        let (least, below) = event_tol_bounds(h, t_span);
+        if law.compliant.is_none() && !(law.event_tol >= least && law.event_tol < below) {
+            return Err(bad(
+                j,
+                &format!(
+                    "event_tol = {} s must be at least {} s (the rounding of t over the \
+                     run) and below the time step h = {} s (an event is located inside \
+                     a step)",
+                    crate::fmt_num::num(law.event_tol),
+                    crate::fmt_num::num(least),
+                    crate::fmt_num::num(below)
+                ),
             ));
         }
         let x = sys.asm.local(model, j, q, &[], 0.0);
@@ -263,6 +288,20 @@ fn contacts(model: &Model, sys: &System, q: &[f64]) -> Result<Vec<Contact>, Anal
     Ok(out)
 }
 
+/// The bounds (s) of a joint's `event_tol` in a run of time step `h` (s)
+/// whose times reach |t| ≤ `t_span` (s): at least 16 ε max(h, t_span),
+/// which the bisection of a step's length and the times t₀ + τ it
+/// tries can still resolve, and below h, the longest interval an event
+/// is located in (at or above it every event would be placed at the end
+/// of its step).
+pub fn event_tol_bounds(h: f64, t_span: f64) -> (f64, f64) {
+    (16.0 * f64::EPSILON * h.max(t_span), h)
+}
+
+/// What is called before every step and every trial of an event's
+/// location: a sink's [`Sink::tick`], whose error stops the run.
+type Tick<'a> = dyn FnMut() -> Result<(), AnalysisError> + 'a;
+
 /// What the event functions say at the end of a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Event {
@@ -302,6 +341,19 @@ struct Run<'a> {
     rhs: Vec<f64>,
     gaps: Vec<Option<Gap>>,
     n0: Vec<Option<f64>>,
+    /// The gaps at the start of the located interval of an event.
+    gaps_lo: Vec<Option<Gap>>,
+    /// Whether the step under way keeps its ends for a dense output.
+    hold: bool,
+    /// The active set of the last step kept, and its two ends: the start
+    /// and the end before any event was handled.
+    held: Option<usize>,
+    held_ends: [Snapshot; 2],
+    /// A dense output in the full layout: q, q̇, q̈, λ and the gaps.
+    out: [Vec<f64>; 4],
+    out_gaps: Vec<Option<Gap>>,
+    /// Scratch: the state at an impact (the active set's layout).
+    at_event: [Vec<f64>; 2],
     summary: Summary,
 }
 
@@ -474,12 +526,17 @@ impl<'a> Run<'a> {
     }
 
     /// One step of length `h`, or up to the first event inside it, located
-    /// and handled.
-    fn step(&mut self, h: f64, snap: &mut Snapshot) -> Result<(), AnalysisError> {
+    /// and handled; `tick` is called before every trial of the location.
+    fn step(
+        &mut self,
+        h: f64,
+        snap: &mut Snapshot,
+        tick: &mut Tick<'_>,
+    ) -> Result<(), AnalysisError> {
         let mut gaps = std::mem::take(&mut self.gaps);
         gaps.clear();
         gaps.extend(self.contacts.iter().map(|c| c.gap));
-        let done = self.step_from(h, snap, &gaps);
+        let done = self.step_from(h, snap, &gaps, tick);
         self.gaps = gaps;
         done
     }
@@ -490,13 +547,14 @@ impl<'a> Run<'a> {
         h: f64,
         snap: &mut Snapshot,
         gaps: &[Option<Gap>],
+        tick: &mut Tick<'_>,
     ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
         let t0 = self.it().t;
         let mut n0 = std::mem::take(&mut self.n0);
         n0.clear();
         n0.extend((0..self.contacts.len()).map(|k| self.watched(k).then(|| self.value(k))));
-        let done = self.step_watched(h, snap, gaps, t0, &n0);
+        let done = self.step_watched(h, snap, gaps, t0, &n0, tick);
         self.n0 = n0;
         done
     }
@@ -510,6 +568,7 @@ impl<'a> Run<'a> {
         gaps: &[Option<Gap>],
         t0: f64,
         n0: &[Option<f64>],
+        tick: &mut Tick<'_>,
     ) -> Result<(), AnalysisError> {
         self.it().step(h)?;
         self.pull()?;
@@ -548,41 +607,166 @@ impl<'a> Run<'a> {
             if self.event().is_none() {
                 // The interpolant dipped, the motion did not: keep the step.
                 self.trial(snap, gaps, h)?;
+                self.keep(snap);
                 self.remember(t0, n0);
                 return Ok(());
             }
             span = tau;
         }
         if self.event().is_none() {
+            self.keep(snap);
             self.remember(t0, n0);
             return Ok(());
         }
         for c in &mut self.contacts {
             c.n_before = None;
         }
-        // Bisection on the step length to the tightest event tolerance.
+        // Bisection on the step length to the tightest event tolerance,
+        // keeping the gaps at the start of the interval.
         let tol = self
             .contacts
             .iter()
+            .filter(|c| c.law.compliant.is_none())
             .map(|c| c.law.event_tol)
             .fold(f64::INFINITY, f64::min);
+        self.gaps_lo.clear();
+        self.gaps_lo.extend_from_slice(gaps);
         let (mut lo, mut hi) = (0.0, span);
         while hi - lo > tol {
+            tick()?;
             let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
             self.trial(snap, gaps, mid)?;
             if self.event().is_some() {
                 hi = mid;
             } else {
                 lo = mid;
+                for (g, c) in self.gaps_lo.iter_mut().zip(&self.contacts) {
+                    *g = c.gap;
+                }
             }
         }
         self.trial(snap, gaps, hi)?;
-        self.count_event(tol)?;
+        self.keep(snap);
         match self.event() {
-            Some(Event::LiftOff(k)) => self.lift_off(k),
-            Some(Event::Impact(k)) => self.impact(k),
+            Some(Event::LiftOff(k)) => {
+                self.count_event(tol)?;
+                self.lift_off(k)
+            }
+            Some(Event::Impact(k)) => {
+                self.back_to_contact(k, t0, [lo, hi])?;
+                self.count_event(tol)?;
+                self.impact(k)
+            }
             None => Ok(()),
         }
+    }
+
+    /// Moves the state back to where the gap of contact `k` is zero, in
+    /// the located interval `[lo, hi]` (s from the step's start `t0`):
+    /// the secant root of g between its ends, then the state there from
+    /// the step's interpolant ([`Integrator::dense_output`]), on which the
+    /// impact's time, approach speed and impulse are taken.
+    fn back_to_contact(
+        &mut self,
+        k: usize,
+        t0: f64,
+        [lo, hi]: [f64; 2],
+    ) -> Result<(), AnalysisError> {
+        let (Some(a), Some(b)) = (self.gaps_lo[k], self.contacts[k].gap) else {
+            return Ok(());
+        };
+        let f = if a.gap > b.gap {
+            (a.gap / (a.gap - b.gap)).clamp(0.0, 1.0)
+        } else {
+            1.0
+        };
+        let t = t0 + lo + f * (hi - lo);
+        let mask = self.mask;
+        let it = self.its[mask].as_mut().expect("integrator");
+        it.dense_output(t)?;
+        let d = it.dense.as_ref().expect("dense output");
+        let [q, qd] = &mut self.at_event;
+        q.clone_from(&d.q);
+        qd.clone_from(&d.qd);
+        it.restart(t, q, qd)?;
+        self.pull()
+    }
+
+    /// Keeps the ends of the step just taken (before any event is handled)
+    /// when [`hold`](Self::hold) is set: `start` and the active state.
+    fn keep(&mut self, start: &Snapshot) {
+        if !self.hold {
+            return;
+        }
+        let mask = self.mask;
+        self.held = Some(mask);
+        let [a, b] = &mut self.held_ends;
+        a.copy_from(start);
+        self.its[mask].as_ref().expect("integrator").snapshot(b);
+    }
+
+    /// The state at output time `t` (s) inside the step kept last into
+    /// `out` and `out_gaps` (full layout, as [`pull`](Self::pull)), λ the
+    /// consistent multipliers there; the active set's system for the
+    /// energy and drift, with its q and q̇. None when no kept step holds t.
+    fn dense_row(&mut self, t: f64) -> Result<Option<usize>, AnalysisError> {
+        let Some(mask) = self.held else {
+            return Ok(None);
+        };
+        let [a, b] = &self.held_ends;
+        if !(a.t() <= t && t <= b.t()) {
+            return Ok(None);
+        }
+        let it = self.its[mask].as_mut().expect("integrator");
+        it.dense_between(a, b, t)?;
+        self.layout(mask);
+        let layout = self.layouts[mask].as_ref().expect("layout");
+        let it = self.its[mask].as_ref().expect("integrator");
+        let d = it.dense.as_ref().expect("dense output");
+        let [q, qd, qdd, lambda] = &mut self.out;
+        q.clone_from(&self.q);
+        qd.resize(q.len(), 0.0);
+        qdd.resize(q.len(), 0.0);
+        lambda.resize(self.lambda.len(), 0.0);
+        for (f, c) in layout.cols.iter().enumerate() {
+            let (x, v, acc) = match c {
+                Some(c) => (d.q[*c], d.qd[*c], d.qdd[*c]),
+                None => (q[f], 0.0, 0.0),
+            };
+            q[f] = x;
+            qd[f] = v;
+            qdd[f] = acc;
+        }
+        for (f, r) in layout.rows.iter().enumerate() {
+            lambda[f] = r.map_or(0.0, |r| d.lambda[r]);
+        }
+        self.out_gaps.clear();
+        for k in 0..self.contacts.len() {
+            if mask & (1 << k) == 0 {
+                self.out_gaps.push(None);
+                continue;
+            }
+            let mut bq = [[0.0; 3]; 2];
+            let mut bqd = [[0.0; 3]; 2];
+            for (s, body) in self.contacts[k].bodies.iter().enumerate() {
+                if let Some(c) = self.full.asm.body_col(body.0) {
+                    bq[s].copy_from_slice(&q[c..c + 3]);
+                    bqd[s].copy_from_slice(&qd[c..c + 3]);
+                }
+            }
+            let g = self.contacts[k].gap(bq, bqd);
+            let j = self.contacts[k].joint;
+            let (o, k) = (
+                self.full.asm.own_col(j),
+                self.full.model.joints[j].constraint.own_count(),
+            );
+            q[o..o + k].copy_from_slice(&g.params[..k]);
+            self.out_gaps.push(Some(g));
+        }
+        Ok(Some(mask))
     }
 
     /// Counts an event at the current time; an accumulation of more than
@@ -760,6 +944,82 @@ impl<'a> Run<'a> {
     }
 }
 
+/// What an output row is made from: the full model's state at time t
+/// (the active integrator's, or its dense output inside a step), and the
+/// active set's system with its own q and q̇ for the energy and drift.
+struct Row<'r, 'm> {
+    q: &'r [f64],
+    qd: &'r [f64],
+    qdd: &'r [f64],
+    lambda: &'r [f64],
+    t: f64,
+    full: &'r System<'m>,
+    sys: &'r System<'m>,
+    own: [&'r [f64]; 2],
+}
+
+/// The run's output scratch and the places of its channels.
+struct Fill<'r, 'm> {
+    model: &'m Model,
+    view: Contacts,
+    points: &'r [PointOutput],
+    scratch: Scratch,
+    drift: DriftScratch,
+    normal_at: Vec<Option<usize>>,
+    /// Ends of the kinematic channels and of the dynamic ones.
+    nk: usize,
+    nd: usize,
+}
+
+impl Row<'_, '_> {
+    /// Fills `values` at this state; `states` gives each unilateral
+    /// contact's (open, gap).
+    fn fill(
+        &self,
+        f: &mut Fill,
+        contacts: &[Contact],
+        states: impl Iterator<Item = (bool, Option<Gap>)>,
+        values: &mut [f64],
+    ) {
+        let (nk, nd) = (f.nk, f.nd);
+        run::fill_outputs(
+            f.model,
+            &self.full.asm,
+            &f.view,
+            [self.q, self.qd, self.qdd],
+            f.points,
+            &mut values[..nk],
+        );
+        output::fill_forces(
+            self.full,
+            &mut f.scratch,
+            self.q,
+            self.lambda,
+            self.t,
+            &mut values[nk..nd - 5],
+        );
+        // Energy and drift of the model in force: its potential includes
+        // the compliant contacts' and an open joint's equations are released.
+        let [q, qd] = self.own;
+        values[nd - 5..nd].copy_from_slice(&output::energy_and_drift(
+            self.sys,
+            &mut f.drift,
+            q,
+            qd,
+            self.t,
+        ));
+        for (k, (c, (open, gap))) in contacts.iter().zip(states).enumerate() {
+            values[nd + 2 * k] = gap.map_or(0.0, |g| g.gap);
+            values[nd + 2 * k + 1] = if open { 0.0 } else { 1.0 };
+            // A compliant contact: its force, and closed while overlapping.
+            if let (Some(law), Some(g), Some(at)) = (c.law.compliant, gap, f.normal_at[k]) {
+                values[at] = law.force(-g.gap, -g.rate);
+                values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
+            }
+        }
+    }
+}
+
 /// The time τ ∈ (0, h) where the cubic Hermite interpolant of g with
 /// values and slopes [g₀, ġ₀, g₁, ġ₁] at 0 and h is least, when that
 /// least value is negative and the ends are not.
@@ -835,7 +1095,8 @@ pub fn run(
         let c = full.asm.body_col(id.0).expect("moving body");
         qd0[c..c + 3].copy_from_slice(&b.qd0);
     }
-    let contacts = contacts(model, &full, &q0)?;
+    let t_span = times.iter().fold(0.0f64, |a, t| a.max(t.abs()));
+    let contacts = contacts(model, &full, &q0, settings.step, t_span)?;
     let k = contacts.len();
     let all: Vec<usize> = contacts.iter().map(|c| c.joint).collect();
     let models: Vec<Model> = (0..1usize << k)
@@ -879,6 +1140,13 @@ pub fn run(
         rhs: Vec::new(),
         gaps: Vec::new(),
         n0: Vec::new(),
+        gaps_lo: Vec::new(),
+        hold: false,
+        held: None,
+        held_ends: Default::default(),
+        out: Default::default(),
+        out_gaps: Vec::new(),
+        at_event: Default::default(),
         summary: Summary::default(),
     };
     // Compliant contacts are always released; contacts apart at the given
@@ -901,11 +1169,12 @@ pub fn run(
         t0,
     )?);
     r.pull()?;
+    // A flight under way at the start has its greatest gap there so far.
+    r.track_flights(t0);
     // A contact that pulls at the start opens at once.
     while let Some(Event::LiftOff(k)) = r.event() {
         r.lift_off(k)?;
     }
-    let view = Contacts::new(model);
     let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
@@ -926,8 +1195,16 @@ pub fn run(
         .collect();
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
-    let mut scratch = Scratch::new(&r.full);
-    let mut drift = DriftScratch::new(m);
+    let mut fill = Fill {
+        model,
+        view: Contacts::new(model),
+        points,
+        scratch: Scratch::new(&r.full),
+        drift: DriftScratch::new(m),
+        normal_at,
+        nk,
+        nd,
+    };
     let mut snap = Snapshot::default();
     let h_max = settings.step;
     for (i, &t) in times.iter().enumerate() {
@@ -939,49 +1216,69 @@ pub fn run(
                     format!("times must increase, but {t} follows {}", times[i - 1]),
                 ));
             }
+            // Steps of h from the last landing or event; one that would
+            // land on t short of a whole step goes past it, keeping its
+            // ends for the output there.
             let done = arrived_within(t, h_max);
             while t - r.it().t > done {
                 sink.tick().map_err(|s| s.at(t))?;
-                let h = fixed_step(t - r.it().t, h_max);
-                r.step(h, &mut snap)?;
+                let left = t - r.it().t;
+                r.hold = steps_over(left, h_max);
+                let h = if r.hold {
+                    h_max
+                } else {
+                    fixed_step(left, h_max)
+                };
+                r.step(h, &mut snap, &mut || sink.tick().map_err(|s| s.at(t)))?;
                 let now = r.it().t;
                 r.track_flights(now);
             }
         }
-        r.pull()?;
-        run::fill_outputs(
-            model,
-            &r.full.asm,
-            &view,
-            [&r.q, &r.qd, &r.qdd],
-            points,
-            &mut values[..nk],
-        );
-        let tr = r.it().t;
-        output::fill_forces(
-            &r.full,
-            &mut scratch,
-            &r.q,
-            &r.lambda,
-            tr,
-            &mut values[nk..nd - 5],
-        );
-        // Energy and drift of the model in force: its potential includes
-        // the compliant contacts' and an open joint's equations are released.
-        let it = r.its[r.mask].as_ref().expect("integrator");
-        values[nd - 5..nd].copy_from_slice(&output::energy_and_drift(
-            &it.sys, &mut drift, &it.q, &it.qd, tr,
-        ));
-        for (k, c) in r.contacts.iter().enumerate() {
-            let gap = c.gap.map_or(0.0, |g| g.gap);
-            values[nd + 2 * k] = gap;
-            values[nd + 2 * k + 1] = if c.open { 0.0 } else { 1.0 };
-            // A compliant contact: its force, and closed while overlapping.
-            if let (Some(law), Some(g), Some(at)) = (c.law.compliant, c.gap, normal_at[k]) {
-                values[at] = law.force(-g.gap, -g.rate);
-                values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
-            }
+        // Past t: the state there from the step that holds it.
+        let inside = if r.it().t - t > arrived_within(t, h_max) {
+            r.dense_row(t)?
+        } else {
+            None
+        };
+        if let Some(mask) = inside {
+            let [q, qd, qdd, lambda] = &r.out;
+            let it = r.its[mask].as_ref().expect("integrator");
+            let d = it.dense.as_ref().expect("dense output");
+            let opens = (0..r.contacts.len()).map(|k| mask & (1 << k) != 0);
+            let state = Row {
+                q,
+                qd,
+                qdd,
+                lambda,
+                t,
+                full: &r.full,
+                sys: &it.sys,
+                own: [&d.q, &d.qd],
+            };
+            state.fill(
+                &mut fill,
+                &r.contacts,
+                opens.zip(r.out_gaps.iter().copied()),
+                &mut values,
+            );
+            sink.row(t, &values).map_err(|s| s.at(t))?;
+            continue;
         }
+        r.pull()?;
+        let tr = r.it().t;
+        let it = r.its[r.mask].as_ref().expect("integrator");
+        let state = Row {
+            q: &r.q,
+            qd: &r.qd,
+            qdd: &r.qdd,
+            lambda: &r.lambda,
+            t: tr,
+            full: &r.full,
+            sys: &it.sys,
+            own: [&it.q, &it.qd],
+        };
+        let contacts = r.contacts.iter().map(|c| (c.open, c.gap));
+        state.fill(&mut fill, &r.contacts, contacts, &mut values);
         sink.row(t, &values).map_err(|s| s.at(t))?;
     }
     // Flights under way at the end, then the solver counts of every model.
