@@ -21,6 +21,8 @@ mod friction;
 mod fuzz;
 mod fuzz_corpus;
 mod hostile;
+mod issue27_output_time;
+mod issue27_unilateral;
 mod issue_newton_rounding_level;
 mod jerk;
 mod load;
