@@ -98,7 +98,11 @@ fn circumcentre(p: [P2; 3], what: &str, field: &str, size: f64) -> Result<P2, Sy
             ));
         }
     }
+    // Relative to p₀ and scaled to the larger of the two spans, so that the
+    // squares below neither overflow nor underflow.
     let (b, c) = (sub(p[1], p[0]), sub(p[2], p[0]));
+    let s = norm(b).max(norm(c));
+    let (b, c) = ([b[0] / s, b[1] / s], [c[0] / s, c[1] / s]);
     let d = 2.0 * cross(b, c);
     if d.abs() <= 2.0 * COINCIDENT * norm(b) * norm(c) {
         return Err(SynthError::new(
@@ -111,8 +115,20 @@ fn circumcentre(p: [P2; 3], what: &str, field: &str, size: f64) -> Result<P2, Sy
         ));
     }
     let (bb, cc) = (b[0] * b[0] + b[1] * b[1], c[0] * c[0] + c[1] * c[1]);
-    let u = [(c[1] * bb - b[1] * cc) / d, (b[0] * cc - c[0] * bb) / d];
+    let u = [
+        s * (c[1] * bb - b[1] * cc) / d,
+        s * (b[0] * cc - c[0] * bb) / d,
+    ];
     Ok(add(p[0], u))
+}
+
+fn out_of_range(field: &str) -> SynthError {
+    SynthError::new(
+        ErrorKind::Invalid,
+        field,
+        "the poses and pivots are out of the range of floating-point numbers; give them in \
+         metres of a machine's size",
+    )
 }
 
 /// Solves one dyad: (moving pivot in the coupler frame, ground pivot).
@@ -159,6 +175,9 @@ pub fn three_positions(
     for p in poses {
         size = size.max(norm(sub(p.origin(), poses[0].origin())));
     }
+    if !size.is_finite() {
+        return Err(out_of_range(fields[0]));
+    }
     let size = size.max(f64::MIN_POSITIVE);
     for (i, j) in [(0, 1), (0, 2), (1, 2)] {
         let (p, q) = (poses[i], poses[j]);
@@ -202,6 +221,13 @@ pub fn three_positions(
         coupler: norm(sub(b, a)),
         rocker: norm(sub(b1, o4)),
     };
+    let numbers = [o2[0], o2[1], o4[0], o4[1], a[0], a[1], b[0], b[1]];
+    if numbers.iter().any(|v| !v.is_finite())
+        || !linkage.crank.is_finite()
+        || !linkage.rocker.is_finite()
+    {
+        return Err(out_of_range(fields[0]));
+    }
     for (len, name, field) in [
         (linkage.crank, "crank", fields[1]),
         (linkage.rocker, "rocker", fields[2]),

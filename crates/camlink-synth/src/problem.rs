@@ -163,7 +163,15 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
         le
     })?;
     let t = file.synthesis;
-    let name = t.name.clone().unwrap_or_else(|| stem.to_string());
+    let name = match &t.name {
+        Some(n) => check_name(n).map_err(|m| located(Some("synthesis.name".into()), m))?,
+        None => check_name(stem).map_err(|m| {
+            located(
+                None,
+                format!("the file's name does not make a model name ({m}); give [synthesis] name"),
+            )
+        })?,
+    };
     let to_load = |e: SynthError| located(e.field, e.message);
     match t.kind.as_str() {
         "motion" => solve_motion(&t, &name).map_err(to_load),
@@ -172,6 +180,29 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
             Some("synthesis.type".into()),
             format!("unknown synthesis type '{other}'; expected \"motion\" or \"function\""),
         )),
+    }
+}
+
+/// Most characters in a solution's name.
+const MOST_NAME: usize = 100;
+
+/// `name` if it makes a file name in the output folder: letters, digits,
+/// `_`, `-` and `.`, not starting with `.`, at most [`MOST_NAME`] characters.
+fn check_name(name: &str) -> Result<String, String> {
+    let ok = !name.is_empty()
+        && name.chars().count() <= MOST_NAME
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    if ok {
+        Ok(name.to_string())
+    } else {
+        Err(format!(
+            "'{}' is not a name for a model file: use letters, digits, '_', '-' and '.' \
+             (not first), at most {MOST_NAME} characters",
+            name.escape_debug()
+        ))
     }
 }
 

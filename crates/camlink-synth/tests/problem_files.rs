@@ -202,3 +202,37 @@ fn syntax_error_located() {
     let e = err("[synthesis\ntype = 1\n");
     assert!(e.starts_with("p.toml:1:"), "{e}");
 }
+
+/// A solution's name becomes a file name in the output folder: a name
+/// that would leave it (or hide the file) is refused.
+#[test]
+fn issue31_name_cannot_leave_the_output_folder() {
+    for bad in ["../evil", "/abs", ".hidden", "a/b", "a\\b", ""] {
+        let e = err(&format!("{MOTION}name = \"{bad}\"\n"));
+        assert!(e.starts_with("p.toml:6:8: synthesis.name: '"), "{bad}: {e}");
+    }
+    let e = match solve_str(MOTION, ".x.toml", ".x") {
+        Ok(_) => panic!("accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("give [synthesis] name"), "{e}");
+    let ok = solve_str(&format!("{MOTION}name = \"arm-2.b\"\n"), "p.toml", "p").unwrap();
+    assert_eq!(ok.solutions[0].name, "arm-2.b");
+}
+
+/// Poses far beyond a machine's size overflow to non-finite pivots: an
+/// error, never a model file holding NaN.
+#[test]
+fn issue31_overflowing_poses_refused() {
+    let text = r#"[synthesis]
+type = "motion"
+poses = [[-1.5e308, 0, 0], [1.5e308, 0, 0.5], [0, 1e308, 1.0]]
+crank = { moving = [0.1, 0] }
+rocker = { moving = [0, 0.1] }
+"#;
+    let e = err(text);
+    assert!(
+        e.contains("synthesis.poses: the poses and pivots are out of the range"),
+        "{e}"
+    );
+}
