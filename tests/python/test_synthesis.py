@@ -141,3 +141,13 @@ def test_every_synthesis_example_passes(path: Path, tmp_path: Path) -> None:
             check_poses(model, dict(s.report))
         else:
             check_points(model, dict(s.report))
+
+
+def test_issue31_name_cannot_leave_the_output_folder(tmp_path: Path, capsys) -> None:
+    problem = tmp_path / "p.toml"
+    problem.write_text(THREE.read_text() + 'name = "../escaped"\n')
+    assert main(["synth", str(problem), "-o", str(tmp_path / "out")]) == 2
+    assert "synthesis.name: '../escaped' is not a name for a model file" in capsys.readouterr().err
+    assert not (tmp_path / "escaped.toml").exists() and not (tmp_path / "out").exists()
+    with pytest.raises(camlink.ModelError, match="give \\[synthesis\\] name"):
+        synth.solve_text(THREE.read_text(), ".hidden")

@@ -576,6 +576,8 @@ fn solve_function(t: &Table, name: &str) -> Result<Outcome, SynthError> {
                 }
                 v.push(xv);
             }
+            // In the order the crank reaches them, from x_start.
+            v.sort_by(|p, q| (p - x[0]).abs().total_cmp(&(q - x[0]).abs()));
             Some(v)
         }
     };

@@ -236,3 +236,15 @@ rocker = { moving = [0, 0.1] }
         "{e}"
     );
 }
+
+/// Precision points may be listed in any order: they are taken in the
+/// order the crank reaches them, so no order defect arises from the list.
+#[test]
+fn issue31_precision_points_in_any_order() {
+    let sorted = solve_str(&format!("{FUNCTION}points = [2, 5, 9]\n"), "p.toml", "p").unwrap();
+    let shuffled = solve_str(&format!("{FUNCTION}points = [9, 2, 5]\n"), "p.toml", "p").unwrap();
+    let (a, b) = (&sorted.solutions[0].report, &shuffled.solutions[0].report);
+    assert_eq!(a["x"], b["x"]);
+    assert_eq!(a["k"], b["k"]);
+    assert_eq!(b["checks"]["defects"], serde_json::json!([]));
+}
