@@ -31,6 +31,8 @@ __all__ = [
     "csv_rows",
     "json_schema",
     "run_batch",
+    "synth_file",
+    "synth_str",
     "time_grid",
     "toml_position",
 ]
@@ -168,6 +170,12 @@ def run_batch(
     time_limit: float | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[str], list[str]]: ...
 def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
+
+# A synthesis solution: name, model file text (TOML), report (JSON text).
+_SynthRow: TypeAlias = tuple[str, str, str]
+
+def synth_file(path: str | PathLike[str]) -> tuple[str, list[_SynthRow]]: ...
+def synth_str(text: str, source: str, stem: str) -> tuple[str, list[_SynthRow]]: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]

@@ -75,7 +75,7 @@ def build(out: Path, examples: Path | None = None, dpi: int = 80, quiet: bool = 
     paths = [
         p
         for p in sorted(examples.glob("*.toml")) + sorted(examples.glob("*.json"))
-        if not p.name.startswith(("cam_design_", "study_"))
+        if not p.name.startswith(("cam_design_", "study_", "synthesis_"))
     ]
     entries = []
     with Progress(len(paths), "gallery", unit="example", quiet=quiet) as bar:

@@ -8,9 +8,12 @@ import camlink
 from conftest import ROOT
 
 # Cam design files (`cam_design_*.toml`) are not models: test_cam_design.py runs them;
-# nor are study files (`study_*.toml`): test_study.py runs them.
+# nor are study files (`study_*.toml`): test_study.py runs them; nor synthesis problems
+# (`synthesis_*.toml`): test_synthesis.py solves them and runs their models.
 EXAMPLES = sorted(
-    p for p in (ROOT / "examples").glob("**/*.toml") if not p.name.startswith(("cam_design_", "study_"))
+    p
+    for p in (ROOT / "examples").glob("**/*.toml")
+    if not p.name.startswith(("cam_design_", "study_", "synthesis_"))
 ) + sorted((ROOT / "examples").glob("**/*.json"))
 MODELS = sorted((ROOT / "tests" / "models").glob("*.toml")) + sorted(
     (ROOT / "tests" / "models").glob("*.json")

@@ -54,10 +54,12 @@ fn model_files() -> Vec<std::path::PathBuf> {
         .unwrap()
         .map(|e| e.unwrap().path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        // Cam design and study files are not models.
+        // Cam design, study and synthesis problem files are not models.
         .filter(|p| {
             let name = p.file_name().unwrap().to_string_lossy();
-            !name.starts_with("cam_design_") && !name.starts_with("study_")
+            !name.starts_with("cam_design_")
+                && !name.starts_with("study_")
+                && !name.starts_with("synthesis_")
         })
         .collect();
     files.sort();

@@ -10,6 +10,7 @@
 mod cam;
 mod csv_text;
 mod study;
+mod synth;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -1198,6 +1199,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
+    synth::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -1,0 +1,24 @@
+//! camlink linkage synthesis: from the motion a mechanism must make to a
+//! four-bar that makes it, written as a camlink model file.
+//!
+//! Methods, one module each:
+//! - [`motion`]: three-position motion generation (rigid-body guidance),
+//!   closed form, the moving or the ground pivots chosen by the user;
+//! - [`function`]: function generation with Freudenstein's equation,
+//!   through three precision points or in the least-squares sense;
+//!
+//! and what they share: [`fourbar`] (the linkage, its closed-form position
+//! analysis and the checks of every candidate: Grashof class, transmission
+//! angle, branch, order, dead positions), [`model_file`] (the model file a
+//! solution is written as) and [`problem`] (problem files and reports).
+//! Lengths in m, angles in rad, counter-clockwise from +x.
+
+pub mod error;
+pub mod fourbar;
+pub mod function;
+pub mod model_file;
+pub mod motion;
+pub mod problem;
+
+pub use error::{ErrorKind, SynthError};
+pub use problem::{solve_path, solve_str, Outcome, Solution};

@@ -1,0 +1,61 @@
+"""`camlink synth`: solve a linkage synthesis problem (docs/synthesis.md) and
+write each solution as a model file."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections.abc import Callable, Mapping
+from typing import Any
+
+
+def add_parser(
+    sub: argparse._SubParsersAction[argparse.ArgumentParser],
+) -> Callable[[argparse.Namespace], int]:
+    """Registers the ``synth`` subcommand; returns its handler."""
+    p = sub.add_parser(
+        "synth",
+        help="synthesise a four-bar from poses or a function and write it as a model file",
+        description="Solve the [synthesis] problem of PROBLEM (three-position motion generation, "
+        "or function generation by Freudenstein's equation), check every solution (Grashof class, "
+        "transmission angle, branch, order) and write each as DIR/<name>.toml, a model that "
+        "`camlink run` runs. The report goes to standard output.",
+    )
+    p.add_argument("problem", metavar="PROBLEM", help="synthesis problem file (.toml)")
+    p.add_argument(
+        "-o", "--output", metavar="DIR", required=True, help="folder for the models (made if missing)"
+    )
+    p.add_argument("--json", action="store_true", help="print the report as JSON")
+    p.add_argument("--force", action="store_true", help="replace models that exist in DIR")
+    p.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    return run
+
+
+def run(args: argparse.Namespace) -> int:
+    """Solves and writes; bad input raises ModelError or OSError (exit 2)."""
+    from camlink import synth
+
+    result = synth.solve(args.problem)
+    paths = synth.write(result, args.output, inputs=[args.problem], force=args.force)
+    if args.json:
+        print(json.dumps({
+            "kind": result.kind,
+            "solutions": [
+                {**_plain(s.report), "model": str(p)}
+                for s, p in zip(result.solutions, paths, strict=True)
+            ],
+        }, indent=2))
+    elif not args.quiet:
+        print(synth.report_text(result))
+        for p in paths:
+            print(f"→ {p}")
+    return 0
+
+
+def _plain(value: Any) -> Any:
+    """The report as plain dicts and lists, for JSON."""
+    if isinstance(value, Mapping):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, tuple):
+        return [_plain(v) for v in value]
+    return value
