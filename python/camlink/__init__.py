@@ -18,7 +18,13 @@ from camlink.builder import Mechanism
 from camlink.errors import ERROR_KINDS, WARNING_KINDS, RunWarning
 from camlink.model import ANALYSES, Model, json_schema, load, loads
 from camlink.results import Results
-from camlink.warn import CamlinkWarning, DesignWarning, LiftOffWarning, NearSingularWarning
+from camlink.warn import (
+    CamlinkWarning,
+    DesignWarning,
+    LiftOffWarning,
+    LoadWarning,
+    NearSingularWarning,
+)
 
 if TYPE_CHECKING:
     from camlink import study
@@ -32,6 +38,7 @@ __all__ = [
     "CamlinkWarning",
     "DesignWarning",
     "LiftOffWarning",
+    "LoadWarning",
     "Mechanism",
     "Model",
     "ModelError",

@@ -24,12 +24,13 @@ from camlink.records import (
     DesignFinding,
     ForceRecord,
     JointRecord,
+    LoadWarningRecord,
 )
 from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
 from camlink.units import unit
-from camlink.warn import issue_design_warnings, issue_run_warnings
+from camlink.warn import issue_design_warnings, issue_load_warnings, issue_run_warnings
 
 __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 
@@ -87,6 +88,7 @@ def load(
     text = path.read_bytes().decode("utf-8", errors="surrogateescape").removeprefix("\ufeff")
     fmt = "json" if path.suffix.lower() == ".json" else "toml"
     model._recipe = (text, fmt, str(path), str(path.parent), allow_outside)
+    issue_load_warnings(model.warnings, path)
     return model
 
 
@@ -120,6 +122,7 @@ def loads(
         None if base_dir is None else os.fspath(base_dir),
         allow_outside,
     )
+    issue_load_warnings(model.warnings, source)
     return model
 
 
@@ -223,6 +226,14 @@ class Model:
     def forces(self) -> list[ForceRecord]:
         """Applied forces, with kind and bodies."""
         return self._core.forces
+
+    @property
+    def warnings(self) -> list[LoadWarningRecord]:
+        """What loading found worth a look (a value left out of the file
+        and measured in a placement that the assembly moved): records with
+        ``kind``, ``field``, ``message`` and ``text``; each was also issued
+        as a `camlink.LoadWarning` by `load` and `loads`."""
+        return self._core.warnings
 
     def design_check(self) -> list[DesignFinding]:
         """Design findings of the curve contacts (a flat follower on a

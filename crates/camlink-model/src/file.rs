@@ -330,7 +330,7 @@ pub enum JointSpec {
         body_j: String,
         #[serde(default)]
         point_j: Option<PointRef>,
-        /// θ₀ = φ_j − φ_i (rad); default: its initial value.
+        /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         angle: Option<Num>,
     },
@@ -363,7 +363,7 @@ pub enum JointSpec {
         point_j: Option<PointRef>,
         /// Line direction in body j's frame; normalised, must not be zero.
         axis: Vec2,
-        /// Signed offset c of the pin to the left of the line (m); default: its initial value.
+        /// Signed offset c of the pin to the left of the line (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         offset: Option<Num>,
     },
@@ -750,7 +750,7 @@ pub struct AbsoluteCoordJoint {
     /// Default: the body origin.
     #[serde(default)]
     pub point: Option<PointRef>,
-    /// The held coordinate (m); default: its initial value.
+    /// The held coordinate (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -762,7 +762,7 @@ pub struct AbsolutePhiJoint {
     #[serde(default)]
     pub name: Option<String>,
     pub body: String,
-    /// The held angle (rad); default: its initial value.
+    /// The held angle (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -778,7 +778,7 @@ pub struct AbsoluteDistanceJoint {
     pub point: Option<PointRef>,
     /// The ground point C: a name from `[ground] points` or [x, y] (m).
     pub ground_point: PointRef,
-    /// The held distance (m), > 0; default: its initial value.
+    /// The held distance (m), > 0; default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub distance: Option<Num>,
 }
@@ -795,7 +795,7 @@ pub struct RelativeCoordJoint {
     pub body_j: String,
     #[serde(default)]
     pub point_j: Option<PointRef>,
-    /// The held difference or distance (m); default: its initial value.
+    /// The held difference or distance (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -808,7 +808,7 @@ pub struct RelativePhiJoint {
     pub name: Option<String>,
     pub body_i: String,
     pub body_j: String,
-    /// The held φ_j − φ_i (rad); default: its initial value.
+    /// The held φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }

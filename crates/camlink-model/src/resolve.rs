@@ -28,6 +28,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
 mod curves;
 mod forces;
+mod initial;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
@@ -79,6 +80,8 @@ struct Ctx {
     data: DataFiles,
     /// Body ids by name, ground included (a scan per reference is quadratic).
     body_ids: HashMap<String, BodyId>,
+    /// Values left out and measured in the placement ([`initial`]).
+    deferred: Vec<initial::Deferred>,
 }
 
 /// Builds the model and analysis settings described by `file`.
@@ -97,6 +100,7 @@ pub(crate) fn resolve(
         curves: HashMap::new(),
         data,
         body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
+        deferred: Vec::new(),
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -122,6 +126,7 @@ pub(crate) fn resolve(
     for (k, f) in file.forces.iter().enumerate() {
         cx.force(f, k)?;
     }
+    initial::check(&mut cx.model, &cx.deferred);
     let analysis = cx.analysis(file.analysis.as_ref())?;
     let outlines = cx.outlines(&file.bodies)?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
@@ -538,6 +543,22 @@ impl Ctx {
         Ok(name)
     }
 
+    /// Records that `key` of the joint just added (`path` its field) was
+    /// left out and measured in the placement ([`initial`]), if `left_out`.
+    fn defer_joint(&mut self, left_out: bool, path: &str, key: &'static str, unit: &'static str) {
+        if !left_out {
+            return;
+        }
+        let j = self.model.joints.len() - 1;
+        self.deferred.push(initial::Deferred {
+            quantity: initial::Quantity::Joint(j),
+            field: format!("{path}.{key}"),
+            owner: format!("joint '{}'", self.model.joints[j].name),
+            key,
+            unit,
+        });
+    }
+
     fn add(&mut self, name: String, c: impl Into<Constraint>, driver: bool) {
         if driver {
             self.model.add_driver(name, c);
@@ -625,6 +646,7 @@ impl Ctx {
                     },
                 );
                 self.add(name, c, false);
+                self.defer_joint(angle.is_none(), p, "angle", "rad");
             }
             JointSpec::RevoluteRevolute {
                 name,
@@ -637,6 +659,7 @@ impl Ctx {
                 let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
                     self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
+                let left_out = length.is_none();
                 let length = match length {
                     Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
                     None => {
@@ -663,6 +686,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.defer_joint(left_out, p, "length", "m");
             }
             JointSpec::RevoluteTranslational {
                 name,
@@ -677,6 +701,7 @@ impl Ctx {
                 let ((bi, s_i), (bj, s_j)) =
                     self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_j = self.axis(axis, &format!("{p}.axis"))?;
+                let left_out = offset.is_none();
                 let offset = match offset {
                     Some(c) => self.num(c, &format!("{p}.offset"))?,
                     None => {
@@ -695,6 +720,7 @@ impl Ctx {
                     offset,
                 };
                 self.add(name, c, false);
+                self.defer_joint(left_out, p, "offset", "m");
             }
             JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
                 let (kind, coord, axis) = match j {
@@ -716,6 +742,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.defer_joint(a.value.is_none(), p, "value", "m");
             }
             JointSpec::AbsolutePhi(a) => {
                 let name = self.name(a.name.as_ref(), format!("absolute_phi_{k}"), p)?;
@@ -731,6 +758,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(a.value.is_none(), p, "value", "rad");
             }
             JointSpec::AbsoluteDistance(a) => {
                 let name = self.name(a.name.as_ref(), format!("absolute_distance_{k}"), p)?;
@@ -754,6 +782,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(a.distance.is_none(), p, "distance", "m");
             }
             JointSpec::RelativeX(r) | JointSpec::RelativeY(r) | JointSpec::RelativeDistance(r) => {
                 let kind = match j {
@@ -802,6 +831,7 @@ impl Ctx {
                     }
                 };
                 self.add(name, c, false);
+                self.defer_joint(r.value.is_none(), p, "value", "m");
             }
             JointSpec::RelativePhi(r) => {
                 let name = self.name(r.name.as_ref(), format!("relative_phi_{k}"), p)?;
@@ -821,6 +851,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(r.value.is_none(), p, "value", "rad");
             }
             JointSpec::Gear {
                 name,
@@ -861,6 +892,7 @@ impl Ctx {
                 };
                 self.joints.insert(name.clone(), JointInfo::Other("gear"));
                 self.add(name, c, false);
+                self.defer_joint(phase.is_none(), p, "phase", "m");
             }
             JointSpec::RackPinion {
                 name,
@@ -891,6 +923,7 @@ impl Ctx {
                 self.joints
                     .insert(name.clone(), JointInfo::Other("rack_pinion"));
                 self.add(name, c, false);
+                self.defer_joint(phase.is_none(), p, "phase", "m");
             }
             JointSpec::CamFollower(c) => self.cam_follower(c, k)?,
             JointSpec::FlatFollower(c) => self.flat_follower(c, k)?,

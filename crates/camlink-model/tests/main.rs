@@ -19,6 +19,7 @@ mod friction;
 mod fuzz;
 mod fuzz_corpus;
 mod hostile;
+mod initial_defaults;
 mod issue_newton_rounding_level;
 mod jerk;
 mod load;
