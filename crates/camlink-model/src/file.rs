@@ -248,7 +248,8 @@ pub struct GroundSection {
 pub struct BodySpec {
     /// Unique name (not `ground`, no `.`).
     pub name: String,
-    /// Initial position [x, y] of the body frame's origin, global frame (m); default [0, 0].
+    /// Initial position [x, y] of the body frame's origin, global frame (m);
+    /// default [0, 0], or the mean of the `global_points`.
     #[serde(default)]
     pub position: Option<Vec2>,
     /// Initial angle φ of the body frame (rad); default 0.
@@ -260,7 +261,8 @@ pub struct BodySpec {
     /// Polar moment of inertia J' about the centroid (kg·m²), ≥ 0; default 0.
     #[serde(default)]
     pub inertia: Option<Num>,
-    /// Centroid [x, y] in the body frame (m); default [0, 0].
+    /// Centroid [x, y] in the body frame (m), or global with
+    /// `global_points`; default: the frame origin.
     #[serde(default)]
     pub centroid: Option<Vec2>,
     /// Initial velocity [ẋ, ẏ] of the frame origin (m/s); default [0, 0].
@@ -272,6 +274,14 @@ pub struct BodySpec {
     /// Named points, `name = [x, y]` in the body frame (m).
     #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
+    /// Named points by their global positions at the initial instant,
+    /// `name = [x, y]` (m), instead of `points`. The body frame is placed by
+    /// `position` and `angle` when given, else at the mean of these points
+    /// with φ = 0; `centroid`, `outline` corners and points given as
+    /// [x, y] in joints, forces and curves are then global too
+    /// (docs/model-files.md, "Bodies in global coordinates").
+    #[serde(default, deserialize_with = "unique_keys")]
+    pub global_points: BTreeMap<String, Vec2>,
     /// The body's shape in drawings, instead of the one derived from its
     /// points: a closed polyline `[[x, y], …]` in the body frame (m, at
     /// least three corners) or the name of a closed curve on this body.

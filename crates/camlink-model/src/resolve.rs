@@ -82,6 +82,9 @@ struct Ctx {
     body_ids: HashMap<String, BodyId>,
     /// Values left out and measured in the placement ([`initial`]).
     deferred: Vec<initial::Deferred>,
+    /// Per body id: the initial frame (x, y, φ) of a body given by
+    /// `global_points`, whose [x, y] points are global.
+    global_frames: Vec<Option<[f64; 3]>>,
 }
 
 /// Builds the model and analysis settings described by `file`.
@@ -101,6 +104,7 @@ pub(crate) fn resolve(
         data,
         body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
         deferred: Vec::new(),
+        global_frames: vec![None],
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -131,6 +135,16 @@ pub(crate) fn resolve(
     let outlines = cx.outlines(&file.bodies)?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
     Ok((cx.model, analysis, outlines, cx.data))
+}
+
+/// The frame origin of a body given by `global_points`: the mean of the
+/// points (m).
+fn frame_origin(points: &[Point]) -> V2 {
+    let n = points.len() as f64;
+    let sum = points
+        .iter()
+        .fold([0.0; 2], |a, p| [a[0] + p.s[0], a[1] + p.s[1]]);
+    [sum[0] / n, sum[1] / n]
 }
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
@@ -354,9 +368,27 @@ impl Ctx {
                     format!("duplicate body name '{}' (also bodies[{first}])", b.name),
                 );
             }
+            let global = !b.global_points.is_empty();
+            if global && !b.points.is_empty() {
+                return fail(
+                    format!("{path}.global_points"),
+                    "give the body's points either in its frame (`points`) or in the global frame (`global_points`), not both",
+                );
+            }
+            let global_points = self.points(&b.global_points, &format!("{path}.global_points"))?;
             let pos = match &b.position {
                 Some(v) => self.vec2(v, &format!("{path}.position"))?,
+                None if global => frame_origin(&global_points),
                 None => [0.0; 2],
+            };
+            let angle = self.opt(b.angle.as_ref(), 0.0, &format!("{path}.angle"))?;
+            // A global point r at the initial instant is s' = Aᵀ (r − r₀) in the frame.
+            let local = |r: V2| {
+                if global {
+                    rot(-angle, sub(r, pos))
+                } else {
+                    r
+                }
             };
             let vel = match &b.velocity {
                 Some(v) => self.vec2(v, &format!("{path}.velocity"))?,
@@ -381,23 +413,31 @@ impl Ctx {
                 mass,
                 inertia,
                 centroid: match &b.centroid {
-                    Some(v) => self.vec2(v, &format!("{path}.centroid"))?,
+                    Some(v) => local(self.vec2(v, &format!("{path}.centroid"))?),
                     None => [0.0; 2],
                 },
-                q0: [
-                    pos[0],
-                    pos[1],
-                    self.opt(b.angle.as_ref(), 0.0, &format!("{path}.angle"))?,
-                ],
+                q0: [pos[0], pos[1], angle],
                 qd0: [
                     vel[0],
                     vel[1],
                     self.opt(b.omega.as_ref(), 0.0, &format!("{path}.omega"))?,
                 ],
-                points: self.points(&b.points, &format!("{path}.points"))?,
+                points: if global {
+                    global_points
+                        .into_iter()
+                        .map(|p| Point {
+                            s: local(p.s),
+                            name: p.name,
+                        })
+                        .collect()
+                } else {
+                    self.points(&b.points, &format!("{path}.points"))?
+                },
             };
             let id = self.model.add_body(body);
             self.body_ids.insert(b.name.clone(), id);
+            self.global_frames
+                .push(global.then_some([pos[0], pos[1], angle]));
         }
         if bodies.is_empty() {
             return fail(
@@ -426,10 +466,11 @@ impl Ctx {
                             ),
                         );
                     }
+                    let id = self.body_ids[&b.name];
                     let pts = corners
                         .iter()
                         .enumerate()
-                        .map(|(n, v)| self.vec2(v, &format!("{path}[{n}]")))
+                        .map(|(n, v)| Ok(self.local(id, self.vec2(v, &format!("{path}[{n}]"))?)))
                         .collect::<R<Vec<V2>>>()?;
                     OutlineShape::Polyline(pts)
                 }
@@ -484,11 +525,21 @@ impl Ctx {
         }
     }
 
+    /// A point [x, y] as written for `body`, in its frame: as is, or, for
+    /// a body given by `global_points`, from its global position at the
+    /// initial instant.
+    fn local(&self, body: BodyId, r: V2) -> V2 {
+        match self.global_frames.get(body.0).copied().flatten() {
+            Some([x, y, phi]) => rot(-phi, sub(r, [x, y])),
+            None => r,
+        }
+    }
+
     /// Resolves a point of `body`; `None` is the body origin.
     fn point(&self, body: BodyId, p: Option<&PointRef>, path: &str) -> R<V2> {
         match p {
             None => Ok([0.0; 2]),
-            Some(PointRef::Inline(v)) => self.vec2(v, path),
+            Some(PointRef::Inline(v)) => Ok(self.local(body, self.vec2(v, path)?)),
             Some(PointRef::Name(name)) => {
                 let b = self.model.body(body);
                 if let Some(s) = b.point(name) {

@@ -18,6 +18,7 @@ mod forces;
 mod friction;
 mod fuzz;
 mod fuzz_corpus;
+mod global_points;
 mod hostile;
 mod initial_defaults;
 mod issue_newton_rounding_level;
