@@ -29,6 +29,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 mod curves;
 mod forces;
 mod initial;
+mod scale;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
@@ -131,6 +132,7 @@ pub(crate) fn resolve(
         cx.force(f, k)?;
     }
     initial::check(&mut cx.model, &cx.deferred);
+    scale::check(&mut cx.model);
     let analysis = cx.analysis(file.analysis.as_ref())?;
     let outlines = cx.outlines(&file.bodies)?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;

@@ -325,3 +325,30 @@ fn issue30_default_from_assembled_placement_examples_say_what_they_mean() {
     }
     assert!(seen > 10, "{seen}");
 }
+
+#[test]
+fn issue30_length_scale_names_the_outlier() {
+    // The quick-return with the lever tip written in mm (500 for 0.5).
+    let text = quick_return(0.0, "offset = 0")
+        .replace("T = [\"L\", 0]", "T = [500, 0]")
+        .replace("position = [\"L\", 0]", "position = [500, 0]");
+    let l = load(&text);
+    let w: Vec<_> = l
+        .model
+        .warnings
+        .iter()
+        .filter(|w| w.kind == "length_scale")
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", l.model.warnings);
+    assert_eq!(w[0].field, "bodies[1].points");
+    assert!(
+        w[0].message.contains("body 'lever' spans 500 m"),
+        "{}",
+        w[0].message
+    );
+    // In one unit throughout: nothing to say.
+    assert!(load(&quick_return(0.0, "offset = 0"))
+        .model
+        .warnings
+        .is_empty());
+}
