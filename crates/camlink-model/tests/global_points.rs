@@ -261,3 +261,159 @@ global_points = { P = [1, 0] }
     assert_eq!(e.field.as_deref(), Some("bodies[0].global_points"), "{e}");
     assert!(e.message.contains("not both"), "{e}");
 }
+
+/// The expression text of a TOML number or expression string.
+fn expr(v: &toml::Value) -> String {
+    match v {
+        toml::Value::Float(x) => format!("{x:?}"),
+        toml::Value::Integer(n) => format!("{n}"),
+        toml::Value::String(s) => s.clone(),
+        other => panic!("not a number: {other:?}"),
+    }
+}
+
+/// `[x, y]` in the frame (x0, y0, φ0) as global expressions
+/// r = r₀ + A(φ₀) s′.
+fn to_global(q0: [f64; 3], v: &toml::Value) -> toml::Value {
+    let a = v.as_array().unwrap();
+    let (sx, sy) = (expr(&a[0]), expr(&a[1]));
+    let (s, c) = q0[2].sin_cos();
+    let x = format!("{:?} + {c:?}*({sx}) - {s:?}*({sy})", q0[0]);
+    let y = format!("{:?} + {s:?}*({sx}) + {c:?}*({sy})", q0[1]);
+    toml::Value::Array(vec![toml::Value::String(x), toml::Value::String(y)])
+}
+
+/// A model file with every body given by `global_points` (its frame kept
+/// by `position` and `angle`), and every other position written for a
+/// body (centroid, outline corners, [x, y] points of joints, forces and
+/// curves) made global.
+fn globalised(text: &str, loaded: &Loaded) -> String {
+    let mut file: toml::Table = text.parse().unwrap();
+    let mut frames: std::collections::HashMap<String, [f64; 3]> = loaded
+        .model
+        .bodies
+        .iter()
+        .skip(1)
+        .map(|b| (b.name.clone(), b.q0))
+        .collect();
+    for body in file
+        .get_mut("bodies")
+        .and_then(|b| b.as_array_mut())
+        .into_iter()
+        .flatten()
+    {
+        let body = body.as_table_mut().unwrap();
+        let q0 = frames[body["name"].as_str().unwrap()];
+        let points = body.remove("points");
+        let mut global = toml::Table::new();
+        for (name, v) in points
+            .as_ref()
+            .and_then(|p| p.as_table())
+            .into_iter()
+            .flatten()
+        {
+            global.insert(name.clone(), to_global(q0, v));
+        }
+        if global.is_empty() {
+            // A body without points keeps its frame-coordinate form.
+            if let Some(p) = points {
+                body.insert("points".into(), p);
+            }
+            frames.remove(body["name"].as_str().unwrap());
+            continue;
+        }
+        body.insert("global_points".into(), toml::Value::Table(global));
+        body.insert(
+            "position".into(),
+            toml::Value::Array(vec![q0[0].into(), q0[1].into()]),
+        );
+        body.insert("angle".into(), q0[2].into());
+        if let Some(c) = body.get("centroid").cloned() {
+            body.insert("centroid".into(), to_global(q0, &c));
+        }
+        if let Some(toml::Value::Array(corners)) = body.get("outline").cloned() {
+            let corners = corners.iter().map(|c| to_global(q0, c)).collect();
+            body.insert("outline".into(), toml::Value::Array(corners));
+        }
+    }
+    let refs = [
+        ("point_i", "body_i"),
+        ("point_j", "body_j"),
+        ("point", "body"),
+        ("centre", "body"),
+        ("from", "body"),
+        ("to", "body"),
+    ];
+    for section in ["joints", "drivers", "forces", "curves"] {
+        for item in file
+            .get_mut(section)
+            .and_then(|b| b.as_array_mut())
+            .into_iter()
+            .flatten()
+        {
+            let item = item.as_table_mut().unwrap();
+            for (pk, bk) in refs {
+                let Some(q0) = item
+                    .get(bk)
+                    .and_then(|b| b.as_str())
+                    .and_then(|b| frames.get(b))
+                else {
+                    continue;
+                };
+                if let Some(v @ toml::Value::Array(_)) = item.get(pk).cloned() {
+                    item.insert(pk.into(), to_global(*q0, &v));
+                }
+            }
+        }
+    }
+    toml::to_string(&file).unwrap()
+}
+
+#[test]
+fn issue30_every_example_in_global_coordinates() {
+    let mut converted = 0;
+    for entry in std::fs::read_dir(examples()).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let text = std::fs::read_to_string(&path).unwrap();
+        // Study and cam design files are other formats.
+        let Ok(frames) = load_path(&path) else {
+            continue;
+        };
+        let name = path.file_name().unwrap().to_string_lossy().to_string();
+        let global_text = globalised(&text, &frames);
+        let global = load_str(&global_text, Format::Toml, &path.to_string_lossy())
+            .unwrap_or_else(|e| panic!("{name}: {e}\n{global_text}"));
+        // The same bodies, points and centroids, to rounding.
+        for (a, b) in frames.model.bodies.iter().zip(&global.model.bodies) {
+            assert_eq!(a.q0, b.q0, "{name}: {}", a.name);
+            for (p, q) in a.points.iter().zip(&b.points) {
+                let d = (p.s[0] - q.s[0]).abs().max((p.s[1] - q.s[1]).abs());
+                assert!(d < 1e-13, "{name}: {}.{}: {d}", a.name, p.name);
+            }
+            let d = (a.centroid[0] - b.centroid[0])
+                .abs()
+                .max((a.centroid[1] - b.centroid[1]).abs());
+            assert!(d < 1e-13, "{name}: {} centroid: {d}", a.name);
+        }
+        // The same motion, where the file asks for kinematics.
+        if frames.analysis.kind == camlink_model::AnalysisType::Kinematics
+            && frames.analysis.times.is_none()
+        {
+            let (a, b) = (kinematics(&frames), kinematics(&global));
+            for ch in &a.channels {
+                let d = largest_difference(&a, &b, ch);
+                let scale = a
+                    .channel(ch)
+                    .unwrap()
+                    .iter()
+                    .fold(1.0_f64, |m, v| m.max(v.abs()));
+                assert!(d <= 1e-12 * scale, "{name}: {ch}: {d}");
+            }
+        }
+        converted += 1;
+    }
+    assert!(converted > 20, "{converted}");
+}
