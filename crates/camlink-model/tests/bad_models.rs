@@ -147,3 +147,43 @@ body_i = "ground"
     .to_string();
     assert!(!e.contains("did you mean"), "{e}");
 }
+
+#[test]
+fn issue30_did_you_mean_for_motion_laws_and_followers() {
+    let cam = |follower: &str, law: &str| {
+        format!(
+            r#"
+[[bodies]]
+name = "cam"
+
+[[curves]]
+name = "lobe"
+body = "cam"
+source = "motion"
+follower = "{follower}"
+base_radius = 0.03
+roller_radius = 0.01
+segments = [
+  {{ law = "{law}", span = "pi", lift = 0.01 }},
+  {{ law = "cycloidal", span = "pi", lift = -0.01 }},
+]
+"#
+        )
+    };
+    let e = camlink_model::load_str(
+        &cam("translating-roler", "cycloidal"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.ends_with("(did you mean 'translating-roller'?)"), "{e}");
+    let e = camlink_model::load_str(
+        &cam("translating-roller", "cycloidl"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.ends_with("(did you mean 'cycloidal'?)"), "{e}");
+}
