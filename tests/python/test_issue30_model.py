@@ -42,7 +42,9 @@ def test_issue30_builder_link_in_global_coordinates() -> None:
     f.body("coupler", position=PA, points={"A": (0, 0), "B": (0.4, 0.2)})
     f.body("rocker", position=PD, points={"D": (0, 0), "B": (0, 0.3)})
     _joints(f)
-    rg, rf = g.run(), f.run()
+    # Two descriptions of one mechanism take different Newton paths; a
+    # tolerance near rounding makes both land on the same positions.
+    rg, rf = g.run(tol=1e-14), f.run(tol=1e-14)
     for ch in ("coupler.A.x", "coupler.A.y", "coupler.B.x", "coupler.B.y", "coupler.B.vx"):
         assert np.max(np.abs(rg[ch] - rf[ch])) < 1e-12, ch
     # The frame of a link is at the mean of its points, angle 0.
@@ -58,14 +60,18 @@ def test_issue30_link_without_points_is_a_model_error() -> None:
         camlink.Mechanism("m").link("coupler")
 
 
-ROUGH = (ROOT / "examples" / "quick_return.toml").read_text().replace(
-    "offset = 0\n", ""
+# The quick-return with the slot's offset left out and the lever written
+# 1 mm off its pivot: the offset is measured there, and differs in the
+# placement that assembles the pivot.
+ROUGH = (
+    (ROOT / "examples" / "quick_return.toml")
+    .read_text()
+    .replace("offset = 0\n", "")
+    .replace('angle = "deg(5)"', 'position = [0.001, 0]\nangle = "deg(5)"')
 )
 
 
 def test_issue30_default_warning_is_issued_and_listed() -> None:
-    # The quick-return's lever is written at 5° while the crank pin is on
-    # the x axis: without `offset`, the slot's offset is measured there.
     with pytest.warns(camlink.LoadWarning, match=r"joint 'slot'.*\(used\).*\(assembled\)"):
         model = camlink.loads(ROUGH, "toml", "rough.toml")
     (w,) = model.warnings
