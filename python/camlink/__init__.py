@@ -23,6 +23,7 @@ from camlink.warn import (
     CourseFileWarning,
     DesignWarning,
     LiftOffWarning,
+    LoadWarning,
     NearSingularWarning,
 )
 
@@ -39,6 +40,7 @@ __all__ = [
     "CourseFileWarning",
     "DesignWarning",
     "LiftOffWarning",
+    "LoadWarning",
     "Mechanism",
     "Model",
     "ModelError",

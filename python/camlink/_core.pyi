@@ -15,6 +15,7 @@ from camlink.records import (
     DesignFinding,
     ForceRecord,
     JointRecord,
+    LoadWarningRecord,
 )
 from camlink.results import Results
 
@@ -94,6 +95,8 @@ class Model:
     @property
     def forces(self) -> list[ForceRecord]: ...
     def design_check(self) -> list[DesignFinding]: ...
+    @property
+    def warnings(self) -> list[LoadWarningRecord]: ...
     def with_callback_force(
         self,
         name: str,

@@ -23,6 +23,7 @@ import os
 from collections.abc import Callable, Sequence
 from typing import Any, TypeAlias
 
+from camlink._core import ModelError
 from camlink.model import Model, loads
 from camlink.results import Results
 
@@ -107,10 +108,12 @@ class Mechanism:
         velocity: Vec2 | None = None,
         omega: Num | None = None,
         points: dict[str, Vec2] | None = None,
+        global_points: dict[str, Vec2] | None = None,
     ) -> str:
         """A rigid body: initial (or guessed) position (m) and angle (rad),
         mass (kg), inertia about the centroid (kg·m²), named points in the
-        body frame (m). Returns its name."""
+        body frame (m), or `global_points` at their global positions at the
+        initial instant (m; see `link`). Returns its name."""
         self._bodies.append(
             _fields(
                 name=name,
@@ -122,19 +125,53 @@ class Mechanism:
                 velocity=velocity,
                 omega=omega,
                 points=dict(points) if points else None,
+                global_points=dict(global_points) if global_points else None,
             )
         )
         return name
 
+    def link(
+        self,
+        name: str,
+        /,
+        *,
+        mass: Num | None = None,
+        inertia: Num | None = None,
+        centroid: Vec2 | None = None,
+        velocity: Vec2 | None = None,
+        omega: Num | None = None,
+        **points: Vec2,
+    ) -> str:
+        """A rigid body given as read off a drawing: its named points at
+        their global positions at the initial instant (m), e.g.
+        ``link("coupler", A=(0.1, 0.2), B=(0.5, 0.3))``. The body frame is
+        at the mean of the points with angle 0, and `centroid` is global too
+        (docs/model-files.md, "Bodies in global coordinates"). Returns its
+        name."""
+        if not points:
+            raise ModelError(f"link {name!r}: give at least one point, e.g. A=(x, y)")
+        return self.body(
+            name,
+            mass=mass,
+            inertia=inertia,
+            centroid=centroid,
+            velocity=velocity,
+            omega=omega,
+            global_points=points,
+        )
+
     def point(self, body: str, name: str, xy: Vec2) -> str:
-        """Adds a named point to `body` (or to ``"ground"``); returns
-        ``"body.name"``."""
+        """Adds a named point to `body` (or to ``"ground"``): in the body
+        frame (m), or global at the initial instant for a body given by
+        global points (`link`); returns ``"body.name"``."""
         if body == "ground":
             self.ground_point(name, xy)
             return f"ground.{name}"
         for b in self._bodies:
             if b["name"] == body:
-                b.setdefault("points", {})[name] = _value(xy)
+                # A body given by global points takes more of them.
+                key = "global_points" if "global_points" in b else "points"
+                b.setdefault(key, {})[name] = _value(xy)
                 return f"{body}.{name}"
         known = ", ".join(b["name"] for b in self._bodies) or "none yet"
         raise KeyError(f"no body named {body!r} (bodies: {known})")

@@ -164,6 +164,8 @@ def _os_message(e: OSError) -> str:
 
 def _cmd_run(args: argparse.Namespace) -> int:
     model = _load(args)
+    for lw in model.warnings:
+        print(f"camlink: warning: {lw['text']}", file=sys.stderr)
     kind = args.analysis or model.analysis_type
     to_stdout = args.output == "-"
     stem = "stdin" if args.model == "-" else Path(args.model).stem

@@ -25,12 +25,18 @@ from camlink.records import (
     DesignFinding,
     ForceRecord,
     JointRecord,
+    LoadWarningRecord,
 )
 from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
 from camlink.units import unit
-from camlink.warn import CourseFileWarning, issue_design_warnings, issue_run_warnings
+from camlink.warn import (
+    CourseFileWarning,
+    issue_design_warnings,
+    issue_load_warnings,
+    issue_run_warnings,
+)
 
 __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 
@@ -84,6 +90,7 @@ def load(
         model = Model(_core.Model.load_adm(path, acf), source=path)
         for w in model.load_warnings:
             warnings.warn(w, CourseFileWarning, stacklevel=2)
+        issue_load_warnings(model.warnings, path)
         return model
     if acf is not None:
         raise ModelError(f"{path}: an .acf analysis file goes with a simEngine2D .adm model only")
@@ -91,6 +98,7 @@ def load(
     text = path.read_bytes().decode("utf-8", errors="surrogateescape").removeprefix("\ufeff")
     fmt = "json" if path.suffix.lower() == ".json" else "toml"
     model._recipe = (text, fmt, str(path), str(path.parent), allow_outside)
+    issue_load_warnings(model.warnings, path)
     return model
 
 
@@ -124,6 +132,7 @@ def loads(
         None if base_dir is None else os.fspath(base_dir),
         allow_outside,
     )
+    issue_load_warnings(model.warnings, source)
     return model
 
 
@@ -234,6 +243,14 @@ class Model:
     def forces(self) -> list[ForceRecord]:
         """Applied forces, with kind and bodies."""
         return self._core.forces
+
+    @property
+    def warnings(self) -> list[LoadWarningRecord]:
+        """What loading found worth a look (a value left out of the file
+        and measured in a placement that the assembly moved): records with
+        ``kind``, ``field``, ``message`` and ``text``; each was also issued
+        as a `camlink.LoadWarning` by `load` and `loads`."""
+        return self._core.warnings
 
     def design_check(self) -> list[DesignFinding]:
         """Design findings of the curve contacts (a flat follower on a

@@ -19,6 +19,7 @@ __all__ = [
     "DesignFinding",
     "ForceRecord",
     "JointRecord",
+    "LoadWarningRecord",
     "RedundantEquation",
 ]
 
@@ -141,6 +142,19 @@ class DesignFinding(TypedDict):
     joint: str
     message: str
     #: One printable line.
+    text: str
+
+
+class LoadWarningRecord(TypedDict):
+    """A warning about a model found while it was loaded (see
+    `Model.warnings`)."""
+
+    #: A stable name, e.g. ``"default_moved"`` (docs/model-files.md).
+    kind: str
+    #: The field of the model file, e.g. ``"joints[3].offset"``.
+    field: str
+    message: str
+    #: One printable line: the field, then the message.
     text: str
 
 

@@ -14,8 +14,10 @@ __all__ = [
     "CourseFileWarning",
     "DesignWarning",
     "LiftOffWarning",
+    "LoadWarning",
     "NearSingularWarning",
     "issue_design_warnings",
+    "issue_load_warnings",
     "issue_run_warnings",
 ]
 
@@ -44,6 +46,12 @@ class DesignWarning(CamlinkWarning):
     """A design finding of a curve contact (see `Model.design_check`)."""
 
 
+class LoadWarning(CamlinkWarning):
+    """A model file left a value to be measured in a placement that the
+    assembly moved, or a similar finding made while loading (see
+    `Model.warnings`)."""
+
+
 #: The category of each warning kind of `camlink.WARNING_KINDS`.
 CATEGORIES: dict[str, type[CamlinkWarning]] = {
     "near_singular": NearSingularWarning,
@@ -56,6 +64,15 @@ def issue_run_warnings(summary: Mapping[str, Any], stacklevel: int = 4) -> None:
     records) as a Python warning of its kind's category."""
     for w in summary.get("warnings", []):
         warnings.warn(str(w), CATEGORIES.get(w.kind, CamlinkWarning), stacklevel=stacklevel)
+
+
+def issue_load_warnings(
+    records: Iterable[Mapping[str, Any]], source: object, stacklevel: int = 3
+) -> None:
+    """Issues each warning found while loading a model as a `LoadWarning`,
+    prefixed with the model's `source`."""
+    for w in records:
+        warnings.warn(f"{source}: {w['text']}", LoadWarning, stacklevel=stacklevel)
 
 
 def issue_design_warnings(findings: Iterable[Mapping[str, Any]], stacklevel: int = 3) -> None:

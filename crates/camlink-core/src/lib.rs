@@ -56,4 +56,4 @@ pub mod dynamics;
 pub use constraint::{Constraint, Equations};
 pub use force::{Applied, Force, ForceKind};
 pub use function::TimeFn;
-pub use model::{Body, BodyId, Joint, Model, ModelError, Point};
+pub use model::{Body, BodyId, Joint, Model, ModelError, ModelWarning, Point};

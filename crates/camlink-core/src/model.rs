@@ -108,6 +108,20 @@ pub struct Model {
     pub gravity: V2,
     /// Applied forces: point forces and torques, springs, dampers, actuators.
     pub forces: Vec<Force>,
+    /// What the description left to be chosen and deserves a look (a
+    /// default value that the placement did not pin down), in the order
+    /// found.
+    pub warnings: Vec<ModelWarning>,
+}
+
+/// A warning about a model found while it was built from its description.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ModelWarning {
+    /// A stable name of what it is about, e.g. `"default_moved"`.
+    pub kind: &'static str,
+    /// Where in the description, e.g. `joints[3].offset`.
+    pub field: String,
+    pub message: String,
 }
 
 /// Why a model is not valid.
@@ -156,6 +170,7 @@ impl Model {
             joints: Vec::new(),
             gravity: [0.0, -9.81],
             forces: Vec::new(),
+            warnings: Vec::new(),
         }
     }
 

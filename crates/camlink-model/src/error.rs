@@ -91,6 +91,24 @@ pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
 }
 
 /// ` (did you mean 'x'?)` when a candidate is close to `name`, else empty.
+/// A parser's message about an unknown `type` or key, such as "unknown
+/// variant `revolut`, expected one of `revolute`, …", with the nearest
+/// valid name suggested; any other message as it is.
+pub(crate) fn with_suggestion(message: &str) -> String {
+    let Some(rest) = message
+        .strip_prefix("unknown variant `")
+        .or_else(|| message.strip_prefix("unknown field `"))
+    else {
+        return message.to_string();
+    };
+    let Some((name, valid)) = rest.split_once('`') else {
+        return message.to_string();
+    };
+    // The valid names are the quoted words after "expected".
+    let candidates: Vec<&str> = valid.split('`').skip(1).step_by(2).collect();
+    format!("{message}{}", did_you_mean(name, candidates))
+}
+
 pub(crate) fn did_you_mean<'a>(
     name: &str,
     candidates: impl IntoIterator<Item = &'a str>,

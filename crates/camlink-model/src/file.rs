@@ -248,7 +248,8 @@ pub struct GroundSection {
 pub struct BodySpec {
     /// Unique name (not `ground`, no `.`).
     pub name: String,
-    /// Initial position [x, y] of the body frame's origin, global frame (m); default [0, 0].
+    /// Initial position [x, y] of the body frame's origin, global frame (m);
+    /// default [0, 0], or the mean of the `global_points`.
     #[serde(default)]
     pub position: Option<Vec2>,
     /// Initial angle φ of the body frame (rad); default 0.
@@ -260,7 +261,8 @@ pub struct BodySpec {
     /// Polar moment of inertia J' about the centroid (kg·m²), ≥ 0; default 0.
     #[serde(default)]
     pub inertia: Option<Num>,
-    /// Centroid [x, y] in the body frame (m); default [0, 0].
+    /// Centroid [x, y] in the body frame (m), or global with
+    /// `global_points`; default: the frame origin.
     #[serde(default)]
     pub centroid: Option<Vec2>,
     /// Initial velocity [ẋ, ẏ] of the frame origin (m/s); default [0, 0].
@@ -272,6 +274,14 @@ pub struct BodySpec {
     /// Named points, `name = [x, y]` in the body frame (m).
     #[serde(default, deserialize_with = "unique_keys")]
     pub points: BTreeMap<String, Vec2>,
+    /// Named points by their global positions at the initial instant,
+    /// `name = [x, y]` (m), instead of `points`. The body frame is placed by
+    /// `position` and `angle` when given, else at the mean of these points
+    /// with φ = 0; `centroid`, `outline` corners and points given as
+    /// [x, y] in joints, forces and curves are then global too
+    /// (docs/model-files.md, "Bodies in global coordinates").
+    #[serde(default, deserialize_with = "unique_keys")]
+    pub global_points: BTreeMap<String, Vec2>,
     /// The body's shape in drawings, instead of the one derived from its
     /// points: a closed polyline `[[x, y], …]` in the body frame (m, at
     /// least three corners) or the name of a closed curve on this body.
@@ -330,7 +340,7 @@ pub enum JointSpec {
         body_j: String,
         #[serde(default)]
         point_j: Option<PointRef>,
-        /// θ₀ = φ_j − φ_i (rad); default: its initial value.
+        /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         angle: Option<Num>,
     },
@@ -363,7 +373,7 @@ pub enum JointSpec {
         point_j: Option<PointRef>,
         /// Line direction in body j's frame; normalised, must not be zero.
         axis: Vec2,
-        /// Signed offset c of the pin to the left of the line (m); default: its initial value.
+        /// Signed offset c of the pin to the left of the line (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         offset: Option<Num>,
     },
@@ -750,7 +760,7 @@ pub struct AbsoluteCoordJoint {
     /// Default: the body origin.
     #[serde(default)]
     pub point: Option<PointRef>,
-    /// The held coordinate (m); default: its initial value.
+    /// The held coordinate (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -762,7 +772,7 @@ pub struct AbsolutePhiJoint {
     #[serde(default)]
     pub name: Option<String>,
     pub body: String,
-    /// The held angle (rad); default: its initial value.
+    /// The held angle (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -778,7 +788,7 @@ pub struct AbsoluteDistanceJoint {
     pub point: Option<PointRef>,
     /// The ground point C: a name from `[ground] points` or [x, y] (m).
     pub ground_point: PointRef,
-    /// The held distance (m), > 0; default: its initial value.
+    /// The held distance (m), > 0; default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub distance: Option<Num>,
 }
@@ -795,7 +805,7 @@ pub struct RelativeCoordJoint {
     pub body_j: String,
     #[serde(default)]
     pub point_j: Option<PointRef>,
-    /// The held difference or distance (m); default: its initial value.
+    /// The held difference or distance (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }
@@ -808,7 +818,7 @@ pub struct RelativePhiJoint {
     pub name: Option<String>,
     pub body_i: String,
     pub body_j: String,
-    /// The held φ_j − φ_i (rad); default: its initial value.
+    /// The held φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
     #[serde(default)]
     pub value: Option<Num>,
 }

@@ -425,7 +425,7 @@ fn parse_toml(text: &str, source: &str) -> Result<file::ModelFile, LoadError> {
             source,
             offset,
             Some(path),
-            inner.message().trim().to_string(),
+            error::with_suggestion(inner.message().trim()),
         )
     })
 }
@@ -449,7 +449,7 @@ fn json_error(
         return json_syntax(text, source, &inner);
     }
     let mut err = json_syntax(text, source, &inner);
-    err.message = strip_json_position(&inner.to_string());
+    err.message = error::with_suggestion(&strip_json_position(&inner.to_string()));
     err.field = Some(path).filter(|p| !p.is_empty());
     err
 }

@@ -28,6 +28,8 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
 mod curves;
 mod forces;
+mod initial;
+mod scale;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]
@@ -79,6 +81,11 @@ struct Ctx {
     data: DataFiles,
     /// Body ids by name, ground included (a scan per reference is quadratic).
     body_ids: HashMap<String, BodyId>,
+    /// Values left out and measured in the placement ([`initial`]).
+    deferred: Vec<initial::Deferred>,
+    /// Per body id: the initial frame (x, y, φ) of a body given by
+    /// `global_points`, whose [x, y] points are global.
+    global_frames: Vec<Option<[f64; 3]>>,
 }
 
 /// Builds the model and analysis settings described by `file`.
@@ -97,6 +104,8 @@ pub(crate) fn resolve(
         curves: HashMap::new(),
         data,
         body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
+        deferred: Vec::new(),
+        global_frames: vec![None],
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {
@@ -122,10 +131,22 @@ pub(crate) fn resolve(
     for (k, f) in file.forces.iter().enumerate() {
         cx.force(f, k)?;
     }
+    initial::check(&mut cx.model, &cx.deferred);
+    scale::check(&mut cx.model);
     let analysis = cx.analysis(file.analysis.as_ref())?;
     let outlines = cx.outlines(&file.bodies)?;
     cx.model.validate().or_else(|e| fail("", e.to_string()))?;
     Ok((cx.model, analysis, outlines, cx.data))
+}
+
+/// The frame origin of a body given by `global_points`: the mean of the
+/// points (m).
+fn frame_origin(points: &[Point]) -> V2 {
+    let n = points.len() as f64;
+    let sum = points
+        .iter()
+        .fold([0.0; 2], |a, p| [a[0] + p.s[0], a[1] + p.s[1]]);
+    [sum[0] / n, sum[1] / n]
 }
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
@@ -349,9 +370,27 @@ impl Ctx {
                     format!("duplicate body name '{}' (also bodies[{first}])", b.name),
                 );
             }
+            let global = !b.global_points.is_empty();
+            if global && !b.points.is_empty() {
+                return fail(
+                    format!("{path}.global_points"),
+                    "give the body's points either in its frame (`points`) or in the global frame (`global_points`), not both",
+                );
+            }
+            let global_points = self.points(&b.global_points, &format!("{path}.global_points"))?;
             let pos = match &b.position {
                 Some(v) => self.vec2(v, &format!("{path}.position"))?,
+                None if global => frame_origin(&global_points),
                 None => [0.0; 2],
+            };
+            let angle = self.opt(b.angle.as_ref(), 0.0, &format!("{path}.angle"))?;
+            // A global point r at the initial instant is s' = Aᵀ (r − r₀) in the frame.
+            let local = |r: V2| {
+                if global {
+                    rot(-angle, sub(r, pos))
+                } else {
+                    r
+                }
             };
             let vel = match &b.velocity {
                 Some(v) => self.vec2(v, &format!("{path}.velocity"))?,
@@ -376,23 +415,31 @@ impl Ctx {
                 mass,
                 inertia,
                 centroid: match &b.centroid {
-                    Some(v) => self.vec2(v, &format!("{path}.centroid"))?,
+                    Some(v) => local(self.vec2(v, &format!("{path}.centroid"))?),
                     None => [0.0; 2],
                 },
-                q0: [
-                    pos[0],
-                    pos[1],
-                    self.opt(b.angle.as_ref(), 0.0, &format!("{path}.angle"))?,
-                ],
+                q0: [pos[0], pos[1], angle],
                 qd0: [
                     vel[0],
                     vel[1],
                     self.opt(b.omega.as_ref(), 0.0, &format!("{path}.omega"))?,
                 ],
-                points: self.points(&b.points, &format!("{path}.points"))?,
+                points: if global {
+                    global_points
+                        .into_iter()
+                        .map(|p| Point {
+                            s: local(p.s),
+                            name: p.name,
+                        })
+                        .collect()
+                } else {
+                    self.points(&b.points, &format!("{path}.points"))?
+                },
             };
             let id = self.model.add_body(body);
             self.body_ids.insert(b.name.clone(), id);
+            self.global_frames
+                .push(global.then_some([pos[0], pos[1], angle]));
         }
         if bodies.is_empty() {
             return fail(
@@ -421,10 +468,11 @@ impl Ctx {
                             ),
                         );
                     }
+                    let id = self.body_ids[&b.name];
                     let pts = corners
                         .iter()
                         .enumerate()
-                        .map(|(n, v)| self.vec2(v, &format!("{path}[{n}]")))
+                        .map(|(n, v)| Ok(self.local(id, self.vec2(v, &format!("{path}[{n}]"))?)))
                         .collect::<R<Vec<V2>>>()?;
                     OutlineShape::Polyline(pts)
                 }
@@ -479,11 +527,21 @@ impl Ctx {
         }
     }
 
+    /// A point [x, y] as written for `body`, in its frame: as is, or, for
+    /// a body given by `global_points`, from its global position at the
+    /// initial instant.
+    fn local(&self, body: BodyId, r: V2) -> V2 {
+        match self.global_frames.get(body.0).copied().flatten() {
+            Some([x, y, phi]) => rot(-phi, sub(r, [x, y])),
+            None => r,
+        }
+    }
+
     /// Resolves a point of `body`; `None` is the body origin.
     fn point(&self, body: BodyId, p: Option<&PointRef>, path: &str) -> R<V2> {
         match p {
             None => Ok([0.0; 2]),
-            Some(PointRef::Inline(v)) => self.vec2(v, path),
+            Some(PointRef::Inline(v)) => Ok(self.local(body, self.vec2(v, path)?)),
             Some(PointRef::Name(name)) => {
                 let b = self.model.body(body);
                 if let Some(s) = b.point(name) {
@@ -536,6 +594,22 @@ impl Ctx {
             );
         }
         Ok(name)
+    }
+
+    /// Records that `key` of the joint just added (`path` its field) was
+    /// left out and measured in the placement ([`initial`]), if `left_out`.
+    fn defer_joint(&mut self, left_out: bool, path: &str, key: &'static str, unit: &'static str) {
+        if !left_out {
+            return;
+        }
+        let j = self.model.joints.len() - 1;
+        self.deferred.push(initial::Deferred {
+            quantity: initial::Quantity::Joint(j),
+            field: format!("{path}.{key}"),
+            owner: format!("joint '{}'", self.model.joints[j].name),
+            key,
+            unit,
+        });
     }
 
     fn add(&mut self, name: String, c: impl Into<Constraint>, driver: bool) {
@@ -625,6 +699,7 @@ impl Ctx {
                     },
                 );
                 self.add(name, c, false);
+                self.defer_joint(angle.is_none(), p, "angle", "rad");
             }
             JointSpec::RevoluteRevolute {
                 name,
@@ -637,6 +712,7 @@ impl Ctx {
                 let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
                     self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
+                let left_out = length.is_none();
                 let length = match length {
                     Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
                     None => {
@@ -663,6 +739,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.defer_joint(left_out, p, "length", "m");
             }
             JointSpec::RevoluteTranslational {
                 name,
@@ -677,6 +754,7 @@ impl Ctx {
                 let ((bi, s_i), (bj, s_j)) =
                     self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
                 let v_j = self.axis(axis, &format!("{p}.axis"))?;
+                let left_out = offset.is_none();
                 let offset = match offset {
                     Some(c) => self.num(c, &format!("{p}.offset"))?,
                     None => {
@@ -695,6 +773,7 @@ impl Ctx {
                     offset,
                 };
                 self.add(name, c, false);
+                self.defer_joint(left_out, p, "offset", "m");
             }
             JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
                 let (kind, coord, axis) = match j {
@@ -716,6 +795,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.defer_joint(a.value.is_none(), p, "value", "m");
             }
             JointSpec::AbsolutePhi(a) => {
                 let name = self.name(a.name.as_ref(), format!("absolute_phi_{k}"), p)?;
@@ -731,6 +811,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(a.value.is_none(), p, "value", "rad");
             }
             JointSpec::AbsoluteDistance(a) => {
                 let name = self.name(a.name.as_ref(), format!("absolute_distance_{k}"), p)?;
@@ -754,6 +835,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(a.distance.is_none(), p, "distance", "m");
             }
             JointSpec::RelativeX(r) | JointSpec::RelativeY(r) | JointSpec::RelativeDistance(r) => {
                 let kind = match j {
@@ -802,6 +884,7 @@ impl Ctx {
                     }
                 };
                 self.add(name, c, false);
+                self.defer_joint(r.value.is_none(), p, "value", "m");
             }
             JointSpec::RelativePhi(r) => {
                 let name = self.name(r.name.as_ref(), format!("relative_phi_{k}"), p)?;
@@ -821,6 +904,7 @@ impl Ctx {
                     f: TimeFn::Const(f),
                 };
                 self.add(name, c, false);
+                self.defer_joint(r.value.is_none(), p, "value", "rad");
             }
             JointSpec::Gear {
                 name,
@@ -861,6 +945,7 @@ impl Ctx {
                 };
                 self.joints.insert(name.clone(), JointInfo::Other("gear"));
                 self.add(name, c, false);
+                self.defer_joint(phase.is_none(), p, "phase", "m");
             }
             JointSpec::RackPinion {
                 name,
@@ -891,6 +976,7 @@ impl Ctx {
                 self.joints
                     .insert(name.clone(), JointInfo::Other("rack_pinion"));
                 self.add(name, c, false);
+                self.defer_joint(phase.is_none(), p, "phase", "m");
             }
             JointSpec::CamFollower(c) => self.cam_follower(c, k)?,
             JointSpec::FlatFollower(c) => self.flat_follower(c, k)?,

@@ -96,3 +96,94 @@ fn error_parts_are_structured() {
     assert_eq!(err.field.as_deref(), Some("joints[1].body_i"));
     assert!(err.message.contains("did you mean 'crank'"));
 }
+
+#[test]
+fn issue30_did_you_mean_for_joint_types_and_keys() {
+    let joint = |ty: &str, key: &str| {
+        format!(
+            r#"
+[[bodies]]
+name = "arm"
+
+[[joints]]
+type = "{ty}"
+body_i = "ground"
+{key} = "arm"
+"#
+        )
+    };
+    // A misspelt joint type, in TOML and in JSON.
+    let e = camlink_model::load_str(
+        &joint("revolut", "body_j"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("unknown variant `revolut`"), "{e}");
+    assert!(e.ends_with("(did you mean 'revolute'?)"), "{e}");
+    let json = r#"{"bodies": [{"name": "arm"}], "joints": [{"type": "translationnal", "body_i": "ground", "body_j": "arm", "axis": [1, 0]}]}"#;
+    let e = camlink_model::load_str(json, camlink_model::Format::Json, "m.json")
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("(did you mean 'translational'?)"), "{e}");
+    // A misspelt key of a joint.
+    let e = camlink_model::load_str(
+        &joint("revolute", "body_jj"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("unknown field `body_jj`"), "{e}");
+    assert!(e.ends_with("(did you mean 'body_j'?)"), "{e}");
+    // Nothing close: no suggestion.
+    let e = camlink_model::load_str(
+        &joint("hinge", "body_j"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(!e.contains("did you mean"), "{e}");
+}
+
+#[test]
+fn issue30_did_you_mean_for_motion_laws_and_followers() {
+    let cam = |follower: &str, law: &str| {
+        format!(
+            r#"
+[[bodies]]
+name = "cam"
+
+[[curves]]
+name = "lobe"
+body = "cam"
+source = "motion"
+follower = "{follower}"
+base_radius = 0.03
+roller_radius = 0.01
+segments = [
+  {{ law = "{law}", span = "pi", lift = 0.01 }},
+  {{ law = "cycloidal", span = "pi", lift = -0.01 }},
+]
+"#
+        )
+    };
+    let e = camlink_model::load_str(
+        &cam("translating-roler", "cycloidal"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.ends_with("(did you mean 'translating-roller'?)"), "{e}");
+    let e = camlink_model::load_str(
+        &cam("translating-roller", "cycloidl"),
+        camlink_model::Format::Toml,
+        "m.toml",
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(e.ends_with("(did you mean 'cycloidal'?)"), "{e}");
+}

@@ -485,6 +485,29 @@ fn four_bar() {
 /// β̇ = N(θ) θ̇, N = r (r + d cos θ)/ρ²; β̈ = N θ̈ + N′ θ̇²,
 /// N′ = r d sin θ (r² − d²)/ρ⁴.
 #[test]
+fn whitworth_global() {
+    // Bodies in global coordinates; the comparison with frames placed by
+    // hand is in global_points.rs.
+    let (_, mut c) = Check::new("whitworth_global");
+    let (d, r, big_r, l, w) = (0.05, 0.1, 0.08, 0.3, 2.0 * PI);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let th = [w * t, w, 0.0];
+        c.rotation("crank", k, th, [w, w * w]);
+        let (pa, va, aa) = on_circle(r, [0.0, d], th);
+        c.point("crank.A", k, pa, va, aa, [r * w, r * w * w]);
+        // The lever through A: β = atan2(d + r sin θ, r cos θ); its arm B
+        // opposite A, the ram C on the x axis at the rod's length.
+        let beta = (d + r * th[0].sin()).atan2(r * th[0].cos());
+        let (bx, by) = (-big_r * beta.cos(), -big_r * beta.sin());
+        c.pos("lever.B.x", k, bx);
+        c.pos("lever.B.y", k, by);
+        c.pos("ram.C.x", k, bx - (l * l - by * by).sqrt());
+        c.pos("ram.C.y", k, 0.0);
+    }
+    c.report();
+}
+
+#[test]
 fn quick_return() {
     let (loaded, mut c) = Check::new("quick_return");
     let (d, r, l, w, th0) = (0.3, 0.1, 0.5, 2.0 * PI, 0.0);

@@ -309,6 +309,23 @@ impl Model {
         Ok(list)
     }
 
+    /// Warnings about the model found while it was loaded (a default
+    /// measured in a placement that the assembly moved): a list of dicts
+    /// with kind, field, message and text (one line, with the field).
+    #[getter]
+    fn warnings<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let list = PyList::empty(py);
+        for w in &self.loaded.model.warnings {
+            let d = PyDict::new(py);
+            d.set_item("kind", w.kind)?;
+            d.set_item("field", &w.field)?;
+            d.set_item("message", &w.message)?;
+            d.set_item("text", format!("{}: {}", w.field, w.message))?;
+            list.append(d)?;
+        }
+        Ok(list)
+    }
+
     /// The design checks of the curve contacts (flat follower on a concave
     /// profile, undercut roller): a list of dicts with severity
     /// (`"warning"` or `"error"`), joint, message and text (one line).

@@ -316,7 +316,16 @@ impl Ctx {
                             format!("{p}.follower"),
                             format!(
                                 "unknown follower '{other}' (translating-roller, translating-flat, \
-                                 oscillating-roller or oscillating-flat)"
+                                 oscillating-roller or oscillating-flat){}",
+                                did_you_mean(
+                                    other,
+                                    [
+                                        "translating-roller",
+                                        "translating-flat",
+                                        "oscillating-roller",
+                                        "oscillating-flat"
+                                    ]
+                                )
                             ),
                         )
                     }
@@ -345,7 +354,12 @@ impl Ctx {
                         let names: Vec<&str> = LawKind::ALL.iter().map(|l| l.name()).collect();
                         return fail(
                             format!("{sp}.law"),
-                            format!("unknown law '{}' ({})", sg.law, names.join(", ")),
+                            format!(
+                                "unknown law '{}' ({}){}",
+                                sg.law,
+                                names.join(", "),
+                                did_you_mean(&sg.law, names.iter().copied())
+                            ),
                         );
                     };
                     let ends = |e: &Option<MotionEndSpec>, key: &str| -> R<[Option<f64>; 3]> {

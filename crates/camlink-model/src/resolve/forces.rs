@@ -8,7 +8,7 @@ use camlink_core::force::Force;
 use camlink_core::math::{norm, sub};
 use camlink_core::TimeFn;
 
-use super::{check_name, fail, Ctx, JointInfo, R};
+use super::{check_name, fail, initial, Ctx, JointInfo, R};
 use crate::error::did_you_mean;
 use crate::file::{ForceSpec, Num};
 use camlink_core::fmt_num::num;
@@ -18,6 +18,16 @@ impl Ctx {
     pub(super) fn force(&mut self, f: &ForceSpec, k: usize) -> R<()> {
         let path = format!("forces[{k}]");
         let p = path.as_str();
+        // The value measured in the placement, if the file leaves it out.
+        let left_out = match f {
+            ForceSpec::Tsda { free_length, .. } => {
+                free_length.is_none().then_some(("free_length", "m"))
+            }
+            ForceSpec::Rsda { free_angle, .. } => {
+                free_angle.is_none().then_some(("free_angle", "rad"))
+            }
+            _ => None,
+        };
         let (name, kind) = match f {
             ForceSpec::PointForce {
                 name,
@@ -159,7 +169,7 @@ impl Ctx {
                         return fail(
                             jp,
                             format!(
-                                "viscous friction acts in a revolute or translational joint;                                  '{joint}' is a {kind} joint"
+                                "viscous friction acts in a revolute or translational joint; '{joint}' is a {kind} joint"
                             ),
                         )
                     }
@@ -170,6 +180,15 @@ impl Ctx {
                 )
             }
         };
+        if let Some((key, unit)) = left_out {
+            self.deferred.push(initial::Deferred {
+                quantity: initial::Quantity::Force(self.model.forces.len()),
+                field: format!("{p}.{key}"),
+                owner: format!("force '{name}'"),
+                key,
+                unit,
+            });
+        }
         self.model.add_force(Force { name, kind });
         Ok(())
     }
