@@ -8,6 +8,7 @@ shown literally (a ``$`` in a design's name is not mathtext).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 
 import matplotlib
@@ -15,11 +16,19 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle
+from matplotlib.text import Text
 
 from camlink._core import CamCore
+
+#: The colour undercut ranges are drawn in.
+UNDERCUT_COLOUR = "#ff2d2d"
+
+#: Unit vectors to a circle's leftmost, rightmost, lowest and highest points.
+_COMPASS = np.array([[1.0, 0.0], [-1.0, 0.0], [0.0, 1.0], [0.0, -1.0]])
 
 
 def _literal(text: str) -> str:
@@ -70,8 +79,10 @@ def profile(
 ) -> Figure:
     """The cam in its own frame (m): the surface coloured by pressure angle
     (deg) or radius of curvature (m), the base circle (dashed), a roller's
-    pitch curve (dotted) and the follower drawn at `followers` cam angles
-    (where it touches the cam when the cam has turned by that angle)."""
+    pitch curve (dotted), the undercut ranges over the surface in
+    `UNDERCUT_COLOUR`, and the follower drawn at `followers` cam angles
+    (where it touches the cam when the cam has turned by that angle), each
+    labelled with that angle. The frame holds all of them."""
     th = np.linspace(0.0, 2.0 * math.pi, n)
     surf = np.asarray(core.surface(th))
     c = core.contact(th)
@@ -99,13 +110,34 @@ def profile(
         p = np.asarray(pitch)
         ax.plot(p[:, 0], p[:, 1], ls=":", color="C1", lw=1.0, label="pitch curve")
     ax.plot([0.0], [0.0], "k+", ms=10)
-    # The follower at a few cam angles, drawn in the cam frame.
+    # Undercut ranges, over the surface in a highlight colour.
+    for k, (a, b) in enumerate(core.geometry()["undercut"]):
+        end = b if b > a else b + 2.0 * math.pi
+        span = np.linspace(a, end, max(2, int(n * (end - a) / (2.0 * math.pi)) + 2))
+        u = np.asarray(core.surface(span))
+        ax.plot(
+            u[:, 0], u[:, 1], color=UNDERCUT_COLOUR, lw=6.0, alpha=0.6,
+            solid_capstyle="round", label="undercut" if k == 0 else None, gid="undercut",
+        )
+    # What the frame holds: the surface, the base circle, the pitch curve,
+    # the followers (and their labels, by `_fit`).
+    reach = [surf, base_radius * _COMPASS]
+    if pitch is not None:
+        reach.append(p)
+    # The follower at a few cam angles, drawn in the cam frame, each
+    # labelled with its cam angle beyond its outer side.
     ts = np.linspace(0.0, 2.0 * math.pi, followers, endpoint=False)
+    outer = []  # (where the follower reaches farthest out, the outward direction)
     if pitch is not None:
         pts = np.asarray(core.pitch(ts))
         roller = float(np.linalg.norm(pts[0] - np.asarray(core.surface(ts[:1]))[0]))
         for q in pts:
-            ax.add_patch(Circle((q[0], q[1]), roller, fill=False, color="C3", lw=1.0))
+            ax.add_patch(
+                Circle((q[0], q[1]), roller, fill=False, color="C3", lw=1.0, gid="follower")
+            )
+            out = q / max(float(np.linalg.norm(q)), 1e-300)
+            reach.append(np.array([q + roller * d for d in _COMPASS]))
+            outer.append((q + roller * out, out))
     else:
         cc = core.contact(ts)
         pts = np.asarray(core.surface(ts))
@@ -115,23 +147,57 @@ def profile(
             ca, sa = math.cos(a), math.sin(a)
             nn = np.array([ca * nrm[0] - sa * nrm[1], sa * nrm[0] + ca * nrm[1]])
             d = np.array([-nn[1], nn[0]]) * 0.6 * base_radius
-            ax.plot(
-                [q[0] - d[0], q[0] + d[0]],
-                [q[1] - d[1], q[1] + d[1]],
+            ends = np.array([q - d, q + d])
+            ax.plot(ends[:, 0], ends[:, 1], color="C3", lw=1.2, gid="follower")
+            reach.append(ends)
+            out = q / max(float(np.linalg.norm(q)), 1e-300)
+            outer.append((q, out))
+    r = float(np.max(np.abs(np.concatenate(reach))))
+    gap = 0.06 * r
+    labels = []
+    for t, (q, out) in zip(ts, outer, strict=True):
+        at = q + gap * out
+        labels.append(
+            ax.annotate(
+                f"θ = {math.degrees(float(t)):.0f}°",
+                (float(at[0]), float(at[1])),
+                ha="left" if out[0] > 0.3 else "right" if out[0] < -0.3 else "center",
+                va="bottom" if out[1] > 0.3 else "top" if out[1] < -0.3 else "center",
+                fontsize=8,
                 color="C3",
-                lw=1.2,
+                gid="follower label",
             )
-    r = float(np.max(np.linalg.norm(surf, axis=1)))
-    pad = 0.25 * r
-    ax.set_xlim(-r - pad, r + pad)
-    ax.set_ylim(-r - pad, r + pad)
+        )
     ax.set_aspect("equal")
+    if pitch is not None or core.geometry()["undercut"]:
+        fig.legend(loc="outside lower center", ncols=2, fontsize=8, frameon=False)
     ax.set_xlabel("x (m, cam frame)")
     ax.set_ylabel("y (m, cam frame)")
     ax.grid(True, lw=0.3)
     if title:
         ax.set_title(_literal(title))
+    _fit(fig, ax, 1.08 * r, labels)
     return fig
+
+
+def _fit(fig: Figure, ax: Axes, half: float, texts: Sequence[Text]) -> None:
+    """Square limits ±`half` (m) or wider, so that the `texts` lie inside
+    the axes too: the text keeps its size in points while the limits
+    change, so a few rounds of layout and measuring settle."""
+    for _ in range(4):
+        ax.set_xlim(-half, half)
+        ax.set_ylim(-half, half)
+        fig.draw_without_rendering()
+        renderer = fig.canvas.get_renderer()  # type: ignore[attr-defined]
+        to_data = ax.transData.inverted()
+        need = half
+        for text in texts:
+            box = text.get_window_extent(renderer)
+            corners = to_data.transform([[box.x0, box.y0], [box.x1, box.y1]])
+            need = max(need, float(np.max(np.abs(corners))))
+        if need <= half:
+            return
+        half = 1.02 * need
 
 
 def core_ccw(core: CamCore) -> bool:

@@ -153,7 +153,7 @@ class Model:
         #: Python force, which cannot be pickled.
         self._recipe: tuple[str, str, str, str | None, bool] | None = None
         #: Parameters changed by `with_parameters` (name → value).
-        self._overrides: dict[str, float] = {}
+        self._overrides: dict[str, float | str] = {}
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Pickles through the model's text (multiprocessing, joblib):
@@ -290,14 +290,18 @@ class Model:
         """The names of the file's ``[parameters]``."""
         return list(self._core.parameter_names)
 
-    def with_parameters(self, **values: float) -> Model:
+    def with_parameters(self, **values: float | str) -> Model:
         """A copy of this model with the file's ``[parameters]`` named in
-        `values` set to those numbers, and everything that depends on them
-        (points, curves, drivers, forces, placements computed from them)
-        resolved again in Rust, without reading the file.
+        `values` set to those numbers or expressions (``w="3*pi"``,
+        ``b="2*a"``: evaluated by camlink's expression evaluator, reading
+        the other parameters with their new values, as the file's
+        ``[parameters]`` do), and everything that depends on them (points,
+        curves, drivers, forces, placements computed from them) resolved
+        again in Rust, without reading the file.
 
-        Raises `ModelError` for an unknown name (naming it) or a variant
-        that is not a valid model (naming the file, line and field).
+        Raises `ModelError` for an unknown name (naming it), an expression
+        that does not evaluate (naming the parameter) or a variant that is
+        not a valid model (naming the file, line and field).
         """
         if self._recipe is None and self._core.parameter_names:
             raise ModelError(
@@ -305,12 +309,14 @@ class Model:
                 "change its parameters before adding the force"
             )
         for name, value in values.items():
-            if isinstance(value, bool) or not isinstance(value, int | float):
-                raise ModelError(f"parameter '{name}' = {value!r} is not a number")
-        numbers = {k: float(v) for k, v in values.items()}
-        model = Model(self._core.with_parameters(numbers), source=self.source)
+            if isinstance(value, bool) or not isinstance(value, int | float | str):
+                raise ModelError(
+                    f"parameter '{name}' = {value!r} is not a number or an expression string"
+                )
+        given = {k: v if isinstance(v, str) else float(v) for k, v in values.items()}
+        model = Model(self._core.with_parameters(given), source=self.source)
         model._recipe = self._recipe
-        model._overrides = {**self._overrides, **numbers}
+        model._overrides = {**self._overrides, **given}
         return model
 
     def run(
@@ -567,7 +573,7 @@ class Model:
         if output is not None:
             check_not_input(Path(output), self.inputs)
             head = {"camlink": _core.__version__, "model": self.name, "analysis": kind}
-            writer = BackgroundWriter(open_writer(output, head=head))
+            writer = BackgroundWriter(open_writer(output, head=head, joints=self.joints))
         names: list[str] = []
         complete = False
 
@@ -594,7 +600,7 @@ class Model:
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,
-                "units": {n: unit(n) for n in names},
+                "units": {n: unit(n, self.joints) for n in names},
                 "summary": {**summary, "analysis": kind},  # the binding's plain dict
             }
         except AnalysisError as e:
@@ -655,7 +661,7 @@ def _unpickle(
     base_dir: str | None,
     allow_outside: bool,
     path: Path | None,
-    overrides: dict[str, float] | None = None,
+    overrides: dict[str, float | str] | None = None,
 ) -> Model:
     model = loads(text, format, source, base_dir=base_dir, allow_outside=allow_outside)
     model.source = path

@@ -84,13 +84,14 @@ def results_html(results: Results) -> str:
 
     channels = results.channels[:HEAD_COLUMNS]
     timed = "t" in results
-    rows = results._head((["t"] if timed else []) + channels, HEAD_ROWS)
+    # Adding 0.0 turns −0.0 into 0.0: the table shows no "-0".
+    rows = results._head((["t"] if timed else []) + channels, HEAD_ROWS) + 0.0
     index = (pd.Index(rows[:, 0], name="t") if timed
              else pd.RangeIndex(len(rows), name="step"))
     shown = pd.DataFrame(rows[:, int(timed):], index=index, columns=channels)
     more = len(results.channels) - shown.shape[1]
     caption = html.escape(repr(results)) + (f" ({more} more channels)" if more > 0 else "")
-    table = f"<p><code>{caption}</code></p>" + shown.to_html(float_format=lambda v: f"{v:.6g}")
+    table = f"<p><code>{caption}</code></p>" + shown.to_html(float_format=lambda v: f"{v + 0.0:.6g}")
     if len(results) < 2:
         return table
     plotted = default_plots(results)[:2]

@@ -18,13 +18,20 @@ output, named ``<stem>.partial-<random><suffix>``:
 Only the chunk being written (and, for Parquet, one row group) is held in
 memory, whatever the length of the run.
 
-A CSV file starts with comment lines ``# key: value`` (the value as JSON)
-before its header line: ``camlink`` (the version), ``model``, ``analysis``
-and ``units`` (each channel's unit, ``""`` where the kind does not fix it);
-a complete run ends it with ``# summary: {...}``. Parquet keeps the same
-as JSON under its key-value metadata key ``camlink``, written when the file
-is closed (the summary is known only then), which readers see as the schema
-metadata. `read_csv_metadata` reads them back.
+A CSV file is a plain table: a header line of channel names, then one
+line of numbers per step, which ``pandas.read_csv`` and spreadsheet
+programs read as is. Its metadata goes to a JSON sidecar beside it,
+``<name>.csv.json`` (`sidecar_path`): ``camlink`` (the version), ``model``,
+``analysis``, ``units`` (each channel's unit, ``""`` where the kind does
+not fix it), ``columns`` (the header's names), and for a complete run
+``rows`` (the number of rows) and ``summary``. The sidecar is written at
+the header (for a run that is killed) and again at the end, each time to
+a temporary file renamed over it, and follows its CSV to the output or
+partial name. CSV files of earlier versions carry the same keys as comment
+lines ``# key: <JSON>`` around their rows, which `read_csv_metadata` reads.
+Parquet keeps the metadata as JSON under its key-value metadata key
+``camlink``, written when the file is closed (the summary is known only
+then), which readers see as the schema metadata.
 
 On success the temporary file is renamed over the output in one step (the
 last of two runs writing the same output wins, whole); on an analysis
@@ -48,7 +55,7 @@ import os
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -56,6 +63,9 @@ import numpy.typing as npt
 from camlink import _core
 from camlink._core import ModelError
 from camlink.results_file import ColumnSource, CsvColumns, ParquetColumns
+
+if TYPE_CHECKING:
+    from camlink.records import JointRecord
 
 __all__ = [
     "ROW_GROUP_BYTES",
@@ -68,6 +78,7 @@ __all__ = [
     "open_writer",
     "partial_path",
     "replacing",
+    "sidecar_path",
 ]
 
 #: File name suffixes results are written as.
@@ -112,19 +123,34 @@ def partial_path(path: Path) -> Path:
     return path.with_name(f"{path.stem}.partial{path.suffix}")
 
 
+def sidecar_path(path: Path) -> Path:
+    """Where the metadata of the results CSV `path` is:
+    ``<name>.csv.json`` beside it."""
+    return path.with_name(f"{path.name}.json")
+
+
 def check_not_input(path: Path, inputs: Iterable[str | os.PathLike[str]]) -> None:
-    """Raises `ModelError` when the output `path` is (or links to) one of
-    the run's `inputs` (the model file, its data files)."""
-    real = os.path.realpath(path)
-    for item in inputs:
-        same = os.path.realpath(item) == real
-        if not same and os.path.exists(path) and os.path.exists(item):
-            same = os.path.samefile(path, item)
-        if same:
-            raise ModelError(
-                f"output '{path}' is an input of the model ('{item}'); "
-                "choose another output file name"
-            )
+    """Raises `ModelError` when the output `path` (or, for a CSV, its
+    metadata sidecar) is (or links to) one of the run's `inputs` (the model
+    file, its data files)."""
+    inputs = list(inputs)
+    outputs = [path]
+    if path.suffix.lower() == ".csv":
+        outputs.append(sidecar_path(path))
+    for out in outputs:
+        real = os.path.realpath(out)
+        for item in inputs:
+            same = os.path.realpath(item) == real
+            if not same and os.path.exists(out) and os.path.exists(item):
+                same = os.path.samefile(out, item)
+            if same:
+                what = f"output '{path}'"
+                if out != path:
+                    what = f"the metadata file '{out}' of {what}"
+                raise ModelError(
+                    f"{what} is an input of the model ('{item}'); "
+                    "choose another output file name"
+                )
 
 
 @contextlib.contextmanager
@@ -167,31 +193,49 @@ class _Target:
         return final
 
 
-#: The comment lines of a results CSV start with this.
+#: The comment lines of a results CSV of earlier versions start with this.
 COMMENT = "# "
 
 
-def _units(names: Sequence[str]) -> dict[str, str]:
-    """Each channel's unit (``""`` where the kind does not fix it)."""
+def _units(names: Sequence[str], joints: Sequence[JointRecord] = ()) -> dict[str, str]:
+    """Each channel's unit (``""`` where the kind does not fix it); the
+    model's `joints` give a driver's effort its unit."""
     from camlink.units import unit
 
-    return {n: unit(n) for n in names}
+    return {n: unit(n, joints) for n in names}
 
 
-def _comment(key: str, value: object) -> bytes:
-    """One metadata line: ``# key: <JSON>`` (JSON escapes line breaks)."""
-    return f"{COMMENT}{key}: {json.dumps(value, default=str, ensure_ascii=False)}\n".encode()
+def _write_json(path: Path, value: Mapping[str, Any]) -> None:
+    """`value` as JSON at `path`, written to a temporary file beside it
+    and renamed over it in one step."""
+    target = _Target(path, ".json")
+    try:
+        target.temp.write_text(
+            json.dumps(value, default=str, ensure_ascii=False, indent=1) + "\n", encoding="utf-8"
+        )
+    except BaseException:
+        target.temp.unlink(missing_ok=True)
+        raise
+    target.finish(target.temp, True)
 
 
 class CsvWriter:
-    """Writes the metadata comments of `head` (``camlink``, ``model``,
-    ``analysis``) with each channel's unit, a header line, then each chunk
-    of rows with one write and a flush: numbers in their shortest exact
-    form, names quoted as CSV requires."""
+    """Writes a header line of channel names, then each chunk of rows with
+    one write and a flush: numbers in their shortest exact form, names
+    quoted as CSV requires. The metadata (`head`'s ``camlink``, ``model``,
+    ``analysis``, each channel's unit, `joints` giving a driver's effort
+    its unit) goes to the sidecar (`sidecar_path`) when the header is
+    written, and again, with the row count and summary, at `close`."""
 
-    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
+    def __init__(
+        self,
+        path: Path,
+        head: Mapping[str, Any] | None = None,
+        joints: Sequence[JointRecord] = (),
+    ) -> None:
         self.path = path
         self._head = head or {}
+        self._joints = list(joints)
         self._target = _Target(path, path.suffix)
         self._file = self._target.temp.open("wb")
         self._header = False
@@ -202,17 +246,25 @@ class CsvWriter:
         self._start = 0
         self._end = 0
 
+    def _meta(self, metadata: Mapping[str, Any] | None) -> dict[str, Any]:
+        """The sidecar's content: `metadata` (or the head with each
+        channel's unit) and the header's names."""
+        if metadata is not None:
+            meta = dict(metadata)
+        else:
+            meta = {k: self._head[k] for k in ("camlink", "model", "analysis") if k in self._head}
+            meta["units"] = _units(self._names, self._joints)
+        meta["columns"] = list(self._names)
+        return meta
+
     def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
         if not self._header:
-            for key in ("camlink", "model", "analysis"):
-                if key in self._head:
-                    self._file.write(_comment(key, self._head[key]))
-            self._file.write(_comment("units", _units(names)))
+            self._names = list(names)
+            _write_json(sidecar_path(self._target.temp), self._meta(None))
             line = io.StringIO()
             csv.writer(line, lineterminator="\n").writerow(names)
             self._file.write(line.getvalue().encode())
             self._header = True
-            self._names = list(names)
             self._start = self._end = self._file.tell()
         if len(rows):
             # The column-major chunk as it came: `csv_rows` reads it row by
@@ -226,14 +278,23 @@ class CsvWriter:
     def close(
         self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
     ) -> Path:
-        """Finishes the file, ending a complete one with the ``summary`` of
-        `metadata`; returns where it is (the output, or its partial name
-        when not `complete`)."""
+        """Finishes the file and its sidecar, which for a complete file
+        holds `metadata` (with the ``summary``) and the row count; returns
+        where the file is (the output, or its partial name when not
+        `complete`)."""
         if not self._header and names:
             self.write(names, np.empty((0, len(names))))
-        if complete and metadata is not None and "summary" in metadata:
-            self._file.write(_comment("summary", metadata["summary"]))
         self._file.close()
+        temp_meta = sidecar_path(self._target.temp)
+        if complete:
+            meta = self._meta(metadata)
+            meta["rows"] = self.rows
+        else:
+            meta = self._meta(None)
+        if self._header:
+            _write_json(temp_meta, meta)
+            final = self.path if complete else partial_path(self.path)
+            os.replace(temp_meta, sidecar_path(final))
         self.path = self._target.finish(self._target.temp, complete)
         return self.path
 
@@ -259,9 +320,15 @@ class ParquetWriter:
     only at the end of the run, is what readers see as the schema
     metadata."""
 
-    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
+    def __init__(
+        self,
+        path: Path,
+        head: Mapping[str, Any] | None = None,
+        joints: Sequence[JointRecord] = (),
+    ) -> None:
         self.path = path
         self._head = dict(head or {})
+        self._joints = list(joints)
         self._target = _Target(path, ".arrows")
         journal = self._target.temp
         self._parquet = journal.with_name(f".{journal.stem}{path.suffix}")
@@ -283,7 +350,7 @@ class ParquetWriter:
         self._schema = pa.schema([(n, pa.float64()) for n in names])
         width = max(len(names), 1)
         self._group_rows = max(1, min(ROW_GROUP_ROWS, ROW_GROUP_BYTES // (8 * width)))
-        head = {**self._head, "units": _units(names)}
+        head = {**self._head, "units": _units(names, self._joints)}
         # Buffered, flushed once per chunk: one system call instead of one
         # per column.
         self._journal_sink = pa.BufferedOutputStream(
@@ -346,7 +413,11 @@ class ParquetWriter:
             self._open(names)
         if self._pending_rows:
             self._write_groups(whole_only=False)
-        meta = dict(metadata) if metadata is not None else {**self._head, "units": _units(names)}
+        meta = (
+            dict(metadata)
+            if metadata is not None
+            else {**self._head, "units": _units(names, self._joints)}
+        )
         self._writer.add_key_value_metadata({"camlink": json.dumps(meta, default=str)})
         self._writer.close()
         self._journal.close()
@@ -497,22 +568,25 @@ class BackgroundWriter:
 
 
 def open_writer(
-    path: str | os.PathLike[str], head: Mapping[str, Any] | None = None
+    path: str | os.PathLike[str],
+    head: Mapping[str, Any] | None = None,
+    joints: Sequence[JointRecord] = (),
 ) -> CsvWriter | ParquetWriter:
     """A writer for `path` (CSV or Parquet by suffix), its temporary file
-    created now so that an unwritable folder fails before any work; a CSV
-    starts with the metadata of `head` (Parquet gets its metadata at
-    `close`, the `head` for a run that stopped early)."""
+    created now so that an unwritable folder fails before any work. The
+    metadata of `head` goes to a CSV's sidecar with the header (Parquet
+    gets its metadata at `close`, the `head` for a run that stopped early);
+    the model's `joints` give a driver's effort its unit."""
     path = Path(path)
     kind = kind_of(path)
     if path.is_dir():
         raise IsADirectoryError(21, "is a directory", str(path))
-    return CsvWriter(path, head) if kind == "csv" else ParquetWriter(path, head)
+    return CsvWriter(path, head, joints) if kind == "csv" else ParquetWriter(path, head, joints)
 
 
 def read_csv_metadata(lines: Iterable[str]) -> dict[str, Any]:
-    """The ``# key: <JSON>`` comment lines of a results CSV as a dict
-    (lines that are not metadata are skipped)."""
+    """The ``# key: <JSON>`` comment lines of a results CSV of earlier
+    versions as a dict (lines that are not metadata are skipped)."""
     meta: dict[str, Any] = {}
     for line in lines:
         if not line.startswith(COMMENT):

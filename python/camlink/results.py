@@ -25,6 +25,7 @@ from camlink.output import (
     open_writer,
     read_arrow_stream,
     read_csv_metadata,
+    sidecar_path,
 )
 from camlink.units import unit
 
@@ -200,6 +201,8 @@ class Results:
         #: The model that produced these results (None when read from a
         #: file); drawings and animations take their geometry from it.
         self.mechanism: Model | None = None
+        # Each channel's unit as a results file gave it (None otherwise).
+        self._file_units: dict[str, str] | None = None
 
     @classmethod
     def _from_file(
@@ -375,8 +378,20 @@ class Results:
             return self._source.rows
         return self._data.shape[0]
 
+    @property
+    def units(self) -> dict[str, str]:
+        """Each column's unit (``"t"`` first), ``""`` where the kind does
+        not fix it: a driver's effort in N·m or N by what it drives, from
+        the model's joints, or as the results file read gave it."""
+        joints = self.mechanism.joints if self.mechanism is not None else None
+        if joints is None and self._file_units is not None:
+            return {n: self._file_units.get(n) or unit(n) for n in self._names}
+        return {n: unit(n, joints) for n in self._names}
+
     def __repr__(self) -> str:
-        span = f", t = {self.t[0]:g} … {self.t[-1]:g} s" if len(self) else ""
+        span = (
+            f", t = {_number(self.t[0])} … {_number(self.t[-1])} s" if len(self) else ""
+        )
         state = "" if self.complete else ", stopped early"
         name = f" of '{self.model}'" if self.model else ""
         return (
@@ -474,7 +489,7 @@ class Results:
             meta["model"] = self.model
         if "analysis" in summary:
             meta["analysis"] = summary["analysis"]
-        meta["units"] = {n: unit(n) for n in self._names}
+        meta["units"] = self.units
         if summary:
             meta["summary"] = summary
         return meta
@@ -493,7 +508,11 @@ class Results:
             else:
                 names, data, meta = _read_arrow(path, kind)
             model, summary = _file_metadata(meta, path)
-            return cls(names, data, model=model, summary=summary)
+            res = cls(names, data, model=model, summary=summary)
+            units = meta.get("units")
+            if isinstance(units, dict):
+                res._file_units = {str(k): v for k, v in units.items() if isinstance(v, str)}
+            return res
         except ModelError:
             raise
         except (ValueError, OSError, ImportError, EOFError, RecursionError) as e:
@@ -543,13 +562,20 @@ def _file_metadata(meta: Any, path: Path) -> tuple[str, RunSummary | None]:
     return model, summary  # type: ignore[return-value]
 
 
+def _number(v: float) -> str:
+    """`v` as ``:g`` formats it, −0.0 as ``0``."""
+    return f"{v + 0.0:g}"
+
+
 def _is_time(v: Any) -> bool:
     return isinstance(v, int | float) and not isinstance(v, bool)
 
 
 def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:
-    """Names, rows and metadata comments of a results CSV; an unfinished
-    last line (a run killed while writing) is dropped."""
+    """Names, rows and metadata of a results CSV: its sidecar
+    (`camlink.output.sidecar_path`) or, in files of earlier versions, its
+    comment lines; an unfinished last line (a run killed while writing) is
+    dropped."""
     text = path.read_bytes().decode()
     if text and not text.endswith("\n"):
         text = text[: text.rfind("\n") + 1]
@@ -566,14 +592,52 @@ def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64], dict[str,
         comments.append(tail)
     meta = read_csv_metadata(comments)
     if not rest.strip() or rest.lstrip().startswith("#"):
-        return header, np.empty((0, len(header))), meta
-    data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2, comments="#")
+        data = np.empty((0, len(header)))
+    else:
+        data = np.loadtxt(io.StringIO(rest), delimiter=",", ndmin=2, comments="#")
     if data.shape[1] != len(header):
         raise ModelError(
             f"cannot read results from '{path}': {data.shape[1]} columns but "
             f"{len(header)} names"
         )
+    side = sidecar_path(path)
+    if side.exists():
+        meta.update(_read_sidecar(side, path, header, len(data)))
     return header, data, meta
+
+
+def _read_sidecar(side: Path, path: Path, header: list[str], rows: int) -> dict[str, Any]:
+    """The metadata in the sidecar `side` of the results CSV `path`:
+    `ModelError` when it is not a JSON object; none, with a
+    `camlink.warn.CamlinkWarning`, when it describes other columns or
+    another number of rows than the CSV's `header` and `rows` (the table
+    was edited, or two runs wrote the same output at once)."""
+    try:
+        meta = json.loads(side.read_text(encoding="utf-8"))
+    except ValueError as e:
+        raise ModelError(f"cannot read the metadata of '{path}' from '{side}': {e}") from None
+    if not isinstance(meta, dict):
+        raise ModelError(
+            f"cannot read the metadata of '{path}' from '{side}': expected a JSON object, "
+            f"got {type(meta).__name__}"
+        )
+    columns = meta.pop("columns", header)
+    count = meta.pop("rows", rows)
+    if columns != header or count != rows:
+        import warnings
+
+        from camlink.warn import CamlinkWarning
+
+        theirs = f"{len(columns) if isinstance(columns, list) else '?'} columns, {count} rows"
+        warnings.warn(
+            CamlinkWarning(
+                f"'{side}' describes another file than '{path}' ({theirs}; the file has "
+                f"{len(header)} columns, {rows} rows): '{path}' is read without it"
+            ),
+            stacklevel=4,
+        )
+        return {}
+    return meta
 
 
 def _read_arrow(path: Path, kind: str) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:

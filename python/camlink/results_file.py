@@ -6,8 +6,8 @@ of its rows when a run wrote them to a file (``output=``).
   into memory: a mapped file cut short while it is read kills the
   process with SIGBUS).
 - CSV (`CsvColumns`): pyarrow's CSV reader parses, block by block, the
-  byte range of the rows that the writer recorded (between the header line
-  and the ``# summary`` line), keeping only the channels asked for.
+  byte range of the rows that the writer recorded (after the header line),
+  keeping only the channels asked for.
 
 A source holds its file open from when it is made (one file descriptor,
 closed when the source is garbage-collected) and reads through it: results
@@ -164,7 +164,7 @@ class ParquetColumns(_File):
 
 class CsvColumns(_File):
     """A results CSV whose rows lie between byte `start` (after the header
-    line) and byte `end` (before the ``# summary`` line, if any)."""
+    line) and byte `end` (after the last row)."""
 
     def __init__(self, path: Path, names: list[str], start: int, end: int, rows: int) -> None:
         super().__init__(path)

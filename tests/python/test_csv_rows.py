@@ -44,8 +44,8 @@ def test_csv_rows_reads_every_layout_row_by_row(layout: str) -> None:
     text = _core.csv_rows(arg)
     lines = text.decode().splitlines()
     assert len(lines) == 37
-    assert lines[1].split(",")[:3] == ["0.3", "1", "-2"]
-    assert lines[0].split(",")[:4] == ["nan", "inf", "-inf", "0"]
+    assert lines[1].split(",")[:3] == ["0.3", "1.0", "-2.0"]
+    assert lines[0].split(",")[:4] == ["nan", "inf", "-inf", "0.0"]
     # Shortest round-trip text: every number reads back to the same double.
     back = parsed(text)
     assert back.shape == a.shape

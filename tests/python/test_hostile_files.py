@@ -169,7 +169,7 @@ def test_concurrent_runs_on_one_output_leave_one_whole_file(tmp_path, four_bar_f
     # Either run's file, whole: every row as wide as the header.
     res = Results.load(out)
     assert len(res) == 40001
-    assert [p.name for p in tmp_path.glob("same*")] == ["same.csv"]
+    assert sorted(p.name for p in tmp_path.glob("same*")) == ["same.csv", "same.csv.json"]
 
 
 # -- stopping: SIGKILL, SIGTERM, SIGHUP, Ctrl-C --------------------------------
@@ -217,7 +217,8 @@ def test_sigkill_at_random_times_leaves_a_readable_file(tmp_path, suffix):
         proc.kill()
         proc.wait()
         assert not out.exists()
-        (temp,) = tmp_path.glob(f"k{k}.partial-*")
+        # The temporary file (a CSV's metadata sidecar beside it).
+        (temp,) = [p for p in tmp_path.glob(f"k{k}.partial-*") if p.suffix != ".json"]
         res = Results.load(temp)
         assert len(res) >= 64, len(res)
         t = res.t
@@ -304,7 +305,7 @@ def test_csv_header_is_quoted_and_numbers_are_shortest(tmp_path):
     res = Results(["t", "a,b", 'say "hi"'], np.array([[0.3, 0.1 + 0.2, -0.0]]))
     out = res.save(tmp_path / "r.csv")
     text = "".join(line for line in out.open() if not line.startswith("# "))
-    assert text == 't,"a,b","say ""hi"""\n0.3,0.30000000000000004,0\n'
+    assert text == 't,"a,b","say ""hi"""\n0.3,0.30000000000000004,0.0\n'
     back = Results.load(out)
     assert back.channels == ["a,b", 'say "hi"']
     rng = np.random.default_rng(9)

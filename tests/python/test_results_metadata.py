@@ -1,9 +1,11 @@
 """Results files carry their metadata: the camlink version, the model name,
-the analysis, each channel's unit and the run summary, as comment lines in
-CSV and schema metadata in Parquet, and `Results.load` reads them back."""
+the analysis, each channel's unit and the run summary, in a CSV's sidecar
+``<name>.csv.json`` and as schema metadata in Parquet, and `Results.load`
+reads them back."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -12,22 +14,22 @@ import pytest
 
 import camlink
 from camlink import Results
-from camlink.output import read_csv_metadata
+from camlink.output import sidecar_path
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
-def test_a_run_to_csv_writes_a_comment_header_that_load_reads_back(tmp_path: Path) -> None:
+def test_a_run_to_csv_writes_a_sidecar_that_load_reads_back(tmp_path: Path) -> None:
     model = camlink.load(EXAMPLES / "dyn_pendulum.toml")
     res = model.simulate(t_end=0.02, step=0.01, output=tmp_path / "out.csv")
     lines = (tmp_path / "out.csv").read_text().splitlines()
-    assert lines[0] == f'# camlink: "{camlink.__version__}"'
-    assert lines[1] == f'# model: "{model.name}"'
-    assert lines[2] == '# analysis: "dynamics"'
-    assert lines[3].startswith("# units: ")
-    assert lines[4].startswith("t,arm.x,")
-    assert lines[-1].startswith("# summary: ")
-    meta = read_csv_metadata(lines)
+    assert lines[0].startswith("t,arm.x,")
+    assert len(lines) == 1 + len(res)
+    meta = json.loads(sidecar_path(tmp_path / "out.csv").read_text())
+    assert meta["camlink"] == camlink.__version__
+    assert meta["model"] == model.name
+    assert meta["analysis"] == "dynamics"
+    assert meta["summary"]["steps"] == res.summary["steps"]
     assert meta["units"]["t"] == "s" and meta["units"]["arm.phi"] == "rad"
     assert meta["units"]["arm.omega"] == "rad/s" and meta["units"]["energy.total"] == "J"
     assert list(meta["units"]) == ["t", *res.channels]
@@ -36,8 +38,8 @@ def test_a_run_to_csv_writes_a_comment_header_that_load_reads_back(tmp_path: Pat
     np.testing.assert_array_equal(back.data, res.data)
     for key in ("analysis", "steps", "newton_iterations", "factorizations"):
         assert back.summary[key] == res.summary[key], key
-    # Other readers skip the comments.
-    frame = pd.read_csv(tmp_path / "out.csv", comment="#")
+    # Other readers read the plain table.
+    frame = pd.read_csv(tmp_path / "out.csv")
     np.testing.assert_array_equal(frame.to_numpy(), res.data)
 
 
@@ -59,8 +61,9 @@ def test_a_failed_run_keeps_the_header_but_no_summary(stuck_file: Path, tmp_path
         model.kinematics(t_end=0.3, step=0.01, output=tmp_path / "out.csv")
     partial = info.value.output
     assert partial is not None
-    text = Path(partial).read_text()
-    assert text.startswith("# camlink: ") and "# summary:" not in text
+    assert Path(partial).read_text().startswith("t,")
+    meta = json.loads(sidecar_path(Path(partial)).read_text())
+    assert meta["camlink"] == camlink.__version__ and "summary" not in meta
     back = Results.load(partial)
     assert back.model == model.name and back.summary == {}
     assert len(back) == len(info.value.results)

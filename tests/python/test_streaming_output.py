@@ -26,7 +26,7 @@ import camlink.model
 import camlink.output
 import camlink.results_file
 from camlink import ModelError, Results
-from camlink.output import BackgroundWriter, read_csv_metadata
+from camlink.output import BackgroundWriter, sidecar_path
 from camlink.results_file import CsvColumns, ParquetColumns
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -73,15 +73,16 @@ def test_a_run_written_in_chunks_gives_the_in_memory_numbers_metadata_and_summar
     np.testing.assert_array_equal(back.data, memory.data)
     for key in ("analysis", "steps", "newton_iterations", "factorizations", "warnings"):
         assert back.summary[key] == memory.summary[key], key
-    assert sorted(p.name for p in tmp_path.iterdir()) == [out.name]
+    written = [out.name] + ([sidecar_path(out).name] if suffix == ".csv" else [])
+    assert sorted(p.name for p in tmp_path.iterdir()) == written
     if suffix == ".parquet":
         assert pq.ParquetFile(out).num_row_groups == math.ceil(len(memory) / 16)
         meta = json.loads(pq.read_metadata(out).metadata[b"camlink"])
         assert meta["summary"]["steps"] == memory.summary["steps"] == len(memory)
         assert meta["units"]["crank.phi"] == "rad" and meta["analysis"] == "kinematics"
     else:
-        meta = read_csv_metadata(out.read_text().splitlines())
-        assert meta["summary"]["steps"] == len(memory)
+        meta = json.loads(sidecar_path(out).read_text())
+        assert meta["summary"]["steps"] == len(memory) == meta["rows"]
 
 
 @pytest.mark.parametrize("suffix", SUFFIXES)

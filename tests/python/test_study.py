@@ -97,7 +97,7 @@ def test_with_parameters_names_an_unknown_parameter():
     with pytest.raises(camlink.ModelError, match=r"no parameter named 'aa' \(did you mean 'a'\?\)"):
         camlink.load(FOUR_BAR).with_parameters(aa=0.1)
     with pytest.raises(camlink.ModelError, match="is not a number"):
-        camlink.load(FOUR_BAR).with_parameters(a="0.1")  # type: ignore[arg-type]
+        camlink.load(FOUR_BAR).with_parameters(a=[0.1])  # type: ignore[arg-type]
 
 
 # --- the checks ------------------------------------------------------------

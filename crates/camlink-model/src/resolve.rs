@@ -150,7 +150,7 @@ fn frame_origin(points: &[Point]) -> V2 {
 }
 
 /// Evaluates `[parameters]` in dependency order, whatever order the file lists them in.
-fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
+pub(crate) fn parameters(list: &BTreeMap<String, Num>) -> R<HashMap<String, f64>> {
     for name in list.keys() {
         let path = format!("parameters.{name}");
         if !is_identifier(name) {

@@ -70,12 +70,28 @@ impl Recipe {
 impl Loaded {
     /// This model with the `[parameters]` named in `values` set to the
     /// given numbers (each replacing the file's number or expression), and
-    /// everything that depends on them resolved again.
+    /// everything that depends on them resolved again, as
+    /// [`Loaded::with_parameter_values`].
+    pub fn with_parameters(&self, values: &[(String, f64)]) -> Result<Loaded, LoadError> {
+        let values: Vec<(String, Num)> = values
+            .iter()
+            .map(|(name, v)| (name.clone(), Num::Value(*v)))
+            .collect();
+        self.with_parameter_values(&values)
+    }
+
+    /// This model with the `[parameters]` named in `values` set to the
+    /// given numbers or expressions (an expression reads the other
+    /// parameters, with their new values, as the file's do), each
+    /// replacing the file's number or expression, and everything that
+    /// depends on them resolved again.
     ///
     /// An unknown name, a model without a parsed file (simEngine2D) or a
     /// variant that does not resolve (a point that no longer fits, a
-    /// non-finite value) is a [`LoadError`] naming the file and field.
-    pub fn with_parameters(&self, values: &[(String, f64)]) -> Result<Loaded, LoadError> {
+    /// non-finite value) is a [`LoadError`] naming the file and field; a
+    /// given expression that does not evaluate (a syntax error, an unknown
+    /// name, a cycle) names the parameter, without a line of the file.
+    pub fn with_parameter_values(&self, values: &[(String, Num)]) -> Result<Loaded, LoadError> {
         let Some(recipe) = &self.recipe else {
             return Err(LoadError::file(
                 &self.model.name,
@@ -100,7 +116,17 @@ impl Loaded {
                     )
                 });
             };
-            *slot = Num::Value(*value);
+            *slot = value.clone();
+        }
+        // Given expressions are checked here: the file's text does not
+        // hold them, so a fault is not placed at a line of it.
+        if values.iter().any(|(_, v)| matches!(v, Num::Expr(_))) {
+            if let Err(f) = resolve::parameters(&next.file.parameters) {
+                return Err(LoadError {
+                    field: Some(f.path),
+                    ..LoadError::file(&recipe.source, f.message)
+                });
+            }
         }
         Recipe::resolve(&Arc::new(next))
     }
@@ -177,5 +203,27 @@ f = "a*t"
         assert_eq!(e.field.as_deref(), Some("parameters.a"), "{e}");
         assert_eq!(e.line, Some(3), "{e}");
         assert!(e.message.contains("not a finite number"), "{e}");
+    }
+
+    #[test]
+    fn issue30_parameters_take_expressions() {
+        let base = crate::load_str(FILE, Format::Toml, "arm.toml").unwrap();
+        // An expression reads pi and the other parameters' new values.
+        let v = base
+            .with_parameter_values(&[
+                ("a".into(), Num::Value(0.5)),
+                ("b".into(), Num::Expr("a/2 + pi".into())),
+            ])
+            .unwrap();
+        assert_eq!(point(&v, "arm", "P"), [0.25 + std::f64::consts::PI, 0.0]);
+        // A fault names the parameter, not a line of the file.
+        for (src, says) in [("3*", "b"), ("2*nope", "nope"), ("b + 1", "cycle")] {
+            let e = base
+                .with_parameter_values(&[("b".into(), Num::Expr(src.into()))])
+                .unwrap_err();
+            assert_eq!(e.field.as_deref(), Some("parameters.b"), "{e}");
+            assert_eq!(e.line, None, "{e}");
+            assert!(e.to_string().contains(says), "{src}: {e}");
+        }
     }
 }

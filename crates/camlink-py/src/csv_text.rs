@@ -5,19 +5,19 @@ use numpy::PyReadonlyArray2;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-/// Appends the shortest text of `v` that parses back to `v`: `-0.0` as
-/// `0`, whole numbers without `.0`, `nan`, `inf` and `-inf` as NumPy and
-/// Python read them.
+/// Appends the shortest text of `v` that parses back to `v` and reads as
+/// a float: `-0.0` as `0.0`, whole numbers with `.0` (so that a column of
+/// whole numbers is not read as integers by pandas and spreadsheets),
+/// `nan`, `inf` and `-inf` as NumPy, pandas and Python read them.
 pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
     if v.is_nan() {
         out.extend_from_slice(b"nan");
     } else if v.is_infinite() {
         out.extend_from_slice(if v > 0.0 { b"inf" } else { b"-inf" });
     } else if v == 0.0 {
-        out.push(b'0');
+        out.extend_from_slice(b"0.0");
     } else {
-        let s = buf.format_finite(v);
-        out.extend_from_slice(s.strip_suffix(".0").unwrap_or(s).as_bytes());
+        out.extend_from_slice(buf.format_finite(v).as_bytes());
     }
 }
 

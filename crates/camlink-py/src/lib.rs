@@ -697,10 +697,13 @@ impl Model {
         })
     }
 
-    /// This model with the `[parameters]` named in `values` (name → number)
-    /// changed and everything depending on them resolved again; an unknown
-    /// name raises `ModelError` naming it.
-    fn with_parameters(&self, values: std::collections::HashMap<String, f64>) -> PyResult<Model> {
+    /// This model with the `[parameters]` named in `values` (name → number
+    /// or expression string) changed and everything depending on them
+    /// resolved again; an unknown name raises `ModelError` naming it.
+    fn with_parameters(
+        &self,
+        values: std::collections::HashMap<String, study::ParameterValue>,
+    ) -> PyResult<Model> {
         guard(|| study::with_parameters(&self.loaded, values))
     }
 

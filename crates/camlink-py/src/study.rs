@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{mpsc, Arc};
 use std::time::Duration;
 
+use camlink_model::file::Num;
 use camlink_model::Loaded;
 use camlink_study::{BatchSettings, Reduction};
 use numpy::ndarray::Array2;
@@ -13,11 +14,31 @@ use pyo3::prelude::*;
 
 use crate::{guard, model_error, Model, ModelError};
 
+/// A new value of a parameter: a number, or an expression string as the
+/// file's `[parameters]` take.
+#[derive(FromPyObject)]
+pub(crate) enum ParameterValue {
+    Number(f64),
+    Expression(String),
+}
+
 /// `base` with the `[parameters]` in `values` changed.
-pub(crate) fn with_parameters(base: &Loaded, values: HashMap<String, f64>) -> PyResult<Model> {
-    let mut values: Vec<(String, f64)> = values.into_iter().collect();
+pub(crate) fn with_parameters(
+    base: &Loaded,
+    values: HashMap<String, ParameterValue>,
+) -> PyResult<Model> {
+    let mut values: Vec<(String, Num)> = values
+        .into_iter()
+        .map(|(name, v)| {
+            let v = match v {
+                ParameterValue::Number(x) => Num::Value(x),
+                ParameterValue::Expression(src) => Num::Expr(src),
+            };
+            (name, v)
+        })
+        .collect();
     values.sort_by(|a, b| a.0.cmp(&b.0));
-    let loaded = base.with_parameters(&values).map_err(model_error)?;
+    let loaded = base.with_parameter_values(&values).map_err(model_error)?;
     Ok(Model { loaded })
 }
 

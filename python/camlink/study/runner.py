@@ -237,7 +237,13 @@ def _recipe_of(model: Model) -> tuple[Recipe, dict[str, float]]:
             f"model '{model.name}' cannot be studied: it has a force computed in Python "
             "(with_force), which a variant cannot rebuild; use a [[forces]] entry"
         )
-    return recipe, dict(model._overrides)
+    text = [k for k, v in model._overrides.items() if isinstance(v, str)]
+    if text:
+        raise ModelError(
+            f"model '{model.name}' cannot be studied with parameters set to expressions "
+            f"({', '.join(text)}): give them as numbers in with_parameters"
+        )
+    return recipe, {k: float(v) for k, v in model._overrides.items()}
 
 
 def _parameter_names(model: Model, variants: Sequence[Mapping[str, float]]) -> list[str]:
