@@ -308,6 +308,8 @@ pub struct Dense {
     pub lambda: Vec<f64>,
     aug: Augmented,
     rhs: Vec<f64>,
+    /// The projections' scratch.
+    proj: project::Workspace,
 }
 
 impl<'m> Integrator<'m> {
@@ -592,6 +594,7 @@ impl<'m> Integrator<'m> {
                 lambda: vec![0.0; m],
                 aug,
                 rhs: vec![0.0; n + m],
+                proj: project::Workspace::new(&self.sys),
             });
         }
         Ok(())
@@ -614,12 +617,13 @@ impl<'m> Integrator<'m> {
             lambda,
             aug,
             rhs,
+            proj,
         } = self.dense.as_mut().expect("dense output");
         let t = *t;
         aug.set_regularised(self.redundant.is_some());
         if project {
-            let projected = project::positions(sys, aug, q, t, tol, 100)
-                .and_then(|_| project::velocities(sys, aug, q, qd, t));
+            let projected = project::positions_in(sys, aug, q, t, tol, 100, proj)
+                .and_then(|_| project::velocities_in(sys, aug, q, qd, t, proj));
             if let Err(e) = projected {
                 return Err(error_at(sys, t, q, e.kind, &e.message));
             }
