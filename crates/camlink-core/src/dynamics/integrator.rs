@@ -332,7 +332,7 @@ impl<'m> Integrator<'m> {
                 Kind::InvalidInput,
                 format!(
                     "the time step must be a positive number, not {}",
-                    settings.step
+                    crate::fmt_num::num(settings.step)
                 ),
                 0.0,
             ));
@@ -1464,8 +1464,9 @@ fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisEr
 fn on_output_times(settings: &Settings, times: &[f64]) -> Settings {
     let longest = times.windows(2).map(|w| w[1] - w[0]).fold(0.0f64, f64::max);
     let mut s = settings.clone();
-    if s.adaptive.is_none() && longest > 0.0 {
-        s.step = s.step.min(longest);
+    // (A step that is not a number stays one, for the check of the step.)
+    if s.adaptive.is_none() && longest > 0.0 && s.step > longest {
+        s.step = longest;
     }
     s
 }

@@ -732,7 +732,7 @@ impl<'a> Run<'a> {
                     "the unilateral contacts switch more than {MAX_BURST} times within \
                      {} s each: an accumulation of events; raise rest_speed so that \
                      slow impacts close the contact",
-                    100.0 * tol
+                    crate::fmt_num::num(100.0 * tol)
                 ),
             )
             .at_joints(names, 0.0));
@@ -1148,13 +1148,7 @@ pub fn run(
     let h_max = settings.step;
     for (i, &t) in times.iter().enumerate() {
         if i > 0 {
-            if t <= times[i - 1] || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {t} follows {}", times[i - 1]),
-                ));
-            }
+            run::check_next_time(Some(times[i - 1]), t)?;
             // Steps of h from the last landing or event; one that would
             // land on t short of a whole step goes past it, keeping its
             // ends for the output there.
