@@ -171,7 +171,7 @@ impl newton::Problem for LeastChange<'_> {
         for (r, p) in self.rhs[n..].iter_mut().zip(phi) {
             *r = -p;
         }
-        self.aug.solve(&mut self.rhs);
+        self.aug.solve(self.rhs);
         dq.copy_from_slice(&self.rhs[..n]);
         Ok(())
     }
