@@ -86,3 +86,39 @@ fn issue27_check_open_contact_is_not_counted() {
     );
     assert_eq!(d.dof, 3);
 }
+
+/// `check` and a forward dynamics run open the same contacts at the start:
+/// the run's features and threshold are the diagnosis's own
+/// (`diagnose::gap_features`, `diagnose::OPEN_AT_START`).
+#[test]
+fn issue27_check_and_dynamics_share_the_open_contact_rule() {
+    use camlink_core::diagnose::OPEN_AT_START;
+    use camlink_core::dynamics::integrator::{run, Settings};
+    use camlink_core::run::Table;
+    for y in [
+        0.1,
+        0.1 + 0.5 * OPEN_AT_START,
+        0.1 + 2.0 * OPEN_AT_START,
+        0.6,
+    ] {
+        let l = disc(y, "");
+        let d = diagnose(&l.model, 0.0, l.analysis.tol);
+        let mut table = Table::default();
+        run(
+            &l.model,
+            &[0.0, 1e-3],
+            &Settings::default(),
+            &[],
+            &mut table,
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
+        let state = table.channel("floor.state").expect("floor.state")[0];
+        let open_in_check = !d.released.is_empty();
+        assert_eq!(
+            open_in_check,
+            state == 0.0,
+            "y = {y} m: check {d:#?}, the run's state {state}"
+        );
+        assert_eq!(open_in_check, y - 0.1 > OPEN_AT_START, "y = {y} m");
+    }
+}

@@ -1,6 +1,7 @@
 //! No allocation in the time loop: 1,000 kinematic steps and 1,000 dynamic
 //! steps of each benchmark model, after the first, allocate nothing; nor
-//! do those of a run with unilateral contacts between its events.
+//! do those of a run with unilateral contacts between its events; nor do
+//! rows at output times between step ends (`issue27_rows_between_step_ends_*`).
 //!
 //! A counting global allocator counts the allocations made on the thread
 //! that runs the analysis while counting is switched on; the sink switches
@@ -136,8 +137,15 @@ fn kinematic_allocations(file: &str) -> usize {
 }
 
 fn dynamic_allocations(model: &Model, points: &[PointOutput]) -> usize {
+    dynamic_allocations_at_step(model, points, 1e-3)
+}
+
+/// [`dynamic_allocations`] with steps of `h` (s): at h = 0.7 ms most
+/// output times (every 1 ms) lie between step ends, and their rows come
+/// from the interpolated state, projected onto the constraints.
+fn dynamic_allocations_at_step(model: &Model, points: &[PointOutput], h: f64) -> usize {
     let settings = DynSettings {
-        step: 1e-3,
+        step: h,
         ..DynSettings::default()
     };
     allocations(|times, sink| {
@@ -241,4 +249,57 @@ fn compliant_contact_dynamics_allocates_nothing_per_step() {
         ),
     ]);
     assert_eq!(dynamic_allocations(&model, &[]), 0);
+}
+
+/// Output times between step ends: a step of 0.7 ms against rows every
+/// 1 ms, so that most rows are interpolated inside a step, projected onto
+/// the constraints and given their consistent q̈ and λ.
+const BETWEEN: f64 = 7e-4;
+
+#[test]
+fn issue27_rows_between_step_ends_allocate_nothing_slider_crank() {
+    let model = mechanisms::slider_crank(0.3, 10.0, false);
+    assert_eq!(dynamic_allocations_at_step(&model, &[], BETWEEN), 0);
+}
+
+/// 250 unknowns: the sparse LU's path, in the interpolated rows' own
+/// matrix too.
+#[test]
+fn issue27_rows_between_step_ends_allocate_nothing_long_chain() {
+    let model = mechanisms::chain(50, 0.1);
+    assert_eq!(dynamic_allocations_at_step(&model, &[], BETWEEN), 0);
+}
+
+#[test]
+fn issue27_rows_between_step_ends_allocate_nothing_example_points() {
+    let loaded = example("dyn_slider_crank.toml");
+    let points = all_points(&loaded.model);
+    assert_eq!(
+        dynamic_allocations_at_step(&loaded.model, &points, BETWEEN),
+        0
+    );
+}
+
+/// The open contact's rows between step ends come from the step's two
+/// snapshots.
+#[test]
+fn issue27_rows_between_step_ends_allocate_nothing_open_contact() {
+    let model = ball_over_floor(&[]);
+    assert_eq!(dynamic_allocations_at_step(&model, &[], BETWEEN), 0);
+}
+
+/// The closed contact's rows between step ends, its normal force from
+/// the interpolated state's multipliers.
+#[test]
+fn issue27_rows_between_step_ends_allocate_nothing_closed_contact() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/cam_valve_jump.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains("rpm = 6000 "), "the example's speed moved");
+    let text = text.replace("rpm = 6000 ", "rpm = 600 ");
+    let loaded = camlink_model::load_str(&text, camlink_model::Format::Toml, "valve.toml").unwrap();
+    let points = all_points(&loaded.model);
+    assert_eq!(
+        dynamic_allocations_at_step(&loaded.model, &points, BETWEEN),
+        0
+    );
 }

@@ -308,6 +308,8 @@ pub struct Dense {
     pub lambda: Vec<f64>,
     aug: Augmented,
     rhs: Vec<f64>,
+    /// The projections' scratch.
+    proj: project::Workspace,
 }
 
 impl<'m> Integrator<'m> {
@@ -330,7 +332,7 @@ impl<'m> Integrator<'m> {
                 Kind::InvalidInput,
                 format!(
                     "the time step must be a positive number, not {}",
-                    settings.step
+                    crate::fmt_num::num(settings.step)
                 ),
                 0.0,
             ));
@@ -592,6 +594,7 @@ impl<'m> Integrator<'m> {
                 lambda: vec![0.0; m],
                 aug,
                 rhs: vec![0.0; n + m],
+                proj: project::Workspace::new(&self.sys),
             });
         }
         Ok(())
@@ -614,12 +617,13 @@ impl<'m> Integrator<'m> {
             lambda,
             aug,
             rhs,
+            proj,
         } = self.dense.as_mut().expect("dense output");
         let t = *t;
         aug.set_regularised(self.redundant.is_some());
         if project {
-            let projected = project::positions(sys, aug, q, t, tol, 100)
-                .and_then(|_| project::velocities(sys, aug, q, qd, t));
+            let projected = project::positions_in(sys, aug, q, t, tol, 100, proj)
+                .and_then(|_| project::velocities_in(sys, aug, q, qd, t, proj));
             if let Err(e) = projected {
                 return Err(error_at(sys, t, q, e.kind, &e.message));
             }
@@ -720,7 +724,10 @@ impl<'m> Integrator<'m> {
     /// rank.
     fn after_plain_step(&mut self, h: f64) -> Result<(), AnalysisError> {
         if let Some(rows) = self.crossed_branch() {
+            // Back to the start of the step: its state, time and count.
             self.restore();
+            self.t = self.t_saved;
+            self.summary.steps -= 1;
             self.use_rows(rows);
             self.save();
             if !self.try_step(h, true)? {
@@ -1457,8 +1464,9 @@ fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisEr
 fn on_output_times(settings: &Settings, times: &[f64]) -> Settings {
     let longest = times.windows(2).map(|w| w[1] - w[0]).fold(0.0f64, f64::max);
     let mut s = settings.clone();
-    if s.adaptive.is_none() && longest > 0.0 {
-        s.step = s.step.min(longest);
+    // (A step that is not a number stays one, for the check of the step.)
+    if s.adaptive.is_none() && longest > 0.0 && s.step > longest {
+        s.step = longest;
     }
     s
 }
@@ -1543,4 +1551,66 @@ pub fn run(
     let mut summary = it.summary.clone();
     lift_off.report(&mut summary);
     Ok(summary)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::revolute::Revolute;
+    use crate::model::{Body, BodyId};
+
+    /// A pendulum pivoted at the origin (frame at the pivot, centroid
+    /// 0.5 m out), at 0.3 rad, under gravity.
+    fn pendulum() -> Model {
+        let mut m = Model::new("pendulum");
+        let mut b = Body::new("bob", [0.0, 0.0, 0.3]);
+        b.mass = 1.0;
+        b.inertia = 0.02;
+        b.centroid = [0.5, 0.0];
+        let bob = m.add_body(b);
+        let pivot = Revolute {
+            body_i: BodyId::GROUND,
+            s_i: [0.0, 0.0],
+            body_j: bob,
+            s_j: [0.0, 0.0],
+        };
+        m.add_joint("pivot", pivot);
+        m
+    }
+
+    /// Issue 27: a plain step past a window of branch rows that crossed
+    /// them is retried along the rows from the start of the step, t to
+    /// t + h, and counts once. The rows here hold the pendulum's angle
+    /// (A = [0 0 1]), which its swing crosses at once.
+    #[test]
+    fn issue27_crossed_branch_retry_keeps_the_time() {
+        let model = pendulum();
+        let h = 1e-3;
+        let settings = Settings {
+            step: h,
+            ..Settings::default()
+        };
+        let mut it = Integrator::new(&model, settings).unwrap();
+        for _ in 0..10 {
+            it.step(h).unwrap();
+        }
+        let (t0, steps) = (it.t, it.summary.steps);
+        let phi0 = it.q[2];
+        it.guard = Some(BranchRows {
+            k: 1,
+            a: vec![0.0, 0.0, 1.0],
+            tangent: vec![1.0, 0.0, 0.0],
+            sigma_rel: 0.0,
+            lost: vec![0.0; it.sys.m()],
+        });
+        it.step(h).unwrap();
+        assert_eq!(it.t, t0 + h, "the retried step ends at t = {} s", it.t);
+        assert_eq!(it.summary.steps, steps + 1);
+        // The retry held the rows: the angle of the start of the step.
+        assert!(
+            (it.q[2] - phi0).abs() < 1e-9,
+            "φ moved by {}",
+            it.q[2] - phi0
+        );
+    }
 }

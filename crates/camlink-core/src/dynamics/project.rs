@@ -36,6 +36,30 @@ pub struct ProjectionError {
     pub residual: f64,
 }
 
+/// The scratch of the projections of one system, made once: a projection
+/// in the time loop ([`positions_in`], [`velocities_in`]) allocates nothing.
+pub struct Workspace {
+    /// Which coordinates are angles (their Newton steps are limited).
+    angles: Vec<bool>,
+    /// n zeros: q̇ and q̈ of the projection matrix.
+    zeros: Vec<f64>,
+    /// [Δq ; μ] or [q̇ ; μ] (length n + m).
+    rhs: Vec<f64>,
+    newton: newton::Workspace,
+}
+
+impl Workspace {
+    pub fn new(s: &System) -> Self {
+        let (n, m) = (s.n(), s.m());
+        Workspace {
+            angles: s.asm.angle_mask(s.model),
+            zeros: vec![0.0; n],
+            rhs: vec![0.0; n + m],
+            newton: newton::Workspace::new(n, m),
+        }
+    }
+}
+
 /// Projects `q` onto Φ(q, t) = 0 (to max |Φ| ≤ `tol`); returns the Newton
 /// iterations used.
 pub fn positions(
@@ -46,15 +70,32 @@ pub fn positions(
     tol: f64,
     max_iter: usize,
 ) -> Result<usize, ProjectionError> {
-    let (n, m) = (s.n(), s.m());
-    let angles = s.asm.angle_mask(s.model);
+    positions_in(s, aug, q, t, tol, max_iter, &mut Workspace::new(s))
+}
+
+/// [`positions`] with the scratch `w` (made for `s`).
+pub fn positions_in(
+    s: &System,
+    aug: &mut Augmented,
+    q: &mut [f64],
+    t: f64,
+    tol: f64,
+    max_iter: usize,
+    w: &mut Workspace,
+) -> Result<usize, ProjectionError> {
+    let Workspace {
+        angles,
+        zeros,
+        rhs,
+        newton: work,
+    } = w;
     let mut problem = LeastChange {
         s,
         aug,
         t,
         tol,
-        zeros: vec![0.0; n],
-        rhs: vec![0.0; n + m],
+        zeros,
+        rhs,
     };
     let options = newton::Options {
         max_iter,
@@ -62,11 +103,10 @@ pub fn positions(
             min_step: 1e-6,
             stall: newton::Stall::Fail,
         }),
-        angle_limit: Some((MAX_ANGLE_STEP, &angles)),
+        angle_limit: Some((MAX_ANGLE_STEP, &angles[..])),
         polish: false,
     };
-    let mut work = newton::Workspace::new(n, m);
-    newton::solve(&mut problem, q, &mut work, &options)
+    newton::solve(&mut problem, q, work, &options)
         .map(|solved| solved.iterations)
         .map_err(|e| {
             let (kind, message) = match e.why {
@@ -103,9 +143,9 @@ struct LeastChange<'a> {
     aug: &'a mut Augmented,
     t: f64,
     tol: f64,
-    zeros: Vec<f64>,
+    zeros: &'a [f64],
     /// [Δq ; μ] (length n + m).
-    rhs: Vec<f64>,
+    rhs: &'a mut [f64],
 }
 
 impl newton::Problem for LeastChange<'_> {
@@ -125,13 +165,13 @@ impl newton::Problem for LeastChange<'_> {
     ) -> Result<(), ()> {
         let (s, n) = (self.s, self.zeros.len());
         self.aug
-            .refactor(s, q, &self.zeros, &self.zeros, None, self.t, IDENTITY)
+            .refactor(s, q, self.zeros, self.zeros, None, self.t, IDENTITY)
             .map_err(|_| ())?;
         self.rhs[..n].fill(0.0);
         for (r, p) in self.rhs[n..].iter_mut().zip(phi) {
             *r = -p;
         }
-        self.aug.solve(&mut self.rhs);
+        self.aug.solve(self.rhs);
         dq.copy_from_slice(&self.rhs[..n]);
         Ok(())
     }
@@ -196,20 +236,32 @@ pub fn velocities(
     qd: &mut [f64],
     t: f64,
 ) -> Result<(), ProjectionError> {
-    let (n, m) = (s.n(), s.m());
+    velocities_in(s, aug, q, qd, t, &mut Workspace::new(s))
+}
+
+/// [`velocities`] with the scratch `w` (made for `s`).
+pub fn velocities_in(
+    s: &System,
+    aug: &mut Augmented,
+    q: &[f64],
+    qd: &mut [f64],
+    t: f64,
+    w: &mut Workspace,
+) -> Result<(), ProjectionError> {
+    let n = s.n();
     own_rates(s, q, qd, t);
-    let zeros = vec![0.0; n];
-    aug.refactor(s, q, &zeros, &zeros, None, t, IDENTITY)
+    let zeros = &w.zeros;
+    aug.refactor(s, q, zeros, zeros, None, t, IDENTITY)
         .map_err(|_| ProjectionError {
             kind: Kind::LockUp,
             message: "the constraint Jacobian is rank deficient (redundant or locked joints)"
                 .into(),
             residual: 0.0,
         })?;
-    let mut rhs = vec![0.0; n + m];
+    let rhs = &mut w.rhs;
     rhs[..n].copy_from_slice(qd);
     s.asm.nu(s.model, q, t, &mut rhs[n..]);
-    aug.solve_refined(&mut rhs);
+    aug.solve_refined(rhs);
     qd.copy_from_slice(&rhs[..n]);
     Ok(())
 }

@@ -50,16 +50,14 @@ use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
 use crate::curve::distance::{Features, Gap};
-use crate::curve::Curve;
+use crate::diagnose::gap_features;
 use crate::force::compliant_contact::CompliantContact;
 use crate::force::Force;
-use crate::math::{dot, perp, point, rot, sub, V2};
+use crate::math::{dot, perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
 
-/// A unilateral contact whose gap at the given placement exceeds this
-/// (m) starts open; a smaller one is closed by the assembly.
-pub const OPEN_AT_START: f64 = 1e-6;
+pub use crate::diagnose::OPEN_AT_START;
 
 /// Events in a row, each close to the last, that count as an accumulation.
 const MAX_BURST: usize = 1000;
@@ -151,15 +149,6 @@ fn without(model: &Model, removed: &[usize]) -> Model {
     m
 }
 
-/// The mean of 64 samples of a curve (body frame, m).
-fn sample_mean(c: &Curve) -> V2 {
-    let (s0, s1) = c.range();
-    (0..64).fold([0.0; 2], |m, k| {
-        let p = c.jet(s0 + (s1 - s0) * k as f64 / 64.0).p;
-        [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
-    })
-}
-
 /// The unilateral joints of `model`, checked.
 /// `h` is the time step (s) and `t_span` the largest |t| of the run (s),
 /// which bound each joint's `event_tol` ([`event_tol_bounds`]).
@@ -215,57 +204,7 @@ fn contacts(
             ));
         }
         let x = sys.asm.local(model, j, q, &[], 0.0);
-        let features = match &joint.constraint {
-            Constraint::FlatFollower(f) => {
-                if f.curve_i.orientation().is_none() {
-                    return Err(bad(
-                        j,
-                        "a unilateral flat_follower needs a closed cam curve",
-                    ));
-                }
-                // m: the face normal on the side of the cam's mean point.
-                let cam_mean = point(x.q[0], sample_mean(&f.curve_i));
-                let face = point(x.q[1], f.s_j);
-                let nf = perp(f.u_j);
-                let s = if dot(rot(x.q[1][2], nf), sub(cam_mean, face)) < 0.0 {
-                    -1.0
-                } else {
-                    1.0
-                };
-                Features::Face {
-                    curve: f.curve_i.clone(),
-                    point: f.s_j,
-                    m: [s * nf[0], s * nf[1]],
-                }
-            }
-            Constraint::CamFollower(c) => {
-                let curves = [c.curve_i.clone(), c.curve_j.clone()];
-                match (c.curve_i.orientation(), c.curve_j.orientation()) {
-                    (Some(sigma), _) => Features::Curves {
-                        curves,
-                        side: 0,
-                        sigma,
-                    },
-                    (None, Some(sigma)) => Features::Curves {
-                        curves,
-                        side: 1,
-                        sigma,
-                    },
-                    _ => {
-                        return Err(bad(
-                            j,
-                            "a unilateral cam_follower needs a closed curve on one side",
-                        ))
-                    }
-                }
-            }
-            _ => {
-                return Err(bad(
-                    j,
-                    "only cam_follower and flat_follower joints can be unilateral",
-                ))
-            }
-        };
+        let features = gap_features(model, j, x.q).map_err(|what| bad(j, what))?;
         out.push(Contact {
             joint: j,
             bodies: view.bodies,
@@ -793,7 +732,7 @@ impl<'a> Run<'a> {
                     "the unilateral contacts switch more than {MAX_BURST} times within \
                      {} s each: an accumulation of events; raise rest_speed so that \
                      slow impacts close the contact",
-                    100.0 * tol
+                    crate::fmt_num::num(100.0 * tol)
                 ),
             )
             .at_joints(names, 0.0));
@@ -1209,13 +1148,7 @@ pub fn run(
     let h_max = settings.step;
     for (i, &t) in times.iter().enumerate() {
         if i > 0 {
-            if t <= times[i - 1] || t.is_nan() {
-                return Err(AnalysisError::new(
-                    Kind::InvalidInput,
-                    t,
-                    format!("times must increase, but {t} follows {}", times[i - 1]),
-                ));
-            }
+            run::check_next_time(Some(times[i - 1]), t)?;
             // Steps of h from the last landing or event; one that would
             // land on t short of a whole step goes past it, keeping its
             // ends for the output there.
