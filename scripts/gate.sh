@@ -1,8 +1,21 @@
 #!/usr/bin/env bash
 # The whole gate, as CI runs it: Rust format, lints and tests, then the
 # Python package built from source, its tests, lints, types and stub.
+#
+#   bash scripts/gate.sh          the default gate (CI, .ci/run)
+#   bash scripts/gate.sh --full   the default gate, then the full tier: the
+#                                 long numerical matrices (#[ignore]d Rust
+#                                 tests) in release; about two hours on
+#                                 2 cores (docs/validation.md)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+full=0
+case "${1:-}" in
+    "") ;;
+    --full) full=1 ;;
+    *) echo "usage: bash scripts/gate.sh [--full]" >&2; exit 2 ;;
+esac
 
 echo "== cargo fmt"
 cargo fmt --all -- --check
@@ -32,3 +45,8 @@ echo "== ruff, mypy, stubtest"
 "${uv[@]}" run --locked ruff check python tests
 "${uv[@]}" run --locked mypy
 "${uv[@]}" run --locked python -m mypy.stubtest camlink._core
+
+if [ "$full" = 1 ]; then
+    echo "== full tier: the long matrices (release)"
+    cargo test --release -- --ignored --nocapture
+fi
