@@ -262,7 +262,7 @@ def test_ctrl_c_stops_a_run_whose_rows_are_far_apart(four_bar_file):
          "--t-end", "1000", "--step", "100", "--h", "1e-6", "-o", str(out)],
         stderr=subprocess.PIPE, text=True,
     )
-    wait_for_line(four_bar_file.parent, "x.partial-*", "0,")
+    wait_for_line(four_bar_file.parent, "x.partial-*", "0.0,")
     proc.send_signal(signal.SIGINT)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, err
@@ -473,7 +473,7 @@ def test_stdin_model_and_stdout_csv(tmp_path):
     assert lines[0].startswith("t,crank.x") and len(lines) == 12
     assert list(tmp_path.iterdir()) == []
     back = camlink.loads(text).run(t_end=0.1)
-    assert lines[1].split(",")[0] == "0" and float(lines[-1].split(",")[0]) == back.t[-1]
+    assert lines[1].split(",")[0] == "0.0" and float(lines[-1].split(",")[0]) == back.t[-1]
 
 
 def test_check_reports_an_assembly_failure_with_the_open_joints(tmp_path):
