@@ -1458,14 +1458,16 @@ fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisEr
     AnalysisError::new(kind, t, what).at_joints(joints, max_abs(&phi))
 }
 
-/// `settings` for a run with output at `times`: a fixed step longer than
-/// the longest output interval is cut to it (steps between output times,
-/// landing on them, rather than one step past many).
+/// `settings` for a run with output at `times`: a fixed step, or the
+/// largest step of the error control, longer than the longest output
+/// interval is cut to it (steps between output times, landing on them,
+/// rather than one step past many; a first trial step of the error control
+/// that fails is then shortened like any other).
 fn on_output_times(settings: &Settings, times: &[f64]) -> Settings {
     let longest = times.windows(2).map(|w| w[1] - w[0]).fold(0.0f64, f64::max);
     let mut s = settings.clone();
     // (A step that is not a number stays one, for the check of the step.)
-    if s.adaptive.is_none() && longest > 0.0 && s.step > longest {
+    if longest > 0.0 && s.step > longest {
         s.step = longest;
     }
     s
