@@ -8,9 +8,12 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import subprocess
 import sys
+from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -143,3 +146,26 @@ def run_cli(*args: str | os.PathLike[str], cwd: Path | None = None) -> subproces
         cwd=cwd,
         timeout=120,
     )
+
+
+def _chromium() -> str:
+    """Debian's chromium, which the browser tests drive through Playwright
+    (`.ci/run` installs it)."""
+    for name in ("chromium", "chromium-browser"):
+        found = shutil.which(name)
+        if found:
+            return found
+    raise pytest.fail.Exception(
+        "no chromium on PATH: apt-get install -y chromium (or deselect with -m 'not browser')"
+    )
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    """A headless chromium for the tests of one module."""
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=_chromium(), args=["--no-sandbox"])
+        yield b
+        b.close()

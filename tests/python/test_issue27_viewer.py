@@ -10,7 +10,6 @@ import html
 import json
 import re
 import shutil
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -121,26 +120,6 @@ def test_issue27_viewer_to_html_refuses_an_input_and_writes_whole(tmp_path: Path
 
 
 # -- in a browser --------------------------------------------------------------
-
-
-def _chromium() -> str:
-    for name in ("chromium", "chromium-browser"):
-        found = shutil.which(name)
-        if found:
-            return found
-    raise pytest.fail.Exception(
-        "no chromium on PATH: apt-get install -y chromium (or deselect with -m 'not browser')"
-    )
-
-
-@pytest.fixture(scope="module")
-def browser() -> Iterator[Any]:
-    from playwright.sync_api import sync_playwright
-
-    with sync_playwright() as p:
-        b = p.chromium.launch(executable_path=_chromium(), args=["--no-sandbox"])
-        yield b
-        b.close()
 
 
 class _Loaded:
