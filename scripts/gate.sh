@@ -37,7 +37,10 @@ else
 fi
 # uv builds the extension (release, via maturin) and installs the locked
 # dependencies; --locked fails if uv.lock is out of date with pyproject.toml.
-"${uv[@]}" run --locked pytest -q tests/python
+# Two workers (pytest-xdist), one per core of the CI machine; a module's
+# tests stay on one worker so its fixtures are built once. The slowest tests
+# are listed at the end.
+"${uv[@]}" run --locked pytest -q -n 2 --dist loadscope --durations=15 tests/python
 
 echo "== ruff, mypy, stubtest"
 # Lints and types of the package and its tests (configured in

@@ -9,8 +9,23 @@ time series back::
     res["crank.phi"], res.to_pandas()
     model.inverse_dynamics()["motor.effort"]
     model.simulate(t_end=1.0, h=1e-3)["energy.total"]
+
+The package is in layers, each importing only from those below it
+(tests/python/test_layers.py checks it): the base modules (`errors`, `warn`,
+`signals`, `progress`, `settings`, `records`, `units`); files (`camlink.io`);
+the model API and results (`model`, `results`, `builder`); pictures
+(`camlink.viz`); cam design (`camlink.cam`); linkage synthesis
+(`camlink.synth`); studies (`camlink.study`); this namespace, which
+re-exports their public names; the command line (`camlink.cli`).
 """
 
+import importlib
+import importlib.abc
+import importlib.machinery
+import importlib.util
+import sys
+import warnings
+from types import ModuleType
 from typing import TYPE_CHECKING
 
 from camlink._core import AnalysisError, ModelError, __version__
@@ -64,23 +79,79 @@ __all__ = [
 
 #: Picture functions, imported on first use (they load matplotlib).
 _PICTURES = {
-    "draw": "camlink.drawing",
-    "plot": "camlink.plots",
-    "svaj": "camlink.plots",
-    "jump_plot": "camlink.jump",
-    "jump_speed": "camlink.jump",
+    "draw": "camlink.viz.drawing",
+    "plot": "camlink.viz.plots",
+    "svaj": "camlink.viz.plots",
+    "jump_plot": "camlink.cam.jump",
+    "jump_speed": "camlink.cam.jump",
 }
 #: Study functions, imported on first use (they load pandas and scipy).
 _STUDIES = {"sweep": "camlink.study", "monte_carlo": "camlink.study", "optimize": "camlink.study"}
 
 
+#: Subpackages, imported on first use.
+_SUBPACKAGES = ("cam", "cli", "io", "study", "synth", "viz")
+
+
 def __getattr__(name: str) -> object:
     if name in _PICTURES or name in _STUDIES:
-        import importlib
-
         return getattr(importlib.import_module({**_PICTURES, **_STUDIES}[name]), name)
-    if name == "study":
-        import importlib
-
-        return importlib.import_module("camlink.study")
+    if name in _SUBPACKAGES:
+        return importlib.import_module(f"camlink.{name}")
     raise AttributeError(f"module 'camlink' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(__all__) | set(_SUBPACKAGES))
+
+
+#: Modules that moved into subpackages, by their old names. Importing an old
+#: name still works for one release and warns (DeprecationWarning).
+MOVED_MODULES = {
+    "camlink.animate": "camlink.viz.animate",
+    "camlink.cam_cli": "camlink.cli.cam",
+    "camlink.cam_design": "camlink.cam.design",
+    "camlink.cam_export": "camlink.cam.export",
+    "camlink.cam_plots": "camlink.cam.plots",
+    "camlink.cli_convert": "camlink.cli.convert",
+    "camlink.cli_study": "camlink.cli.study",
+    "camlink.cli_synth": "camlink.cli.synth",
+    "camlink.cli_visuals": "camlink.cli.visuals",
+    "camlink.drawing": "camlink.viz.drawing",
+    "camlink.gallery": "camlink.viz.gallery",
+    "camlink.jump": "camlink.cam.jump",
+    "camlink.notebook": "camlink.viz.notebook",
+    "camlink.output": "camlink.io.output",
+    "camlink.plots": "camlink.viz.plots",
+    "camlink.results_file": "camlink.io.results_file",
+    "camlink.scene": "camlink.viz.scene",
+    "camlink.simengine2d": "camlink.io.simengine2d",
+    "camlink.viewer": "camlink.viz.viewer",
+}
+
+
+class _MovedModule(importlib.abc.MetaPathFinder, importlib.abc.Loader):
+    """Finds a moved module by its old name and hands back the module itself."""
+
+    def find_spec(
+        self, fullname: str, path: object = None, target: ModuleType | None = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        if fullname not in MOVED_MODULES:
+            return None
+        return importlib.util.spec_from_loader(fullname, self)
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
+        new = MOVED_MODULES[spec.name]
+        warnings.warn(
+            f"{spec.name} is now {new}; the old name goes in the next release",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return importlib.import_module(new)
+
+    def exec_module(self, module: ModuleType) -> None:
+        pass
+
+
+if not any(isinstance(f, _MovedModule) for f in sys.meta_path):
+    sys.meta_path.insert(0, _MovedModule())

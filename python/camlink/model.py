@@ -17,7 +17,7 @@ import numpy.typing as npt
 from camlink import _core
 from camlink._core import AnalysisError, ModelError
 from camlink.errors import warnings_from
-from camlink.output import BackgroundWriter, check_not_input, open_writer
+from camlink.io.output import BackgroundWriter, check_not_input, open_writer
 from camlink.records import (
     AnalysisSettings,
     BodyRecord,
@@ -641,12 +641,12 @@ class Model:
     def draw(self, t: float | None = None, *, traces: Sequence[str] = ()) -> Any:
         """The mechanism at time `t` (s) as a matplotlib figure; see
         `camlink.draw`."""
-        from camlink.drawing import draw
+        from camlink.viz.drawing import draw
 
         return draw(self, t, traces=traces)
 
     def _repr_html_(self) -> str:
-        from camlink.notebook import model_html
+        from camlink.viz.notebook import model_html
 
         return model_html(self)
 

@@ -18,7 +18,7 @@ import numpy.typing as npt
 
 from camlink._core import ModelError
 from camlink.errors import RunWarning, warnings_from
-from camlink.output import (
+from camlink.io.output import (
     READ_SUFFIXES,
     SUFFIXES,
     kind_of,
@@ -35,8 +35,8 @@ if TYPE_CHECKING:
     import pandas as pd
     from matplotlib.figure import Figure
 
+    from camlink.io.results_file import ColumnSource
     from camlink.model import Model
-    from camlink.results_file import ColumnSource
 
 __all__ = [
     "IMPACT_COLUMNS",
@@ -412,13 +412,13 @@ class Results:
 
     def plot(self, y: str | Sequence[str], x: str = "t") -> Figure:
         """Channels `y` against time or the channel `x`; see `camlink.plot`."""
-        from camlink.plots import plot
+        from camlink.viz.plots import plot
 
         return plot(self, y, x)
 
     def svaj(self, joint: str | None = None) -> Figure:
-        """The SVAJ diagram of a cam contact; see `camlink.plots.svaj`."""
-        from camlink.plots import svaj
+        """The SVAJ diagram of a cam contact; see `camlink.viz.plots.svaj`."""
+        from camlink.viz.plots import svaj
 
         return svaj(self, joint)
 
@@ -426,7 +426,7 @@ class Results:
         self, t: float | None = None, *, traces: Sequence[str] = (), forces: Sequence[str] = ()
     ) -> Figure:
         """The mechanism at time `t` (s); see `camlink.draw`."""
-        from camlink.drawing import draw
+        from camlink.viz.drawing import draw
 
         return draw(self, t, traces=traces, forces=forces)
 
@@ -442,8 +442,8 @@ class Results:
     ) -> Path | str:
         """An animation of the run: a GIF or MP4 file at `path` (by suffix),
         or, with no path, HTML of an inline animation for a notebook. See
-        `camlink.animate.animate`."""
-        from camlink.animate import animate
+        `camlink.viz.animate.animate`."""
+        from camlink.viz.animate import animate
 
         return animate(self, path, fps=fps, speed=speed, traces=traces, width=width, dpi=dpi)
 
@@ -451,13 +451,13 @@ class Results:
         self, path: str | os.PathLike[str] | None = None, *, plots: Sequence[str] | None = None
     ) -> Path | str:
         """The self-contained browser viewer of the run, written to `path`
-        (or returned as text); see `camlink.viewer.to_html`."""
-        from camlink.viewer import to_html
+        (or returned as text); see `camlink.viz.viewer.to_html`."""
+        from camlink.viz.viewer import to_html
 
         return to_html(self, path, plots=plots)
 
     def _repr_html_(self) -> str:
-        from camlink.notebook import results_html
+        from camlink.viz.notebook import results_html
 
         return results_html(self)
 
@@ -573,7 +573,7 @@ def _is_time(v: Any) -> bool:
 
 def _read_csv(path: Path) -> tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]:
     """Names, rows and metadata of a results CSV: its sidecar
-    (`camlink.output.sidecar_path`) or, in files of earlier versions, its
+    (`camlink.io.output.sidecar_path`) or, in files of earlier versions, its
     comment lines; an unfinished last line (a run killed while writing) is
     dropped."""
     text = path.read_bytes().decode()

@@ -14,11 +14,11 @@ import pytest
 from PIL import Image
 
 import camlink
-from camlink import animate as animate_module
-from camlink.animate import Interrupted, animate, frame_rows
 from camlink.cli import main
-from camlink.drawing import Drawing
 from camlink.progress import Progress, wanted
+from camlink.viz import animate as animate_module
+from camlink.viz.animate import Interrupted, animate, frame_rows
+from camlink.viz.drawing import Drawing
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

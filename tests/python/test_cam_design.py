@@ -14,8 +14,12 @@ import ezdxf
 import numpy as np
 import pytest
 
-from camlink import cam_cli, cam_design, cam_export, cam_plots, cli
+from camlink import cli
 from camlink._core import CamCore
+from camlink.cam import design as cam_design
+from camlink.cam import export as cam_export
+from camlink.cam import plots as cam_plots
+from camlink.cli import cam as cam_cli
 from conftest import ROOT
 
 DESIGNS = sorted((ROOT / "examples").glob("cam_design_*.toml"))

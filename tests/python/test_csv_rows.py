@@ -11,9 +11,9 @@ import numpy as np
 import numpy.typing as npt
 import pytest
 
-import camlink.output
+import camlink.io.output
 from camlink import _core
-from camlink.output import CsvWriter
+from camlink.io.output import CsvWriter
 
 
 def values(rows: int, width: int) -> npt.NDArray[np.float64]:
@@ -62,7 +62,7 @@ def test_csv_writer_formats_the_column_major_chunk_without_copying_it(
         seen.append(rows)
         return format_rows(rows)
 
-    monkeypatch.setattr(camlink.output._core, "csv_rows", csv_rows)
+    monkeypatch.setattr(camlink.io.output._core, "csv_rows", csv_rows)
     chunk = np.asfortranarray(values(1024, 5))
     writer = CsvWriter(tmp_path / "out.csv")
     names = ["t", "a.x", "a.y", "a.phi", "b.x"]

@@ -12,8 +12,8 @@ from four_bar_pins import four_bar_pins
 from PIL import Image
 
 import camlink
-from camlink.drawing import Drawing, draw
 from camlink.results import Results
+from camlink.viz.drawing import Drawing, draw
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 from PIL import Image
 
-from camlink.gallery import build
+from camlink.viz.gallery import build
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -16,7 +16,7 @@ def test_gallery_is_generated_and_up_to_date(tmp_path: Path) -> None:
     page = build(tmp_path, dpi=40, quiet=True)
     text = page.read_text()
     assert text == (ROOT / "docs" / "gallery.md").read_text(), (
-        "docs/gallery.md is out of date: run `uv run python -m camlink.gallery docs`"
+        "docs/gallery.md is out of date: run `uv run python -m camlink.viz.gallery docs`"
     )
     examples = sorted(
         p.stem

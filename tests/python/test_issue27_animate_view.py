@@ -17,11 +17,11 @@ import pytest
 from PIL import Image
 
 import camlink
-from camlink import animate as animate_module
-from camlink.animate import DPIS, MOST_FPS, MOST_FRAMES, MOST_PIXELS, WIDTHS, animate
 from camlink.cli import main
-from camlink.cli_visuals import ROWS_PER_FRAME
-from camlink.viewer import MOST_ROWS
+from camlink.cli.visuals import ROWS_PER_FRAME
+from camlink.viz import animate as animate_module
+from camlink.viz.animate import DPIS, MOST_FPS, MOST_FRAMES, MOST_PIXELS, WIDTHS, animate
+from camlink.viz.viewer import MOST_ROWS
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

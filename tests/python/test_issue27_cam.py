@@ -18,7 +18,11 @@ import numpy as np
 import pytest
 from scipy.spatial import cKDTree
 
-from camlink import cam_cli, cam_design, cam_export, cam_plots, cli
+from camlink import cli
+from camlink.cam import design as cam_design
+from camlink.cam import export as cam_export
+from camlink.cam import plots as cam_plots
+from camlink.cli import cam as cam_cli
 from conftest import ROOT
 
 VALVE = (ROOT / "examples" / "cam_design_valve.toml").read_text()

@@ -11,8 +11,9 @@ from pathlib import Path
 import pytest
 
 import camlink
-from camlink import cli, output, simengine2d
+from camlink import cli
 from camlink._core import ModelError
+from camlink.io import output, simengine2d
 from conftest import ROOT
 
 EXAMPLE = ROOT / "examples" / "simengine2d" / "slider_crank.adm"

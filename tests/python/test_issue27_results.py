@@ -14,9 +14,9 @@ import pyarrow.parquet as pq
 import pytest
 
 import camlink
-from camlink import notebook
+from camlink.io.results_file import CsvColumns, ParquetColumns
 from camlink.results import Results
-from camlink.results_file import CsvColumns, ParquetColumns
+from camlink.viz import notebook
 from conftest import ROOT
 
 # A block pushed along x and swinging: 4 channels that move.

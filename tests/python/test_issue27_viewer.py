@@ -18,7 +18,7 @@ import pytest
 
 import camlink
 from camlink.results import Results
-from camlink.viewer import MOST_ROWS, fill, script_json, thin, to_html
+from camlink.viz.viewer import MOST_ROWS, fill, script_json, thin, to_html
 
 ROOT = Path(__file__).resolve().parents[2]
 FOUR_BAR = ROOT / "examples" / "four_bar.toml"

@@ -12,7 +12,9 @@ import pytest
 from matplotlib.colors import to_rgba
 from matplotlib.patches import Circle
 
-from camlink import Results, cam_design, cam_plots
+from camlink import Results
+from camlink.cam import design as cam_design
+from camlink.cam import plots as cam_plots
 from conftest import ROOT
 
 #: A roller far larger than the steep rise's pitch curvature: undercut.

@@ -16,10 +16,10 @@ from matplotlib.transforms import Bbox
 from PIL import Image
 
 import camlink
-from camlink.drawing import Drawing, angle_text, draw, number_text
-from camlink.plots import plot
 from camlink.results import Results
 from camlink.units import unit
+from camlink.viz.drawing import Drawing, angle_text, draw, number_text
+from camlink.viz.plots import plot
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

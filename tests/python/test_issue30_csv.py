@@ -17,7 +17,7 @@ import pytest
 
 import camlink
 from camlink import Results, cli
-from camlink.output import sidecar_path
+from camlink.io.output import sidecar_path
 from camlink.warn import CamlinkWarning
 from conftest import ROOT
 

@@ -11,7 +11,7 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 
 import camlink
-from camlink.jump import flight_summary, jump_plot, jump_speed
+from camlink.cam.jump import flight_summary, jump_plot, jump_speed
 from camlink.results import IMPACT_COLUMNS, LIFT_OFF_COLUMNS
 from conftest import ROOT, run_cli
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import camlink
-from camlink.plots import plot, pressure_angle, reactions, svaj, svaj_data, unit
+from camlink.viz.plots import plot, pressure_angle, reactions, svaj, svaj_data, unit
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"

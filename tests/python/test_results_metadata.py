@@ -14,7 +14,7 @@ import pytest
 
 import camlink
 from camlink import Results
-from camlink.output import sidecar_path
+from camlink.io.output import sidecar_path
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import camlink
-from camlink import simengine2d
+from camlink.io import simengine2d
 from camlink.results import Results
 from conftest import ROOT
 from conftest import run_cli as _run_cli

@@ -22,12 +22,12 @@ import pyarrow.parquet as pq
 import pytest
 
 import camlink
+import camlink.io.output
+import camlink.io.results_file
 import camlink.model
-import camlink.output
-import camlink.results_file
 from camlink import ModelError, Results
-from camlink.output import BackgroundWriter, sidecar_path
-from camlink.results_file import CsvColumns, ParquetColumns
+from camlink.io.output import BackgroundWriter, sidecar_path
+from camlink.io.results_file import CsvColumns, ParquetColumns
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -60,8 +60,8 @@ def test_a_run_written_in_chunks_gives_the_in_memory_numbers_metadata_and_summar
     # Chunks of 7 rows, Parquet row groups of 16, CSV read back in blocks of
     # 4 kB (a few rows): many of each.
     monkeypatch.setattr(camlink.model, "CHUNK_ROWS", 7)
-    monkeypatch.setattr(camlink.output, "ROW_GROUP_ROWS", 16)
-    monkeypatch.setattr(camlink.results_file, "CSV_BLOCK", 4096)
+    monkeypatch.setattr(camlink.io.output, "ROW_GROUP_ROWS", 16)
+    monkeypatch.setattr(camlink.io.results_file, "CSV_BLOCK", 4096)
     model = camlink.load(EXAMPLES / "four_bar.toml")
     memory = model.kinematics(t_end=0.5, step=0.01, jerk=True)
     out = tmp_path / f"run{suffix}"

@@ -18,7 +18,7 @@ from PIL import Image
 
 import camlink
 from camlink.results import Results
-from camlink.viewer import PLOT, page_data, view_pixel
+from camlink.viz.viewer import PLOT, page_data, view_pixel
 
 pytestmark = pytest.mark.browser
 

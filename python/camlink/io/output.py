@@ -42,7 +42,7 @@ a power cut the temporary file stays, readable by `camlink.Results.load`
 too, and can be deleted).
 
 Each writer's `columns` gives the finished file as a
-`camlink.results_file.ColumnSource`, which `camlink.Results` reads lazily.
+`camlink.io.results_file.ColumnSource`, which `camlink.Results` reads lazily.
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ import numpy.typing as npt
 
 from camlink import _core
 from camlink._core import ModelError
-from camlink.results_file import ColumnSource, CsvColumns, ParquetColumns
+from camlink.io.results_file import ColumnSource, CsvColumns, ParquetColumns
 
 if TYPE_CHECKING:
     from camlink.records import JointRecord

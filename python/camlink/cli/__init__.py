@@ -17,11 +17,15 @@ from pathlib import Path
 from typing import NoReturn, TextIO
 
 import camlink
-from camlink import cam_cli, cli_convert, cli_study, cli_synth, cli_visuals
 from camlink._core import AnalysisError, ModelError
-from camlink.jump import flight_summary
+from camlink.cam.jump import flight_summary
+from camlink.cli import cam as cam_cli
+from camlink.cli import convert as cli_convert
+from camlink.cli import study as cli_study
+from camlink.cli import synth as cli_synth
+from camlink.cli import visuals as cli_visuals
+from camlink.io.output import check_not_input
 from camlink.model import ANALYSES
-from camlink.output import check_not_input
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
 

@@ -27,8 +27,8 @@ from typing import Any
 
 from camlink import _core
 from camlink._core import ModelError
+from camlink.io.output import check_not_input
 from camlink.model import Model, loads
-from camlink.output import check_not_input
 
 __all__ = ["Defect", "Links", "Solution", "Synthesis", "report_text", "solve", "solve_text", "write"]
 
@@ -151,7 +151,7 @@ def write(
     is made if missing) and returns the paths. A file that exists is
     replaced only with `force`, and never one of `inputs` (the problem
     file); each is written to a temporary file renamed over the output."""
-    from camlink.output import _Target
+    from camlink.io.output import _Target
 
     out = Path(folder)
     if out.exists() and not out.is_dir():

@@ -49,7 +49,7 @@ def _side_by_side(left: str, right: str) -> str:
 def model_html(model: Model) -> str:
     """A table of the model (bodies, joints with kinds, degrees of freedom)
     beside its drawing."""
-    from camlink.drawing import draw
+    from camlink.viz.drawing import draw
 
     check = model.check()
     rows = [
@@ -79,8 +79,8 @@ def results_html(results: Results) -> str:
     draws each channel's envelope (`PLOT_ROWS`)."""
     import pandas as pd
 
-    from camlink.plots import plot
-    from camlink.viewer import default_plots
+    from camlink.viz.plots import plot
+    from camlink.viz.viewer import default_plots
 
     channels = results.channels[:HEAD_COLUMNS]
     timed = "t" in results

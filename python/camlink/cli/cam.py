@@ -12,9 +12,11 @@ import math
 import sys
 from pathlib import Path
 
-from camlink import cam_design, cam_export, cam_plots
 from camlink._core import ModelError
-from camlink.output import check_not_input, replacing
+from camlink.cam import design as cam_design
+from camlink.cam import export as cam_export
+from camlink.cam import plots as cam_plots
+from camlink.io.output import check_not_input, replacing
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 

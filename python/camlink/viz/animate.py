@@ -29,10 +29,10 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from PIL import Image
 
 from camlink._core import ModelError
-from camlink.drawing import Drawing, resolve
-from camlink.output import _Target, check_not_input
+from camlink.io.output import _Target, check_not_input
 from camlink.progress import Progress
-from camlink.scene import Scene
+from camlink.viz.drawing import Drawing, resolve
+from camlink.viz.scene import Scene
 
 if TYPE_CHECKING:
     from camlink.model import Model
@@ -191,12 +191,12 @@ def animate(
     per second; `traces` names body points whose paths grow as the
     mechanism moves. A progress bar shows on a terminal unless `quiet`.
     Ctrl-C stops cleanly: the frames so far are written to the output's
-    partial name (``<stem>.partial<suffix>``, `camlink.output.partial_path`)
+    partial name (``<stem>.partial<suffix>``, `camlink.io.output.partial_path`)
     and `Interrupted` is raised. The options are bounded as
     `check_options` says; `ModelError` for one out of bounds, a trace that
     is not a body point, or a `path` that is one of the model's inputs.
     """
-    from camlink.drawing import motion_of
+    from camlink.viz.drawing import motion_of
 
     check_options(fps, speed, width, dpi)
     model, res = resolve(source)

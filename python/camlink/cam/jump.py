@@ -42,7 +42,7 @@ def jump_plot(results: Results, joint: str | None = None, *, width: float = 6.4)
     """
     from matplotlib.figure import Figure
 
-    from camlink.plots import _axes, svaj_data
+    from camlink.viz.plots import _axes, svaj_data
 
     d = svaj_data(results, joint)
     flights = results.lift_off

@@ -182,7 +182,7 @@ def svaj_data(results: Results, joint: str | None = None) -> Svaj:
 def _follower_guide(results: Results, follower: str) -> tuple[float, float] | None:
     """The global axis of the ground guide a translating follower slides on,
     or None for a follower that turns."""
-    from camlink.scene import Scene
+    from camlink.viz.scene import Scene
 
     assert results.mechanism is not None
     scene = Scene.of(results.mechanism, tol=1e-2)

@@ -30,7 +30,7 @@ from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
 from camlink._core import AnalysisError, ModelError
-from camlink.scene import GROUND, Guide, Pin, Rod, Scene, place
+from camlink.viz.scene import GROUND, Guide, Pin, Rod, Scene, place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

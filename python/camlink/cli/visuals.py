@@ -2,7 +2,7 @@
 GIF or MP4, or as one self-contained HTML page with the browser viewer.
 
 Both run the model with no more output rows than they can show: a page
-`camlink.viewer.MOST_ROWS`, an animation ten rows a frame (its traces grow
+`camlink.viz.viewer.MOST_ROWS`, an animation ten rows a frame (its traces grow
 smoothly) up to the same bound; a finer step is coarsened, with a note.
 Neither writes over an input of the model, nor over an existing default
 output without ``--force``; both write a temporary file beside the output
@@ -22,7 +22,7 @@ import numpy as np
 
 import camlink
 from camlink._core import AnalysisError, ModelError
-from camlink.output import check_not_input
+from camlink.io.output import check_not_input
 from camlink.progress import Progress
 from camlink.settings import check_settings
 
@@ -186,8 +186,8 @@ def _results(args: argparse.Namespace, model: camlink.Model, settings: dict[str,
 
 
 def _cmd_animate(args: argparse.Namespace) -> int:
-    from camlink.animate import FORMATS, Interrupted, animate, check_options, check_traces, frame_count
-    from camlink.viewer import MOST_ROWS
+    from camlink.viz.animate import FORMATS, Interrupted, animate, check_options, check_traces, frame_count
+    from camlink.viz.viewer import MOST_ROWS
 
     check_options(args.fps, args.speed, args.width, args.dpi, flag=True)
     model = camlink.load(args.model)
@@ -212,7 +212,7 @@ def _cmd_animate(args: argparse.Namespace) -> int:
 
 
 def _cmd_view(args: argparse.Namespace) -> int:
-    from camlink.viewer import MOST_ROWS, to_html
+    from camlink.viz.viewer import MOST_ROWS, to_html
 
     model = camlink.load(args.model)
     out = _output(args, model, ".html")

@@ -37,9 +37,9 @@ import numpy as np
 import numpy.typing as npt
 
 from camlink._core import ModelError
-from camlink.drawing import Drawing, resolve
-from camlink.output import _Target, check_not_input
+from camlink.io.output import _Target, check_not_input
 from camlink.results import Results
+from camlink.viz.drawing import Drawing, resolve
 
 if TYPE_CHECKING:
     from camlink.model import Model
@@ -87,7 +87,7 @@ def default_plots(results: Results) -> list[str]:
 
 def page_data(results: Results, model: Model, plots: Sequence[str]) -> dict[str, Any]:
     """What the page needs: times, body poses, shapes, view and plots."""
-    from camlink.plots import label
+    from camlink.viz.plots import label
 
     drawing = Drawing(model, results)
     names = ["ground", *drawing.scene.bodies]
@@ -198,7 +198,7 @@ def to_html(
     The page is written to a temporary file beside `path` and renamed over
     it when complete; `ModelError` when `path` is one of the model's inputs
     (its file, its data files)."""
-    from camlink.drawing import motion_of
+    from camlink.viz.drawing import motion_of
 
     model, res = resolve(source)
     if path is not None:
@@ -216,7 +216,7 @@ def to_html(
                 raise ModelError(f"cannot plot {name!r}: {e.args[0]}") from None
     res = thin(res)
     data = page_data(res, model, chosen)
-    template = resources.files("camlink").joinpath("viewer.html").read_text(encoding="utf-8")
+    template = resources.files("camlink.viz").joinpath("viewer.html").read_text(encoding="utf-8")
     text = page(template, model.name, data)
     if path is None:
         return text

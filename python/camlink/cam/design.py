@@ -20,8 +20,8 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from camlink._core import CamCore
-from camlink.cam_export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
+from camlink._core import CamCore, ModelError
+from camlink.cam.export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
 
 FOLLOWERS: dict[str, tuple[str, ...]] = {
     "translating-roller": ("offset", "roller_radius"),
@@ -57,8 +57,10 @@ MIN_SPAN_DEG = 1e-3
 MAX_LENGTH = 1e3
 
 
-class CamDesignError(ValueError):
-    """A design file that cannot be used; the message names file and field."""
+class CamDesignError(ModelError):
+    """A design file that cannot be used; the message names file and field.
+
+    A `camlink.ModelError` (so a `ValueError`), as every bad input is."""
 
 
 @dataclass(frozen=True)

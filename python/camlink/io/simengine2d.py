@@ -14,7 +14,7 @@ from pathlib import Path
 
 from camlink import _core
 from camlink._core import ModelError
-from camlink.output import check_not_input, replacing
+from camlink.io.output import check_not_input, replacing
 from camlink.warn import CourseFileWarning
 
 __all__ = ["convert"]

@@ -1,0 +1,7 @@
+"""Files: results written and read back (Parquet, CSV and its sidecar), and
+the course engine's model files (`.adm`/`.acf`) converted to camlink's.
+
+Layer: above the base modules (errors, warnings, records, units, settings),
+below the model API (`camlink.model`, `camlink.results`), which writes and
+reads its files through it.
+"""
