@@ -149,5 +149,5 @@ def test_issue28_cam_design_errors_are_model_errors(tmp_path: Path) -> None:
     assert issubclass(CamDesignError, camlink.ModelError)
     bad = tmp_path / "bad_design.toml"
     bad.write_text("name = [\n")
-    with pytest.raises(camlink.ModelError, match="bad_design.toml"):
+    with pytest.raises(camlink.ModelError, match=r"bad_design\.toml"):
         camlink.cam.load(bad)
