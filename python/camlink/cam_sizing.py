@@ -333,7 +333,7 @@ def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
                 "m",
                 None,
                 margin >= 0,
-                f"shortest {f['shortest']:.6g} m, solid height {f['solid']:.6g} m",
+                f"shortest {f['shortest'] * 1e3:.6g} mm, solid height {f['solid'] * 1e3:.6g} mm",
             )
         )
         ratio = f["surge"] / (top / 60.0)
@@ -433,7 +433,12 @@ def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
                     lunit,
                     None,
                     True,
-                    f"cam displacement corrected by up to {correction:.4g} {lunit}",
+                    "cam displacement corrected by up to "
+                    + (
+                        f"{correction:.4g} rad"
+                        if design.oscillating
+                        else f"{correction * 1e3:.4g} mm"
+                    ),
                 )
             )
     return out, info

@@ -98,6 +98,37 @@ def test_issue32_spring_figures_are_the_formulas() -> None:
     assert surge.value == pytest.approx(f["surge"] / (3500 / 60), rel=1e-12)
 
 
+def test_issue32_roller_bearing_life_of_the_packaging_cam(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """The roller of a translating follower turns, per cam turn, the cam
+    surface's perimeter over its circumference (it rolls along the
+    surface; the follower does not turn); L₁₀ = (C/P)^(10/3) million
+    revolutions with P the mean of F^(10/3) weighted by the revolutions."""
+    path = ROOT / "examples" / "cam_design_packaging.toml"
+    design = cam_design.load(path)
+    d, c = design.dynamics, design.contact
+    assert d is not None and c is not None and c.rating == 8000.0
+    core = design.core()
+    s = core.stress(
+        d.mass, d.spring_rate, d.preload, d.damping, d.speed, c.width, c.modulus, c.rating, 10 / 3
+    )
+    b = s["bearing"]
+    th = np.linspace(0.0, 2 * math.pi, 400_001)
+    pts = np.asarray(core.surface(th))
+    perimeter = float(np.sum(np.hypot(*np.diff(pts, axis=0).T)))
+    rr = design.dims[-1]
+    assert b["roller_turns"] == pytest.approx(perimeter / (2 * math.pi * rr), rel=1e-6)
+    assert b["l10_revolutions"] == pytest.approx(
+        (8000.0 / b["equivalent_load"]) ** (10 / 3) * 1e6, rel=1e-12
+    )
+    f = np.asarray(s["force"])
+    assert f.min() < b["equivalent_load"] < f.max()
+    code, out = _json(capsys, ["cam", str(path), "--json", "--no-files"])
+    life = next(x for x in out["checks"] if x["name"].startswith("roller bearing L10 life"))
+    assert code == 0 and life["value"] == pytest.approx(b["l10_turns"] / 60 / 60, rel=1e-12)
+
+
 @pytest.mark.parametrize(
     ("edit", "message"),
     [
