@@ -186,6 +186,8 @@ def _run_timing(args: argparse.Namespace) -> int:
 
     try:
         timing = cam_timing.load(args.design)
+        if args.units is not None:
+            timing = dataclasses.replace(timing, units=_units(args.units))
         report = cam_timing.clearances(timing)
         files = [] if args.no_files else cam_timing.write(timing, Path(args.out), report)
     except cam_design.CamDesignError as e:

@@ -842,7 +842,13 @@ def in_units(r: Report, units: str) -> Report:
         if c.unit != "m":
             return c
         f = lambda v: None if v is None else v * k  # noqa: E731
-        return replace(c, value=c.value * k, limit=f(c.limit), margin=f(c.margin), unit="mm")
+        note = c.note
+        if r.face_travel is not None and c.name == "face width needed":
+            lo, hi = r.face_travel.lo * k, r.face_travel.hi * k
+            note = f"contact travels from {lo:.6g} to {hi:.6g} mm along the face"
+        return replace(
+            c, value=c.value * k, limit=f(c.limit), margin=f(c.margin), unit="mm", note=note
+        )
 
     travel = r.face_travel
     if travel is not None:

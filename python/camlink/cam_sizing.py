@@ -37,6 +37,10 @@ SURGE_RATIO = 13.0
 
 RPM = 2.0 * math.pi / 60.0
 
+#: Most integration steps per turn and turns of `[vibration]` (seconds of work).
+MAX_STEPS = 100_000
+MAX_TURNS = 20
+
 
 @dataclass(frozen=True)
 class ContactSpec:
@@ -219,8 +223,8 @@ def complete(design: Design, raw: dict[str, Any], dynamics_given: frozenset[str]
                 raise t.fail(
                     key, f"gives {len(v)} values for {len(masses)} masses; one per mass"
                 )
-        steps = int(t.number("steps_per_turn", 7200, positive=True, most=1e6))
-        turns = int(t.number("turns", 3, positive=True, most=100))
+        steps = int(t.number("steps_per_turn", 7200, positive=True, most=MAX_STEPS))
+        turns = int(t.number("turns", 3, positive=True, most=MAX_TURNS))
         t.used.add("polydyne")
         poly = t.data.get("polydyne", False)
         if not isinstance(poly, bool):
