@@ -69,6 +69,7 @@ def _targets(design: cam_design.Design, out: Path, force: bool) -> dict[str, Pat
         "dxf": ex.dxf,
         "svg": ex.svg,
         "svaj_time_plot": ex.svaj_time,
+        "vibration_plot": ex.vibration,
     }
     targets: dict[str, Path] = {}
     existing: list[str] = []
@@ -122,6 +123,16 @@ def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> l
                     oscillating=design.oscillating,
                     title=f"{design.name}: SVAJ at {design.dynamics.speed / cam_design.RPM:g} rpm",
                     units=ex.units,
+                )
+                cam_plots.save(fig, temp)
+            elif key == "vibration_plot":
+                fig = cam_plots.vibration(
+                    core,
+                    design,
+                    title=f"{design.name}: follower train at "
+                    f"{design.dynamics.speed / cam_design.RPM:g} rpm"
+                    if design.dynamics
+                    else design.name,
                 )
                 cam_plots.save(fig, temp)
             elif key == "profile_plot":

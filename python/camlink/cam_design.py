@@ -136,6 +136,9 @@ class Export:
     """Length unit of reports, pictures and exports: "m" or "mm"."""
     svaj_time: str | None = None
     """SVAJ against time at the running speed (needs [dynamics])."""
+    vibration: str | None = None
+    """The follower train's deviation and dynamic contact force over a
+    turn (needs [vibration])."""
     bore_radius: float | None = None
     """m"""
     keyway_width: float | None = None
@@ -431,6 +434,7 @@ def load(path: str | Path) -> Design:
         given=frozenset(given),
         units=ex.text("units", "m", ("m", "mm")),
         svaj_time=out("svaj_time_plot", f"{stem}_svaj_time.png") if dynamics else None,
+        vibration=out("vibration_plot", f"{stem}_vibration.png") if "vibration" in doc else None,
     )
     bore = ex.optional("bore_diameter", positive=True, most=MAX_LENGTH, unit=" m")
     kw = ex.optional("keyway_width", positive=True, most=MAX_LENGTH, unit=" m")

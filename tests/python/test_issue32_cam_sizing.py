@@ -347,3 +347,29 @@ def test_issue32_timing_clearance_fails_with_exit_1_and_bad_axis_exits_2(
     p.write_text(text.replace('between = ["pusher", "gate"]', 'between = ["pusher", "door"]'))
     assert cli.main(["cam", str(p), "--no-files"]) == 2
     assert "clearances[0].between: 'door' is not an axis" in capsys.readouterr().err
+
+
+def test_issue32_vibration_picture_draws_the_train(tmp_path: Path) -> None:
+    """The valve's vibration picture: the deviation and the dynamic contact
+    force are the core's arrays over the last turn, the rigid train's
+    force is Q = m ω² s″ + c ω s′ + F₀ + k s; the file is written."""
+    design = cam_design.load(VALVE)
+    core = design.core()
+    d, v = design.dynamics, design.vibration
+    assert d is not None and v is not None
+    fig = cam_plots.vibration(core, design)
+    r = core.vibration(
+        list(v.masses), list(v.stiffness), list(v.damping), d.spring_rate, d.preload, d.speed,
+        v.steps, v.turns, False,
+    )
+    x, y = (np.asarray(a) for a in fig.axes[0].lines[0].get_data())
+    assert np.array_equal(x, np.degrees(r["theta"])) and np.array_equal(y, r["deviation"])
+    y = np.asarray(fig.axes[1].lines[0].get_ydata())
+    assert np.array_equal(y, r["contact"])
+    x, y = (np.asarray(a) for a in fig.axes[1].lines[1].get_data())
+    m = np.asarray(core.motion(np.radians(x)))
+    w = d.speed
+    q = d.mass * w * w * m[:, 2] + d.damping * w * m[:, 1] + d.preload + d.spring_rate * m[:, 0]
+    assert np.allclose(y, q, rtol=1e-12, atol=1e-9)
+    assert cli.main(["cam", str(VALVE), "--out", str(tmp_path)]) == 0
+    assert (tmp_path / "cam_design_valve_vibration.png").stat().st_size > 0
