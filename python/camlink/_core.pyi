@@ -226,6 +226,7 @@ class CamCore:
         modulus: float,
         rating: float | None = None,
         exponent: float = 3.0,
+        crown: float | None = None,
     ) -> dict[str, Any]: ...
     def vibration(
         self,

@@ -19,6 +19,9 @@ import numpy as np
 
 from camlink._core import CamCore, cam_materials, contact_modulus, helical_spring
 
+#: Largest length (m) in a design file (as `cam_design.MAX_LENGTH`).
+MAX_LENGTH = 1e3
+
 if TYPE_CHECKING:
     from camlink.cam_design import Check, Design, _Table
 
@@ -52,6 +55,8 @@ class ContactSpec:
     rating: float | None
     """Bearing dynamic rating C (N)."""
     exponent: float
+    crown: float | None = None
+    """A crowned roller's crown radius (m)."""
 
 
 @dataclass(frozen=True)
@@ -125,6 +130,9 @@ def complete(design: Design, raw: dict[str, Any], dynamics_given: frozenset[str]
         kind = t.text("bearing_type", "ball", tuple(LIFE_EXPONENT))
         if rating is not None and design.follower.endswith("flat"):
             raise t.fail("bearing_rating", "a flat-faced follower has no roller bearing")
+        crown = t.optional("crown_radius", positive=True, most=MAX_LENGTH, unit=" m")
+        if crown is not None and design.follower.endswith("flat"):
+            raise t.fail("crown_radius", "a flat-faced follower has no roller to crown")
         t.finish()
         contact = ContactSpec(
             width,
@@ -132,6 +140,7 @@ def complete(design: Design, raw: dict[str, Any], dynamics_given: frozenset[str]
             (cam_m[0], fol_m[0]),
             rating,
             LIFE_EXPONENT[kind],
+            crown,
         )
     if "spring" in raw:
         assert dyn is not None
@@ -264,6 +273,7 @@ def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
             c.modulus,
             c.rating,
             c.exponent,
+            c.crown,
         )
         p, at = s["max_pressure"]
         limit = lim.max_contact_stress
@@ -277,8 +287,14 @@ def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
                 "MPa",
                 deg(at),
                 margin is None or margin >= 0,
-                f"contact half-width {s['half_width_at_max'] * 1e3:.4g} mm over "
-                f"{c.width * 1e3:.4g} mm, {c.materials[0]} on {c.materials[1]}",
+                (
+                    f"contact half-width {s['half_width_at_max'] * 1e3:.4g} mm over "
+                    f"{c.width * 1e3:.4g} mm"
+                    if c.crown is None
+                    else f"crowned roller (crown radius {c.crown * 1e3:.4g} mm): contact "
+                    f"ellipse semi-axis {s['half_width_at_max'] * 1e3:.4g} mm along the profile"
+                )
+                + f", {c.materials[0]} on {c.materials[1]}",
             )
         )
         tq, tat = s["peak_torque"]

@@ -373,3 +373,33 @@ def test_issue32_vibration_picture_draws_the_train(tmp_path: Path) -> None:
     assert np.allclose(y, q, rtol=1e-12, atol=1e-9)
     assert cli.main(["cam", str(VALVE), "--out", str(tmp_path)]) == 0
     assert (tmp_path / "cam_design_valve_vibration.png").stat().st_size > 0
+
+
+def test_issue32_crowned_roller_reports_the_point_contact(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`crown_radius` on the packaging cam's roller: the report's stress
+    is the point contact's, above the straight roller's line contact; a
+    crown on a flat face is bad input naming the field."""
+    path = ROOT / "examples" / "cam_design_packaging.toml"
+    text = path.read_text()
+    p = tmp_path / "crowned.toml"
+    p.write_text(text.replace('bearing_type = "roller"', 'bearing_type = "roller"\ncrown_radius = 0.2'))
+    _, straight = _json(capsys, ["cam", str(path), "--json", "--no-files"])
+    code, crowned = _json(capsys, ["cam", str(p), "--json", "--no-files"])
+    assert code == 0
+    name = "Hertz contact stress at 60 rpm"
+    a = next(c for c in straight["checks"] if c["name"] == name)
+    b = next(c for c in crowned["checks"] if c["name"] == name)
+    assert b["value"] > a["value"] and "crowned roller" in b["note"]
+    design = cam_design.load(p)
+    d, c = design.dynamics, design.contact
+    assert d is not None and c is not None and c.crown == 0.2
+    s = design.core().stress(
+        d.mass, d.spring_rate, d.preload, d.damping, d.speed, c.width, c.modulus, None, 3.0, 0.2
+    )
+    assert b["value"] == pytest.approx(s["max_pressure"][0] / 1e6, rel=1e-12)
+    v = VALVE.read_text()
+    p.write_text(v.replace('follower_material = "steel"', 'follower_material = "steel"\ncrown_radius = 0.2'))
+    assert cli.main(["cam", str(p), "--no-files"]) == 2
+    assert "contact.crown_radius: a flat-faced follower has no roller" in capsys.readouterr().err

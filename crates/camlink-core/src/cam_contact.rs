@@ -24,7 +24,7 @@
 
 use std::f64::consts::TAU;
 
-use crate::cam::hertz::{equivalent_load, l10, line_contact};
+use crate::cam::hertz::{equivalent_load, l10, line_contact, point_contact};
 use crate::cam::law::golden_max;
 use crate::cam::{Cam, CamError, Follower};
 use crate::cam_limits::{force, Extreme, Train, SAMPLES};
@@ -38,6 +38,11 @@ pub struct ContactSpec {
     pub width: f64,
     /// Contact modulus E* (Pa), [`crate::cam::hertz::contact_modulus`].
     pub modulus: f64,
+    /// A crowned roller's crown radius R_c (m): the contact is then the
+    /// ellipse of [`crate::cam::hertz::point_contact`] with curvature sums
+    /// ½(1/ρ + 1/R_r) along the profile and ½(1/R_c) across it, and
+    /// `half_width` is the ellipse's semi-axis b, `pressure` its p₀.
+    pub crown: Option<f64>,
 }
 
 /// A roller's bearing: its dynamic rating and life exponent.
@@ -107,11 +112,25 @@ pub fn stress(
             return Err(CamError(format!("the {what} must be positive, got {v}")));
         }
     }
+    if let Some(rc) = contact.crown {
+        if cam.follower.roller().is_none() {
+            return Err(CamError(
+                "a crown radius needs a roller follower".to_string(),
+            ));
+        }
+        if !(rc > 0.0 && rc.is_finite()) {
+            return Err(CamError(format!(
+                "the crown radius must be positive, got {rc}"
+            )));
+        }
+    }
     let f = force(cam, train, omega)?;
     let r2 = cam.follower.roller().unwrap_or(f64::INFINITY);
-    let p_at = |rho: f64, fo: f64| {
-        line_contact(rho, r2, fo, contact.width, contact.modulus)
-            .map_or((f64::NAN, 0.0), |c| (c.half_width, c.max_pressure))
+    let p_at = |rho: f64, fo: f64| match contact.crown {
+        Some(rc) => point_contact(0.5 / rc, 0.5 * (1.0 / rho + 1.0 / r2), fo, contact.modulus)
+            .map_or((f64::NAN, 0.0), |c| (c.semi_minor, c.max_pressure)),
+        None => line_contact(rho, r2, fo, contact.width, contact.modulus)
+            .map_or((f64::NAN, 0.0), |c| (c.half_width, c.max_pressure)),
     };
     let n = f.theta.len();
     let (mut rho, mut bw, mut pr, mut torque) = (
@@ -292,6 +311,7 @@ mod tests {
         let spec = ContactSpec {
             width: 0.012,
             modulus: e,
+            crown: None,
         };
         let b = BearingSpec {
             rating: 5000.0,
@@ -314,6 +334,48 @@ mod tests {
         let life = s.bearing.unwrap();
         assert!(life.equivalent_load > 300.0 && life.equivalent_load < 300.0 + 1e4 * 0.008);
         assert!((life.l10_revolutions - (5000.0 / life.equivalent_load).powi(3) * 1e6).abs() < 1.0);
+    }
+
+    /// A crowned roller on the dwell: the point contact of
+    /// [`point_contact`] with sums ½(1/R_b + 1/R_r) and ½(1/R_c) under the
+    /// spring's force, its p₀ above the line contact's.
+    #[test]
+    fn issue32_crowned_roller_on_a_dwell_is_the_point_contact() {
+        let (rb, rr, rc) = (0.03, 0.01, 0.2);
+        let p = Program::new(&[
+            SegmentSpec::new(LawKind::Dwell, 2.0, 0.0),
+            SegmentSpec::new(LawKind::Cycloidal, 1.5, 0.008),
+            SegmentSpec::new(LawKind::Dwell, 1.0, 0.0),
+            SegmentSpec::new(LawKind::Cycloidal, TAU - 4.5, -0.008),
+        ])
+        .unwrap();
+        let f = Follower::TranslatingRoller {
+            offset: 0.0,
+            roller: rr,
+        };
+        let cam = Cam::new(p, f, rb, true).unwrap();
+        let train = Train {
+            mass: 0.1,
+            spring_rate: 1e4,
+            preload: 300.0,
+            damping: 0.0,
+        };
+        let mut spec = ContactSpec {
+            width: 0.012,
+            modulus: 1.1e11,
+            crown: Some(rc),
+        };
+        let s = stress(&cam, &train, 1.0, &spec, None).unwrap();
+        let want = point_contact(0.5 / rc, 0.5 * (1.0 / rb + 1.0 / rr), 300.0, 1.1e11).unwrap();
+        let k = 500;
+        assert!((s.pressure[k] - want.max_pressure).abs() < 1e-9 * want.max_pressure);
+        assert!((s.half_width[k] - want.semi_minor).abs() < 1e-12);
+        spec.crown = None;
+        let line = stress(&cam, &train, 1.0, &spec, None).unwrap();
+        assert!(s.pressure[k] > line.pressure[k]);
+        let flat = Cam::new(cam.program.clone(), Follower::TranslatingFlat, rb, true).unwrap();
+        spec.crown = Some(rc);
+        assert!(stress(&flat, &train, 1.0, &spec, None).is_err());
     }
 
     /// The torque is the rate of the follower's energy per cam radian:
@@ -340,6 +402,7 @@ mod tests {
         let spec = ContactSpec {
             width: 0.01,
             modulus: 1e11,
+            crown: None,
         };
         let s = stress(&cam, &train, w, &spec, None).unwrap();
         let energy = |t: f64| {

@@ -296,11 +296,12 @@ impl CamCore {
     /// Contact stress, camshaft torque and bearing life over a turn at ω
     /// (rad/s): the train as for `force`, the contact width (m) and
     /// contact modulus E* (Pa), and a bearing's dynamic rating C (N) and
-    /// life exponent (None without a bearing). A dict of arrays `theta`,
+    /// life exponent (None without a bearing), and a crowned roller's crown
+    /// radius (m, None for a straight roller). A dict of arrays `theta`,
     /// `force`, `rho`, `half_width`, `pressure`, `torque` and extremes
     /// as (value, θ).
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (mass, spring_rate, preload, damping, omega, width, modulus, rating = None, exponent = 3.0))]
+    #[pyo3(signature = (mass, spring_rate, preload, damping, omega, width, modulus, rating = None, exponent = 3.0, crown = None))]
     fn stress<'py>(
         &self,
         py: Python<'py>,
@@ -313,6 +314,7 @@ impl CamCore {
         modulus: f64,
         rating: Option<f64>,
         exponent: f64,
+        crown: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let train = Train {
             mass,
@@ -320,7 +322,11 @@ impl CamCore {
             preload,
             damping,
         };
-        let spec = ContactSpec { width, modulus };
+        let spec = ContactSpec {
+            width,
+            modulus,
+            crown,
+        };
         let bearing = rating.map(|rating| BearingSpec { rating, exponent });
         let s = py
             .detach(|| cam_contact::stress(&self.cam, &train, omega, &spec, bearing.as_ref()))

@@ -105,6 +105,94 @@ pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, e_star: f64) -> O
     })
 }
 
+/// Complete elliptic integrals K(m), E(m) of parameter m = e² in [0, 1)
+/// by the arithmetic–geometric mean (Abramowitz & Stegun 17.6).
+pub fn elliptic_ke(m: f64) -> (f64, f64) {
+    let (mut a, mut b) = (1.0f64, (1.0 - m).sqrt());
+    let mut sum = 0.5 * m; // 2^(n−1) c_n² at n = 0, c₀² = m
+    let mut pow = 0.5;
+    for _ in 0..60 {
+        let c = 0.5 * (a - b);
+        pow *= 2.0;
+        sum += pow * c * c;
+        let (an, bn) = (0.5 * (a + b), (a * b).sqrt());
+        a = an;
+        b = bn;
+        if c.abs() < 1e-17 * a {
+            break;
+        }
+    }
+    let k = std::f64::consts::FRAC_PI_2 / a;
+    (k, k * (1.0 - sum))
+}
+
+/// Elliptical (point) contact of two bodies.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PointContact {
+    /// Semi-axis a (m) along the direction of the smaller curvature sum.
+    pub semi_major: f64,
+    /// Semi-axis b (m) along the larger.
+    pub semi_minor: f64,
+    /// Peak pressure p₀ = 3F/(2π a b) (Pa).
+    pub max_pressure: f64,
+}
+
+/// Hertz point contact (Johnson, *Contact Mechanics*, §4.2, eqs. 4.39–4.41)
+/// under `force` (N), contact modulus `e_star` (Pa), with the curvature
+/// sums of the two principal planes `a_sum` = ½(1/R₁ₓ + 1/R₂ₓ) and
+/// `b_sum` = ½(1/R₁ᵧ + 1/R₂ᵧ) (1/m; the planes aligned). With A ≤ B the
+/// smaller and larger, the ellipse's eccentricity e (b/a = √(1 − e²))
+/// solves B/A = (E(e)/(1 − e²) − K(e))/(K(e) − E(e)), and
+/// a³ = 3F (K − E)/(2π E* e² A), p₀ = 3F/(2π a b). A crowned roller of
+/// radius R_r and crown radius R_c on a cam of radius ρ (straight along
+/// its axis): ½(1/ρ + 1/R_r) and ½(1/R_c). `None` without a positive
+/// force or positive sums.
+pub fn point_contact(a_sum: f64, b_sum: f64, force: f64, e_star: f64) -> Option<PointContact> {
+    let (lo, hi) = (a_sum.min(b_sum), a_sum.max(b_sum));
+    if !(lo > 0.0 && hi.is_finite() && force > 0.0) {
+        return None;
+    }
+    let ratio = hi / lo;
+    let km = |m: f64| {
+        let (k, e) = elliptic_ke(m);
+        // (K − E)/m, by its series where m is tiny.
+        let ke = if m < 1e-6 {
+            std::f64::consts::FRAC_PI_4 * (1.0 + 0.375 * m)
+        } else {
+            (k - e) / m
+        };
+        (k, e, ke)
+    };
+    // Bisection on ln(b/a) in [ln 1e-9, 0]: the ratio grows as b/a falls.
+    let f = |kp: f64| {
+        let m = 1.0 - kp * kp;
+        let (k, e, ke) = km(m);
+        (e / (kp * kp) - k) / (ke * m)
+    };
+    let kp = if ratio <= 1.0 + 1e-12 {
+        1.0
+    } else {
+        let (mut x0, mut x1) = ((1e-9f64).ln(), 0.0f64);
+        for _ in 0..200 {
+            let x = 0.5 * (x0 + x1);
+            if f(x.exp()) > ratio {
+                x0 = x;
+            } else {
+                x1 = x;
+            }
+        }
+        (0.5 * (x0 + x1)).exp()
+    };
+    let (_, _, ke) = km(1.0 - kp * kp);
+    let a = (3.0 * force * ke / (2.0 * std::f64::consts::PI * e_star * lo)).cbrt();
+    let b = a * kp;
+    Some(PointContact {
+        semi_major: a,
+        semi_minor: b,
+        max_pressure: 3.0 * force / (2.0 * std::f64::consts::PI * a * b),
+    })
+}
+
 /// The equivalent load P (N) of loads `forces` (N, negative ones count as
 /// zero) each held over `revolutions` (any unit), for life exponent `a`.
 pub fn equivalent_load(forces: &[f64], revolutions: &[f64], a: f64) -> f64 {
@@ -167,6 +255,73 @@ mod tests {
         assert!((c.max_pressure - want).abs() < 1e-12 * want);
         let area = std::f64::consts::FRAC_PI_2 * c.half_width * c.max_pressure;
         assert!((area - 800.0 / 0.015).abs() < 1e-9 * area);
+    }
+
+    /// Elliptic integrals at known values: K(0) = E(0) = π/2, and
+    /// K(½) = 1.854 074 677 301 372, E(½) = 1.350 643 881 047 675 (A&S
+    /// Table 17.1).
+    #[test]
+    fn elliptic_integrals_known_values() {
+        let (k, e) = elliptic_ke(0.0);
+        assert!((k - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        assert!((e - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+        let (k, e) = elliptic_ke(0.5);
+        assert!((k - 1.854_074_677_301_372).abs() < 1e-14, "{k}");
+        assert!((e - 1.350_643_881_047_675).abs() < 1e-14, "{e}");
+    }
+
+    /// Crowned-roller point contact: the sphere limit (A = B) is Hertz's
+    /// a = (3FR/(4E*))^⅓, R = 1/(2A); and for an elongated ellipse the
+    /// surface displacement under the pressure p₀√(1 − x²/a² − y²/b²),
+    /// integrated numerically (u = (1/(πE*)) ∬ p/r dA, in polar
+    /// coordinates about the field point), falls from the centre by A x²
+    /// and B y² (Johnson §4.2) — an independent check of the solved axes.
+    #[test]
+    fn issue32_point_contact_sphere_limit_and_surface_displacement() {
+        let e = 1.1e11;
+        let f = 500.0;
+        let s = point_contact(25.0, 25.0, f, e).unwrap();
+        let want = (3.0 * f * 0.02 / (4.0 * e)).cbrt();
+        assert!((s.semi_major - want).abs() < 1e-12 * want);
+        let s = point_contact(25.0, 25.0 * (1.0 + 1e-7), f, e).unwrap();
+        assert!((s.semi_major - want).abs() < 1e-6 * want, "{s:?}");
+        let (aa, bb) = (2.0, 45.0); // 1/m: a crown of 0.25 m, a ρ–roller sum of 90
+        let c = point_contact(aa, bb, f, e).unwrap();
+        let (a, b, p0) = (c.semi_major, c.semi_minor, c.max_pressure);
+        assert!(a > b);
+        let u = |x: f64, y: f64| {
+            let n = 4000;
+            let mut total = 0.0;
+            for i in 0..n {
+                let phi = (i as f64 + 0.5) / n as f64 * std::f64::consts::TAU;
+                let (c, sn) = (phi.cos(), phi.sin());
+                // Along the ray: 1 − (x + r c)²/a² − (y + r s)²/b² = α + β r − γ r².
+                let alpha = 1.0 - x * x / (a * a) - y * y / (b * b);
+                let beta = -2.0 * (x * c / (a * a) + y * sn / (b * b));
+                let gamma = c * c / (a * a) + sn * sn / (b * b);
+                let root = (beta + (beta * beta + 4.0 * alpha * gamma).sqrt()) / (2.0 * gamma);
+                // ∫₀^R √(γ (r − r₋)(R − r)) dr, r₋ the other root, by
+                // Gauss–Chebyshev of the second kind on [r₋, R] split at 0.
+                let rm = -alpha / (gamma * root);
+                let m = 400;
+                let mut sum = 0.0;
+                for j in 1..=m {
+                    // Midpoint in t on r = 0 … R with the √ weight exact.
+                    let t = (j as f64 - 0.5) / m as f64;
+                    let r = root * (1.0 - (1.0 - t) * (1.0 - t));
+                    let dr = 2.0 * root * (1.0 - t) / m as f64;
+                    sum += (gamma * (r - rm) * (root - r)).max(0.0).sqrt() * dr;
+                }
+                total += sum;
+            }
+            p0 * total * std::f64::consts::TAU / n as f64 / (std::f64::consts::PI * e)
+        };
+        let u0 = u(0.0, 0.0);
+        let (x, y) = (0.5 * a, 0.5 * b);
+        let ax = (u0 - u(x, 0.0)) / (x * x);
+        let by = (u0 - u(0.0, y)) / (y * y);
+        assert!((ax - aa).abs() < 1e-4 * aa, "A {ax} vs {aa}");
+        assert!((by - bb).abs() < 1e-4 * bb, "B {by} vs {bb}");
     }
 
     #[test]
