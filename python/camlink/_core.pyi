@@ -27,10 +27,14 @@ __all__ = [
     "Model",
     "ModelError",
     "__version__",
+    "cam_materials",
     "check_setting",
+    "contact_modulus",
     "convert_adm",
     "csv_rows",
+    "helical_spring",
     "json_schema",
+    "line_contact",
     "run_batch",
     "synth_file",
     "synth_str",
@@ -211,4 +215,46 @@ class CamCore:
     def smallest_base_radius(
         self, max_pressure: float | None, min_radius: float | None, lo: float, hi: float
     ) -> float | None: ...
+    def stress(
+        self,
+        mass: float,
+        spring_rate: float,
+        preload: float,
+        damping: float,
+        omega: float,
+        width: float,
+        modulus: float,
+        rating: float | None = None,
+        exponent: float = 3.0,
+        crown: float | None = None,
+    ) -> dict[str, Any]: ...
+    def vibration(
+        self,
+        masses: Sequence[float],
+        stiffness: Sequence[float],
+        damping: Sequence[float],
+        spring_rate: float,
+        preload: float,
+        omega: float,
+        steps: int = 7200,
+        turns: int = 3,
+        polydyne: bool = False,
+    ) -> dict[str, Any]: ...
     def round_trip(self, omega: float, steps: int) -> tuple[float, float, float]: ...
+
+def cam_materials() -> list[tuple[str, float, float, float, float]]: ...
+def contact_modulus(a: tuple[float, float], b: tuple[float, float]) -> float: ...
+def line_contact(
+    r1: float, r2: float, force: float, length: float, modulus: float
+) -> tuple[float, float] | None: ...
+def helical_spring(
+    wire: float,
+    mean_diameter: float,
+    active_coils: float,
+    total_coils: float,
+    free_length: float,
+    shear_modulus: float,
+    density: float,
+    installed: float,
+    max_lift: float,
+) -> dict[str, float]: ...

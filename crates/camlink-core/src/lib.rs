@@ -18,7 +18,7 @@
 //! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
 //! 5. [`contact`]: the curve contacts;
 //! 6. [`run`]: settings, sinks, tables, summaries, errors and warnings;
-//! 7. [`design`], [`diagnose`], [`cam_limits`]: checks and reports;
+//! 7. [`design`], [`diagnose`], [`cam_limits`], [`cam_contact`]: checks and reports;
 //! 8. [`kinematics`], [`cam_mechanism`] (a synthesised cam run through it);
 //! 9. [`dynamics`].
 
@@ -44,6 +44,7 @@ pub mod contact;
 
 pub mod run;
 
+pub mod cam_contact;
 pub mod cam_limits;
 pub mod design;
 pub mod diagnose;

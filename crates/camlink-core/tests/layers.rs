@@ -27,7 +27,7 @@ const LAYERS: &[&[&str]] = &[
     &["assembly", "linsolve"],
     &["contact"],
     &["run", "setting"],
-    &["design", "diagnose", "cam_limits"],
+    &["design", "diagnose", "cam_limits", "cam_contact"],
     &["kinematics", "cam_mechanism"],
     &["dynamics"],
 ];

@@ -4,8 +4,12 @@
 
 use std::sync::Arc;
 
+use camlink_core::cam::hertz;
 use camlink_core::cam::motion::EndConditions;
+use camlink_core::cam::spring::Helical;
+use camlink_core::cam::vibration::{self, Chain};
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
+use camlink_core::cam_contact::{self, BearingSpec, ContactSpec};
 use camlink_core::cam_limits::{self, Extreme, Train};
 use camlink_core::cam_mechanism::round_trip;
 use camlink_core::fmt_num;
@@ -289,6 +293,128 @@ impl CamCore {
             .map_err(value_error)
     }
 
+    /// Contact stress, camshaft torque and bearing life over a turn at ω
+    /// (rad/s): the train as for `force`, the contact width (m) and
+    /// contact modulus E* (Pa), and a bearing's dynamic rating C (N) and
+    /// life exponent (None without a bearing), and a crowned roller's crown
+    /// radius (m, None for a straight roller). A dict of arrays `theta`,
+    /// `force`, `rho`, `half_width`, `pressure`, `torque` and extremes
+    /// as (value, θ).
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (mass, spring_rate, preload, damping, omega, width, modulus, rating = None, exponent = 3.0, crown = None))]
+    fn stress<'py>(
+        &self,
+        py: Python<'py>,
+        mass: f64,
+        spring_rate: f64,
+        preload: f64,
+        damping: f64,
+        omega: f64,
+        width: f64,
+        modulus: f64,
+        rating: Option<f64>,
+        exponent: f64,
+        crown: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let train = Train {
+            mass,
+            spring_rate,
+            preload,
+            damping,
+        };
+        let spec = ContactSpec {
+            width,
+            modulus,
+            crown,
+        };
+        let bearing = rating.map(|rating| BearingSpec { rating, exponent });
+        let s = py
+            .detach(|| cam_contact::stress(&self.cam, &train, omega, &spec, bearing.as_ref()))
+            .map_err(value_error)?;
+        let d = PyDict::new(py);
+        d.set_item("omega", s.omega)?;
+        d.set_item("theta", s.theta.into_pyarray(py))?;
+        d.set_item("force", s.force.into_pyarray(py))?;
+        d.set_item("rho", s.rho.into_pyarray(py))?;
+        d.set_item("half_width", s.half_width.into_pyarray(py))?;
+        d.set_item("pressure", s.pressure.into_pyarray(py))?;
+        d.set_item("max_pressure", extreme(&s.max_pressure))?;
+        d.set_item("half_width_at_max", s.half_width_at_max)?;
+        d.set_item("torque", s.torque.into_pyarray(py))?;
+        d.set_item("peak_torque", extreme(&s.peak_torque))?;
+        d.set_item("rms_torque", s.rms_torque)?;
+        match s.bearing {
+            Some(b) => {
+                let e = PyDict::new(py);
+                e.set_item("equivalent_load", b.equivalent_load)?;
+                e.set_item("roller_turns", b.roller_turns)?;
+                e.set_item("l10_revolutions", b.l10_revolutions)?;
+                e.set_item("l10_turns", b.l10_turns)?;
+                d.set_item("bearing", e)?;
+            }
+            None => d.set_item("bearing", py.None())?,
+        }
+        Ok(d)
+    }
+
+    /// The follower train (masses, stiffnesses, dampings from the cam
+    /// outwards; return spring rate and preload) driven by the cam at ω
+    /// (rad/s), `steps` steps a turn, `turns` turns (the last reported);
+    /// with `polydyne`, by the program corrected for a one-mass train at
+    /// that speed. A dict: `theta`, `input`, `position` (masses × samples),
+    /// `velocity`, `deviation`, `contact` arrays and `residual`
+    /// [(segment, amplitude, θ)].
+    #[allow(clippy::too_many_arguments)]
+    #[pyo3(signature = (masses, stiffness, damping, spring_rate, preload, omega, steps = 7200, turns = 3, polydyne = false))]
+    fn vibration<'py>(
+        &self,
+        py: Python<'py>,
+        masses: Vec<f64>,
+        stiffness: Vec<f64>,
+        damping: Vec<f64>,
+        spring_rate: f64,
+        preload: f64,
+        omega: f64,
+        steps: usize,
+        turns: usize,
+        polydyne: bool,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let chain = Chain {
+            masses,
+            stiffness,
+            damping,
+            spring_rate,
+            preload,
+        };
+        let program = &self.cam.program;
+        let r = py
+            .detach(|| {
+                if polydyne {
+                    let y = vibration::polydyne(program, &chain, omega)?;
+                    vibration::simulate_input(program, &y, &chain, omega, steps, turns)
+                } else {
+                    vibration::simulate(program, &chain, omega, steps, turns)
+                }
+            })
+            .map_err(value_error)?;
+        let d = PyDict::new(py);
+        let m = r.theta.len();
+        d.set_item("omega", r.omega)?;
+        d.set_item("theta", r.theta.into_pyarray(py))?;
+        d.set_item("input", r.input.into_pyarray(py))?;
+        d.set_item("position", to_array(py, r.position.concat(), m)?)?;
+        d.set_item("velocity", to_array(py, r.velocity.concat(), m)?)?;
+        d.set_item("deviation", r.deviation.into_pyarray(py))?;
+        d.set_item("contact", r.contact.into_pyarray(py))?;
+        let res: Vec<(usize, f64, f64)> = r
+            .residual
+            .iter()
+            .map(|x| (x.segment, x.amplitude, x.theta))
+            .collect();
+        d.set_item("residual", res)?;
+        Ok(d)
+    }
+
     /// Round trip at ω (rad/s) in `steps` steps: (displacement, velocity,
     /// acceleration) relative errors. When the kinematic analysis of the
     /// cam mechanism stops, a `ValueError` says at which cam angle and why,
@@ -310,4 +436,75 @@ impl CamCore {
             })?;
         Ok((r.displacement, r.velocity, r.acceleration))
     }
+}
+
+/// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
+#[pyfunction]
+pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
+    hertz::MATERIALS
+        .iter()
+        .map(|(n, m)| (n.to_string(), m.young, m.poisson, m.shear, m.density))
+        .collect()
+}
+
+/// Contact modulus E* (Pa) of two materials given as (E Pa, ν).
+#[pyfunction]
+pub fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let m = |(young, poisson): (f64, f64)| hertz::Material {
+        young,
+        poisson,
+        shear: f64::NAN,
+        density: f64::NAN,
+    };
+    hertz::contact_modulus(&m(a), &m(b))
+}
+
+/// Hertz line contact of cylinders of radii r1, r2 (m; negative concave,
+/// inf flat) under force (N) over length (m), modulus E* (Pa):
+/// (half-width m, p_max Pa), or None without contact.
+#[pyfunction]
+pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, modulus: f64) -> Option<(f64, f64)> {
+    hertz::line_contact(r1, r2, force, length, modulus).map(|c| (c.half_width, c.max_pressure))
+}
+
+/// A helical compression spring (d, D, N_a, N_t, L₀ in m or coils; G Pa;
+/// density kg/m³) installed at `installed` (m) and lifted by `max_lift`
+/// (m): a dict of rate, preload, solid, shortest, clash_margin, mass,
+/// surge (Hz), index. A `ValueError` names the field (`field: message`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn helical_spring<'py>(
+    py: Python<'py>,
+    wire: f64,
+    mean_diameter: f64,
+    active_coils: f64,
+    total_coils: f64,
+    free_length: f64,
+    shear_modulus: f64,
+    density: f64,
+    installed: f64,
+    max_lift: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = Helical {
+        wire,
+        mean_diameter,
+        active_coils,
+        total_coils,
+        free_length,
+        shear_modulus,
+        density,
+    };
+    let i = s
+        .install(installed, max_lift)
+        .map_err(|e| value_error(format!("{}: {}", e.field, e.message)))?;
+    let d = PyDict::new(py);
+    d.set_item("rate", i.rate)?;
+    d.set_item("preload", i.preload)?;
+    d.set_item("solid", i.solid)?;
+    d.set_item("shortest", i.shortest)?;
+    d.set_item("clash_margin", i.clash_margin)?;
+    d.set_item("mass", i.mass)?;
+    d.set_item("surge", i.surge)?;
+    d.set_item("index", i.index)?;
+    Ok(d)
 }

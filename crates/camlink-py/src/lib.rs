@@ -1212,6 +1212,10 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
     m.add_class::<cam::CamCore>()?;
+    m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from camlink._core import CamCore, ModelError
 from camlink.cam.export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
+from camlink.cam.sizing import SURGE_RATIO, ContactSpec, SpringSpec, VibrationSpec
 
 FOLLOWERS: dict[str, tuple[str, ...]] = {
     "translating-roller": ("offset", "roller_radius"),
@@ -102,6 +103,16 @@ class Limits:
     """m"""
     base_radius_range: tuple[float, float] | None
     """Search range (m) for the smallest base circle."""
+    max_contact_stress: float | None = None
+    """Allowable Hertz contact stress (Pa)."""
+    min_bearing_life_hours: float | None = None
+    """Least roller bearing L10 life at the running speed (h)."""
+    min_coil_clearance: float | None = None
+    """Least gap between the spring's coils at the largest lift (m)."""
+    min_surge_ratio: float = SURGE_RATIO
+    """Least spring surge frequency over the forcing frequency."""
+    max_residual_vibration: float | None = None
+    """Largest residual vibration after a rise or return (m or rad)."""
 
 
 @dataclass(frozen=True)
@@ -123,6 +134,20 @@ class Export:
     given: frozenset[str] = frozenset()
     """The export keys whose file names the design file gives (the others
     are default names, never replaced without ``--force``)."""
+    units: str = "m"
+    """Length unit of reports, pictures and exports: "m" or "mm"."""
+    svaj_time: str | None = None
+    """SVAJ against time at the running speed (needs [dynamics])."""
+    vibration: str | None = None
+    """The follower train's deviation and dynamic contact force over a
+    turn (needs [vibration])."""
+    bore_radius: float | None = None
+    """m"""
+    keyway_width: float | None = None
+    keyway_depth: float | None = None
+    keyway_angle: float = 0.0
+    """rad, from the timing mark."""
+    timing_mark: bool = True
 
 
 @dataclass(frozen=True)
@@ -139,6 +164,9 @@ class Design:
     limits: Limits
     dynamics: Dynamics | None
     export: Export
+    contact: ContactSpec | None = None
+    spring: SpringSpec | None = None
+    vibration: VibrationSpec | None = None
 
     @property
     def oscillating(self) -> bool:
@@ -326,9 +354,17 @@ def load(path: str | Path) -> Design:
         min_radius=lim.optional("min_radius", positive=True, most=MAX_LENGTH, unit=" m"),
         max_face_width=lim.optional("max_face_width", positive=True, most=MAX_LENGTH, unit=" m"),
         base_radius_range=rng,
+        max_contact_stress=lim.optional("max_contact_stress", positive=True, unit=" Pa"),
+        min_bearing_life_hours=lim.optional("min_bearing_life_hours", positive=True, unit=" h"),
+        min_coil_clearance=lim.optional(
+            "min_coil_clearance", positive=True, most=MAX_LENGTH, unit=" m"
+        ),
+        min_surge_ratio=lim.number("min_surge_ratio", SURGE_RATIO, positive=True),
+        max_residual_vibration=lim.optional("max_residual_vibration", positive=True),
     )
     lim.finish()
     dynamics = None
+    dynamics_given: frozenset[str] = frozenset()
     if "dynamics" in doc:
         top.used.add("dynamics")
         d = _Table(p, "dynamics", doc["dynamics"])
@@ -345,6 +381,9 @@ def load(path: str | Path) -> Design:
             if getattr(dynamics, k) < 0:
                 raise d.fail(k, "must not be negative")
         d.finish()
+        dynamics_given = frozenset(d.data)
+    sizing: dict[str, Any] = {k: doc[k] for k in ("contact", "spring", "vibration") if k in doc}
+    top.used.update(sizing)
     ex = _Table(p, "export", doc.get("export", {}))
     top.used.add("export")
     stem = p.stem
@@ -395,6 +434,34 @@ def load(path: str | Path) -> Design:
         svaj=out("svaj_plot", f"{stem}_svaj.png"),
         profile=out("profile_plot", f"{stem}_profile.png"),
         given=frozenset(given),
+        units=ex.text("units", "m", ("m", "mm")),
+        svaj_time=out("svaj_time_plot", f"{stem}_svaj_time.png") if dynamics else None,
+        vibration=out("vibration_plot", f"{stem}_vibration.png") if "vibration" in doc else None,
+    )
+    bore = ex.optional("bore_diameter", positive=True, most=MAX_LENGTH, unit=" m")
+    kw = ex.optional("keyway_width", positive=True, most=MAX_LENGTH, unit=" m")
+    kd = ex.optional("keyway_depth", positive=True, most=MAX_LENGTH, unit=" m")
+    ka = ex.number("keyway_angle_deg", 0.0, most=360.0, unit="°")
+    ex.used.add("timing_mark")
+    mark = ex.data.get("timing_mark", True)
+    if not isinstance(mark, bool):
+        raise ex.fail("timing_mark", f"must be true or false, got {mark!r}")
+    for key, v in (("keyway_width", kw), ("keyway_depth", kd)):
+        if v is not None and bore is None:
+            raise ex.fail(key, "needs export.bore_diameter")
+    if (kw is None) != (kd is None):
+        raise ex.fail("keyway_width" if kw is None else "keyway_depth", "a keyway needs both width and depth")
+    if bore is not None and kw is not None and kw >= bore:
+        raise ex.fail("keyway_width", f"{kw} m must be narrower than the bore {bore} m")
+    from dataclasses import replace as _replace
+
+    export = _replace(
+        export,
+        bore_radius=None if bore is None else bore / 2.0,
+        keyway_width=kw,
+        keyway_depth=kd,
+        keyway_angle=math.radians(ka),
+        timing_mark=mark,
     )
     ex.finish()
     top.finish()
@@ -411,6 +478,10 @@ def load(path: str | Path) -> Design:
         export,
     )
     core = design.core()  # checks the program and the follower's geometry
+    if sizing:
+        from camlink.cam import sizing as cam_sizing
+
+        design = cam_sizing.complete(design, sizing, dynamics_given)
     th = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
     bad = ~np.all(np.isfinite(np.asarray(core.surface(th))), axis=1)
     if bad.any():
@@ -419,6 +490,16 @@ def load(path: str | Path) -> Design:
             f"{math.degrees(th[np.argmax(bad)]):.2f}° (check the base radius, the follower's "
             "dimensions, the lifts and the end conditions)"
         )
+    if export.bore_radius is not None:
+        th_all = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
+        least = float(np.min(np.hypot(*np.asarray(core.surface(th_all)).T)))
+        outer = export.bore_radius + (export.keyway_depth or 0.0)
+        if outer >= least:
+            raise ex.fail(
+                "bore_diameter",
+                f"the bore and keyway reach {outer:.6g} m from the centre, beyond the "
+                f"profile's least radius {least:.6g} m",
+            )
     size = float(core.geometry()["max_radius"]) + (export.tool_radius or 0.0)
     for key, tol in (("tolerance", export.tolerance), ("csv_chord_tolerance", export.csv_chord)):
         least = MIN_RELATIVE_TOLERANCE * size
@@ -516,6 +597,11 @@ class Report:
     face_travel: FaceTravel | None = None
     """A flat face's contact travel; None for a roller."""
     files: tuple[str, ...] = field(default=())
+    units: str = "m"
+    """Length unit of the report's figures (``in_units``)."""
+    sizing: dict[str, Any] = field(default_factory=dict)
+    """Contact stress, bearing, spring and vibration figures (SI) behind
+    their checks: keys ``contact``, ``bearing``, ``spring``, ``vibration``."""
 
     @property
     def ok(self) -> bool:
@@ -710,6 +796,10 @@ def analyse(design: Design) -> Report:
                 smallest is not None and smallest <= limit,
             )
         )
+    from camlink.cam import sizing as cam_sizing
+
+    more, sizing = cam_sizing.checks(design, core)
+    checks.extend(more)
     try:
         rt: tuple[float, float, float] | None = core.round_trip(1.0, 720)
     except ValueError as e:
@@ -740,13 +830,51 @@ def analyse(design: Design) -> Report:
         smallest_base_radius=smallest,
         round_trip=rt,
         face_travel=travel,
+        sizing=sizing,
+    )
+
+
+def in_units(r: Report, units: str) -> Report:
+    """`r` with its lengths in `units` ("m" or "mm"): the checks in m, the
+    base circle, the smallest base circle and the face travel (angles are
+    in degrees already)."""
+    if units == "m":
+        return r
+    from dataclasses import replace
+
+    k = 1000.0
+
+    def conv(c: Check) -> Check:
+        if c.unit != "m":
+            return c
+        f = lambda v: None if v is None else v * k  # noqa: E731
+        note = c.note
+        if r.face_travel is not None and c.name == "face width needed":
+            lo, hi = r.face_travel.lo * k, r.face_travel.hi * k
+            note = f"contact travels from {lo:.6g} to {hi:.6g} mm along the face"
+        return replace(
+            c, value=c.value * k, limit=f(c.limit), margin=f(c.margin), unit="mm", note=note
+        )
+
+    travel = r.face_travel
+    if travel is not None:
+        travel = replace(travel, lo=travel.lo * k, hi=travel.hi * k)
+    return replace(
+        r,
+        base_radius=r.base_radius * k,
+        checks=tuple(conv(c) for c in r.checks),
+        smallest_base_radius=None
+        if r.smallest_base_radius is None
+        else r.smallest_base_radius * k,
+        face_travel=travel,
+        units=units,
     )
 
 
 def format_report(r: Report) -> str:
     """The report as text."""
     lines = [
-        f"cam design '{r.name}': {r.follower} follower, base circle {r.base_radius:g} m",
+        f"cam design '{r.name}': {r.follower} follower, base circle {r.base_radius:g} {r.units}",
         "",
     ]
     lines.append("motion program boundaries:")
@@ -769,12 +897,13 @@ def format_report(r: Report) -> str:
     for c in r.checks:
         mark = "ok  " if c.ok else "FAIL"
         where = "" if c.at_deg is None else f" at {c.at_deg:.2f}°"
-        lim = "" if c.limit is None else f" (limit {c.limit:.6g} {c.unit}"
+        unit = f" {c.unit}" if c.unit else ""
+        lim = "" if c.limit is None else f" (limit {c.limit:.6g}{unit}"
         lim += (
             "" if c.margin is None or c.limit is None else f", margin {c.margin:.6g})"
         )
         lim += ")" if c.limit is not None and c.margin is None else ""
-        value = "" if math.isnan(c.value) else f": {c.value:.6g} {c.unit}"
+        value = "" if math.isnan(c.value) else f": {c.value:.6g}{unit}"
         note = "" if not c.note else f"; {c.note}" if value else f": {c.note}"
         lines.append(f"  {mark} {c.name}{value}{where}{lim}{note}")
     for label, ranges in (
@@ -786,7 +915,7 @@ def format_report(r: Report) -> str:
             txt = ", ".join(f"{a:.2f}°–{b:.2f}°" for a, b in ranges)
             lines.append(f"  {label}: {txt}")
     if r.smallest_base_radius is not None:
-        lines.append(f"  smallest base circle: {r.smallest_base_radius:.6g} m")
+        lines.append(f"  smallest base circle: {r.smallest_base_radius:.6g} {r.units}")
     lines.append("")
     if r.round_trip is not None:
         d, v, a = r.round_trip

@@ -32,6 +32,49 @@ MAX_CSV_ROWS = 1_000_000
 #: Most points `angles_by_chord` gives.
 MAX_POINTS = 2_000_000
 
+#: Length units of exports: name -> units per metre.
+LENGTH_UNITS = {"m": 1.0, "mm": 1000.0}
+
+#: DXF $INSUNITS codes of `LENGTH_UNITS`.
+_DXF_UNITS = {"m": 6, "mm": 4}
+
+
+@dataclass(frozen=True)
+class Hub:
+    """A bore, a keyway and a timing mark on the cam's drawing (cam frame,
+    m and rad). The keyway is centred on the direction `keyway_angle`, its
+    sides `keyway_width` apart, cut `keyway_depth` beyond the bore circle
+    on its centreline (the hub's keyway depth t₂ of DIN 6885 measured from
+    the bore). The timing mark is a radial line at `mark_angle` (the
+    direction of the contact at θ = 0) from 0.6 to 0.9 of the least profile
+    radius."""
+
+    bore_radius: float
+    keyway_width: float | None
+    keyway_depth: float | None
+    keyway_angle: float
+    mark_angle: float | None
+
+    def keyway(self) -> Points | None:
+        """The keyway's open outline (4 points, m): from the bore circle
+        out along one side, across, and back to the bore along the other."""
+        if self.keyway_width is None or self.keyway_depth is None:
+            return None
+        r, w, d = self.bore_radius, self.keyway_width, self.keyway_depth
+        u = np.array([math.cos(self.keyway_angle), math.sin(self.keyway_angle)])
+        t = np.array([-u[1], u[0]])
+        x0 = math.sqrt(r * r - 0.25 * w * w)
+        return np.array(
+            [x0 * u - 0.5 * w * t, (r + d) * u - 0.5 * w * t, (r + d) * u + 0.5 * w * t, x0 * u + 0.5 * w * t]
+        )
+
+    def mark(self, least_radius: float) -> Points | None:
+        """The timing mark's two ends (m)."""
+        if self.mark_angle is None:
+            return None
+        u = np.array([math.cos(self.mark_angle), math.sin(self.mark_angle)])
+        return np.array([0.6 * least_radius * u, 0.9 * least_radius * u])
+
 
 def angles_by_step(step: float) -> NDArray[np.float64]:
     """Cam angles θ (rad) over one turn at `step` (rad), the end excluded;
@@ -110,21 +153,25 @@ def write_csv(
     path: str | Path,
     theta: NDArray[np.float64],
     tool_radius: float | None = None,
+    units: str = "m",
 ) -> None:
-    """Writes θ (deg), the surface x, y (m) and, for a roller, the pitch
-    curve; with `tool_radius`, the tool centre path too."""
-    surf = np.asarray(core.surface(theta))
+    """Writes θ (deg), the surface x, y (m, or mm with `units` "mm", the
+    columns then named ``x_mm`` …) and, for a roller, the pitch curve;
+    with `tool_radius`, the tool centre path too."""
+    k = LENGTH_UNITS[units]
+    tag = "" if units == "m" else f"_{units}"
+    surf = np.asarray(core.surface(theta)) * k
     cols = [np.degrees(theta), surf[:, 0], surf[:, 1]]
-    head = ["theta_deg", "x", "y"]
+    head = ["theta_deg", f"x{tag}", f"y{tag}"]
     pitch = core.pitch(theta)
     if pitch is not None:
-        p = np.asarray(pitch)
+        p = np.asarray(pitch) * k
         cols += [p[:, 0], p[:, 1]]
-        head += ["pitch_x", "pitch_y"]
+        head += [f"pitch_x{tag}", f"pitch_y{tag}"]
     if tool_radius is not None:
-        t = np.asarray(core.surface(theta, tool_radius))
+        t = np.asarray(core.surface(theta, tool_radius)) * k
         cols += [t[:, 0], t[:, 1]]
-        head += ["tool_x", "tool_y"]
+        head += [f"tool_x{tag}", f"tool_y{tag}"]
     with Path(path).open("w", newline="") as f:
         w = csv.writer(f)
         w.writerow(head)
@@ -232,17 +279,28 @@ def _polyline(msp: Any, points: Points, layer: str) -> None:
     poly.lwpoints.set(np.column_stack([points, np.zeros((len(points), 3))]))
 
 
+def _least_radius(core: CamCore) -> float:
+    th = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
+    return float(np.min(np.hypot(*np.asarray(core.surface(th)).T)))
+
+
 def write_dxf(
     core: CamCore,
     path: str | Path,
     tolerance: float,
     mode: str = "polyline",
     tool_radius: float | None = None,
+    units: str = "m",
+    hub: Hub | None = None,
 ) -> int:
     """Writes the cam surface (layer CAM) as a closed polyline within the
     chord `tolerance` or as fitted arcs, and with `tool_radius` the tool
-    centre path (layer TOOL); returns the number of entities on CAM."""
-    doc = ezdxf.new("R2010", units=6)  # 6: metres
+    centre path (layer TOOL); in metres, or millimetres with `units` "mm"
+    ($INSUNITS set to match). With `hub`: the bore circle (layer BORE), the
+    keyway's outline (layer KEYWAY, an open polyline) and the timing mark
+    (layer MARK, a line). Returns the number of entities on CAM."""
+    doc = ezdxf.new("R2010", units=_DXF_UNITS[units])
+    k = LENGTH_UNITS[units]
     msp = doc.modelspace()
     doc.layers.add("CAM", color=7)
     count = 0
@@ -253,30 +311,49 @@ def write_dxf(
         dense = np.asarray(core.surface(_chord_angles(core, 0.1 * tolerance)))
         for a in fit_arcs(dense, tolerance, slack=0.1 * tolerance):
             if math.isinf(a.radius):
-                msp.add_line(a.p0, a.p1, dxfattribs={"layer": "CAM"})
+                p0 = (a.p0[0] * k, a.p0[1] * k)
+                p1 = (a.p1[0] * k, a.p1[1] * k)
+                msp.add_line(p0, p1, dxfattribs={"layer": "CAM"})
             else:
-                msp.add_arc(
-                    a.centre, a.radius, a.start, a.end, dxfattribs={"layer": "CAM"}
-                )
+                c = (a.centre[0] * k, a.centre[1] * k)
+                msp.add_arc(c, a.radius * k, a.start, a.end, dxfattribs={"layer": "CAM"})
             count += 1
     else:
-        _polyline(msp, np.asarray(core.surface(angles_by_chord(core, tolerance))), "CAM")
+        pts = np.asarray(core.surface(angles_by_chord(core, tolerance))) * k
+        _polyline(msp, pts, "CAM")
         count = 1
     if tool_radius is not None:
         doc.layers.add("TOOL", color=1)
         tp = np.asarray(
             core.surface(angles_by_chord(core, tolerance, tool_radius), tool_radius)
         )
-        _polyline(msp, tp, "TOOL")
+        _polyline(msp, tp * k, "TOOL")
+    if hub is not None:
+        doc.layers.add("BORE", color=3)
+        msp.add_circle((0.0, 0.0), hub.bore_radius * k, dxfattribs={"layer": "BORE"})
+        key = hub.keyway()
+        if key is not None:
+            doc.layers.add("KEYWAY", color=3)
+            msp.add_lwpolyline((key * k).tolist(), dxfattribs={"layer": "KEYWAY"})
+        mark = hub.mark(_least_radius(core))
+        if mark is not None:
+            doc.layers.add("MARK", color=5)
+            msp.add_line(tuple(mark[0] * k), tuple(mark[1] * k), dxfattribs={"layer": "MARK"})
     doc.saveas(path)
     return count
 
 
 def write_svg(
-    core: CamCore, path: str | Path, tolerance: float, tool_radius: float | None = None
+    core: CamCore,
+    path: str | Path,
+    tolerance: float,
+    tool_radius: float | None = None,
+    hub: Hub | None = None,
 ) -> None:
     """Writes the cam surface as one closed SVG path, in millimetres, y up
-    (the drawing's y axis is flipped), centre marked."""
+    (the drawing's y axis is flipped), centre marked; with `hub` the bore
+    (``<circle id="bore">``), the keyway (``<path id="keyway">``) and the
+    timing mark (``<path id="mark">``)."""
     th = angles_by_chord(core, tolerance)
     pts = np.asarray(core.surface(th)) * 1000.0
     paths = [pts]
@@ -303,5 +380,19 @@ def write_svg(
             f'<path id="{"cam" if k == 0 else "tool"}" stroke="{colour}" d="{d}"/>'
         )
     out.append('<path stroke="blue" d="M -2 0 L 2 0 M 0 -2 L 0 2"/>')
+    if hub is not None:
+        out.append(
+            f'<circle id="bore" stroke="green" cx="0" cy="0" r="{hub.bore_radius * 1000.0:.6f}"/>'
+        )
+        key = hub.keyway()
+        if key is not None:
+            d = "M " + " L ".join(f"{x * 1000.0:.6f} {y * 1000.0:.6f}" for x, y in key)
+            out.append(f'<path id="keyway" stroke="green" d="{d}"/>')
+        mark = hub.mark(_least_radius(core))
+        if mark is not None:
+            (x0, y0), (x1, y1) = mark * 1000.0
+            out.append(
+                f'<path id="mark" stroke="blue" d="M {x0:.6f} {y0:.6f} L {x1:.6f} {y1:.6f}"/>'
+            )
     out += ["</g>", "</svg>", ""]
     Path(path).write_text("\n".join(out))

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -38,13 +39,21 @@ def _literal(text: str) -> str:
 
 
 def svaj(
-    core: CamCore, *, oscillating: bool = False, title: str = "", n: int = 1441
+    core: CamCore,
+    *,
+    oscillating: bool = False,
+    title: str = "",
+    n: int = 1441,
+    units: str = "m",
 ) -> Figure:
     """S, V, A, J against cam angle θ (deg), derivatives per radian of cam
-    angle, with the segment boundaries marked by vertical lines."""
+    angle, with the segment boundaries marked by vertical lines; lengths in
+    `units` ("m" or "mm")."""
     th = np.linspace(0.0, 2.0 * math.pi, n)
     m = np.asarray(core.motion(th))
-    unit = "rad" if oscillating else "m"
+    unit = "rad" if oscillating else units
+    if not oscillating and units == "mm":
+        m = m * 1000.0
     labels = [
         f"s ({unit})",
         f"v = s′ ({unit}/rad)",
@@ -59,6 +68,87 @@ def svaj(
         for b in core.starts():
             ax.axvline(math.degrees(b), color="C3", lw=0.8, ls="--")
         ax.set_ylabel(labels[k])
+        ax.grid(True, lw=0.3)
+    axes[-1].set_xlabel("cam angle θ (deg)")
+    axes[-1].set_xlim(0.0, 360.0)
+    axes[-1].set_xticks(np.arange(0, 361, 30))
+    if title:
+        axes[0].set_title(_literal(title))
+    return fig
+
+
+def svaj_time(
+    core: CamCore,
+    omega: float,
+    *,
+    oscillating: bool = False,
+    title: str = "",
+    n: int = 1441,
+    units: str = "m",
+) -> Figure:
+    """S, V, A, J over one turn against time t = θ/ω (s) at cam speed
+    `omega` (rad/s): s, ṡ = ω s′, s̈ = ω² s″, jerk ω³ s‴, in `units` ("m"
+    or "mm"; an oscillating follower's swing in deg), with the segment
+    boundaries as vertical lines."""
+    th = np.linspace(0.0, 2.0 * math.pi, n)
+    m = np.asarray(core.motion(th)) * omega ** np.arange(4)
+    if oscillating:
+        m = np.degrees(m)
+        unit = "deg"
+    else:
+        unit = units
+        m = m * (1000.0 if units == "mm" else 1.0)
+    labels = [
+        f"s ({unit})",
+        f"v ({unit}/s)",
+        f"a ({unit}/s²)",
+        f"j ({unit}/s³)",
+    ]
+    t = th / omega
+    fig, axes = plt.subplots(4, 1, sharex=True, figsize=(8, 9), layout="constrained")
+    for k, ax in enumerate(axes):
+        ax.plot(t, m[:, k], color="C0", lw=1.4)
+        ax.axhline(0.0, color="0.6", lw=0.6)
+        for b in core.starts():
+            ax.axvline(b / omega, color="C3", lw=0.8, ls="--")
+        ax.set_ylabel(labels[k])
+        ax.grid(True, lw=0.3)
+    axes[-1].set_xlabel(f"time t (s) at {omega * 60.0 / (2.0 * math.pi):g} rpm")
+    axes[-1].set_xlim(0.0, 2.0 * math.pi / omega)
+    if title:
+        axes[0].set_title(_literal(title))
+    return fig
+
+
+def vibration(core: CamCore, design: Any, *, title: str = "") -> Figure:
+    """The follower train of `design` ([vibration], [dynamics]) over the
+    last turn computed: the last mass's deviation from its quasi-static
+    position (top) and the dynamic contact force against the rigid
+    train's (bottom), against cam angle θ (deg); lengths in the design's
+    export units."""
+    d, v = design.dynamics, design.vibration
+    r = core.vibration(
+        list(v.masses), list(v.stiffness), list(v.damping), d.spring_rate, d.preload, d.speed,
+        v.steps, v.turns, False,
+    )
+    th = np.asarray(r["theta"])
+    deg = np.degrees(th)
+    osc = design.oscillating
+    k = 1.0 if osc else (1000.0 if design.export.units == "mm" else 1.0)
+    unit = "rad" if osc else design.export.units
+    rigid = np.asarray(core.force(d.mass, d.spring_rate, d.preload, d.damping, d.speed)["generalised"])
+    rth = np.linspace(0.0, 360.0, len(rigid), endpoint=False)
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
+    axes[0].plot(deg, np.asarray(r["deviation"]) * k, color="C0", lw=1.2)
+    axes[0].set_ylabel(f"deviation ({unit})")
+    axes[1].plot(deg, np.asarray(r["contact"]), color="C0", lw=1.2, label="dynamic")
+    axes[1].plot(rth, rigid, color="C1", lw=1.0, ls="--", label="rigid train")
+    axes[1].axhline(0.0, color="C3", lw=0.8)
+    axes[1].set_ylabel("N·m" if osc else "contact force (N)")
+    axes[1].legend(loc="best", fontsize=8)
+    for ax in axes:
+        for b in core.starts():
+            ax.axvline(math.degrees(b), color="0.6", lw=0.8, ls=":")
         ax.grid(True, lw=0.3)
     axes[-1].set_xlabel("cam angle θ (deg)")
     axes[-1].set_xlim(0.0, 360.0)

@@ -7,10 +7,13 @@ Exit status: 0 every limit holds; 1 a limit fails; 2 bad input.
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import sys
 from pathlib import Path
+
+import numpy as np
 
 from camlink._core import ModelError
 from camlink.cam import design as cam_design
@@ -43,6 +46,12 @@ def add_parser(sub: argparse._SubParsersAction[argparse.ArgumentParser]) -> None
         "--no-files", action="store_true", help="write no pictures or exports"
     )
     p.add_argument(
+        "--units",
+        metavar="LENGTH,ANGLE",
+        help="units of the report, pictures and exports: 'mm,deg' or 'm,deg' (default: "
+        "[export] units of the design file, else m; angles are always in degrees)",
+    )
+    p.add_argument(
         "--force",
         action="store_true",
         help="replace existing files of the default names (<design>.csv, …); files named in "
@@ -61,6 +70,8 @@ def _targets(design: cam_design.Design, out: Path, force: bool) -> dict[str, Pat
         "csv": ex.csv,
         "dxf": ex.dxf,
         "svg": ex.svg,
+        "svaj_time_plot": ex.svaj_time,
+        "vibration_plot": ex.vibration,
     }
     targets: dict[str, Path] = {}
     existing: list[str] = []
@@ -100,7 +111,30 @@ def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> l
         with replacing(path) as temp:
             if key == "svaj_plot":
                 fig = cam_plots.svaj(
-                    core, oscillating=design.oscillating, title=f"{design.name}: SVAJ"
+                    core,
+                    oscillating=design.oscillating,
+                    title=f"{design.name}: SVAJ",
+                    units=ex.units,
+                )
+                cam_plots.save(fig, temp)
+            elif key == "svaj_time_plot":
+                assert design.dynamics is not None
+                fig = cam_plots.svaj_time(
+                    core,
+                    design.dynamics.speed,
+                    oscillating=design.oscillating,
+                    title=f"{design.name}: SVAJ at {design.dynamics.speed / cam_design.RPM:g} rpm",
+                    units=ex.units,
+                )
+                cam_plots.save(fig, temp)
+            elif key == "vibration_plot":
+                fig = cam_plots.vibration(
+                    core,
+                    design,
+                    title=f"{design.name}: follower train at "
+                    f"{design.dynamics.speed / cam_design.RPM:g} rpm"
+                    if design.dynamics
+                    else design.name,
                 )
                 cam_plots.save(fig, temp)
             elif key == "profile_plot":
@@ -118,13 +152,31 @@ def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> l
                     if ex.csv_chord is not None
                     else cam_export.angles_by_step(ex.csv_step)
                 )
-                cam_export.write_csv(core, temp, th, ex.tool_radius)
+                cam_export.write_csv(core, temp, th, ex.tool_radius, ex.units)
             elif key == "dxf":
-                cam_export.write_dxf(core, temp, ex.tolerance, ex.dxf_mode, ex.tool_radius)
+                cam_export.write_dxf(
+                    core, temp, ex.tolerance, ex.dxf_mode, ex.tool_radius, ex.units, _hub(design)
+                )
             else:
-                cam_export.write_svg(core, temp, ex.tolerance, ex.tool_radius)
+                cam_export.write_svg(core, temp, ex.tolerance, ex.tool_radius, _hub(design))
         written.append(str(path))
     return written
+
+
+def _hub(design: cam_design.Design) -> cam_export.Hub | None:
+    """The bore, keyway and timing mark of `design`, or None."""
+    ex = design.export
+    if ex.bore_radius is None:
+        return None
+    p = design.core().surface(np.zeros(1))[0]
+    mark = math.atan2(float(p[1]), float(p[0]))
+    return cam_export.Hub(
+        ex.bore_radius,
+        ex.keyway_width,
+        ex.keyway_depth,
+        mark + ex.keyway_angle,
+        mark if ex.timing_mark else None,
+    )
 
 
 def _clean(v: object) -> object:
@@ -138,10 +190,62 @@ def _clean(v: object) -> object:
     return v
 
 
+def _run_timing(args: argparse.Namespace) -> int:
+    """`camlink cam TIMING.toml`: clearances, the timing diagram and the
+    servo cam tables."""
+    from dataclasses import asdict
+
+    from camlink.cam import timing as cam_timing
+
+    try:
+        timing = cam_timing.load(args.design)
+        if args.units is not None:
+            timing = dataclasses.replace(timing, units=_units(args.units))
+        report = cam_timing.clearances(timing)
+        files = [] if args.no_files else cam_timing.write(timing, Path(args.out), report)
+    except cam_design.CamDesignError as e:
+        print(f"camlink: error: {e}", file=sys.stderr)
+        return EXIT_INPUT
+    ok = all(c.ok for c in report)
+    if args.json:
+        d = {
+            "ok": ok,
+            "name": timing.name,
+            "axes": [a.name for a in timing.axes],
+            "clearances": [asdict(c) for c in report],
+            "files": files,
+        }
+        print(json.dumps(_clean(d), indent=2))
+    else:
+        print(cam_timing.format_report(timing, report, files))
+    return EXIT_OK if ok else EXIT_FAIL
+
+
+def _units(text: str) -> str:
+    """The length unit of ``--units LENGTH,ANGLE``."""
+    parts = [x.strip() for x in text.split(",")]
+    if len(parts) == 1:
+        parts.append("deg")
+    if len(parts) != 2 or parts[0] not in ("m", "mm") or parts[1] != "deg":
+        raise cam_design.CamDesignError(
+            f"--units {text}: give a length unit (m or mm) and deg, e.g. --units mm,deg"
+        )
+    return parts[0]
+
+
 def run(args: argparse.Namespace) -> int:
     """Runs `camlink cam`."""
+    from camlink.cam import timing as cam_timing
+
+    if cam_timing.is_timing(args.design):
+        return _run_timing(args)
     try:
         design = cam_design.load(args.design)
+        if args.units is not None:
+            units = _units(args.units)
+            design = dataclasses.replace(
+                design, export=dataclasses.replace(design.export, units=units)
+            )
         report = cam_design.analyse(design)
         if not args.no_files:
             files = _write_files(design, Path(args.out), args.force)
@@ -149,6 +253,7 @@ def run(args: argparse.Namespace) -> int:
     except cam_design.CamDesignError as e:
         print(f"camlink: error: {e}", file=sys.stderr)
         return EXIT_INPUT
+    report = cam_design.in_units(report, design.export.units)
     if args.json:
         print(json.dumps(_clean(report.to_dict()), indent=2))
     else:

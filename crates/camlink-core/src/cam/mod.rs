@@ -3,7 +3,10 @@
 //! - [`motion`]: the follower motion over one revolution as segments of
 //!   standard laws ([`law`]), checked for closure and continuity;
 //! - [`synthesis`]: the cam surface (and a roller's pitch curve) for four
-//!   follower types, exact to the third derivative.
+//!   follower types, exact to the third derivative;
+//! - [`hertz`], [`spring`]: contact stress, bearing life and helical
+//!   springs (formulas only);
+//! - [`vibration`]: the follower train as lumped masses driven by the cam.
 //!
 //! The design limits over a turn (pressure angle, radius of curvature,
 //! undercut, face width, base circle sizing, contact force and jump speed)
@@ -12,10 +15,13 @@
 //! This module reads only [`crate::math`]; the curves use it to turn a
 //! synthesised cam into a profile ([`crate::curve::Parametric::Cam`]).
 
+pub mod hertz;
 pub mod law;
 pub mod motion;
+pub mod spring;
 pub mod synthesis;
 pub mod taylor;
+pub mod vibration;
 
 pub use law::LawKind;
 pub use motion::{Boundary, Factors, MotionError, Program, SegmentSpec};

@@ -1,0 +1,464 @@
+"""Sizing a cam's follower train: Hertz contact stress and bearing life,
+camshaft torque, the helical return spring and the follower train's
+vibration, read from the ``[contact]``, ``[spring]`` and ``[vibration]``
+tables of a cam design file and checked as limits of the cam report.
+
+The formulas are in the Rust core (``camlink._core``: ``CamCore.stress``,
+``CamCore.vibration``, ``helical_spring``, ``line_contact``,
+``cam_materials``); this module reads the file and presents them. See
+docs/cam-design.md, *Contact stress*, *Springs* and *Follower vibration*.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from camlink._core import CamCore, cam_materials, contact_modulus, helical_spring
+
+#: Largest length (m) in a design file (as `cam_design.MAX_LENGTH`).
+MAX_LENGTH = 1e3
+
+if TYPE_CHECKING:
+    from camlink.cam.design import Check, Design, _Table
+
+#: Materials by name: (E Pa, ν, G Pa, density kg/m³), Shigley's
+#: *Mechanical Engineering Design*, 10th ed., Table A-5 (in the core).
+MATERIALS: dict[str, tuple[float, float, float, float]] = {
+    n: (e, nu, g, rho) for n, e, nu, g, rho in cam_materials()
+}
+
+#: Life exponent of a bearing type (ISO 281).
+LIFE_EXPONENT = {"ball": 3.0, "roller": 10.0 / 3.0}
+
+#: Default least ratio of spring surge frequency to the forcing (cam)
+#: frequency: Norton, *Machine Design*, ch. 13 ("at least 13 times").
+SURGE_RATIO = 13.0
+
+RPM = 2.0 * math.pi / 60.0
+
+#: Most integration steps per turn and turns of `[vibration]` (seconds of work).
+MAX_STEPS = 100_000
+MAX_TURNS = 20
+
+
+@dataclass(frozen=True)
+class ContactSpec:
+    width: float
+    """Contact length along the cam axis (m)."""
+    modulus: float
+    """Contact modulus E* (Pa)."""
+    materials: tuple[str, str]
+    rating: float | None
+    """Bearing dynamic rating C (N)."""
+    exponent: float
+    crown: float | None = None
+    """A crowned roller's crown radius (m)."""
+
+
+@dataclass(frozen=True)
+class SpringSpec:
+    wire: float
+    mean_diameter: float
+    active_coils: float
+    total_coils: float
+    free_length: float
+    installed_length: float
+    shear_modulus: float
+    density: float
+    figures: dict[str, float]
+    """rate, preload, solid, shortest, clash_margin, mass, surge, index."""
+
+
+@dataclass(frozen=True)
+class VibrationSpec:
+    masses: tuple[float, ...]
+    stiffness: tuple[float, ...]
+    damping: tuple[float, ...]
+    steps: int
+    turns: int
+    polydyne: bool
+
+
+def _material(t: _Table, key: str) -> tuple[str, float, float, float, float]:
+    """(label, E, ν, G, density) of `key`: a name from `MATERIALS` or a
+    table ``{young_modulus, poisson_ratio[, shear_modulus, density]}``."""
+    from camlink.cam.design import _Table
+
+    t.used.add(key)
+    v = t.data.get(key, "steel")
+    if isinstance(v, str):
+        if v not in MATERIALS:
+            raise t.fail(
+                key,
+                f"'{v}' is not in the materials table ({', '.join(MATERIALS)}); give "
+                "{ young_modulus = …, poisson_ratio = … } (Pa) instead",
+            )
+        return (v, *MATERIALS[v])
+    m = _Table(t.path, f"{t.where}.{key}", v)
+    e = m.number("young_modulus", positive=True)
+    nu = m.number("poisson_ratio")
+    if not 0.0 <= nu < 0.5:
+        raise m.fail("poisson_ratio", f"must be in [0, 0.5), got {nu}")
+    g = m.optional("shear_modulus", positive=True)
+    rho = m.optional("density", positive=True)
+    m.finish()
+    return ("given", e, nu, math.nan if g is None else g, math.nan if rho is None else rho)
+
+
+def complete(design: Design, raw: dict[str, Any], dynamics_given: frozenset[str]) -> Design:
+    """`design` with its ``[contact]``, ``[spring]`` and ``[vibration]``
+    tables read from `raw`; the spring sets the rate and preload of
+    ``[dynamics]``. Raises CamDesignError naming the field."""
+    from camlink.cam.design import CamDesignError, _Table
+
+    p = design.path
+    dyn = design.dynamics
+    contact = spring = vibration = None
+    for key in raw:
+        if dyn is None:
+            raise CamDesignError(f"{p}: [{key}] needs [dynamics] (the follower's mass and speed)")
+    if "contact" in raw:
+        t = _Table(p, "contact", raw["contact"])
+        width = t.length("width", positive=True)
+        cam_m = _material(t, "cam_material")
+        fol_m = _material(t, "follower_material")
+        rating = t.optional("bearing_rating", positive=True, unit=" N")
+        kind = t.text("bearing_type", "ball", tuple(LIFE_EXPONENT))
+        if rating is not None and design.follower.endswith("flat"):
+            raise t.fail("bearing_rating", "a flat-faced follower has no roller bearing")
+        crown = t.optional("crown_radius", positive=True, most=MAX_LENGTH, unit=" m")
+        if crown is not None and design.follower.endswith("flat"):
+            raise t.fail("crown_radius", "a flat-faced follower has no roller to crown")
+        t.finish()
+        contact = ContactSpec(
+            width,
+            contact_modulus(cam_m[1:3], fol_m[1:3]),
+            (cam_m[0], fol_m[0]),
+            rating,
+            LIFE_EXPONENT[kind],
+            crown,
+        )
+    if "spring" in raw:
+        assert dyn is not None
+        t = _Table(p, "spring", raw["spring"])
+        if design.oscillating:
+            raise CamDesignError(
+                f"{p}: [spring]: a helical spring on the stem needs a translating follower; "
+                "give dynamics.spring_rate and preload (per radian) for an oscillating one"
+            )
+        for k in ("spring_rate", "preload"):
+            if k in dynamics_given:
+                raise CamDesignError(
+                    f"{p}: dynamics.{k}: [spring] gives the rate and preload; remove one of them"
+                )
+        nums = {
+            k: t.length(k, positive=True)
+            for k in ("wire_diameter", "mean_diameter", "free_length", "installed_length")
+        }
+        coils = {
+            k: t.number(k, positive=True, most=1e4)
+            for k in ("active_coils", "total_coils")
+        }
+        mat = None
+        if "shear_modulus" in t.data or "density" in t.data:
+            g = t.number("shear_modulus", positive=True)
+            rho = t.number("density", positive=True)
+        else:
+            mat = _material(t, "material")
+            g, rho = mat[3], mat[4]
+            if not (math.isfinite(g) and math.isfinite(rho)):
+                raise t.fail("material", "needs shear_modulus and density for a spring")
+        t.finish()
+        th = np.linspace(0.0, 2.0 * math.pi, 7201)
+        lift = float(np.max(np.asarray(design.core().motion(th))[:, 0]))
+        try:
+            fig = helical_spring(
+                nums["wire_diameter"],
+                nums["mean_diameter"],
+                coils["active_coils"],
+                coils["total_coils"],
+                nums["free_length"],
+                g,
+                rho,
+                nums["installed_length"],
+                lift,
+            )
+        except ValueError as e:
+            field, _, msg = str(e).partition(": ")
+            raise CamDesignError(f"{p}: spring.{field}: {msg}") from None
+        spring = SpringSpec(
+            nums["wire_diameter"],
+            nums["mean_diameter"],
+            coils["active_coils"],
+            coils["total_coils"],
+            nums["free_length"],
+            nums["installed_length"],
+            g,
+            rho,
+            dict(fig),
+        )
+        dyn = replace(dyn, spring_rate=fig["rate"], preload=fig["preload"])
+    if "vibration" in raw:
+        assert dyn is not None
+        t = _Table(p, "vibration", raw["vibration"])
+
+        def numbers(key: str, default: list[float] | None, *, positive: bool) -> list[float]:
+            t.used.add(key)
+            v = t.data.get(key, default)
+            if not (
+                isinstance(v, list)
+                and v
+                and all(
+                    isinstance(x, (int, float))
+                    and not isinstance(x, bool)
+                    and math.isfinite(x)
+                    and (x > 0 if positive else x >= 0)
+                    for x in v
+                )
+            ):
+                what = "positive" if positive else "zero or positive"
+                raise t.fail(key, f"must be a list of {what} numbers, got {v!r}")
+            return [float(x) for x in v]
+
+        masses = numbers("masses", [dyn.mass], positive=True)
+        stiffness = numbers("stiffness", None, positive=True)
+        damping = numbers("damping", [0.0] * len(masses), positive=False)
+        for key, v in (("stiffness", stiffness), ("damping", damping)):
+            if len(v) != len(masses):
+                raise t.fail(
+                    key, f"gives {len(v)} values for {len(masses)} masses; one per mass"
+                )
+        steps = int(t.number("steps_per_turn", 7200, positive=True, most=MAX_STEPS))
+        turns = int(t.number("turns", 3, positive=True, most=MAX_TURNS))
+        t.used.add("polydyne")
+        poly = t.data.get("polydyne", False)
+        if not isinstance(poly, bool):
+            raise t.fail("polydyne", f"must be true or false, got {poly!r}")
+        if poly and len(masses) != 1:
+            raise t.fail("polydyne", f"takes a one-mass train, got {len(masses)} masses")
+        t.finish()
+        vibration = VibrationSpec(
+            tuple(masses), tuple(stiffness), tuple(damping), steps, turns, poly
+        )
+    return replace(design, dynamics=dyn, contact=contact, spring=spring, vibration=vibration)
+
+
+def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
+    """The limits of contact stress, bearing life, spring and vibration,
+    and the figures behind them (SI) for the report."""
+    from camlink.cam.design import Check
+
+    out: list[Check] = []
+    info: dict[str, Any] = {}
+    d = design.dynamics
+    lim = design.limits
+    if d is None:
+        return out, info
+    deg = math.degrees
+    rpm = d.speed / RPM
+    top = (d.redline or d.speed) / RPM
+    c = design.contact
+    if c is not None:
+        s = core.stress(
+            d.mass,
+            d.spring_rate,
+            d.preload,
+            d.damping,
+            d.speed,
+            c.width,
+            c.modulus,
+            c.rating,
+            c.exponent,
+            c.crown,
+        )
+        p, at = s["max_pressure"]
+        limit = lim.max_contact_stress
+        margin = None if limit is None else (limit - p) / 1e6
+        out.append(
+            Check(
+                f"Hertz contact stress at {rpm:.6g} rpm",
+                p / 1e6,
+                None if limit is None else limit / 1e6,
+                margin,
+                "MPa",
+                deg(at),
+                margin is None or margin >= 0,
+                (
+                    f"contact half-width {s['half_width_at_max'] * 1e3:.4g} mm over "
+                    f"{c.width * 1e3:.4g} mm"
+                    if c.crown is None
+                    else f"crowned roller (crown radius {c.crown * 1e3:.4g} mm): contact "
+                    f"ellipse semi-axis {s['half_width_at_max'] * 1e3:.4g} mm along the profile"
+                )
+                + f", {c.materials[0]} on {c.materials[1]}",
+            )
+        )
+        tq, tat = s["peak_torque"]
+        out.append(
+            Check(
+                f"camshaft torque at {rpm:.6g} rpm",
+                tq,
+                None,
+                None,
+                "N·m",
+                deg(tat),
+                True,
+                f"RMS {s['rms_torque']:.6g} N·m",
+            )
+        )
+        info["contact"] = {
+            "max_pressure": p,
+            "max_pressure_at_deg": deg(at),
+            "half_width": s["half_width_at_max"],
+            "modulus": c.modulus,
+            "peak_torque": tq,
+            "peak_torque_at_deg": deg(tat),
+            "rms_torque": s["rms_torque"],
+        }
+        b = s["bearing"]
+        if b is not None:
+            hours = b["l10_turns"] / (rpm * 60.0)
+            limit = lim.min_bearing_life_hours
+            margin = None if limit is None else hours - limit
+            out.append(
+                Check(
+                    f"roller bearing L10 life at {rpm:.6g} rpm",
+                    hours,
+                    limit,
+                    margin,
+                    "h",
+                    None,
+                    margin is None or margin >= 0,
+                    f"equivalent load {b['equivalent_load']:.6g} N, "
+                    f"{b['l10_revolutions'] / 1e6:.6g} million roller revolutions, "
+                    f"{b['roller_turns']:.4g} roller turns per cam turn",
+                )
+            )
+            info["bearing"] = {**b, "l10_hours": hours}
+    sp = design.spring
+    if sp is not None:
+        f = sp.figures
+        limit = lim.min_coil_clearance
+        margin = f["clash_margin"] - (limit or 0.0)
+        out.append(
+            Check(
+                "spring coil-clash margin at the largest lift",
+                f["clash_margin"],
+                limit if limit is not None else 0.0,
+                margin,
+                "m",
+                None,
+                margin >= 0,
+                f"shortest {f['shortest'] * 1e3:.6g} mm, solid height {f['solid'] * 1e3:.6g} mm",
+            )
+        )
+        ratio = f["surge"] / (top / 60.0)
+        need = lim.min_surge_ratio
+        out.append(
+            Check(
+                f"spring surge / forcing frequency at {top:.6g} rpm",
+                ratio,
+                need,
+                ratio - need,
+                "",
+                None,
+                ratio >= need,
+                f"surge {f['surge']:.6g} Hz, rate {f['rate']:.6g} N/m, preload "
+                f"{f['preload']:.6g} N, active mass {f['mass']:.4g} kg, index {f['index']:.3g}",
+            )
+        )
+        info["spring"] = {**f, "surge_ratio": ratio}
+    v = design.vibration
+    if v is not None:
+        r = core.vibration(
+            list(v.masses),
+            list(v.stiffness),
+            list(v.damping),
+            d.spring_rate,
+            d.preload,
+            d.speed,
+            v.steps,
+            v.turns,
+            False,
+        )
+        th = np.asarray(r["theta"])
+        contact = np.asarray(r["contact"])
+        k = int(np.argmin(contact))
+        out.append(
+            Check(
+                f"least dynamic contact force at {rpm:.6g} rpm ({len(v.masses)}-mass train)",
+                float(contact[k]),
+                0.0,
+                float(contact[k]),
+                "N",
+                deg(float(th[k])),
+                bool(contact[k] > 0),
+            )
+        )
+        limit = lim.max_residual_vibration
+        lunit = "rad" if design.oscillating else "m"
+        residual = []
+        for seg, amp, at in r["residual"]:
+            margin = None if limit is None else limit - amp
+            out.append(
+                Check(
+                    f"residual vibration after segment {seg}",
+                    amp,
+                    limit,
+                    margin,
+                    lunit,
+                    deg(at),
+                    margin is None or margin >= 0,
+                )
+            )
+            residual.append({"segment": seg, "amplitude": amp, "at_deg": deg(at)})
+        dev = np.asarray(r["deviation"])
+        info["vibration"] = {
+            "max_deviation": float(np.max(np.abs(dev))),
+            "residual": residual,
+            "min_contact": float(contact[k]),
+        }
+        if v.polydyne:
+            q = core.vibration(
+                list(v.masses),
+                list(v.stiffness),
+                list(v.damping),
+                d.spring_rate,
+                d.preload,
+                d.speed,
+                v.steps,
+                v.turns,
+                True,
+            )
+            x = np.asarray(q["position"])[-1]
+            ks, k1 = d.spring_rate, v.stiffness[0]
+            s_prog = np.asarray(core.motion(np.asarray(q["theta"]) % (2 * math.pi)))[:, 0]
+            err = float(np.max(np.abs(x + d.preload / (k1 + ks) - s_prog)))
+            y = np.asarray(q["input"])
+            correction = float(np.max(np.abs(y - s_prog)))
+            info["vibration"]["polydyne"] = {
+                "max_departure": err,
+                "max_correction": correction,
+            }
+            out.append(
+                Check(
+                    f"polydyne program at {rpm:.6g} rpm: follower's departure from s",
+                    err,
+                    None,
+                    None,
+                    lunit,
+                    None,
+                    True,
+                    "cam displacement corrected by up to "
+                    + (
+                        f"{correction:.4g} rad"
+                        if design.oscillating
+                        else f"{correction * 1e3:.4g} mm"
+                    ),
+                )
+            )
+    return out, info
