@@ -95,3 +95,15 @@ fn issue31_two_positions_bad_input_named() {
         "{e}"
     );
 }
+
+/// The fields of these kinds are refused in the other kinds' problems.
+#[test]
+fn issue31_guidance_fields_refused_elsewhere() {
+    let three = std::fs::read_to_string(examples().join("synthesis_three_positions.toml")).unwrap();
+    let text = three.replace("turning =", "along = [0.1, 0.2]\nturning =");
+    let e = solve_str(&text, "p.toml", "p").unwrap_err().to_string();
+    assert!(
+        e.contains("synthesis.along: not a field of a motion problem"),
+        "{e}"
+    );
+}

@@ -465,7 +465,9 @@ fn slider_links_json(l: &SliderCrank) -> Value {
     json!({
         "crank": l.crank.abs(),
         "coupler": l.coupler,
-        "offset": l.offset(),
+        // The slide's signed distance from O₂ along its left normal (m): e
+        // for the slide y = e of function generation.
+        "offset": -l.offset(),
         "O2": l.o2,
         "slide": { "point": l.line, "angle": l.dir },
     })
