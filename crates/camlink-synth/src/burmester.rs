@@ -40,7 +40,10 @@
 //! refined by bisection to the last bit and kept only when its dyad
 //! satisfies all five circle conditions to 1e-9 relative. A root where
 //! (W, Z) go to infinity (a sign change through a pole of g) fails that
-//! test and is dropped.
+//! test and is dropped. Two roots within one step are bracketed by a
+//! golden-section search for the extreme of g between the neighbours of a
+//! local minimum of |g|; a sample where (W, Z) are not determined is
+//! replaced by two a hair to either side.
 
 use std::f64::consts::{PI, TAU};
 
@@ -393,18 +396,47 @@ impl Equations {
             let steps = (((hi - lo) / TAU) * n as f64).ceil().max(1.0) as usize;
             for s in [1.0, -1.0] {
                 let at = |k: usize| lo + (hi - lo) * k as f64 / steps as f64;
-                let mut prev: Option<(f64, f64)> = None;
+                // A sample where (W, Z) are not determined (the link's
+                // rotations all 0 or all α_j) is replaced by two a hair to
+                // either side, so that a root next to it keeps its bracket.
+                let hair = 1e-7 * (hi - lo) / steps as f64;
+                let mut samples: Vec<(f64, Option<f64>)> = Vec::with_capacity(steps + 3);
                 for k in 0..=steps {
                     let b = at(k);
-                    let g = self.fifth(b, s);
-                    if let (Some((b0, g0)), Some(g1)) = (prev, g) {
-                        if g1 == 0.0 || g0.signum() != g1.signum() {
-                            if let Some(d) = self.refine(b0, g0, b, s) {
-                                found.push(d);
+                    match self.fifth(b, s) {
+                        Some(g) => samples.push((b, Some(g))),
+                        None => {
+                            for x in [b - hair, b + hair] {
+                                if (lo..=hi).contains(&x) {
+                                    samples.push((x, self.fifth(x, s)));
+                                }
                             }
                         }
                     }
-                    prev = g.map(|g| (b, g));
+                }
+                for w in samples.windows(2) {
+                    if let [(b0, Some(g0)), (b1, Some(g1))] = *w {
+                        if g1 == 0.0 || g0.signum() != g1.signum() {
+                            found.extend(self.refine(b0, g0, b1, s));
+                        }
+                    }
+                }
+                // Two roots within one step leave no sign change at the
+                // samples: where |g| has a local minimum without one, the
+                // extreme of g between the neighbours (golden section) is
+                // looked at, and a sign change there brackets both roots.
+                for w in samples.windows(3) {
+                    if let [(b0, Some(g0)), (_, Some(g1)), (b2, Some(g2))] = *w {
+                        let same = g0.signum() == g1.signum() && g1.signum() == g2.signum();
+                        if same && g1 != 0.0 && g1.abs() < g0.abs() && g1.abs() <= g2.abs() {
+                            if let Some((m, gm)) = self.golden(b0, b2, s, g1.signum()) {
+                                if gm.signum() != g1.signum() {
+                                    found.extend(self.refine(b0, g0, m, s));
+                                    found.extend(self.refine(m, gm, b2, s));
+                                }
+                            }
+                        }
+                    }
                 }
             }
         }
@@ -421,6 +453,30 @@ impl Equations {
         }
         out.sort_by(|p, q| p.beta2.total_cmp(&q.beta2));
         out
+    }
+
+    /// The minimum of `sign`·g on [a, b] by golden-section search (60
+    /// steps): (β₂, g) there; `None` where g is not defined.
+    fn golden(&self, mut a: f64, mut b: f64, s: f64, sign: f64) -> Option<(f64, f64)> {
+        let r = 0.5 * (5f64.sqrt() - 1.0);
+        let f = |x: f64| self.fifth(x, s).map(|g| sign * g);
+        let (mut c, mut d) = (b - r * (b - a), a + r * (b - a));
+        let (mut fc, mut fd) = (f(c)?, f(d)?);
+        for _ in 0..60 {
+            if fc < fd {
+                b = d;
+                (d, fd) = (c, fc);
+                c = b - r * (b - a);
+                fc = f(c)?;
+            } else {
+                a = c;
+                (c, fc) = (d, fd);
+                d = a + r * (b - a);
+                fd = f(d)?;
+            }
+        }
+        let m = 0.5 * (a + b);
+        Some((m, sign * f(m)?))
     }
 
     /// Bisection of g on [b0, b1] (g(b0) = g0, signs differ) to the last
