@@ -483,3 +483,59 @@ poses = [[0, 0, 0], [0.1, 0.05, 0.3], [0.18, 0.02, 0.7]]
 "#;
     assert!(err(three).contains("3 poses given; a burmester problem takes 4 to 5"));
 }
+
+/// Four-pose problems from random crank-rockers (random links, coupler
+/// line and crank angles): every solution written (defect-free, μ ≥ 15°)
+/// passes its poses in camlink's kinematics.
+#[test]
+fn issue31_burmester_four_varied_problems_pass_their_poses() {
+    let mut rng = crate::slider_crank::Rng(0x9e37_79b9_7f4a_7c15);
+    let (mut checked, mut problems) = (0, 0);
+    for _ in 0..60 {
+        let l = FourBar {
+            o2: [rng.range(-0.1, 0.1), rng.range(-0.1, 0.1)],
+            o4: [rng.range(0.3, 0.5), rng.range(-0.1, 0.1)],
+            crank: rng.range(0.05, 0.12),
+            coupler: rng.range(0.3, 0.5),
+            rocker: rng.range(0.2, 0.4),
+        };
+        if !l.grashof().crank_turns_fully() {
+            continue;
+        }
+        let (px, py, off) = (
+            rng.range(-0.2, 0.2),
+            rng.range(-0.2, 0.2),
+            rng.range(-1.0, 1.0),
+        );
+        let mut phi = rng.range(-3.0, 3.0);
+        let mut poses = Vec::new();
+        for _ in 0..4 {
+            let p = l.position(phi, 1.0).unwrap();
+            let th = (p.b[1] - p.a[1]).atan2(p.b[0] - p.a[0]) + off;
+            let (s, c) = th.sin_cos();
+            poses.push(format!(
+                "[{:?}, {:?}, {:?}]",
+                p.a[0] + c * px - s * py,
+                p.a[1] + s * px + c * py,
+                th
+            ));
+            phi += rng.range(0.4, 1.2);
+        }
+        let text = format!(
+            "[synthesis]\ntype = \"burmester\"\nposes = [{}]\ndyads = 24\nkeep = 2\nmin_transmission = \"deg(15)\"\n",
+            poses.join(", ")
+        );
+        let Ok(out) = solve_str(&text, "case.toml", "case") else {
+            continue;
+        };
+        problems += 1;
+        for s in &out.solutions {
+            assert_passes_poses(s);
+            checked += 1;
+        }
+    }
+    assert!(
+        checked >= 30,
+        "only {checked} solutions of {problems} problems checked"
+    );
+}

@@ -168,3 +168,57 @@ fn issue31_slider_bad_input_named() {
         "{e}"
     );
 }
+
+/// A small deterministic generator (xorshift) for varied problems.
+pub(crate) struct Rng(pub u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    pub(crate) fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+/// Random three-pose problems with a random crank pivot and slide
+/// direction: every defect-free slider-crank passes its poses in camlink's
+/// kinematics (μ ≥ 10°, away from the dead positions where the solver's
+/// first steps may change branch).
+#[test]
+fn issue31_slider_motion_varied_problems_pass_their_poses() {
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut checked = 0;
+    for _ in 0..300 {
+        let poses: Vec<String> = (0..3)
+            .map(|_| {
+                format!(
+                    "[{:?}, {:?}, {:?}]",
+                    rng.range(-0.2, 0.2),
+                    rng.range(-0.2, 0.2),
+                    rng.range(-1.0, 1.0)
+                )
+            })
+            .collect();
+        let text = format!(
+            "[synthesis]\ntype = \"slider_motion\"\nposes = [{}]\ncrank = {{ moving = [{:?}, {:?}] }}\nslider = {{ angle = {:?} }}\nmin_transmission = \"deg(10)\"\n",
+            poses.join(", "),
+            rng.range(-0.3, 0.3),
+            rng.range(-0.3, 0.3),
+            rng.range(-3.0, 3.0)
+        );
+        let Ok(out) = solve_str(&text, "case.toml", "case") else {
+            continue;
+        };
+        let s = &out.solutions[0];
+        if !s.report["checks"]["defects"].as_array().unwrap().is_empty() {
+            continue;
+        }
+        assert_passes_poses(s);
+        checked += 1;
+    }
+    assert!(checked >= 20, "only {checked} defect-free cases checked");
+}
