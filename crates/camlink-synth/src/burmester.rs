@@ -543,8 +543,10 @@ pub struct Candidate {
     pub link_ratio: f64,
 }
 
-/// Why pairs of dyads were not kept: how many pairs each check removed
-/// (a pair may fail several), and of how many.
+/// Why pairs of dyads were not kept: how many pairs each check removed,
+/// and of how many. The checks run in the order same pivot, region, link
+/// ratio, branch, then the rest of [`Checks`]; a pair is counted under the
+/// first of those four it fails, or under every other check it fails.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tally {
     pub pairs: usize,
@@ -623,6 +625,18 @@ pub fn pair(
             }
             let pins: Vec<P2> = poses.iter().map(|p| p.place(di.moving)).collect();
             let rockers: Vec<P2> = poses.iter().map(|p| p.place(dj.moving)).collect();
+            // The branch first, cheaply: most pairs fail it, and those are
+            // counted under it alone.
+            let sigma = linkage.branch(pins[0], rockers[0]);
+            if sigma == 0.0
+                || pins
+                    .iter()
+                    .zip(&rockers)
+                    .any(|(&a, &b)| linkage.branch(a, b) != sigma)
+            {
+                tally.count("branch");
+                continue;
+            }
             let checks = Checks::of(&linkage, &pins, &rockers, req, None);
             if !checks.defects.is_empty() {
                 for d in &checks.defects {
