@@ -54,6 +54,15 @@ def check_points(model: camlink.Model, report: dict) -> None:
         assert abs(wrap(res["rocker.phi"][k] - psi)) < TOL
 
 
+def check_slider_points(model: camlink.Model, report: dict) -> None:
+    """The slider is at s_j when the crank is at φ_j."""
+    times, res = run_at(model, list(report["point_times"]))
+    for (phi, s), t in zip(report["pairs"], report["point_times"], strict=True):
+        k = int(np.searchsorted(times, t))
+        assert abs(res["crank.phi"][k] - phi) < TOL
+        assert abs(res["slider.x"][k] - s) < TOL
+
+
 def test_cli_three_positions_writes_a_model_that_passes_the_poses(tmp_path: Path, capsys) -> None:
     assert main(["synth", str(THREE), "-o", str(tmp_path / "out")]) == 0
     text = capsys.readouterr().out
@@ -137,8 +146,10 @@ def test_every_synthesis_example_passes(path: Path, tmp_path: Path) -> None:
     for s, p in zip(result.solutions, synth.write(result, tmp_path), strict=True):
         assert s.defects == ()
         model = camlink.load(p)
-        if result.kind == "motion":
+        if "poses" in s.report:
             check_poses(model, dict(s.report))
+        elif "pairs" in s.report:
+            check_slider_points(model, dict(s.report))
         else:
             check_points(model, dict(s.report))
 

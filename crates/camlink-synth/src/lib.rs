@@ -6,6 +6,13 @@
 //!   closed form, the moving or the ground pivots chosen by the user;
 //! - [`function`]: function generation with Freudenstein's equation,
 //!   through three precision points or in the least-squares sense;
+//! - [`two_positions`]: two-position motion generation, closed form, the
+//!   pivots on the perpendicular bisectors at the user's distances;
+//! - [`burmester`]: four- and five-pose motion generation (centre-point
+//!   and circle-point curves, Burmester points), dyads paired into
+//!   four-bars, checked and ranked;
+//! - [`slider_crank`]: slider-cranks, motion generation through two or
+//!   three poses and function generation (crank angle to slider position);
 //!
 //! and what they share: [`fourbar`] (the linkage, its closed-form position
 //! analysis and the checks of every candidate: Grashof class, transmission
@@ -13,12 +20,15 @@
 //! solution is written as) and [`problem`] (problem files and reports).
 //! Lengths in m, angles in rad, counter-clockwise from +x.
 
+pub mod burmester;
 pub mod error;
 pub mod fourbar;
 pub mod function;
 pub mod model_file;
 pub mod motion;
 pub mod problem;
+pub mod slider_crank;
+pub mod two_positions;
 
 pub use error::{ErrorKind, SynthError};
 pub use problem::{solve_path, solve_str, Outcome, Solution};

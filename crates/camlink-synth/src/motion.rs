@@ -132,7 +132,7 @@ fn out_of_range(field: &str) -> SynthError {
 }
 
 /// Solves one dyad: (moving pivot in the coupler frame, ground pivot).
-fn dyad(
+pub(crate) fn dyad(
     poses: &[Pose; 3],
     pivot: Pivot,
     name: &str,

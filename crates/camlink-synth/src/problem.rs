@@ -36,6 +36,9 @@ use crate::function::{self, chebyshev, Fit, FunctionSolution, FunctionSpec};
 use crate::model_file::{coupler_along, model_toml, pose_times, ModelSpec};
 use crate::motion::{self, coupler_pose, MotionSolution, Pivot, Pose};
 
+// Two-position, Burmester and slider-crank problems.
+mod guidance;
+
 /// Largest problem file read (bytes).
 pub const MAX_FILE_SIZE: u64 = 1024 * 1024;
 /// Default number of least-squares points.
@@ -72,6 +75,14 @@ struct Table {
     samples: Option<usize>,
     min_transmission: Option<Num>,
     full_turn: Option<bool>,
+    // Two-position, Burmester and slider-crank problems (problem/guidance.rs).
+    along: Option<Vec<Num>>,
+    keep: Option<usize>,
+    dyads: Option<usize>,
+    curve_samples: Option<usize>,
+    region: Option<Vec<Num>>,
+    max_link_ratio: Option<Num>,
+    slider: Option<guidance::SliderTable>,
 }
 
 #[derive(Deserialize)]
@@ -173,12 +184,20 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
         })?,
     };
     let to_load = |e: SynthError| located(e.field, e.message);
+    // Two-position, Burmester and slider-crank problems (problem/guidance.rs).
+    if let Some(out) = guidance::solve(&t, &name) {
+        return out.map_err(to_load);
+    }
+    guidance::refuse_fields(&t).map_err(to_load)?;
     match t.kind.as_str() {
         "motion" => solve_motion(&t, &name).map_err(to_load),
         "function" => solve_function(&t, &name).map_err(to_load),
         other => Err(located(
             Some("synthesis.type".into()),
-            format!("unknown synthesis type '{other}'; expected \"motion\" or \"function\""),
+            format!(
+                "unknown synthesis type '{other}'; expected \"motion\", \"function\", \
+                 \"two_positions\", \"burmester\", \"slider_motion\" or \"slider_function\""
+            ),
         )),
     }
 }

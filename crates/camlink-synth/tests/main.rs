@@ -2,5 +2,8 @@
 //! (one link instead of one per file). camlink-core's `test_layout` checks
 //! that every file in `tests/` is listed here or built on its own.
 
+mod burmester;
 mod problem_files;
+mod slider_crank;
+mod two_positions;
 mod verify;

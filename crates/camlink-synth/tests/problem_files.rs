@@ -193,8 +193,11 @@ fn missing_ground_named() {
 
 #[test]
 fn unknown_type_named() {
-    let e = err("[synthesis]\ntype = \"burmester\"\n");
-    assert_eq!(e, "p.toml:2:8: synthesis.type: unknown synthesis type 'burmester'; expected \"motion\" or \"function\"");
+    let e = err("[synthesis]\ntype = \"gears\"\n");
+    assert!(
+        e.starts_with("p.toml:2:8: synthesis.type: unknown synthesis type 'gears'; expected \"motion\", \"function\""),
+        "{e}"
+    );
 }
 
 #[test]

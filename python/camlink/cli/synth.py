@@ -16,8 +16,9 @@ def add_parser(
     p = sub.add_parser(
         "synth",
         help="synthesise a four-bar from poses or a function and write it as a model file",
-        description="Solve the [synthesis] problem of PROBLEM (three-position motion generation, "
-        "or function generation by Freudenstein's equation), check every solution (Grashof class, "
+        description="Solve the [synthesis] problem of PROBLEM (motion generation through two or "
+        "three poses, four or five by Burmester theory, slider-cranks, or function generation by "
+        "Freudenstein's equation), check every solution (Grashof class, "
         "transmission angle, branch, order) and write each as DIR/<name>.toml, a model that "
         "`camlink run` runs. The report goes to standard output.",
     )

@@ -44,14 +44,17 @@ class Defect:
 
 @dataclass(frozen=True)
 class Links:
-    """Link lengths (m) and ground pivots (m, global frame)."""
+    """Link lengths (m) and ground pivots (m, global frame). A slider-crank
+    has no ground link, rocker or O4 (None); its slide is in the report's
+    ``links.slide`` and its offset (m) in `offset`."""
 
-    ground: float
+    ground: float | None
     crank: float
     coupler: float
-    rocker: float
+    rocker: float | None
     o2: tuple[float, float]
-    o4: tuple[float, float]
+    o4: tuple[float, float] | None
+    offset: float | None = None
 
 
 @dataclass(frozen=True)
@@ -80,7 +83,9 @@ class Solution:
 
 @dataclass(frozen=True)
 class Synthesis:
-    """What a problem gave: its kind (``motion``, ``function``) and solutions."""
+    """What a problem gave: its kind (``motion``, ``function``,
+    ``two_positions``, ``burmester``, ``slider_motion``,
+    ``slider_function``) and solutions."""
 
     kind: str
     solutions: tuple[Solution, ...]
@@ -101,12 +106,13 @@ def _solution(name: str, model_text: str, report_json: str) -> Solution:
         name=name,
         method=r["method"],
         links=Links(
-            ground=links["ground"],
+            ground=links.get("ground"),
             crank=links["crank"],
             coupler=links["coupler"],
-            rocker=links["rocker"],
+            rocker=links.get("rocker"),
             o2=(links["O2"][0], links["O2"][1]),
-            o4=(links["O4"][0], links["O4"][1]),
+            o4=(links["O4"][0], links["O4"][1]) if "O4" in links else None,
+            offset=links.get("offset"),
         ),
         grashof=checks["grashof"],
         turning=checks["turning"],
@@ -183,15 +189,35 @@ def report_text(result: Synthesis) -> str:
     lines: list[str] = []
     for s in result.solutions:
         r, links = s.report, s.links
-        lines.append(f"{s.name}: {s.method.replace('_', ' ')} four-bar, {s.grashof}")
-        lines.append(
-            f"  links (m)     ground {links.ground:.6g}  crank {links.crank:.6g}  "
-            f"coupler {links.coupler:.6g}  rocker {links.rocker:.6g}"
-        )
-        lines.append(
-            f"  pivots (m)    O2 ({links.o2[0]:.6g}, {links.o2[1]:.6g})  "
-            f"O4 ({links.o4[0]:.6g}, {links.o4[1]:.6g})"
-        )
+        if links.rocker is None or links.ground is None or links.o4 is None:
+            slide = r["links"]["slide"]
+            lines.append(f"{s.name}: {s.method.replace('_', ' ')}, {s.grashof}")
+            lines.append(
+                f"  links (m)     crank {links.crank:.6g}  coupler {links.coupler:.6g}  "
+                f"offset {links.offset:.6g}"
+            )
+            lines.append(
+                f"  pivot (m)     O2 ({links.o2[0]:.6g}, {links.o2[1]:.6g})  slide through "
+                f"({slide['point'][0]:.6g}, {slide['point'][1]:.6g}) at {_deg(slide['angle'])}"
+            )
+        else:
+            four_bar = "" if s.method.startswith("burmester") else " four-bar"
+            lines.append(f"{s.name}: {s.method.replace('_', ' ')}{four_bar}, {s.grashof}")
+            lines.append(
+                f"  links (m)     ground {links.ground:.6g}  crank {links.crank:.6g}  "
+                f"coupler {links.coupler:.6g}  rocker {links.rocker:.6g}"
+            )
+            lines.append(
+                f"  pivots (m)    O2 ({links.o2[0]:.6g}, {links.o2[1]:.6g})  "
+                f"O4 ({links.o4[0]:.6g}, {links.o4[1]:.6g})"
+            )
+        if "quality" in r:
+            q = r["quality"]
+            cand = r["candidates"]
+            lines.append(
+                f"  rank {r['rank']}        least transmission angle {_deg(q['value'])}, link ratio "
+                f"{q['link_ratio']:.3g}; {cand['kept']} of {cand['pairs']} pairs kept"
+            )
         if "moving_pivots" in r:
             a, b = r["moving_pivots"]["A"], r["moving_pivots"]["B"]
             lines.append(
@@ -201,7 +227,13 @@ def report_text(result: Synthesis) -> str:
             f"  transmission  {_deg(s.transmission[0])} … {_deg(s.transmission[1])} over the motion; "
             f"crank turns {s.turning}"
         )
-        if "structural_error" in r:
+        if "structural_error" in r and r["structural_error"].get("units") == "m":
+            se = r["structural_error"]
+            lines.append(
+                f"  structural error  max {se['max']:.4g} m at x = {se['at_x']:.6g}, "
+                f"rms {se['rms']:.4g} m ({se['samples']} samples)"
+            )
+        elif "structural_error" in r:
             se = r["structural_error"]
             lines.append(
                 f"  structural error  max {_deg(se['max'])} at x = {se['at_x']:.6g}, "
