@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import NoReturn, TextIO
 
 import camlink
-from camlink import cam_cli, cli_convert, cli_study, cli_synth, cli_visuals
+from camlink import cam_cli, cli_convert, cli_studio, cli_study, cli_synth, cli_visuals
 from camlink._core import AnalysisError, ModelError
 from camlink.jump import flight_summary
 from camlink.model import ANALYSES
@@ -141,6 +141,7 @@ def _parser() -> argparse.ArgumentParser:
     cam_cli.add_parser(sub)
     COMMANDS["study"] = cli_study.add_parser(sub)
     COMMANDS["synth"] = cli_synth.add_parser(sub)
+    COMMANDS["studio"] = cli_studio.add_parser(sub)
     return p
 
 
