@@ -235,6 +235,16 @@ def _number(v: float) -> float:
     return 0.0 if r == 0 else r
 
 
+def _keep_comment(old: tomlkit.items.Item, new: tomlkit.items.Item) -> None:
+    """Gives `new` the comment of `old`, in the same column when it fits."""
+    ws = old.trivia.comment_ws
+    if old.trivia.comment and ws.strip(" ") == "":
+        ws = " " * max(1, len(ws) + len(old.as_string()) - len(new.as_string()))
+    new.trivia.comment_ws = ws
+    new.trivia.comment = old.trivia.comment
+    new.trivia.trail = old.trivia.trail
+
+
 def _set_pair(container: Any, key: str, xy: tuple[float, float]) -> None:
     """`container[key] = [x, y]`, keeping a TOML value's comment."""
     value = [_number(xy[0]), _number(xy[1])]
@@ -242,9 +252,7 @@ def _set_pair(container: Any, key: str, xy: tuple[float, float]) -> None:
     if isinstance(old, tomlkit.items.Array):
         new = tomlkit.array()
         new.extend(value)
-        new.trivia.comment_ws = old.trivia.comment_ws
-        new.trivia.comment = old.trivia.comment
-        new.trivia.trail = old.trivia.trail
+        _keep_comment(old, new)
         container[key] = new
     else:
         container[key] = value
@@ -254,9 +262,7 @@ def _set_number(container: Any, key: str, v: float) -> None:
     old = container.get(key)
     if isinstance(old, tomlkit.items.Item):
         new = tomlkit.item(float(v))
-        new.trivia.comment_ws = old.trivia.comment_ws
-        new.trivia.comment = old.trivia.comment
-        new.trivia.trail = old.trivia.trail
+        _keep_comment(old, new)
         container[key] = new
     else:
         container[key] = float(v)

@@ -35,7 +35,7 @@
       const name = document.createElement("span"); name.textContent = p.name;
       const input = document.createElement("input");
       input.type = "range"; input.min = String(p.min); input.max = String(p.max);
-      input.step = String((p.max - p.min) / 1000); input.value = String(p.value);
+      input.step = "any"; input.value = String(p.value);
       input.dataset.name = p.name;
       const out = document.createElement("output"); out.textContent = String(p.value);
       let gesture = null;
