@@ -38,7 +38,16 @@ __all__ = ["StudioServer", "make_app", "payload", "run"]
 TOKEN_KEY = web.AppKey("token", str)
 DOC_KEY = web.AppKey("doc", Document)
 EXECUTOR_KEY = web.AppKey("executor", ThreadPoolExecutor)
-SOCKETS_KEY = web.AppKey("sockets", set[web.WebSocketResponse])
+
+
+class _Sockets:
+    """The open websockets, closed when the server stops."""
+
+    def __init__(self) -> None:
+        self.open: set[web.WebSocketResponse] = set()
+
+
+SOCKETS_KEY = web.AppKey("sockets", _Sockets)
 
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
 _ASSETS = ("camlink.js", "studio.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
@@ -165,7 +174,7 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
     task = asyncio.create_task(worker())
-    request.app[SOCKETS_KEY].add(ws)
+    request.app[SOCKETS_KEY].open.add(ws)
     try:
         async for m in ws:
             if m.type != WSMsgType.TEXT:
@@ -187,7 +196,7 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
             wake.set()
     finally:
         task.cancel()
-        request.app[SOCKETS_KEY].discard(ws)
+        request.app[SOCKETS_KEY].open.discard(ws)
     return ws
 
 
@@ -197,7 +206,7 @@ def make_app(doc: Document, token: str) -> web.Application:
     app[TOKEN_KEY] = token
     app[DOC_KEY] = doc
     app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
-    app[SOCKETS_KEY] = set()
+    app[SOCKETS_KEY] = _Sockets()
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _socket)
     app.router.add_get("/static/{name}", _asset)
@@ -206,7 +215,7 @@ def make_app(doc: Document, token: str) -> web.Application:
         app[EXECUTOR_KEY].shutdown(wait=False, cancel_futures=True)
 
     async def shutdown(app: web.Application) -> None:
-        for ws in list(app[SOCKETS_KEY]):
+        for ws in list(app[SOCKETS_KEY].open):
             await ws.close(code=1001, message=b"server stopped")
 
     app.on_shutdown.append(shutdown)

@@ -14,7 +14,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 from aiohttp.test_utils import TestClient, TestServer
-from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 import camlink
 from camlink import _core
@@ -22,6 +21,7 @@ from camlink.fourbar import find, transmission
 from camlink.scene import Scene
 from camlink.studio import make_app, payload
 from camlink.studio_doc import Document
+from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -181,6 +181,7 @@ async def _guard_checks(path: Path) -> None:
     app = make_app(Document(path), token)
     async with TestClient(TestServer(app, host="127.0.0.1")) as client:
         port = client.server.port
+        assert port is not None
         ok = await client.get(f"/?token={token}")
         assert ok.status == 200
         assert "default-src 'none'" in ok.headers["Content-Security-Policy"]

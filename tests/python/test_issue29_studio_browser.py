@@ -14,10 +14,10 @@ from typing import Any
 
 import numpy as np
 import pytest
-from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 import camlink
 from camlink.studio import StudioServer
+from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 pytestmark = pytest.mark.browser
 
@@ -123,7 +123,7 @@ def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[S
 
 
 def test_issue29_studio_slider_same_trace_as_python_run(browser: Any, studio: tuple[Studio, Path]) -> None:
-    s, path = studio
+    s, _ = studio
     pg = Page(browser, s.url)
     pg.slider("a", 0.131)
     page_x = np.array(pg.js("Array.from(camlinkStudio.front.channel('coupler.P.x'))"))
