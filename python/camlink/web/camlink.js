@@ -10,11 +10,12 @@
 // scene (shapes in body frames, m), traces, springs, forces, channels
 // (names, units, values), plots (channel names), handles (studio), info.
 // An array is a list of numbers, or {f64: base64} / {f32: base64}
-// little-endian.
+// little-endian (a bare base64 string is float64).
 "use strict";
 (function (root) {
   function decode(a) {
     if (a === null || a === undefined) return new Float64Array(0);
+    if (typeof a === "string") a = { f64: a };
     if (Array.isArray(a)) return Float64Array.from(a, function (v) { return v === null ? NaN : v; });
     const b64 = a.f64 !== undefined ? a.f64 : a.f32;
     const bin = atob(b64), n = bin.length, bytes = new Uint8Array(n);
@@ -274,6 +275,12 @@
         ctx.strokeStyle = EDGE; ctx.lineWidth = 3; ctx.beginPath(); ctx.moveTo(a[0], a[1]); ctx.lineTo(e[0], e[1]); ctx.stroke();
       }
       for (const s of D.springs) drawSpring(s, q);
+    }
+
+    // Pins on top of the links and the traces.
+    function drawPins(k) {
+      const S = D.scene, B = D.bodyIndex;
+      const q = D.bodies.map(function (_, b) { return pose(b, k); });
       for (const p of S.pins) {
         const c = toScreen.apply(null, place(q[B[p.body_i]], p.s_i));
         if (p.grounded) {
@@ -283,7 +290,7 @@
           ctx.beginPath(); ctx.moveTo(c[0] - 14, c[1] + 16); ctx.lineTo(c[0] + 14, c[1] + 16); ctx.stroke();
         }
         ctx.fillStyle = "#fff"; ctx.strokeStyle = EDGE; ctx.lineWidth = 1.4;
-        ctx.beginPath(); ctx.arc(c[0], c[1], 5, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
+        ctx.beginPath(); ctx.arc(c[0], c[1], 6, 0, 2 * Math.PI); ctx.fill(); ctx.stroke();
         ctx.fillStyle = EDGE; ctx.beginPath(); ctx.arc(c[0], c[1], 1.4, 0, 2 * Math.PI); ctx.fill();
       }
     }
@@ -368,6 +375,7 @@
     function handlePos(h, k) { return place(pose(D.bodyIndex[h.body], k), h.s); }
 
     function drawHandles(k) {
+      if (!api.onEdit) return;
       for (const h of D.handles) {
         const g = handlePos(h, k), s = toScreen(g[0], g[1]);
         const on = (hover && hover.id === h.id) || (drag && drag.handle.id === h.id);
@@ -389,6 +397,7 @@
       if (k >= 0) {
         drawScene(k);
         drawTraces(k);
+        drawPins(k);
         drawForces(k);
         drawHandles(k);
       }
@@ -468,7 +477,9 @@
     });
 
     // -- pointer: drag a handle, pan on empty space, wheel zoom ----------
-    function local(ev) { const r = stage.getBoundingClientRect(); return [ev.clientX - r.left, ev.clientY - r.top]; }
+    // Page (CSS px) to stage coordinates, inside the canvas's border.
+    function origin() { const r = stage.getBoundingClientRect(); return [r.left + stage.clientLeft, r.top + stage.clientTop]; }
+    function local(ev) { const o = origin(); return [ev.clientX - o[0], ev.clientY - o[1]]; }
     function handleAt(X, Y) {
       const k = shownRow(frame);
       if (k < 0) return null;
@@ -582,6 +593,7 @@
           if (i !== null && i !== undefined) setFrame(i);
         });
         p.u.root.dataset.channel = p.name;
+        p.u.ctx.canvas.classList.add("plot");
       }
       function showValue(i) {
         const v = p.data[1][i];
@@ -612,8 +624,8 @@
     api.plots = plots;
     api.data = function () { return D; };
     api.channel = channel;
-    api.pixel = function (x, y) { const r = stage.getBoundingClientRect(), s = toScreen(x, y); return [r.left + s[0], r.top + s[1]]; };
-    api.world = function (X, Y) { const r = stage.getBoundingClientRect(); return toWorld(X - r.left, Y - r.top); };
+    api.pixel = function (x, y) { const o = origin(), s = toScreen(x, y); return [o[0] + s[0], o[1] + s[1]]; };
+    api.world = function (X, Y) { const o = origin(); return toWorld(X - o[0], Y - o[1]); };
     api.scale = function () { return scale; };
     api.handle = function (id) {
       const h = D.handles.find(function (v) { return v.id === id; });
