@@ -462,7 +462,7 @@
     speedSel.addEventListener("change", function () { speed = parseFloat(speedSel.value); });
     play.addEventListener("click", togglePlay);
     lengthSel.addEventListener("change", function () { lengthUnit = lengthSel.value; render(); });
-    angleSel.addEventListener("change", function () { angleUnit = angleSel.value; for (const p of plots) p.refresh(); render(); });
+    angleSel.addEventListener("change", function () { angleUnit = angleSel.value; for (const p of plots) p.remake(); render(); });
     fitBtn.addEventListener("click", function () { fit(); render(); });
     document.addEventListener("keydown", function (ev) {
       const tag = ev.target && ev.target.tagName;
@@ -552,7 +552,7 @@
       head.appendChild(pick); head.appendChild(unitLabel); head.appendChild(value);
       box.appendChild(head);
       plotsBox.appendChild(box);
-      const p = { name: name, box: box, value: value, u: null };
+      const p = { name: name, box: box, value: value, u: null, names: D.channels.names.join("\n") };
       function make() {
         if (p.u) { p.u.destroy(); p.u = null; }
         unitLabel.textContent = " (" + (shownUnit(p.name) || "–") + ") against t (s)";
@@ -600,11 +600,24 @@
         p.value.textContent = " t = " + D.t[i].toFixed(4) + " s: " + (v === null ? "not assembled" : Number(v).toPrecision(7) + " " + shownUnit(p.name));
         p.value.dataset.row = String(i);
       }
+      // New data: the same plot with new values when the channels are the
+      // same; made again (and the picker refilled) when they are not.
       p.refresh = function () {
         if (!(p.name in D.index)) p.name = D.channels.names[0];
-        make();
+        const names = D.channels.names.join("\n");
+        if (names !== p.names) {
+          p.names = names;
+          pick.textContent = "";
+          for (const nm of D.channels.names) { const o = el("option", null, nm); o.value = nm; pick.appendChild(o); }
+          pick.value = p.name;
+          make();
+          return;
+        }
+        p.data = [Array.from(D.t), series(p.name)];
+        p.u.setData(p.data);
       };
       p.cursor = function () { if (p.u) { p.u.redraw(false, false); if (p.u.cursor.idx === null || p.u.cursor.idx === undefined) showValue(frame); } };
+      p.remake = make;
       pick.addEventListener("change", function () { p.name = pick.value; make(); });
       make();
       plots.push(p);

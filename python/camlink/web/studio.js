@@ -91,7 +91,18 @@
       say(reply.message, true);
     }
     window.camlinkStudio.answered = answered;
+    for (const n of Object.keys(waiting)) {
+      if (Number(n) <= answered) { for (const f of waiting[n]) f(); delete waiting[n]; }
+    }
   };
 
-  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, sent: function () { return seq; } };
+  // For scripts and benchmarks: a promise of the reply to request `n`
+  // having been shown (the page redrawn).
+  const waiting = {};
+  function after(n) {
+    if (answered >= n) return Promise.resolve();
+    return new Promise(function (resolve) { (waiting[n] = waiting[n] || []).push(resolve); });
+  }
+  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: after,
+                           sent: function () { return seq; } };
 })();
