@@ -74,6 +74,7 @@ def payload(doc: Document) -> dict[str, Any]:
     data["parameters"] = doc.parameters()
     data["info"] = info_lines(sol)
     data["file"] = doc.path.name
+    data["error"] = sol.error
     data["dirty"] = doc.dirty
     data["undo"] = bool(doc._undo)
     data["redo"] = bool(doc._redo)

@@ -328,8 +328,19 @@ class Document:
             model = self.model(text)
         scene = Scene.of(model, tol=1e-4)
         t, names, values, ok = solve(model)
+        error = None
+        if not names:
+            # No kinematic run at all (a model that is not fully driven):
+            # the placement, as one time.
+            error = (f"model '{model.name}' has no kinematic motion (is every degree of freedom "
+                     "driven?): the studio shows its placement")
+            t = np.zeros(1)
+            names = [f"{b}.{c}" for b in scene.bodies for c in ("x", "y", "phi")]
+            values = np.array([[v for b in scene.bodies for v in scene.placement[b]]])
+            ok = np.ones(1, dtype=bool)
         self._plain_data = self._plain()
-        return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._plain_data))
+        return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._plain_data),
+                        error)
 
     # -- edits ------------------------------------------------------------
 

@@ -17,6 +17,7 @@ from aiohttp.test_utils import TestClient, TestServer
 
 import camlink
 from camlink import _core
+from camlink.cli import main
 from camlink.fourbar import find, transmission
 from camlink.scene import Scene
 from camlink.studio import make_app, payload
@@ -212,3 +213,29 @@ async def _guard_checks(path: Path) -> None:
 
 def test_issue29_studio_refuses_without_token_or_from_another_origin(tmp_path: Path) -> None:
     asyncio.run(_guard_checks(_copy(tmp_path, "four_bar.toml")))
+
+
+def test_issue29_studio_cli_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # In-process: `camlink.cli.main` as the command runs it.
+    with pytest.raises(SystemExit) as e:
+        main(["studio", str(EXAMPLES / "four_bar.toml"), "--port", "70000", "--no-browser"])
+    assert e.value.code == 2 and "not a port number" in capsys.readouterr().err
+    broken = tmp_path / "broken.toml"
+    broken.write_text('[model]\nname = "x"\n[[bodies]]\nname = 3\n')
+    assert main(["studio", str(broken), "--no-browser"]) == 2
+    err = capsys.readouterr().err
+    assert "broken.toml" in err and "Traceback" not in err
+    assert main(["studio", str(tmp_path / "nope.toml"), "--no-browser"]) == 2
+    assert "nope.toml" in capsys.readouterr().err
+    other = tmp_path / "model.yaml"
+    other.write_text("x: 1\n")
+    with pytest.raises(camlink.ModelError, match=r"\.toml and \.json"):
+        Document(other)
+
+
+def test_issue29_studio_model_not_fully_driven_shows_placement(tmp_path: Path) -> None:
+    doc = Document(_copy(tmp_path, "dyn_pendulum.toml"))
+    data = payload(doc)
+    assert data["error"] is not None and "driven" in data["error"]
+    assert data["ok"] == [1]
+    json.dumps(data, allow_nan=False)

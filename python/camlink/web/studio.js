@@ -83,7 +83,8 @@
       show(reply.data);
       const t0 = sentAt[reply.seq];
       if (t0 !== undefined) timing.last = performance.now() - t0;
-      if (reply.seq > 1) say("");
+      if (reply.data.error) say(reply.data.error, true);
+      else if (reply.seq > 1) say("");
     } else if (reply.type === "saved") {
       document.getElementById("dirty").textContent = reply.dirty ? "● unsaved" : "";
       say("saved " + reply.file + " (the previous file kept as " + reply.file + ".bak)");
