@@ -187,10 +187,12 @@ def frame_data(
     plots: Sequence[str] | None = None,
     pose_dtype: str = "f64",
     channels: Sequence[str] | None = None,
+    all_names: bool = False,
 ) -> dict[str, Any]:
     """Everything the page draws for a run: `values` (rows × `names`,
     NaN on rows where `ok` is false) over the times `t`; `channels` limits
-    the channels sent (default all)."""
+    the channels sent (default all); with `all_names`, every channel is
+    named and only those sent have values (the others null)."""
     bodies = list(scene.bodies)
     poses: dict[str, Array] = {}
     for b in bodies:
@@ -202,8 +204,7 @@ def frame_data(
     size = float(np.hypot(box[1] - box[0], box[3] - box[2]))
     chosen = list(plots) if plots else default_plots(bodies, points, t, names, values)
     sent = list(names) if channels is None else list(dict.fromkeys([*channels, *chosen]))
-    joints = model.joints
-    return {
+    base: dict[str, Any] = {
         "title": model.name,
         "t": b64(t),
         "ok": None if ok is None else [int(v) for v in ok],
@@ -215,7 +216,16 @@ def frame_data(
         "forces": forces(scene, names),
         "cams": scene.cam_bodies(),
         "box": list(box),
-        "channels": {"names": sent, "units": [unit(c, joints) for c in sent],
-                     "values": [b64(_column(names, values, c), pose_dtype) for c in sent]},
         "plots": chosen,
     }
+    joints = model.joints
+    if all_names:
+        # Every name, values for those in `sent` only (null for the rest).
+        have = set(sent)
+        return {**base, "channels": {
+            "names": list(names), "units": [unit(c, joints) for c in names],
+            "values": [b64(_column(names, values, c), pose_dtype) if c in have else None
+                       for c in names]}}
+    return {**base, "channels": {
+        "names": sent, "units": [unit(c, joints) for c in sent],
+        "values": [b64(_column(names, values, c), pose_dtype) for c in sent]}}

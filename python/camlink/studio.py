@@ -64,11 +64,20 @@ def info_lines(sol: Solution) -> list[str]:
     return describe(sol.model, sol.t, sol.names, sol.values)
 
 
-def payload(doc: Document) -> dict[str, Any]:
-    """The page's data for the document's current cycle."""
+def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
+    """The page's data for the document's current cycle: every channel's
+    name, and the values of the poses, the traces, the default plots and
+    the channels `shown` (all when None)."""
     sol = doc.solution
     points = [str(p) for p in (sol.model.analysis.get("points") or [])]
-    data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points)
+    channels = None
+    if shown is not None:
+        have = set(sol.names)
+        poses = [f"{b}.{c}" for b in sol.scene.bodies for c in ("x", "y", "phi")]
+        traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
+        channels = [c for c in [*poses, *traced, *shown] if c in have]
+    data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
+                      channels=channels, all_names=True)
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
@@ -145,7 +154,9 @@ def _handle(doc: Document, msg: dict[str, Any]) -> dict[str, Any]:
     except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
         text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
         return {"type": "error", "seq": msg.get("seq"), "message": text}
-    return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc)}
+    plots = msg.get("plots")
+    shown = [str(p) for p in plots] if isinstance(plots, list) else []
+    return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc, shown)}
 
 
 def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:

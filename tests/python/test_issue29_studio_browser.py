@@ -151,6 +151,12 @@ def test_issue29_studio_slider_same_trace_as_python_run(browser: Any, studio: tu
     assert float(text.split(":")[1].split()[0]) == pytest.approx(
         np.degrees(res["rocker.phi"][row]), rel=1e-6)
     assert text.endswith("°")
+    # A channel whose values the page has not got yet is asked for.
+    assert pg.js("camlinkStudio.front.channel('coupler.vx')") is None
+    pg.page.locator(".cl-pick").nth(1).select_option("coupler.vx")
+    pg.page.wait_for_function("() => camlinkStudio.front.channel('coupler.vx') !== null")
+    got = np.array(pg.js("Array.from(camlinkStudio.front.channel('coupler.vx'))"))
+    assert np.array_equal(got, res["coupler.vx"])
     assert pg.errors == [] and pg.blocked == []
 
 

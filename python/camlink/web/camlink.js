@@ -142,7 +142,7 @@
         forces: data.forces || [], handles: data.handles || [], info: data.info || [],
         box: data.box, cams: data.cams || [],
         channels: { names: data.channels.names, units: data.channels.units,
-                    values: data.channels.values.map(decode) },
+                    values: data.channels.values.map(function (v) { return v === null ? null : decode(v); }) },
         plots: data.plots || [],
       };
       d.index = {};
@@ -538,6 +538,11 @@
     function series(name) {
       const v = channel(name), k = isAngle(name) && angleUnit === "deg" ? 180 / Math.PI : 1;
       const out = new Array(D.rows);
+      if (!v) {
+        // Not sent: ask for it (the studio), shown empty until it comes.
+        if (api.onNeed) api.onNeed();
+        return out.fill(null);
+      }
       for (let i = 0; i < D.rows; i++) out[i] = v[i] === v[i] ? v[i] * k : null;
       return out;
     }
@@ -627,6 +632,7 @@
     addPlot.addEventListener("click", function () { if (D) newPlot(D.plots[0] || D.channels.names[0]); });
 
     api.setData = setData;
+    api.picked = function () { return plots.map(function (p) { return p.name; }); };
     api.render = render;
     api.seek = seek;
     api.setFrame = setFrame;

@@ -12,6 +12,7 @@
   function say(text, bad) { message.textContent = text; message.classList.toggle("bad", !!bad); }
   function send(msg) {
     seq += 1; msg.seq = seq; sentAt[seq] = performance.now();
+    if (front.data()) msg.plots = front.picked();
     ws.send(JSON.stringify(msg));
     return seq;
   }
@@ -61,7 +62,15 @@
     sliders(data.parameters);
   }
 
+  // Every request names the channels the plots show: the reply carries
+  // their values (and the poses and traces), not every channel's.
   front.onEdit = function (msg) { timing.edits += 1; send(msg); };
+  let needed = false;
+  front.onNeed = function () {
+    if (needed) return;
+    needed = true;
+    setTimeout(function () { needed = false; send({ op: "hello" }); }, 0);
+  };
   front.onEditEnd = function (gesture) { send({ op: "end", gesture: gesture }); };
   document.getElementById("undo").addEventListener("click", function () { send({ op: "undo" }); });
   document.getElementById("redo").addEventListener("click", function () { send({ op: "redo" }); });
