@@ -8,7 +8,8 @@ edit at a time: each time is from the websocket send to the end of the
 page's redraw of the reply (the server rebuilding the model from the
 edited text, solving the whole cycle in the core and sending it; the page
 decoding it and drawing the stage and the plots). The server's own share
-(edit + solve + reply data, no browser) is timed too, in-process.
+(edit + solve + reply data of the default plots, no browser) is timed too,
+in-process.
 
 Models: examples/four_bar.toml (401 times), a six-bar
 (examples/whitworth_global.toml, 201 times), the seed's cam
@@ -123,7 +124,7 @@ def server_times(path: Path, handle: str, drags: int) -> list[float]:
         a = 2 * math.pi * i / drags
         t0 = time.perf_counter()
         doc.move(handle, 0, x0 + 0.002 * math.sin(a), y0 + 0.002 * (1 - math.cos(a)), gesture="b")
-        payload(doc)
+        payload(doc, [])
         out.append(1e3 * (time.perf_counter() - t0))
     return out
 
