@@ -68,11 +68,19 @@ def _unit(v: Sequence[float]) -> list[float]:
     return [float(v[0]) / n, float(v[1]) / n]
 
 
-def springs(model: Model) -> list[dict[str, Any]]:
+def springs(model: Model, scene: Scene | None = None) -> list[dict[str, Any]]:
     """Spring–damper–actuators between two body points: a spring (a
-    zigzag) and a damper (a dashpot) for each that has them."""
+    zigzag) and a damper (a dashpot) for each that has them; a torsion
+    spring (a spiral) round the pin joining its two bodies."""
     out = []
     for f in model._core.forces:
+        if f["kind"] == "rsda" and scene is not None:
+            bi, bj = f["bodies"]
+            pin = next((p for p in scene.pins if {p.body_i, p.body_j} == {bi, bj}), None)
+            if pin is not None:
+                out.append({"name": f["name"], "kind": "torsion", "body_i": pin.body_i,
+                            "s_i": list(pin.s_i), "body_j": pin.body_i, "s_j": list(pin.s_i)})
+            continue
         if f["kind"] != "tsda" or f["s_i"] is None or f["s_j"] is None:
             continue
         bi, bj = f["bodies"]
@@ -212,7 +220,7 @@ def frame_data(
         "poses": [b64(poses[b].ravel(), pose_dtype) for b in bodies],
         "scene": scene_data(model, scene, size),
         "traces": tr,
-        "springs": springs(model),
+        "springs": springs(model, scene),
         "forces": forces(scene, names),
         "cams": scene.cam_bodies(),
         "box": list(box),

@@ -209,6 +209,29 @@ def test_viewer_springs_and_forces(browser: Any, tmp_path: Path) -> None:
     assert pg.errors == [] and pg.blocked == []
 
 
+def test_viewer_torsion_spring(browser: Any, tmp_path: Path) -> None:
+    # A torsion spring is a spiral round its pin: green pixels 8 to 16 px
+    # from the pin's centre.
+    model = camlink.load(EXAMPLES / "dyn_spring_pendulum.toml")
+    res = model.run()
+    data = page_data(res, model, None)
+    assert [s["kind"] for s in data["springs"]] == ["torsion"]
+    out = res.to_html(tmp_path / "sp.html")
+    assert isinstance(out, Path)
+    pg = Page(browser, out.as_uri())
+    shot = pg.shot(tmp_path / "sp.png").astype(int)
+    sp = data["springs"][0]
+    assert sp["body_i"] == "ground"
+    u, v = pg.page.evaluate(f"camlinkViewer.pixel({sp['s_i'][0]}, {sp['s_i'][1]})")
+    green = 0
+    for r in (10, 12, 14):
+        for a in np.linspace(0, 2 * np.pi, 24, endpoint=False):
+            px = shot[round(v - r * np.sin(a)), round(u + r * np.cos(a))]
+            green += int(px[1] - px[0] > 40 and px[1] - px[2] > 10)
+    assert green >= 6
+    assert pg.errors == [] and pg.blocked == []
+
+
 def _many_cranks(n: int, rows: int) -> Results:
     """n cranks on a grid, each turning at its own speed: poses in closed
     form (the viewer's load, not the solver's)."""

@@ -298,6 +298,17 @@
     function drawSpring(s, q) {
       const a = toScreen.apply(null, place(q[D.bodyIndex[s.body_i]], s.s_i));
       const e = toScreen.apply(null, place(q[D.bodyIndex[s.body_j]], s.s_j));
+      if (s.kind === "torsion") {
+        // A spiral of two and a half turns round the pin, 8 to 16 px.
+        ctx.strokeStyle = "#2a7f62"; ctx.lineWidth = 1.3; ctx.beginPath();
+        for (let i = 0; i <= 120; i++) {
+          const f = i / 120, ang = f * 5 * Math.PI, r = 8 + 8 * f;
+          const X = a[0] + r * Math.cos(ang), Y = a[1] - r * Math.sin(ang);
+          if (i === 0) ctx.moveTo(X, Y); else ctx.lineTo(X, Y);
+        }
+        ctx.stroke();
+        return;
+      }
       const dx = e[0] - a[0], dy = e[1] - a[1], L = Math.hypot(dx, dy) || 1;
       const ux = dx / L, uy = dy / L, nx = -uy, ny = ux;
       ctx.strokeStyle = "#2a7f62"; ctx.lineWidth = 1.4; ctx.beginPath(); ctx.moveTo(a[0], a[1]);
