@@ -16,7 +16,8 @@ The package is in layers, each importing only from those below it
 the model API and results (`model`, `results`, `builder`); pictures
 (`camlink.viz`); cam design (`camlink.cam`); linkage synthesis
 (`camlink.synth`); studies (`camlink.study`); this namespace, which
-re-exports their public names; the command line (`camlink.cli`).
+re-exports their public names; the studio (`camlink.studio`); the command
+line (`camlink.cli`).
 """
 
 import importlib

@@ -32,6 +32,8 @@ __all__ = [
     "contact_modulus",
     "convert_adm",
     "csv_rows",
+    "fourbar_class",
+    "fourbar_transmission",
     "helical_spring",
     "json_schema",
     "line_contact",
@@ -183,6 +185,10 @@ _SynthRow: TypeAlias = tuple[str, str, str]
 
 def synth_file(path: str | PathLike[str]) -> tuple[str, list[_SynthRow]]: ...
 def synth_str(text: str, source: str, stem: str) -> tuple[str, list[_SynthRow]]: ...
+def fourbar_class(ground: float, crank: float, coupler: float, rocker: float) -> str: ...
+def fourbar_transmission(
+    coupler: float, rocker: float, diagonal: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]

@@ -596,11 +596,12 @@ class Model:
                     keep_rows=writer is None,
                 )
             complete = True
+            joints = self.joints
             metadata = {
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,
-                "units": {n: unit(n, self.joints) for n in names},
+                "units": {n: unit(n, joints) for n in names},
                 "summary": {**summary, "analysis": kind},  # the binding's plain dict
             }
         except AnalysisError as e:

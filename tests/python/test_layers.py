@@ -37,6 +37,8 @@ LAYERS: list[tuple[str, tuple[str, ...]]] = [
     # The package's own namespace re-exports the public names of the layers
     # below; the command line is written against it.
     ("facade", ("camlink",)),
+    # The editor in the browser, written against the public API.
+    ("studio", ("camlink.studio",)),
     ("cli", ("camlink.cli", "camlink.__main__")),
 ]
 

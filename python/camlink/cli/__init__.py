@@ -21,6 +21,7 @@ from camlink._core import AnalysisError, ModelError
 from camlink.cam.jump import flight_summary
 from camlink.cli import cam as cam_cli
 from camlink.cli import convert as cli_convert
+from camlink.cli import studio as cli_studio
 from camlink.cli import study as cli_study
 from camlink.cli import synth as cli_synth
 from camlink.cli import visuals as cli_visuals
@@ -145,6 +146,7 @@ def _parser() -> argparse.ArgumentParser:
     cam_cli.add_parser(sub)
     COMMANDS["study"] = cli_study.add_parser(sub)
     COMMANDS["synth"] = cli_synth.add_parser(sub)
+    COMMANDS["studio"] = cli_studio.add_parser(sub)
     return p
 
 

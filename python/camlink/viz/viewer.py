@@ -1,14 +1,19 @@
 """The browser viewer: one self-contained HTML file of a run.
 
-`to_html(results, path)` writes a page with the animated mechanism (a
-canvas drawn from the shapes of `camlink.draw`), play/pause, a time slider,
-playback speed, a hover read-out of body and pin values, and linked plots
-whose cursor follows the time and where a click sets the time. Script, style
-and data are all inside the file; the page loads nothing from a network
-(its Content-Security-Policy forbids it).
+`to_html(results, path)` writes a page drawn by the front end the studio
+uses (``web/camlink.js``, with uPlot inlined): the animated mechanism on
+axes with a grid and tick numbers (mm or m), traces of the file's
+``[analysis] points``, springs and dampers, force arrows of runs with
+joint forces, zoom (wheel) and pan (drag), play/pause, a time slider,
+playback speed, the keyboard (space, arrows), a hover read-out of pins,
+and plots of any channel with numbers on their axes, units and a readout
+at the cursor, whose cursor follows the time and where a click sets the
+time. Script, style and data are all inside the file; the page loads
+nothing from a network (its Content-Security-Policy forbids it).
 
-Body poses and plotted channels are stored as base64 float32 (times as
-float64): a 200-body, 10,000-row run is about 32 MB. A run of more than
+Body poses and channels are stored as base64 float32 (times as float64);
+a run of more than `MOST_VALUES` values keeps only the plotted channels
+(a 200-body, 10,000-row run is about 32 MB). A run of more than
 `MOST_ROWS` rows is thinned to that many, evenly, keeping the first and
 the last.
 
@@ -39,12 +44,12 @@ import numpy.typing as npt
 from camlink._core import ModelError
 from camlink.io.output import _Target, check_not_input
 from camlink.results import Results
-from camlink.viz.drawing import Drawing, resolve
+from camlink.viz.drawing import resolve
 
 if TYPE_CHECKING:
     from camlink.model import Model
 
-__all__ = ["MOST_ROWS", "PLOT", "STAGE", "default_plots", "fill", "thin", "to_html"]
+__all__ = ["MOST_ROWS", "MOST_VALUES", "PLOT", "STAGE", "default_plots", "fill", "thin", "to_html"]
 
 #: Stage canvas size (CSS px).
 STAGE = (640, 480)
@@ -53,6 +58,9 @@ PLOT = (420, 170)
 #: Most output rows a page holds: at this many, each moving body adds
 #: about 320 kB to the page.
 MOST_ROWS = 20_000
+#: Most channel values a page holds whole; a bigger run holds only the
+#: poses and the plotted channels.
+MOST_VALUES = 4_000_000
 
 # JSON text that no HTML parser reads as markup inside <script>.
 _SCRIPT_SAFE = str.maketrans({
@@ -60,7 +68,6 @@ _SCRIPT_SAFE = str.maketrans({
     "\u2028": "\\u2028", "\u2029": "\\u2029",
 })
 _PLACEHOLDER = re.compile(r"__([A-Z_]+?)__")
-_VIEWER_SCRIPT = re.compile(r"<script>(.*?)</script>", re.DOTALL)
 
 
 def _b64(a: npt.ArrayLike, dtype: type) -> str:
@@ -85,48 +92,36 @@ def default_plots(results: Results) -> list[str]:
     return out
 
 
-def page_data(results: Results, model: Model, plots: Sequence[str]) -> dict[str, Any]:
-    """What the page needs: times, body poses, shapes, view and plots."""
-    from camlink.viz.plots import label
+def page_data(results: Results, model: Model, plots: Sequence[str] | None = None) -> dict[str, Any]:
+    """What the page draws (`camlink.viz.front.frame_data`): times, body poses
+    (float32), the scene, traces of the file's ``[analysis] points``,
+    springs, forces and channels; every channel when the run has at most
+    `MOST_VALUES` values, else the plotted ones."""
+    from camlink.viz.front import frame_data
+    from camlink.viz.scene import Scene
 
-    drawing = Drawing(model, results)
-    names = ["ground", *drawing.scene.bodies]
-    index = {n: k for k, n in enumerate(names)}
-    shapes = []
-    pins: dict[str, list[float]] = {}
-    for sh in drawing.shapes():
-        shapes.append({
-            "body": index[sh.body],
-            "points": [round(float(v), 9) for v in sh.points.ravel()],
-            "closed": sh.closed, "fill": sh.fill, "stroke": sh.stroke,
-            "width": sh.width, "dash": list(sh.dash), "dot": sh.dot, "gid": sh.gid, "z": sh.z,
-        })
-        if sh.gid.startswith("pin:") and sh.closed:
-            pins[sh.gid] = [float(v) for v in sh.points[:-1].mean(axis=0)]
-    poses = drawing.poses
-    (x0, x1), (y0, y1) = drawing.frame.xlim, drawing.frame.ylim
-    missing = [p for p in plots if p not in results]
+    missing = [p for p in plots or () if p not in results]
     if missing:
         results[missing[0]]  # raises KeyError naming close matches
-    return {
-        "title": model.name,
-        "t": _b64(results.t, np.float64),
-        "bodies": names,
-        "poses": [_b64(poses[b], np.float32) for b in names[1:]],
-        "shapes": shapes,
-        "pins": pins,
-        "view": {
-            "width": STAGE[0], "height": STAGE[1], "box": [x0, x1, y0, y1],
-            "px_per_pt": 4.0 / 3.0, "plot_width": PLOT[0], "plot_height": PLOT[1],
-        },
-        "plots": [{"channel": p, "label": f"{label(p)} against t (s)",
-                   "values": _b64(results[p], np.float32)} for p in plots],
-    }
+    names = list(results.channels)
+    values = np.column_stack([results[c] for c in names]) if names else np.zeros((len(results), 0))
+    scene = Scene.of(model, tol=1e-4)
+    points = [str(p) for p in (model.analysis.get("points") or [])]
+    sent = None if values.size <= MOST_VALUES else list(plots or [])
+    data = frame_data(model, scene, np.asarray(results.t, dtype=np.float64), names, values, None,
+                      points=points, plots=plots, pose_dtype="f32", channels=sent)
+    data["t"] = data["t"]["f64"]
+    data["handles"] = [{"id": f"pin:{p.joint}", "label": p.joint, "body": p.body_i, "s": list(p.s_i)}
+                       for p in scene.pins]
+    data["view"] = {"width": STAGE[0], "height": STAGE[1], "box": data["box"],
+                    "plot_width": PLOT[0], "plot_height": PLOT[1]}
+    return data
 
 
 def view_pixel(box: Sequence[float], x: float, y: float) -> tuple[float, float]:
-    """Where the page draws the global point (x, y) (m): CSS px from the
-    stage canvas's top left, for the view `box` = (x0, x1, y0, y1)."""
+    """Where the page first draws the global point (x, y) (m), before any
+    zoom or pan: CSS px from the stage canvas's top left, for the view
+    `box` = (x0, x1, y0, y1)."""
     x0, x1, y0, y1 = box
     w, h = STAGE
     scale = min(w / (x1 - x0), h / (y1 - y0))
@@ -171,15 +166,22 @@ def script_json(data: object) -> str:
 
 def page(template: str, title: str, data: object) -> str:
     """The viewer page of `template` for the model named `title` with the
-    page's `data`; its policy allows only the template's own script."""
-    script = _VIEWER_SCRIPT.search(template)
-    if script is None or _PLACEHOLDER.search(script.group(1)):
-        raise ValueError("viewer template: no <script> element, or one with a placeholder")
-    digest = hashlib.sha256(script.group(1).encode("utf-8")).digest()
+    page's `data`: the front end (uPlot, ``web/camlink.js`` and the
+    viewer's start) inlined as one script, the only one its policy lets
+    run."""
+    from camlink.viz.front import asset
+
+    script = "\n".join(asset(n) for n in ("uPlot.iife.min.js", "camlink.js", "viewer_boot.js"))
+    if re.search(r"</script|<!--", script, re.IGNORECASE):
+        raise ValueError("viewer script: holds text that would end its <script> element")
+    style = "\n".join(asset(n) for n in ("uPlot.min.css", "studio.css"))
+    digest = hashlib.sha256(script.encode("utf-8")).digest()
     return fill(template, {
         "SCRIPT_HASH": f"'sha256-{base64.b64encode(digest).decode('ascii')}'",
         "TITLE": html.escape(title, quote=True),
         "DATA": script_json(data),
+        "SCRIPT": script,
+        "STYLE": style,
     })
 
 
@@ -207,7 +209,7 @@ def to_html(
         res = motion_of(model)
     if res is None or len(res) == 0:
         raise ModelError(f"model '{model.name}' has no motion to show (not fully driven)")
-    chosen = list(plots) if plots else default_plots(res)
+    chosen = list(plots) if plots else []
     for name in chosen:
         if name not in res:
             try:
@@ -215,7 +217,7 @@ def to_html(
             except KeyError as e:
                 raise ModelError(f"cannot plot {name!r}: {e.args[0]}") from None
     res = thin(res)
-    data = page_data(res, model, chosen)
+    data = page_data(res, model, chosen or None)
     template = resources.files("camlink.viz").joinpath("viewer.html").read_text(encoding="utf-8")
     text = page(template, model.name, data)
     if path is None:

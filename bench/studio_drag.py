@@ -1,0 +1,162 @@
+"""The studio's edit loop in Chromium: scripted drags, timed from the edit
+sent to the page redrawn with the re-solved cycle (issue 29).
+
+For each model, a studio server is started on a copy of the file, the page
+is opened in Debian's chromium (Playwright, headless, every request off
+127.0.0.1 blocked), and a handle is dragged through 200 positions, one
+edit at a time: each time is from the websocket send to the end of the
+page's redraw of the reply (the server rebuilding the model from the
+edited text, solving the whole cycle in the core and sending it; the page
+decoding it and drawing the stage and the plots). The server's own share
+(edit + solve + reply data of the default plots, no browser) is timed too,
+in-process.
+
+Models: examples/four_bar.toml (401 times), a six-bar
+(examples/whitworth_global.toml, 201 times), the seed's cam
+(examples/cam_seed_example_3_4_3.toml, 401 times), and a chain of 100
+bodies and 100 pins (200 joints with its drivers; 361 times).
+
+    uv run python bench/studio_drag.py [--drags 200]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import math
+import shutil
+import statistics
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+
+from camlink.studio import StudioServer, payload  # noqa: E402
+from camlink.studio.document import Document  # noqa: E402
+
+MODELS = [
+    ("four-bar", "four_bar.toml", "joint:B"),
+    ("six-bar (Whitworth)", "whitworth_global.toml", "joint:O2"),
+    ("seed cam 3.4.3", "cam_seed_example_3_4_3.toml", "joint:cam_pivot"),
+]
+
+
+def chain_toml(n: int) -> str:
+    """A serial chain of n links of 0.05 m, pinned end to end from the
+    ground, each pin driven to swing ±0.1 rad at 1 Hz."""
+    lines = ['[model]\nname = "chain"\n[ground]\npoints = { O = [0, 0] }\n']
+    for k in range(n):
+        lines.append(f'[[bodies]]\nname = "b{k}"\nposition = [{0.05 * k}, 0]\n'
+                     'points = { P = [0, 0], Q = [0.05, 0] }\n')
+    for k in range(n):
+        prev, point = ("ground", "O") if k == 0 else (f"b{k - 1}", "Q")
+        lines.append(f'[[joints]]\nname = "j{k}"\ntype = "revolute"\nbody_i = "{prev}"\n'
+                     f'point_i = "{point}"\nbody_j = "b{k}"\npoint_j = "P"\n')
+    for k in range(n):
+        lines.append(f'[[drivers]]\nname = "d{k}"\ntype = "revolute_angle"\njoint = "j{k}"\n'
+                     'f = "0.1*sin(2*pi*t)"\n')
+    lines.append(f'[analysis]\nt_end = 1\nstep = {1 / 360!r}\npoints = ["b{n - 1}.Q"]\n')
+    return "".join(lines)
+
+
+def pct(values: list[float], q: float) -> float:
+    s = sorted(values)
+    return s[min(len(s) - 1, math.ceil(q * len(s)) - 1)]
+
+
+class Studio:
+    def __init__(self, path: Path) -> None:
+        self.server = StudioServer(path)
+        self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
+        self.thread.start()
+        self.url = asyncio.run_coroutine_threadsafe(self.server.start(), self.loop).result(60)
+
+    def close(self) -> None:
+        asyncio.run_coroutine_threadsafe(self.server.stop(), self.loop).result(60)
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self.thread.join(10)
+
+
+DRAG = """async ([id, n]) => {
+  const S = camlinkStudio, F = S.front;
+  const start = F.handle(id), times = [], scale = F.scale();
+  for (let i = 0; i < n; i++) {
+    const a = 2 * Math.PI * i / n, r = 12 / scale;
+    const t0 = performance.now();
+    const seq = S.send({ op: "move", handle: id, row: F.frame(), gesture: "bench",
+                         x: start[0] + r * Math.sin(a), y: start[1] + r * (1 - Math.cos(a)) });
+    await S.after(seq);
+    times.push(performance.now() - t0);
+  }
+  return times;
+}"""
+
+
+def browser_times(browser: object, path: Path, handle: str, drags: int) -> list[float]:
+    studio = Studio(path)
+    try:
+        page = browser.new_page(viewport={"width": 1300, "height": 900})  # type: ignore[attr-defined]
+        page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("http://127.0.0.1:")
+                   else r.abort())
+        page.goto(studio.url)
+        page.wait_for_function("() => window.camlinkStudio && camlinkStudio.answered >= 1")
+        page.evaluate(DRAG, [handle, 10])  # warm up
+        times: list[float] = page.evaluate(DRAG, [handle, drags])
+        page.close()
+        return times
+    finally:
+        studio.close()
+
+
+def server_times(path: Path, handle: str, drags: int) -> list[float]:
+    doc = Document(path)
+    h = next(x for x in doc.solution.handles if x.id == handle)
+    q = doc.solution.pose(h.body, 0)
+    c, s = math.cos(q[2]), math.sin(q[2])
+    x0, y0 = q[0] + c * h.local[0] - s * h.local[1], q[1] + s * h.local[0] + c * h.local[1]
+    out = []
+    for i in range(drags):
+        a = 2 * math.pi * i / drags
+        t0 = time.perf_counter()
+        doc.move(handle, 0, x0 + 0.002 * math.sin(a), y0 + 0.002 * (1 - math.cos(a)), gesture="b")
+        payload(doc, [])
+        out.append(1e3 * (time.perf_counter() - t0))
+    return out
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--drags", type=int, default=200)
+    args = ap.parse_args()
+    from playwright.sync_api import sync_playwright
+
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    with tempfile.TemporaryDirectory() as tmp, sync_playwright() as p:
+        folder = Path(tmp)
+        cases = []
+        for label, name, handle in MODELS:
+            shutil.copy(ROOT / "examples" / name, folder / name)
+            cases.append((label, folder / name, handle))
+        (folder / "chain.toml").write_text(chain_toml(100))
+        cases.append(("chain of 100 pins", folder / "chain.toml", "joint:j50"))
+        browser = p.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        print(f"{'model':<22} {'rows':>5} {'page median':>12} {'page p95':>9} "
+              f"{'server median':>14} {'server p95':>11}   (ms, {args.drags} drags)")
+        for label, path, handle in cases:
+            shutil.copy(path, path.with_suffix(".orig"))
+            page = browser_times(browser, path, handle, args.drags)
+            shutil.copy(path.with_suffix(".orig"), path)
+            server = server_times(path, handle, args.drags)
+            rows = len(Document(path).solution.t)
+            print(f"{label:<22} {rows:>5} {statistics.median(page):>12.1f} {pct(page, 0.95):>9.1f} "
+                  f"{statistics.median(server):>14.1f} {pct(server, 0.95):>11.1f}", flush=True)
+        browser.close()
+
+
+if __name__ == "__main__":
+    main()

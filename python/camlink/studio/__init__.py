@@ -1,0 +1,281 @@
+"""``camlink studio MODEL``: edit a mechanism in the browser, the whole
+cycle re-solved in the core on each edit.
+
+An aiohttp server bound to 127.0.0.1 serves the packaged page
+(``web/studio.html``, ``web/camlink.js``, the vendored uPlot) and a
+websocket for edits. Every request must carry the session's random token
+(``?token=…``) and, when it has an ``Origin`` or a ``Host`` header, name
+this server: anything else gets 403. The page loads nothing from a
+network (its Content-Security-Policy allows only this server).
+
+Edits are solved one at a time in a worker thread, off the event loop; an
+edit that arrives while another is solving replaces a pending edit of the
+same handle or parameter, so a fast drag solves only its latest position.
+Each reply carries the whole re-solved cycle (`camlink.viz.front.frame_data`).
+"""
+
+from __future__ import annotations
+
+import asyncio
+import hmac
+import json
+import math
+import secrets
+import webbrowser
+from collections import deque
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+from typing import Any
+
+from aiohttp import WSMsgType, web
+
+from camlink._core import ModelError
+from camlink.studio.document import Document, Solution
+from camlink.viz.front import asset, frame_data
+
+__all__ = ["StudioServer", "make_app", "payload", "run"]
+
+TOKEN_KEY = web.AppKey("token", str)
+DOC_KEY = web.AppKey("doc", Document)
+EXECUTOR_KEY = web.AppKey("executor", ThreadPoolExecutor)
+
+
+class _Sockets:
+    """The open websockets, closed when the server stops."""
+
+    def __init__(self) -> None:
+        self.open: set[web.WebSocketResponse] = set()
+
+
+SOCKETS_KEY = web.AppKey("sockets", _Sockets)
+
+_TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
+_ASSETS = ("camlink.js", "studio.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
+_POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
+           "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; "
+           "frame-ancestors 'none'")
+
+
+def info_lines(sol: Solution) -> list[str]:
+    """Lines about the mechanism under the stage: its four-bar class and
+    transmission angle when it is a four-bar (`camlink.viz.fourbar`)."""
+    from camlink.viz.fourbar import describe
+
+    return describe(sol.model, sol.t, sol.names, sol.values)
+
+
+def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
+    """The page's data for the document's current cycle: every channel's
+    name, and the values of the poses, the traces, the default plots and
+    the channels `shown` (all when None)."""
+    sol = doc.solution
+    points = [str(p) for p in (sol.model.analysis.get("points") or [])]
+    channels = None
+    if shown is not None:
+        have = set(sol.names)
+        poses = [f"{b}.{c}" for b in sol.scene.bodies for c in ("x", "y", "phi")]
+        traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
+        channels = [c for c in [*poses, *traced, *shown] if c in have]
+    data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
+                      channels=channels, all_names=True)
+    data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
+                       for h in sol.handles]
+    data["parameters"] = doc.parameters()
+    data["info"] = info_lines(sol)
+    data["file"] = doc.path.name
+    data["error"] = sol.error
+    data["dirty"] = doc.dirty
+    data["undo"] = bool(doc._undo)
+    data["redo"] = bool(doc._redo)
+    return data
+
+
+def _allowed(request: web.Request) -> bool:
+    token = request.app[TOKEN_KEY]
+    given = request.query.get("token", "")
+    if not hmac.compare_digest(given.encode(), token.encode()):
+        return False
+    host = request.headers.get("Host")
+    port = request.url.port
+    names = {f"127.0.0.1:{port}", f"localhost:{port}"}
+    if host is not None and host not in names:
+        return False
+    origin = request.headers.get("Origin")
+    return origin is None or origin in {f"http://{n}" for n in names}
+
+
+@web.middleware
+async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
+    if not _allowed(request):
+        return web.Response(status=403, text="forbidden: wrong token or origin\n")
+    response = await handler(request)
+    response.headers["Content-Security-Policy"] = _POLICY
+    response.headers["X-Content-Type-Options"] = "nosniff"
+    response.headers["Cache-Control"] = "no-store"
+    response.headers["Referrer-Policy"] = "no-referrer"
+    return response
+
+
+async def _index(request: web.Request) -> web.Response:
+    text = asset("studio.html").replace("__TOKEN__", request.app[TOKEN_KEY])
+    return web.Response(text=text, content_type="text/html")
+
+
+async def _asset(request: web.Request) -> web.Response:
+    name = request.match_info["name"]
+    if name not in _ASSETS:
+        raise web.HTTPNotFound()
+    return web.Response(text=asset(name), content_type=_TYPES[Path(name).suffix])
+
+
+def _handle(doc: Document, msg: dict[str, Any]) -> dict[str, Any]:
+    """One message from the page, in the worker thread: the reply."""
+    op = msg.get("op")
+    try:
+        if op == "hello":
+            pass
+        elif op == "move":
+            doc.move(str(msg["handle"]), int(msg["row"]), float(msg["x"]), float(msg["y"]),
+                     msg.get("gesture"))
+        elif op == "param":
+            doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
+        elif op == "end":
+            doc.end_gesture()
+            return {"type": "ack", "seq": msg.get("seq")}
+        elif op == "undo":
+            doc.undo()
+        elif op == "redo":
+            doc.redo()
+        elif op == "save":
+            path = doc.save()
+            return {"type": "saved", "seq": msg.get("seq"), "file": path.name, "dirty": doc.dirty}
+        else:
+            return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
+    except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
+        text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
+        return {"type": "error", "seq": msg.get("seq"), "message": text}
+    plots = msg.get("plots")
+    shown = [str(p) for p in plots] if isinstance(plots, list) else []
+    return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc, shown)}
+
+
+def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:
+    if a.get("op") != b.get("op") or a.get("op") not in ("move", "param"):
+        return False
+    return a.get("handle") == b.get("handle") and a.get("name") == b.get("name")
+
+
+async def _socket(request: web.Request) -> web.WebSocketResponse:
+    ws = web.WebSocketResponse(max_msg_size=1 << 20)
+    await ws.prepare(request)
+    doc = request.app[DOC_KEY]
+    executor = request.app[EXECUTOR_KEY]
+    loop = asyncio.get_running_loop()
+    queue: deque[dict[str, Any]] = deque()
+    wake = asyncio.Event()
+
+    async def worker() -> None:
+        while True:
+            await wake.wait()
+            wake.clear()
+            while queue:
+                msg = queue.popleft()
+                reply = await loop.run_in_executor(executor, _handle, doc, msg)
+                if ws.closed:
+                    return
+                await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
+
+    task = asyncio.create_task(worker())
+    request.app[SOCKETS_KEY].open.add(ws)
+    try:
+        async for m in ws:
+            if m.type != WSMsgType.TEXT:
+                continue
+            try:
+                msg = json.loads(m.data)
+            except ValueError:
+                continue
+            if not isinstance(msg, dict):
+                continue
+            if msg.get("op") == "param" and not math.isfinite(float(msg.get("value", "nan"))):
+                continue
+            # A newer edit of the same point or parameter replaces the
+            # one still waiting: only the latest is solved.
+            if queue and _same_target(queue[-1], msg):
+                queue[-1] = msg
+            else:
+                queue.append(msg)
+            wake.set()
+    finally:
+        task.cancel()
+        request.app[SOCKETS_KEY].open.discard(ws)
+    return ws
+
+
+def make_app(doc: Document, token: str) -> web.Application:
+    """The studio's application for `doc`, answering only with `token`."""
+    app = web.Application(middlewares=[_guard])
+    app[TOKEN_KEY] = token
+    app[DOC_KEY] = doc
+    app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
+    app[SOCKETS_KEY] = _Sockets()
+    app.router.add_get("/", _index)
+    app.router.add_get("/ws", _socket)
+    app.router.add_get("/static/{name}", _asset)
+
+    async def close(app: web.Application) -> None:
+        app[EXECUTOR_KEY].shutdown(wait=False, cancel_futures=True)
+
+    async def shutdown(app: web.Application) -> None:
+        for ws in list(app[SOCKETS_KEY].open):
+            await ws.close(code=1001, message=b"server stopped")
+
+    app.on_shutdown.append(shutdown)
+    app.on_cleanup.append(close)
+    return app
+
+
+class StudioServer:
+    """A running studio on 127.0.0.1 (`url` carries the token)."""
+
+    def __init__(self, path: str | Path, port: int = 0) -> None:
+        self.doc = Document(path)
+        self.token = secrets.token_urlsafe(24)
+        self.port = port
+        self.url = ""
+        self._runner: web.AppRunner | None = None
+
+    async def start(self) -> str:
+        self._runner = web.AppRunner(make_app(self.doc, self.token), access_log=None)
+        await self._runner.setup()
+        site = web.TCPSite(self._runner, "127.0.0.1", self.port)
+        await site.start()
+        sockets = getattr(site._server, "sockets", None) or []
+        self.port = int(sockets[0].getsockname()[1])
+        self.url = f"http://127.0.0.1:{self.port}/?token={self.token}"
+        return self.url
+
+    async def stop(self) -> None:
+        if self._runner is not None:
+            await self._runner.cleanup()
+
+
+def run(path: str | Path, port: int = 0, browser: bool = True) -> None:
+    """Serves the studio for the model file `path` until interrupted."""
+    server = StudioServer(path, port)
+
+    async def main() -> None:
+        url = await server.start()
+        print(f"camlink studio: {url}", flush=True)
+        print("press Ctrl+C to stop", flush=True)
+        if browser:
+            webbrowser.open(url)
+        try:
+            await asyncio.Event().wait()
+        finally:
+            await server.stop()
+
+    try:
+        asyncio.run(main())
+    except KeyboardInterrupt:
+        pass

@@ -1,0 +1,241 @@
+"""Issue 29, the studio: its document (edits, undo, save), its server's
+guard (token, origin, host) and the four-bar checks it shows. The
+browser tests are in test_issue29_studio_browser.py."""
+
+from __future__ import annotations
+
+import asyncio
+import json
+import math
+import shutil
+import tomllib
+from pathlib import Path
+
+import numpy as np
+import pytest
+from aiohttp.test_utils import TestClient, TestServer
+
+import camlink
+from camlink import _core
+from camlink.cli import main
+from camlink.studio import make_app, payload
+from camlink.studio.document import Document
+from camlink.viz.fourbar import find, transmission
+from camlink.viz.scene import Scene
+from conftest import STUCK_FOUR_BAR, four_bar_toml
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+
+
+def _copy(tmp_path: Path, name: str) -> Path:
+    out = tmp_path / name
+    shutil.copy(EXAMPLES / name, out)
+    return out
+
+
+def _pose(doc: Document, body: str, row: int) -> tuple[float, float, float]:
+    return doc.solution.pose(body, row)
+
+
+def test_issue29_studio_drag_writes_body_frame_coordinates(tmp_path: Path) -> None:
+    path = _copy(tmp_path, "four_bar.toml")
+    doc = Document(path)
+    k = 37
+    crank, coupler = _pose(doc, "crank", k), _pose(doc, "coupler", k)
+    target = (0.05, 0.11)
+    doc.move("joint:A", k, *target)
+    data = camlink.load(path)  # the file is unchanged until saved
+    assert data.bodies[0]["points"]["A"] == pytest.approx([0.12, 0.0])
+    doc.save()
+    model = camlink.load(path)
+    pts = {b["name"]: b["points"] for b in model.bodies}
+    for body, q in (("crank", crank), ("coupler", coupler)):
+        c, s = math.cos(q[2]), math.sin(q[2])
+        dx, dy = target[0] - q[0], target[1] - q[1]
+        assert pts[body]["A"] == pytest.approx([c * dx + s * dy, -s * dx + c * dy], abs=1e-9)
+    # The crank is driven: at row k its new pin A is where it was dropped.
+    res = model.run(points=["crank.A"])
+    assert [res["crank.A.x"][k], res["crank.A.y"][k]] == pytest.approx(target, abs=1e-9)
+
+
+def test_issue29_studio_save_keeps_comments_backup_and_reruns(tmp_path: Path) -> None:
+    path = _copy(tmp_path, "four_bar.toml")
+    original = path.read_text()
+    doc = Document(path)
+    doc.set_parameter("b", 0.4)
+    doc.move("point:coupler.P", 100, 0.2, 0.3)
+    text = doc.save().read_text()
+    assert (tmp_path / "four_bar.toml.bak").read_text() == original
+    # Every comment line and the other lines kept as they were.
+    for line in original.splitlines():
+        if line.startswith("#") or line.startswith("[") or line.startswith("c = 0.3"):
+            assert line in text.splitlines(), line
+    assert "b = 0.4             # coupler A–B (m)" in text
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["four_bar.toml", "four_bar.toml.bak"]
+    # The saved file reruns as the studio solved it.
+    res = camlink.load(path).run(points=["coupler.P", "rocker.B"])
+    sol = doc.solution
+    for name in ("coupler.P.x", "rocker.phi", "rocker.B.y"):
+        assert np.array_equal(res[name], sol.values[:, sol.names.index(name)]), name
+
+
+def test_issue29_studio_undo_redo_a_drag_is_one_step(tmp_path: Path) -> None:
+    path = _copy(tmp_path, "four_bar.toml")
+    doc = Document(path)
+    first = doc.text()
+    for k in range(5):
+        doc.move("joint:B", 0, 0.3 + 0.01 * k, 0.25, gesture="g")
+    doc.end_gesture()
+    moved = doc.text()
+    doc.set_parameter("p", 0.12, gesture="s")
+    doc.undo()
+    assert doc.text() == moved
+    doc.undo()
+    assert doc.text() == first and doc.undo() is None
+    doc.redo()
+    assert doc.text() == moved
+
+
+def test_issue29_studio_unassemblable_rows_missing(tmp_path: Path) -> None:
+    # A crank of 1 on a non-Grashof linkage cannot pass ±119.6°: those rows
+    # are missing, and the rows where it assembles again are solved.
+    path = tmp_path / "stuck.toml"
+    path.write_text(four_bar_toml(**STUCK_FOUR_BAR))
+    doc = Document(path)
+    sol = doc.solution
+    assert sol.ok[0] and not sol.ok.all()
+    crank = (60 + 360 * sol.t) % 360  # the crank angle (°)
+    limit = math.degrees(math.acos(-(12.96 - 10) / 6))
+    reach = (crank <= limit - 0.5) | (crank >= 360 - limit + 0.5)
+    beyond = (crank >= limit + 0.5) & (crank <= 360 - limit - 0.5)
+    assert not sol.ok[beyond].any()
+    assert sol.ok[reach].mean() > 0.9
+    assert np.isnan(sol.values[~sol.ok]).all() and np.isfinite(sol.values[sol.ok]).all()
+    # The page data has the mask and finite JSON (NaN only inside base64).
+    data = payload(doc)
+    assert data["ok"] == [int(v) for v in sol.ok]
+    json.dumps(data, allow_nan=False)
+
+
+def test_issue29_studio_json_saved_plainly(tmp_path: Path) -> None:
+    src = tmp_path / "m.json"
+    text = four_bar_toml()
+    src.write_text(json.dumps(tomllib.loads(text), indent=1))
+    doc = Document(src)
+    doc.set_parameter("L", 2.7)
+    doc.save()
+    assert json.loads(src.read_text())["parameters"]["L"] == 2.7
+    assert (tmp_path / "m.json.bak").exists()
+
+
+def test_issue29_studio_global_points_drag(tmp_path: Path) -> None:
+    # A body given by global points: the dragged point's global position
+    # in the drawing (the placement, φ₀ = 0) is written, such that the
+    # body point is at the dropped place at row k.
+    path = _copy(tmp_path, "whitworth_global.toml")
+    doc = Document(path)
+    k = 20
+    rod = _pose(doc, "rod", k)
+    x0, y0, phi0 = doc.solution.scene.placement["rod"]
+    assert phi0 == 0.0
+    target = (-0.05, -0.09)
+    doc.move("joint:B", k, *target)
+    doc.save()
+    c, s = math.cos(rod[2]), math.sin(rod[2])
+    dx, dy = target[0] - rod[0], target[1] - rod[1]
+    saved = tomllib.loads(path.read_text())
+    b = next(x for x in saved["bodies"] if x["name"] == "rod")["global_points"]["B"]
+    assert b == pytest.approx([x0 + c * dx + s * dy, y0 - s * dx + c * dy], abs=1e-9)
+    lever = next(x for x in saved["bodies"] if x["name"] == "lever")["global_points"]
+    assert lever["O4"] == [0, 0] and "B" in lever
+    assert len(camlink.load(path).run()) > 0
+
+
+def test_issue29_fourbar_grashof_and_transmission() -> None:
+    # d + a < b + c with the crank shortest: a crank-rocker.
+    assert _core.fourbar_class(0.4, 0.12, 0.38, 0.3) == "crank-rocker"
+    assert _core.fourbar_class(3.0, 1.0, 2.6, 1.0) == "triple-rocker"
+    assert _core.fourbar_class(0.12, 0.4, 0.38, 0.3) == "double-crank"
+    model = camlink.load(EXAMPLES / "four_bar.toml")
+    res = model.run(points=["coupler.A", "coupler.B"])
+    loop = find(model, Scene.of(model))
+    assert loop is not None and (loop.crank, loop.coupler, loop.rocker) == ("crank", "coupler", "rocker")
+    names = ["t", *res.channels]
+    values = np.column_stack([res[c] for c in names])
+    mu = transmission(loop, names, values)
+    # μ: the angle at B between B→A and B→O4, from the solved positions.
+    ax, ay, bx, by = (res[c] for c in ("coupler.A.x", "coupler.A.y", "coupler.B.x", "coupler.B.y"))
+    u = np.column_stack([ax - bx, ay - by])
+    v = np.column_stack([0.4 - bx, 0.0 - by])
+    cos = np.sum(u * v, axis=1) / np.hypot(*u.T) / np.hypot(*v.T)
+    assert mu == pytest.approx(np.arccos(cos), abs=1e-9)
+
+
+def test_issue29_fourbar_not_found_in_a_six_bar() -> None:
+    model = camlink.load(EXAMPLES / "whitworth_global.toml")
+    assert find(model, Scene.of(model)) is None
+
+
+async def _guard_checks(path: Path) -> None:
+    token = "s3cret-token"
+    app = make_app(Document(path), token)
+    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
+        port = client.server.port
+        assert port is not None
+        ok = await client.get(f"/?token={token}")
+        assert ok.status == 200
+        assert "default-src 'none'" in ok.headers["Content-Security-Policy"]
+        for url in ("/", "/?token=wrong", f"/static/camlink.js?token={token}x", "/ws"):
+            r = await client.get(url)
+            assert r.status == 403, url
+        r = await client.get(f"/static/camlink.js?token={token}")
+        assert r.status == 200
+        r = await client.get(f"/?token={token}", headers={"Origin": "http://evil.example"})
+        assert r.status == 403
+        r = await client.get(f"/?token={token}", headers={"Origin": f"http://localhost:{port + 1}"})
+        assert r.status == 403
+        r = await client.get(f"/?token={token}", headers={"Host": "evil.example"})
+        assert r.status == 403
+        with pytest.raises(Exception, match="403"):
+            await client.ws_connect(f"/ws?token={token}", headers={"Origin": "http://evil.example"})
+        with pytest.raises(Exception, match="403"):
+            await client.ws_connect("/ws?token=nope")
+        ws = await client.ws_connect(f"/ws?token={token}", headers={"Origin": f"http://127.0.0.1:{port}"})
+        await ws.send_str(json.dumps({"op": "hello", "seq": 1}))
+        reply = json.loads((await ws.receive()).data)
+        assert reply["type"] == "frames" and reply["data"]["title"] == "four_bar"
+        await ws.send_str(json.dumps({"op": "move", "handle": "nope", "row": 0, "x": 0, "y": 0, "seq": 2}))
+        reply = json.loads((await ws.receive()).data)
+        assert reply == {"type": "error", "seq": 2, "message": "no handle 'nope'"}
+        await ws.close()
+
+
+def test_issue29_studio_refuses_without_token_or_from_another_origin(tmp_path: Path) -> None:
+    asyncio.run(_guard_checks(_copy(tmp_path, "four_bar.toml")))
+
+
+def test_issue29_studio_cli_usage_errors(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # In-process: `camlink.cli.main` as the command runs it.
+    with pytest.raises(SystemExit) as e:
+        main(["studio", str(EXAMPLES / "four_bar.toml"), "--port", "70000", "--no-browser"])
+    assert e.value.code == 2 and "not a port number" in capsys.readouterr().err
+    broken = tmp_path / "broken.toml"
+    broken.write_text('[model]\nname = "x"\n[[bodies]]\nname = 3\n')
+    assert main(["studio", str(broken), "--no-browser"]) == 2
+    err = capsys.readouterr().err
+    assert "broken.toml" in err and "Traceback" not in err
+    assert main(["studio", str(tmp_path / "nope.toml"), "--no-browser"]) == 2
+    assert "nope.toml" in capsys.readouterr().err
+    other = tmp_path / "model.yaml"
+    other.write_text("x: 1\n")
+    with pytest.raises(camlink.ModelError, match=r"\.toml and \.json"):
+        Document(other)
+
+
+def test_issue29_studio_model_not_fully_driven_shows_placement(tmp_path: Path) -> None:
+    doc = Document(_copy(tmp_path, "dyn_pendulum.toml"))
+    data = payload(doc)
+    assert data["error"] is not None and "driven" in data["error"]
+    assert data["ok"] == [1]
+    json.dumps(data, allow_nan=False)

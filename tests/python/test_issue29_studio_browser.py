@@ -1,0 +1,227 @@
+"""Issue 29, the studio in Debian's chromium through Playwright, every
+request off 127.0.0.1 blocked: drags, sliders, readouts, saving,
+unassemblable edits and markup in names. Marked `browser`."""
+
+from __future__ import annotations
+
+import asyncio
+import shutil
+import threading
+import tomllib
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+import camlink
+from camlink.studio import StudioServer
+from conftest import STUCK_FOUR_BAR, four_bar_toml
+
+pytestmark = pytest.mark.browser
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+
+
+class Studio:
+    """A studio server on its own event loop in a thread."""
+
+    def __init__(self, path: Path) -> None:
+        self.server = StudioServer(path)
+        self.loop = asyncio.new_event_loop()
+        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
+        self.thread.start()
+        self.url = asyncio.run_coroutine_threadsafe(self.server.start(), self.loop).result(30)
+
+    def close(self) -> None:
+        asyncio.run_coroutine_threadsafe(self.server.stop(), self.loop).result(30)
+        self.loop.call_soon_threadsafe(self.loop.stop)
+        self.thread.join(10)
+
+
+class Page:
+    """The studio page, with console errors and blocked requests recorded."""
+
+    def __init__(self, browser: Any, url: str) -> None:
+        self.errors: list[str] = []
+        self.blocked: list[str] = []
+        self.page = browser.new_page(viewport={"width": 1300, "height": 900})
+        self.page.on("console", lambda m: self.errors.append(m.text) if m.type == "error" else None)
+        self.page.on("pageerror", lambda e: self.errors.append(str(e)))
+
+        def route(r: Any) -> None:
+            if r.request.url.startswith("http://127.0.0.1:"):
+                r.continue_()
+            else:
+                self.blocked.append(r.request.url)
+                r.abort()
+
+        self.page.route("**/*", route)
+        self.page.goto(url)
+        self.wait()
+
+    def wait(self) -> None:
+        """Until every request sent has its answer."""
+        self.page.wait_for_function(
+            "() => window.camlinkStudio && camlinkStudio.answered >= camlinkStudio.sent()"
+            " && camlinkStudio.sent() > 0", timeout=20_000)
+
+    def js(self, expr: str) -> Any:
+        return self.page.evaluate(f"() => {expr}")
+
+    def slider(self, name: str, value: float) -> None:
+        self.page.eval_on_selector(
+            f'#params input[data-name="{name}"]',
+            "(el, v) => { el.value = v; el.dispatchEvent(new Event('input')); "
+            "el.dispatchEvent(new Event('change')); }", str(value))
+        self.wait()
+
+
+@pytest.fixture
+def studio(tmp_path: Path) -> Iterator[tuple[Studio, Path]]:
+    path = tmp_path / "four_bar.toml"
+    shutil.copy(EXAMPLES / "four_bar.toml", path)
+    s = Studio(path)
+    yield s, path
+    s.close()
+
+
+def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[Studio, Path]) -> None:
+    s, path = studio
+    pg = Page(browser, s.url)
+    page = pg.page
+    k = 40
+    pg.js(f"camlinkStudio.front.setFrame({k})")
+    scale = pg.js("camlinkStudio.front.scale()")
+    old = pg.js("camlinkStudio.front.handle('joint:A')")
+    u, v = pg.js(f"camlinkStudio.front.pixel({old[0]}, {old[1]})")
+    crank = s.server.doc.solution.pose("crank", k)
+    coupler = s.server.doc.solution.pose("coupler", k)
+    page.mouse.move(u, v)
+    page.mouse.down()
+    for n in range(1, 6):
+        page.mouse.move(u + 6 * n, v - 4 * n)
+    page.mouse.up()
+    pg.wait()
+    page.click("#save")
+    pg.wait()
+    assert "saved four_bar.toml" in page.locator("#message").text_content()
+    # 30 px right and 20 px up at `scale` px/m.
+    target = (old[0] + 30 / scale, old[1] + 20 / scale)
+    saved = {b["name"]: b["points"] for b in tomllib.loads(path.read_text())["bodies"]}
+    for body, q in (("crank", crank), ("coupler", coupler)):
+        c, sn = np.cos(q[2]), np.sin(q[2])
+        dx, dy = target[0] - q[0], target[1] - q[1]
+        assert saved[body]["A"] == pytest.approx([c * dx + sn * dy, -sn * dx + c * dy], abs=2e-9)
+    # One undo step for the whole drag.
+    page.click("#undo")
+    pg.wait()
+    assert s.server.doc.text() == (path.parent / "four_bar.toml.bak").read_text()
+    assert pg.errors == [] and pg.blocked == []
+
+
+def test_issue29_studio_slider_same_trace_as_python_run(browser: Any, studio: tuple[Studio, Path]) -> None:
+    s, _ = studio
+    pg = Page(browser, s.url)
+    pg.slider("a", 0.131)
+    page_x = np.array(pg.js("Array.from(camlinkStudio.front.channel('coupler.P.x'))"))
+    page_y = np.array(pg.js("Array.from(camlinkStudio.front.channel('coupler.P.y'))"))
+    res = camlink.load(EXAMPLES / "four_bar.toml").with_parameters(a=0.131).run()
+    assert np.abs(page_x - res["coupler.P.x"]).max() <= 1e-9
+    assert np.abs(page_y - res["coupler.P.y"]).max() <= 1e-9
+    assert np.abs(page_x - camlink.load(EXAMPLES / "four_bar.toml").run()["coupler.P.x"]).max() > 1e-3
+    # The readout at the cursor is the channel's value at that row.
+    box = pg.page.locator(".cl-plot .u-over").first.bounding_box()
+    pg.page.mouse.move(box["x"] + 0.37 * box["width"], box["y"] + box["height"] / 2)
+    value = pg.page.locator(".cl-value").first
+    row = int(value.get_attribute("data-row"))
+    channel = pg.page.locator(".cl-pick").first.input_value()
+    assert channel == "coupler.P.x"
+    text = value.text_content()
+    assert f"t = {res.t[row]:.4f} s:" in text
+    shown = float(text.split(":")[1].split()[0])
+    assert shown == pytest.approx(res["coupler.P.x"][row], rel=1e-6)
+    # Any channel can be picked; an angle is read in degrees.
+    pg.page.locator(".cl-pick").first.select_option("rocker.phi")
+    pg.page.mouse.move(box["x"] + 0.37 * box["width"] + 1, box["y"] + box["height"] / 2)
+    text = value.text_content()
+    row = int(value.get_attribute("data-row"))
+    assert float(text.split(":")[1].split()[0]) == pytest.approx(
+        np.degrees(res["rocker.phi"][row]), rel=1e-6)
+    assert text.endswith("°")
+    # A channel whose values the page has not got yet is asked for.
+    assert pg.js("camlinkStudio.front.channel('coupler.vx')") is None
+    pg.page.locator(".cl-pick").nth(1).select_option("coupler.vx")
+    pg.page.wait_for_function("() => camlinkStudio.front.channel('coupler.vx') !== null")
+    got = np.array(pg.js("Array.from(camlinkStudio.front.channel('coupler.vx'))"))
+    assert np.array_equal(got, res["coupler.vx"])
+    assert pg.errors == [] and pg.blocked == []
+
+
+def test_issue29_studio_save_reload_rerun(browser: Any, studio: tuple[Studio, Path]) -> None:
+    s, path = studio
+    pg = Page(browser, s.url)
+    pg.slider("c", 0.32)
+    pg.page.click("#save")
+    pg.wait()
+    before = np.array(pg.js("Array.from(camlinkStudio.front.channel('rocker.phi'))"))
+    pg.page.reload()
+    pg.wait()
+    after = np.array(pg.js("Array.from(camlinkStudio.front.channel('rocker.phi'))"))
+    assert np.array_equal(before, after)
+    res = camlink.load(path).run()
+    assert np.array_equal(res["rocker.phi"], after)
+    assert "c = 0.32" in path.read_text()
+    assert pg.errors == [] and pg.blocked == []
+
+
+def test_issue29_studio_unassemblable_edit_marks_range(browser: Any, tmp_path: Path) -> None:
+    path = tmp_path / "four_bar.toml"
+    path.write_text(four_bar_toml())
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        assert pg.page.locator("#status").text_content() == ""
+        pg.slider("b", STUCK_FOUR_BAR["b"])
+        status = pg.page.locator("#status").text_content()
+        assert status.startswith("does not assemble at ")
+        ok = pg.js("Array.from(camlinkStudio.front.data().ok)")
+        assert 0 in ok and ok[0] == 1
+        # The strip under the slider is red over the missing rows.
+        k = ok.index(0) + 3
+        pg.js(f"camlinkStudio.front.setFrame({k})")
+        shot = pg.page.screenshot(path=str(tmp_path / "stuck.png"))
+        assert shot
+        box = pg.page.locator("#reach").bounding_box()
+        rows = len(ok)
+        from PIL import Image
+
+        image = np.asarray(Image.open(tmp_path / "stuck.png").convert("RGB")).astype(int)
+        r, g, b = image[round(box["y"] + 3), round(box["x"] + k / (rows - 1) * box["width"])]
+        assert r > 180 and g < 90 and b < 90
+        # The page keeps working: back to an assembling linkage.
+        pg.slider("b", 2.5)
+        assert pg.page.locator("#status").text_content() == ""
+        assert all(pg.js("Array.from(camlinkStudio.front.data().ok)"))
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+
+
+def test_issue29_studio_names_with_markup_render_as_text(browser: Any, tmp_path: Path) -> None:
+    name = '<img src=x onerror="window.pwned=1">"</script><b>x'
+    text = four_bar_toml().replace('name = "four_bar"', f"name = '{name}'")
+    path = tmp_path / "markup.toml"
+    path.write_text(text)
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        assert pg.page.locator("#title").text_content() == name
+        assert pg.page.title() == f"{name} · camlink studio"
+        assert pg.page.locator("img").count() == 0 and pg.page.locator("b").count() == 0
+        assert pg.js("window.pwned === undefined")
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
