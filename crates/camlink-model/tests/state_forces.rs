@@ -295,3 +295,67 @@ fn issue30_unknown_channels_are_named_with_the_nearby_ones() {
         "{e}"
     );
 }
+
+/// examples/whitworth_global.toml in dynamics. The motor drives the crank
+/// at constant speed: in inverse dynamics the motor's extra power for the
+/// cutting force is the force's power, ΔP = 500·s(v)·v with s the STEP
+/// from 0 to 1 over v ∈ [0, 0.01] m/s; forward dynamics runs the same
+/// motion.
+#[test]
+fn issue30_whitworth_global_cuts_in_dynamics() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/whitworth_global.toml");
+    let loaded = camlink_model::load_path(&path).unwrap();
+    assert!(matches!(loaded.model.forces[0].kind, ForceKind::State(_)));
+    let mut idle_model = loaded.model.clone();
+    idle_model.forces.clear();
+    let times = time_grid(1.0, 0.005).unwrap();
+    let inverse = |m: &camlink_core::Model| {
+        let mut t = Table::default();
+        camlink_core::dynamics::inverse::run(
+            m,
+            &times,
+            &camlink_core::run::Settings::default(),
+            &[],
+            &mut t,
+        )
+        .unwrap();
+        t
+    };
+    let (cut, idle) = (inverse(&loaded.model), inverse(&idle_model));
+    let v = cut.channel("ram.vx").unwrap();
+    let (pc, pi) = (
+        cut.channel("motor.power").unwrap(),
+        idle.channel("motor.power").unwrap(),
+    );
+    let mut worst: f64 = 0.0;
+    let mut forward = 0;
+    for k in 0..v.len() {
+        let u = (v[k] / 0.01).clamp(0.0, 1.0);
+        let want = 500.0 * u * u * (3.0 - 2.0 * u) * v[k];
+        worst = worst.max((pc[k] - pi[k] - want).abs());
+        forward += usize::from(v[k] > 0.01);
+    }
+    let peak = 500.0 * v.iter().cloned().fold(0.0, f64::max);
+    eprintln!("whitworth cutting power: max error {worst:e} W of {peak:.1} W");
+    assert!(worst < 1e-9 * peak, "{worst} of {peak}");
+    // The cutting stroke is the slow one: about 240° of the crank's 360°.
+    let share = forward as f64 / v.len() as f64;
+    assert!((share - 2.0 / 3.0).abs() < 0.03, "{share}");
+    // Forward dynamics with the force runs the driven motion.
+    let settings = Settings {
+        step: 1e-3,
+        tol: 1e-10,
+        ..Settings::default()
+    };
+    let mut fwd = Table::default();
+    run(&loaded.model, &times, &settings, &[], &mut fwd).unwrap();
+    let (dx, dv) = (
+        max_diff(&fwd, &cut, &["ram.x"]),
+        max_diff(&fwd, &cut, &["ram.vx"]),
+    );
+    eprintln!("forward dynamics against the driven motion: ram.x {dx:e} m, ram.vx {dv:e} m/s");
+    assert!(dx < 1e-8, "{dx}");
+    // Velocities to the integrator's accuracy at h = 1 ms.
+    assert!(dv < 1e-4, "{dv}");
+}
