@@ -361,16 +361,26 @@ impl StateForce {
     /// Q_i and Q_j over a scalar type, from the values of f_x, f_y and T.
     #[inline]
     fn loads<S: Scalar>(&self, x: &State<S>, f: [S; 2], torque: S) -> [[S; 3]; 2] {
+        let zero = S::c(0.0);
+        if self.f[0].is_none() && self.f[1].is_none() {
+            return [[zero, zero, torque], [zero, zero, -torque]];
+        }
         let f = if self.local {
             let (sn, cs) = x.q[0][2].sin_cos();
             [cs * f[0] - sn * f[1], sn * f[0] + cs * f[1]]
         } else {
             f
         };
-        let (_, bi) = rot(x.q[0][2], self.s_i);
-        let (_, bj) = rot(x.q[1][2], self.s_j);
-        let ni = bi[0] * f[0] + bi[1] * f[1] + torque;
-        let nj = bj[0] * f[0] + bj[1] * f[1] + torque;
+        // (B s')ᵀF, zero for a force at the frame origin.
+        let moment = |phi: S, s: V2| {
+            if s == [0.0; 2] {
+                return zero;
+            }
+            let (_, b) = rot(phi, s);
+            b[0] * f[0] + b[1] * f[1]
+        };
+        let ni = moment(x.q[0][2], self.s_i) + torque;
+        let nj = moment(x.q[1][2], self.s_j) + torque;
         [[f[0], f[1], ni], [-f[0], -f[1], -nj]]
     }
 
