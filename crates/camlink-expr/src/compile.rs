@@ -2,7 +2,7 @@
 //! which folds constant sub-expressions and fuses constant operands into
 //! their instruction as it goes.
 
-use crate::vm::{max_depth, run, truth, Op};
+use crate::vm::{max_depth, run, truth, Args, Op};
 
 /// A byte range `start..end` of the source.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -71,6 +71,16 @@ impl Builder {
     /// The variable as a leaf.
     pub(crate) fn variable(&mut self, span: Span) -> Sub {
         let start = self.push(Op::Var, span);
+        Sub {
+            start,
+            kind: Kind::Var,
+            span,
+        }
+    }
+
+    /// Input k of a multi-input expression as a leaf.
+    pub(crate) fn input(&mut self, k: u16, span: Span) -> Sub {
+        let start = self.push(Op::Input(k), span);
         Sub {
             start,
             kind: Kind::Var,
@@ -193,7 +203,7 @@ impl Builder {
         let code = &self.code[start..];
         let value = max_depth(code).and_then(|depth| {
             let mut stack = vec![0.0; depth];
-            run::<f64, false>(code, f64::NAN, &mut stack).ok()
+            run::<f64, false>(code, Args::at(f64::NAN), &mut stack).ok()
         });
         match value {
             Some(v) if v.is_finite() => {

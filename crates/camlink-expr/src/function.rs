@@ -69,6 +69,13 @@ pub(crate) const BUILTINS: &[Builtin] = &[
     f("ramp", LAW, 5, Emit::Motion(Law::Ramp)),
     f("harmonic", LAW, 5, Emit::Motion(Law::Harmonic)),
     f("cycloidal", LAW, 5, Emit::Motion(Law::Cycloidal)),
+    f(
+        "impact",
+        "x, xd, x1, k, e, cmax, d",
+        7,
+        Emit::Op(Op::Impact),
+    ),
+    f("coulomb", "v, fc, vs", 3, Emit::Op(Op::Coulomb)),
 ];
 
 /// The built-in function called `name`.

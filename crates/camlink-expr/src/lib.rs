@@ -37,7 +37,8 @@
 //!
 //! - Numbers: `1`, `1.5`, `.5`, `2.`, `1e-3`, `1.5E+2`.
 //! - Names: the variable (chosen by the caller, e.g. `t` or `a`; any letter
-//!   including `α`), parameters passed to [`Expr::parse_with`], and the
+//!   including `α`) or the inputs of a multi-input expression
+//!   ([`Expr::parse_inputs`]), parameters passed to [`Expr::parse_with`], and the
 //!   constants `pi` (also `π`) and `e`. Parameters shadow `pi` and `e`; a
 //!   parameter may not share the variable's name.
 //! - Arithmetic: `+ - * /`, powers `^` or `**` (right-associative; `-x^2`
@@ -71,6 +72,8 @@
 //! | `mod(x, y)` | x − y⌊x/y⌋, the sign of y | x' − ⌊x/y⌋ y' |
 //! | `hypot(x, y)` | √(x² + y²) | |
 //! | `deg(x)` | x·π/180 (degrees to radians) | |
+//! | `impact(x, xd, x1, k, e, cmax, d)` | ADAMS IMPACT: for x < x1, max(0, k (x1 − x)ᵉ − step(x, x1 − d, cmax, x1, 0)·xd); 0 for x ≥ x1 | exact on each side; d > 0, e ≥ 1 |
+//! | `coulomb(v, fc, vs)` | smooth Coulomb law fc·step(v, −vs, −1, vs, 1): fc·sign(v) for \|v\| ≥ vs | C1; vs > 0 |
 //!
 //! # Motion laws
 //!
@@ -113,7 +116,7 @@ use std::collections::HashMap;
 use std::fmt;
 
 use compile::Span;
-use vm::{run, Fault, Op};
+use vm::{run, Args, Fault, Op};
 
 pub use error::{EvalError, ParseError, RENDER_WIDTH};
 pub use function::functions;
@@ -127,6 +130,8 @@ pub use parser::{MAX_LEN, MAX_NESTING};
 pub struct Expr {
     source: String,
     var: Option<String>,
+    /// Names of the inputs of a multi-input expression, in input order.
+    inputs: Box<[String]>,
     code: Box<[Op]>,
     spans: Box<[Span]>,
     /// Evaluation stack slots the code needs.
@@ -151,10 +156,134 @@ impl Expr {
         Ok(Expr {
             source: src.to_owned(),
             var: var.map(str::to_owned),
+            inputs: Box::default(),
             code: p.code.into_boxed_slice(),
             spans: p.spans.into_boxed_slice(),
             depth: p.depth,
         })
+    }
+
+    /// Parses `src` as an expression of several inputs, named in `inputs`
+    /// (input k is `inputs[k]`), with named constants substituted at compile
+    /// time; the constants shadow inputs of the same name.
+    /// [`eval_inputs`](Self::eval_inputs) and [`gradient`](Self::gradient)
+    /// evaluate it.
+    ///
+    /// ```
+    /// use std::collections::HashMap;
+    /// use camlink_expr::Expr;
+    ///
+    /// let f = Expr::parse_inputs("if(v > 0, -k*v^2, 0)", &["v"], &HashMap::from([("k".into(), 2.0)])).unwrap();
+    /// assert_eq!(f.eval_inputs(&[3.0]), -18.0);
+    /// let mut g = [0.0];
+    /// assert_eq!(f.gradient(&[3.0], &mut g), -18.0);
+    /// assert_eq!(g, [-12.0]);
+    /// ```
+    pub fn parse_inputs(
+        src: &str,
+        inputs: &[&str],
+        constants: &HashMap<String, f64>,
+    ) -> Result<Expr, ParseError> {
+        let p = parser::compile_inputs(src, None, inputs, constants)?;
+        Ok(Expr {
+            source: src.to_owned(),
+            var: None,
+            inputs: inputs.iter().map(|&n| n.to_owned()).collect(),
+            code: p.code.into_boxed_slice(),
+            spans: p.spans.into_boxed_slice(),
+            depth: p.depth,
+        })
+    }
+
+    /// The names of a multi-input expression's inputs, in input order.
+    pub fn inputs(&self) -> &[String] {
+        &self.inputs
+    }
+
+    /// The value at the inputs `u` (one per input; a missing one reads as
+    /// NaN).
+    #[inline]
+    pub fn eval_inputs(&self, u: &[f64]) -> f64 {
+        match self.depth {
+            0..=4 => self.eval_inputs_on::<4>(u),
+            5..=8 => self.eval_inputs_on::<8>(u),
+            9..=32 => self.eval_inputs_on::<32>(u),
+            _ => self.eval_inputs_on::<{ parser::MAX_STACK }>(u),
+        }
+    }
+
+    #[inline]
+    fn eval_inputs_on<const N: usize>(&self, u: &[f64]) -> f64 {
+        let mut stack = [0.0; N];
+        let args = Args {
+            x: f64::NAN,
+            inputs: u,
+            active: usize::MAX,
+        };
+        run::<f64, false>(&self.code, args, &mut stack).unwrap_or(f64::NAN)
+    }
+
+    /// The value at the inputs `u`, returned, and its partial derivatives
+    /// ∂f/∂u_k into `grad[k]`, exact: forward-mode jets, one pass per
+    /// input with that input as the variable. Where the expression is not
+    /// differentiable (the switch of an `if`, `sign`, `min`) the
+    /// derivative is that of the branch taken.
+    pub fn gradient(&self, u: &[f64], grad: &mut [f64]) -> f64 {
+        match self.depth {
+            0..=4 => self.gradient_on::<4>(u, grad),
+            5..=8 => self.gradient_on::<8>(u, grad),
+            9..=32 => self.gradient_on::<32>(u, grad),
+            _ => self.gradient_on::<{ parser::MAX_STACK }>(u, grad),
+        }
+    }
+
+    fn gradient_on<const N: usize>(&self, u: &[f64], grad: &mut [f64]) -> f64 {
+        let mut stack = [Jet::ZERO; N];
+        let mut value = f64::NAN;
+        if grad.is_empty() {
+            return self.eval_inputs(u);
+        }
+        for (k, g) in grad.iter_mut().enumerate() {
+            let args = Args {
+                x: f64::NAN,
+                inputs: u,
+                active: k,
+            };
+            let j = run::<Jet, false>(&self.code, args, &mut stack).map_or([f64::NAN; 4], |j| j.0);
+            value = j[0];
+            *g = j[1];
+        }
+        value
+    }
+
+    /// Evaluates at the inputs `u` with checks and names the first
+    /// operation that fails, as [`check`](Self::check) does.
+    pub fn check_inputs(&self, u: &[f64]) -> Result<(), EvalError> {
+        let mut stack = vec![Jet::ZERO; self.depth.max(1)];
+        let args = Args {
+            x: f64::NAN,
+            inputs: u,
+            active: 0,
+        };
+        match run::<Jet, true>(&self.code, args, &mut stack) {
+            Ok(_) => Ok(()),
+            Err(Fault { pc, what }) => {
+                let mut message = format!("{what} in `{}`", self.snippet(self.spans[pc]));
+                let at: Vec<String> = self
+                    .inputs
+                    .iter()
+                    .zip(u)
+                    .map(|(n, v)| format!("{n} = {}", fmt_num::num(*v)))
+                    .collect();
+                if !at.is_empty() {
+                    message += &format!(" at {}", at.join(", "));
+                }
+                Err(EvalError {
+                    message,
+                    x: u.first().copied().unwrap_or(f64::NAN),
+                })
+            }
+        }
     }
 
     /// The value f(x).
@@ -195,19 +324,19 @@ impl Expr {
 
     fn jet4_on<const N: usize>(&self, x: f64) -> [f64; 5] {
         let mut stack = [Jet4::ZERO; N];
-        run::<Jet4, false>(&self.code, x, &mut stack).map_or([f64::NAN; 5], |j| j.0)
+        run::<Jet4, false>(&self.code, Args::at(x), &mut stack).map_or([f64::NAN; 5], |j| j.0)
     }
 
     #[inline]
     fn eval_on<const N: usize>(&self, x: f64) -> f64 {
         let mut stack = [0.0; N];
-        run::<f64, false>(&self.code, x, &mut stack).unwrap_or(f64::NAN)
+        run::<f64, false>(&self.code, Args::at(x), &mut stack).unwrap_or(f64::NAN)
     }
 
     #[inline]
     fn jet_on<const N: usize>(&self, x: f64) -> [f64; 4] {
         let mut stack = [Jet::ZERO; N];
-        run::<Jet, false>(&self.code, x, &mut stack).map_or([f64::NAN; 4], |j| j.0)
+        run::<Jet, false>(&self.code, Args::at(x), &mut stack).map_or([f64::NAN; 4], |j| j.0)
     }
 
     /// Evaluates the jet at x with checks and names the first operation that
@@ -226,7 +355,7 @@ impl Expr {
     /// The first failing operation at x and its source span.
     fn fault(&self, x: f64) -> Option<(String, Span)> {
         let mut stack = vec![Jet::ZERO; self.depth.max(1)];
-        match run::<Jet, true>(&self.code, x, &mut stack) {
+        match run::<Jet, true>(&self.code, Args::at(x), &mut stack) {
             Ok(_) => None,
             Err(Fault { pc, what }) => Some((what, self.spans[pc])),
         }
@@ -259,7 +388,10 @@ impl Expr {
     /// variable does not appear in it, or appears only in an `if` branch
     /// that a constant condition rules out.
     pub fn is_constant(&self) -> bool {
-        !self.code.contains(&Op::Var)
+        !self
+            .code
+            .iter()
+            .any(|op| matches!(op, Op::Var | Op::Input(_)))
     }
 }
 

@@ -45,6 +45,17 @@ pub(crate) fn compile(
     var: Option<&str>,
     constants: &HashMap<String, f64>,
 ) -> Result<Program, ParseError> {
+    compile_inputs(src, var, &[], constants)
+}
+
+/// Compiles `src` reading `inputs` (input k as `Op::Input(k)`) besides
+/// `var` and `constants`. The variable, then the constants, shadow inputs.
+pub(crate) fn compile_inputs(
+    src: &str,
+    var: Option<&str>,
+    inputs: &[&str],
+    constants: &HashMap<String, f64>,
+) -> Result<Program, ParseError> {
     if src.len() > MAX_LEN {
         let mut cut = MAX_LEN;
         while !src.is_char_boundary(cut) {
@@ -80,6 +91,7 @@ pub(crate) fn compile(
         pos: 0,
         nesting: 0,
         var,
+        inputs,
         constants,
         b: Builder::default(),
     };
@@ -113,6 +125,7 @@ struct Parser<'a> {
     pos: usize,
     nesting: usize,
     var: Option<&'a str>,
+    inputs: &'a [&'a str],
     constants: &'a HashMap<String, f64>,
     b: Builder,
 }
@@ -322,6 +335,9 @@ impl<'a> Parser<'a> {
             "e" => return Ok(self.b.constant(E, span)),
             _ => {}
         }
+        if let Some(k) = self.inputs.iter().position(|&n| n == text) {
+            return Ok(self.b.input(k as u16, span));
+        }
         if lookup(text).is_some() {
             return Err(self.error(format!("'{text}' is a function; call it as {text}(...)"), t));
         }
@@ -330,6 +346,7 @@ impl<'a> Parser<'a> {
 
     fn unknown_name(&self, text: &str) -> String {
         let mut names: Vec<&str> = self.var.into_iter().collect();
+        names.extend(self.inputs.iter().copied());
         let mut params: Vec<&str> = self.constants.keys().map(String::as_str).collect();
         params.sort_unstable();
         names.extend(params);
@@ -380,6 +397,7 @@ impl<'a> Parser<'a> {
         let text = self.text(name);
         let Some(f) = lookup(text) else {
             let value = Some(text) == self.var
+                || self.inputs.contains(&text)
                 || self.constants.contains_key(text)
                 || matches!(text, "pi" | "π" | "e");
             let message = if value {

@@ -56,6 +56,8 @@ impl Cmp {
 pub(crate) enum Op {
     Const(f64),
     Var,
+    /// Pushes input k of a multi-input expression ([`Args::inputs`]).
+    Input(u16),
     Add,
     Sub,
     Mul,
@@ -97,6 +99,10 @@ pub(crate) enum Op {
     Max,
     Mod,
     Motion(Law),
+    /// `impact(x, xd, x1, k, e, cmax, d)`, ADAMS IMPACT.
+    Impact,
+    /// `coulomb(v, fc, vs)`, a smooth Coulomb law.
+    Coulomb,
     /// Pops the condition; skips when it is zero.
     JumpIfFalse(u32),
     Jump(u32),
@@ -110,7 +116,7 @@ impl Op {
     /// Net change of the stack height on the fall-through path.
     pub(crate) fn stack_effect(self) -> isize {
         match self {
-            Op::Const(_) | Op::Var => 1,
+            Op::Const(_) | Op::Var | Op::Input(_) => 1,
             Op::Add
             | Op::Sub
             | Op::Mul
@@ -126,6 +132,8 @@ impl Op {
             | Op::AndJump(_)
             | Op::OrJump(_) => -1,
             Op::Motion(_) => -4,
+            Op::Impact => -6,
+            Op::Coulomb => -2,
             _ => 0,
         }
     }
@@ -133,8 +141,10 @@ impl Op {
     /// How many operands the op reads from the top of the stack.
     pub(crate) fn arity(self) -> usize {
         match self {
-            Op::Const(_) | Op::Var | Op::Jump(_) => 0,
+            Op::Const(_) | Op::Var | Op::Input(_) | Op::Jump(_) => 0,
             Op::Motion(_) => 5,
+            Op::Impact => 7,
+            Op::Coulomb => 3,
             op if op.stack_effect() == -1
                 && !matches!(op, Op::JumpIfFalse(_) | Op::AndJump(_) | Op::OrJump(_)) =>
             {
@@ -384,8 +394,30 @@ pub(crate) struct Fault {
     pub what: String,
 }
 
-/// Runs `code` at x on `stack`, which must hold at least the program's
-/// maximum stack depth (see [`max_depth`]).
+/// What a program reads: the variable x and, for a multi-input expression,
+/// its inputs, of which the one at `active` (if any) is the variable of
+/// the jet and the others are constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Args<'a> {
+    pub x: f64,
+    pub inputs: &'a [f64],
+    pub active: usize,
+}
+
+impl Args<'static> {
+    /// A single-variable program at x.
+    #[inline]
+    pub(crate) fn at(x: f64) -> Args<'static> {
+        Args {
+            x,
+            inputs: &[],
+            active: usize::MAX,
+        }
+    }
+}
+
+/// Runs `code` with `args` on `stack`, which must hold at least the
+/// program's maximum stack depth (see [`max_depth`]).
 ///
 /// With `CHECK`, each op's operands are tested against its domain first and
 /// its result for finiteness after; the first failure is returned. Without
@@ -393,15 +425,16 @@ pub(crate) struct Fault {
 #[inline]
 pub(crate) fn run<V: Value, const CHECK: bool>(
     code: &[Op],
-    x: f64,
+    args: Args,
     s: &mut [V],
 ) -> Result<V, Fault> {
+    let x = args.x;
     let mut sp = 0usize;
     let mut pc = 0usize;
     while pc < code.len() {
         let op = code[pc];
         if CHECK {
-            if let Some(what) = domain(op, &s[..sp], x) {
+            if let Some(what) = domain(op, &s[..sp], args) {
                 return Err(Fault { pc, what });
             }
         }
@@ -412,6 +445,16 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
             }
             Op::Var => {
                 s[sp] = V::variable(x);
+                sp += 1;
+            }
+            Op::Input(k) => {
+                let k = k as usize;
+                let u = args.inputs.get(k).copied().unwrap_or(f64::NAN);
+                s[sp] = if k == args.active {
+                    V::variable(u)
+                } else {
+                    V::constant(u)
+                };
                 sp += 1;
             }
             Op::Add => {
@@ -494,6 +537,23 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
                 let a = [s[sp - 1], s[sp], s[sp + 1], s[sp + 2], s[sp + 3]];
                 s[sp - 1] = V::motion(law, a);
             }
+            Op::Impact => {
+                sp -= 6;
+                let a = [
+                    s[sp - 1],
+                    s[sp],
+                    s[sp + 1],
+                    s[sp + 2],
+                    s[sp + 3],
+                    s[sp + 4],
+                    s[sp + 5],
+                ];
+                s[sp - 1] = impact(a);
+            }
+            Op::Coulomb => {
+                sp -= 2;
+                s[sp - 1] = coulomb(s[sp - 1], s[sp], s[sp + 1]);
+            }
             Op::JumpIfFalse(off) => {
                 sp -= 1;
                 if !truth(s[sp].value()) {
@@ -531,6 +591,32 @@ pub(crate) fn run<V: Value, const CHECK: bool>(
     Ok(s[0])
 }
 
+/// ADAMS IMPACT: with penetration p = x1 − x > 0,
+/// max(0, k pᵉ − STEP(x, x1 − d, cmax, x1, 0) ẋ), and 0 for x ≥ x1. The
+/// damping rises from 0 at x = x1 to cmax at x = x1 − d, so the force is
+/// continuous at first contact; the max keeps it from pulling.
+#[inline]
+fn impact<V: Value>([x, xd, x1, k, e, cmax, d]: [V; 7]) -> V {
+    if x.value() >= x1.value() {
+        return V::constant(0.0);
+    }
+    let p = x1 - x;
+    let damping = V::motion(Law::Step, [x, x1 - d, cmax, x1, V::constant(0.0)]);
+    let f = k * p.pow(e) - damping * xd;
+    if f.value() > 0.0 {
+        f
+    } else {
+        V::constant(0.0)
+    }
+}
+
+/// A smooth Coulomb law fc·STEP(v, −vs, −1, vs, 1): fc·sign(v) for
+/// |v| ≥ vs, a cubic through 0 between (C1).
+#[inline]
+fn coulomb<V: Value>(v: V, fc: V, vs: V) -> V {
+    fc * V::motion(Law::Step, [v, -vs, V::constant(-1.0), vs, V::constant(1.0)])
+}
+
 fn non_finite(order: usize, v: f64) -> String {
     match order {
         0 => format!("result is not finite ({})", num(v)),
@@ -543,7 +629,8 @@ fn non_finite(order: usize, v: f64) -> String {
 /// The domain failure of `op` on the operands at the top of `stack`, if any;
 /// a number near a limit (1.0000000000000002 for asin) is written with the
 /// digits that tell it from the limit.
-fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
+fn domain<V: Value>(op: Op, stack: &[V], args: Args) -> Option<String> {
+    let x = args.x;
     let n = stack.len();
     let top = || stack[n - 1].value();
     let pair = || (stack[n - 2].value(), stack[n - 1].value());
@@ -566,6 +653,10 @@ fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
     };
     match op {
         Op::Var if !x.is_finite() => Some(format!("the variable is not finite ({})", num(x))),
+        Op::Input(k) => {
+            let u = args.inputs.get(k as usize).copied().unwrap_or(f64::NAN);
+            (!u.is_finite()).then(|| format!("input {k} is not finite ({})", num(u)))
+        }
         Op::Div if pair().1 == 0.0 => Some("division by zero".into()),
         Op::DivC(0.0) => Some("division by zero".into()),
         Op::RDivC(_) if top() == 0.0 => Some("division by zero".into()),
@@ -589,6 +680,28 @@ fn domain<V: Value>(op: Op, stack: &[V], x: f64) -> Option<String> {
         Op::Motion(_) => {
             let (x0, x1) = (stack[n - 4].value(), stack[n - 2].value());
             (x0 == x1).then(|| format!("motion law with x0 = x1 (= {})", num(x0)))
+        }
+        Op::Impact => {
+            let (x, x1, e, d) = (
+                stack[n - 7].value(),
+                stack[n - 5].value(),
+                stack[n - 3].value(),
+                stack[n - 1].value(),
+            );
+            if d <= 0.0 {
+                Some(format!(
+                    "impact with a penetration depth d ≤ 0 ({})",
+                    num(d)
+                ))
+            } else if e < 1.0 && x < x1 {
+                Some(format!("impact with an exponent e < 1 ({})", num(e)))
+            } else {
+                None
+            }
+        }
+        Op::Coulomb => {
+            let vs = stack[n - 1].value();
+            (vs <= 0.0).then(|| format!("coulomb with a transition speed vs ≤ 0 ({})", num(vs)))
         }
         _ => None,
     }

@@ -12,3 +12,4 @@ mod language;
 mod motion_laws;
 mod no_panic;
 mod parse_errors;
+mod state_inputs;

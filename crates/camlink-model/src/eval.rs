@@ -48,3 +48,18 @@ fn describe(src: &str, e: &ParseError) -> String {
 pub fn function_of(src: &str, var: &str, consts: &HashMap<String, f64>) -> Result<Expr, String> {
     Expr::parse_with(src, Some(var), consts).map_err(|e| describe(src, &e))
 }
+
+/// The names `src` reads (its variables and parameters, not its functions).
+pub fn names(src: &str) -> Result<Vec<&str>, String> {
+    camlink_expr::names(src).map_err(|e| describe(src, &e))
+}
+
+/// Parses an expression of the named `inputs` (a force of state's
+/// channels) with the file's parameters.
+pub fn state_expr(
+    src: &str,
+    inputs: &[&str],
+    consts: &HashMap<String, f64>,
+) -> Result<Expr, String> {
+    Expr::parse_inputs(src, inputs, consts).map_err(|e| describe(src, &e))
+}

@@ -30,6 +30,7 @@ mod curves;
 mod forces;
 mod initial;
 mod scale;
+mod state;
 
 /// A semantic error: the field path and what is wrong.
 #[derive(Debug)]

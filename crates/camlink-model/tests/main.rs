@@ -32,5 +32,6 @@ mod load_scale;
 mod outline;
 mod predictor;
 mod schema;
+mod state_forces;
 mod time_messages;
 mod unilateral;

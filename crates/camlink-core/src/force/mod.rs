@@ -28,6 +28,7 @@ pub mod callback;
 pub mod compliant_contact;
 pub mod point;
 pub mod rsda;
+pub mod state;
 pub mod translational_damper;
 pub mod tsda;
 
@@ -123,6 +124,7 @@ forces! {
     TranslationalDamper(translational_damper::TranslationalDamper),
     Callback(callback::Callback),
     CompliantContact(compliant_contact::CompliantContact),
+    State(state::StateForce),
 }
 
 /// A force that could not be computed: a user function failed. The

@@ -6,7 +6,9 @@ use serde::Deserialize;
 use super::{Num, PointRef};
 
 /// `[[forces]]`: an applied force, selected by `type`. Magnitudes are
-/// numbers or expressions of time `t` (s).
+/// numbers or expressions of time `t` (s); those of `point_force` and
+/// `torque` may also read the motion of the bodies they act on (a force
+/// of state: docs/forces-of-state.md).
 #[derive(Clone, Debug, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ForceSpec {
@@ -29,14 +31,26 @@ pub enum ForceSpec {
         /// Components in the body frame instead of the global frame; default false.
         #[serde(default)]
         local: bool,
+        /// The body that takes the reaction −F (at `reaction_point`); default
+        /// none (the ground). Its motion may be read by the expressions.
+        #[serde(default)]
+        reaction: Option<String>,
+        /// Where −F acts on the reaction body; needed with `reaction` and a
+        /// force.
+        #[serde(default)]
+        reaction_point: Option<PointRef>,
     },
     /// A pure torque T(t) on a body (N·m, counter-clockwise positive).
     Torque {
         #[serde(default)]
         name: Option<String>,
         body: String,
-        /// T(t) (N·m).
+        /// T (N·m): of time, or of the motion of the bodies it acts on.
         torque: Num,
+        /// The body that takes the reaction −T; default none (the ground).
+        /// Its motion may be read by the expression.
+        #[serde(default)]
+        reaction: Option<String>,
     },
     /// Translational spring–damper–actuator between `point_i` and
     /// `point_j`: tension f = k (l − l₀) + c l̇ + f_a(t), pulling the points

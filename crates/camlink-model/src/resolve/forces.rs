@@ -2,11 +2,12 @@
 
 use camlink_core::force::point::{PointForce, Torque};
 use camlink_core::force::rsda::Rsda;
+use camlink_core::force::state::StateForce;
 use camlink_core::force::translational_damper::TranslationalDamper;
 use camlink_core::force::tsda::Tsda;
 use camlink_core::force::Force;
 use camlink_core::math::{norm, sub};
-use camlink_core::TimeFn;
+use camlink_core::{BodyId, TimeFn};
 
 use super::{check_name, fail, initial, Ctx, JointInfo, R};
 use crate::error::did_you_mean;
@@ -36,8 +37,54 @@ impl Ctx {
                 fx,
                 fy,
                 local,
+                reaction,
+                reaction_point,
             } => {
                 let (b, s) = self.at(body, point.as_ref(), p, "body", "point")?;
+                if reaction.is_some()
+                    || self.reads_motion(fx.as_ref())
+                    || self.reads_motion(fy.as_ref())
+                {
+                    let bj = self.reaction(reaction.as_ref(), b, p)?;
+                    let fx = self.state_expr(fx.as_ref(), [b, bj], &format!("{p}.fx"))?;
+                    let fy = self.state_expr(fy.as_ref(), [b, bj], &format!("{p}.fy"))?;
+                    let s_j = match (reaction_point, bj.is_ground()) {
+                        (Some(rp), false) => {
+                            self.point(bj, Some(rp), &format!("{p}.reaction_point"))?
+                        }
+                        (None, false) if fx.is_some() || fy.is_some() => {
+                            return fail(
+                                format!("{p}.reaction_point"),
+                                "a force with a reaction body needs reaction_point, where −F acts on it",
+                            )
+                        }
+                        (Some(_), true) => {
+                            return fail(
+                                format!("{p}.reaction_point"),
+                                "reaction_point without a reaction body",
+                            )
+                        }
+                        _ => [0.0; 2],
+                    };
+                    let kind = StateForce {
+                        body_i: b,
+                        s_i: s,
+                        body_j: bj,
+                        s_j,
+                        f: [fx, fy],
+                        torque: None,
+                        local: *local,
+                    };
+                    let name = self.force_name(name.as_ref(), format!("point_force_{k}"), p)?;
+                    self.model.add_force(Force::new(name, kind));
+                    return Ok(());
+                }
+                if reaction_point.is_some() {
+                    return fail(
+                        format!("{p}.reaction_point"),
+                        "reaction_point without a reaction body",
+                    );
+                }
                 let f = [
                     self.opt_time_fn(fx.as_ref(), &format!("{p}.fx"))?,
                     self.opt_time_fn(fy.as_ref(), &format!("{p}.fy"))?,
@@ -53,8 +100,29 @@ impl Ctx {
                     kind.into(),
                 )
             }
-            ForceSpec::Torque { name, body, torque } => {
+            ForceSpec::Torque {
+                name,
+                body,
+                torque,
+                reaction,
+            } => {
                 let b = self.body(body, &format!("{p}.body"))?;
+                if reaction.is_some() || self.reads_motion(Some(torque)) {
+                    let bj = self.reaction(reaction.as_ref(), b, p)?;
+                    let t = self.state_expr(Some(torque), [b, bj], &format!("{p}.torque"))?;
+                    let kind = StateForce {
+                        body_i: b,
+                        s_i: [0.0; 2],
+                        body_j: bj,
+                        s_j: [0.0; 2],
+                        f: [None, None],
+                        torque: t,
+                        local: false,
+                    };
+                    let name = self.force_name(name.as_ref(), format!("torque_{k}"), p)?;
+                    self.model.add_force(Force::new(name, kind));
+                    return Ok(());
+                }
                 let t = self.time_fn(torque, &format!("{p}.torque"))?;
                 (
                     self.force_name(name.as_ref(), format!("torque_{k}"), p)?,
@@ -191,6 +259,19 @@ impl Ctx {
         }
         self.model.add_force(Force { name, kind });
         Ok(())
+    }
+
+    /// The reaction body of a force on body `b`: the ground by default.
+    fn reaction(&self, r: Option<&String>, b: BodyId, p: &str) -> R<BodyId> {
+        let Some(r) = r else {
+            return Ok(BodyId::GROUND);
+        };
+        let path = format!("{p}.reaction");
+        let bj = self.body(r, &path)?;
+        if bj == b {
+            return fail(path, "the reaction body must differ from the body");
+        }
+        Ok(bj)
     }
 
     /// A force name, unique among forces.
