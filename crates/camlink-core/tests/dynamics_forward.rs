@@ -179,7 +179,7 @@ fn rhs(th: f64, w: f64) -> (f64, f64) {
 }
 
 /// θ(t) and the slider x(t) at the times `every` steps of h, by RK4.
-fn reference(th0: f64, w0: f64, t_end: f64, h: f64) -> (f64, f64) {
+pub(crate) fn reference(th0: f64, w0: f64, t_end: f64, h: f64) -> (f64, f64) {
     let (mut th, mut w) = (th0, w0);
     let n = (t_end / h).round() as usize;
     for _ in 0..n {
@@ -195,7 +195,7 @@ fn reference(th0: f64, w0: f64, t_end: f64, h: f64) -> (f64, f64) {
 
 /// The free slider-crank with gravity and the spring, started with
 /// consistent velocities for crank speed ω₀.
-fn free_slider_crank(th0: f64, w0: f64) -> Model {
+pub(crate) fn free_slider_crank(th0: f64, w0: f64) -> Model {
     let mut m = slider_crank(th0, w0, false);
     let [_, rod, slider] = bodies(th0);
     // Rod frame origin: its centroid minus the centroid offset, as a jet.
@@ -225,8 +225,8 @@ fn free_slider_crank(th0: f64, w0: f64) -> Model {
     m
 }
 
-const TH0: f64 = 0.3;
-const W0: f64 = 10.0;
+pub(crate) const TH0: f64 = 0.3;
+pub(crate) const W0: f64 = 10.0;
 
 fn slider_x(model: &Model, t_end: f64, s: Settings) -> (f64, f64, usize) {
     let mut it = Integrator::new(model, s).unwrap();

@@ -5,6 +5,7 @@
 mod common;
 mod mechanisms;
 
+mod andrews;
 mod assembly;
 mod cam_contact_force;
 mod cam_round_trip;
@@ -15,6 +16,8 @@ mod dynamics_statics;
 mod dynamics_stiff_spring;
 mod force_failed_and_interrupt;
 mod four_bar;
+mod issue27_a02;
+mod issue27_global_error;
 mod issue_dynamics_contact_channels;
 mod issue_near_singular_joints;
 mod issue_neutral_equilibrium;
