@@ -15,6 +15,7 @@ mod dynamics_statics;
 mod dynamics_stiff_spring;
 mod force_failed_and_interrupt;
 mod four_bar;
+mod issue32_machine;
 mod issue32_shaking;
 mod issue_dynamics_contact_channels;
 mod issue_near_singular_joints;
