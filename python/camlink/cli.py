@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import NoReturn, TextIO
 
 import camlink
-from camlink import cam_cli, cli_convert, cli_study, cli_synth, cli_visuals
+from camlink import cam_cli, cli_convert, cli_study, cli_synth, cli_visuals, machine_cli
 from camlink._core import AnalysisError, ModelError
 from camlink.jump import flight_summary
 from camlink.model import ANALYSES
@@ -139,6 +139,7 @@ def _parser() -> argparse.ArgumentParser:
     cli_convert.add_parser(sub)
     COMMANDS.update(cli_visuals.add_parsers(sub))
     cam_cli.add_parser(sub)
+    machine_cli.add_parser(sub)
     COMMANDS["study"] = cli_study.add_parser(sub)
     COMMANDS["synth"] = cli_synth.add_parser(sub)
     return p
@@ -425,6 +426,7 @@ def _main(args: argparse.Namespace) -> int:
         "convert": cli_convert.run,
         **COMMANDS,
         "cam": cam_cli.run,
+        "machine": machine_cli.run,
     }[args.command]
     try:
         return command(args)
