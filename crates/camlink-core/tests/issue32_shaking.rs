@@ -85,3 +85,57 @@ fn issue32_shaking_force_slider_crank() {
     assert!(err_f <= 1e-9 * peak, "shaking force off by {err_f} N");
     assert!(err_m <= 1e-9 * peak_m, "shaking moment off by {err_m} N·m");
 }
+
+/// Forward dynamics has the same channels: the slider-crank coasting from
+/// 10 rad/s under gravity, where F_s = Σ m_i (g − a_Gi) and
+/// M_O = Σ [r_Gi × m_i (g − a_Gi) − J_i α_i] with a_Gi and α_i from the
+/// run's own acceleration channels (a_G = a_O + α k × ρ − ω² ρ, ρ = A s′_G).
+#[test]
+fn issue32_shaking_force_forward_dynamics() {
+    use camlink_core::dynamics::integrator;
+    let model = mechanisms::slider_crank(0.3, 10.0, false);
+    let g = model.gravity;
+    let times = time_grid(0.3, 1e-3).unwrap();
+    let mut table = Table::default();
+    // The balance holds to the Newton tolerance of the step's equations.
+    let settings = integrator::Settings {
+        tol: 1e-11,
+        ..integrator::Settings::default()
+    };
+    integrator::run(&model, &times, &settings, &[], &mut table).unwrap();
+    let ch = |n: &str| table.channel(n).unwrap();
+    let (fx, fy, mo) = (ch("shaking.fx"), ch("shaking.fy"), ch("shaking.moment"));
+    let (mut err_f, mut err_m, mut peak, mut peak_m) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
+    for k in 0..times.len() {
+        let (mut f, mut m) = ([0.0; 2], 0.0);
+        for (b, (s, mass, inertia)) in [
+            ("crank", CRANK_CENTROID),
+            ("rod", ROD_CENTROID),
+            ("slider", [0.0, 0.0]),
+        ]
+        .into_iter()
+        .zip(MASS.into_iter().zip(INERTIA))
+        .map(|((b, s), (m, j))| (b, (s, m, j)))
+        {
+            let v = |c: &str| ch(&format!("{b}.{c}"))[k];
+            let (sp, cp) = v("phi").sin_cos();
+            let rho = [cp * s[0] - sp * s[1], sp * s[0] + cp * s[1]];
+            let (w, al) = (v("omega"), v("alpha"));
+            let a = [
+                v("ax") - al * rho[1] - w * w * rho[0],
+                v("ay") + al * rho[0] - w * w * rho[1],
+            ];
+            let r = [v("x") + rho[0], v("y") + rho[1]];
+            let load = [mass * (g[0] - a[0]), mass * (g[1] - a[1])];
+            f = [f[0] + load[0], f[1] + load[1]];
+            m += cross(r, load) - inertia * al;
+        }
+        peak = peak.max(f[0].hypot(f[1]));
+        peak_m = peak_m.max(m.abs());
+        err_f = err_f.max((fx[k] - f[0]).hypot(fy[k] - f[1]));
+        err_m = err_m.max((mo[k] - m).abs());
+    }
+    eprintln!("forward: shaking force peak {peak:.3} N, error {err_f:.2e} N; moment peak {peak_m:.3} N·m, error {err_m:.2e} N·m");
+    assert!(err_f <= 1e-8 * peak, "shaking force off by {err_f} N");
+    assert!(err_m <= 1e-8 * peak_m, "shaking moment off by {err_m} N·m");
+}
