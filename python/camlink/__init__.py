@@ -14,7 +14,8 @@ The package is in layers, each importing only from those below it
 (tests/python/test_layers.py checks it): the base modules (`errors`, `warn`,
 `signals`, `progress`, `settings`, `records`, `units`); files (`camlink.io`);
 the model API and results (`model`, `results`, `builder`); pictures
-(`camlink.viz`); cam design (`camlink.cam`); linkage synthesis
+(`camlink.viz`); cam design (`camlink.cam`); machine sizing
+(`camlink.machine`); linkage synthesis
 (`camlink.synth`); studies (`camlink.study`); this namespace, which
 re-exports their public names; the studio (`camlink.studio`); the command
 line (`camlink.cli`).

@@ -37,6 +37,7 @@ __all__ = [
     "helical_spring",
     "json_schema",
     "line_contact",
+    "machine_report",
     "run_batch",
     "synth_file",
     "synth_str",
@@ -179,6 +180,9 @@ def run_batch(
     time_limit: float | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[str], list[str]]: ...
 def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
+
+# The machine report of a model file's [machine] table: camlink.machine.MachineReport.
+def machine_report(path: str | PathLike[str]) -> dict[str, Any]: ...
 
 # A synthesis solution: name, model file text (TOML), report (JSON text).
 _SynthRow: TypeAlias = tuple[str, str, str]

@@ -27,7 +27,7 @@ UNITS = {
     "fx": "N", "fy": "N", "fx_j": "N", "fy_j": "N", "fx_local": "N", "fy_local": "N",
     "fx_local_j": "N", "fy_local_j": "N", "normal": "N", "force": "N",
     "normal_force": "N", "tangential_force": "N",
-    "torque": "N·m", "torque_j": "N·m", "power": "W",
+    "torque": "N·m", "torque_j": "N·m", "moment": "N·m", "power": "W",
     "kinetic": "J", "potential": "J", "total": "J", "elastic": "J", "work": "J",
     "residual": "m", "velocity": "m/s", "gap": "m",
 }

@@ -32,6 +32,7 @@ LAYERS: list[tuple[str, tuple[str, ...]]] = [
     ("model", ("camlink.model", "camlink.results", "camlink.builder")),
     ("viz", ("camlink.viz",)),
     ("cam", ("camlink.cam",)),
+    ("machine", ("camlink.machine",)),
     ("synth", ("camlink.synth",)),
     ("study", ("camlink.study",)),
     # The package's own namespace re-exports the public names of the layers

@@ -20,7 +20,8 @@
 //! 6. [`run`]: settings, sinks, tables, summaries, errors and warnings;
 //! 7. [`design`], [`diagnose`], [`cam_limits`], [`cam_contact`]: checks and reports;
 //! 8. [`kinematics`], [`cam_mechanism`] (a synthesised cam run through it);
-//! 9. [`dynamics`].
+//! 9. [`dynamics`];
+//! 10. [`machine`]: shaking, balancing, flywheel and motor sizing.
 
 pub mod cam;
 pub mod curve;
@@ -53,6 +54,8 @@ pub mod cam_mechanism;
 pub mod kinematics;
 
 pub mod dynamics;
+
+pub mod machine;
 
 pub use constraint::{Constraint, Equations};
 pub use force::{Applied, Force, ForceKind};

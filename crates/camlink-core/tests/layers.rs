@@ -30,6 +30,7 @@ const LAYERS: &[&[&str]] = &[
     &["design", "diagnose", "cam_limits", "cam_contact"],
     &["kinematics", "cam_mechanism"],
     &["dynamics"],
+    &["machine"],
 ];
 
 type Graph = BTreeMap<String, BTreeSet<String>>;

@@ -15,7 +15,9 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 
 mod forces;
+mod machine;
 pub use forces::ForceSpec;
+pub use machine::{MachineSection, MotorSection};
 
 /// A number, or a string holding an expression.
 ///
@@ -219,6 +221,10 @@ pub struct ModelFile {
     /// What to compute and output.
     #[serde(default)]
     pub analysis: Option<AnalysisSection>,
+    /// Machine design: shaking, balancing, flywheel and motor sizing at a
+    /// design speed (`camlink machine`).
+    #[serde(default)]
+    pub machine: Option<MachineSection>,
 }
 
 /// `[model]`: name and global settings.

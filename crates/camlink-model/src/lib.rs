@@ -55,6 +55,8 @@ impl Format {
 pub struct Loaded {
     pub model: camlink_core::Model,
     pub analysis: AnalysisSpec,
+    /// The `[machine]` table (`camlink machine`), checked against the model.
+    pub machine: Option<camlink_core::machine::Spec>,
     /// The data files read (canonical paths), so that a run can refuse to
     /// write its output over one of them.
     pub data_files: Vec<PathBuf>,

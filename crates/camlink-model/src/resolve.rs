@@ -29,6 +29,8 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 mod curves;
 mod forces;
 mod initial;
+mod machine;
+pub(crate) use machine::machine;
 mod scale;
 mod state;
 

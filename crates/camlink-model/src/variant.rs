@@ -36,9 +36,11 @@ impl Recipe {
         let data = data_file::DataFiles::new(&r.base, r.allow_outside_data);
         let (model, analysis, outlines, data) =
             resolve::resolve(&r.file, &r.stem, data).map_err(|f| r.error_at(f))?;
+        let machine = resolve::machine(&r.file, &model).map_err(|f| r.error_at(f))?;
         Ok(Loaded {
             model,
             analysis,
+            machine,
             outlines,
             data_files: data.into_read(),
             recipe: Some(Arc::clone(recipe)),

@@ -348,6 +348,29 @@ fn slider_crank() {
     c.report();
 }
 
+/// `machine_slider_crank.toml` (in-line, r = 0.1 m, l = 0.35 m, 300 rpm
+/// from θ = 0): the slider at x = r cos θ + √(l² − r² sin² θ) and its
+/// rates. Its machine figures are checked in `issue32_machine.rs`.
+#[test]
+fn machine_slider_crank() {
+    let (_loaded, mut c) = Check::new("machine_slider_crank");
+    let (r, l, w) = (0.1, 0.35, 2.0 * PI * 5.0);
+    for (k, t) in c.t().into_iter().enumerate() {
+        let th = w * t;
+        let (s, co) = th.sin_cos();
+        let sg = [r * s, r * co * w, -r * s * w * w];
+        let dd = (l * l - sg[0] * sg[0]).sqrt();
+        let ddot = -sg[0] * sg[1] / dd;
+        let dddot = -(sg[1] * sg[1] + sg[0] * sg[2] + ddot * ddot) / dd;
+        let (vs, as_) = (r * w, r * w * w);
+        c.rotation("crank", k, [th, w, 0.0], [w, w * w]);
+        c.pos("slider.x", k, r * co + dd);
+        c.rate("slider.vx", k, -r * s * w + ddot, vs);
+        c.rate("slider.ax", k, -r * co * w * w + dddot, as_);
+    }
+    c.report();
+}
+
 /// Slider-driven: x = xm + s0 sin ωt; θ = δ + acos(K / (2 r ρ)) with
 /// K = x² + e² + r² − l², ρ = |(x, e)|, δ = atan2(e, x) (crank above the
 /// line). Rates by implicit differentiation of

@@ -25,6 +25,7 @@ mod hostile;
 mod initial_defaults;
 mod issue27_output_time;
 mod issue27_unilateral;
+mod issue32_machine;
 mod issue_newton_rounding_level;
 mod jerk;
 mod load;

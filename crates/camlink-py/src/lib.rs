@@ -10,6 +10,7 @@
 mod cam;
 mod csv_text;
 mod fourbar;
+mod machine;
 mod study;
 mod synth;
 
@@ -1222,6 +1223,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
+    m.add_function(wrap_pyfunction!(machine::machine_report, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
     synth::register(m)?;

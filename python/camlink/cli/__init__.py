@@ -21,6 +21,7 @@ from camlink._core import AnalysisError, ModelError
 from camlink.cam.jump import flight_summary
 from camlink.cli import cam as cam_cli
 from camlink.cli import convert as cli_convert
+from camlink.cli import machine as machine_cli
 from camlink.cli import studio as cli_studio
 from camlink.cli import study as cli_study
 from camlink.cli import synth as cli_synth
@@ -144,6 +145,7 @@ def _parser() -> argparse.ArgumentParser:
     cli_convert.add_parser(sub)
     COMMANDS.update(cli_visuals.add_parsers(sub))
     cam_cli.add_parser(sub)
+    machine_cli.add_parser(sub)
     COMMANDS["study"] = cli_study.add_parser(sub)
     COMMANDS["synth"] = cli_synth.add_parser(sub)
     COMMANDS["studio"] = cli_studio.add_parser(sub)
@@ -431,6 +433,7 @@ def _main(args: argparse.Namespace) -> int:
         "convert": cli_convert.run,
         **COMMANDS,
         "cam": cam_cli.run,
+        "machine": machine_cli.run,
     }[args.command]
     try:
         return command(args)

@@ -9,15 +9,40 @@
 //!   contact, `<joint>.normal_force .tangential_force` (see
 //!   [`super::contact_force`]);
 //! - per driver: `<driver>.effort .power`;
+//! - the shaking force and moment ([`SHAKING`]): `shaking.fx`,
+//!   `shaking.fy` (N), the sum of the forces the mechanism exerts on the
+//!   ground through its joints and drivers (global frame), and
+//!   `shaking.moment` (N·m, counter-clockwise positive), their moment about
+//!   the global origin O plus the torques on the ground (a motor's reaction
+//!   torque among them);
 //! - `energy.kinetic`, `energy.potential` (gravity and springs) and
 //!   `energy.total` (J);
 //! - `constraint.residual`, max |Φ| (m or rad), and
 //!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
 
 use super::contact_force::ContactForces;
-use super::reaction::{effort, reactions};
+use super::reaction::{effort, reactions, Reaction};
 use super::system::System;
+use crate::constraint::Equations;
+use crate::math::cross;
 use crate::model::Model;
+
+/// The shaking channels, after the joints' and drivers' channels.
+pub const SHAKING: [&str; 3] = ["shaking.fx", "shaking.fy", "shaking.moment"];
+
+/// The shaking force F_s = Σ F_k (N) and moment M_O = Σ (T_k + r_k × F_k)
+/// (N·m, about the global origin) of the loads `(body, reaction)` that
+/// joints exert on their bodies, summed over those on the ground (body 0):
+/// the loads the mechanism puts on its frame.
+pub fn shaking<'a>(loads: impl IntoIterator<Item = (usize, &'a Reaction)>) -> [f64; 3] {
+    let mut out = [0.0; 3];
+    for (_, r) in loads.into_iter().filter(|(b, _)| *b == 0) {
+        out[0] += r.force[0];
+        out[1] += r.force[1];
+        out[2] += r.torque + cross(r.point, r.force);
+    }
+    out
+}
 
 /// Names of the dynamic channels (after the kinematic ones).
 pub fn channels(model: &Model) -> Vec<String> {
@@ -37,6 +62,7 @@ pub fn channels(model: &Model) -> Vec<String> {
             names.extend(contacts.channel_names(model, k));
         }
     }
+    names.extend(SHAKING.iter().map(|c| c.to_string()));
     for c in [
         "energy.kinetic",
         "energy.potential",
@@ -98,7 +124,8 @@ pub fn fill(
 }
 
 /// Fills the channels of [`fill`] before the energy and drift: the
-/// reactions, contact forces, driver efforts and powers. Returns how many
+/// reactions, contact forces, driver efforts and powers, and the shaking
+/// force and moment. Returns how many
 /// it wrote, and leaves ν at (q, t) in the scratch.
 pub fn fill_forces(
     s: &System,
@@ -113,7 +140,15 @@ pub fn fill_forces(
     nu.resize(s.m(), 0.0);
     asm.nu(model, q, t, nu);
     let mut k = 0;
+    let mut shake = [0.0; 3];
     for (j, joint) in model.joints.iter().enumerate() {
+        // The loads of every joint and driver on the ground.
+        let rs = reactions(model, asm, j, q, lambda, t);
+        let bodies = joint.constraint.bodies().map(|b| b.0);
+        let s = shaking(bodies.into_iter().zip(&rs));
+        for (a, b) in shake.iter_mut().zip(s) {
+            *a += b;
+        }
         if joint.driver {
             let r = asm.rows_of(model, j).start;
             let (e, p) = effort(model, j, lambda[r], w.drift.nu[r], t);
@@ -121,7 +156,6 @@ pub fn fill_forces(
             out[k + 1] = p;
             k += 2;
         } else {
-            let rs = reactions(model, asm, j, q, lambda, t);
             for r in rs {
                 out[k..k + 5].copy_from_slice(&[
                     r.force[0],
@@ -139,7 +173,8 @@ pub fn fill_forces(
             }
         }
     }
-    k
+    out[k..k + 3].copy_from_slice(&shake);
+    k + 3
 }
 
 /// The channels `energy.kinetic` T, `energy.potential` V, `energy.total`

@@ -229,6 +229,7 @@ impl Described {
         Ok(Loaded {
             model,
             analysis,
+            machine: None,
             outlines,
             data_files: data.into_read(),
             recipe: None,
