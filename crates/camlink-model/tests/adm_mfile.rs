@@ -139,6 +139,38 @@ fn issue27_mfile_model_runs_in_dynamics() {
     let f = translate(&src, "x", "piston").unwrap();
     assert!(toml.contains(&format!("fx = {:?}", f.fx)), "{toml}");
     assert!(toml.contains("local = false"), "{toml}");
+
+    // The same model with the gas force written by hand in camlink's
+    // language moves the same; without it, the piston moves otherwise.
+    let line = format!("fx = {:?}", f.fx);
+    let hand = "if(piston_vx <= 0, 0, if(piston_x > 4.5, 0, if(piston_x > 4, \
+                -2500 + 2500*sin(2*pi*piston_x - 8.5*pi), if(piston_x < 1.5, 0, 2000 - 7000/(5 - piston_x)))))";
+    let by_hand = toml.replace(&line, &format!("fx = {hand:?}"));
+    let fy = format!("fy = {:?}", f.fy);
+    let by_hand = by_hand
+        .replace(
+            &fy,
+            "fy = \"if(t >= 0.05 && piston_vx != 0, 0.01*FX*cos(piston_phi) + 2*piston_omega, 0)\"",
+        )
+        .replace("FX", hand);
+    assert_ne!(by_hand, toml);
+    let without = toml.replace(&line, "fx = 0").replace(&fy, "fy = 0");
+    let x = |text: &str| {
+        let l = camlink_model::load_str(text, Format::Toml, "piston.toml")
+            .unwrap_or_else(|e| panic!("{e}"));
+        let mut table = Table::default();
+        integrator::run(&l.model, &grid, &a.integrator_settings(), &[], &mut table).unwrap();
+        table.channel("piston.x").unwrap()
+    };
+    let (ours, hand, none) = (table.channel("piston.x").unwrap(), x(&by_hand), x(&without));
+    let most = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f64::max)
+    };
+    assert!(most(&ours, &hand) <= 1e-9, "{}", most(&ours, &hand));
+    assert!(most(&ours, &none) > 1e-2, "{}", most(&ours, &none));
 }
 
 /// A model beside `m` (the m-file text, or none), with a force on `slider`
