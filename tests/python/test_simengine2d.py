@@ -111,10 +111,9 @@ def write_model(tmp_path: Path, forces: list[dict[str, object]]) -> Path:
 
 
 def test_point_force_file_exits_2_naming_force_and_file(tmp_path: Path) -> None:
-    adm = write_model(
-        tmp_path,
-        [{"name": "tire", "id": 8, "type": "PointForceFile", "body1": 1, "mfile": "tire.m"}],
-    )
+    # `tire.m` is not a function name, and no tire.m is there to translate.
+    force = {"name": "tire", "id": 8, "type": "PointForceFile", "body1": 1}
+    adm = write_model(tmp_path, [{**force, "sP1": [0, 0], "frame": "GRF", "mfile": "tire.m"}])
     for command in ("run", "check", "convert"):
         proc = run_cli(command, adm, cwd=tmp_path)
         assert proc.returncode == 2, (command, proc.stderr)

@@ -343,12 +343,12 @@ fn unknown_type_lists_the_supported_ones() {
 #[test]
 fn point_force_file_is_refused_with_the_force_and_the_file() {
     let adm = format!(
-        "{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"tire\", \"id\": 3, \"type\": \"PointForceFile\", \"body1\": 1, \"mfile\": \"tireForce.m\"}}]}}"
+        "{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"tire\", \"id\": 3, \"type\": \"PointForceFile\", \"body1\": 1, \"sP1\": [0, 0], \"frame\": \"GRF\", \"mfile\": \"tireForce\"}}]}}"
     );
     let e = load_adm_text(&adm, None).unwrap_err();
     let s = e.to_string();
     assert!(
-        s.contains("force 'tire' (id 3)") && s.contains("tireForce.m"),
+        s.contains("force 'tire' (id 3)") && s.contains("no file tireForce.m"),
         "{s}"
     );
     assert!(

@@ -9,6 +9,7 @@ mod targets;
 
 mod adm;
 mod adm_course;
+mod adm_mfile;
 mod analysis;
 mod bad_models;
 mod cam_dynamics;

@@ -17,11 +17,14 @@
 //!   holding the pinion centre at R₂ to the left of the pitch line; each is
 //!   the course's equation divided by |sQ1 − sP1|.
 //! - `PointForce` → `point_force` (`local` for `LRF`), `Torque` → `torque`,
+//!   `PointForceFile` → `point_force` with expressions of state translated
+//!   from its MATLAB file (see [`super::mfile`]),
 //!   `RSDA1` → `rsda` from the ground to body1, `RSDA2` → `rsda` from body1
 //!   to body2.
 
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
+use std::path::{Path, PathBuf};
 
 use serde::de::DeserializeOwned;
 use serde_json::Value;
@@ -29,6 +32,7 @@ use serde_json::Value;
 use super::format::{self, Acf, Id, Number};
 use super::item::Item;
 use super::matlab;
+use super::mfile;
 
 /// A failure in the `.adm`: the field path in the file, the entry it
 /// belongs to (e.g. `constraint 'crank_pin' (id 4)`) and what is wrong.
@@ -73,7 +77,11 @@ pub const CONSTRAINT_TYPES: &[&str] = &[
     "RackPinion",
 ];
 
-/// The force types read (`PointForceFile` is recognised and refused).
+/// The advice for a `PointForceFile` that is not translated.
+const ELSE: &str = "; or write the force as a [[forces]] entry of a converted model \
+                    (`camlink convert`) or as a Python force (Model.with_force)";
+
+/// The force types read.
 pub const FORCE_TYPES: &[&str] = &["PointForce", "Torque", "RSDA1", "RSDA2", "PointForceFile"];
 
 struct BodyOut {
@@ -115,6 +123,9 @@ struct Builder {
     forces: Vec<Item>,
     origins: Vec<Origin>,
     warnings: Vec<AdmFail>,
+    /// The `.adm`'s folder, where a `PointForceFile`'s m-file is looked for
+    /// (then in its parent).
+    folder: Option<PathBuf>,
 }
 
 fn fail<T>(path: impl Into<String>, label: Option<&str>, message: impl Into<String>) -> R<T> {
@@ -217,8 +228,10 @@ fn fun_item(src: &str, path: &str, label: &str) -> R<(Item, bool)> {
     Ok((item, t.uses_t))
 }
 
-/// Builds the description of `adm`; its `[analysis]` comes from [`analysis`].
-pub fn build(adm: &Value) -> R<Built> {
+/// Builds the description of `adm`, read from `folder` (where a
+/// `PointForceFile`'s m-file is looked for); its `[analysis]` comes from
+/// [`analysis`].
+pub fn build(adm: &Value, folder: Option<&Path>) -> R<Built> {
     let Value::Object(top) = adm else {
         return fail("", None, "a .adm file is a JSON object");
     };
@@ -233,6 +246,7 @@ pub fn build(adm: &Value) -> R<Built> {
         forces: Vec::new(),
         origins: Vec::new(),
         warnings: Vec::new(),
+        folder: folder.map(Path::to_path_buf),
     };
     let list = |key: &str| -> R<Vec<Value>> {
         match top.get(key) {
@@ -1131,17 +1145,105 @@ impl Builder {
             }
             "PointForceFile" => {
                 let f: format::PointForceFile = parse(v, p, Some(&lab))?;
-                let file = f.mfile.map_or("its MATLAB file".to_string(), |m| {
-                    format!("the MATLAB file '{m}'")
-                });
-                return fail(
-                    format!("{p}.mfile"),
+                let body = self.body(Some(f.body1), &format!("{p}.body1"), &lab)?;
+                let local = match f.frame.trim().to_ascii_uppercase().as_str() {
+                    "GRF" => false,
+                    "LRF" => true,
+                    other => return fail(format!("{p}.frame"), Some(&lab), format!("unknown frame '{other}'; expected \"GRF\" (global) or \"LRF\" (body-fixed)")),
+                };
+                let mpath = format!("{p}.mfile");
+                let Some(m) = f.mfile.as_deref().map(str::trim).filter(|m| !m.is_empty()) else {
+                    return fail(mpath, Some(&lab), "missing field `mfile`: the name of the MATLAB function that computes the force");
+                };
+                if !mfile::is_identifier(m) {
+                    return fail(
+                        mpath,
+                        Some(&lab),
+                        format!(
+                            "mfile '{m}' is not a MATLAB function name (a letter, then letters, digits and _); \
+                             the file <mfile>.m is looked for only in the model's folder and its parent{ELSE}"
+                        ),
+                    );
+                }
+                let file = format!("{m}.m");
+                let dir = self
+                    .folder
+                    .clone()
+                    .filter(|d| !d.as_os_str().is_empty())
+                    .unwrap_or_else(|| PathBuf::from("."));
+                let places = [dir.join(&file), dir.join("..").join(&file)];
+                let Some(found) = places.iter().find(|f| f.is_file()) else {
+                    return fail(
+                        mpath,
+                        Some(&lab),
+                        format!(
+                            "PointForceFile computes its force with the MATLAB function '{m}', and there is no file {file} \
+                             in the model's folder ({}) or its parent, where the course engine finds it{ELSE}",
+                            dir.display()
+                        ),
+                    );
+                };
+                let shown = found.display().to_string();
+                let src = crate::read_text(found)
+                    .or_else(|e| fail(mpath.clone(), Some(&lab), e.to_string()))?;
+                let Some(bk) = body else {
+                    return fail(
+                        format!("{p}.body1"),
+                        Some(&lab),
+                        "a PointForceFile acts on a body, not the ground",
+                    );
+                };
+                let bname = self.bodies[bk].name.clone();
+                if !mfile::is_identifier(&bname) {
+                    return fail(
+                        format!("{p}.body1"),
+                        Some(&lab),
+                        format!("the body name '{bname}' cannot be read in an expression (channels such as {bname}_x need a name of letters, digits and _)"),
+                    );
+                }
+                let force = mfile::translate(&src, &shown, &bname).or_else(|e| {
+                    fail(
+                        mpath.clone(),
+                        Some(&lab),
+                        format!("cannot translate the MATLAB force function: {e}"),
+                    )
+                })?;
+                let num = |s: &str| match s.parse::<f64>() {
+                    Ok(v) if v.is_finite() => Item::Num(v),
+                    _ => Item::Str(s.to_string()),
+                };
+                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
+                let point = self.point(body, pair(f.sP1), &name);
+                self.warn(
+                    mpath.clone(),
                     Some(&lab),
                     format!(
-                        "PointForceFile computes its force with {file}, which camlink cannot run; \
-                         write the force as a [[forces]] entry of a converted model (`camlink convert`) \
-                         or as a Python force (Model.with_force)"
+                        "the force is translated from the MATLAB file {shown} into a point_force of state: fx = {}, fy = {}{}",
+                        force.fx,
+                        force.fy,
+                        if local { " (body-fixed)" } else { "" }
                     ),
+                );
+                let item = Item::table([
+                    ("name", Item::Str(name)),
+                    ("type", Item::Str("point_force".into())),
+                    ("body", self.body_name(body)),
+                    ("point", point),
+                    ("fx", num(&force.fx)),
+                    ("fy", num(&force.fy)),
+                    ("local", Item::Bool(local)),
+                ]);
+                self.add(
+                    Section::Forces,
+                    item,
+                    p,
+                    &lab,
+                    vec![
+                        ("body", "body1"),
+                        ("point", "sP1"),
+                        ("fx", "mfile"),
+                        ("fy", "mfile"),
+                    ],
                 );
             }
             other => {

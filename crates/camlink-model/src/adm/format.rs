@@ -242,9 +242,14 @@ pub struct Rsda {
     pub fun: Option<String>,
 }
 
-/// `PointForceFile`: a force computed by a MATLAB file, which camlink refuses.
+/// `PointForceFile`: a force at `sP1` of `body1` computed by the MATLAB
+/// function `mfile`, in the frame `frame` (`GRF` or `LRF`).
 #[derive(Debug, Deserialize)]
+#[allow(non_snake_case)]
 pub struct PointForceFile {
+    pub body1: Id,
+    pub sP1: [Number; 2],
+    pub frame: String,
     #[serde(default)]
     pub mfile: Option<String>,
 }

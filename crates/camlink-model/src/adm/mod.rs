@@ -14,6 +14,7 @@ mod format;
 mod item;
 mod lenient;
 mod matlab;
+pub mod mfile;
 
 use std::path::{Path, PathBuf};
 
@@ -174,8 +175,9 @@ pub fn describe_str(
 }
 
 fn describe_json(adm: Json, acf: Option<Json>) -> Result<Described, LoadError> {
-    let built =
-        build::build(&adm.value).map_err(|f| adm.error(&f.path, f.label.as_deref(), &f.message))?;
+    let folder = Path::new(&adm.source).parent().map(Path::to_path_buf);
+    let built = build::build(&adm.value, folder.as_deref())
+        .map_err(|f| adm.error(&f.path, f.label.as_deref(), &f.message))?;
     let mut doc = built.doc;
     let warnings = built
         .warnings
