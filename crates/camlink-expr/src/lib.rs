@@ -412,7 +412,8 @@ pub fn names(src: &str) -> Result<Vec<&str>, ParseError> {
         let call = toks.get(k + 1).is_some_and(|n| n.tok == lexer::Tok::LParen);
         if t.tok == lexer::Tok::Ident && !call {
             let name = &src[t.start..t.end];
-            if !out.contains(&name) {
+            // The word operators are keywords, not names.
+            if !matches!(name, "and" | "or" | "not") && !out.contains(&name) {
                 out.push(name);
             }
         }

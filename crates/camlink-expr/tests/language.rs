@@ -176,3 +176,13 @@ fn names_lists_what_an_expression_reads_not_what_it_calls() {
     assert_eq!(camlink_expr::names("1 + 2").unwrap(), Vec::<&str>::new());
     assert!(camlink_expr::names("a $ b").is_err());
 }
+
+#[test]
+fn names_leave_out_the_word_operators() {
+    // `and`, `or` and `not` are operators: a force of state written with
+    // them reads only its channels.
+    assert_eq!(
+        camlink_expr::names("ram_vx > 0 and not ram_x > 1 or t < 2").unwrap(),
+        vec!["ram_vx", "ram_x", "t"]
+    );
+}
