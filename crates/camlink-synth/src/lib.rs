@@ -20,5 +20,12 @@ pub mod model_file;
 pub mod motion;
 pub mod problem;
 
+// Path generation and the classical constructions.
+pub mod cognates;
+pub mod dead_centre;
+pub mod lm;
+pub mod path;
+pub mod properties;
+
 pub use error::{ErrorKind, SynthError};
 pub use problem::{solve_path, solve_str, Outcome, Solution};

@@ -36,6 +36,9 @@ use crate::function::{self, chebyshev, Fit, FunctionSolution, FunctionSpec};
 use crate::model_file::{coupler_along, model_toml, pose_times, ModelSpec};
 use crate::motion::{self, coupler_pose, MotionSolution, Pivot, Pose};
 
+// Path generation, dead-centre synthesis and cognates.
+mod kinds;
+
 /// Largest problem file read (bytes).
 pub const MAX_FILE_SIZE: u64 = 1024 * 1024;
 /// Default number of least-squares points.
@@ -72,6 +75,23 @@ struct Table {
     samples: Option<usize>,
     min_transmission: Option<Num>,
     full_turn: Option<bool>,
+    // --- Path generation, dead-centre synthesis, cognates (problem/kinds.rs) ---
+    targets: Option<Vec<Vec<Num>>>,
+    target_file: Option<String>,
+    units: Option<String>,
+    timing: Option<String>,
+    crank_rotations: Option<Vec<Num>>,
+    closure: Option<String>,
+    order: Option<String>,
+    starts: Option<usize>,
+    keep: Option<usize>,
+    rocker_pivot: Option<Vec<Num>>,
+    rocker_length: Option<Num>,
+    rocker_start: Option<Num>,
+    swing: Option<Num>,
+    time_ratio: Option<Num>,
+    four_bar: Option<kinds::FourBarTable>,
+    // --- end of path generation, dead-centre synthesis, cognates ---
 }
 
 #[derive(Deserialize)]
@@ -176,9 +196,16 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
     match t.kind.as_str() {
         "motion" => solve_motion(&t, &name).map_err(to_load),
         "function" => solve_function(&t, &name).map_err(to_load),
+        // Path generation, dead-centre synthesis, cognates (problem/kinds.rs).
+        "path" => kinds::solve_path_kind(&t, &name, source).map_err(to_load),
+        "dead_centre" => kinds::solve_dead_centre(&t, &name).map_err(to_load),
+        "cognates" => kinds::solve_cognates(&t, &name).map_err(to_load),
         other => Err(located(
             Some("synthesis.type".into()),
-            format!("unknown synthesis type '{other}'; expected \"motion\" or \"function\""),
+            format!(
+                "unknown synthesis type '{other}'; expected \"motion\", \"function\", \"path\", \
+                 \"dead_centre\" or \"cognates\""
+            ),
         )),
     }
 }

@@ -2,5 +2,6 @@
 //! (one link instead of one per file). camlink-core's `test_layout` checks
 //! that every file in `tests/` is listed here or built on its own.
 
+mod path_generation;
 mod problem_files;
 mod verify;
