@@ -23,6 +23,9 @@ pub struct Settings {
     pub rel_tol: f64,
     /// Stop when |r|² falls below this.
     pub abs_tol: f64,
+    /// (k, c): give up after k iterations if |r|² is still above c (a
+    /// start of a global search that is going nowhere).
+    pub give_up: Option<(usize, f64)>,
 }
 
 /// The result: the last accepted x, |r(x)|² and the iterations taken.
@@ -125,6 +128,9 @@ pub fn minimise<R: Residual + ?Sized>(f: &R, x0: &[f64], s: &Settings) -> Fit {
     let mut lambda = 1e-3;
     let mut it = 0;
     'outer: while it < s.max_iter && cost > s.abs_tol {
+        if s.give_up.is_some_and(|(k, c)| it >= k && cost > c) {
+            break;
+        }
         it += 1;
         f.jacobian(&x, &r, &mut jac);
         // JᵀJ and Jᵀr.
@@ -213,6 +219,7 @@ mod tests {
             max_iter: 200,
             rel_tol: 0.0,
             abs_tol: 1e-28,
+            give_up: None,
         };
         let fit = minimise(&Rosen, &[-1.2, 1.0], &s);
         assert!((fit.x[0] - 1.0).abs() < 1e-7 && (fit.x[1] - 1.0).abs() < 1e-7);

@@ -366,10 +366,13 @@ pub fn fit(spec: &FitSpec) -> (Vec<PathFit>, usize) {
             [d[0] / radius, d[1] / radius]
         })
         .collect();
+    // A start still at an RMS distance above half the target's RMS radius
+    // after 20 iterations is abandoned.
     let settings = lm::Settings {
         max_iter: 150,
         rel_tol: 1e-10,
         abs_tol: 1e-26,
+        give_up: Some((20, 0.25 * n as f64)),
     };
     let fits: Vec<Option<PathFit>> = (0..spec.starts)
         .into_par_iter()
@@ -454,8 +457,14 @@ fn candidate(
         max = max.max(e);
         pins.push((a, b));
     }
+    // The sense the crank turns: the start's with free timing (the order
+    // rows hold it), else that of the fitted or prescribed steps.
+    let s = match problem.timing {
+        Timing::Free => problem.sense,
+        _ if n > 1 && phi[1] < phi[0] => -1.0,
+        _ => 1.0,
+    };
     // The order the crank reaches the targets: as given, or by crank angle.
-    let s = problem.sense;
     let mut visit: Vec<usize> = (0..n).collect();
     if !spec.ordered {
         visit.sort_by(|&i, &j| {

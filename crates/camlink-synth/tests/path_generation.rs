@@ -154,25 +154,46 @@ fn issue31_path_example_gives_a_defect_free_mechanism() {
 }
 
 /// Precision points with prescribed crank rotations: four points of a
-/// known four-bar's coupler curve; the model passes them to 1e-9 m.
+/// known four-bar's coupler curve, and their mirror image (the crank turning
+/// clockwise); the models pass them to 1e-9 m.
 #[test]
 fn issue31_precision_points_pass_through_the_points() {
     let m = known();
     let betas = [0.0, 0.6, 1.3, 2.1];
-    let pts: Vec<[f64; 2]> = betas.iter().map(|b| m.trace(0.4 + b).unwrap().2).collect();
-    let text = format!(
-        "[synthesis]\ntype = \"path\"\nmethod = \"precision_points\"\ntargets = [{}]\ncrank_rotations = [0.6, 1.3, 2.1]\n",
-        pts.iter().map(|p| format!("[{:?}, {:?}]", p[0], p[1])).collect::<Vec<_>>().join(", ")
-    );
-    let out = solve_str(&text, "pp.toml", "pp").unwrap();
-    for s in &out.solutions {
-        assert!(s.report["error"]["max"].as_f64().unwrap() < 1e-10);
-        let free = defects(s) == 0;
-        if free {
-            assert_reaches_targets(s, 1e-9);
+    for mirror in [1.0, -1.0] {
+        let pts: Vec<[f64; 2]> = betas
+            .iter()
+            .map(|b| {
+                let p = m.trace(0.4 + b).unwrap().2;
+                [p[0], mirror * p[1]]
+            })
+            .collect();
+        let text = format!(
+            "[synthesis]\ntype = \"path\"\nmethod = \"precision_points\"\ntargets = [{}]\ncrank_rotations = [{:?}, {:?}, {:?}]\n",
+            pts.iter()
+                .map(|p| format!("[{:?}, {:?}]", p[0], p[1]))
+                .collect::<Vec<_>>()
+                .join(", "),
+            mirror * betas[1],
+            mirror * betas[2],
+            mirror * betas[3]
+        );
+        let out = solve_str(&text, "pp.toml", "pp").unwrap();
+        for s in &out.solutions {
+            assert!(s.report["error"]["max"].as_f64().unwrap() < 1e-10);
+            if defects(s) == 0 {
+                assert_reaches_targets(s, 1e-9);
+            }
         }
+        assert!(
+            out.solutions.iter().any(|s| defects(s) == 0),
+            "mirror {mirror}: {:?}",
+            out.solutions
+                .iter()
+                .map(|s| &s.report["checks"]["defects"])
+                .collect::<Vec<_>>()
+        );
     }
-    assert!(out.solutions.iter().any(|s| defects(s) == 0));
 }
 
 /// Dead-centre example: run by the kinematics, the rocker's angle at the

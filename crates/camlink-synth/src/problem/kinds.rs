@@ -787,13 +787,14 @@ pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthErro
         ));
     };
     let (ga, gb, _) = given.trace(phi0).expect("assembles: checked by cognates");
+    // Every model of the set traces the given curve, driven as written.
+    let traced = curve(&given);
     let mut solutions = vec![cognate_solution(
         &given,
+        &traced,
         &format!("{name}_given"),
         "the given four-bar",
-        ga,
-        gb,
-        phi0,
+        (ga, gb, phi0),
         None,
     )];
     for (k, cg) in cogs.iter().enumerate() {
@@ -803,11 +804,10 @@ pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthErro
         };
         solutions.push(cognate_solution(
             &cg.mechanism,
+            &traced,
             &format!("{name}_cognate{}", k + 1),
             &format!("cognate {} of the given four-bar", k + 1),
-            cg.a,
-            cg.b,
-            cg.crank_angle,
+            (cg.a, cg.b, cg.crank_angle),
             Some((cg.driven, theta, cg.offset)),
         ));
     }
@@ -817,16 +817,16 @@ pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthErro
     })
 }
 
-/// The model and report of one linkage of a cognate set. `drive`: the
+/// The model and report of one linkage of a cognate set; `traced` is the
+/// given linkage's coupler curve, which each model traces. `drive`: the
 /// body driven, its angle at t = 0 and its offset from the given crank;
 /// `None`: the crank through joint O2.
 fn cognate_solution(
     m: &CouplerLinkage,
+    traced: &[Value],
     name: &str,
     what: &str,
-    a: P2,
-    b: P2,
-    phi0: f64,
+    (a, b, phi0): (P2, P2, f64),
     drive: Option<(&str, f64, f64)>,
 ) -> Solution {
     let l = &m.linkage;
@@ -874,7 +874,7 @@ fn cognate_solution(
         "branch": m.sigma,
         "driven": drive.map_or("crank", |d| d.0),
         "offset": drive.map_or(0.0, |d| d.2),
-        "curve": curve(m),
+        "curve": traced,
         "properties": properties_json(l),
         "checks": checks,
     });
