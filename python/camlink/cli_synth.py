@@ -15,9 +15,10 @@ def add_parser(
     """Registers the ``synth`` subcommand; returns its handler."""
     p = sub.add_parser(
         "synth",
-        help="synthesise a four-bar from poses or a function and write it as a model file",
+        help="synthesise a four-bar from poses, a function or a path and write it as a model file",
         description="Solve the [synthesis] problem of PROBLEM (three-position motion generation, "
-        "or function generation by Freudenstein's equation), check every solution (Grashof class, "
+        "function generation by Freudenstein's equation, path generation, dead-centre synthesis or "
+        "cognates), check every solution (Grashof class, "
         "transmission angle, branch, order) and write each as DIR/<name>.toml, a model that "
         "`camlink run` runs. The report goes to standard output.",
     )
@@ -28,6 +29,11 @@ def add_parser(
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     p.add_argument("--force", action="store_true", help="replace models that exist in DIR")
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    p.add_argument(
+        "--atlas",
+        metavar="PNG",
+        help="draw the candidates' coupler curves against the targets (path and cognates problems)",
+    )
     return run
 
 
@@ -37,6 +43,10 @@ def run(args: argparse.Namespace) -> int:
 
     result = synth.solve(args.problem)
     paths = synth.write(result, args.output, inputs=[args.problem], force=args.force)
+    if args.atlas:
+        from camlink import synth_atlas
+
+        synth_atlas.save(synth_atlas.atlas(result), args.atlas)
     if args.json:
         print(json.dumps({
             "kind": result.kind,
