@@ -25,6 +25,9 @@ pub struct Toggle {
     /// Crank angle φ and rocker angle ψ there (rad, in (−π, π]).
     pub phi: f64,
     pub psi: f64,
+    /// The assembly branch σ the toggle lies on (0 at a crank limit, where
+    /// the two branches meet).
+    pub branch: f64,
 }
 
 /// The properties of a four-bar.
@@ -63,6 +66,7 @@ pub fn properties(l: &FourBar) -> Option<Properties> {
                         shape,
                         phi,
                         psi: p.psi,
+                        branch: 0.0,
                     });
                 }
                 if k.abs() == 1.0 {
@@ -88,11 +92,13 @@ pub fn properties(l: &FourBar) -> Option<Properties> {
                 if a < 0.0 {
                     phi += std::f64::consts::PI;
                 }
+                let phi = wrap_pi(phi);
                 toggles.push(Toggle {
                     kind: "rocker_extreme",
                     shape,
-                    phi: wrap_pi(phi),
+                    phi,
                     psi: wrap_pi(psi),
+                    branch: l.branch(l.crank_pin(phi), bp),
                 });
                 if k.abs() == 1.0 {
                     break;
@@ -121,7 +127,87 @@ pub fn properties_json(l: &FourBar) -> Value {
             "transmission": { "min": p.transmission_min, "max": p.transmission_max },
             "toggles": p.toggles.iter().map(|t| json!({
                 "kind": t.kind, "shape": t.shape, "crank_angle": t.phi, "rocker_angle": t.psi,
+                "branch": t.branch,
             })).collect::<Vec<_>>(),
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fourbar::{cross, norm};
+    use std::f64::consts::TAU;
+
+    /// At each toggle the links named are in line (cross product 0), and
+    /// the transmission extremes equal those of a dense scan of the crank.
+    #[test]
+    fn issue31_toggles_and_transmission_extremes() {
+        let cases = [
+            // crank-rocker: two rocker extremes, no crank limit
+            FourBar {
+                o2: [0.0, 0.0],
+                o4: [0.4, 0.0],
+                crank: 0.12,
+                coupler: 0.38,
+                rocker: 0.3,
+            },
+            // triple-rocker: the crank stops at limits
+            FourBar {
+                o2: [0.1, 0.2],
+                o4: [0.5, 0.1],
+                crank: 0.3,
+                coupler: 0.35,
+                rocker: 0.32,
+            },
+        ];
+        for l in cases {
+            let p = properties(&l).unwrap();
+            let (mut rocker, mut limit) = (0, 0);
+            for t in &p.toggles {
+                let a = l.crank_pin(t.phi);
+                let b = [
+                    l.o4[0] + l.rocker * t.psi.cos(),
+                    l.o4[1] + l.rocker * t.psi.sin(),
+                ];
+                // The linkage closes there.
+                assert!((norm(sub(b, a)) - l.coupler).abs() < 1e-12, "{t:?}");
+                let x = if t.kind == "rocker_extreme" {
+                    rocker += 1;
+                    cross(sub(a, l.o2), sub(b, a))
+                } else {
+                    limit += 1;
+                    cross(sub(b, a), sub(b, l.o4))
+                };
+                assert!(x.abs() < 1e-12, "{t:?}: cross {x}");
+            }
+            if p.crank_turns {
+                // Two extremes on each branch.
+                assert_eq!((rocker, limit), (4, 0));
+                for sigma in [1.0, -1.0] {
+                    let on = p.toggles.iter().filter(|t| t.branch == sigma).count();
+                    assert_eq!(on, 2);
+                }
+            } else {
+                assert!(limit >= 2);
+            }
+            // Dense scan of μ over every crank angle where it assembles.
+            let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+            for k in 0..200_000 {
+                let phi = TAU * k as f64 / 200_000.0;
+                let e = norm(sub(l.o4, l.crank_pin(phi)));
+                let mu = l.transmission(e);
+                if mu.is_finite() {
+                    lo = lo.min(mu);
+                    hi = hi.max(mu);
+                }
+            }
+            // Where the crank stops at a limit μ reaches 0 or π there, and a
+            // scan approaches it as the square root of its step: the closed
+            // form bounds the scan and lies within 0.01 rad of it.
+            let tol = if p.crank_turns { 1e-4 } else { 1e-2 };
+            assert!(p.transmission_min <= lo + 1e-12 && lo - p.transmission_min < tol);
+            assert!(p.transmission_max >= hi - 1e-12 && p.transmission_max - hi < tol);
+        }
     }
 }
