@@ -11,8 +11,9 @@
 //! Q = 1, on the line B₁B₂ outside the segment). With L₁ = |O₂B₁| and
 //! L₂ = |O₂B₂|: a = |L₂ − L₁|/2, b = (L₁ + L₂)/2, d = |O₄ − O₂|.
 //!
-//! The free choice is where O₂ sits on that locus: given the ground link d
-//! (the locus meets the circle of radius d about O₄ at up to two points),
+//! The free choice is where O₂ sits on that locus (two arcs, mirror images
+//! in the chord B₁B₂): given the ground link d (the locus meets the circle
+//! of radius d about O₄ at up to four points),
 //! or else the point of the locus whose linkage has the largest least
 //! transmission angle over a crank turn.
 
@@ -182,7 +183,7 @@ fn quality(d: &DeadCentre) -> f64 {
     }
 }
 
-/// Synthesises the crank-rockers of `spec`: both points of the locus at
+/// Synthesises the crank-rockers of `spec`: every point of the locus at
 /// distance d from O₄ when d is given, else the best point of the locus.
 /// `fields` name the problem's rocker, swing, time ratio and ground fields.
 pub fn synthesise(spec: &DeadCentreSpec, fields: [&str; 4]) -> Result<Vec<DeadCentre>, SynthError> {
