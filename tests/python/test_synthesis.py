@@ -143,13 +143,17 @@ def test_missing_problem_is_a_usage_error(tmp_path: Path, capsys) -> None:
 @pytest.mark.parametrize("path", sorted((ROOT / "examples").glob("synthesis_*.toml")), ids=lambda p: p.name)
 def test_every_synthesis_example_passes(path: Path, tmp_path: Path) -> None:
     result = synth.solve(path)
-    for s, p in zip(result.solutions, synth.write(result, tmp_path), strict=True):
-        assert s.defects == ()
+    for k, (s, p) in enumerate(zip(result.solutions, synth.write(result, tmp_path), strict=True)):
+        # A path fit keeps candidates with defects, ranked after the others.
+        assert s.defects == () or (result.kind == "path" and k > 0)
         model = camlink.load(p)
         if "poses" in s.report:
             check_poses(model, dict(s.report))
         elif "pairs" in s.report:
             check_slider_points(model, dict(s.report))
+        elif result.kind in {"path", "dead_centre", "cognates"}:
+            # Path generation, dead-centre synthesis and cognates: test_synthesis_path.py.
+            continue
         else:
             check_points(model, dict(s.report))
 

@@ -30,5 +30,12 @@ pub mod problem;
 pub mod slider_crank;
 pub mod two_positions;
 
+// Path generation and the classical constructions.
+pub mod cognates;
+pub mod dead_centre;
+pub mod lm;
+pub mod path;
+pub mod properties;
+
 pub use error::{ErrorKind, SynthError};
 pub use problem::{solve_path, solve_str, Outcome, Solution};

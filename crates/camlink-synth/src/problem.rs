@@ -38,6 +38,8 @@ use crate::motion::{self, coupler_pose, MotionSolution, Pivot, Pose};
 
 // Two-position, Burmester and slider-crank problems.
 mod guidance;
+// Path generation, dead-centre synthesis and cognates.
+mod kinds;
 
 /// Largest problem file read (bytes).
 pub const MAX_FILE_SIZE: u64 = 1024 * 1024;
@@ -83,6 +85,22 @@ struct Table {
     region: Option<Vec<Num>>,
     max_link_ratio: Option<Num>,
     slider: Option<guidance::SliderTable>,
+    // --- Path generation, dead-centre synthesis, cognates (problem/kinds.rs) ---
+    targets: Option<Vec<Vec<Num>>>,
+    target_file: Option<String>,
+    units: Option<String>,
+    timing: Option<String>,
+    crank_rotations: Option<Vec<Num>>,
+    closure: Option<String>,
+    order: Option<String>,
+    starts: Option<usize>,
+    rocker_pivot: Option<Vec<Num>>,
+    rocker_length: Option<Num>,
+    rocker_start: Option<Num>,
+    swing: Option<Num>,
+    time_ratio: Option<Num>,
+    four_bar: Option<kinds::FourBarTable>,
+    // --- end of path generation, dead-centre synthesis, cognates ---
 }
 
 #[derive(Deserialize)]
@@ -189,14 +207,22 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
         return out.map_err(to_load);
     }
     guidance::refuse_fields(&t).map_err(to_load)?;
+    if matches!(t.kind.as_str(), "motion" | "function") {
+        kinds::refuse_fields(&t).map_err(to_load)?;
+    }
     match t.kind.as_str() {
         "motion" => solve_motion(&t, &name).map_err(to_load),
         "function" => solve_function(&t, &name).map_err(to_load),
+        // Path generation, dead-centre synthesis, cognates (problem/kinds.rs).
+        "path" => kinds::solve_path_kind(&t, &name, source).map_err(to_load),
+        "dead_centre" => kinds::solve_dead_centre(&t, &name).map_err(to_load),
+        "cognates" => kinds::solve_cognates(&t, &name).map_err(to_load),
         other => Err(located(
             Some("synthesis.type".into()),
             format!(
                 "unknown synthesis type '{other}'; expected \"motion\", \"function\", \
-                 \"two_positions\", \"burmester\", \"slider_motion\" or \"slider_function\""
+                 \"two_positions\", \"burmester\", \"slider_motion\", \"slider_function\", \
+                 \"path\", \"dead_centre\" or \"cognates\""
             ),
         )),
     }

@@ -3,6 +3,7 @@
 //! that every file in `tests/` is listed here or built on its own.
 
 mod burmester;
+mod path_generation;
 mod problem_files;
 mod slider_crank;
 mod two_positions;

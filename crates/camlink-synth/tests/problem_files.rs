@@ -28,9 +28,13 @@ fn every_synthesis_example_solves() {
         let name = path.file_name().unwrap().to_str().unwrap().to_string();
         if name.starts_with("synthesis_") && name.ends_with(".toml") {
             let out = camlink_synth::solve_path(&path).unwrap_or_else(|e| panic!("{e}"));
-            for s in &out.solutions {
+            for (k, s) in out.solutions.iter().enumerate() {
                 let d = &s.report["checks"]["defects"];
-                assert_eq!(d.as_array().unwrap().len(), 0, "{name}: {d}");
+                // A path fit keeps candidates with defects for inspection,
+                // ranked after the defect-free ones.
+                if out.kind != "path" || k == 0 {
+                    assert_eq!(d.as_array().unwrap().len(), 0, "{name}: {d}");
+                }
                 camlink_model::load_str(&s.model, camlink_model::Format::Toml, "m.toml")
                     .unwrap_or_else(|e| panic!("{name}: {e}"));
             }
@@ -194,9 +198,11 @@ fn missing_ground_named() {
 #[test]
 fn unknown_type_named() {
     let e = err("[synthesis]\ntype = \"gears\"\n");
-    assert!(
-        e.starts_with("p.toml:2:8: synthesis.type: unknown synthesis type 'gears'; expected \"motion\", \"function\""),
-        "{e}"
+    assert_eq!(
+        e,
+        "p.toml:2:8: synthesis.type: unknown synthesis type 'gears'; expected \"motion\", \"function\", \
+         \"two_positions\", \"burmester\", \"slider_motion\", \"slider_function\", \"path\", \
+         \"dead_centre\" or \"cognates\""
     );
 }
 

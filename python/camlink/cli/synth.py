@@ -15,10 +15,12 @@ def add_parser(
     """Registers the ``synth`` subcommand; returns its handler."""
     p = sub.add_parser(
         "synth",
-        help="synthesise a four-bar from poses or a function and write it as a model file",
+        help="synthesise a four-bar or slider-crank from poses, a function or a path and write it "
+        "as a model file",
         description="Solve the [synthesis] problem of PROBLEM (motion generation through two or "
-        "three poses, four or five by Burmester theory, slider-cranks, or function generation by "
-        "Freudenstein's equation), check every solution (Grashof class, "
+        "three poses, four or five by Burmester theory, slider-cranks, function generation by "
+        "Freudenstein's equation, path generation, dead-centre synthesis or cognates), check every "
+        "solution (Grashof class, "
         "transmission angle, branch, order) and write each as DIR/<name>.toml, a model that "
         "`camlink run` runs. The report goes to standard output.",
     )
@@ -29,6 +31,11 @@ def add_parser(
     p.add_argument("--json", action="store_true", help="print the report as JSON")
     p.add_argument("--force", action="store_true", help="replace models that exist in DIR")
     p.add_argument("-q", "--quiet", action="store_true", help="print nothing on success")
+    p.add_argument(
+        "--atlas",
+        metavar="PNG",
+        help="draw the candidates' coupler curves against the targets (path and cognates problems)",
+    )
     return run
 
 
@@ -38,6 +45,10 @@ def run(args: argparse.Namespace) -> int:
 
     result = synth.solve(args.problem)
     paths = synth.write(result, args.output, inputs=[args.problem], force=args.force)
+    if args.atlas:
+        from camlink.synth import atlas as synth_atlas
+
+        synth_atlas.save(synth_atlas.atlas(result), args.atlas)
     if args.json:
         print(json.dumps({
             "kind": result.kind,

@@ -239,6 +239,14 @@ def report_text(result: Synthesis) -> str:
                 f"  structural error  max {_deg(se['max'])} at x = {se['at_x']:.6g}, "
                 f"rms {_deg(se['rms'])} ({se['samples']} samples)"
             )
+        if "error" in r:
+            e = r["error"]
+            lines.append(
+                f"  path error    RMS {e['rms'] * 1000:.4g} mm, largest {e['max'] * 1000:.4g} mm "
+                f"over {len(r['targets'])} targets"
+            )
+        if "time_ratio" in r:
+            lines.append(f"  rocker swing  {_deg(r['swing'])}, time ratio {r['time_ratio']:.6g}")
         if s.defects:
             for d in s.defects:
                 lines.append(f"  DEFECT {d.kind}: {d.message}")

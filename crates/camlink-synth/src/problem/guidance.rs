@@ -73,6 +73,20 @@ fn given(t: &Table) -> Vec<(&'static str, bool)> {
         ("region", t.region.is_some()),
         ("max_link_ratio", t.max_link_ratio.is_some()),
         ("slider", t.slider.is_some()),
+        ("targets", t.targets.is_some()),
+        ("target_file", t.target_file.is_some()),
+        ("units", t.units.is_some()),
+        ("timing", t.timing.is_some()),
+        ("crank_rotations", t.crank_rotations.is_some()),
+        ("closure", t.closure.is_some()),
+        ("order", t.order.is_some()),
+        ("starts", t.starts.is_some()),
+        ("rocker_pivot", t.rocker_pivot.is_some()),
+        ("rocker_length", t.rocker_length.is_some()),
+        ("rocker_start", t.rocker_start.is_some()),
+        ("swing", t.swing.is_some()),
+        ("time_ratio", t.time_ratio.is_some()),
+        ("four_bar", t.four_bar.is_some()),
     ]
 }
 
@@ -94,7 +108,8 @@ fn only(t: &Table, kind: &str, allowed: &[&str]) -> Result<(), SynthError> {
 pub(super) fn refuse_fields(t: &Table) -> Result<(), SynthError> {
     for (name, present) in [
         ("along", t.along.is_some()),
-        ("keep", t.keep.is_some()),
+        // A path fit keeps its best candidates too.
+        ("keep", t.keep.is_some() && t.kind != "path"),
         ("dyads", t.dyads.is_some()),
         ("curve_samples", t.curve_samples.is_some()),
         ("region", t.region.is_some()),
