@@ -37,7 +37,9 @@ def test_tutorial_runs_as_written(tmp_path: Path, monkeypatch, capsys) -> None:
     # What the page says of the cam's report.
     assert "ok   pressure angle, rise: 17.8" in capsys.readouterr().out
     assert (tmp_path / "first_linkage.csv").stat().st_size > 0
-    assert "<canvas" in (tmp_path / "first_linkage.html").read_text(encoding="utf-8")
+    # The viewer page: its app element, its data and the front end inlined.
+    page = (tmp_path / "first_linkage.html").read_text(encoding="utf-8")
+    assert '<div id="app">' in page and '<script id="camlink-data"' in page and "uPlot" in page
     designed = sorted(p.suffix for p in (tmp_path / "first_cam").iterdir())
     for suffix in (".csv", ".dxf", ".png", ".svg"):
         assert suffix in designed, (suffix, designed)
