@@ -77,8 +77,9 @@ def atlas(result: Synthesis, columns: int = 3) -> Figure:
             tx = [p[0] * MM for p in r["targets"]]
             ty = [p[1] * MM for p in r["targets"]]
             ax.plot(tx, ty, "o", color=TARGET_COLOUR, ms=3.5, label="targets", zorder=3)
-        o2, o4 = s.links.o2, s.links.o4
-        ax.plot([o2[0] * MM, o4[0] * MM], [o2[1] * MM, o4[1] * MM], "^", color="black", ms=7)
+        # The ground pivots (a slider-crank has no rocker pivot).
+        pivots = [p for p in (s.links.o2, s.links.o4) if p is not None]
+        ax.plot([p[0] * MM for p in pivots], [p[1] * MM for p in pivots], "^", color="black", ms=7)
         title = s.name
         if "error" in r:
             title += f"\nRMS {r['error']['rms'] * MM:.3g} mm, {s.grashof}"
