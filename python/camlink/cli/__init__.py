@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import signal
 import sys
@@ -30,6 +31,7 @@ from camlink.io.output import check_not_input
 from camlink.model import ANALYSES
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
+from camlink.viz import fourbar
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -341,8 +343,9 @@ def _cmd_check(args: argparse.Namespace) -> int:
     model = _load(args)
     r = model.check()
     design = model.design_check()
+    loop = fourbar.summary(model)
     if args.json:
-        print(json.dumps({"model": model.name, **r, "design": design}, indent=2))
+        print(json.dumps({"model": model.name, **r, "design": design, "four_bar": loop}, indent=2))
         return EXIT_OK
     print(f"model        {model.name} ({args.model})")
     print(f"bodies       {r['bodies']} moving (plus ground)")
@@ -383,9 +386,30 @@ def _cmd_check(args: argparse.Namespace) -> int:
     for k, motion in enumerate(r["free_motions"], 1):
         parts = ", ".join(f"{n} {c:+.2f}" for n, c in motion)
         print(f"  free motion {k}: {parts}")
+    if loop is not None:
+        _print_four_bar(loop)
     for f in design:
         print(f"design       {f['text']}")
     return EXIT_OK
+
+
+def _print_four_bar(loop: dict[str, object]) -> None:
+    """The four-bar lines of `camlink check`: class and transmission angle."""
+    lengths = loop["lengths"]
+    assert isinstance(lengths, dict)
+    print(
+        f"four-bar     {loop['crank']} (crank) – {loop['coupler']} (coupler) – {loop['rocker']} (rocker): "
+        + ", ".join(f"{k} {v:.6g} m" for k, v in lengths.items())
+        + f"; Grashof class: {loop['grashof']}"
+    )
+    mu = loop["transmission"]
+    if isinstance(mu, list):
+        lo, hi = (math.degrees(v) for v in mu)
+        worst = max(abs(90 - lo), abs(90 - hi))
+        print(
+            f"transmission angle μ from {lo:.2f}° to {hi:.2f}° over the loop's reach "
+            f"(worst {worst:.2f}° from 90°)"
+        )
 
 
 def _cmd_schema(_args: argparse.Namespace) -> int:

@@ -24,7 +24,7 @@ from camlink.viz.scene import GROUND, Pin, Scene
 if TYPE_CHECKING:
     from camlink.model import Model
 
-__all__ = ["FourBarLoop", "describe", "find", "transmission"]
+__all__ = ["FourBarLoop", "describe", "find", "summary", "transmission"]
 
 Array = npt.NDArray[np.float64]
 
@@ -126,3 +126,27 @@ def describe(model: Model, t: Array, names: list[str], values: Array) -> list[st
         lines.append(f"transmission angle μ: {math.degrees(lo):.2f}° to {math.degrees(hi):.2f}° "
                      f"(worst {worst:.2f}° from 90°)")
     return lines
+
+
+def summary(model: Model) -> dict[str, object] | None:
+    """The four-bar loop of `model` for `camlink check`, or None when the
+    model is not one: its bodies, lengths d, a, b, c (m), Grashof class,
+    and the range of the transmission angle μ (rad) over every position
+    the loop can take. μ grows with the diagonal E = |O₄ − A|
+    (cos μ = (b² + c² − E²)/(2bc)), and E spans [max(|d − a|, |b − c|),
+    min(d + a, b + c)] over the crank's reach, so the ends of that span
+    give the extremes; no motion is run."""
+    loop = find(model, Scene.of(model, tol=1e-2))
+    if loop is None:
+        return None
+    d, a, b, c = loop.lengths()
+    lo, hi = max(abs(d - a), abs(b - c)), min(d + a, b + c)
+    mu = _core.fourbar_transmission(b, c, np.array([lo, hi]))
+    return {
+        "crank": loop.crank,
+        "coupler": loop.coupler,
+        "rocker": loop.rocker,
+        "lengths": {"ground": d, "crank": a, "coupler": b, "rocker": c},
+        "grashof": _core.fourbar_class(d, a, b, c),
+        "transmission": [float(mu[0]), float(mu[1])] if lo <= hi else None,
+    }
