@@ -165,3 +165,24 @@ def test_issue31_dead_centre_without_solution_says_why(tmp_path: Path, capsys) -
     assert main(["synth", str(problem), "-o", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err
     assert "synthesis.ground: no crank-rocker with a ground link of 10 m" in err
+
+
+def test_issue31_atlas_never_replaces_the_problem_file(tmp_path: Path, capsys) -> None:
+    # `--atlas` is a PNG beside the models: never the problem it reads, never
+    # another kind of file; both refused before anything is solved or written.
+    problem = tmp_path / "cognates.toml"
+    text = COGNATES.read_text(encoding="utf-8")
+    problem.write_text(text, encoding="utf-8")
+    out = tmp_path / "out"
+    assert main(["synth", str(problem), "-o", str(out), "--atlas", str(problem)]) == 2
+    assert "name a .png file" in capsys.readouterr().err
+    link = tmp_path / "problem.png"
+    link.symlink_to(problem)
+    assert main(["synth", str(problem), "-o", str(out), "--atlas", str(link)]) == 2
+    assert "is an input of the model" in capsys.readouterr().err
+    assert problem.read_text(encoding="utf-8") == text and not out.exists()
+    # A good name is written whole, through a temporary file.
+    atlas = tmp_path / "atlas.png"
+    assert main(["synth", str(problem), "-o", str(out), "-q", "--atlas", str(atlas)]) == 0
+    assert atlas.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["atlas.png", "cognates.toml", "out", "problem.png"]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import argparse
 import json
 from collections.abc import Callable, Mapping
+from pathlib import Path
 from typing import Any
 
 
@@ -42,13 +43,23 @@ def add_parser(
 def run(args: argparse.Namespace) -> int:
     """Solves and writes; bad input raises ModelError or OSError (exit 2)."""
     from camlink import synth
+    from camlink._core import ModelError
+    from camlink.io.output import check_not_input, replacing
 
+    if args.atlas:
+        # A PNG, never the problem file (nor its targets' CSV), checked before solving.
+        atlas_path = Path(args.atlas)
+        if atlas_path.suffix.lower() != ".png":
+            raise ModelError(f"--atlas {args.atlas}: the atlas is a picture; name a .png file")
+        check_not_input(atlas_path, [args.problem])
     result = synth.solve(args.problem)
     paths = synth.write(result, args.output, inputs=[args.problem], force=args.force)
     if args.atlas:
         from camlink.synth import atlas as synth_atlas
 
-        synth_atlas.save(synth_atlas.atlas(result), args.atlas)
+        figure = synth_atlas.atlas(result)
+        with replacing(atlas_path) as temp:
+            synth_atlas.save(figure, temp)
     if args.json:
         print(json.dumps({
             "kind": result.kind,
