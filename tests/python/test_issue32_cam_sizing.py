@@ -406,3 +406,33 @@ def test_issue32_crowned_roller_reports_the_point_contact(
     p.write_text(v.replace('follower_material = "steel"', 'follower_material = "steel"\ncrown_radius = 0.2'))
     assert cli.main(["cam", str(p), "--no-files"]) == 2
     assert "contact.crown_radius: a flat-faced follower has no roller" in capsys.readouterr().err
+
+
+def test_issue32_timing_outputs_never_replace_inputs_or_existing_files(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A timing file's outputs get `camlink cam`'s protection: never over the
+    # timing file or a design file it reads, never over an existing file
+    # without --force.
+    for name in ("cam_design_timing.toml", "cam_design_packaging.toml", "cam_design_timing_gate.toml"):
+        (tmp_path / name).write_text((ROOT / "examples" / name).read_text(encoding="utf-8"), encoding="utf-8")
+    timing = tmp_path / "cam_design_timing.toml"
+    text = timing.read_text(encoding="utf-8")
+    bad = tmp_path / "bad_timing.toml"
+    packaging_as_diagram = text.replace("[export]", '[export]\ndiagram = "cam_design_packaging.toml"')
+    bad.write_text(packaging_as_diagram, encoding="utf-8")
+    design = (tmp_path / "cam_design_packaging.toml").read_text(encoding="utf-8")
+    assert cli.main(["cam", str(bad), "--out", str(tmp_path)]) == 2
+    assert "is an input of the model" in capsys.readouterr().err
+    assert (tmp_path / "cam_design_packaging.toml").read_text(encoding="utf-8") == design
+
+    out = tmp_path / "out"
+    assert cli.main(["cam", str(timing), "--out", str(out)]) == 0
+    first = {p.name: p.read_bytes() for p in out.iterdir()}
+    assert "cam_design_timing_timing.png" in first and len(first) == 5
+    capsys.readouterr()
+    assert cli.main(["cam", str(timing), "--out", str(out)]) == 2
+    assert "pass --force" in capsys.readouterr().err
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == first
+    assert cli.main(["cam", str(timing), "--out", str(out), "--force"]) == 0
+    assert sorted(p.name for p in out.iterdir()) == sorted(first)

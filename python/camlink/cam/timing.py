@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from camlink._core import ModelError
 from camlink.cam import design as cam_design
 from camlink.cam.design import CamDesignError, _Table
 
@@ -353,11 +354,37 @@ def diagram(t: Timing, report: list[ClearanceReport] | None = None) -> Any:
     return fig
 
 
-def write(t: Timing, out: Path, report: list[ClearanceReport]) -> list[str]:
-    """Writes the diagram and the cam tables into `out`; the paths."""
-    from camlink.cam import plots as cam_plots
-    from camlink.io.output import replacing
+def outputs(t: Timing, out: Path) -> list[Path]:
+    """The files `write` writes into `out`: the diagram, then each axis's
+    cam table and segment table."""
+    paths = [] if t.diagram is None else [out / t.diagram]
+    if t.tables:
+        for axis in t.axes:
+            paths += [out / f"{t.path.stem}_{axis.name}.csv", out / f"{t.path.stem}_{axis.name}_segments.csv"]
+    return paths
 
+
+def write(t: Timing, out: Path, report: list[ClearanceReport], force: bool = False) -> list[str]:
+    """Writes the diagram and the cam tables into `out`; the paths. None is
+    the timing file or an axis's design file (nor a link to one), and none
+    that exists is replaced unless `force`; each is written to a temporary
+    name and renamed."""
+    from camlink.cam import plots as cam_plots
+    from camlink.io.output import check_not_input, replacing
+
+    targets = outputs(t, out)
+    inputs = [t.path, *(a.design.path for a in t.axes)]
+    try:
+        for path in targets:
+            check_not_input(path, inputs)
+    except ModelError as e:
+        raise CamDesignError(str(e)) from None
+    existing = [str(p) for p in targets if p.exists()]
+    if existing and not force:
+        raise CamDesignError(
+            f"{', '.join(existing)} {'exists' if len(existing) == 1 else 'exist'}; pass --force "
+            "to replace, or choose another --out"
+        )
     out.mkdir(parents=True, exist_ok=True)
     written = []
     if t.diagram is not None:

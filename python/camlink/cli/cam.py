@@ -202,7 +202,7 @@ def _run_timing(args: argparse.Namespace) -> int:
         if args.units is not None:
             timing = dataclasses.replace(timing, units=_units(args.units))
         report = cam_timing.clearances(timing)
-        files = [] if args.no_files else cam_timing.write(timing, Path(args.out), report)
+        files = [] if args.no_files else cam_timing.write(timing, Path(args.out), report, args.force)
     except cam_design.CamDesignError as e:
         print(f"camlink: error: {e}", file=sys.stderr)
         return EXIT_INPUT
