@@ -68,7 +68,7 @@ fn output_times(poses: &[f64]) -> Vec<f64> {
     t
 }
 
-fn num(x: f64) -> String {
+pub(crate) fn num(x: f64) -> String {
     // Rust prints the shortest decimal that reads back to the same f64;
     // TOML reads "1" as an integer, which model files accept as a number.
     if x == 0.0 {
@@ -78,21 +78,42 @@ fn num(x: f64) -> String {
     }
 }
 
-fn pair(p: P2) -> String {
+pub(crate) fn pair(p: P2) -> String {
     format!("[{}, {}]", num(p[0]), num(p[1]))
 }
 
-/// The model file's text.
-pub fn model_toml(spec: &ModelSpec<'_>) -> String {
-    let l = spec.linkage;
-    let phi = spec.crank_angles;
+/// What the model files of a four-bar and a slider-crank share: what the
+/// crank is, where the coupler starts and what it carries.
+pub(crate) struct CrankCoupler<'a> {
+    pub name: &'a str,
+    /// Comment lines written at the top (without `#`).
+    pub header: &'a [String],
+    /// The crank angles the run reaches, unwrapped along the motion (rad).
+    pub crank_angles: &'a [f64],
+    /// What the crank angles mark, for the file's comments.
+    pub stop: &'a str,
+    /// Where the comment of `theta1` says the crank angle is taken.
+    pub start: &'a str,
+    /// The ground points: O₂ and the other ground point, by name (m).
+    pub ground: [(&'a str, P2); 2],
+    /// The crank's length a (m).
+    pub crank: f64,
+    /// The coupler frame's pose at the first crank angle.
+    pub coupler_start: Pose,
+    /// A, B and P in the coupler frame (m).
+    pub coupler_points: [P2; 3],
+}
+
+/// The header comments, `[model]`, `[parameters]`, `[ground]` and the
+/// bodies `crank` and `coupler` of a synthesised model file.
+pub(crate) fn crank_and_coupler(s: &mut String, m: &CrankCoupler<'_>) {
+    let phi = m.crank_angles;
     let first = phi[0];
     let sweep = phi[phi.len() - 1] - first;
     let times = pose_times(phi);
-    let [pa, pb, pp] = spec.coupler_points;
-    let c0 = spec.coupler_start;
-    let mut s = String::new();
-    for line in &spec.header {
+    let [pa, pb, pp] = m.coupler_points;
+    let c0 = m.coupler_start;
+    for line in m.header {
         let line: String = line
             .chars()
             .map(|c| if c.is_control() { ' ' } else { c })
@@ -104,27 +125,29 @@ pub fn model_toml(spec: &ModelSpec<'_>) -> String {
         "#\n# The crank is driven at constant speed from t = 0 to t = 1 s;\n\
          # {what} are reached at t = {} s.\n# Units: m, rad, s.\n",
         times.iter().map(|t| num(*t)).collect::<Vec<_>>().join(", "),
-        what = spec.stop,
+        what = m.stop,
     );
-    let name = toml::Value::String(spec.name.to_string());
+    let name = toml::Value::String(m.name.to_string());
     let _ = writeln!(s, "[model]\nname = {name}\n");
     let _ = writeln!(
         s,
-        "[parameters]\ntheta1 = {}        # crank angle at the first pose (rad)\nw = {}        # crank speed (rad/s)\n",
+        "[parameters]\ntheta1 = {}        # crank angle at {} (rad)\nw = {}        # crank speed (rad/s)\n",
         num(first),
+        m.start,
         num(sweep)
     );
+    let [(n2, o2), (n4, o4)] = m.ground;
     let _ = writeln!(
         s,
-        "[ground]\npoints = {{ O2 = {}, O4 = {} }}\n",
-        pair(l.o2),
-        pair(l.o4)
+        "[ground]\npoints = {{ {n2} = {}, {n4} = {} }}\n",
+        pair(o2),
+        pair(o4)
     );
     let _ = writeln!(
         s,
         "[[bodies]]\nname = \"crank\"\nposition = {}\nangle = \"theta1\"\npoints = {{ O2 = [0, 0], A = [{}, 0] }}\n",
-        pair(l.o2),
-        num(l.crank)
+        pair(o2),
+        num(m.crank)
     );
     let _ = writeln!(
         s,
@@ -134,6 +157,28 @@ pub fn model_toml(spec: &ModelSpec<'_>) -> String {
         pair(pa),
         pair(pb),
         pair(pp)
+    );
+}
+
+/// The model file's text.
+pub fn model_toml(spec: &ModelSpec<'_>) -> String {
+    let l = spec.linkage;
+    let phi = spec.crank_angles;
+    let times = pose_times(phi);
+    let mut s = String::new();
+    crank_and_coupler(
+        &mut s,
+        &CrankCoupler {
+            name: spec.name,
+            header: &spec.header,
+            crank_angles: phi,
+            stop: spec.stop,
+            start: "the first pose",
+            ground: [("O2", l.o2), ("O4", l.o4)],
+            crank: l.crank,
+            coupler_start: spec.coupler_start,
+            coupler_points: spec.coupler_points,
+        },
     );
     let _ = writeln!(
         s,

@@ -37,6 +37,7 @@ use crate::fourbar::{
     add, angle, cross, mod_tau, norm, sub, unit, wrap_pi, Defect, DefectKind, Requirements,
     Turning, P2,
 };
+use crate::model_file::{crank_and_coupler, num, pair, CrankCoupler};
 use crate::motion::{Pivot, Pose};
 
 /// A slider-crank (see the module's symbols).
@@ -532,18 +533,6 @@ pub struct SliderModel<'a> {
     pub stop: &'a str,
 }
 
-fn num(x: f64) -> String {
-    if x == 0.0 {
-        "0".to_string()
-    } else {
-        format!("{x}")
-    }
-}
-
-fn pair(p: P2) -> String {
-    format!("[{}, {}]", num(p[0]), num(p[1]))
-}
-
 /// The model file of a slider-crank: bodies `crank` (frame at O₂, point
 /// `A` = [a, 0]), `coupler` (points `A`, `B`, `P`) and `slider` (frame at
 /// B, turned γ); revolutes `O2`, `A`, `B`; a translational joint `guide`
@@ -553,55 +542,22 @@ fn pair(p: P2) -> String {
 pub fn model_toml(spec: &SliderModel<'_>) -> String {
     let l = spec.linkage;
     let phi = spec.crank_angles;
-    let first = phi[0];
-    let sweep = phi[phi.len() - 1] - first;
     let times = crate::model_file::pose_times(phi);
-    let [pa, pb, pp] = spec.coupler_points;
-    let c0 = spec.coupler_start;
     let b0 = l.pin(spec.slider_start);
     let mut s = String::new();
-    for line in &spec.header {
-        let line: String = line
-            .chars()
-            .map(|c| if c.is_control() { ' ' } else { c })
-            .collect();
-        let _ = writeln!(s, "# {line}");
-    }
-    let _ = writeln!(
-        s,
-        "#\n# The crank is driven at constant speed from t = 0 to t = 1 s;\n\
-         # {what} are reached at t = {} s.\n# Units: m, rad, s.\n",
-        times.iter().map(|t| num(*t)).collect::<Vec<_>>().join(", "),
-        what = spec.stop,
-    );
-    let name = toml::Value::String(spec.name.to_string());
-    let _ = writeln!(s, "[model]\nname = {name}\n");
-    let _ = writeln!(
-        s,
-        "[parameters]\ntheta1 = {}        # crank angle at the start (rad)\nw = {}        # crank speed (rad/s)\n",
-        num(first),
-        num(sweep)
-    );
-    let _ = writeln!(
-        s,
-        "[ground]\npoints = {{ O2 = {}, C = {} }}\n",
-        pair(l.o2),
-        pair(l.line)
-    );
-    let _ = writeln!(
-        s,
-        "[[bodies]]\nname = \"crank\"\nposition = {}\nangle = \"theta1\"\npoints = {{ O2 = [0, 0], A = [{}, 0] }}\n",
-        pair(l.o2),
-        num(l.crank)
-    );
-    let _ = writeln!(
-        s,
-        "[[bodies]]\nname = \"coupler\"\nposition = {}\nangle = {}\npoints = {{ A = {}, B = {}, P = {} }}\n",
-        pair([c0.x, c0.y]),
-        num(c0.theta),
-        pair(pa),
-        pair(pb),
-        pair(pp)
+    crank_and_coupler(
+        &mut s,
+        &CrankCoupler {
+            name: spec.name,
+            header: &spec.header,
+            crank_angles: phi,
+            stop: spec.stop,
+            start: "the start",
+            ground: [("O2", l.o2), ("C", l.line)],
+            crank: l.crank,
+            coupler_start: spec.coupler_start,
+            coupler_points: spec.coupler_points,
+        },
     );
     let _ = writeln!(
         s,
