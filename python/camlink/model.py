@@ -27,7 +27,7 @@ from camlink.records import (
     JointRecord,
     LoadWarningRecord,
 )
-from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary
+from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary, plain_summary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
 from camlink.units import unit
@@ -533,14 +533,7 @@ class Model:
                 **kw,
             )
 
-        res = self._run("dynamics", output, core, points, on_rows)
-        s = res.summary
-        if len(res):
-            energy = res["energy.total"]
-            s["energy_drift"] = float(np.max(np.abs(energy - energy[0])))
-            s["constraint_drift"] = float(np.max(res["constraint.residual"]))
-            s["velocity_drift"] = float(np.max(res["constraint.velocity"]))
-        return res
+        return self._run("dynamics", output, core, points, on_rows)
 
     def _solver(self, kind: str, tol: float | None, max_iter: int | None) -> tuple[float, int]:
         """Newton settings: the arguments, else the file's, else the
@@ -602,7 +595,8 @@ class Model:
                 "model": self.name,
                 "analysis": kind,
                 "units": {n: unit(n, joints) for n in names},
-                "summary": {**summary, "analysis": kind},  # the binding's plain dict
+                # As `Results.save` writes it: one form of the summary in files.
+                "summary": plain_summary(_summary(kind, summary)),
             }
         except AnalysisError as e:
             names = list(e.names)
@@ -671,7 +665,7 @@ def _unpickle(
 
 def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
     """The binding's summary dict as a `RunSummary`."""
-    return RunSummary(
+    typed = RunSummary(
         analysis=kind,
         steps=int(raw["steps"]),
         newton_iterations=int(raw["newton_iterations"]),
@@ -683,6 +677,10 @@ def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
         + [_flight(r) for r in raw.get("flights", [])],
         impacts=[_impact(r) for r in raw.get("impacts", [])],
     )
+    for key in ("energy_drift", "constraint_drift", "velocity_drift"):
+        if key in raw:
+            typed[key] = float(raw[key])  # type: ignore[literal-required]
+    return typed
 
 
 def _lift_off(r: dict[str, Any]) -> LiftOffRecord:

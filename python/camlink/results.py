@@ -9,7 +9,7 @@ import difflib
 import io
 import json
 import os
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, NotRequired, TypedDict
 
@@ -48,6 +48,7 @@ __all__ = [
     "ResultsMetadata",
     "RunSummary",
     "open_writer",
+    "plain_summary",
 ]
 
 #: Columns of `Results.lift_off`: names, then times (s), cam angles (rad),
@@ -148,6 +149,16 @@ class RunSummary(TypedDict, total=False):
     energy_drift: float
     constraint_drift: float
     velocity_drift: float
+
+
+def plain_summary(summary: Mapping[str, Any]) -> dict[str, Any]:
+    """A run summary as results files store it, whoever writes the file
+    (`Results.save` or a run with ``output=``): the same keys, warnings as
+    plain dicts."""
+    plain = dict(summary)
+    if "warnings" in plain:
+        plain["warnings"] = [dataclasses.asdict(w) for w in plain["warnings"]]
+    return plain
 
 
 class Results:
@@ -481,9 +492,7 @@ class Results:
         analysis and summary only when known."""
         from camlink import _core
 
-        summary: dict[str, Any] = dict(self.summary)
-        if "warnings" in summary:
-            summary["warnings"] = [dataclasses.asdict(w) for w in summary["warnings"]]
+        summary = plain_summary(self.summary)
         meta = ResultsMetadata(camlink=_core.__version__)
         if self.model:
             meta["model"] = self.model

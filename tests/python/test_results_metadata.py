@@ -44,6 +44,31 @@ def test_a_run_to_csv_writes_a_sidecar_that_load_reads_back(tmp_path: Path) -> N
 
 
 @pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_a_run_to_a_file_stores_the_summary_save_stores(tmp_path: Path, suffix: str) -> None:
+    """One form of the summary in files: a forward-dynamics run written
+    with ``output=`` stores what `Results.save` of the same run in memory
+    stores, the drift of energy and constraints included (computed in Rust
+    as the rows are written, by every writer alike)."""
+    model = camlink.load(EXAMPLES / "dyn_slider_crank.toml")
+    memory = model.simulate(t_end=0.05, step=0.01)
+    streamed = model.simulate(t_end=0.05, step=0.01, output=tmp_path / f"run{suffix}")
+    saved = Results.load(memory.save(tmp_path / f"saved{suffix}"))
+    back = Results.load(tmp_path / f"run{suffix}")
+    assert back.summary == saved.summary
+    energy = memory["energy.total"]
+    drift = {
+        "energy_drift": float(np.max(np.abs(energy - energy[0]))),
+        "constraint_drift": float(np.max(memory["constraint.residual"])),
+        "velocity_drift": float(np.max(memory["constraint.velocity"])),
+    }
+    for key, value in drift.items():
+        assert memory.summary[key] == value, key  # type: ignore[literal-required]
+        assert streamed.summary[key] == value, key  # type: ignore[literal-required]
+        assert back.summary[key] == value, key  # type: ignore[literal-required]
+    assert drift["energy_drift"] > 0.0
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
 def test_saved_results_keep_model_analysis_units_and_summary(tmp_path: Path, suffix: str) -> None:
     res = camlink.load(EXAMPLES / "four_bar.toml").run(t_end=0.05, step=0.01)
     back = Results.load(res.save(tmp_path / f"out{suffix}"))

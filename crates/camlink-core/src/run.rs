@@ -149,6 +149,18 @@ pub struct Summary {
     pub flights: Vec<Flight>,
     /// The impacts of the unilateral cam contacts, in time order.
     pub impacts: Vec<Impact>,
+    /// Forward dynamics: the drift over the rows written.
+    pub drift: Option<Drift>,
+}
+
+/// How far a forward-dynamics run left what it should keep, over its rows:
+/// the largest |E − E(t₀)| of the total energy (J), the largest |Φ| (m or
+/// rad) and the largest |Φ_q q̇ − ν| (m/s or rad/s).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Drift {
+    pub energy: f64,
+    pub constraint: f64,
+    pub velocity: f64,
 }
 
 /// A flight of a unilateral cam contact: from lift-off (or a bounce) to

@@ -924,6 +924,11 @@ fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict
         impacts.append(impact_dict(py, i)?)?;
     }
     d.set_item("impacts", impacts)?;
+    if let Some(drift) = s.drift {
+        d.set_item("energy_drift", drift.energy)?;
+        d.set_item("constraint_drift", drift.constraint)?;
+        d.set_item("velocity_drift", drift.velocity)?;
+    }
     Ok(d)
 }
 

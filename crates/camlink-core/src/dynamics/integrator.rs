@@ -1536,10 +1536,25 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
+    let mut watch = super::drift::DriftWatch::new(sink);
     let settings = &on_output_times(settings, times);
-    if model.joints.iter().any(|j| j.unilateral.is_some()) {
-        return super::unilateral::run(model, times, settings, points, sink);
-    }
+    let mut summary = if model.joints.iter().any(|j| j.unilateral.is_some()) {
+        super::unilateral::run(model, times, settings, points, &mut watch)?
+    } else {
+        run_bilateral(model, times, settings, points, &mut watch)?
+    };
+    summary.drift = watch.drift();
+    Ok(summary)
+}
+
+/// [`run`] of a model without unilateral contacts.
+fn run_bilateral(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
     let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
     let contacts = crate::contact::Contacts::new(model);

@@ -14,7 +14,8 @@
 //! - redundant equations (detection, warning), in [`redundant`];
 //! - joint reactions and driver efforts from λ, in [`reaction`], the
 //!   normal force of curve contacts and follower lift-off, in
-//!   [`contact_force`], and the output channels, in [`output`];
+//!   [`contact_force`], the output channels, in [`output`], and the run's
+//!   drift, in [`drift`];
 //! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
 //! - equilibrium, in [`statics`];
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`],
@@ -24,6 +25,7 @@
 
 pub(crate) mod branch;
 pub mod contact_force;
+pub mod drift;
 pub mod impact;
 pub mod integrator;
 pub mod inverse;
