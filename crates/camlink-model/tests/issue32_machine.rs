@@ -72,3 +72,34 @@ fn issue32_machine_table_names_bad_fields() {
         "{e}"
     );
 }
+
+/// A joint, driver or body named `shaking` would share the namespace of
+/// the shaking channels (a joint's reaction `shaking.fx` is the shaking
+/// force's name): refused, naming the field.
+#[test]
+fn issue32_shaking_is_a_reserved_name() {
+    let e = error_of((
+        "name = \"B\"\ntype = \"revolute\"",
+        "name = \"shaking\"\ntype = \"revolute\"",
+    ));
+    assert!(e.contains("joints[2].name"), "{e}");
+    assert!(
+        e.contains("joint name 'shaking' is reserved for the shaking channels shaking.fx, shaking.fy, shaking.moment"),
+        "{e}"
+    );
+    let e = error_of(("\"slider\"", "\"shaking\""));
+    assert!(
+        e.contains("bodies[2].name") && e.contains("body name 'shaking' is reserved"),
+        "{e}"
+    );
+    let text = example()
+        .replace("name = \"motor\"", "name = \"shaking\"")
+        .replace("driver = \"motor\"", "driver = \"shaking\"");
+    let e = load_str(&text, Format::Toml, "m.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("drivers[0].name") && e.contains("driver name 'shaking' is reserved"),
+        "{e}"
+    );
+}
