@@ -129,33 +129,33 @@ fn issue32_motor_curve() {
     assert_eq!(m.available(200.1), None);
 }
 
-/// The whole analysis of the slider-crank: the flywheel sized for
-/// C_s = 0.02 keeps the forward run's speed in that band (to the first
-/// order in C_s that the formula neglects: the link's own varying inertia).
-#[test]
-fn issue32_flywheel_forward_run_keeps_the_band() {
-    let omega = 2.0 * std::f64::consts::PI * 5.0;
-    let model = mechanisms::slider_crank(0.3, omega, true);
-    let spec = Spec {
+fn slider_crank_spec(omega: f64, motor: Option<Motor>) -> Spec {
+    Spec {
         driver: "motor".into(),
         speed: omega,
         speed_band: Some(0.02),
         steps: 360,
         point: [0.0, 0.0],
         balance: true,
-        motor: Some(Motor {
-            curve: vec![(0.0, 40.0), (100.0, 30.0)],
-            gear_ratio: 3.0,
-            rated_torque: Some(5.0),
-            rated_power: None,
-        }),
-    };
-    let r = machine::analyse(&model, &spec).unwrap();
+        motor,
+    }
+}
+
+/// The whole analysis of the slider-crank: the flywheel sized for
+/// C_s = 0.02 keeps the forward run's speed in that band (to the first
+/// order in C_s that the formula neglects: the link's own varying inertia),
+/// driven by the constant mean torque T̄ of the flywheel formula.
+#[test]
+fn issue32_flywheel_forward_run_keeps_the_band() {
+    let omega = 2.0 * std::f64::consts::PI * 5.0;
+    let model = mechanisms::slider_crank(0.3, omega, true);
+    let r = machine::analyse(&model, &slider_crank_spec(omega, None)).unwrap();
     let f = r.flywheel.as_ref().unwrap();
     eprintln!(
         "T̄ {:.4} N·m, ΔE {:.4} J, I {:.5} kg·m², run: ω {:.4}..{:.4} rad/s, Cs {:.5}; balanced peak {:?}; checks {:?}",
         f.mean_torque, f.delta_e, f.inertia, f.omega_min, f.omega_max, f.cs_run, r.balanced_peak_force, r.checks
     );
+    assert_eq!(f.law, "mean_torque");
     assert!(
         (f.cs_run - f.cs).abs() <= 0.05 * f.cs,
         "Cs {} against {}",
@@ -173,4 +173,164 @@ fn issue32_flywheel_forward_run_keeps_the_band() {
         (mid - omega).abs() <= 0.05 * f.cs * omega,
         "band centred at {mid}, not {omega}"
     );
+    assert!(r.ok(), "{:?}", r.checks);
+}
+
+/// The forward run with the motor's curve through its gear: a motor whose
+/// curve gives the mean torque T̄/n = 0 at the motor speed n ω (an
+/// induction motor at its no-load speed) holds the machine at the design
+/// speed, and its speed band is the flywheel's, C_s = ΔE/(I ω²), to the
+/// same order as with a constant torque: the curve's slope
+/// dT_m/dω_m = −1/(n ω) N·m·s adds a damping n² |dT_m/dω_m| far below
+/// I ω, so the speed swings as under a constant torque.
+#[test]
+fn issue32_flywheel_run_with_the_motor_curve() {
+    let omega = 2.0 * std::f64::consts::PI * 5.0;
+    let model = mechanisms::slider_crank(0.3, omega, true);
+    let wm = 3.0 * omega;
+    let motor = Motor {
+        curve: vec![(0.0, 1.0), (wm, 0.0), (2.0 * wm, -1.0)],
+        gear_ratio: 3.0,
+        rated_torque: None,
+        rated_power: None,
+    };
+    let r = machine::analyse(&model, &slider_crank_spec(omega, Some(motor))).unwrap();
+    let f = r.flywheel.as_ref().unwrap();
+    eprintln!(
+        "motor curve: I {:.5} kg·m², settle {} cycles, ω {:.4}..{:.4} mean {:.4} rad/s, Cs {:.5}, motor torque {:?}; checks {:?}",
+        f.inertia, f.settle_cycles, f.omega_min, f.omega_max, f.omega_mean, f.cs_run, f.motor_torque, r.checks
+    );
+    assert_eq!(f.law, "curve");
+    assert!(
+        (f.cs_run - f.cs).abs() <= 0.05 * f.cs,
+        "Cs {} against {}",
+        f.cs_run,
+        f.cs
+    );
+    assert!(
+        (f.omega_mean - omega).abs() <= 0.05 * f.cs * omega,
+        "mean speed {} against {omega}",
+        f.omega_mean
+    );
+    // The motor's torque follows its curve over the band: T_m = 1 − ω_m/(n ω).
+    let (lo, hi) = f.motor_torque.unwrap();
+    assert!((hi - (1.0 - f.omega_min / omega)).abs() < 1e-9, "{hi}");
+    assert!((lo - (1.0 - f.omega_max / omega)).abs() < 1e-9, "{lo}");
+    let names: Vec<&str> = r.checks.iter().map(|c| c.name).collect();
+    assert_eq!(names, ["speed_band", "run_speed", "mean_torque"]);
+    assert!(r.ok(), "{:?}", r.checks);
+}
+
+/// A motor that cannot give the mean torque at the design speed: the
+/// slider-crank drives a constant load torque L = 6 N·m (T̄ = L), and
+/// the motor's curve gives T̄/(2n) there. The forward run slows to where
+/// the curve meets the load, T_m(u) = 3c − 2.5c u/(n ω) = c with
+/// c = T̄/n, u = 0.8 n ω: 20 % slow. Both the mean-torque check and the
+/// run's speed fail, the speed below the band.
+#[test]
+fn issue32_motor_that_cannot_reach_the_speed() {
+    use camlink_core::force::point::Torque;
+    use camlink_core::force::Force;
+    use camlink_core::{BodyId, TimeFn};
+    let omega = 2.0 * std::f64::consts::PI * 5.0;
+    let mut model = mechanisms::slider_crank(0.3, omega, true);
+    let load = 6.0;
+    model.add_force(Force::new(
+        "load",
+        Torque {
+            body: BodyId(1),
+            t: TimeFn::Const(-load),
+        },
+    ));
+    let (n, wm) = (3.0, 3.0 * omega);
+    let c = load / n;
+    let motor = Motor {
+        curve: vec![(0.0, 3.0 * c), (wm, 0.5 * c), (2.0 * wm, -2.0 * c)],
+        gear_ratio: n,
+        rated_torque: None,
+        rated_power: None,
+    };
+    let r = machine::analyse(&model, &slider_crank_spec(omega, Some(motor))).unwrap();
+    let f = r.flywheel.as_ref().unwrap();
+    eprintln!(
+        "weak motor: T̄ {:.4} N·m, settle {} cycles, ω mean {:.4} rad/s (design {omega:.4}); checks {:?}",
+        f.mean_torque, f.settle_cycles, f.omega_mean, r.checks
+    );
+    assert!(
+        (f.mean_torque - load).abs() < 1e-9 * load,
+        "{}",
+        f.mean_torque
+    );
+    let check = |name: &str| r.checks.iter().find(|c| c.name == name).unwrap().clone();
+    let mean = check("mean_torque");
+    assert!(!mean.ok && (mean.limit - 0.5 * c).abs() < 1e-12, "{mean:?}");
+    let speed = check("run_speed");
+    assert!(!speed.ok, "{speed:?}");
+    assert!(
+        speed.value < speed.limit && speed.limit < omega,
+        "{speed:?}"
+    );
+    // It settles towards 0.8 ω, well below the band.
+    assert!(
+        f.omega_mean < omega * (1.0 - 0.1),
+        "mean speed {} of {omega}",
+        f.omega_mean
+    );
+    assert!(!r.ok());
+}
+
+/// The partial balance's family: each counterweight of the full balance
+/// scaled by its factor. Factors of 1 give the full balance (the same
+/// bodies' mass properties), 0 the machine as it is. Along the family
+/// (both factors k from 0 to 1) the shaking force falls to zero while the
+/// counterweights' mass and inertia raise the shaking moment, and the full
+/// balance swings the input torque more than the unbalanced machine: the
+/// trade-off a partial balance weighs. (The swing is not monotone in k:
+/// here it is least near k = 0.5.)
+#[test]
+fn issue32_partial_balance_trades_force_against_moment_and_torque() {
+    let omega = 2.0 * std::f64::consts::PI * 5.0;
+    let model = mechanisms::slider_crank(0.3, omega, true);
+    let spec = slider_crank_spec(omega, None);
+    let cycle = machine::Cycle::new(&model, &spec).unwrap();
+    let full = balance::full_force_balance(&model, cycle.crank).unwrap();
+    let same = balance::scaled(&cycle.driven, &full, &[1.0, 1.0]).unwrap();
+    for (a, b) in same.counterweights.iter().zip(&full.counterweights) {
+        assert_eq!(a.body, b.body);
+        assert!((a.new_mass - b.new_mass).abs() <= 1e-12 * b.new_mass);
+        assert!((a.new_inertia - b.new_inertia).abs() <= 1e-12 * b.new_inertia);
+        for k in 0..2 {
+            assert!((a.new_centroid[k] - b.new_centroid[k]).abs() <= 1e-12);
+        }
+    }
+    let none = balance::scaled(&cycle.driven, &full, &[0.0, 0.0]).unwrap();
+    assert_eq!(
+        balance::apply(&cycle.driven, &none).bodies[1].mass,
+        model.bodies[1].mass
+    );
+    assert!(balance::scaled(&cycle.driven, &full, &[1.0]).is_err());
+    assert!(balance::scaled(&cycle.driven, &full, &[1.0, -0.5]).is_err());
+    let figures: Vec<machine::Figures> = [0.0, 0.25, 0.5, 0.75, 1.0]
+        .iter()
+        .map(|&k| {
+            let b = balance::scaled(&cycle.driven, &full, &[k, k]).unwrap();
+            cycle.figures(&balance::apply(&cycle.driven, &b)).unwrap()
+        })
+        .collect();
+    for f in &figures {
+        eprintln!(
+            "F {:.4} N, M {:.4} N·m, ΔT {:.4} N·m",
+            f.force, f.moment, f.torque_swing
+        );
+    }
+    let unbalanced = figures[0];
+    for w in figures.windows(2) {
+        assert!(w[1].force < w[0].force, "{w:?}");
+        assert!(w[1].moment > w[0].moment, "{w:?}");
+    }
+    assert!(figures[4].torque_swing > unbalanced.torque_swing);
+    assert!(figures[4].force <= 1e-9 * unbalanced.force);
+    // The objective scores the unbalanced machine w_F + w_M + w_T.
+    let w = [1.0, 2.0, 0.5];
+    assert!((unbalanced.objective(&unbalanced, w) - 3.5).abs() < 1e-12);
 }
