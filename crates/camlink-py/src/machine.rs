@@ -3,7 +3,7 @@
 //! arrays, and the cycle a partial balance evaluates. Converts only;
 //! `camlink.machine` and `camlink.study.balance` present them.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use camlink_core::machine::balance::{self, Balance, Counterweight};
 use camlink_core::machine::{analyse, Cycle, Figures, Report};
@@ -16,7 +16,7 @@ use crate::{analysis_error, guard, model_error};
 /// The model and `[machine]` table of the file at `path`.
 fn load(
     py: Python<'_>,
-    path: &PathBuf,
+    path: &Path,
 ) -> PyResult<(camlink_model::Loaded, camlink_core::machine::Spec)> {
     let loaded = py
         .detach(|| camlink_model::load_path(path))
