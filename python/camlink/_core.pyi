@@ -24,6 +24,7 @@ __version__: str
 __all__ = [
     "AnalysisError",
     "CamCore",
+    "MachineCycle",
     "Model",
     "ModelError",
     "__version__",
@@ -184,6 +185,25 @@ def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
 # The machine report of a model file's [machine] table: camlink.machine.MachineReport.
 def machine_report(path: str | PathLike[str]) -> dict[str, Any]: ...
 
+@final
+class MachineCycle:
+    """A machine's cycle at its design speed and its full force balance
+    (the Rust core's `machine::Cycle`), for a partial balance."""
+
+    def __new__(cls, path: str | PathLike[str]) -> MachineCycle: ...
+    @property
+    def bodies(self) -> list[str]: ...
+    @property
+    def linkage(self) -> str: ...
+    @property
+    def unbalanced(self) -> tuple[float, float, float]: ...
+    @property
+    def balanced(self) -> tuple[float, float, float]: ...
+    def evaluate(
+        self, points: Sequence[Sequence[float]], weights: tuple[float, float, float]
+    ) -> list[tuple[float, float, float, float]]: ...
+    def counterweights(self, k: Sequence[float]) -> list[dict[str, Any]]: ...
+
 # A synthesis solution: name, model file text (TOML), report (JSON text).
 _SynthRow: TypeAlias = tuple[str, str, str]
 
@@ -196,6 +216,9 @@ def fourbar_transmission(
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]
+
+# A follower train: mass (kg), spring rate (N/m), preload (N), damping (N·s/m).
+_Train: TypeAlias = tuple[float, float, float, float]
 
 @final
 class CamCore:
@@ -219,18 +242,13 @@ class CamCore:
     def pitch(self, theta: npt.NDArray[np.float64]) -> npt.NDArray[np.float64] | None: ...
     def contact(self, theta: npt.NDArray[np.float64]) -> dict[str, npt.NDArray[np.float64]]: ...
     def geometry(self) -> dict[str, Any]: ...
-    def force(
-        self, mass: float, spring_rate: float, preload: float, damping: float, omega: float
-    ) -> dict[str, Any]: ...
+    def force(self, train: _Train, omega: float) -> dict[str, Any]: ...
     def smallest_base_radius(
         self, max_pressure: float | None, min_radius: float | None, lo: float, hi: float
     ) -> float | None: ...
     def stress(
         self,
-        mass: float,
-        spring_rate: float,
-        preload: float,
-        damping: float,
+        train: _Train,
         omega: float,
         width: float,
         modulus: float,

@@ -24,7 +24,16 @@ from matplotlib.figure import Figure
 
 from camlink import _core
 
-__all__ = ["MachineReport", "balanced_text", "format_report", "polar", "report", "save", "to_json"]
+__all__ = [
+    "MachineReport",
+    "balanced_text",
+    "counterweights_text",
+    "format_report",
+    "polar",
+    "report",
+    "save",
+    "to_json",
+]
 
 
 class MachineShaking(TypedDict):
@@ -56,15 +65,23 @@ class MachineBalance(TypedDict, total=False):
     balanced_peak_dynamic: float
 
 class MachineFlywheel(TypedDict):
+    """``law``: the forward run's motor — ``"curve"`` (the motor curve
+    through its gear) or ``"mean_torque"`` (a constant T̄); the run settles
+    for ``settle_cycles`` cycles, then the last is measured;
+    ``motor_torque``: (least, greatest) torque at the motor shaft there."""
     mean_torque: float
     delta_e: float
     cs: float
     inertia: float
     theta_max: float
     theta_min: float
+    law: str
+    settle_cycles: int
     omega_min: float
     omega_max: float
+    omega_mean: float
     cs_run: float
+    motor_torque: tuple[float, float] | None
 
 class MachineMotor(TypedDict, total=False):
     """At the motor shaft; ``curve`` and the ratings when the file gives a motor."""
@@ -150,10 +167,28 @@ def format_report(r: MachineReport, name: str = "") -> str:
             f"  inertia I = ΔE/(C_s ω²) = {f['inertia']:.6g} kg·m² for C_s = {f['cs']:.6g}; "
             f"fastest at {_deg(f['theta_max']):.1f}°, slowest at {_deg(f['theta_min']):.1f}°"
         )
+        law = "the motor curve through its gear" if f["law"] == "curve" else "constant torque T̄"
         lines.append(
-            f"  forward run with it (constant motor torque): ω {f['omega_min']:.6g} to "
-            f"{f['omega_max']:.6g} rad/s, C_s {f['cs_run']:.6g}"
+            f"  forward run with it ({law}; cycle {f['settle_cycles'] + 1}): ω {f['omega_min']:.6g} to "
+            f"{f['omega_max']:.6g} rad/s, mean {f['omega_mean']:.6g} rad/s, C_s {f['cs_run']:.6g}"
         )
+        if f["motor_torque"] is not None:
+            lo, hi = f["motor_torque"]
+            lines.append(f"  motor torque over that cycle {lo:.6g} to {hi:.6g} N·m")
+        off = f["omega_mean"] - r["speed"]
+        if abs(off) > 0.5 * f["cs"] * r["speed"]:
+            pct = 100.0 * off / r["speed"]
+            if off < 0:
+                lines.append(
+                    f"  the motor cannot reach the design speed: the machine runs at "
+                    f"{f['omega_mean']:.6g} rad/s, {-pct:.3g} % slow "
+                    "(more torque at n ω, or another gear ratio)"
+                )
+            else:
+                lines.append(
+                    f"  the motor drives the machine past the design band: {f['omega_mean']:.6g} rad/s, "
+                    f"{pct:.3g} % fast (another gear ratio)"
+                )
     m = r["motor"]
     lines.append(f"motor (gear ratio {m['gear_ratio']:.6g}, torque at the motor shaft, no flywheel):")
     lines.append(
@@ -229,16 +264,22 @@ _NAME = re.compile(r"^\s*name\s*=\s*\"([^\"]*)\"")
 
 
 def balanced_text(text: str, r: MachineReport) -> str:
+    """The model file `text` with the counterweights of the report's full
+    force balance (see `counterweights_text`)."""
+    b = r["balance"]
+    if b is None or "error" in b:
+        why = b["error"] if b is not None else "[machine] balance = false"
+        raise _core.ModelError(f"the model has no counterweights to write: {why}")
+    return counterweights_text(text, b["counterweights"])
+
+
+def counterweights_text(text: str, counterweights: list[MachineCounterweight]) -> str:
     """The model file `text` with each counterweighted body's ``mass``,
     ``centroid`` and ``inertia`` set to those of the body with its
     counterweight (the other lines, comments included, kept). The
     ``[[bodies]]`` tables must be written as TOML tables (as in the
     examples), one key a line."""
-    b = r["balance"]
-    if b is None or "error" in b:
-        why = b["error"] if b is not None else "[machine] balance = false"
-        raise _core.ModelError(f"the model has no counterweights to write: {why}")
-    new = {c["body"]: c for c in b["counterweights"]}
+    new = {c["body"]: c for c in counterweights if c["mass"] > 0.0}
     lines = text.splitlines(keepends=True)
     # Split into [[bodies]] blocks: the lines from one header to the next table header.
     out: list[str] = []

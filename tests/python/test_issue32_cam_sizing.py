@@ -65,7 +65,7 @@ def test_issue32_hertz_stress_against_the_two_cylinder_closed_form() -> None:
     design = cam_design.load(VALVE)
     d, c = design.dynamics, design.contact
     assert d is not None and c is not None
-    s = design.core().stress(d.mass, d.spring_rate, d.preload, d.damping, d.speed, c.width, c.modulus)
+    s = design.core().stress((d.mass, d.spring_rate, d.preload, d.damping), d.speed, c.width, c.modulus)
     e_star = 1.0 / ((1 - CAST_IRON[1] ** 2) / CAST_IRON[0] + (1 - STEEL[1] ** 2) / STEEL[0])
     assert c.modulus == pytest.approx(e_star, rel=1e-12)
     k = int(np.argmax(s["pressure"]))
@@ -114,7 +114,7 @@ def test_issue32_roller_bearing_life_of_the_packaging_cam(
     assert d is not None and c is not None and c.rating == 8000.0
     core = design.core()
     s = core.stress(
-        d.mass, d.spring_rate, d.preload, d.damping, d.speed, c.width, c.modulus, c.rating, 10 / 3
+        (d.mass, d.spring_rate, d.preload, d.damping), d.speed, c.width, c.modulus, c.rating, 10 / 3
     )
     b = s["bearing"]
     th = np.linspace(0.0, 2 * math.pi, 400_001)
@@ -399,7 +399,7 @@ def test_issue32_crowned_roller_reports_the_point_contact(
     d, c = design.dynamics, design.contact
     assert d is not None and c is not None and c.crown == 0.2
     s = design.core().stress(
-        d.mass, d.spring_rate, d.preload, d.damping, d.speed, c.width, c.modulus, None, 3.0, 0.2
+        (d.mass, d.spring_rate, d.preload, d.damping), d.speed, c.width, c.modulus, None, 3.0, 0.2
     )
     assert b["value"] == pytest.approx(s["max_pressure"][0] / 1e6, rel=1e-12)
     v = VALVE.read_text()

@@ -4,6 +4,7 @@ with exit codes 0/1/2 like `camlink cam`."""
 
 from __future__ import annotations
 
+import itertools
 import json
 from pathlib import Path
 from typing import Any
@@ -31,7 +32,13 @@ def test_issue32_machine_example_one_command(tmp_path: Path, capsys: pytest.Capt
     code = main(["machine", str(EXAMPLE), "--plot", str(plot), "--balanced", str(balanced)])
     out = capsys.readouterr().out
     assert code == 0, out
-    for words in ("peak |F_s|", "counterweight", "inertia I = ΔE/(C_s ω²)", "peak torque", "all checks hold"):
+    for words in (
+        "peak |F_s|",
+        "counterweight",
+        "inertia I = ΔE/(C_s ω²)",
+        "the motor curve",
+        "all checks hold",
+    ):
         assert words in out, out
     assert plot.stat().st_size > 10_000
     # The balanced copy keeps its comments and shakes the frame with its weight only.
@@ -47,8 +54,11 @@ def test_issue32_machine_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["machine", str(EXAMPLE), "--json"]) == 0
     r = json.loads(capsys.readouterr().out)
     names = [c["name"] for c in r["checks"]]
-    assert names == ["speed_band", "peak_torque", "mean_torque", "rms_torque", "peak_power"]
+    assert names == ["speed_band", "run_speed", "mean_torque", "rms_torque", "peak_power"]
     f = r["flywheel"]
+    # The forward run drives the press by the motor's curve and holds the design speed.
+    assert f["law"] == "curve"
+    assert abs(f["omega_mean"] - r["speed"]) <= 0.5 * f["cs"] * r["speed"]
     # I = ΔE / (C_s ω²) and the forward run inside the band.
     assert f["inertia"] == pytest.approx(f["delta_e"] / (f["cs"] * r["speed"] ** 2), rel=1e-12)
     assert f["cs_run"] <= f["cs"]
@@ -87,7 +97,7 @@ def test_issue32_flywheel_band_of_zero_exit_2(tmp_path: Path, capsys: pytest.Cap
 def test_issue32_motor_curve_short_of_the_speed_exit_2(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    p = _variant(tmp_path, "[60, 38], [100, 30], [120, 0]]", "[60, 38], [80, 0]]")
+    p = _variant(tmp_path, "[60, 45], [85, 40], [95, 0]]", "[60, 45], [80, 0]]")
     assert main(["machine", str(p)]) == 2
     err = capsys.readouterr().err
     assert "machine.motor.curve" in err and "never reaches the motor speed" in err
@@ -103,3 +113,48 @@ def test_issue32_motor_too_small_exit_1(tmp_path: Path, capsys: pytest.CaptureFi
 def test_issue32_no_machine_table_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["machine", str(ROOT / "examples" / "four_bar.toml")]) == 2
     assert "no [machine] table" in capsys.readouterr().err
+
+
+def test_issue32_motor_that_cannot_reach_the_speed_exit_1(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A tenth of the torque: the curve gives less than the press needs at n ω.
+    p = _variant(tmp_path, "[[0, 40], [60, 45], [85, 40], [95, 0]]", "[[0, 4], [60, 4.5], [85, 4], [95, 0]]")
+    code = main(["machine", str(p)])
+    out = capsys.readouterr().out
+    assert code == 1, out
+    assert "the motor cannot reach the design speed" in out, out
+    assert "run_speed" in out and "FAIL" in out
+
+
+def test_issue32_partial_balance_weight_sweep(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """As the weight of the shaking force grows (the others 1), the optimum
+    shakes the frame less and twists it more; each optimum scores below
+    both the unbalanced machine and the full balance."""
+    from camlink.study import partial_balance
+
+    sweep = [partial_balance(EXAMPLE, (wf, 1.0, 1.0)) for wf in (1.0, 10.0, 30.0)]
+    for p in sweep:
+        print(p.weights, p.factors, p.figures)
+        assert p.figures.objective < p.unbalanced.objective
+        assert p.figures.objective < p.full.objective
+        assert p.unbalanced.objective == pytest.approx(sum(p.weights), rel=1e-12)
+        assert len(p.history) > 50
+    for a, b in itertools.pairwise(sweep):
+        assert b.figures.force < a.figures.force
+        assert b.figures.moment > a.figures.moment
+    # The CLI writes the partial counterweights into a copy of the model.
+    out_file = tmp_path / "partial.toml"
+    code = main(["machine", str(EXAMPLE), "--partial", "1,1,1", "--balanced", str(out_file)])
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert "partial balance (slider_crank)" in out and "factor" in out
+    after = machine.report(out_file)["shaking"]["peak_dynamic"]
+    assert after == pytest.approx(sweep[0].figures.force, rel=1e-9)
+
+
+def test_issue32_partial_balance_bad_weights_exit_2(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["machine", str(EXAMPLE), "--partial", "1,1"]) == 2
+    assert "--partial: give three weights" in capsys.readouterr().err
+    assert main(["machine", str(EXAMPLE), "--partial", "0,0,0"]) == 2
+    assert "not all zero" in capsys.readouterr().err

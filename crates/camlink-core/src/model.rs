@@ -161,6 +161,23 @@ pub enum ModelError {
     },
 }
 
+/// The shaking channels of the dynamic analyses (`dynamics::output`).
+pub const SHAKING: [&str; 3] = ["shaking.fx", "shaking.fy", "shaking.moment"];
+
+/// The namespace of [`SHAKING`]: no body, joint or driver may take this
+/// name (a joint `shaking` would write its reaction into `shaking.fx`).
+pub const SHAKING_NAME: &str = "shaking";
+
+/// Why `name` cannot name a body, joint or driver (`what`), if it cannot.
+pub fn reserved_name(name: &str, what: &str) -> Option<String> {
+    (name == SHAKING_NAME).then(|| {
+        format!(
+            "{what} name '{name}' is reserved for the shaking channels {}; choose another name",
+            SHAKING.join(", ")
+        )
+    })
+}
+
 impl Model {
     /// A model with only the ground.
     pub fn new(name: impl Into<String>) -> Self {
@@ -235,6 +252,9 @@ impl Model {
             if seen.insert(b.name.as_str(), k).is_some() {
                 return Err(ModelError::DuplicateBody(b.name.clone()));
             }
+            if let Some(e) = reserved_name(&b.name, "body") {
+                return Err(ModelError::Invalid(e));
+            }
             let mut pts = HashMap::new();
             for p in &b.points {
                 if pts.insert(p.name.as_str(), ()).is_some() {
@@ -256,6 +276,10 @@ impl Model {
         for j in &self.joints {
             if joints.insert(j.name.as_str(), ()).is_some() {
                 return Err(ModelError::DuplicateJoint(j.name.clone()));
+            }
+            let what = if j.driver { "driver" } else { "joint" };
+            if let Some(e) = reserved_name(&j.name, what) {
+                return Err(ModelError::Invalid(e));
             }
             let [bi, bj] = j.constraint.bodies();
             for b in [bi, bj] {
@@ -400,6 +424,20 @@ mod tests {
             body_j: bj,
             s_j: [0.0, 0.0],
         }
+    }
+
+    #[test]
+    fn issue32_shaking_names_are_refused() {
+        let mut m = Model::new("m");
+        let a = m.add_body(Body::new("a", [0.0; 3]));
+        m.add_joint("shaking", pin(BodyId::GROUND, a));
+        let msg = m.validate().unwrap_err().to_string();
+        assert!(msg.starts_with("joint name 'shaking' is reserved"), "{msg}");
+        let mut m = Model::new("m");
+        let a = m.add_body(Body::new("shaking", [0.0; 3]));
+        m.add_joint("p0", pin(BodyId::GROUND, a));
+        let msg = m.validate().unwrap_err().to_string();
+        assert!(msg.starts_with("body name 'shaking' is reserved"), "{msg}");
     }
 
     #[test]

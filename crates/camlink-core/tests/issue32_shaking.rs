@@ -54,22 +54,30 @@ fn exact(th: f64, w: f64) -> [([f64; 2], [f64; 2], f64); 3] {
     [(g2, a2, 0.0), (g3, a3, psidd), (g4, a4, 0.0)]
 }
 
-#[test]
-fn issue32_shaking_force_slider_crank() {
-    let (th0, omega) = (0.3, 2.0 * std::f64::consts::PI * 5.0);
-    let model = mechanisms::slider_crank(th0, omega, true);
+/// Runs `model` (the slider-crank turned at θ₀ + ω t) by inverse dynamics
+/// over one turn and compares its shaking channels with Newton and Euler
+/// for the whole mechanism: F = Σ m_i (g − a_Gi) + P and
+/// M_O = Σ [r_Gi × m_i (g − a_Gi) − J_i α_i] + r_C × P, P an outside load
+/// on the slider's centroid C. Returns (peak |F|, largest force error,
+/// peak |M|, largest moment error) and the sample times.
+fn against_newton(
+    model: &camlink_core::Model,
+    th0: f64,
+    omega: f64,
+    p: [f64; 2],
+) -> ([f64; 4], Vec<f64>) {
     let g = model.gravity;
     let times = time_grid(0.2, 1e-3).unwrap();
     let mut table = Table::default();
-    run(&model, &times, &Settings::default(), &[], &mut table).unwrap();
+    run(model, &times, &Settings::default(), &[], &mut table).unwrap();
     let ch = |n: &str| table.channel(n).unwrap();
     let (fx, fy, mo) = (ch("shaking.fx"), ch("shaking.fy"), ch("shaking.moment"));
     let (mut peak, mut err_f, mut err_m, mut peak_m) = (0.0f64, 0.0f64, 0.0f64, 0.0f64);
     for (k, &t) in times.iter().enumerate() {
-        let th = th0 + omega * t;
-        let mut f = [0.0; 2];
-        let mut m = 0.0;
-        for (i, (r, acc, alpha)) in exact(th, omega).into_iter().enumerate() {
+        let bodies = exact(th0 + omega * t, omega);
+        let mut f = p;
+        let mut m = cross(bodies[2].0, p);
+        for (i, (r, acc, alpha)) in bodies.into_iter().enumerate() {
             let load = [MASS[i] * (g[0] - acc[0]), MASS[i] * (g[1] - acc[1])];
             f[0] += load[0];
             f[1] += load[1];
@@ -80,6 +88,14 @@ fn issue32_shaking_force_slider_crank() {
         err_f = err_f.max((fx[k] - f[0]).hypot(fy[k] - f[1]));
         err_m = err_m.max((mo[k] - m).abs());
     }
+    ([peak, err_f, peak_m, err_m], times)
+}
+
+#[test]
+fn issue32_shaking_force_slider_crank() {
+    let (th0, omega) = (0.3, 2.0 * std::f64::consts::PI * 5.0);
+    let model = mechanisms::slider_crank(th0, omega, true);
+    let ([peak, err_f, peak_m, err_m], _) = against_newton(&model, th0, omega, [0.0; 2]);
     eprintln!("shaking force peak {peak:.3} N, error {err_f:.2e} N; moment peak {peak_m:.3} N·m, error {err_m:.2e} N·m");
     assert!(peak > 100.0, "a shaking force of order m r ω²: {peak} N");
     assert!(err_f <= 1e-9 * peak, "shaking force off by {err_f} N");
@@ -138,4 +154,77 @@ fn issue32_shaking_force_forward_dynamics() {
     eprintln!("forward: shaking force peak {peak:.3} N, error {err_f:.2e} N; moment peak {peak_m:.3} N·m, error {err_m:.2e} N·m");
     assert!(err_f <= 1e-8 * peak, "shaking force off by {err_f} N");
     assert!(err_m <= 1e-8 * peak_m, "shaking moment off by {err_m} N·m");
+}
+
+/// Springs and dampers anchored to the frame load it too. The slider-crank
+/// of the first test with a spring–damper from a ground point to the
+/// slider, a torsion spring–damper between the ground and the crank, a
+/// viscous damper in the slide and a constant point load P on the slider
+/// (a load from outside, with no reaction in the model). By hand, Newton
+/// and Euler for the whole mechanism: the frame's reactions balance the
+/// weights, the inertia forces and P, so F_s = Σ m_i (g − a_Gi) + P and
+/// M_O = Σ [r_Gi × m_i (g − a_Gi) − J_i α_i] + r_C × P, whatever the
+/// springs do; with the springs' reactions left out the sums would be off
+/// by the spring forces.
+#[test]
+fn issue32_shaking_force_counts_springs_to_the_frame() {
+    use camlink_core::force::point::PointForce;
+    use camlink_core::force::rsda::Rsda;
+    use camlink_core::force::translational_damper::TranslationalDamper;
+    use camlink_core::force::tsda::Tsda;
+    use camlink_core::force::Force;
+    use camlink_core::{BodyId, TimeFn};
+
+    let (th0, omega) = (0.3, 2.0 * std::f64::consts::PI * 5.0);
+    let mut model = mechanisms::slider_crank(th0, omega, true);
+    let (g0, crank, slider) = (BodyId::GROUND, BodyId(1), BodyId(3));
+    model.add_force(Force::new(
+        "return_spring",
+        Tsda {
+            body_i: g0,
+            s_i: [0.6, 0.15],
+            body_j: slider,
+            s_j: [0.0, 0.0],
+            stiffness: 4.0e3,
+            free_length: 0.1,
+            damping: 30.0,
+            actuator: TimeFn::Const(5.0),
+        },
+    ));
+    model.add_force(Force::new(
+        "torsion",
+        Rsda {
+            body_i: g0,
+            body_j: crank,
+            stiffness: 20.0,
+            free_angle: 0.5,
+            damping: 0.4,
+            actuator: TimeFn::Const(0.0),
+        },
+    ));
+    model.add_force(Force::new(
+        "slide_friction",
+        TranslationalDamper::new(g0, [1.0, 0.0], slider, [0.0, 0.0], 12.0).unwrap(),
+    ));
+    let p = [-150.0, 40.0];
+    model.add_force(Force::new(
+        "load",
+        PointForce {
+            body: slider,
+            s: [0.0, 0.0],
+            f: [TimeFn::Const(p[0]), TimeFn::Const(p[1])],
+            local: false,
+        },
+    ));
+    let ([peak, err_f, peak_m, err_m], times) = against_newton(&model, th0, omega, p);
+    // The spring's pull: stiffness times stretch, of order 1e3 N.
+    let spring = times.iter().fold(0.0f64, |a, &t| {
+        let c = exact(th0 + omega * t, omega)[2].0;
+        let len = (c[0] - 0.6).hypot(c[1] - 0.15);
+        a.max(4.0e3 * (len - 0.1).abs())
+    });
+    eprintln!("with springs: shaking force peak {peak:.3} N (spring up to {spring:.1} N), error {err_f:.2e} N; moment peak {peak_m:.3} N·m, error {err_m:.2e} N·m");
+    assert!(spring > 100.0, "the spring loads the frame: {spring} N");
+    assert!(err_f <= 1e-9 * peak, "shaking force off by {err_f} N");
+    assert!(err_m <= 1e-9 * peak_m, "shaking moment off by {err_m} N·m");
 }

@@ -361,6 +361,9 @@ impl Ctx {
         for (k, b) in bodies.iter().enumerate() {
             let path = format!("bodies[{k}]");
             check_name(&b.name, "body", &format!("{path}.name"))?;
+            if let Some(e) = camlink_core::model::reserved_name(&b.name, "body") {
+                return fail(format!("{path}.name"), e);
+            }
             if b.name == "ground" {
                 return fail(
                     format!("{path}.name"),
@@ -590,6 +593,14 @@ impl Ctx {
     fn name(&mut self, given: Option<&String>, default: String, path: &str) -> R<String> {
         let name = given.cloned().unwrap_or(default);
         check_name(&name, "joint", &format!("{path}.name"))?;
+        let what = if path.starts_with("drivers") {
+            "driver"
+        } else {
+            "joint"
+        };
+        if let Some(e) = camlink_core::model::reserved_name(&name, what) {
+            return fail(format!("{path}.name"), e);
+        }
         if let Some(first) = self.names.insert(name.clone(), path.to_string()) {
             return fail(
                 format!("{path}.name"),

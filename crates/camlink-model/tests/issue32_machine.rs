@@ -50,7 +50,7 @@ fn issue32_flywheel_band_of_zero() {
 
 #[test]
 fn issue32_motor_curve_short_of_the_speed() {
-    let e = error_of(("[60, 38], [100, 30], [120, 0]]", "[60, 38], [80, 0]]"));
+    let e = error_of(("[60, 45], [85, 40], [95, 0]]", "[60, 45], [80, 0]]"));
     assert!(e.contains("machine.motor.curve"), "{e}");
     assert!(e.contains("never reaches the motor speed"), "{e}");
 }
@@ -66,9 +66,40 @@ fn issue32_machine_table_names_bad_fields() {
     assert!(e.contains("machine.speed") && e.contains("positive"), "{e}");
     let e = error_of(("gear_ratio = 3 ", "gear_rattio = 3 "));
     assert!(e.contains("gear_rattio"), "{e}");
-    let e = error_of(("[60, 38], [100, 30]", "[100, 38], [60, 30]"));
+    let e = error_of(("[60, 45], [85, 40]", "[85, 45], [60, 40]"));
     assert!(
         e.contains("machine.motor.curve[2]") && e.contains("increase"),
+        "{e}"
+    );
+}
+
+/// A joint, driver or body named `shaking` would share the namespace of
+/// the shaking channels (a joint's reaction `shaking.fx` is the shaking
+/// force's name): refused, naming the field.
+#[test]
+fn issue32_shaking_is_a_reserved_name() {
+    let e = error_of((
+        "name = \"B\"\ntype = \"revolute\"",
+        "name = \"shaking\"\ntype = \"revolute\"",
+    ));
+    assert!(e.contains("joints[2].name"), "{e}");
+    assert!(
+        e.contains("joint name 'shaking' is reserved for the shaking channels shaking.fx, shaking.fy, shaking.moment"),
+        "{e}"
+    );
+    let e = error_of(("\"slider\"", "\"shaking\""));
+    assert!(
+        e.contains("bodies[2].name") && e.contains("body name 'shaking' is reserved"),
+        "{e}"
+    );
+    let text = example()
+        .replace("name = \"motor\"", "name = \"shaking\"")
+        .replace("driver = \"motor\"", "driver = \"shaking\"");
+    let e = load_str(&text, Format::Toml, "m.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("drivers[0].name") && e.contains("driver name 'shaking' is reserved"),
         "{e}"
     );
 }

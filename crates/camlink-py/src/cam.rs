@@ -25,6 +25,19 @@ use crate::to_array;
 /// conditions `[s′, s″, s‴]` (None where free).
 type SegmentArg = (String, f64, f64, [Option<f64>; 3], [Option<f64>; 3]);
 
+/// A follower train as Python gives it: mass (kg), spring rate (N/m),
+/// preload (N), damping (N·s/m), all at the follower.
+type TrainArg = (f64, f64, f64, f64);
+
+fn to_train((mass, spring_rate, preload, damping): TrainArg) -> Train {
+    Train {
+        mass,
+        spring_rate,
+        preload,
+        damping,
+    }
+}
+
 /// One segment's factors: (segment, law, [Cv, Ca, Cj], textbook values).
 type FactorRow = (usize, String, [f64; 3], Option<[f64; 3]>);
 
@@ -249,22 +262,15 @@ impl CamCore {
         Ok(d)
     }
 
-    /// Contact force over a turn at ω (rad/s) and the jump speed.
+    /// Contact force over a turn at ω (rad/s) and the jump speed, for the
+    /// follower train `train`.
     fn force<'py>(
         &self,
         py: Python<'py>,
-        mass: f64,
-        spring_rate: f64,
-        preload: f64,
-        damping: f64,
+        train: TrainArg,
         omega: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let train = Train {
-            mass,
-            spring_rate,
-            preload,
-            damping,
-        };
+        let train = to_train(train);
         let f = py
             .detach(|| cam_limits::force(&self.cam, &train, omega))
             .map_err(value_error)?;
@@ -301,14 +307,11 @@ impl CamCore {
     /// `force`, `rho`, `half_width`, `pressure`, `torque` and extremes
     /// as (value, θ).
     #[allow(clippy::too_many_arguments)]
-    #[pyo3(signature = (mass, spring_rate, preload, damping, omega, width, modulus, rating = None, exponent = 3.0, crown = None))]
+    #[pyo3(signature = (train, omega, width, modulus, rating = None, exponent = 3.0, crown = None))]
     fn stress<'py>(
         &self,
         py: Python<'py>,
-        mass: f64,
-        spring_rate: f64,
-        preload: f64,
-        damping: f64,
+        train: TrainArg,
         omega: f64,
         width: f64,
         modulus: f64,
@@ -316,12 +319,7 @@ impl CamCore {
         exponent: f64,
         crown: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let train = Train {
-            mass,
-            spring_rate,
-            preload,
-            damping,
-        };
+        let train = to_train(train);
         let spec = ContactSpec {
             width,
             modulus,

@@ -1219,6 +1219,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     let py = m.py();
     m.add_class::<Model>()?;
     m.add_class::<cam::CamCore>()?;
+    m.add_class::<machine::MachineCycle>()?;
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
     m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;

@@ -736,7 +736,7 @@ def analyse(design: Design) -> Report:
             )
     if design.dynamics is not None:
         d = design.dynamics
-        f = core.force(d.mass, d.spring_rate, d.preload, d.damping, d.speed)
+        f = core.force((d.mass, d.spring_rate, d.preload, d.damping), d.speed)
         fmin, at = f["min_normal"]
         checks.append(
             Check(

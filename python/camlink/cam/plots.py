@@ -136,7 +136,7 @@ def vibration(core: CamCore, design: Any, *, title: str = "") -> Figure:
     osc = design.oscillating
     k = 1.0 if osc else (1000.0 if design.export.units == "mm" else 1.0)
     unit = "rad" if osc else design.export.units
-    rigid = np.asarray(core.force(d.mass, d.spring_rate, d.preload, d.damping, d.speed)["generalised"])
+    rigid = np.asarray(core.force((d.mass, d.spring_rate, d.preload, d.damping), d.speed)["generalised"])
     rth = np.linspace(0.0, 360.0, len(rigid), endpoint=False)
     fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8, 6), layout="constrained")
     axes[0].plot(deg, np.asarray(r["deviation"]) * k, color="C0", lw=1.2)

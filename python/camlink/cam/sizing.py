@@ -264,10 +264,7 @@ def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:
     c = design.contact
     if c is not None:
         s = core.stress(
-            d.mass,
-            d.spring_rate,
-            d.preload,
-            d.damping,
+            (d.mass, d.spring_rate, d.preload, d.damping),
             d.speed,
             c.width,
             c.modulus,

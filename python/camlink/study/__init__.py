@@ -2,6 +2,7 @@
 each run reduced to the outputs named, on local cores or on Dask
 (docs/studies.md)."""
 
+from camlink.study.balance import PartialBalance, partial_balance
 from camlink.study.optimization import Optimum, optimize
 from camlink.study.outputs import (
     Output,
@@ -23,6 +24,7 @@ __all__ = [
     "MonteCarlo",
     "Optimum",
     "Output",
+    "PartialBalance",
     "at",
     "first_lift_off",
     "least_transmission_angle",
@@ -32,6 +34,7 @@ __all__ = [
     "min_of",
     "monte_carlo",
     "optimize",
+    "partial_balance",
     "peak_effort",
     "range_of",
     "run_variants",

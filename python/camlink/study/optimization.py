@@ -16,7 +16,7 @@ from camlink.model import Model
 from camlink.study.outputs import Output
 from camlink.study.runner import BATCH, ERROR, KEY, STATUS, VARIANT, run_variants
 
-__all__ = ["OBJECTIVE", "Optimum", "optimize"]
+__all__ = ["OBJECTIVE", "Optimum", "minimise_batch", "optimize"]
 
 #: The column of `Optimum.history` that holds each variant's objective.
 OBJECTIVE = "study.objective"
@@ -68,8 +68,6 @@ def optimize(
     (``output`` is not allowed: an optimisation keeps its `history`).
     Variants run are not cached: a point scipy asks for twice runs twice.
     """
-    from scipy import optimize as so
-
     if "output" in execution:
         raise ModelError("optimize: `output` does not apply; the variants run are in Optimum.history")
     if not callable(objective):
@@ -104,17 +102,8 @@ def optimize(
         history.append(table)
         return values
 
-    opts = dict(options or {})
-    if method == "differential_evolution":
-        result = so.differential_evolution(
-            lambda x: evaluate(x) if np.ndim(x) > 1 else float(evaluate(x)[0]),
-            list(zip(lo, hi, strict=True)),
-            vectorized=True, updating="deferred", seed=seed, **opts,
-        )
-    else:
-        start = np.array([float(x0[n]) for n in names]) if x0 is not None else (lo + hi) / 2
-        result = so.minimize(lambda x: float(evaluate(x)[0]), start, method=method,
-                             bounds=list(zip(lo, hi, strict=True)), options=opts)
+    start = np.array([float(x0[n]) for n in names]) if x0 is not None else None
+    result = minimise_batch(evaluate, lo, hi, method=method, x0=start, seed=seed, options=options)
     hist = pd.concat(history, ignore_index=True)
     ok = hist[np.isfinite(hist[OBJECTIVE])]
     if ok.empty:
@@ -129,3 +118,34 @@ def optimize(
         result=result,
     )
 
+
+
+def minimise_batch(
+    evaluate: Callable[[npt.NDArray[np.float64]], npt.NDArray[np.float64]],
+    lo: npt.NDArray[np.float64],
+    hi: npt.NDArray[np.float64],
+    *,
+    method: str = "differential_evolution",
+    x0: npt.NDArray[np.float64] | None = None,
+    seed: int | None = None,
+    options: Mapping[str, Any] | None = None,
+) -> Any:
+    """The optimiser of `optimize`, for any batch objective: minimises
+    over the box `lo` ≤ x ≤ `hi`, where ``evaluate(x)`` gives the
+    objectives of the points in the columns of `x` (or of one point) as an
+    array (+∞ for a failed point). ``differential_evolution`` (default)
+    hands each generation's whole population to `evaluate` at once; any
+    method of ``scipy.optimize.minimize`` starts from `x0` (default: the
+    middle of the box) and evaluates one point at a time. Returns scipy's
+    ``OptimizeResult``."""
+    from scipy import optimize as so
+
+    opts = dict(options or {})
+    box = list(zip(lo, hi, strict=True))
+    if method == "differential_evolution":
+        return so.differential_evolution(
+            lambda x: evaluate(x) if np.ndim(x) > 1 else float(evaluate(x)[0]),
+            box, vectorized=True, updating="deferred", seed=seed, **opts,
+        )
+    start = x0 if x0 is not None else (lo + hi) / 2
+    return so.minimize(lambda x: float(evaluate(x)[0]), start, method=method, bounds=box, options=opts)

@@ -47,7 +47,7 @@ pub const MATERIALS: &[(&str, Material)] = &[
     ("aluminium", mat(71.7, 0.333, 26.9, 26.6)),
     ("brass", mat(106.0, 0.324, 40.1, 83.8)),
     ("phosphor-bronze", mat(111.0, 0.349, 41.4, 80.1)),
-    ("beryllium-copper", mat(124.0, 0.285, 48.3, 80.1)),
+    ("beryllium-copper", mat(124.0, 0.285, 48.3, 80.6)),
     ("titanium", mat(114.0, 0.340, 42.4, 43.4)),
 ];
 

@@ -11,10 +11,13 @@
 //! - per driver: `<driver>.effort .power`;
 //! - the shaking force and moment ([`SHAKING`]): `shaking.fx`,
 //!   `shaking.fy` (N), the sum of the forces the mechanism exerts on the
-//!   ground through its joints and drivers (global frame), and
-//!   `shaking.moment` (N·m, counter-clockwise positive), their moment about
-//!   the global origin O plus the torques on the ground (a motor's reaction
-//!   torque among them);
+//!   ground through its joints and drivers and through the forces with a
+//!   reaction on the ground (springs, dampers and contacts joining a body
+//!   to the ground, forces of state without another reaction body; see
+//!   [`Applied::frame_load`]), in the global frame, and `shaking.moment`
+//!   (N·m, counter-clockwise positive), their moment about the global
+//!   origin O plus the torques on the ground (a motor's reaction torque
+//!   among them);
 //! - `energy.kinetic`, `energy.potential` (gravity and springs) and
 //!   `energy.total` (J);
 //! - `constraint.residual`, max |Φ| (m or rad), and
@@ -24,11 +27,12 @@ use super::contact_force::ContactForces;
 use super::reaction::{effort, reactions, Reaction};
 use super::system::System;
 use crate::constraint::Equations;
+use crate::force::Applied;
 use crate::math::cross;
 use crate::model::Model;
 
 /// The shaking channels, after the joints' and drivers' channels.
-pub const SHAKING: [&str; 3] = ["shaking.fx", "shaking.fy", "shaking.moment"];
+pub use crate::model::SHAKING;
 
 /// The shaking force F_s = Σ F_k (N) and moment M_O = Σ (T_k + r_k × F_k)
 /// (N·m, about the global origin) of the loads `(body, reaction)` that
@@ -119,7 +123,7 @@ pub fn fill(
     out: &mut [f64],
 ) {
     // fill_forces leaves ν of the same (q, t) in w.drift.nu.
-    let k = fill_forces(s, w, q, lambda, t, out);
+    let k = fill_forces(s, w, q, qd, lambda, t, out);
     out[k..k + 5].copy_from_slice(&energy_and_drift_from_nu(s, &mut w.drift, q, qd, t));
 }
 
@@ -131,6 +135,7 @@ pub fn fill_forces(
     s: &System,
     w: &mut Scratch,
     q: &[f64],
+    qd: &[f64],
     lambda: &[f64],
     t: f64,
     out: &mut [f64],
@@ -171,6 +176,20 @@ pub fn fill_forces(
                 out[k..k + 2].copy_from_slice(&nt);
                 k += 2;
             }
+        }
+    }
+    // The loads of the forces with a reaction on the ground; a force that
+    // fails here failed the analysis first, so NaN only marks the row.
+    for f in 0..model.forces.len() {
+        let x = s.force_local(f, q, qd, t);
+        match model.forces[f].kind.frame_load(&x) {
+            Ok(Some(l)) => {
+                for (a, b) in shake.iter_mut().zip(l) {
+                    *a += b;
+                }
+            }
+            Ok(None) => {}
+            Err(_) => shake = [f64::NAN; 3],
         }
     }
     out[k..k + 3].copy_from_slice(&shake);

@@ -47,4 +47,10 @@ impl Applied for Callback {
         *dq = BodyJac::default();
         *dqd = BodyJac::default();
     }
+
+    /// A load from outside: no reaction on the ground (and the user
+    /// function is not called again for it).
+    fn frame_load(&self, _x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+        Ok(None)
+    }
 }

@@ -58,6 +58,25 @@ pub trait Applied {
     fn potential(&self, _x: &Local) -> f64 {
         0.0
     }
+    /// The load this force puts on the ground at the local state, as
+    /// (F_x, F_y, M_O): force (N, global frame) and its moment about the
+    /// global origin plus any torque (N·m, counter-clockwise); `None` when
+    /// neither of its bodies is the ground. The ground's frame is the
+    /// global frame, so by default this is the ground's slot of Q. A
+    /// single-body load (a point force or torque of time, a callback)
+    /// returns `None`: it comes from outside the machine and has no
+    /// reaction in the model.
+    fn frame_load(&self, x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+        let [bi, bj] = self.bodies();
+        let slot = match (bi.is_ground(), bj.is_ground()) {
+            (_, true) => 1,
+            (true, false) => 0,
+            (false, false) => return Ok(None),
+        };
+        let mut q = BodyQ::default();
+        self.generalized(x, &mut q)?;
+        Ok(Some(q[slot]))
+    }
 }
 
 /// A named applied force.
@@ -111,6 +130,9 @@ macro_rules! forces {
             }
             fn potential(&self, x: &Local) -> f64 {
                 match self { $(ForceKind::$variant(c) => c.potential(x),)* }
+            }
+            fn frame_load(&self, x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+                match self { $(ForceKind::$variant(c) => c.frame_load(x),)* }
             }
         }
     };

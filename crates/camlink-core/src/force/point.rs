@@ -78,6 +78,11 @@ impl Applied for PointForce {
             dq[0][0][2][2] = -dot(rot(phi, self.s), self.global(x));
         }
     }
+
+    /// A load from outside: no reaction on the ground.
+    fn frame_load(&self, _x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+        Ok(None)
+    }
 }
 
 impl Applied for Torque {
@@ -97,6 +102,11 @@ impl Applied for Torque {
     fn derivatives(&self, _x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
         *dq = BodyJac::default();
         *dqd = BodyJac::default();
+    }
+
+    /// A load from outside: no reaction on the ground.
+    fn frame_load(&self, _x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+        Ok(None)
     }
 }
 

@@ -440,6 +440,22 @@ impl Applied for StateForce {
         Ok(())
     }
 
+    /// The reaction on the ground acts where F acts, at P_i: −F and
+    /// −(r_P × F) − T about the global origin, r_P = r_i + A_i s'_i. (The
+    /// ground's slot of Q would put −F at the ground point s'_j, which is
+    /// the origin for a reaction on the ground.)
+    fn frame_load(&self, x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
+        if !self.body_j.is_ground() {
+            return Ok(None);
+        }
+        let mut q = BodyQ::default();
+        self.generalized(x, &mut q)?;
+        // Q_i's moment is (A_i s'_i) × F + T, about body i's origin.
+        let [fx, fy, n] = q[0];
+        let m = n + x.q[0][0] * fy - x.q[0][1] * fx;
+        Ok(Some([-fx, -fy, -m]))
+    }
+
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
         let s = State::<D>::of(x);
         let value = |p: &Option<StateExpr>| p.as_ref().map_or(D::c(0.0), |p| p.dual(&s));
@@ -621,6 +637,35 @@ mod tests {
         // Moments about the global origin: n_k + r_k × F_k.
         let m = |k: usize| q[k][2] + x.q[k][0] * q[k][1] - x.q[k][1] * q[k][0];
         assert!((m(0) + m(1)).abs() < 1e-12, "{} {}", m(0), m(1));
+    }
+
+    /// With its reaction on the ground, the frame takes −F at the global
+    /// point P_i where F acts and −T: −(r_P × F + T) about the origin.
+    #[test]
+    fn issue32_frame_load_acts_where_the_force_acts() {
+        let mut f = force(true);
+        f.body_j = BodyId::GROUND;
+        f.s_j = [0.0; 2];
+        let mut x = check::state(5);
+        x.q[1] = [0.0; 3];
+        x.qd[1] = [0.0; 3];
+        let mut q = BodyQ::default();
+        f.generalized(&x, &mut q).unwrap();
+        let force = [q[0][0], q[0][1]];
+        // T is Q_i's moment less that of F about body i's origin.
+        let arm = crate::math::rot(x.q[0][2], f.s_i);
+        let t = q[0][2] - crate::math::cross(arm, force);
+        let p = crate::math::point(x.q[0], f.s_i);
+        let want = [-force[0], -force[1], -(crate::math::cross(p, force) + t)];
+        let got = f.frame_load(&x).unwrap().unwrap();
+        for k in 0..3 {
+            assert!(
+                (got[k] - want[k]).abs() <= 1e-12 * (1.0 + want[k].abs()),
+                "{got:?} {want:?}"
+            );
+        }
+        f.body_j = BodyId(2);
+        assert_eq!(f.frame_load(&x).unwrap(), None);
     }
 
     #[test]

@@ -27,7 +27,7 @@
 
 use crate::constraint::{BodyId, Constraint, Equations};
 use crate::math::V2;
-use crate::model::Model;
+use crate::model::{Body, Model};
 
 /// A counterweight: a point mass on a body, and the body's new mass
 /// properties.
@@ -221,8 +221,12 @@ fn counterweight(model: &Model, l: &Link, has: C, need: C) -> Option<Counterweig
         return None;
     }
     let r = l.length();
-    let mc = size / r;
-    let at = l.to_body(scale(d, r / size));
+    Some(point_mass(body, size / r, l.to_body(scale(d, r / size)), r))
+}
+
+/// A point mass `mc` (kg) at `at` (body frame, m; `radius` from the link's
+/// first joint) on `body`, and the body's mass properties with it.
+fn point_mass(body: &Body, mc: f64, at: V2, radius: f64) -> Counterweight {
     let m = body.mass + mc;
     let c = body.centroid;
     let nc = [
@@ -230,14 +234,50 @@ fn counterweight(model: &Model, l: &Link, has: C, need: C) -> Option<Counterweig
         (body.mass * c[1] + mc * at[1]) / m,
     ];
     let sq = |p: V2| (p[0] - nc[0]).powi(2) + (p[1] - nc[1]).powi(2);
-    Some(Counterweight {
+    Counterweight {
         body: body.name.clone(),
         mass: mc,
         at,
-        radius: r,
+        radius,
         new_mass: m,
         new_centroid: nc,
         new_inertia: body.inertia + body.mass * sq(c) + mc * sq(at),
+    }
+}
+
+/// A partial balance: the counterweights of the full balance `full`, the
+/// one on link k with its mass times the factor `k[k]` ≥ 0 at the same
+/// place (so its first moment is that fraction of the full balance's), on
+/// the bodies of `model`. Factors of 1 give `full` again; 0 leaves a link
+/// as it is. An error names a factor that is negative or missing.
+pub fn scaled(model: &Model, full: &Balance, k: &[f64]) -> Result<Balance, String> {
+    if k.len() != full.counterweights.len() {
+        return Err(format!(
+            "{} factors for {} counterweights",
+            k.len(),
+            full.counterweights.len()
+        ));
+    }
+    let mut counterweights = Vec::with_capacity(k.len());
+    for (cw, &f) in full.counterweights.iter().zip(k) {
+        if !(f >= 0.0 && f.is_finite()) {
+            return Err(format!(
+                "the factor of the counterweight on '{}' must be a number ≥ 0, not {f}",
+                cw.body
+            ));
+        }
+        let body = model
+            .bodies
+            .iter()
+            .find(|b| b.name == cw.body)
+            .ok_or_else(|| format!("no body '{}'", cw.body))?;
+        counterweights.push(point_mass(body, f * cw.mass, cw.at, cw.radius));
+    }
+    Ok(Balance {
+        linkage: full.linkage,
+        balanced: "part of the shaking force: each counterweight of the full balance scaled by \
+                   its factor",
+        counterweights,
     })
 }
 
