@@ -54,7 +54,7 @@ pub struct Instant {
 fn rates(s: C, e3: C, e4: C) -> Option<(f64, f64)> {
     let det = cross(e3.p(), e4.p());
     let size = e3.abs() * e4.abs();
-    if !(det.abs() > 1e-12 * size) {
+    if det.is_nan() || det.abs() <= 1e-12 * size {
         return None;
     }
     Some((cross(s.p(), e4.p()) / det, cross(s.p(), e3.p()) / det))

@@ -383,8 +383,8 @@ fn problem_of<'a>(spec: &'a FitSpec, scaled: &'a [P2], k: usize) -> Problem<'a> 
         timing: &spec.timing,
         closed: spec.closed,
         ordered: spec.ordered,
-        sigma: if k % 2 == 0 { 1.0 } else { -1.0 },
-        sense: if (k / 2) % 2 == 0 { 1.0 } else { -1.0 },
+        sigma: if k.is_multiple_of(2) { 1.0 } else { -1.0 },
+        sense: if (k / 2).is_multiple_of(2) { 1.0 } else { -1.0 },
     }
 }
 

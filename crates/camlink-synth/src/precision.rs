@@ -46,7 +46,7 @@ fn dyad(link: [f64; 2], alpha: [f64; 2], delta: [C; 2]) -> Option<(C, C)> {
     let a = [C::cis(alpha[0]) - one, C::cis(alpha[1]) - one];
     let det = c[0] * a[1] - c[1] * a[0];
     let size = (c[0].abs() + a[0].abs()) * (c[1].abs() + a[1].abs());
-    if !(det.abs() > 1e-12 * size) {
+    if det.abs().is_nan() || det.abs() <= 1e-12 * size {
         return None;
     }
     let w = (delta[0] * a[1] - delta[1] * a[0]).div(det);
