@@ -219,23 +219,12 @@ fn ball_problem(phi0: f64) -> String {
     )
 }
 
-fn example_linkage() -> FourBar {
-    FourBar {
-        o2: [0.0, 0.0],
-        o4: [0.4, 0.0],
-        crank: 0.12,
-        coupler: 0.38,
-        rocker: 0.3,
-    }
-}
-
 /// The coupler point `p` (coupler frame) of the example linkage at crank
 /// angle `phi`, traced in closed form.
 fn traced(p: P2, phi: f64) -> P2 {
     let m = CouplerLinkage {
-        linkage: example_linkage(),
         point: p,
-        sigma: 1.0,
+        ..known()
     };
     m.trace(phi).unwrap().2
 }
@@ -275,7 +264,7 @@ fn curvature_fd(p: P2, phi0: f64) -> (f64, f64) {
 #[test]
 fn issue31_ball_point_has_zero_curvature_and_rate() {
     for phi0 in [0.3, 1.0, 2.0, 4.0] {
-        let g = instant(&example_linkage(), phi0, 1.0).unwrap();
+        let g = instant(&known().linkage, phi0, 1.0).unwrap();
         let p = g.ball_local.unwrap();
         let (k, dk) = curvature_fd(p, phi0);
         // κ in 1/m; the coupler is 0.38 m.

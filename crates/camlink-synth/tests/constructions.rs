@@ -15,12 +15,12 @@
 //! not evidence); these constructions stand in for one.
 
 use camlink_synth::burmester::Equations;
-use camlink_synth::fourbar::{FourBar, Requirements, P2};
-use camlink_synth::motion::{three_positions, Pivot, Pose};
+use camlink_synth::fourbar::P2;
+use camlink_synth::motion::Pose;
 use camlink_synth::{solve_path, solve_str};
 use serde_json::Value;
 
-use crate::burmester::examples;
+use crate::burmester::{assert_line_roots_on_curve, examples, known_poses};
 use crate::slider_crank::Rng;
 
 fn dist(p: P2, q: P2) -> f64 {
@@ -138,7 +138,7 @@ fn issue31_freudenstein_agrees_with_the_inversion_construction() {
 
 /// The pole P_ij of poses i and j: the point with the same coordinates in
 /// the coupler frame at both.
-fn pole(p: &Pose, q: &Pose) -> P2 {
+pub(crate) fn pole(p: &Pose, q: &Pose) -> P2 {
     let m = |p: &Pose| {
         let (s, c) = p.theta.sin_cos();
         [[c, s], [-s, c]]
@@ -177,31 +177,6 @@ fn opposite_sides(poles: &[P2; 4], m: P2) -> f64 {
     (seen(m, p12, p23) - seen(m, p14, p34)).sin()
 }
 
-/// Four poses of the four-bar of examples/four_bar.toml (its coupler line
-/// through A + A(θ)(0.15, 0.1)).
-fn four_poses() -> Vec<Pose> {
-    let l = FourBar {
-        o2: [0.0, 0.0],
-        o4: [0.4, 0.0],
-        crank: 0.12,
-        coupler: 0.38,
-        rocker: 0.3,
-    };
-    [20.0f64, 60.0, 100.0, 140.0]
-        .iter()
-        .map(|d| {
-            let p = l.position(d.to_radians(), 1.0).unwrap();
-            let th = (p.b[1] - p.a[1]).atan2(p.b[0] - p.a[0]);
-            let (s, c) = th.sin_cos();
-            Pose {
-                x: p.a[0] + 0.15 * c - 0.1 * s,
-                y: p.a[1] + 0.15 * s + 0.1 * c,
-                theta: th,
-            }
-        })
-        .collect()
-}
-
 /// Every sampled centre point of the Burmester curve sees the opposite
 /// sides of the opposite-pole quadrilateral under equal angles (1e-9),
 /// and on horizontal lines every point that does (a sign change of the
@@ -209,7 +184,7 @@ fn four_poses() -> Vec<Pose> {
 /// the three-position inversion (1e-8 m).
 #[test]
 fn issue31_burmester_curve_agrees_with_the_opposite_pole_quadrilateral() {
-    let poses = four_poses();
+    let (poses, _, _) = known_poses(&[20.0, 60.0, 100.0, 140.0]);
     let eq = Equations::new(&poses, "poses").unwrap();
     let poles = [
         pole(&poses[0], &poses[1]),
@@ -230,47 +205,13 @@ fn issue31_burmester_curve_agrees_with_the_opposite_pole_quadrilateral() {
         }
     }
     assert!(n > 500, "{n} centre points");
-    let mut roots = 0;
-    for yk in 0..9 {
-        let y = -0.4 + 0.1 * yk as f64;
-        let f = |x: f64| opposite_sides(&poles, [x, y]);
-        let xs: Vec<f64> = (0..=2000).map(|k| -0.8 + 1.6 * k as f64 / 2000.0).collect();
-        for w in xs.windows(2) {
-            let (mut lo, mut hi) = (w[0], w[1]);
-            if f(lo).signum() == f(hi).signum() {
-                continue;
-            }
-            for _ in 0..100 {
-                let mid = 0.5 * (lo + hi);
-                if f(mid).signum() == f(lo).signum() {
-                    lo = mid;
-                } else {
-                    hi = mid;
-                }
-            }
-            let m = [0.5 * (lo + hi), y];
-            if near_pole(m) || f(lo).abs() > 1e-6 || f(hi).abs() > 1e-6 {
-                continue; // a pole, or a jump of the angles, not a root
-            }
-            let Ok(s) = three_positions(
-                &[poses[0], poses[1], poses[2]],
-                Pivot::Fixed(m),
-                Pivot::Fixed([m[0] + 1.0, m[1] - 2.0]),
-                &Requirements::default(),
-                ["p", "c", "r"],
-            ) else {
-                continue;
-            };
-            let (a1, a2) = (poses[0].place(s.moving[0]), poses[1].place(s.moving[0]));
-            let beta2 = (a2[1] - m[1]).atan2(a2[0] - m[0]) - (a1[1] - m[1]).atan2(a1[0] - m[0]);
-            let best = [1.0, -1.0]
-                .iter()
-                .filter_map(|&sg| eq.dyad(beta2, sg))
-                .map(|d| dist(d.centre, m))
-                .fold(f64::INFINITY, f64::min);
-            assert!(best < 1e-8, "root {m:?} not on the curve: {best:e}");
-            roots += 1;
-        }
-    }
+    // A root next to a pole, or where the angles jump, is not a root of
+    // the construction.
+    let roots = assert_line_roots_on_curve(
+        &poses,
+        &eq,
+        &|m| opposite_sides(&poles, m),
+        &|m, f_lo, f_hi| near_pole(m) || f_lo.abs() > 1e-6 || f_hi.abs() > 1e-6,
+    );
     assert!(roots >= 9, "{roots} roots");
 }
