@@ -132,26 +132,3 @@ pub fn instant(linkage: &FourBar, phi: f64, sigma: f64) -> Option<Instant> {
         theta: [t1, t2, t3],
     })
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The pole is where the coupler's velocity vanishes: on line O₂A and
-    /// on line O₄B.
-    #[test]
-    fn pole_is_the_instant_centre() {
-        let l = FourBar {
-            o2: [0.0, 0.0],
-            o4: [0.4, 0.0],
-            crank: 0.12,
-            coupler: 0.38,
-            rocker: 0.3,
-        };
-        let g = instant(&l, 0.7, 1.0).unwrap();
-        let on =
-            |p: P2, q: P2, x: P2| cross(sub(q, p), sub(x, p)) / (sub(q, p)[0].hypot(sub(q, p)[1]));
-        assert!(on(l.o2, g.a, g.pole).abs() < 1e-12);
-        assert!(on(l.o4, g.b, g.pole).abs() < 1e-12);
-    }
-}

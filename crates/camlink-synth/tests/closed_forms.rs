@@ -290,8 +290,14 @@ fn issue31_ball_point_has_zero_curvature_and_rate() {
         };
         let ratio = off(0.02) / off(0.01);
         assert!((ratio - 16.0).abs() < 1.6, "φ₀ {phi0}: ratio {ratio}");
-        // The pole, where the coupler's velocity is zero, and Ball's point
-        // on the inflection circle.
+        // The pole, the instant centre on lines O₂A and O₄B; it and Ball's
+        // point on the inflection circle.
+        let l = known().linkage;
+        let on = |p: P2, q: P2, x: P2| {
+            let d = [q[0] - p[0], q[1] - p[1]];
+            (d[0] * (x[1] - p[1]) - d[1] * (x[0] - p[0])) / d[0].hypot(d[1])
+        };
+        assert!(on(l.o2, g.a, g.pole).abs() < 1e-12 && on(l.o4, g.b, g.pole).abs() < 1e-12);
         let (c, r) = g.inflection.unwrap();
         let ball = g.ball.unwrap();
         assert!(((ball[0] - c[0]).hypot(ball[1] - c[1]) - r).abs() < 1e-12 * r.max(1.0));
