@@ -16,6 +16,8 @@
 //! - [`path`]: path generation, a fit of a target curve or precision
 //!   points by a global search, and [`precision`]: three precision points
 //!   at prescribed crank rotations in closed form;
+//! - [`ball`]: a four-bar coupler's velocity pole, inflection circle and
+//!   Ball's point at a crank angle;
 //!
 //! and what they share: [`fourbar`] (the linkage, its closed-form position
 //! analysis and the checks of every candidate: Grashof class, transmission
