@@ -41,7 +41,10 @@ __all__ = [
     "machine_report",
     "run_batch",
     "synth_file",
+    "synth_path_starts",
+    "synth_read",
     "synth_str",
+    "synth_str_from_starts",
     "time_grid",
     "toml_position",
 ]
@@ -209,6 +212,17 @@ _SynthRow: TypeAlias = tuple[str, str, str]
 
 def synth_file(path: str | PathLike[str]) -> tuple[str, list[_SynthRow]]: ...
 def synth_str(text: str, source: str, stem: str) -> tuple[str, list[_SynthRow]]: ...
+def synth_read(path: str | PathLike[str]) -> str: ...
+
+# One refined start of a path search: its index and its parameters.
+_StartRow: TypeAlias = tuple[int, list[float]]
+
+def synth_path_starts(
+    text: str, source: str, stem: str, lo: int, hi: int
+) -> tuple[list[_StartRow], int]: ...
+def synth_str_from_starts(
+    text: str, source: str, stem: str, starts: list[_StartRow]
+) -> tuple[str, list[_SynthRow]]: ...
 def fourbar_class(ground: float, crank: float, coupler: float, rocker: float) -> str: ...
 def fourbar_transmission(
     coupler: float, rocker: float, diagonal: npt.NDArray[np.float64]

@@ -47,63 +47,10 @@
 
 use std::f64::consts::{PI, TAU};
 
+use crate::complex::C;
 use crate::error::{ErrorKind, SynthError};
 use crate::fourbar::{norm, sub, wrap_pi, Checks, FourBar, Requirements, P2};
 use crate::motion::Pose;
-
-/// A complex number, for the dyad equations.
-#[derive(Clone, Copy, Debug, PartialEq)]
-struct C(f64, f64);
-
-impl C {
-    fn cis(t: f64) -> C {
-        let (s, c) = t.sin_cos();
-        C(c, s)
-    }
-    fn abs(self) -> f64 {
-        self.0.hypot(self.1)
-    }
-    fn abs2(self) -> f64 {
-        self.0 * self.0 + self.1 * self.1
-    }
-    fn arg(self) -> f64 {
-        self.1.atan2(self.0)
-    }
-    fn scale(self, k: f64) -> C {
-        C(self.0 * k, self.1 * k)
-    }
-    fn div(self, o: C) -> C {
-        let d = o.abs2();
-        C(
-            (self.0 * o.0 + self.1 * o.1) / d,
-            (self.1 * o.0 - self.0 * o.1) / d,
-        )
-    }
-    fn p(self) -> P2 {
-        [self.0, self.1]
-    }
-}
-
-impl std::ops::Add for C {
-    type Output = C;
-    fn add(self, o: C) -> C {
-        C(self.0 + o.0, self.1 + o.1)
-    }
-}
-
-impl std::ops::Sub for C {
-    type Output = C;
-    fn sub(self, o: C) -> C {
-        C(self.0 - o.0, self.1 - o.1)
-    }
-}
-
-impl std::ops::Mul for C {
-    type Output = C;
-    fn mul(self, o: C) -> C {
-        C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
-    }
-}
 
 /// A dyad of the poses: its centre point, circle point and the link's
 /// rotations.

@@ -13,6 +13,11 @@
 //!   four-bars, checked and ranked;
 //! - [`slider_crank`]: slider-cranks, motion generation through two or
 //!   three poses and function generation (crank angle to slider position);
+//! - [`path`]: path generation, a fit of a target curve or precision
+//!   points by a global search, and [`precision`]: three precision points
+//!   at prescribed crank rotations in closed form;
+//! - [`ball`]: a four-bar coupler's velocity pole, inflection circle and
+//!   Ball's point at a crank angle;
 //!
 //! and what they share: [`fourbar`] (the linkage, its closed-form position
 //! analysis and the checks of every candidate: Grashof class, transmission
@@ -21,6 +26,7 @@
 //! Lengths in m, angles in rad, counter-clockwise from +x.
 
 pub mod burmester;
+mod complex;
 pub mod error;
 pub mod fourbar;
 pub mod function;
@@ -31,11 +37,13 @@ pub mod slider_crank;
 pub mod two_positions;
 
 // Path generation and the classical constructions.
+pub mod ball;
 pub mod cognates;
 pub mod dead_centre;
 pub mod lm;
 pub mod path;
+pub mod precision;
 pub mod properties;
 
 pub use error::{ErrorKind, SynthError};
-pub use problem::{solve_path, solve_str, Outcome, Solution};
+pub use problem::{path_starts, solve_path, solve_str, solve_str_from_starts, Outcome, Solution};

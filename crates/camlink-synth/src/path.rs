@@ -178,6 +178,15 @@ impl Problem<'_> {
         }
     }
 
+    /// The number of parameters: the linkage's and the timing's.
+    fn size(&self) -> usize {
+        NL + match self.timing {
+            Timing::Free => self.n(),
+            Timing::Uniform if !self.closed => 2,
+            _ => 1,
+        }
+    }
+
     /// Residual rows: 3 per point (P − T, assembly), then for free ordered
     /// timing n − 1 order rows and one closure row.
     fn order_rows(&self) -> bool {
@@ -341,11 +350,9 @@ fn start(p: &Problem<'_>, k: usize) -> Option<Vec<f64>> {
     Some(x)
 }
 
-/// Fits the spec's targets; returns up to `keep` candidates, best first,
-/// and the number of starts that converged to an assembled linkage.
-pub fn fit(spec: &FitSpec) -> (Vec<PathFit>, usize) {
+/// The targets' centroid and RMS radius (m), and the targets scaled to them.
+fn scaling(spec: &FitSpec) -> (P2, f64, Vec<P2>) {
     let n = spec.targets.len();
-    // Scale the targets to their centroid and RMS radius.
     let centre = spec.targets.iter().fold([0.0, 0.0], |a, t| add(a, *t));
     let centre = [centre[0] / n as f64, centre[1] / n as f64];
     let radius = (spec
@@ -366,6 +373,35 @@ pub fn fit(spec: &FitSpec) -> (Vec<PathFit>, usize) {
             [d[0] / radius, d[1] / radius]
         })
         .collect();
+    (centre, radius, scaled)
+}
+
+/// The problem of start `k`: its branch and crank sense.
+fn problem_of<'a>(spec: &'a FitSpec, scaled: &'a [P2], k: usize) -> Problem<'a> {
+    Problem {
+        targets: scaled,
+        timing: &spec.timing,
+        closed: spec.closed,
+        ordered: spec.ordered,
+        sigma: if k.is_multiple_of(2) { 1.0 } else { -1.0 },
+        sense: if (k / 2).is_multiple_of(2) { 1.0 } else { -1.0 },
+    }
+}
+
+/// One start of the global search refined: its index and the refined
+/// parameters (scaled; see [`fit_starts`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Start {
+    pub k: usize,
+    pub x: Vec<f64>,
+}
+
+/// Starts `range` (within 0 … `spec.starts`) refined in parallel (rayon):
+/// those that end assembled at every target, with their candidates, in
+/// the order of their index.
+fn run_starts(spec: &FitSpec, range: std::ops::Range<usize>) -> Vec<(Start, PathFit)> {
+    let n = spec.targets.len();
+    let (centre, radius, scaled) = scaling(spec);
     // A start still at an RMS distance above half the target's RMS radius
     // after 20 iterations is abandoned.
     let settings = lm::Settings {
@@ -374,23 +410,74 @@ pub fn fit(spec: &FitSpec) -> (Vec<PathFit>, usize) {
         abs_tol: 1e-26,
         give_up: Some((20, 0.25 * n as f64)),
     };
-    let fits: Vec<Option<PathFit>> = (0..spec.starts)
+    let range = range.start.min(spec.starts)..range.end.min(spec.starts);
+    range
         .into_par_iter()
         .map(|k| {
-            let problem = Problem {
-                targets: &scaled,
-                timing: &spec.timing,
-                closed: spec.closed,
-                ordered: spec.ordered,
-                sigma: if k % 2 == 0 { 1.0 } else { -1.0 },
-                sense: if (k / 2) % 2 == 0 { 1.0 } else { -1.0 },
-            };
+            let problem = problem_of(spec, &scaled, k);
             let x0 = start(&problem, k)?;
             let f = lm::minimise(&problem, &x0, &settings);
-            candidate(spec, &problem, &f.x, centre, radius)
+            let c = candidate(spec, &problem, &f.x, centre, radius)?;
+            Some((Start { k, x: f.x }, c))
         })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect()
+}
+
+/// Runs starts `range` (within 0 … `spec.starts`) of the global search in
+/// parallel (rayon) and returns those that end assembled at every target,
+/// in the order of their index. Start k depends on k and the spec alone,
+/// so the starts can be split over processes or machines and their
+/// results joined by [`fit_from`].
+pub fn fit_starts(spec: &FitSpec, range: std::ops::Range<usize>) -> Vec<Start> {
+    run_starts(spec, range)
+        .into_iter()
+        .map(|(s, _)| s)
+        .collect()
+}
+
+/// Fits the spec's targets; returns up to `keep` candidates, best first,
+/// and the number of starts that converged to an assembled linkage.
+pub fn fit(spec: &FitSpec) -> (Vec<PathFit>, usize) {
+    let (_, radius, _) = scaling(spec);
+    let fits = run_starts(spec, 0..spec.starts)
+        .into_iter()
+        .map(|(_, c)| c)
         .collect();
-    let mut all: Vec<PathFit> = fits.into_iter().flatten().collect();
+    rank(spec, fits, radius)
+}
+
+/// The candidates of refined `starts` (of [`fit_starts`], joined in any
+/// order; a start given twice counts once), checked and ranked as [`fit`]
+/// ranks them: up to `keep`, best first, and the number of starts.
+pub fn fit_from(spec: &FitSpec, starts: &[Start]) -> (Vec<PathFit>, usize) {
+    let (centre, radius, scaled) = scaling(spec);
+    let mut order: Vec<&Start> = starts.iter().filter(|s| s.k < spec.starts).collect();
+    order.sort_by_key(|s| s.k);
+    order.dedup_by_key(|s| s.k);
+    let fits: Vec<PathFit> = order
+        .par_iter()
+        .map(|s| {
+            let problem = problem_of(spec, &scaled, s.k);
+            if s.x.len() != problem.size() {
+                return None;
+            }
+            candidate(spec, &problem, &s.x, centre, radius)
+        })
+        .collect::<Vec<_>>()
+        .into_iter()
+        .flatten()
+        .collect();
+    rank(spec, fits, radius)
+}
+
+/// `fits` in the order of their starts, ranked: those without defects
+/// first, each group by RMS distance; near-duplicates (link lengths equal
+/// to 1e-6 of the targets' RMS `radius`) dropped; up to `keep`.
+fn rank(spec: &FitSpec, fits: Vec<PathFit>, radius: f64) -> (Vec<PathFit>, usize) {
+    let mut all = fits;
     let found = all.len();
     all.sort_by(|p, q| {
         (!p.checks.defects.is_empty(), p.rms)
@@ -448,6 +535,23 @@ fn candidate(
         point: [x[7] * radius, x[8] * radius],
         sigma: problem.sigma,
     };
+    // The sense the crank turns: the start's with free timing (the order
+    // rows hold it), else that of the fitted or prescribed steps.
+    let s = match problem.timing {
+        Timing::Free => problem.sense,
+        _ if n > 1 && phi[1] < phi[0] => -1.0,
+        _ => 1.0,
+    };
+    checked(spec, mechanism, &phi, s)
+}
+
+/// The candidate `mechanism` with its coupler point at the spec's targets
+/// at crank angles `phi` (rad, in the targets' order), the crank turning
+/// in sense `s` (+1 counter-clockwise): its distances to the targets and
+/// its checks; `None` if it does not assemble at every target.
+pub fn checked(spec: &FitSpec, mechanism: CouplerLinkage, phi: &[f64], s: f64) -> Option<PathFit> {
+    let n = spec.targets.len();
+    let linkage = mechanism.linkage;
     let mut pins = Vec::with_capacity(n);
     let (mut sum, mut max) = (0.0, 0.0f64);
     for (j, &f) in phi.iter().enumerate() {
@@ -457,13 +561,6 @@ fn candidate(
         max = max.max(e);
         pins.push((a, b));
     }
-    // The sense the crank turns: the start's with free timing (the order
-    // rows hold it), else that of the fitted or prescribed steps.
-    let s = match problem.timing {
-        Timing::Free => problem.sense,
-        _ if n > 1 && phi[1] < phi[0] => -1.0,
-        _ => 1.0,
-    };
     // The order the crank reaches the targets: as given, or by crank angle.
     let mut visit: Vec<usize> = (0..n).collect();
     if !spec.ordered {

@@ -35,6 +35,7 @@ use crate::fourbar::{Checks, FourBar, Requirements, Turning};
 use crate::function::{self, chebyshev, Fit, FunctionSolution, FunctionSpec};
 use crate::model_file::{coupler_along, model_toml, pose_times, ModelSpec};
 use crate::motion::{self, coupler_pose, MotionSolution, Pivot, Pose};
+use crate::path::{fit_starts, Start};
 
 // Two-position, Burmester and slider-crank problems.
 mod guidance;
@@ -91,6 +92,8 @@ struct Table {
     units: Option<String>,
     timing: Option<String>,
     crank_rotations: Option<Vec<Num>>,
+    coupler_rotations: Option<Vec<Num>>,
+    rocker_rotations: Option<Vec<Num>>,
     closure: Option<String>,
     order: Option<String>,
     starts: Option<usize>,
@@ -129,9 +132,19 @@ pub struct Outcome {
 
 /// Reads and solves the problem file at `path`.
 pub fn solve_path(path: &Path) -> Result<Outcome, LoadError> {
-    let source = path.display().to_string();
+    let text = read_file(path)?;
+    let stem = path
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("synthesis");
+    solve_str(&text, &path.display().to_string(), stem)
+}
+
+/// The text of the problem file at `path`: at most [`MAX_FILE_SIZE`]
+/// bytes of UTF-8.
+pub fn read_file(path: &Path) -> Result<String, LoadError> {
     let err = |m: String| LoadError {
-        source: source.clone(),
+        source: path.display().to_string(),
         line: None,
         column: None,
         field: None,
@@ -145,33 +158,79 @@ pub fn solve_path(path: &Path) -> Result<Outcome, LoadError> {
         )));
     }
     let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read: {e}")))?;
-    let text = String::from_utf8(bytes)
-        .map_err(|_| err("not UTF-8 text; save the file as UTF-8".into()))?;
-    let stem = path
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .unwrap_or("synthesis");
-    solve_str(&text, &source, stem)
+    String::from_utf8(bytes).map_err(|_| err("not UTF-8 text; save the file as UTF-8".into()))
 }
 
 /// Solves the problem in `text`; `source` names it in errors and `stem`
 /// names the solutions unless the file gives `name`.
 pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadError> {
+    solve_with(text, source, stem, None)
+}
+
+/// Solves the path problem in `text` from the refined starts of its
+/// search, run elsewhere by [`path_starts`] (all of them, joined in any
+/// order): the same solutions as [`solve_str`]. A problem without a search
+/// (another type, or the closed form) ignores `starts`.
+pub fn solve_str_from_starts(
+    text: &str,
+    source: &str,
+    stem: &str,
+    starts: &[Start],
+) -> Result<Outcome, LoadError> {
+    solve_with(text, source, stem, Some(starts))
+}
+
+/// Runs starts `range` of the search of the path problem in `text` (see
+/// [`crate::path::fit_starts`]); the number of starts the problem asks for
+/// besides. Another type of problem, or one without a search, gives no
+/// starts and 0.
+pub fn path_starts(
+    text: &str,
+    source: &str,
+    stem: &str,
+    range: std::ops::Range<usize>,
+) -> Result<(Vec<Start>, usize), LoadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let located = |field: Option<String>, message: String| {
-        let pos = field
-            .as_deref()
-            .and_then(|f| camlink_model::toml_position(text, f));
-        LoadError {
-            source: source.to_string(),
-            line: pos.map(|p| p.0),
-            column: pos.map(|p| p.1),
-            field,
-            message,
-        }
-    };
+    let (t, _) = read(text, source, stem)?;
+    if t.kind != "path" {
+        return Ok((Vec::new(), 0));
+    }
+    let plan = kinds::path_plan(&t, source).map_err(|e| load_error(text, source, e))?;
+    if !plan.searches() {
+        return Ok((Vec::new(), 0));
+    }
+    Ok((fit_starts(&plan.spec, range), plan.spec.starts))
+}
+
+/// The error `e` located in `text`: its field's line and column.
+fn load_error(text: &str, source: &str, e: SynthError) -> LoadError {
+    located(text, source, e.field, e.message)
+}
+
+fn located(text: &str, source: &str, field: Option<String>, message: String) -> LoadError {
+    let pos = field
+        .as_deref()
+        .and_then(|f| camlink_model::toml_position(text, f));
+    LoadError {
+        source: source.to_string(),
+        line: pos.map(|p| p.0),
+        column: pos.map(|p| p.1),
+        field,
+        message,
+    }
+}
+
+/// The `[synthesis]` table of `text`, its fields checked against its
+/// type, and the solutions' name.
+fn read(text: &str, source: &str, stem: &str) -> Result<(Table, String), LoadError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let de = toml::Deserializer::parse(text).map_err(|e| {
-        let mut le = located(None, format!("syntax error: {}", e.message().trim()));
+        let mut le = located(
+            text,
+            source,
+            None,
+            format!("syntax error: {}", e.message().trim()),
+        );
         if let Some(span) = e.span() {
             let (l, c) = line_col(text, span.start);
             (le.line, le.column) = (Some(l), Some(c));
@@ -182,6 +241,8 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
         let path = field_path(e.path());
         let span = e.inner().span();
         let mut le = located(
+            text,
+            source,
             Some(path).filter(|p| !p.is_empty()),
             e.inner().message().trim().to_string(),
         );
@@ -193,39 +254,202 @@ pub fn solve_str(text: &str, source: &str, stem: &str) -> Result<Outcome, LoadEr
     })?;
     let t = file.synthesis;
     let name = match &t.name {
-        Some(n) => check_name(n).map_err(|m| located(Some("synthesis.name".into()), m))?,
+        Some(n) => {
+            check_name(n).map_err(|m| located(text, source, Some("synthesis.name".into()), m))?
+        }
         None => check_name(stem).map_err(|m| {
             located(
+                text,
+                source,
                 None,
                 format!("the file's name does not make a model name ({m}); give [synthesis] name"),
             )
         })?,
     };
-    let to_load = |e: SynthError| located(e.field, e.message);
-    // Two-position, Burmester and slider-crank problems (problem/guidance.rs).
-    if let Some(out) = guidance::solve(&t, &name) {
-        return out.map_err(to_load);
-    }
-    guidance::refuse_fields(&t).map_err(to_load)?;
-    if matches!(t.kind.as_str(), "motion" | "function") {
-        kinds::refuse_fields(&t).map_err(to_load)?;
-    }
+    check_fields(&t).map_err(|e| load_error(text, source, e))?;
+    Ok((t, name))
+}
+
+fn solve_with(
+    text: &str,
+    source: &str,
+    stem: &str,
+    starts: Option<&[Start]>,
+) -> Result<Outcome, LoadError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let (t, name) = read(text, source, stem)?;
+    let to_load = |e: SynthError| load_error(text, source, e);
     match t.kind.as_str() {
         "motion" => solve_motion(&t, &name).map_err(to_load),
         "function" => solve_function(&t, &name).map_err(to_load),
+        // Two-position, Burmester and slider-crank problems (problem/guidance.rs).
+        "two_positions" => guidance::solve_two(&t, &name).map_err(to_load),
+        "burmester" => guidance::solve_burmester(&t, &name).map_err(to_load),
+        "slider_motion" => guidance::solve_slider_motion(&t, &name).map_err(to_load),
+        "slider_function" => guidance::solve_slider_function(&t, &name).map_err(to_load),
         // Path generation, dead-centre synthesis, cognates (problem/kinds.rs).
-        "path" => kinds::solve_path_kind(&t, &name, source).map_err(to_load),
+        "path" => kinds::path_plan(&t, source)
+            .and_then(|plan| kinds::path_outcome(&plan, &name, starts))
+            .map_err(to_load),
         "dead_centre" => kinds::solve_dead_centre(&t, &name).map_err(to_load),
         "cognates" => kinds::solve_cognates(&t, &name).map_err(to_load),
-        other => Err(located(
-            Some("synthesis.type".into()),
-            format!(
-                "unknown synthesis type '{other}'; expected \"motion\", \"function\", \
-                 \"two_positions\", \"burmester\", \"slider_motion\", \"slider_function\", \
-                 \"path\", \"dead_centre\" or \"cognates\""
-            ),
-        )),
+        "ball_point" => kinds::solve_ball(&t, &name).map_err(to_load),
+        other => Err(to_load(unknown_type(other))),
     }
+}
+
+/// The requirements every guidance and path problem takes.
+const REQUIREMENTS: [&str; 3] = ["turning", "min_transmission", "full_turn"];
+
+/// The fields each problem type takes besides `type` and `name` (and the
+/// [`REQUIREMENTS`] where it says so): one table, read by
+/// [`check_fields`], so that a field given to a type that does not use it
+/// is refused, never ignored.
+const FIELDS: [(&str, bool, &[&str]); 10] = [
+    ("motion", true, &["poses", "crank", "rocker"]),
+    (
+        "function",
+        true,
+        &[
+            "function", "x", "input", "output", "ground", "method", "points", "count", "samples",
+        ],
+    ),
+    (
+        "two_positions",
+        true,
+        &["poses", "crank", "rocker", "along"],
+    ),
+    (
+        "burmester",
+        true,
+        &[
+            "poses",
+            "keep",
+            "dyads",
+            "curve_samples",
+            "region",
+            "max_link_ratio",
+        ],
+    ),
+    (
+        "slider_motion",
+        true,
+        &["poses", "crank", "slider", "along"],
+    ),
+    (
+        "slider_function",
+        true,
+        &[
+            "function", "x", "input", "output", "method", "points", "count", "samples",
+        ],
+    ),
+    (
+        "path",
+        true,
+        &[
+            "targets",
+            "target_file",
+            "units",
+            "method",
+            "timing",
+            "crank_rotations",
+            "coupler_rotations",
+            "rocker_rotations",
+            "closure",
+            "order",
+            "starts",
+            "keep",
+        ],
+    ),
+    (
+        "dead_centre",
+        false,
+        &[
+            "rocker_pivot",
+            "rocker_length",
+            "rocker_start",
+            "swing",
+            "time_ratio",
+            "ground",
+            "min_transmission",
+        ],
+    ),
+    ("cognates", false, &["four_bar"]),
+    ("ball_point", false, &["four_bar"]),
+];
+
+/// Every field of the table (besides `type` and `name`) and whether it is given.
+fn given(t: &Table) -> [(&'static str, bool); 38] {
+    [
+        ("poses", t.poses.is_some()),
+        ("crank", t.crank.is_some()),
+        ("rocker", t.rocker.is_some()),
+        ("turning", t.turning.is_some()),
+        ("function", t.function.is_some()),
+        ("x", t.x.is_some()),
+        ("input", t.input.is_some()),
+        ("output", t.output.is_some()),
+        ("ground", t.ground.is_some()),
+        ("method", t.method.is_some()),
+        ("points", t.points.is_some()),
+        ("count", t.count.is_some()),
+        ("samples", t.samples.is_some()),
+        ("min_transmission", t.min_transmission.is_some()),
+        ("full_turn", t.full_turn.is_some()),
+        ("along", t.along.is_some()),
+        ("keep", t.keep.is_some()),
+        ("dyads", t.dyads.is_some()),
+        ("curve_samples", t.curve_samples.is_some()),
+        ("region", t.region.is_some()),
+        ("max_link_ratio", t.max_link_ratio.is_some()),
+        ("slider", t.slider.is_some()),
+        ("targets", t.targets.is_some()),
+        ("target_file", t.target_file.is_some()),
+        ("units", t.units.is_some()),
+        ("timing", t.timing.is_some()),
+        ("crank_rotations", t.crank_rotations.is_some()),
+        ("coupler_rotations", t.coupler_rotations.is_some()),
+        ("rocker_rotations", t.rocker_rotations.is_some()),
+        ("closure", t.closure.is_some()),
+        ("order", t.order.is_some()),
+        ("starts", t.starts.is_some()),
+        ("rocker_pivot", t.rocker_pivot.is_some()),
+        ("rocker_length", t.rocker_length.is_some()),
+        ("rocker_start", t.rocker_start.is_some()),
+        ("swing", t.swing.is_some()),
+        ("time_ratio", t.time_ratio.is_some()),
+        ("four_bar", t.four_bar.is_some()),
+    ]
+}
+
+fn unknown_type(kind: &str) -> SynthError {
+    let kinds: Vec<String> = FIELDS.iter().map(|(k, _, _)| format!("\"{k}\"")).collect();
+    invalid(
+        "synthesis.type",
+        format!(
+            "unknown synthesis type '{kind}'; expected {} or {}",
+            kinds[..kinds.len() - 1].join(", "),
+            kinds[kinds.len() - 1]
+        ),
+    )
+}
+
+/// Refuses an unknown `type` and every field given that the type does
+/// not take ([`FIELDS`]).
+fn check_fields(t: &Table) -> Result<(), SynthError> {
+    let Some((_, requirements, fields)) = FIELDS.iter().find(|(k, _, _)| *k == t.kind) else {
+        return Err(unknown_type(&t.kind));
+    };
+    for (name, present) in given(t) {
+        let takes = fields.contains(&name) || (*requirements && REQUIREMENTS.contains(&name));
+        if present && !takes {
+            return Err(invalid(
+                &format!("synthesis.{name}"),
+                format!("not a field of a {} problem", t.kind),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Most characters in a solution's name.
@@ -311,19 +535,6 @@ fn values<const N: usize>(v: &[Num], field: &str, what: &str) -> Result<[f64; N]
         out[k] = value(n, &format!("{field}[{k}]"))?;
     }
     Ok(out)
-}
-
-/// Fields of one type given to a problem of the other.
-fn refuse(present: &[(bool, &str)], kind: &str) -> Result<(), SynthError> {
-    for (given, name) in present {
-        if *given {
-            return Err(invalid(
-                &format!("synthesis.{name}"),
-                format!("not a field of a {kind} problem"),
-            ));
-        }
-    }
-    Ok(())
 }
 
 fn requirements(t: &Table) -> Result<Requirements, SynthError> {
@@ -414,20 +625,6 @@ fn links_json(l: &FourBar) -> Value {
 }
 
 fn solve_motion(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    refuse(
-        &[
-            (t.function.is_some(), "function"),
-            (t.x.is_some(), "x"),
-            (t.input.is_some(), "input"),
-            (t.output.is_some(), "output"),
-            (t.ground.is_some(), "ground"),
-            (t.method.is_some(), "method"),
-            (t.points.is_some(), "points"),
-            (t.count.is_some(), "count"),
-            (t.samples.is_some(), "samples"),
-        ],
-        "motion",
-    )?;
     let Some(list) = &t.poses else {
         return Err(invalid(
             "synthesis.poses",
@@ -515,14 +712,6 @@ fn motion_solution(s: &MotionSolution, name: &str) -> Solution {
 }
 
 fn solve_function(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    refuse(
-        &[
-            (t.poses.is_some(), "poses"),
-            (t.crank.is_some(), "crank"),
-            (t.rocker.is_some(), "rocker"),
-        ],
-        "function",
-    )?;
     let missing =
         |f: &str, what: &str| invalid(&format!("synthesis.{f}"), format!("missing; give {what}"));
     let src = t

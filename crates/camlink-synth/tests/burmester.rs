@@ -94,7 +94,7 @@ pub(crate) fn assert_passes_poses(s: &Solution) {
 /// a = 0.12, b = 0.38, c = 0.3 m) carrying a coupler line with origin
 /// A + A(θ)(0.15, 0.1), θ the angle of A→B: its poses at crank angles
 /// `deg` (degrees), with A and B in that coupler frame.
-fn known_poses(deg: &[f64]) -> (Vec<Pose>, FourBar, [P2; 2]) {
+pub(crate) fn known_poses(deg: &[f64]) -> (Vec<Pose>, FourBar, [P2; 2]) {
     let l = FourBar {
         o2: [0.0, 0.0],
         o4: [0.4, 0.0],
@@ -200,17 +200,23 @@ fn issue31_burmester_curve_passes_the_known_pivots() {
     }
 }
 
-/// Completeness of the centre-point curve: on horizontal lines across the
-/// region, every sign change of the independent concyclicity function is
-/// a centre point, and the dyad equations at its β₂ give it back.
-#[test]
-fn issue31_burmester_curve_is_complete_on_line_scans() {
-    let (poses, _, _) = known_poses(&[20.0, 60.0, 100.0, 140.0]);
-    let eq = Equations::new(&poses, "poses").unwrap();
+/// Scans nine horizontal lines across the region for the sign changes of
+/// `f` (a function of a point that vanishes on the centre-point curve of
+/// `poses`, computed independently of the dyad equations), each refined
+/// by bisection; a root that `skip` accepts is left out (a pole, a jump of
+/// `f`). Each other root must be a point of `eq`'s curve at the β₂ its
+/// dyad (by the three-position inversion of poses 1–3) makes, to 1e-8 m.
+/// Returns the number of roots checked.
+pub(crate) fn assert_line_roots_on_curve(
+    poses: &[Pose],
+    eq: &Equations,
+    f: &dyn Fn(P2) -> f64,
+    skip: &dyn Fn(P2, f64, f64) -> bool,
+) -> usize {
     let mut roots = 0;
     for yk in 0..9 {
         let y = -0.4 + 0.1 * yk as f64;
-        let f = |x: f64| concyclic(&poses, 3, [x, y]);
+        let f = |x: f64| f([x, y]);
         let n = 2000;
         let xs: Vec<f64> = (0..=n).map(|k| -0.8 + 1.6 * k as f64 / n as f64).collect();
         for w in xs.windows(2) {
@@ -227,6 +233,9 @@ fn issue31_burmester_curve_is_complete_on_line_scans() {
                 }
             }
             let m = [0.5 * (lo + hi), y];
+            if skip(m, f(lo), f(hi)) {
+                continue;
+            }
             // Its circle point by inversion from poses 1–3; β₂ from it.
             let Ok(s) = three_positions(
                 &[poses[0], poses[1], poses[2]],
@@ -248,6 +257,18 @@ fn issue31_burmester_curve_is_complete_on_line_scans() {
             roots += 1;
         }
     }
+    roots
+}
+
+/// Completeness of the centre-point curve: on horizontal lines across the
+/// region, every sign change of the independent concyclicity function is
+/// a centre point, and the dyad equations at its β₂ give it back.
+#[test]
+fn issue31_burmester_curve_is_complete_on_line_scans() {
+    let (poses, _, _) = known_poses(&[20.0, 60.0, 100.0, 140.0]);
+    let eq = Equations::new(&poses, "poses").unwrap();
+    let roots =
+        assert_line_roots_on_curve(&poses, &eq, &|m| concyclic(&poses, 3, m), &|_, _, _| false);
     assert!(roots >= 9, "{roots} roots");
 }
 
@@ -274,33 +295,7 @@ fn issue31_burmester_five_poses_recover_the_known_four_bar() {
     }
     // Independent: Newton on (F₄, F₅) from a grid; the poles of poses
     // 1–3, common to both curves, are left out.
-    let pole = |i: usize, j: usize| {
-        // A(−θ_i)(M − r_i) = A(−θ_j)(M − r_j): linear in M.
-        let (p, q) = (poses[i], poses[j]);
-        let m = |p: &Pose| {
-            let (s, c) = p.theta.sin_cos();
-            [[c, s], [-s, c]]
-        };
-        let (mi, mj) = (m(&p), m(&q));
-        let a = [
-            [mi[0][0] - mj[0][0], mi[0][1] - mj[0][1]],
-            [mi[1][0] - mj[1][0], mi[1][1] - mj[1][1]],
-        ];
-        let ri = [
-            mi[0][0] * p.x + mi[0][1] * p.y,
-            mi[1][0] * p.x + mi[1][1] * p.y,
-        ];
-        let rj = [
-            mj[0][0] * q.x + mj[0][1] * q.y,
-            mj[1][0] * q.x + mj[1][1] * q.y,
-        ];
-        let b = [ri[0] - rj[0], ri[1] - rj[1]];
-        let det = a[0][0] * a[1][1] - a[0][1] * a[1][0];
-        [
-            (b[0] * a[1][1] - b[1] * a[0][1]) / det,
-            (a[0][0] * b[1] - a[1][0] * b[0]) / det,
-        ]
-    };
+    let pole = |i: usize, j: usize| crate::constructions::pole(&poses[i], &poses[j]);
     let poles = [pole(0, 1), pole(0, 2), pole(1, 2)];
     let big_f = |m: P2| [concyclic(&poses, 3, m), concyclic(&poses, 4, m)];
     let mut found: Vec<P2> = Vec::new();

@@ -3,6 +3,8 @@
 //! that every file in `tests/` is listed here or built on its own.
 
 mod burmester;
+mod closed_forms;
+mod constructions;
 mod path_generation;
 mod problem_files;
 mod slider_crank;

@@ -7,7 +7,7 @@ use std::f64::consts::TAU;
 use camlink_synth::fourbar::{FourBar, Requirements};
 use camlink_synth::path::{fit, CouplerLinkage, FitSpec, Timing};
 
-fn known() -> CouplerLinkage {
+pub(crate) fn known() -> CouplerLinkage {
     CouplerLinkage {
         linkage: FourBar {
             o2: [0.0, 0.0],
@@ -77,7 +77,7 @@ fn floats(v: &Value) -> Vec<f64> {
 
 /// Runs `s`'s model at 0, 0.005, …, 1 s with `extra` times added; returns
 /// the table and the times.
-fn run(s: &Solution, extra: &[f64]) -> Table {
+pub(crate) fn run_with_p(s: &Solution, extra: &[f64]) -> Table {
     let loaded = load_str(&s.model, Format::Toml, &format!("{}.toml", s.name))
         .unwrap_or_else(|e| panic!("the model does not load: {e}\n{}", s.model));
     let mut times: Vec<f64> = (0..=200).map(|k| k as f64 / 200.0).collect();
@@ -102,21 +102,21 @@ fn run(s: &Solution, extra: &[f64]) -> Table {
     table
 }
 
-fn at(table: &Table, name: &str, t: f64) -> f64 {
+pub(crate) fn at(table: &Table, name: &str, t: f64) -> f64 {
     let k = table.t.iter().position(|&s| s == t).expect("a run time");
     table.channel(name).unwrap()[k]
 }
 
-fn defects(s: &Solution) -> usize {
+pub(crate) fn defects(s: &Solution) -> usize {
     s.report["checks"]["defects"].as_array().unwrap().len()
 }
 
 /// The coupler point of the model, run by camlink's kinematics, is at the
 /// report's distance from each target at the report's time.
-fn assert_reaches_targets(s: &Solution, tol_of_error: f64) {
+pub(crate) fn assert_reaches_targets(s: &Solution, tol_of_error: f64) {
     let r = &s.report;
     let times = floats(&r["point_times"]);
-    let table = run(s, &times);
+    let table = run_with_p(s, &times);
     let errors = floats(&r["error"]["points"]);
     for (j, (t, target)) in times
         .iter()
@@ -223,7 +223,7 @@ fn issue31_dead_centre_swing_and_time_ratio() {
         }
         let r = &s.report;
         let times = floats(&r["extremes"]["times"]);
-        let table = run(s, &times);
+        let table = run_with_p(s, &times);
         let (psi1, psi2) = (
             at(&table, "rocker.phi", times[0]),
             at(&table, "rocker.phi", times[1]),
@@ -256,7 +256,7 @@ fn issue31_dead_centre_swing_and_time_ratio() {
 fn issue31_cognates_trace_the_same_curve() {
     let out = solve_path(&examples().join("synthesis_cognates.toml")).unwrap();
     assert_eq!(out.solutions.len(), 3);
-    let tables: Vec<Table> = out.solutions.iter().map(|s| run(s, &[])).collect();
+    let tables: Vec<Table> = out.solutions.iter().map(|s| run_with_p(s, &[])).collect();
     let px = tables[0].channel("coupler.P.x").unwrap();
     let py = tables[0].channel("coupler.P.y").unwrap();
     let mut worst = 0.0f64;

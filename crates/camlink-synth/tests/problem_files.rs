@@ -202,7 +202,7 @@ fn unknown_type_named() {
         e,
         "p.toml:2:8: synthesis.type: unknown synthesis type 'gears'; expected \"motion\", \"function\", \
          \"two_positions\", \"burmester\", \"slider_motion\", \"slider_function\", \"path\", \
-         \"dead_centre\" or \"cognates\""
+         \"dead_centre\", \"cognates\" or \"ball_point\""
     );
 }
 
@@ -256,4 +256,43 @@ fn issue31_precision_points_in_any_order() {
     assert_eq!(a["x"], b["x"]);
     assert_eq!(a["k"], b["k"]);
     assert_eq!(b["checks"]["defects"], serde_json::json!([]));
+}
+
+/// One table says which fields each type takes: fields another type uses
+/// are refused by name, not ignored (a path problem once took the
+/// dead-centre fields silently, a dead-centre problem the search's, a
+/// cognates problem the requirements).
+#[test]
+fn issue31_each_type_refuses_the_fields_it_does_not_take() {
+    let path =
+        "[synthesis]\ntype = \"path\"\ntargets = [[0, 0], [0.1, 0.02], [0.2, 0], [0.3, -0.05]]\n";
+    let dead =
+        "[synthesis]\ntype = \"dead_centre\"\nrocker_length = 0.1\nswing = 0.7\ntime_ratio = 1.2\n";
+    let four = "four_bar = { O2 = [0, 0], O4 = [0.4, 0], crank = 0.12, coupler = 0.38, rocker = 0.3, point = [0.1, 0.1] }\n";
+    let cognates = format!("[synthesis]\ntype = \"cognates\"\n{four}");
+    let cases: Vec<(String, &str, &str)> = vec![
+        (path.into(), "rocker_length = 0.2", "path"),
+        (path.into(), "rocker_pivot = [0, 0]", "path"),
+        (path.into(), "rocker_start = 0.1", "path"),
+        (dead.into(), "starts = 4", "dead_centre"),
+        (dead.into(), "units = \"mm\"", "dead_centre"),
+        (dead.into(), "timing = \"free\"", "dead_centre"),
+        (dead.into(), "method = \"fit\"", "dead_centre"),
+        (dead.into(), "x = [0, 1]", "dead_centre"),
+        (dead.into(), "turning = \"cw\"", "dead_centre"),
+        (cognates.clone(), "turning = \"cw\"", "cognates"),
+        (cognates.clone(), "min_transmission = 0.3", "cognates"),
+        (cognates.clone(), "full_turn = true", "cognates"),
+        (cognates, "keep = 2", "cognates"),
+    ];
+    for (base, line, kind) in cases {
+        let field = line.split(' ').next().unwrap();
+        let e = err(&format!("{base}{line}\n"));
+        assert!(
+            e.contains(&format!(
+                "synthesis.{field}: not a field of a {kind} problem"
+            )),
+            "{line} in {kind}: {e}"
+        );
+    }
 }

@@ -37,6 +37,16 @@ def add_parser(
         metavar="PNG",
         help="draw the candidates' coupler curves against the targets (path and cognates problems)",
     )
+    p.add_argument(
+        "--studio",
+        action="store_true",
+        help="then open the best solution (the first written) in `camlink studio`",
+    )
+    p.add_argument(
+        "--no-browser",
+        action="store_true",
+        help="with --studio: print the studio's URL, do not open a browser",
+    )
     return run
 
 
@@ -46,6 +56,8 @@ def run(args: argparse.Namespace) -> int:
     from camlink._core import ModelError
     from camlink.io.output import check_not_input, replacing
 
+    if args.no_browser and not args.studio:
+        raise ModelError("--no-browser goes with --studio")
     if args.atlas:
         # A PNG, never the problem file (nor its targets' CSV), checked before solving.
         atlas_path = Path(args.atlas)
@@ -72,6 +84,10 @@ def run(args: argparse.Namespace) -> int:
         print(synth.report_text(result))
         for p in paths:
             print(f"→ {p}")
+    if args.studio:
+        from camlink.studio import run as serve
+
+        serve(paths[0], browser=not args.no_browser)
     return 0
 
 

@@ -23,12 +23,15 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from camlink import _core
 from camlink._core import ModelError
 from camlink.io.output import check_not_input
 from camlink.model import Model, loads
+
+if TYPE_CHECKING:
+    from distributed import Client
 
 __all__ = ["Defect", "Links", "Solution", "Synthesis", "report_text", "solve", "solve_text", "write"]
 
@@ -127,13 +130,58 @@ def _synthesis(kind: str, rows: Sequence[tuple[str, str, str]]) -> Synthesis:
     return Synthesis(kind, tuple(_solution(*row) for row in rows))
 
 
-def solve(problem: str | os.PathLike[str]) -> Synthesis:
+def solve(problem: str | os.PathLike[str], *, client: Client | None = None) -> Synthesis:
     """Solves the synthesis problem file `problem` (TOML). A bad file raises
-    `ModelError` naming the file, the line and the field."""
+    `ModelError` naming the file, the line and the field.
+
+    A path problem's search runs its starts on the local cores; with
+    `client` (a ``dask.distributed.Client``) they are spread over its
+    workers in batches, and the result is the same as the local run's
+    (each start depends on its index and the problem alone)."""
     path = Path(problem)
     if not path.is_file():
         raise FileNotFoundError(2, "no such file", str(path))
-    return _synthesis(*_core.synth_file(path))
+    if client is None:
+        return _synthesis(*_core.synth_file(path))
+    return _solve_dask(path, client)
+
+
+#: Starts of a path search sent to a Dask worker as one task.
+DASK_BATCH = 8
+
+
+def run_starts_task(text: str, source: str, stem: str, lo: int, hi: int) -> list[tuple[int, list[float]]]:
+    """Starts `lo` to `hi` of a path problem's search, on a Dask worker."""
+    return _core.synth_path_starts(text, source, stem, lo, hi)[0]
+
+
+def _solve_dask(path: Path, client: Client) -> Synthesis:
+    """The path search of `path` with its starts spread over `client`'s
+    workers; other problems are solved here."""
+    from distributed import as_completed
+
+    text = _core.synth_read(path)
+    source, stem = str(path), path.stem
+    # Validates the problem here, and gives its number of starts (none:
+    # not a search).
+    _, total = _core.synth_path_starts(text, source, stem, 0, 0)
+    if total == 0:
+        return _synthesis(*_core.synth_str(text, source, stem))
+    # Workers may run in other folders: a target file resolves against an
+    # absolute path.
+    where = os.path.abspath(source)
+    futures = [
+        client.submit(run_starts_task, text, where, stem, lo, min(lo + DASK_BATCH, total), pure=False)
+        for lo in range(0, total, DASK_BATCH)
+    ]
+    starts: list[tuple[int, list[float]]] = []
+    try:
+        for f in as_completed(futures):
+            starts.extend(f.result())
+    except BaseException:
+        client.cancel(futures)
+        raise
+    return _synthesis(*_core.synth_str_from_starts(text, source, stem, starts))
 
 
 def solve_text(text: str, name: str = "synthesis") -> Synthesis:

@@ -31,14 +31,6 @@ pub(super) struct SliderTable {
 
 use camlink_model::file::Num;
 
-/// The kinds solved here.
-const KINDS: [&str; 4] = [
-    "two_positions",
-    "burmester",
-    "slider_motion",
-    "slider_function",
-];
-
 /// Default dyads sampled per branch of a four-pose problem's curve.
 pub const DEFAULT_DYADS: usize = 36;
 /// Default samples of β₂ per branch of the curves in the report.
@@ -47,97 +39,6 @@ pub const DEFAULT_CURVE_SAMPLES: usize = 360;
 pub const DEFAULT_KEEP: usize = 5;
 /// Steps of β₂ scanned for the Burmester points of five poses.
 pub const BURMESTER_SCAN: usize = 4096;
-
-/// Every field of the table and whether it is given.
-fn given(t: &Table) -> Vec<(&'static str, bool)> {
-    vec![
-        ("poses", t.poses.is_some()),
-        ("crank", t.crank.is_some()),
-        ("rocker", t.rocker.is_some()),
-        ("turning", t.turning.is_some()),
-        ("function", t.function.is_some()),
-        ("x", t.x.is_some()),
-        ("input", t.input.is_some()),
-        ("output", t.output.is_some()),
-        ("ground", t.ground.is_some()),
-        ("method", t.method.is_some()),
-        ("points", t.points.is_some()),
-        ("count", t.count.is_some()),
-        ("samples", t.samples.is_some()),
-        ("min_transmission", t.min_transmission.is_some()),
-        ("full_turn", t.full_turn.is_some()),
-        ("along", t.along.is_some()),
-        ("keep", t.keep.is_some()),
-        ("dyads", t.dyads.is_some()),
-        ("curve_samples", t.curve_samples.is_some()),
-        ("region", t.region.is_some()),
-        ("max_link_ratio", t.max_link_ratio.is_some()),
-        ("slider", t.slider.is_some()),
-        ("targets", t.targets.is_some()),
-        ("target_file", t.target_file.is_some()),
-        ("units", t.units.is_some()),
-        ("timing", t.timing.is_some()),
-        ("crank_rotations", t.crank_rotations.is_some()),
-        ("closure", t.closure.is_some()),
-        ("order", t.order.is_some()),
-        ("starts", t.starts.is_some()),
-        ("rocker_pivot", t.rocker_pivot.is_some()),
-        ("rocker_length", t.rocker_length.is_some()),
-        ("rocker_start", t.rocker_start.is_some()),
-        ("swing", t.swing.is_some()),
-        ("time_ratio", t.time_ratio.is_some()),
-        ("four_bar", t.four_bar.is_some()),
-    ]
-}
-
-/// Refuses the fields given that a `kind` problem does not take.
-fn only(t: &Table, kind: &str, allowed: &[&str]) -> Result<(), SynthError> {
-    const COMMON: [&str; 3] = ["turning", "min_transmission", "full_turn"];
-    for (name, present) in given(t) {
-        if present && !allowed.contains(&name) && !COMMON.contains(&name) {
-            return Err(invalid(
-                &format!("synthesis.{name}"),
-                format!("not a field of a {kind} problem"),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Refuses this module's fields in the other kinds' problems.
-pub(super) fn refuse_fields(t: &Table) -> Result<(), SynthError> {
-    for (name, present) in [
-        ("along", t.along.is_some()),
-        // A path fit keeps its best candidates too.
-        ("keep", t.keep.is_some() && t.kind != "path"),
-        ("dyads", t.dyads.is_some()),
-        ("curve_samples", t.curve_samples.is_some()),
-        ("region", t.region.is_some()),
-        ("max_link_ratio", t.max_link_ratio.is_some()),
-        ("slider", t.slider.is_some()),
-    ] {
-        if present {
-            return Err(invalid(
-                &format!("synthesis.{name}"),
-                format!("not a field of a {} problem", t.kind),
-            ));
-        }
-    }
-    Ok(())
-}
-
-/// Solves the problem if its kind is one of this module's.
-pub(super) fn solve(t: &Table, name: &str) -> Option<Result<Outcome, SynthError>> {
-    if !KINDS.contains(&t.kind.as_str()) {
-        return None;
-    }
-    Some(match t.kind.as_str() {
-        "two_positions" => solve_two(t, name),
-        "burmester" => solve_burmester(t, name),
-        "slider_motion" => solve_slider_motion(t, name),
-        _ => solve_slider_function(t, name),
-    })
-}
 
 /// The poses, `lo` to `hi` of them.
 fn poses(t: &Table, lo: usize, hi: usize, kind: &str) -> Result<Vec<Pose>, SynthError> {
@@ -200,8 +101,7 @@ fn guidance_model(
     })
 }
 
-fn solve_two(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    only(t, "two_positions", &["poses", "crank", "rocker", "along"])?;
+pub(super) fn solve_two(t: &Table, name: &str) -> Result<Outcome, SynthError> {
     let p = poses(t, 2, 2, "two_positions")?;
     let req = requirements(t)?;
     let crank = pivot(&t.crank, "crank")?;
@@ -292,19 +192,7 @@ fn none_kept(t: &Tally, dyads: usize) -> SynthError {
     )
 }
 
-fn solve_burmester(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    only(
-        t,
-        "burmester",
-        &[
-            "poses",
-            "keep",
-            "dyads",
-            "curve_samples",
-            "region",
-            "max_link_ratio",
-        ],
-    )?;
+pub(super) fn solve_burmester(t: &Table, name: &str) -> Result<Outcome, SynthError> {
     let p = poses(t, 4, 5, "burmester")?;
     let req = requirements(t)?;
     let keep = t.keep.unwrap_or(DEFAULT_KEEP);
@@ -488,8 +376,7 @@ fn slider_links_json(l: &SliderCrank) -> Value {
     })
 }
 
-fn solve_slider_motion(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    only(t, "slider_motion", &["poses", "crank", "slider", "along"])?;
+pub(super) fn solve_slider_motion(t: &Table, name: &str) -> Result<Outcome, SynthError> {
     let p = poses(t, 2, 3, "slider_motion")?;
     let req = requirements(t)?;
     let crank = pivot(&t.crank, "crank")?;
@@ -577,14 +464,7 @@ fn solve_slider_motion(t: &Table, name: &str) -> Result<Outcome, SynthError> {
     })
 }
 
-fn solve_slider_function(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    only(
-        t,
-        "slider_function",
-        &[
-            "function", "x", "input", "output", "method", "points", "count", "samples",
-        ],
-    )?;
+pub(super) fn solve_slider_function(t: &Table, name: &str) -> Result<Outcome, SynthError> {
     let missing =
         |f: &str, what: &str| invalid(&format!("synthesis.{f}"), format!("missing; give {what}"));
     let src = t

@@ -9,15 +9,17 @@ use serde::Deserialize;
 use serde_json::{json, Value};
 
 use super::{
-    checks_json, invalid, links_json, nan_null, refuse, requirements, value, values, Outcome,
-    Solution, Table,
+    checks_json, invalid, links_json, nan_null, requirements, value, values, Outcome, Solution,
+    Table,
 };
+use crate::ball;
 use crate::cognates::cognates;
 use crate::dead_centre::{self, DeadCentreSpec};
 use crate::error::{ErrorKind, SynthError};
-use crate::fourbar::{norm, sub, FourBar, P2};
+use crate::fourbar::{norm, sub, Defect, DefectKind, FourBar, P2};
 use crate::model_file::{coupler_along, model_toml, pose_times, ModelSpec};
-use crate::path::{fit, CouplerLinkage, FitSpec, PathFit, Timing};
+use crate::path::{checked, fit, fit_from, CouplerLinkage, FitSpec, PathFit, Start, Timing};
+use crate::precision::{three_points, ThreePoints};
 use crate::properties::properties_json;
 
 /// Most target points.
@@ -39,7 +41,7 @@ pub(super) struct FourBarTable {
     crank: super::Num,
     coupler: super::Num,
     rocker: super::Num,
-    point: Vec<super::Num>,
+    point: Option<Vec<super::Num>>,
     branch: Option<i32>,
     crank_angle: Option<super::Num>,
 }
@@ -270,51 +272,37 @@ fn choice(
     }
 }
 
-/// Refuses this module's fields in a three-position motion or a
-/// Freudenstein function problem.
-pub(super) fn refuse_fields(t: &Table) -> Result<(), SynthError> {
-    refuse(
-        &[
-            (t.targets.is_some(), "targets"),
-            (t.target_file.is_some(), "target_file"),
-            (t.units.is_some(), "units"),
-            (t.timing.is_some(), "timing"),
-            (t.crank_rotations.is_some(), "crank_rotations"),
-            (t.closure.is_some(), "closure"),
-            (t.order.is_some(), "order"),
-            (t.starts.is_some(), "starts"),
-            (t.keep.is_some(), "keep"),
-            (t.rocker_pivot.is_some(), "rocker_pivot"),
-            (t.rocker_length.is_some(), "rocker_length"),
-            (t.rocker_start.is_some(), "rocker_start"),
-            (t.swing.is_some(), "swing"),
-            (t.time_ratio.is_some(), "time_ratio"),
-            (t.four_bar.is_some(), "four_bar"),
-        ],
-        &t.kind,
-    )
+/// A path problem read from its table: the fit's spec, and the closed
+/// form's when the coupler's and the rocker's rotations are given.
+pub(super) struct PathPlan {
+    pub(super) spec: FitSpec,
+    method: String,
+    closed_form: Option<ThreePoints>,
+    /// The field naming the targets in errors, and their size (m).
+    field: String,
+    size: f64,
 }
 
-pub(super) fn solve_path_kind(t: &Table, name: &str, source: &str) -> Result<Outcome, SynthError> {
-    refuse(
-        &[
-            (t.poses.is_some(), "poses"),
-            (t.crank.is_some(), "crank"),
-            (t.rocker.is_some(), "rocker"),
-            (t.function.is_some(), "function"),
-            (t.x.is_some(), "x"),
-            (t.input.is_some(), "input"),
-            (t.output.is_some(), "output"),
-            (t.ground.is_some(), "ground"),
-            (t.points.is_some(), "points"),
-            (t.count.is_some(), "count"),
-            (t.samples.is_some(), "samples"),
-            (t.four_bar.is_some(), "four_bar"),
-            (t.swing.is_some(), "swing"),
-            (t.time_ratio.is_some(), "time_ratio"),
-        ],
-        "path",
-    )?;
+impl PathPlan {
+    /// Whether the plan searches (its starts can be spread over workers).
+    pub(super) fn searches(&self) -> bool {
+        self.closed_form.is_none()
+    }
+}
+
+/// Two rotations (rad) of a three-point closed form.
+fn two_rotations(t: &Option<Vec<super::Num>>, f: &str) -> Result<[f64; 2], SynthError> {
+    match t {
+        Some(v) => values::<2>(v, f, "the rotations from point 1 to points 2 and 3 (rad)"),
+        None => Err(invalid(
+            f,
+            "missing; the closed form of three precision points takes coupler_rotations and \
+             rocker_rotations, the free choices (rad)",
+        )),
+    }
+}
+
+pub(super) fn path_plan(t: &Table, source: &str) -> Result<PathPlan, SynthError> {
     let method = choice(
         t.method.as_deref(),
         "synthesis.method",
@@ -438,6 +426,40 @@ pub(super) fn solve_path_kind(t: &Table, name: &str, source: &str) -> Result<Out
             format!("{keep}; expected 1 to 100"),
         ));
     }
+    let closed_form = match (&t.coupler_rotations, &t.rocker_rotations, &timing) {
+        (None, None, _) => None,
+        (_, _, Timing::Prescribed(beta)) if precision && n == 3 => {
+            for (given, f) in [(t.starts.is_some(), "starts"), (t.keep.is_some(), "keep")] {
+                if given {
+                    return Err(invalid(
+                        &format!("synthesis.{f}"),
+                        "the closed form of three precision points has one solution; a field of \
+                         the search",
+                    ));
+                }
+            }
+            Some(ThreePoints {
+                points: [points[0], points[1], points[2]],
+                crank: [beta[1], beta[2]],
+                coupler: two_rotations(&t.coupler_rotations, "synthesis.coupler_rotations")?,
+                rocker: two_rotations(&t.rocker_rotations, "synthesis.rocker_rotations")?,
+            })
+        }
+        (c, _, _) => {
+            return Err(invalid(
+                if c.is_some() {
+                    "synthesis.coupler_rotations"
+                } else {
+                    "synthesis.rocker_rotations"
+                },
+                format!(
+                    "a field of the closed form of three precision points (method = \
+                     \"precision_points\" with three targets); this problem has {n} points{}",
+                    if precision { "" } else { " to fit" }
+                ),
+            ))
+        }
+    };
     let spec = FitSpec {
         targets: points.clone(),
         timing,
@@ -447,15 +469,83 @@ pub(super) fn solve_path_kind(t: &Table, name: &str, source: &str) -> Result<Out
         keep,
         requirements: requirements(t)?,
     };
-    let (mut found, converged) = fit(&spec);
     let size = check_targets(&points, false, &field)?;
+    Ok(PathPlan {
+        spec,
+        method,
+        closed_form,
+        field,
+        size,
+    })
+}
+
+/// The solutions of `plan`: the closed form's, or the best of the
+/// search's starts (`given` when they ran elsewhere, else all of them
+/// here).
+pub(super) fn path_outcome(
+    plan: &PathPlan,
+    name: &str,
+    given: Option<&[Start]>,
+) -> Result<Outcome, SynthError> {
+    let (spec, field, size) = (&plan.spec, plan.field.as_str(), plan.size);
+    let (method, precision, starts) = (
+        plan.method.as_str(),
+        plan.method == "precision_points",
+        spec.starts,
+    );
+    if let Some(tp) = &plan.closed_form {
+        let fields = [
+            field,
+            "synthesis.crank_rotations",
+            "synthesis.coupler_rotations",
+            "synthesis.rocker_rotations",
+        ];
+        let (mechanism, phi) = three_points(tp, fields)?;
+        let s = if tp.crank[0] > 0.0 { 1.0 } else { -1.0 };
+        let Some(mut found) = checked(spec, mechanism, &phi, s) else {
+            return Err(SynthError::new(
+                ErrorKind::NoSolution,
+                "synthesis.rocker_rotations",
+                "the four-bar of these rotations does not assemble on one branch at the three \
+                 points; choose other rotations",
+            ));
+        };
+        // The exact solution passes every point; on the branch of point 1
+        // it may not.
+        if found.max > 1e-9 * size {
+            found.checks.defects.push(Defect {
+                kind: DefectKind::Branch,
+                message: format!(
+                    "on the assembly branch of point 1 the coupler point misses a point by {:.3e} \
+                     m: the four-bar passes it only on the other branch",
+                    found.max
+                ),
+            });
+        }
+        let mut solution = path_solution(&found, spec, name, "precision_points_closed_form", 1, 1);
+        if let Value::Object(r) = &mut solution.report {
+            r.remove("search");
+            r.insert(
+                "rotations".into(),
+                json!({"crank": tp.crank, "coupler": tp.coupler, "rocker": tp.rocker}),
+            );
+        }
+        return Ok(Outcome {
+            kind: "path".into(),
+            solutions: vec![solution],
+        });
+    }
+    let (mut found, converged) = match given {
+        Some(st) => fit_from(spec, st),
+        None => fit(spec),
+    };
     if precision {
         let best = found.first().map(|c| c.max);
         found.retain(|c| c.max <= 1e-10 * size.max(1.0));
         if found.is_empty() {
             return Err(SynthError::new(
                 ErrorKind::NoSolution,
-                &field,
+                field,
                 format!(
                     "no four-bar through the points with these crank rotations was found from \
                      {starts} starts{}; try other rotations or more starts",
@@ -469,7 +559,7 @@ pub(super) fn solve_path_kind(t: &Table, name: &str, source: &str) -> Result<Out
     if found.is_empty() {
         return Err(SynthError::new(
             ErrorKind::NoSolution,
-            &field,
+            field,
             format!("no start of {starts} converged to a linkage that assembles at every point"),
         ));
     }
@@ -482,7 +572,7 @@ pub(super) fn solve_path_kind(t: &Table, name: &str, source: &str) -> Result<Out
             } else {
                 format!("{name}_{}", k + 1)
             };
-            path_solution(c, &spec, &label, &method, k + 1, converged)
+            path_solution(c, spec, &label, method, k + 1, converged)
         })
         .collect();
     Ok(Outcome {
@@ -570,7 +660,7 @@ fn path_solution(
         .collect();
     let report = json!({
         "name": name,
-        "method": if method == "fit" { "path_fit" } else { "precision_points" },
+        "method": match method { "fit" => "path_fit", m => m },
         "rank": rank,
         "links": links_json(l),
         "signed": { "crank": l.crank, "rocker": l.rocker },
@@ -596,20 +686,6 @@ fn path_solution(
 }
 
 pub(super) fn solve_dead_centre(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    refuse(
-        &[
-            (t.poses.is_some(), "poses"),
-            (t.crank.is_some(), "crank"),
-            (t.rocker.is_some(), "rocker"),
-            (t.function.is_some(), "function"),
-            (t.targets.is_some(), "targets"),
-            (t.target_file.is_some(), "target_file"),
-            (t.four_bar.is_some(), "four_bar"),
-            (t.turning.is_some(), "turning"),
-            (t.full_turn.is_some(), "full_turn"),
-        ],
-        "dead_centre",
-    )?;
     let need = |v: &Option<super::Num>, f: &str, what: &str| -> Result<f64, SynthError> {
         let field = format!("synthesis.{f}");
         match v {
@@ -717,20 +793,9 @@ pub(super) fn solve_dead_centre(t: &Table, name: &str) -> Result<Outcome, SynthE
     })
 }
 
-pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthError> {
-    refuse(
-        &[
-            (t.poses.is_some(), "poses"),
-            (t.crank.is_some(), "crank"),
-            (t.rocker.is_some(), "rocker"),
-            (t.function.is_some(), "function"),
-            (t.targets.is_some(), "targets"),
-            (t.target_file.is_some(), "target_file"),
-            (t.ground.is_some(), "ground"),
-            (t.swing.is_some(), "swing"),
-        ],
-        "cognates",
-    )?;
+/// The linkage of a `four_bar` table, its branch σ and crank angle (rad);
+/// `point` is P of the table, `None` if it gives none.
+fn four_bar(t: &Table) -> Result<(FourBar, f64, f64, Option<P2>), SynthError> {
     let f = "synthesis.four_bar";
     let Some(fb) = &t.four_bar else {
         return Err(invalid(
@@ -756,11 +821,14 @@ pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthErro
         len(&fb.coupler, "coupler")?,
         len(&fb.rocker, "rocker")?,
     );
-    let point = values::<2>(
-        &fb.point,
-        &format!("{f}.point"),
-        "p, q: P in the coupler frame, origin A, x towards B (m)",
-    )?;
+    let point = match &fb.point {
+        Some(p) => Some(values::<2>(
+            p,
+            &format!("{f}.point"),
+            "p, q: P in the coupler frame, origin A, x towards B (m)",
+        )?),
+        None => None,
+    };
     let sigma = match fb.branch {
         None | Some(1) => 1.0,
         Some(-1) => -1.0,
@@ -782,28 +850,48 @@ pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthErro
             "O2 and O4 coincide",
         ));
     }
+    let linkage = FourBar {
+        o2,
+        o4,
+        crank: a,
+        coupler: b,
+        rocker: c,
+    };
+    Ok((linkage, sigma, phi0, point))
+}
+
+/// Refuses a linkage whose crank does not turn fully: its model could not
+/// be driven round.
+fn full_turn(l: &FourBar) -> Result<(), SynthError> {
+    if l.grashof().crank_turns_fully() {
+        return Ok(());
+    }
+    Err(SynthError::new(
+        ErrorKind::NoSolution,
+        "synthesis.four_bar",
+        format!(
+            "a {} linkage: its crank does not turn fully, so its models cannot trace the \
+             whole coupler curve; give a crank-rocker or a double-crank",
+            l.grashof().name()
+        ),
+    ))
+}
+
+pub(super) fn solve_cognates(t: &Table, name: &str) -> Result<Outcome, SynthError> {
+    let f = "synthesis.four_bar";
+    let (linkage, sigma, phi0, point) = four_bar(t)?;
+    let Some(point) = point else {
+        return Err(invalid(
+            &format!("{f}.point"),
+            "missing; give P in the coupler frame, point = [p, q] (origin A, x towards B, m)",
+        ));
+    };
     let given = CouplerLinkage {
-        linkage: FourBar {
-            o2,
-            o4,
-            crank: a,
-            coupler: b,
-            rocker: c,
-        },
+        linkage,
         point,
         sigma,
     };
-    if !given.linkage.grashof().crank_turns_fully() {
-        return Err(SynthError::new(
-            ErrorKind::NoSolution,
-            f,
-            format!(
-                "a {} linkage: its crank does not turn fully, so its models cannot trace the \
-                 whole coupler curve; give a crank-rocker or a double-crank",
-                given.linkage.grashof().name()
-            ),
-        ));
-    }
+    full_turn(&given.linkage)?;
     let Some(cogs) = cognates(&given, phi0) else {
         return Err(invalid(
             &format!("{f}.point"),
@@ -908,4 +996,95 @@ fn cognate_solution(
         model,
         report,
     }
+}
+
+/// Ball's point of a four-bar at one crank angle (`type = "ball_point"`):
+/// the model of the four-bar with its coupler point there, driven over a
+/// turn from that angle, and the coupler's instantaneous geometry.
+pub(super) fn solve_ball(t: &Table, name: &str) -> Result<Outcome, SynthError> {
+    let f = "synthesis.four_bar";
+    let (linkage, sigma, phi0, point) = four_bar(t)?;
+    if point.is_some() {
+        return Err(invalid(
+            &format!("{f}.point"),
+            "Ball's point is the coupler point this problem finds; leave point out",
+        ));
+    }
+    full_turn(&linkage)?;
+    let Some(g) = ball::instant(&linkage, phi0, sigma) else {
+        return Err(SynthError::new(
+            ErrorKind::NoSolution,
+            format!("{f}.crank_angle"),
+            "at this crank angle the linkage does not assemble on this branch, is at a toggle \
+             (coupler and rocker in line) or its coupler does not turn; choose another angle",
+        ));
+    };
+    let (Some(ball), Some(local)) = (g.ball, g.ball_local) else {
+        return Err(SynthError::new(
+            ErrorKind::NoSolution,
+            format!("{f}.crank_angle"),
+            "Ball's point is at infinity at this crank angle (the cubic of stationary \
+             curvature meets the inflection circle only at the pole); choose another angle",
+        ));
+    };
+    let m = CouplerLinkage {
+        linkage,
+        point: local,
+        sigma,
+    };
+    let angles = [phi0, phi0 + TAU];
+    let header = vec![
+        format!("{name}: a four-bar with its coupler point P at Ball's point, written by camlink."),
+        format!(
+            "At crank angle {phi0} rad (t = 0) P's path has zero curvature and zero rate of \
+             curvature:"
+        ),
+        "it runs along its tangent there, an approximate straight line.".into(),
+    ];
+    let model = model_toml(&ModelSpec {
+        name,
+        header,
+        linkage: &linkage,
+        coupler_points: [[0.0, 0.0], [linkage.coupler, 0.0], local],
+        coupler_start: coupler_along(g.a, g.b),
+        crank_angles: &angles,
+        rocker_start: (g.b[1] - linkage.o4[1]).atan2(g.b[0] - linkage.o4[0]),
+        stop: "the start and the end of the turn",
+    });
+    let props = properties_json(&linkage);
+    let report = json!({
+        "name": name,
+        "method": "ball_point",
+        "links": links_json(&linkage),
+        "coupler_point": local,
+        "branch": sigma,
+        "instant": {
+            "crank_angle": phi0,
+            "A": g.a,
+            "B": g.b,
+            "pole": g.pole,
+            "inflection_circle": g.inflection.map(|(c, r)| json!({"centre": c, "radius": r})),
+            "ball": ball,
+            "ball_local": local,
+            "coupler_rates": g.theta,
+        },
+        "curve": curve(&m),
+        "properties": props,
+        "checks": {
+            "grashof": linkage.grashof().name(),
+            "turning": "ccw",
+            "crank_angles": angles,
+            "branches": [sigma],
+            "transmission": props.get("transmission").cloned().unwrap_or(json!({"min": null, "max": null})),
+            "defects": [],
+        },
+    });
+    Ok(Outcome {
+        kind: "ball_point".into(),
+        solutions: vec![Solution {
+            name: name.to_string(),
+            model,
+            report,
+        }],
+    })
 }
