@@ -61,7 +61,7 @@ def info_lines(sol: Solution) -> list[str]:
     transmission angle when it is a four-bar (`camlink.viz.fourbar`)."""
     from camlink.viz.fourbar import describe
 
-    return describe(sol.model, sol.t, sol.names, sol.values)
+    return describe(sol.model, sol.t, sol.names, sol.values, sol.scene)
 
 
 def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
@@ -77,7 +77,7 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
         traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
         channels = [c for c in [*poses, *traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
-                      channels=channels, all_names=True)
+                      channels=channels, all_names=True, plots=doc.default_plots(points))
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
@@ -85,8 +85,8 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     data["file"] = doc.path.name
     data["error"] = sol.error
     data["dirty"] = doc.dirty
-    data["undo"] = bool(doc._undo)
-    data["redo"] = bool(doc._redo)
+    data["undo"] = doc.can_undo
+    data["redo"] = doc.can_redo
     return data
 
 

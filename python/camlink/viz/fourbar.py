@@ -109,11 +109,12 @@ def transmission(loop: FourBarLoop, names: list[str], values: Array) -> Array:
     return _core.fourbar_transmission(b, c, np.ascontiguousarray(diagonal))
 
 
-def describe(model: Model, t: Array, names: list[str], values: Array) -> list[str]:
+def describe(model: Model, t: Array, names: list[str], values: Array,
+             scene: Scene | None = None) -> list[str]:
     """Lines for the page: the class and the range of μ over the cycle (no
-    lines when the model is not a four-bar)."""
-    scene = Scene.of(model, tol=1e-2)
-    loop = find(model, scene)
+    lines when the model is not a four-bar); `scene` is the model's when
+    the caller has it."""
+    loop = find(model, Scene.of(model, tol=1e-2) if scene is None else scene)
     if loop is None:
         return []
     d, a, b, c = loop.lengths()

@@ -49,8 +49,8 @@ def scene_data(model: Model, scene: Scene, size: float) -> dict[str, Any]:
     return {
         "links": [{"body": lk.body, "points": _flat(lk.points)} for lk in scene.links],
         "outlines": [{"body": b, "points": _flat(p)} for b, p in scene.outlines.items()],
-        "pins": [{"name": p.joint, "body_i": p.body_i, "s_i": list(p.s_i), "grounded": p.grounded}
-                 for p in scene.pins],
+        "pins": [{"name": p.joint, "body_i": p.body_i, "s_i": list(p.s_i), "body_j": p.body_j,
+                  "s_j": list(p.s_j), "grounded": p.grounded} for p in scene.pins],
         "guides": [{"name": g.joint, "body_i": g.body_i, "s_i": list(g.s_i), "v_i": _unit(g.v_i),
                     "body_j": g.body_j, "s_j": list(g.s_j), "half": half} for g in scene.guides],
         "curves": [{"name": c.joint, "body": c.body, "points": _flat(c.points), "closed": c.closed,
