@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from camlink.units import unit
+from camlink.viz.fourbar import marks
 from camlink.viz.scene import GROUND, Scene
 
 if TYPE_CHECKING:
@@ -225,6 +226,7 @@ def frame_data(
         "cams": scene.cam_bodies(),
         "box": list(box),
         "plots": chosen,
+        "marks": marks(model, scene, t, list(names), values, ok),
     }
     joints = model.joints
     if all_names:

@@ -165,6 +165,12 @@
       drawBand();
       info.textContent = "";
       for (const line of D.info) info.appendChild(el("div", null, line));
+      for (const m of D.marks) {
+        const a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
+        const line = el("div", "cl-mark", m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
+        line.dataset.t = String(m.t); line.dataset.crank = String(m.crank);
+        info.appendChild(line);
+      }
       const bad = D.ok ? D.ok.reduce(function (s, v) { return s + (v ? 0 : 1); }, 0) : 0;
       status.textContent = bad ? ("does not assemble at " + bad + " of " + n + " times (marked red)") : "";
       status.classList.toggle("cl-bad", bad > 0);
