@@ -314,3 +314,31 @@ def test_issue29_studio_dead_centres_marked(browser: Any, studio: tuple[Studio, 
 
 def _wrap_angle(a: float) -> float:
     return float((a + np.pi) % (2 * np.pi) - np.pi)
+
+
+def test_issue29_viewer_marks_and_picked_point(browser: Any, tmp_path: Path) -> None:
+    # The viewer file draws with the same script: the dead centres listed,
+    # and a clicked pin's velocity read from the run's channels.
+    model = camlink.load(EXAMPLES / "four_bar.toml")
+    res = model.run()
+    out = res.to_html(tmp_path / "four_bar.html")
+    page = browser.new_page(viewport={"width": 1300, "height": 900})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else r.abort())
+    page.goto(out.as_uri())
+    page.wait_for_function("window.camlinkViewer !== undefined")
+    assert page.locator(".cl-mark").count() == 4
+    k = 120
+    page.evaluate(f"() => camlinkViewer.setFrame({k})")
+    bx, by = res["rocker.B.x"][k], res["rocker.B.y"][k]
+    u, v = page.evaluate(f"() => camlinkViewer.pixel({bx}, {by})")
+    page.mouse.click(u, v)
+    box = page.locator("#picked")
+    assert box.text_content().startswith("B (")
+    # (The file holds the poses as float32.)
+    for c in ("vx", "vy", "ax", "ay"):
+        assert float(box.get_attribute(f"data-{c}")) == pytest.approx(
+            res[f"rocker.B.{c}"][k], rel=1e-6, abs=1e-9), c
+    assert errors == []
+    page.close()
