@@ -302,12 +302,14 @@ def test_issue29_studio_dead_centres_marked(browser: Any, studio: tuple[Studio, 
     # time strip.
     lines = pg.page.locator(".cl-mark")
     assert lines.count() == 4
-    assert lines.first.text_content() == f"dead centre at t = {marks[0]['t']:.5f} s, crank {np.degrees(out):.3f}°"
+    first = f"dead centre at t = {marks[0]['t']:.5f} s, crank {np.degrees(out):.3f}°"
+    assert lines.first.text_content() == first
     u, v = pg.js(f"camlinkStudio.front.pixel({marks[1]['x']}, {marks[1]['y']})")
     assert _stage_rgb(pg, u, v) == (0x22, 0x22, 0x22)
     t_end = 2.0
     tick = pg.js(f"Array.from(document.getElementById('reach').getContext('2d').getImageData("
-                 f"Math.round({marks[0]['t'] / t_end} * 380 * (window.devicePixelRatio || 1)), 3, 1, 1).data)")
+                 f"Math.round({marks[0]['t'] / t_end} * 380 * (window.devicePixelRatio || 1)),"
+                 " 3, 1, 1).data)")
     assert tick[:3] == [0x22, 0x22, 0x22]
     assert pg.errors == [] and pg.blocked == []
 
@@ -322,6 +324,7 @@ def test_issue29_viewer_marks_and_picked_point(browser: Any, tmp_path: Path) -> 
     model = camlink.load(EXAMPLES / "four_bar.toml")
     res = model.run()
     out = res.to_html(tmp_path / "four_bar.html")
+    assert isinstance(out, Path)
     page = browser.new_page(viewport={"width": 1300, "height": 900})
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))

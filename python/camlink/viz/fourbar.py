@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -207,11 +207,12 @@ def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
         by = ry + math.sin(rp) * sb[0] + math.cos(rp) * sb[1]
         return ax, ay, bx, by, cp
 
-    def dead(p: tuple[float, float, float, float, float]) -> float:
+    # The cross products, of a row's pins (floats) or of every row's (arrays).
+    def dead(p: Any) -> Any:
         ax, ay, bx, by, _ = p
         return (ax - o2x) * (by - ay) - (ay - o2y) * (bx - ax)
 
-    def toggle(p: tuple[float, float, float, float, float]) -> float:
+    def toggle(p: Any) -> Any:
         ax, ay, bx, by, _ = p
         return (bx - ax) * (o4y - by) - (by - ay) * (o4x - bx)
 
@@ -225,9 +226,9 @@ def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
     out: list[dict[str, object]] = []
     both = solved[:-1] & solved[1:]
     for kind, f in (("dead centre", dead), ("toggle", toggle)):
-        g = f(rows)  # type: ignore[arg-type]
-        for k in np.flatnonzero(both & (g[:-1] * g[1:] <= 0) & (g[1:] != 0)):
-            k = int(k)
+        g = f(rows)
+        for row in np.flatnonzero(both & (g[:-1] * g[1:] <= 0) & (g[1:] != 0)):
+            k = int(row)
             f0, f1 = float(g[k]), float(g[k + 1])
             # Regula falsi (Illinois) on the step's quintic.
             a, b, fa, fb, side, s = 0.0, 1.0, f0, f1, 0, 0.0
