@@ -89,34 +89,27 @@ fn issue29_run_from_keeps_the_given_branch() {
 #[test]
 fn issue29_run_from_refuses_a_wrong_start() {
     let model = four_bar();
-    let times = [0.0, 0.1];
-    let mut table = Table::default();
-    let e = run_from(
-        &model,
-        &times,
-        &Settings::default(),
-        &[],
-        &mut table,
-        Some(&[0.0; 8]),
-    )
-    .unwrap_err();
-    assert_eq!(e.kind, Kind::InvalidInput);
-    assert!(
-        e.message.contains("8 values") && e.message.contains("9 coordinates"),
-        "{}",
+    let refused = |start: &[f64]| {
+        let mut table = Table::default();
+        let e = run_from(
+            &model,
+            &[0.0, 0.1],
+            &Settings::default(),
+            &[],
+            &mut table,
+            Some(start),
+        );
+        let e = e.unwrap_err();
+        assert_eq!(e.kind, Kind::InvalidInput);
         e.message
+    };
+    let message = refused(&[0.0; 8]);
+    assert!(
+        message.contains("8 values") && message.contains("9 coordinates"),
+        "{message}"
     );
     let mut q = q_on_branch(1.0, 0.0);
     q[5] = f64::NAN;
-    let e = run_from(
-        &model,
-        &times,
-        &Settings::default(),
-        &[],
-        &mut table,
-        Some(&q),
-    )
-    .unwrap_err();
-    assert_eq!(e.kind, Kind::InvalidInput);
-    assert!(e.message.contains("coupler.phi"), "{}", e.message);
+    let message = refused(&q);
+    assert!(message.contains("coupler.phi"), "{message}");
 }

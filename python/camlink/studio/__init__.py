@@ -66,16 +66,15 @@ def info_lines(sol: Solution) -> list[str]:
 
 def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     """The page's data for the document's current cycle: every channel's
-    name, and the values of the poses, the traces, the default plots and
+    name, the poses, and the values of the traces, the default plots and
     the channels `shown` (all when None)."""
     sol = doc.solution
     points = [str(p) for p in (sol.model.analysis.get("points") or [])]
     channels = None
     if shown is not None:
         have = set(sol.names)
-        poses = [f"{b}.{c}" for b in sol.scene.bodies for c in ("x", "y", "phi")]
         traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
-        channels = [c for c in [*poses, *traced, *shown] if c in have]
+        channels = [c for c in [*traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
                       channels=channels, all_names=True, plots=doc.default_plots(points))
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
