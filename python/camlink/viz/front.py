@@ -203,12 +203,16 @@ def frame_data(
     the channels sent (default all); with `all_names`, every channel is
     named and only those sent have values (the others null)."""
     bodies = list(scene.bodies)
+    index = {n: i for i, n in enumerate(names)}
+
+    def column(name: str) -> Array:
+        return values[:, index[name]]
+
     poses: dict[str, Array] = {}
     for b in bodies:
-        poses[b] = np.column_stack([_column(names, values, f"{b}.{c}") for c in ("x", "y", "phi")])
+        poses[b] = values[:, [index[f"{b}.{c}"] for c in ("x", "y", "phi")]]
     tr = traces(points, names)
-    extra = [np.column_stack([_column(names, values, x["x"]), _column(names, values, x["y"])])
-             for x in tr]
+    extra = [np.column_stack([column(x["x"]), column(x["y"])]) for x in tr]
     box = extent(scene, bodies, poses, extra)
     size = float(np.hypot(box[1] - box[0], box[3] - box[2]))
     chosen = list(plots) if plots else default_plots(bodies, points, t, names, values)
@@ -234,8 +238,8 @@ def frame_data(
         have = set(sent)
         return {**base, "channels": {
             "names": list(names), "units": [unit(c, joints) for c in names],
-            "values": [b64(_column(names, values, c), pose_dtype) if c in have else None
+            "values": [b64(column(c), pose_dtype) if c in have else None
                        for c in names]}}
     return {**base, "channels": {
         "names": sent, "units": [unit(c, joints) for c in sent],
-        "values": [b64(_column(names, values, c), pose_dtype) for c in sent]}}
+        "values": [b64(column(c), pose_dtype) for c in sent]}}
