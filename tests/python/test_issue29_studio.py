@@ -18,7 +18,7 @@ from aiohttp.test_utils import TestClient, TestServer
 import camlink
 from camlink import _core
 from camlink.cli import main
-from camlink.studio import make_app, payload
+from camlink.studio import BRANCH_NOTE, make_app, payload
 from camlink.studio.document import Document
 from camlink.viz.fourbar import find, transmission
 from camlink.viz.scene import Scene
@@ -282,5 +282,9 @@ def test_issue29_studio_edit_keeps_the_branch(tmp_path: Path) -> None:
         assert branch(doc.solution.names, doc.solution.values, c) == kept
         res = doc.model().run()
         cli = ["t", *res.channels]
-        flipped += branch(cli, np.column_stack([res[n] for n in cli]), c) != kept
+        other = branch(cli, np.column_stack([res[n] for n in cli]), c) != kept
+        flipped += other
+        # The page says so when the file's placement goes the other way.
+        assert doc.solution.kept_branch == other
+        assert (BRANCH_NOTE in payload(doc, [])["info"]) == other
     assert flipped >= 2

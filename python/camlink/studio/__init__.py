@@ -56,6 +56,12 @@ _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inli
            "frame-ancestors 'none'")
 
 
+#: The line under the stage when an edit kept the assembly branch.
+BRANCH_NOTE = ("assembly branch kept through the edit; the file's placement assembles on the "
+               "other branch, which `camlink run` of the saved file would follow: move the "
+               "bodies' position and angle towards this one")
+
+
 def info_lines(sol: Solution) -> list[str]:
     """Lines about the mechanism under the stage: its four-bar class and
     transmission angle when it is a four-bar (`camlink.viz.fourbar`)."""
@@ -81,6 +87,8 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
     data["info"] = info_lines(sol)
+    if sol.kept_branch:
+        data["info"].append(BRANCH_NOTE)
     data["file"] = doc.path.name
     data["error"] = sol.error
     data["dirty"] = doc.dirty

@@ -111,6 +111,9 @@ class Solution:
     ok: npt.NDArray[np.bool_]
     handles: list[Handle]
     error: str | None = None
+    #: Whether the cycle kept the last cycle's assembly branch where the
+    #: file's placement assembles on another (the CLI would follow that).
+    kept_branch: bool = False
 
     def coordinates(self, names: list[str]) -> Array | None:
         """The coordinates `names` (a model's `coordinates`) at every row
@@ -191,11 +194,12 @@ def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Arra
 
 
 def solve(model: Model, previous: Solution | None = None
-          ) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]:
+          ) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_], bool]:
     """The cycle of `model`: times, channel names, rows (NaN where the
-    mechanism does not assemble) and the mask of solved rows. With the
-    `previous` cycle over the same times, each run starts from its
-    coordinates at that time (the same assembly branch)."""
+    mechanism does not assemble), the mask of solved rows, and whether the
+    branch of the `previous` cycle (over the same times) was kept against
+    the placement's: then the run starts from its first row, and each
+    restart from its row at that time."""
     t = _times(model)
     points = _points(model)
     n = len(t)
@@ -207,7 +211,8 @@ def solve(model: Model, previous: Solution | None = None
         # From the placement, as the CLI runs the saved file; from the last
         # cycle's first row when the placement is on another branch.
         names, rows = _kinematics(model, t, points)
-        if q is not None and not _same_branch(model, names, rows, t[0], q[0]):
+        kept = q is not None and not _same_branch(model, names, rows, t[0], q[0])
+        if kept and q is not None:
             names, rows = _kinematics(model, t, points, q[0])
         if not names:
             names, _ = _kinematics(model, t[:1], points)
@@ -230,7 +235,7 @@ def solve(model: Model, previous: Solution | None = None
                     break
             if not found:
                 break
-    return t, names, values, ok
+    return t, names, values, ok, kept
 
 
 def _handles(model: Model, scene: Scene, data: Any) -> list[Handle]:
@@ -422,7 +427,7 @@ class Document:
             model = self.model()
         scene = Scene.of(model, tol=1e-4)
         previous = getattr(self, "solution", None)
-        t, names, values, ok = solve(model, previous)
+        t, names, values, ok, kept = solve(model, previous)
         error = None
         if not names:
             # No kinematic run at all (a model that is not fully driven):
@@ -434,7 +439,7 @@ class Document:
             values = np.array([[v for b in scene.bodies for v in scene.placement[b]]])
             ok = np.ones(1, dtype=bool)
         return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._data),
-                        error)
+                        error, kept)
 
     # -- edits ------------------------------------------------------------
 
