@@ -128,7 +128,10 @@ class Model:
         chunk_rows: int = ...,
         keep_rows: bool = True,
         jerk: bool = False,
+        start: npt.NDArray[np.float64] | None = None,
     ) -> _RunOutput: ...
+    @property
+    def coordinates(self) -> list[str]: ...
     def run_inverse_dynamics(
         self,
         times: npt.NDArray[np.float64],

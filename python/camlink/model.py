@@ -195,6 +195,14 @@ class Model:
         return self._core.joints
 
     @property
+    def coordinates(self) -> list[str]:
+        """The names of the coordinates q in their order: ``<body>.x``,
+        ``.y``, ``.phi`` of every moving body, then ``<joint>.<own>`` for
+        each joint's own coordinates (the kinematic channels of the same
+        names hold their values)."""
+        return self._core.coordinates
+
+    @property
     def analysis(self) -> AnalysisSettings:
         """The file's ``[analysis]`` settings."""
         return self._core.analysis
@@ -385,12 +393,18 @@ class Model:
         output: str | os.PathLike[str] | None = None,
         on_rows: Callable[[int], object] | None = None,
         jerk: bool | None = None,
+        start: Sequence[float] | npt.ArrayLike | None = None,
     ) -> Results:
         """Kinematic analysis: positions, velocities and accelerations.
 
         With `jerk` (default: the file's ``[analysis] jerk``), also the exact
         jerk from Φ_q q⃛ = η: channels ``<body>.jx``, ``.jy`` (m/s³),
         ``.jphi`` (rad/s³) and ``<point>.jx``, ``.jy`` for output points.
+
+        `start`, if given, is the coordinate vector q (m, rad; in the order
+        of `coordinates`) from which the first time is assembled instead of
+        the model's placement: a solution of a similar model at that time
+        keeps its assembly branch.
 
         Arguments left as None come from the file's ``[analysis]``. With
         `output` (``.csv`` or ``.parquet``), results are written as the run
@@ -405,11 +419,12 @@ class Model:
         grid = self.times(t_end, step, times)
         tol, max_iter = self._solver("kinematics", tol, max_iter)
         with_jerk = bool(self.analysis.get("jerk", False) if jerk is None else jerk)
+        q0 = None if start is None else np.ascontiguousarray(start, dtype=np.float64).ravel()
         return self._run(
             "kinematics",
             output,
             lambda **kw: self._core.run_kinematics(
-                grid, tol=tol, max_iter=max_iter, jerk=with_jerk, **kw
+                grid, tol=tol, max_iter=max_iter, jerk=with_jerk, start=q0, **kw
             ),
             points,
             on_rows,

@@ -14,7 +14,7 @@ from camlink._core import ModelError
 __all__ = ["check_settings"]
 
 #: Arguments that are not numbers checked by a rule.
-_OTHER = {"self", "points", "times", "output", "analysis", "on_rows"}
+_OTHER = {"self", "points", "times", "output", "analysis", "on_rows", "start"}
 
 #: Settings that are True or False.
 _FLAGS = {"adaptive", "jerk"}

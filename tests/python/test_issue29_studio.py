@@ -18,7 +18,7 @@ from aiohttp.test_utils import TestClient, TestServer
 import camlink
 from camlink import _core
 from camlink.cli import main
-from camlink.studio import make_app, payload
+from camlink.studio import BRANCH_NOTE, make_app, payload
 from camlink.studio.document import Document
 from camlink.viz.fourbar import find, transmission
 from camlink.viz.scene import Scene
@@ -239,3 +239,52 @@ def test_issue29_studio_model_not_fully_driven_shows_placement(tmp_path: Path) -
     assert data["error"] is not None and "driven" in data["error"]
     assert data["ok"] == [1]
     json.dumps(data, allow_nan=False)
+
+
+def _freudenstein_rocker(d: float, a: float, b: float, c: float, th2: np.ndarray,
+                         sign: float) -> np.ndarray:
+    """θ₄ of the four-bar (ground d, crank a, coupler b, rocker c) at crank
+    angles θ₂, open (`sign` −1) or crossed (+1) branch."""
+    k1, k2 = d / a, d / c
+    k3 = (a * a - b * b + c * c + d * d) / (2 * a * c)
+    cs, sn = np.cos(th2), np.sin(th2)
+    aa, bb, cc = cs - k1 - k2 * cs + k3, -2 * sn, k1 - (k2 + 1) * cs + k3
+    return 2 * np.arctan2(-bb + sign * np.sqrt(bb * bb - 4 * aa * cc), 2 * aa)
+
+
+def _wrap(a: np.ndarray) -> np.ndarray:
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def test_issue29_studio_edit_keeps_the_branch(tmp_path: Path) -> None:
+    # Placed with the rocker along the ground line and the coupler upright,
+    # the file's placement assembles on the other branch for a rocker of
+    # 0.27 to 0.285 m; the studio's slider keeps the branch it started on.
+    path = tmp_path / "four_bar.toml"
+    text = (EXAMPLES / "four_bar.toml").read_text()
+    path.write_text(text.replace('angle = "deg(80)"', 'angle = "deg(0)"')
+                    .replace('angle = "deg(30)"', 'angle = "deg(90)"'))
+    doc = Document(path)
+
+    def branch(names: list[str], values: np.ndarray, c: float) -> float:
+        th2 = values[:, names.index("crank.phi")]
+        th4 = values[:, names.index("rocker.phi")]
+        for sign in (-1.0, 1.0):
+            if np.abs(_wrap(th4 - _freudenstein_rocker(0.4, 0.12, 0.38, c, th2, sign))).max() < 1e-9:
+                return sign
+        raise AssertionError("on neither branch")
+
+    kept = branch(doc.solution.names, doc.solution.values, 0.3)
+    flipped = 0
+    for c in (0.2925, 0.285, 0.2775, 0.27):
+        doc.set_parameter("c", c, gesture="slide")
+        assert doc.solution.ok.all()
+        assert branch(doc.solution.names, doc.solution.values, c) == kept
+        res = doc.model().run()
+        cli = ["t", *res.channels]
+        other = branch(cli, np.column_stack([res[n] for n in cli]), c) != kept
+        flipped += other
+        # The page says so when the file's placement goes the other way.
+        assert doc.solution.kept_branch == other
+        assert (BRANCH_NOTE in payload(doc, [])["info"]) == other
+    assert flipped >= 2

@@ -225,3 +225,123 @@ def test_issue29_studio_names_with_markup_render_as_text(browser: Any, tmp_path:
         assert pg.errors == [] and pg.blocked == []
     finally:
         s.close()
+
+
+def _stage_rgb(pg: Page, u: float, v: float) -> tuple[int, int, int]:
+    """The stage canvas's colour at page pixel (u, v)."""
+    r, g, b = pg.js(
+        f"(() => {{ const c = document.getElementById('stage'), r = c.getBoundingClientRect();"
+        f" const d = window.devicePixelRatio || 1;"
+        f" return Array.from(c.getContext('2d').getImageData(Math.round(({u} - r.left - c.clientLeft) * d),"
+        f" Math.round(({v} - r.top - c.clientTop) * d), 1, 1).data).slice(0, 3); }})()")
+    return int(r), int(g), int(b)
+
+
+def test_issue29_studio_picked_point_velocity_and_acceleration(
+        browser: Any, studio: tuple[Studio, Path]) -> None:
+    s, _ = studio
+    pg = Page(browser, s.url)
+    k = 40
+    pg.js(f"camlinkStudio.front.setFrame({k})")
+    # A click (no move) on the handle of pin B picks it; nothing is edited.
+    u, v = pg.js("camlinkStudio.front.pixel(...camlinkStudio.front.handle('joint:B'))")
+    pg.page.mouse.click(u, v)
+    pg.page.wait_for_function("() => document.getElementById('picked').dataset.vx !== undefined")
+    assert not s.server.doc.dirty
+    box = pg.page.locator("#picked")
+    res = camlink.load(EXAMPLES / "four_bar.toml").run()
+    assert int(box.get_attribute("data-row")) == k
+    # B of the coupler (the page, from the coupler's channels) is B of the
+    # rocker (the core's point channels).
+    for c in ("vx", "vy", "ax", "ay"):
+        want = res[f"rocker.B.{c}"][k]
+        assert float(box.get_attribute(f"data-{c}")) == pytest.approx(want, rel=1e-9, abs=1e-12), c
+    vb = np.hypot(res["rocker.B.vx"][k], res["rocker.B.vy"][k])
+    text = box.text_content()
+    assert f"|v| = {1000 * vb:.6g} mm/s" in text
+    # The arrows: 0.15 of the stage's smaller side (520 px) for the largest
+    # speed and acceleration of B over the cycle, drawn from B's pixel.
+    bx, by = res["rocker.B.x"][k], res["rocker.B.y"][k]
+    pu, pv = pg.js(f"camlinkStudio.front.pixel({bx}, {by})")
+    for c, color in (("v", (0x1F, 0x77, 0xB4)), ("a", (0x94, 0x67, 0xBD))):
+        fx, fy = res[f"rocker.B.{c}x"], res[f"rocker.B.{c}y"]
+        scale = 0.15 * 520 / np.hypot(fx, fy).max()
+        tip = (pu + fx[k] * scale, pv - fy[k] * scale)
+        along = (pu + 0.7 * (tip[0] - pu), pv + 0.7 * (tip[1] - pv))
+        got = _stage_rgb(pg, *along)
+        assert all(abs(g - w) <= 12 for g, w in zip(got, color, strict=True)), (c, got)
+    # Another click on empty space drops the pick.
+    stage = pg.page.locator("#stage").bounding_box()
+    pg.page.mouse.click(stage["x"] + 30, stage["y"] + 30)
+    assert box.text_content() == ""
+    assert pg.errors == [] and pg.blocked == []
+
+
+def test_issue29_studio_dead_centres_marked(browser: Any, studio: tuple[Studio, Path]) -> None:
+    s, _ = studio
+    pg = Page(browser, s.url)
+    marks = pg.js("camlinkStudio.front.data().marks")
+    # Crank and coupler in line: |O2 B| = a + b or b − a, B on the rocker's
+    # circle about O4, in the triangle O2 O4 B (d = 0.4, a = 0.12,
+    # b = 0.38, c = 0.3); twice per turn over two turns.
+    d, a, b, c = 0.4, 0.12, 0.38, 0.3
+    out = np.arccos(((a + b) ** 2 + d * d - c * c) / (2 * (a + b) * d))
+    fold = np.pi + np.arccos(((b - a) ** 2 + d * d - c * c) / (2 * (b - a) * d))
+    assert [m["kind"] for m in marks] == ["dead centre"] * 4
+    for m, want in zip(marks, (out, fold, out, fold), strict=True):
+        assert _wrap_angle(m["crank"] - want) == pytest.approx(0, abs=1e-9)
+    # At each mark's time the core's solution has the links in line, and B
+    # where the mark is drawn.
+    model = camlink.load(EXAMPLES / "four_bar.toml")
+    res = model.kinematics(times=[m["t"] for m in marks], points=["crank.A", "rocker.B"])
+    for i, m in enumerate(marks):
+        ax, ay, bx, by = (res[n][i] for n in ("crank.A.x", "crank.A.y", "rocker.B.x", "rocker.B.y"))
+        assert abs(ax * (by - ay) - ay * (bx - ax)) / (a * b) < 1e-9
+        assert (m["x"], m["y"]) == pytest.approx((bx, by), abs=1e-9)
+    # Listed under the stage, a diamond at B on the stage, a tick on the
+    # time strip.
+    lines = pg.page.locator(".cl-mark")
+    assert lines.count() == 4
+    first = f"dead centre at t = {marks[0]['t']:.5f} s, crank {np.degrees(out):.3f}°"
+    assert lines.first.text_content() == first
+    u, v = pg.js(f"camlinkStudio.front.pixel({marks[1]['x']}, {marks[1]['y']})")
+    assert _stage_rgb(pg, u, v) == (0x22, 0x22, 0x22)
+    t_end = 2.0
+    tick = pg.js(f"Array.from(document.getElementById('reach').getContext('2d').getImageData("
+                 f"Math.round({marks[0]['t'] / t_end} * 380 * (window.devicePixelRatio || 1)),"
+                 " 3, 1, 1).data)")
+    assert tick[:3] == [0x22, 0x22, 0x22]
+    assert pg.errors == [] and pg.blocked == []
+
+
+def _wrap_angle(a: float) -> float:
+    return float((a + np.pi) % (2 * np.pi) - np.pi)
+
+
+def test_issue29_viewer_marks_and_picked_point(browser: Any, tmp_path: Path) -> None:
+    # The viewer file draws with the same script: the dead centres listed,
+    # and a clicked pin's velocity read from the run's channels.
+    model = camlink.load(EXAMPLES / "four_bar.toml")
+    res = model.run()
+    out = res.to_html(tmp_path / "four_bar.html")
+    assert isinstance(out, Path)
+    page = browser.new_page(viewport={"width": 1300, "height": 900})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("file:") else r.abort())
+    page.goto(out.as_uri())
+    page.wait_for_function("window.camlinkViewer !== undefined")
+    assert page.locator(".cl-mark").count() == 4
+    k = 120
+    page.evaluate(f"() => camlinkViewer.setFrame({k})")
+    bx, by = res["rocker.B.x"][k], res["rocker.B.y"][k]
+    u, v = page.evaluate(f"() => camlinkViewer.pixel({bx}, {by})")
+    page.mouse.click(u, v)
+    box = page.locator("#picked")
+    assert box.text_content().startswith("B (")
+    # (The file holds the poses as float32.)
+    for c in ("vx", "vy", "ax", "ay"):
+        assert float(box.get_attribute(f"data-{c}")) == pytest.approx(
+            res[f"rocker.B.{c}"][k], rel=1e-6, abs=1e-9), c
+    assert errors == []
+    page.close()

@@ -59,6 +59,14 @@ pub struct Report {
     pub joints: Vec<(String, String, usize, bool)>,
 }
 
+/// The names of the model's coordinates in the order of q: `<body>.x`,
+/// `.y`, `.phi` for every moving body, then `<joint>.<own>` for every own
+/// coordinate of a joint (the run's channels of the same names).
+pub fn coordinate_names(model: &Model) -> Vec<String> {
+    let asm = Assembly::new(model);
+    (0..asm.n).map(|k| asm.coordinate_name(model, k)).collect()
+}
+
 /// Counts bodies, coordinates and equations.
 pub fn check(model: &Model) -> Report {
     let asm = Assembly::new(model);
@@ -97,7 +105,26 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
+    run_from(model, times, settings, points, sink, None)
+}
+
+/// As [`run`], the first time assembled by Newton from `start` instead of
+/// the model's placement: q laid out as the model's coordinates
+/// ([`coordinate_names`]: every moving body's x, y (m), φ (rad), then the
+/// joints' own coordinates). A model re-solved from an earlier solution of
+/// the same instant stays on that solution's assembly branch.
+pub fn run_from(
+    model: &Model,
+    times: &[f64],
+    settings: &Settings,
+    points: &[PointOutput],
+    sink: &mut dyn Sink,
+    start: Option<&[f64]>,
+) -> Result<Summary, AnalysisError> {
     let mut solver = Solver::new(model, settings.clone())?;
+    if let Some(q) = start {
+        solver.start_from(q)?;
+    }
     let guard = StepGuard::new(model);
     let mut names = channels(model, points);
     let plain = names.len();
@@ -244,6 +271,32 @@ impl<'m> Solver<'m> {
             contacts: Contacts::new(model),
             newton: newton::Workspace::new(n, n),
         })
+    }
+
+    /// Sets q, from which the first [`step`](Self::step) assembles, to
+    /// `start` (laid out as [`coordinate_names`]).
+    pub fn start_from(&mut self, start: &[f64]) -> Result<(), AnalysisError> {
+        if start.len() != self.q.len() {
+            return Err(fail(
+                Kind::InvalidInput,
+                &format!(
+                    "the starting coordinates have {} values, the model has {} coordinates",
+                    start.len(),
+                    self.q.len()
+                ),
+            ));
+        }
+        if let Some(k) = start.iter().position(|v| !v.is_finite()) {
+            return Err(fail(
+                Kind::InvalidInput,
+                &format!(
+                    "the starting value of {} is not a finite number",
+                    self.asm.coordinate_name(self.model, k)
+                ),
+            ));
+        }
+        self.q.copy_from_slice(start);
+        Ok(())
     }
 
     /// Advances from the solved state at `prev` to `t`, halving the step

@@ -18,6 +18,7 @@ mod force_failed_and_interrupt;
 mod four_bar;
 mod issue27_a02;
 mod issue27_global_error;
+mod issue29_start_branch;
 mod issue32_machine;
 mod issue32_shaking;
 mod issue_dynamics_contact_channels;

@@ -564,7 +564,10 @@ impl Model {
     /// `on_chunk`. The GIL is released while the core computes. An
     /// exception raised by `on_chunk` (or a Ctrl-C, seen at chunk
     /// boundaries) stops the run and is re-raised.
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true, jerk = false))]
+    ///
+    /// `start`, if given, is q to assemble the first time from instead of
+    /// the model's placement (m, rad; in the order of `coordinates`).
+    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true, jerk = false, start = None))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
@@ -577,20 +580,31 @@ impl Model {
         chunk_rows: usize,
         keep_rows: bool,
         jerk: bool,
+        start: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<RunOutput<'py>> {
         let settings = Settings {
             tol,
             max_iter,
             jerk,
         };
-        self.run_grid(
+        let times = times.as_array().to_vec();
+        let start = start.map(|q| q.as_array().to_vec());
+        self.run_with(
             py,
-            times,
-            settings,
-            points,
+            &points,
             Delivery::new(on_chunk, chunk_rows, keep_rows),
-            kinematics::run,
+            |model, points, sink| {
+                kinematics::run_from(model, &times, &settings, points, sink, start.as_deref())
+            },
         )
+    }
+
+    /// The names of the model's coordinates in the order of q: `<body>.x`,
+    /// `.y`, `.phi` for every moving body, then `<joint>.<own>` for each
+    /// joint's own coordinates (the run's channels of the same names).
+    #[getter]
+    fn coordinates(&self) -> Vec<String> {
+        kinematics::coordinate_names(&self.loaded.model)
     }
 
     /// Inverse dynamics at `times` (s) of a driven (zero-DOF) model: the
@@ -729,8 +743,8 @@ impl Model {
     }
 }
 
-/// A core analysis over output times with the kinematic settings:
-/// `kinematics::run` or `inverse::run`.
+/// A core analysis over output times with the kinematic settings
+/// (`inverse::run`).
 type GridAnalysis = fn(
     &camlink_core::Model,
     &[f64],

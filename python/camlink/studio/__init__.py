@@ -56,37 +56,44 @@ _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inli
            "frame-ancestors 'none'")
 
 
+#: The line under the stage when an edit kept the assembly branch.
+BRANCH_NOTE = ("assembly branch kept through the edit; the file's placement assembles on the "
+               "other branch, which `camlink run` of the saved file would follow: move the "
+               "bodies' position and angle towards this one")
+
+
 def info_lines(sol: Solution) -> list[str]:
     """Lines about the mechanism under the stage: its four-bar class and
     transmission angle when it is a four-bar (`camlink.viz.fourbar`)."""
     from camlink.viz.fourbar import describe
 
-    return describe(sol.model, sol.t, sol.names, sol.values)
+    return describe(sol.model, sol.t, sol.names, sol.values, sol.scene)
 
 
 def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     """The page's data for the document's current cycle: every channel's
-    name, and the values of the poses, the traces, the default plots and
+    name, the poses, and the values of the traces, the default plots and
     the channels `shown` (all when None)."""
     sol = doc.solution
     points = [str(p) for p in (sol.model.analysis.get("points") or [])]
     channels = None
     if shown is not None:
         have = set(sol.names)
-        poses = [f"{b}.{c}" for b in sol.scene.bodies for c in ("x", "y", "phi")]
         traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
-        channels = [c for c in [*poses, *traced, *shown] if c in have]
+        channels = [c for c in [*traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
-                      channels=channels, all_names=True)
+                      channels=channels, all_names=True, plots=doc.default_plots(points))
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
     data["info"] = info_lines(sol)
+    if sol.kept_branch:
+        data["info"].append(BRANCH_NOTE)
     data["file"] = doc.path.name
     data["error"] = sol.error
     data["dirty"] = doc.dirty
-    data["undo"] = bool(doc._undo)
-    data["redo"] = bool(doc._redo)
+    data["undo"] = doc.can_undo
+    data["redo"] = doc.can_redo
     return data
 
 

@@ -1,11 +1,13 @@
 """The studio's editable model: the file's text as a document, its edits,
 undo and redo, the re-solved cycle of each edit, and saving.
 
-A TOML file is held as a tomlkit document, so that an edit changes one
-value and keeps every comment and the layout; a JSON file as plain data,
-saved with two-space indents. Every edit rebuilds the model from the
-document's text through the binding (`camlink.loads`), exactly as the CLI
-reads the saved file.
+The file is held as plain data (dicts, lists, numbers, strings), which
+edits change; every edit rebuilds the model from that data through the
+binding (`camlink.loads` of its JSON, the same schema as the file) and
+solves its cycle. Text is made only when it is asked for (`text`, `save`):
+a TOML file as the tomlkit document of the file as opened with the values
+that differ set, so every comment and the layout stay; a JSON file with
+two-space indents.
 
 Edits (all lengths m, angles rad, global frame):
 
@@ -19,9 +21,12 @@ Edits (all lengths m, angles rad, global frame):
 - a ``[parameters]`` number set to a value.
 
 The cycle is the kinematic run over the file's ``[analysis]`` times (361
-times over one second when the file gives none). A time at which the
-mechanism does not assemble leaves its row missing (NaN) and the run goes
-on from the next time at which it assembles again from the placement.
+times over one second when the file gives none). An edit's run starts
+from the last cycle's coordinates at the first time (and a restart from
+its coordinates at that time), not from the file's placement, so an edit
+keeps the assembly branch. A time at which the mechanism does not
+assemble leaves its row missing (NaN) and the run goes on from the next
+time at which it assembles again.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ import math
 import os
 import shutil
 import tempfile
+import tomllib
 import warnings
 from dataclasses import dataclass
 from pathlib import Path
@@ -45,6 +51,7 @@ import tomlkit.items
 import camlink
 from camlink._core import AnalysisError, ModelError
 from camlink.model import Model
+from camlink.viz.front import default_plots
 from camlink.viz.scene import GROUND, Scene
 
 __all__ = ["Document", "Handle", "Solution", "solve"]
@@ -104,6 +111,18 @@ class Solution:
     ok: npt.NDArray[np.bool_]
     handles: list[Handle]
     error: str | None = None
+    #: Whether the cycle kept the last cycle's assembly branch where the
+    #: file's placement assembles on another (the CLI would follow that).
+    kept_branch: bool = False
+
+    def coordinates(self, names: list[str]) -> Array | None:
+        """The coordinates `names` (a model's `coordinates`) at every row
+        (rows × names, NaN on missing rows); None when a name is not a
+        channel of this cycle."""
+        col = {n: i for i, n in enumerate(self.names)}
+        if any(n not in col for n in names):
+            return None
+        return self.values[:, [col[n] for n in names]]
 
     def pose(self, body: str, row: int) -> tuple[float, float, float]:
         """(x, y, φ) of `body` at `row` (m, m, rad): the nearest solved row,
@@ -130,12 +149,16 @@ def _points(model: Model) -> list[str]:
     return [str(p) for p in pts]
 
 
-def _kinematics(model: Model, times: Array, points: list[str]) -> tuple[list[str], Array]:
-    """Names and rows of the kinematic run at `times`, up to the first time
-    at which the mechanism does not assemble (no rows when it does not at
-    the first)."""
+def _kinematics(model: Model, times: Array, points: list[str],
+                start: Array | None = None) -> tuple[list[str], Array]:
+    """Names and rows of the kinematic run at `times` (assembled from the
+    coordinates `start` when given and finite, else from the placement), up
+    to the first time at which the mechanism does not assemble (no rows when
+    it does not at the first)."""
+    if start is not None and not np.all(np.isfinite(start)):
+        start = None
     try:
-        res = model.kinematics(times=times, points=points)
+        res = model.kinematics(times=times, points=points, start=start)
     except AnalysisError as e:
         res = e.results
     names = list(res.channels)
@@ -144,15 +167,53 @@ def _kinematics(model: Model, times: Array, points: list[str]) -> tuple[list[str
     return names, np.column_stack([res[c] for c in names])
 
 
-def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]:
+def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Array) -> bool:
+    """Whether the run's first row (`rows` of the channels `names`, from
+    the placement, as the CLI runs) is where `model` assembles at `t0`
+    from the coordinates `q` (within a micrometre per metre of the model,
+    angles modulo 2π)."""
+    coords = model.coordinates
+    if not np.all(np.isfinite(q)):
+        return True
+    if len(rows) == 0:
+        return False
+    got, mine = _kinematics(model, np.array([t0]), [], q)
+    if len(mine) == 0:
+        return True
+    col = {c: i for i, c in enumerate(names)}
+    placed = rows[0, [col[c] for c in coords]]
+    col = {c: i for i, c in enumerate(got)}
+    kept = mine[0, [col[c] for c in coords]]
+    bodies = {b["name"] for b in model.bodies}
+    length = np.array([c.rsplit(".", 1)[0] in bodies and c.rsplit(".", 1)[1] in ("x", "y")
+                       for c in coords])
+    d = placed - kept
+    d[~length] = (d[~length] + math.pi) % (2 * math.pi) - math.pi
+    size = max(1.0, float(np.max(np.abs(kept[length]), initial=0.0)))
+    return bool(np.max(np.abs(d)) <= 1e-6 * size)
+
+
+def solve(model: Model, previous: Solution | None = None
+          ) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_], bool]:
     """The cycle of `model`: times, channel names, rows (NaN where the
-    mechanism does not assemble) and the mask of solved rows."""
+    mechanism does not assemble), the mask of solved rows, and whether the
+    branch of the `previous` cycle (over the same times) was kept against
+    the placement's: then the run starts from its first row, and each
+    restart from its row at that time."""
     t = _times(model)
     points = _points(model)
     n = len(t)
+    q = None
+    if previous is not None and len(previous.t) == n and np.array_equal(previous.t, t):
+        q = previous.coordinates(model.coordinates)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
+        # From the placement, as the CLI runs the saved file; from the last
+        # cycle's first row when the placement is on another branch.
         names, rows = _kinematics(model, t, points)
+        kept = q is not None and not _same_branch(model, names, rows, t[0], q[0])
+        if kept and q is not None:
+            names, rows = _kinematics(model, t, points, q[0])
         if not names:
             names, _ = _kinematics(model, t[:1], points)
         values = np.full((n, len(names)), np.nan)
@@ -165,7 +226,7 @@ def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]
             # Past a row that does not assemble: the next time that does.
             found = False
             for j in range(start + 1, n, stride):
-                part_names, part = _kinematics(model, t[j:], points)
+                part_names, part = _kinematics(model, t[j:], points, None if q is None else q[j])
                 if len(part) and part_names == names:
                     values[j : j + len(part)] = part
                     ok[j : j + len(part)] = True
@@ -174,7 +235,7 @@ def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]
                     break
             if not found:
                 break
-    return t, names, values, ok
+    return t, names, values, ok, kept
 
 
 def _handles(model: Model, scene: Scene, data: Any) -> list[Handle]:
@@ -245,33 +306,38 @@ def _keep_comment(old: tomlkit.items.Item, new: tomlkit.items.Item) -> None:
     new.trivia.trail = old.trivia.trail
 
 
-def _set_pair(container: Any, key: str, xy: tuple[float, float]) -> None:
-    """`container[key] = [x, y]`, keeping a TOML value's comment."""
-    value = [_number(xy[0]), _number(xy[1])]
-    old = container.get(key) if hasattr(container, "get") else None
-    if isinstance(old, tomlkit.items.Array):
-        new = tomlkit.array()
-        new.extend(value)
-        _keep_comment(old, new)
-        container[key] = new
-    else:
-        container[key] = value
+def _unwrapped(item: Any) -> Any:
+    return item.unwrap() if hasattr(item, "unwrap") else item
 
 
-def _set_number(container: Any, key: str, v: float) -> None:
-    old = container.get(key)
-    if isinstance(old, tomlkit.items.Item):
-        new = tomlkit.item(float(v))
-        _keep_comment(old, new)
-        container[key] = new
-    else:
-        container[key] = float(v)
+def _sync(container: Any, plain: dict[str, Any]) -> None:
+    """Makes the tomlkit table `container` hold `plain`: keys it lacks are
+    added, keys `plain` lacks are removed, and each value that differs is
+    set, keeping the old value's comment; equal values keep their text."""
+    for key in [k for k in container if k not in plain]:
+        del container[key]
+    for key, new in plain.items():
+        if key not in container:
+            container[key] = new
+            continue
+        old = container[key]
+        if isinstance(new, dict) and isinstance(old, dict):
+            _sync(old, new)
+        elif (isinstance(new, list) and isinstance(old, list) and len(new) == len(old)
+              and all(isinstance(n, dict) and isinstance(o, dict) for n, o in zip(new, old, strict=True))):
+            for o, n in zip(old, new, strict=True):
+                _sync(o, n)
+        elif _unwrapped(old) != new:
+            item = tomlkit.item(new)
+            if isinstance(old, tomlkit.items.Item):
+                _keep_comment(old, item)
+            container[key] = item
 
 
 class Document:
     """A model file open for editing. `solution` is the cycle of the
-    current text; `edit_*` change the text and re-solve; `undo`, `redo`
-    and `save` as their names say."""
+    current data; `move` and `set_parameter` change the data and re-solve;
+    `undo`, `redo` and `save` as their names say."""
 
     def __init__(self, path: str | os.PathLike[str]) -> None:
         self.path = Path(path).resolve()
@@ -281,53 +347,87 @@ class Document:
         if self.path.suffix.lower() not in (".toml", ".json"):
             raise ModelError(f"{path}: the studio edits .toml and .json model files")
         text = self.path.read_text(encoding="utf-8")
-        self._data: Any = self._parse(text)
+        #: The file's text as opened: a TOML text is rendered from it.
+        self._opened = text
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            model = camlink.loads(text, self.format, str(self.path), base_dir=self.path.parent)
+        self._data: Any = json.loads(text) if self.format == "json" else tomllib.loads(text)
+        self._json = self._dump()
+        self._saved = self._json
         self._undo: list[str] = []
         self._redo: list[str] = []
         self._gesture: object = None
-        self.saved_text = text
-        self.current_text = text
-        self.solution = self._solve()
+        self._plots: list[str] | None = None
+        self.solution = self._solve(model)
+
+    def default_plots(self, points: list[str]) -> list[str]:
+        """The page's first plots (`camlink.viz.front.default_plots`), chosen
+        from the cycle as opened (the page keeps its plots through edits)."""
+        if self._plots is None:
+            sol = self.solution
+            self._plots = default_plots(sol.scene.bodies, points, sol.t, sol.names, sol.values)
+        return [c for c in self._plots if c in self.solution.names] or self.solution.names[:2]
 
     # -- text -------------------------------------------------------------
 
-    def _parse(self, text: str) -> Any:
-        if self.format == "json":
-            return json.loads(text)
-        return tomlkit.parse(text)
+    def _dump(self) -> str:
+        """The data as compact JSON: the undo steps, the test for unsaved
+        edits and what the model is read from."""
+        return json.dumps(self._data, separators=(",", ":"), ensure_ascii=False)
 
     def text(self) -> str:
-        """The document's current text."""
+        """The document's current text, as `save` writes it."""
         if self.format == "json":
             return json.dumps(self._data, indent=2, ensure_ascii=False) + "\n"
-        return tomlkit.dumps(self._data)
+        doc = tomlkit.parse(self._opened)
+        _sync(doc, self._data)
+        return tomlkit.dumps(doc)
 
     @property
     def dirty(self) -> bool:
-        """Whether the text differs from the file's."""
-        return self.current_text != self.saved_text
+        """Whether the data differs from the file's."""
+        return self._json != self._saved
 
-    def _plain(self) -> Any:
-        return self._data.unwrap() if self.format == "toml" else self._data
+    @property
+    def can_undo(self) -> bool:
+        return bool(self._undo)
+
+    @property
+    def can_redo(self) -> bool:
+        return bool(self._redo)
 
     # -- solving ----------------------------------------------------------
 
-    def model(self, text: str | None = None) -> Model:
-        """The model of the current text, read as the CLI reads the file."""
-        text = self.text() if text is None else text
-        return camlink.loads(text, self.format, str(self.path), base_dir=self.path.parent)
-
-    def _solve(self) -> Solution:
-        """Rebuilds the model from the text and solves its cycle. A drag is
-        many edits and one undo step: the text before the first edit of a
-        gesture is kept for undo."""
-        text = self.text()
-        self.current_text = text
+    def model(self) -> Model:
+        """The model of the current data, read as the CLI reads the saved
+        file. A data that is not a valid model raises the message of its
+        text (naming the file's line and field)."""
+        try:
+            # JSON has no infinity: such data is read from its text.
+            text = json.dumps(self._data, separators=(",", ":"), allow_nan=False)
+            fmt = "json"
+        except ValueError:
+            text, fmt = self.text(), self.format
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            model = self.model(text)
+            try:
+                return camlink.loads(text, fmt, str(self.path), base_dir=self.path.parent)
+            except ModelError:
+                if fmt == self.format and self.format == "toml":
+                    raise
+                camlink.loads(self.text(), self.format, str(self.path), base_dir=self.path.parent)
+                raise
+
+    def _solve(self, model: Model | None = None) -> Solution:
+        """Solves the cycle of the current data (of `model` when given),
+        from the last cycle's coordinates when there is one."""
+        self._json = self._dump()
+        if model is None:
+            model = self.model()
         scene = Scene.of(model, tol=1e-4)
-        t, names, values, ok = solve(model)
+        previous = getattr(self, "solution", None)
+        t, names, values, ok, kept = solve(model, previous)
         error = None
         if not names:
             # No kinematic run at all (a model that is not fully driven):
@@ -338,16 +438,17 @@ class Document:
             names = [f"{b}.{c}" for b in scene.bodies for c in ("x", "y", "phi")]
             values = np.array([[v for b in scene.bodies for v in scene.placement[b]]])
             ok = np.ones(1, dtype=bool)
-        self._plain_data = self._plain()
-        return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._plain_data),
-                        error)
+        return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._data),
+                        error, kept)
 
     # -- edits ------------------------------------------------------------
 
     def _apply(self, gesture: object, change: Any) -> Solution:
-        """Applies `change` to the document and re-solves; on an error the
-        document, undo and redo are as before and the error is raised."""
-        before = self.current_text
+        """Applies `change` to the data and re-solves; on an error the
+        data, undo and redo are as before and the error is raised. A drag
+        is many edits and one undo step: the data before the first edit of
+        a gesture is kept for undo."""
+        before = self._json
         undo, redo, last = list(self._undo), list(self._redo), self._gesture
         if gesture is None or gesture != self._gesture:
             self._undo.append(before)
@@ -357,7 +458,8 @@ class Document:
             change()
             self.solution = self._solve()
         except (ModelError, ValueError, KeyError, TypeError):
-            self._data = self._parse(before)
+            self._data = json.loads(before)
+            self._json = before
             self._undo, self._redo, self._gesture = undo, redo, last
             raise
         return self.solution
@@ -370,11 +472,14 @@ class Document:
         if handle is None:
             raise KeyError(f"no handle {handle_id!r}")
 
+        def pair(container: dict[str, Any], key: str, xy: tuple[float, float]) -> None:
+            container[key] = [_number(xy[0]), _number(xy[1])]
+
         def change() -> None:
             data = self._data
             for tgt in handle.targets:
                 if tgt.kind == "ground":
-                    _set_pair(data["ground"]["points"], tgt.key, (x, y))
+                    pair(data["ground"]["points"], tgt.key, (x, y))
                     continue
                 px, py, phi = sol.pose(tgt.body, row)
                 c, s = math.cos(phi), math.sin(phi)
@@ -384,9 +489,9 @@ class Document:
                     c0, s0 = math.cos(phi0), math.sin(phi0)
                     local = (x0 + c0 * local[0] - s0 * local[1], y0 + s0 * local[0] + c0 * local[1])
                 if tgt.kind == "joint":
-                    _set_pair(data["joints"][tgt.index], tgt.key, local)
+                    pair(data["joints"][tgt.index], tgt.key, local)
                 else:
-                    _set_pair(data["bodies"][tgt.index][tgt.kind], tgt.key, local)
+                    pair(data["bodies"][tgt.index][tgt.kind], tgt.key, local)
 
         return self._apply(gesture, change)
 
@@ -401,7 +506,7 @@ class Document:
         range (half to twice a positive value, the mirror for a negative
         one, ±1 around zero)."""
         out = []
-        for name, v in (self._plain_data.get("parameters") or {}).items():
+        for name, v in (self._data.get("parameters") or {}).items():
             if isinstance(v, bool) or not isinstance(v, int | float):
                 continue
             v = float(v)
@@ -416,27 +521,27 @@ class Document:
             raise KeyError(f"no parameter {name!r}")
         if not math.isfinite(value):
             raise ValueError(f"parameter {name!r}: {value} is not a finite number")
-        return self._apply(gesture, lambda: _set_number(params, name, value))
+        return self._apply(gesture, lambda: params.__setitem__(name, float(value)))
+
+    def _restore(self, state: str) -> Solution:
+        self._data = json.loads(state)
+        self._gesture = None
+        self.solution = self._solve()
+        return self.solution
 
     def undo(self) -> Solution | None:
         """Goes back one edit (a whole drag); None when there is none."""
         if not self._undo:
             return None
-        self._redo.append(self.current_text)
-        self._data = self._parse(self._undo.pop())
-        self._gesture = None
-        self.solution = self._solve()
-        return self.solution
+        self._redo.append(self._json)
+        return self._restore(self._undo.pop())
 
     def redo(self) -> Solution | None:
         """Does again the edit last undone; None when there is none."""
         if not self._redo:
             return None
-        self._undo.append(self.current_text)
-        self._data = self._parse(self._redo.pop())
-        self._gesture = None
-        self.solution = self._solve()
-        return self.solution
+        self._undo.append(self._json)
+        return self._restore(self._redo.pop())
 
     def end_gesture(self) -> None:
         """Ends a drag or a slider move: the next edit is a new undo step."""
@@ -449,7 +554,7 @@ class Document:
         its folder, the old file kept as ``NAME.bak`` beside it, then the
         temporary file renamed over the file. Nothing is written outside
         the file's folder."""
-        text = self.current_text
+        text = self.text()
         folder = self.path.parent
         fd, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=folder)
         try:
@@ -461,5 +566,5 @@ class Document:
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
             raise
-        self.saved_text = text
+        self._saved = self._json
         return self.path

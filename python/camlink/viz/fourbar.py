@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -109,11 +109,12 @@ def transmission(loop: FourBarLoop, names: list[str], values: Array) -> Array:
     return _core.fourbar_transmission(b, c, np.ascontiguousarray(diagonal))
 
 
-def describe(model: Model, t: Array, names: list[str], values: Array) -> list[str]:
+def describe(model: Model, t: Array, names: list[str], values: Array,
+             scene: Scene | None = None) -> list[str]:
     """Lines for the page: the class and the range of μ over the cycle (no
-    lines when the model is not a four-bar)."""
-    scene = Scene.of(model, tol=1e-2)
-    loop = find(model, scene)
+    lines when the model is not a four-bar); `scene` is the model's when
+    the caller has it."""
+    loop = find(model, Scene.of(model, tol=1e-2) if scene is None else scene)
     if loop is None:
         return []
     d, a, b, c = loop.lengths()
@@ -150,3 +151,103 @@ def summary(model: Model) -> dict[str, object] | None:
         "grashof": _core.fourbar_class(d, a, b, c),
         "transmission": [float(mu[0]), float(mu[1])] if lo <= hi else None,
     }
+
+
+def _quintic(h: float, s: float, y0: float, v0: float, a0: float,
+             y1: float, v1: float, a1: float) -> float:
+    """The quintic through (y, y′, y″) at both ends of a step of `h`, at
+    the fraction `s` of it."""
+    s2, s3 = s * s, s * s * s
+    s4, s5 = s3 * s, s3 * s2
+    return (y0 * (1 - 10 * s3 + 15 * s4 - 6 * s5) + h * v0 * (s - 6 * s3 + 8 * s4 - 3 * s5)
+            + h * h * a0 * (s2 - 3 * s3 + 3 * s4 - s5) / 2 + y1 * (10 * s3 - 15 * s4 + 6 * s5)
+            + h * v1 * (-4 * s3 + 7 * s4 - 3 * s5) + h * h * a1 * (s3 - 2 * s4 + s5) / 2)
+
+
+def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
+          ok: npt.NDArray[np.bool_] | None = None) -> list[dict[str, object]]:
+    """The four-bar's dead-centre positions (crank and coupler in line:
+    the rocker at a limit of its swing) and toggle positions (coupler and
+    rocker in line: μ = 0 or 180°) passed between two solved rows: the
+    time (s), found where the cross product of the two links' vectors
+    changes sign on the quintic through each row's pose, velocity and
+    acceleration; the crank angle then (rad) and the pin that marks it
+    (B for a dead centre, A for a toggle; global, m). Empty when the model
+    is not a four-bar."""
+    loop = find(model, scene)
+    if loop is None or len(t) < 2:
+        return []
+    col = {n: i for i, n in enumerate(names)}
+    need = [f"{b}.{c}" for b in (loop.crank, loop.rocker)
+            for c in ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]
+    if any(n not in col for n in need):
+        return []
+    solved = np.all(np.isfinite(values[:, [col[n] for n in need]]), axis=1)
+    if ok is not None:
+        solved &= np.asarray(ok, dtype=bool)
+    crank = values[:, [col[f"{loop.crank}.{c}"] for c in
+                       ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]]
+    rocker = values[:, [col[f"{loop.rocker}.{c}"] for c in
+                        ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]]
+    (o2x, o2y), (o4x, o4y) = loop.o2, loop.o4
+
+    def pins(k: int, s: float) -> tuple[float, float, float, float, float]:
+        """A, B (global, m) and the crank angle (rad) at row k + s."""
+        h = float(t[k + 1] - t[k])
+        q = []
+        for body in (crank, rocker):
+            q.append([_quintic(h, s, body[k, i], body[k, i + 3], body[k, i + 6],
+                               body[k + 1, i], body[k + 1, i + 3], body[k + 1, i + 6])
+                      for i in range(3)])
+        (cx, cy, cp), (rx, ry, rp) = q
+        sa, sb = loop.a_on_crank, loop.b_on_rocker
+        ax = cx + math.cos(cp) * sa[0] - math.sin(cp) * sa[1]
+        ay = cy + math.sin(cp) * sa[0] + math.cos(cp) * sa[1]
+        bx = rx + math.cos(rp) * sb[0] - math.sin(rp) * sb[1]
+        by = ry + math.sin(rp) * sb[0] + math.cos(rp) * sb[1]
+        return ax, ay, bx, by, cp
+
+    # The cross products, of a row's pins (floats) or of every row's (arrays).
+    def dead(p: Any) -> Any:
+        ax, ay, bx, by, _ = p
+        return (ax - o2x) * (by - ay) - (ay - o2y) * (bx - ax)
+
+    def toggle(p: Any) -> Any:
+        ax, ay, bx, by, _ = p
+        return (bx - ax) * (o4y - by) - (by - ay) * (o4x - bx)
+
+    # Both cross products at every row, for the steps where one changes sign.
+    sa, sb = loop.a_on_crank, loop.b_on_rocker
+    cc, sc = np.cos(crank[:, 2]), np.sin(crank[:, 2])
+    cr, sr = np.cos(rocker[:, 2]), np.sin(rocker[:, 2])
+    rows = (crank[:, 0] + cc * sa[0] - sc * sa[1], crank[:, 1] + sc * sa[0] + cc * sa[1],
+            rocker[:, 0] + cr * sb[0] - sr * sb[1], rocker[:, 1] + sr * sb[0] + cr * sb[1],
+            crank[:, 2])
+    out: list[dict[str, object]] = []
+    both = solved[:-1] & solved[1:]
+    for kind, f in (("dead centre", dead), ("toggle", toggle)):
+        g = f(rows)
+        for row in np.flatnonzero(both & (g[:-1] * g[1:] <= 0) & (g[1:] != 0)):
+            k = int(row)
+            f0, f1 = float(g[k]), float(g[k + 1])
+            # Regula falsi (Illinois) on the step's quintic.
+            a, b, fa, fb, side, s = 0.0, 1.0, f0, f1, 0, 0.0
+            for _ in range(80):
+                s = (a * fb - b * fa) / (fb - fa)
+                fs = f(pins(k, s))
+                if fs == 0.0 or b - a < 1e-14:
+                    break
+                if fs * fb > 0:
+                    b, fb = s, fs
+                    fa = fa / 2 if side == -1 else fa
+                    side = -1
+                else:
+                    a, fa = s, fs
+                    fb = fb / 2 if side == 1 else fb
+                    side = 1
+            p = pins(k, s)
+            x, y = (p[2], p[3]) if kind == "dead centre" else (p[0], p[1])
+            out.append({"t": float(t[k] + s * (t[k + 1] - t[k])), "kind": kind, "label": kind,
+                        "crank": float(p[4]), "x": float(x), "y": float(y)})
+    out.sort(key=lambda m: float(m["t"]))  # type: ignore[arg-type]
+    return out

@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 
 from camlink.units import unit
+from camlink.viz.fourbar import marks
 from camlink.viz.scene import GROUND, Scene
 
 if TYPE_CHECKING:
@@ -49,8 +50,8 @@ def scene_data(model: Model, scene: Scene, size: float) -> dict[str, Any]:
     return {
         "links": [{"body": lk.body, "points": _flat(lk.points)} for lk in scene.links],
         "outlines": [{"body": b, "points": _flat(p)} for b, p in scene.outlines.items()],
-        "pins": [{"name": p.joint, "body_i": p.body_i, "s_i": list(p.s_i), "grounded": p.grounded}
-                 for p in scene.pins],
+        "pins": [{"name": p.joint, "body_i": p.body_i, "s_i": list(p.s_i), "body_j": p.body_j,
+                  "s_j": list(p.s_j), "grounded": p.grounded} for p in scene.pins],
         "guides": [{"name": g.joint, "body_i": g.body_i, "s_i": list(g.s_i), "v_i": _unit(g.v_i),
                     "body_j": g.body_j, "s_j": list(g.s_j), "half": half} for g in scene.guides],
         "curves": [{"name": c.joint, "body": c.body, "points": _flat(c.points), "closed": c.closed,
@@ -202,12 +203,16 @@ def frame_data(
     the channels sent (default all); with `all_names`, every channel is
     named and only those sent have values (the others null)."""
     bodies = list(scene.bodies)
+    index = {n: i for i, n in enumerate(names)}
+
+    def column(name: str) -> Array:
+        return values[:, index[name]]
+
     poses: dict[str, Array] = {}
     for b in bodies:
-        poses[b] = np.column_stack([_column(names, values, f"{b}.{c}") for c in ("x", "y", "phi")])
+        poses[b] = values[:, [index[f"{b}.{c}"] for c in ("x", "y", "phi")]]
     tr = traces(points, names)
-    extra = [np.column_stack([_column(names, values, x["x"]), _column(names, values, x["y"])])
-             for x in tr]
+    extra = [np.column_stack([column(x["x"]), column(x["y"])]) for x in tr]
     box = extent(scene, bodies, poses, extra)
     size = float(np.hypot(box[1] - box[0], box[3] - box[2]))
     chosen = list(plots) if plots else default_plots(bodies, points, t, names, values)
@@ -225,6 +230,7 @@ def frame_data(
         "cams": scene.cam_bodies(),
         "box": list(box),
         "plots": chosen,
+        "marks": marks(model, scene, t, list(names), values, ok),
     }
     joints = model.joints
     if all_names:
@@ -232,8 +238,8 @@ def frame_data(
         have = set(sent)
         return {**base, "channels": {
             "names": list(names), "units": [unit(c, joints) for c in names],
-            "values": [b64(_column(names, values, c), pose_dtype) if c in have else None
+            "values": [b64(column(c), pose_dtype) if c in have else None
                        for c in names]}}
     return {**base, "channels": {
         "names": sent, "units": [unit(c, joints) for c in sent],
-        "values": [b64(_column(names, values, c), pose_dtype) for c in sent]}}
+        "values": [b64(column(c), pose_dtype) for c in sent]}}

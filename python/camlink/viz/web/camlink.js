@@ -8,7 +8,12 @@
 // Data (`setData`): t (s), ok (1 where the mechanism assembled), bodies
 // (0 is the ground), poses (per moving body x, y, φ interleaved; m, rad),
 // scene (shapes in body frames, m), traces, springs, forces, channels
-// (names, units, values), plots (channel names), handles (studio), info.
+// (names, units, values), plots (channel names), handles (studio), info,
+// marks (dead-centre and toggle positions: t, kind, label, x, y).
+//
+// A click on a pin or a handle picks its point: its velocity and
+// acceleration, from its body's channels (v_P = v + ω × A s′,
+// a_P = a + α × A s′ − ω² A s′), are drawn as arrows and read out.
 // An array is a list of numbers, or {f64: base64} / {f32: base64}
 // little-endian (a bare base64 string is float64).
 "use strict";
@@ -83,6 +88,8 @@
     left.appendChild(status);
     const readout = el("div", "cl-readout"); readout.id = "readout";
     left.appendChild(readout);
+    const pickBox = el("div", "cl-pick-readout"); pickBox.id = "picked";
+    left.appendChild(pickBox);
     const info = el("div", "cl-info"); info.id = "info";
     left.appendChild(info);
     const plotsBox = el("div", "cl-plots"); plotsBox.id = "plots";
@@ -97,6 +104,7 @@
     let scale = 1, ox = 0, oy = 0;   // screen X = ox + x·scale, Y = oy − y·scale
     let fitted = false;
     let hover = null, drag = null, panning = null;
+    let picked = null;      // {label, body, s}: the point whose v and a are drawn
     const stats = { frames: 0, renderMs: 0, lastDraw: 0 };
     const plots = [];
     const api = { onEdit: null, onEditEnd: null };
@@ -140,7 +148,7 @@
         bodies: data.bodies, poses: (data.poses || []).map(decode),
         scene: data.scene, traces: data.traces || [], springs: data.springs || [],
         forces: data.forces || [], handles: data.handles || [], info: data.info || [],
-        box: data.box, cams: data.cams || [],
+        box: data.box, cams: data.cams || [], marks: data.marks || [],
         channels: { names: data.channels.names, units: data.channels.units,
                     values: data.channels.values.map(function (v) { return v === null ? null : decode(v); }) },
         plots: data.plots || [],
@@ -157,6 +165,12 @@
       drawBand();
       info.textContent = "";
       for (const line of D.info) info.appendChild(el("div", null, line));
+      for (const m of D.marks) {
+        const a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
+        const line = el("div", "cl-mark", m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
+        line.dataset.t = String(m.t); line.dataset.crank = String(m.crank);
+        info.appendChild(line);
+      }
       const bad = D.ok ? D.ok.reduce(function (s, v) { return s + (v ? 0 : 1); }, 0) : 0;
       status.textContent = bad ? ("does not assemble at " + bad + " of " + n + " times (marked red)") : "";
       status.classList.toggle("cl-bad", bad > 0);
@@ -173,6 +187,9 @@
       const g = band.getContext("2d");
       g.setTransform(dpr, 0, 0, dpr, 0, 0);
       g.fillStyle = "#cfe3cf"; g.fillRect(0, 0, 380, 6);
+      const t0 = D.t[0], span = (D.t[D.rows - 1] - t0) || 1;
+      g.fillStyle = "#222";
+      for (const m of D.marks) g.fillRect((m.t - t0) / span * 380 - 1, 0, 2, 6);
       if (!D.ok) return;
       g.fillStyle = "#d62728";
       for (let i = 0; i < D.rows; i++) {
@@ -383,6 +400,98 @@
       });
     }
 
+    // Dead-centre and toggle positions: a diamond where the pin is then.
+    function drawMarks() {
+      ctx.font = "10px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "middle";
+      for (const m of D.marks) {
+        const s = toScreen(m.x, m.y);
+        ctx.fillStyle = m.kind === "toggle" ? "#8c564b" : "#222"; ctx.beginPath();
+        ctx.moveTo(s[0], s[1] - 6); ctx.lineTo(s[0] + 6, s[1]); ctx.lineTo(s[0], s[1] + 6); ctx.lineTo(s[0] - 6, s[1]);
+        ctx.closePath(); ctx.fill();
+        ctx.fillText(m.label, s[0] + 9, s[1]);
+      }
+    }
+
+    // The picked point's velocity and acceleration at row k (m/s, m/s²),
+    // from its body's channels; null when they are not there (yet).
+    function pointMotion(pk, k) {
+      const b = pk.body, v = ["vx", "vy", "omega", "ax", "ay", "alpha"].map(function (c) { return channel(b + "." + c); });
+      if (D.bodyIndex[b] === 0) return { v: [0, 0], a: [0, 0] };
+      if (v.some(function (x) { return !x; })) return null;
+      const q = pose(D.bodyIndex[b], k), c = Math.cos(q[2]), sn = Math.sin(q[2]);
+      const rx = c * pk.s[0] - sn * pk.s[1], ry = sn * pk.s[0] + c * pk.s[1];
+      const w = v[2][k], al = v[5][k];
+      return { v: [v[0][k] - w * ry, v[1][k] + w * rx],
+               a: [v[3][k] - al * ry - w * w * rx, v[4][k] + al * rx - w * w * ry] };
+    }
+    // Arrow lengths (px per m/s and per m/s²): the point's largest speed
+    // and acceleration over the cycle drawn 0.15 of the stage's smaller side.
+    function vectorScales(pk) {
+      let vm = 0, am = 0;
+      for (let i = 0; i < D.rows; i++) {
+        if (D.ok && !D.ok[i]) continue;
+        const m = pointMotion(pk, i);
+        if (!m) return null;
+        vm = Math.max(vm, Math.hypot(m.v[0], m.v[1])); am = Math.max(am, Math.hypot(m.a[0], m.a[1]));
+      }
+      const L = 0.15 * Math.min(W, H);
+      return [vm > 0 ? L / vm : 0, am > 0 ? L / am : 0];
+    }
+    function arrow(a, e, color, label) {
+      const ang = Math.atan2(e[1] - a[1], e[0] - a[0]);
+      ctx.strokeStyle = ctx.fillStyle = color; ctx.lineWidth = 2.5;
+      ctx.beginPath(); ctx.moveTo(a[0], a[1]); ctx.lineTo(e[0], e[1]); ctx.stroke();
+      ctx.beginPath(); ctx.moveTo(e[0], e[1]);
+      ctx.lineTo(e[0] - 10 * Math.cos(ang - 0.4), e[1] - 10 * Math.sin(ang - 0.4));
+      ctx.lineTo(e[0] - 10 * Math.cos(ang + 0.4), e[1] - 10 * Math.sin(ang + 0.4)); ctx.closePath(); ctx.fill();
+      ctx.font = "bold 11px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "bottom";
+      ctx.fillText(label, e[0] + 5, e[1] - 3);
+    }
+    function drawPicked(k) {
+      pickBox.textContent = "";
+      if (!picked) return;
+      const m = pointMotion(picked, k), sc = m ? vectorScales(picked) : null;
+      const g = place(pose(D.bodyIndex[picked.body], k), picked.s), P = toScreen(g[0], g[1]);
+      ctx.strokeStyle = "#000"; ctx.lineWidth = 2; ctx.beginPath(); ctx.arc(P[0], P[1], 9, 0, 2 * Math.PI); ctx.stroke();
+      if (!m || !sc) { pickBox.textContent = picked.label + ": velocity and acceleration on their way"; return; }
+      arrow(P, [P[0] + m.v[0] * sc[0], P[1] - m.v[1] * sc[0]], "#1f77b4", "v");
+      arrow(P, [P[0] + m.a[0] * sc[1], P[1] - m.a[1] * sc[1]], "#9467bd", "a");
+      const k2 = lengthUnit === "mm" ? 1000 : 1, u = lengthUnit;
+      const f = function (x) { return (x * k2).toPrecision(6); };
+      pickBox.textContent = picked.label + " (" + picked.body + "): v = (" + f(m.v[0]) + ", " + f(m.v[1]) + ") " + u + "/s, |v| = " +
+        f(Math.hypot(m.v[0], m.v[1])) + " " + u + "/s\n" + " ".repeat(picked.label.length + picked.body.length + 3) +
+        "a = (" + f(m.a[0]) + ", " + f(m.a[1]) + ") " + u + "/s², |a| = " + f(Math.hypot(m.a[0], m.a[1])) + " " + u + "/s²";
+      pickBox.dataset.vx = String(m.v[0]); pickBox.dataset.vy = String(m.v[1]);
+      pickBox.dataset.ax = String(m.a[0]); pickBox.dataset.ay = String(m.a[1]);
+      pickBox.dataset.row = String(k);
+    }
+    // What a click can pick: the handles, and each pin on its moving body.
+    function pickables() {
+      const out = D.handles.map(function (h) { return { label: h.label, body: h.body, s: h.s }; });
+      for (const p of D.scene.pins) {
+        const i = D.bodyIndex[p.body_i] ? 1 : 0;
+        const body = i ? p.body_i : p.body_j, s = i ? p.s_i : p.s_j;
+        if (!D.bodyIndex[body]) continue;
+        if (!out.some(function (o) { return o.label === p.name; })) out.push({ label: p.name, body: body, s: s });
+      }
+      return out;
+    }
+    function pickAt(X, Y) {
+      const k = shownRow(frame);
+      if (k < 0) return null;
+      let best = null, bd = 9;
+      for (const h of pickables()) {
+        const g = place(pose(D.bodyIndex[h.body], k), h.s), s = toScreen(g[0], g[1]), d = Math.max(Math.abs(s[0] - X), Math.abs(s[1] - Y));
+        if (d <= bd) { bd = d; best = h; }
+      }
+      return best;
+    }
+    function pick(pk) {
+      picked = pk;
+      if (pk && !pointMotion(pk, 0) && api.onNeed) api.onNeed();
+      render();
+    }
+
     function handlePos(h, k) { return place(pose(D.bodyIndex[h.body], k), h.s); }
 
     function drawHandles(k) {
@@ -410,7 +519,11 @@
         drawTraces(k);
         drawPins(k);
         drawForces(k);
+        drawMarks();
         drawHandles(k);
+        drawPicked(k);
+      } else {
+        pickBox.textContent = "";
       }
       ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "top";
       let y = 6;
@@ -508,25 +621,34 @@
       stage.setPointerCapture(ev.pointerId);
       if (h) {
         const g = handlePos(h, shownRow(frame)), s = toScreen(g[0], g[1]);
-        drag = { handle: h, dx: s[0] - X, dy: s[1] - Y, row: shownRow(frame), gesture: "drag" + Date.now() + Math.random() };
+        drag = { handle: h, dx: s[0] - X, dy: s[1] - Y, row: shownRow(frame), gesture: "drag" + Date.now() + Math.random(), moved: false, X: X, Y: Y };
       } else {
-        panning = { X: X, Y: Y, ox: ox, oy: oy };
+        panning = { X: X, Y: Y, ox: ox, oy: oy, moved: false };
       }
     });
     stage.addEventListener("pointermove", function (ev) {
       if (!D) return;
       const [X, Y] = local(ev);
       if (drag) {
+        if (!drag.moved && Math.max(Math.abs(X - drag.X), Math.abs(Y - drag.Y)) < 2) return;
+        drag.moved = true;
         const w = toWorld(X + drag.dx, Y + drag.dy);
         api.onEdit({ op: "move", handle: drag.handle.id, row: drag.row, x: w[0], y: w[1], gesture: drag.gesture });
         return;
       }
-      if (panning) { ox = panning.ox + X - panning.X; oy = panning.oy + Y - panning.Y; render(); return; }
+      if (panning) {
+        if (!panning.moved && Math.max(Math.abs(X - panning.X), Math.abs(Y - panning.Y)) < 2) return;
+        panning.moved = true;
+        ox = panning.ox + X - panning.X; oy = panning.oy + Y - panning.Y; render(); return;
+      }
       const h = handleAt(X, Y);
       if (h !== hover) { hover = h; stage.style.cursor = h && api.onEdit ? "move" : "default"; render(); }
     });
     function release(ev) {
-      if (drag && api.onEditEnd) api.onEditEnd(drag.gesture);
+      // A click without a move picks the point under it (or none).
+      if (drag && !drag.moved) pick({ label: drag.handle.label, body: drag.handle.body, s: drag.handle.s });
+      else if (drag && api.onEditEnd) api.onEditEnd(drag.gesture);
+      if (panning && !panning.moved && ev.type === "pointerup") { const [X, Y] = local(ev); pick(pickAt(X, Y)); }
       drag = null; panning = null;
       try { stage.releasePointerCapture(ev.pointerId); } catch (e) { /* not captured */ }
     }
@@ -597,6 +719,12 @@
             }],
             draw: [function (u) {
               const X = u.valToPos(D.t[frame], "x", true), g = u.ctx;
+              g.save(); g.strokeStyle = "#555"; g.lineWidth = dpr; g.setLineDash([4 * dpr, 3 * dpr]);
+              for (const m of D.marks) {
+                const Xm = u.valToPos(m.t, "x", true);
+                g.beginPath(); g.moveTo(Xm, u.bbox.top); g.lineTo(Xm, u.bbox.top + u.bbox.height); g.stroke();
+              }
+              g.restore();
               g.save(); g.strokeStyle = "#d62728"; g.lineWidth = 1.5 * dpr; g.beginPath();
               g.moveTo(X, u.bbox.top); g.lineTo(X, u.bbox.top + u.bbox.height); g.stroke(); g.restore();
             }],
@@ -643,7 +771,18 @@
     addPlot.addEventListener("click", function () { if (D) newPlot(D.plots[0] || D.channels.names[0]); });
 
     api.setData = setData;
-    api.picked = function () { return plots.map(function (p) { return p.name; }); };
+    // The channels the page shows: the plots', and the picked point's body's.
+    api.picked = function () {
+      const out = plots.map(function (p) { return p.name; });
+      if (picked && D.bodyIndex[picked.body]) for (const c of ["vx", "vy", "omega", "ax", "ay", "alpha"]) out.push(picked.body + "." + c);
+      return out;
+    };
+    api.pick = function (label) {
+      const pk = label === null ? null : pickables().find(function (h) { return h.label === label; });
+      pick(pk || null);
+      return pk ? pk.label : null;
+    };
+    api.pickedPoint = function () { return picked; };
     api.render = render;
     api.seek = seek;
     api.setFrame = setFrame;
