@@ -29,6 +29,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 mod curves;
 mod forces;
 mod initial;
+mod limits;
 mod machine;
 pub(crate) use machine::machine;
 mod scale;
@@ -649,6 +650,7 @@ impl Ctx {
                 point_i,
                 body_j,
                 point_j,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -665,6 +667,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.set_limits(limits.as_ref(), p)?;
             }
             JointSpec::Translational {
                 name,
@@ -674,6 +677,7 @@ impl Ctx {
                 body_j,
                 point_j,
                 angle,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -702,6 +706,7 @@ impl Ctx {
                     },
                 );
                 self.add(name, c, false);
+                self.set_limits(limits.as_ref(), p)?;
                 self.defer_joint(angle.is_none(), p, "angle", "rad");
             }
             JointSpec::RevoluteRevolute {
@@ -752,6 +757,7 @@ impl Ctx {
                 point_j,
                 axis,
                 offset,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -776,6 +782,7 @@ impl Ctx {
                     offset,
                 };
                 self.add(name, c, false);
+                self.set_limits(limits.as_ref(), p)?;
                 self.defer_joint(left_out, p, "offset", "m");
             }
             JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {

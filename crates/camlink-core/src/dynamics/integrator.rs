@@ -1537,7 +1537,7 @@ pub fn run(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let settings = &on_output_times(settings, times);
-    if model.joints.iter().any(|j| j.unilateral.is_some()) {
+    if model.joints.iter().any(|j| j.unilateral.is_some()) || super::stops::any(model) {
         return super::unilateral::run(model, times, settings, points, sink);
     }
     let t0 = times.first().copied().unwrap_or(0.0);
