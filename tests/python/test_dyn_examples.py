@@ -9,6 +9,8 @@ import math
 import numpy as np
 
 import camlink
+from camlink.cam.jump import flight_summary
+from camlink.units import unit
 from conftest import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -132,7 +134,8 @@ def test_dyn_pendulum_stop_rebounds_with_the_closed_form_speed():
     k = 3 * g / L
     v = math.sqrt(k * math.sin(math.pi / 4))
     u = np.linspace(0.0, math.sqrt(math.pi / 4), 20001)
-    f = np.where(u > 0, 2 * u / np.sqrt(k * np.sin(np.maximum(u, 1e-300) ** 2)), 2 / math.sqrt(k))
+    f = np.full_like(u, 2 / math.sqrt(k))  # the limit at u = 0
+    f[1:] = 2 * u[1:] / np.sqrt(k * np.sin(u[1:] ** 2))
     h = u[1] - u[0]
     t1 = h / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
     impacts = res.impacts
@@ -147,3 +150,10 @@ def test_dyn_pendulum_stop_rebounds_with_the_closed_form_speed():
     assert res["bar.phi"].min() > -math.pi / 4 - 1e-9
     assert bool(impacts["closed"].iloc[-1])
     assert res["pivot.lower.state"][-1] == 1.0
+    # The stop's gap is an angle, its push a torque.
+    assert unit("pivot.lower.gap", model.joints) == "rad"
+    assert unit("pivot.lower.moment", model.joints) == "N·m"
+    # `camlink run`'s line on the impacts.
+    line = flight_summary(res, model.joints)
+    assert line is not None and line.startswith(f"pivot.lower: {len(impacts)} impacts")
+    assert "rad/s), on its stop from t = " in line
