@@ -26,8 +26,12 @@ pub const EXCEEDED: f64 = 1e-9;
 
 /// The range text of `limits`, e.g. `[-0.5, 1] rad` or `[0.1, ∞) m`.
 pub fn range_text(limits: &Limits, unit: &str) -> String {
-    let lo = limits.lower.map_or("(-∞".to_string(), |v| format!("[{}", num(v)));
-    let hi = limits.upper.map_or("∞)".to_string(), |v| format!("{}]", num(v)));
+    let lo = limits
+        .lower
+        .map_or("(-∞".to_string(), |v| format!("[{}", num(v)));
+    let hi = limits
+        .upper
+        .map_or("∞)".to_string(), |v| format!("{}]", num(v)));
     format!("{lo}, {hi} {unit}")
 }
 
@@ -68,8 +72,8 @@ impl LimitWatch {
         for (j, coord, limits, exc) in &mut self.joints {
             let x = asm.local(model, *j, q, &[], t);
             let (c, _) = coord.value_and_rate(&x);
-            let past = (limits.lower.map_or(0.0, |lo| lo - c))
-                .max(limits.upper.map_or(0.0, |hi| c - hi));
+            let past =
+                (limits.lower.map_or(0.0, |lo| lo - c)).max(limits.upper.map_or(0.0, |hi| c - hi));
             if past <= EXCEEDED {
                 continue;
             }

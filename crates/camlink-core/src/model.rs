@@ -6,8 +6,8 @@
 
 use std::collections::HashMap;
 
-pub use crate::constraint::BodyId;
 use crate::constraint::relative::{RelCoord, RelativeCoord};
+pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
 use crate::force::compliant_contact::HuntCrossley;
 use crate::force::{Applied, Force};

@@ -87,27 +87,38 @@ fn issue30_pendulum_bounces_off_its_stop_with_the_closed_form_rebound() {
             first.at.time, first.approach, first.separation
         );
         assert_eq!(first.joint, "pivot.lower");
-        assert!((first.at.time - t1).abs() < tol_t, "{} vs {t1}", first.at.time);
-        assert!((first.approach - v).abs() < tol_v * v, "{} vs {v}", first.approach);
+        assert!(
+            (first.at.time - t1).abs() < tol_t,
+            "{} vs {t1}",
+            first.at.time
+        );
+        assert!(
+            (first.approach - v).abs() < tol_v * v,
+            "{} vs {v}",
+            first.approach
+        );
         // The restitution law: separation e times the approach, exactly.
         assert!((first.separation - e * first.approach).abs() < 1e-9 * v);
         assert!(!first.closed && first.impulse > 0.0);
         // The impulse stops and reverses the bar: I_O (1 + e) v (N·m·s).
         let i_o = 1.0 * len * len / 3.0;
         let want = i_o * (1.0 + e) * first.approach;
-        assert!((first.impulse - want).abs() < 1e-9 * want, "{}", first.impulse);
+        assert!(
+            (first.impulse - want).abs() < 1e-9 * want,
+            "{}",
+            first.impulse
+        );
         // The bar never passes the stop, and rises to the closed form.
         let phi = ch(&t, "bar.phi");
         let least = phi.iter().cloned().fold(f64::INFINITY, f64::min);
         assert!(least > theta_s - 1e-9, "{least}");
         let second = s.impacts[1].at.time;
-        let rise = t
-            .t
-            .iter()
-            .zip(&phi)
-            .filter(|(tk, _)| **tk > first.at.time && **tk < second)
-            .map(|(_, p)| *p)
-            .fold(f64::NEG_INFINITY, f64::max);
+        let rise =
+            t.t.iter()
+                .zip(&phi)
+                .filter(|(tk, _)| **tk > first.at.time && **tk < second)
+                .map(|(_, p)| *p)
+                .fold(f64::NEG_INFINITY, f64::max);
         let want = ((1.0 - e * e) * theta_s.sin()).asin();
         eprintln!("h = {h}: rebound to {rise} rad (closed form {want})");
         // Sampled every 1 ms: the peak is missed by up to θ̈ (0.5 ms)²/2.
@@ -129,7 +140,11 @@ fn issue30_pendulum_bounces_off_its_stop_with_the_closed_form_rebound() {
         let n = phi.len() - 1;
         assert_eq!(state[n], 1.0);
         let torque = 1.0 * G * len / 2.0 * theta_s.cos();
-        assert!((push[n] - torque).abs() < 1e-6 * torque, "{} vs {torque}", push[n]);
+        assert!(
+            (push[n] - torque).abs() < 1e-6 * torque,
+            "{} vs {torque}",
+            push[n]
+        );
         assert!(s.flights.is_empty(), "{:?}", s.flights);
     }
 }
@@ -175,8 +190,16 @@ fx = 20
         assert_eq!(imp.joint, "guide.upper");
         // A force constant along the guide: the integrator's motion is the
         // parabola, to rounding.
-        assert!((imp.at.time - at).abs() < 1e-8, "impact {k}: {} vs {at}", imp.at.time);
-        assert!((imp.approach - v).abs() < 1e-8, "impact {k}: {} vs {v}", imp.approach);
+        assert!(
+            (imp.at.time - at).abs() < 1e-8,
+            "impact {k}: {} vs {at}",
+            imp.at.time
+        );
+        assert!(
+            (imp.approach - v).abs() < 1e-8,
+            "impact {k}: {} vs {v}",
+            imp.approach
+        );
         assert!((imp.separation - e * imp.approach).abs() < 1e-12);
         at += 2.0 * e * v / a;
     }
@@ -286,7 +309,11 @@ f = "0.2*sin(2*pi*t)"
     // First past 0.15 m where 0.2 sin 2πt = 0.15: t = asin(0.75)/2π ≈ 0.135 s.
     assert!(w[0].time > 0.13 && w[0].time < 0.15, "{}", w[0].time);
     assert!(w[0].message.contains("[-0.3, 0.15] m"), "{}", w[0].message);
-    assert!(w[0].message.contains("t = 0.25 s (0.2 m)"), "{}", w[0].message);
+    assert!(
+        w[0].message.contains("t = 0.25 s (0.2 m)"),
+        "{}",
+        w[0].message
+    );
 }
 
 fn load_err(text: &str) -> String {
@@ -330,7 +357,10 @@ fn issue30_bad_limits_are_refused_naming_the_field() {
     );
     // Neither limit; a law out of range; a restitution on a compliant stop.
     for (limits, want) in [
-        ("{ restitution = 0.5 }", "give a lower limit, an upper limit or both"),
+        (
+            "{ restitution = 0.5 }",
+            "give a lower limit, an upper limit or both",
+        ),
         (
             "{ upper = 1, restitution = 2 }",
             "limits.restitution: must be between 0 and 1",
@@ -375,11 +405,16 @@ fn issue30_whitworth_ram_stops_are_never_touched() {
     let (t, s) = kinematics(&l, 1.0, 0.005);
     assert!(s.warnings.is_empty(), "{:?}", s.warnings);
     let x = ch(&t, "ram.x");
-    let (lo, hi) = x.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
-        (a.min(v), b.max(v))
-    });
+    let (lo, hi) = x
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| {
+            (a.min(v), b.max(v))
+        });
     // The closed form of the travel: −R − l and R − l (β through 0 and π).
-    assert!((lo + 0.38).abs() < 1e-4 && (hi + 0.22).abs() < 1e-4, "{lo} {hi}");
+    assert!(
+        (lo + 0.38).abs() < 1e-4 && (hi + 0.22).abs() < 1e-4,
+        "{lo} {hi}"
+    );
     let (t, s) = forward(&l, 1.0, 0.005, 1e-3);
     assert!(s.impacts.is_empty());
     for stop in ["guide.lower", "guide.upper"] {

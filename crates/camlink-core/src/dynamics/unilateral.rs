@@ -44,9 +44,9 @@
 //! error-controlled mode is refused in a run with unilateral contacts.
 
 use super::impact;
-use super::stops::{self, Stop};
 use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
+use super::stops::{self, Stop};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
@@ -1285,7 +1285,9 @@ pub fn run(
         .filter(|c| c.stop().is_some())
         .map(|c| model.joints[c.joint].name.as_str())
         .collect();
-    summary.flights.retain(|f| !stop_names.contains(&f.joint.as_str()));
+    summary
+        .flights
+        .retain(|f| !stop_names.contains(&f.joint.as_str()));
     summary
         .flights
         .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));

@@ -59,10 +59,8 @@ impl JointStop {
         }
         let mut jac = Jac::default();
         self.coord.jacobian(x, &mut jac);
-        for (k, q) in out.iter_mut().enumerate() {
-            for c in 0..3 {
-                q[c] = f * self.sign * jac.body[k][0][c];
-            }
+        for (q, block) in out.iter_mut().zip(&jac.body) {
+            *q = block[0].map(|d| f * self.sign * d);
         }
     }
 }
@@ -151,7 +149,12 @@ mod tests {
         let mut q = BodyQ::default();
         s.generalized(&at(0.153, 0.0), &mut q).unwrap();
         let dv = (s.potential(&at(0.153 + h, 0.0)) - s.potential(&at(0.153 - h, 0.0))) / (2.0 * h);
-        assert!((q[1][0] + dv).abs() < 1e-6 * dv.abs(), "{} vs {}", q[1][0], -dv);
+        assert!(
+            (q[1][0] + dv).abs() < 1e-6 * dv.abs(),
+            "{} vs {}",
+            q[1][0],
+            -dv
+        );
     }
 
     #[test]
@@ -173,16 +176,21 @@ mod tests {
                 damping: 0.3,
             },
         };
-        let mut x = Local::default();
-        x.q = [[0.0, 0.0, 0.4], [0.1, 0.0, 0.55]];
-        x.qd = [[0.0, 0.0, 0.5], [0.0, 0.0, -1.0]];
+        let x = Local {
+            q: [[0.0, 0.0, 0.4], [0.1, 0.0, 0.55]],
+            qd: [[0.0, 0.0, 0.5], [0.0, 0.0, -1.0]],
+            ..Local::default()
+        };
         let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
         s.derivatives(&x, &mut dq, &mut dqd);
         // θ = 0.15 rad: 0.05 rad into the stop, closing at 1.5 rad/s.
         let f = 500.0 * 0.05 * (1.0 + 0.3 * 1.5);
         let mut q = BodyQ::default();
         s.generalized(&x, &mut q).unwrap();
-        assert!((q[1][2] - f).abs() < 1e-12 && (q[0][2] + f).abs() < 1e-12, "{q:?}");
+        assert!(
+            (q[1][2] - f).abs() < 1e-12 && (q[0][2] + f).abs() < 1e-12,
+            "{q:?}"
+        );
         // ∂Q_j,φ/∂φ_j = −k (1 + c δ̇), ∂Q_j,φ/∂φ̇_j = −k δ c.
         let k_eff = 500.0 * (1.0 + 0.3 * 1.5);
         assert!((dq[1][1][2][2] + k_eff).abs() < 1e-5, "{}", dq[1][1][2][2]);
