@@ -3,7 +3,7 @@
 //! compliant stop against its energy balance, kinematics unaffected but
 //! warned, and the refusals of bad limits.
 
-use camlink_core::dynamics::integrator;
+use crate::unilateral::{ch, forward};
 use camlink_core::run::{time_grid, Kind, Settings, Summary, Table};
 use camlink_model::{load_path, load_str, Format, Loaded};
 
@@ -15,24 +15,6 @@ fn examples() -> std::path::PathBuf {
 
 fn load(text: &str) -> Loaded {
     load_str(text, Format::Toml, "limits.toml").unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn ch(t: &Table, name: &str) -> Vec<f64> {
-    t.channel(name)
-        .unwrap_or_else(|| panic!("no channel {name} in {:?}", t.channels))
-}
-
-fn forward(l: &Loaded, t_end: f64, dt: f64, step: f64) -> (Table, Summary) {
-    let times = time_grid(t_end, dt).unwrap();
-    let settings = integrator::Settings {
-        step,
-        tol: 1e-10,
-        ..integrator::Settings::default()
-    };
-    let mut t = Table::default();
-    let s =
-        integrator::run(&l.model, &times, &settings, &[], &mut t).unwrap_or_else(|e| panic!("{e}"));
-    (t, s)
 }
 
 fn kinematics(l: &Loaded, t_end: f64, dt: f64) -> (Table, Summary) {
@@ -149,21 +131,19 @@ fn issue30_pendulum_bounces_off_its_stop_with_the_closed_form_rebound() {
     }
 }
 
-/// A 2 kg slider on the ground's x axis pushed by 20 N onto its upper
-/// stroke limit 0.1 m from rest at 0: a = 10 m/s², impacts at v₀ = √(2 a s)
-/// after √(2 s/a), then bounces v₀ eᵏ every 2 v₀ eᵏ/a (e = 0.5) until one is
-/// slower than rest_speed; the stroke stays within the limit throughout.
-#[test]
-fn issue30_a_slider_pushed_against_its_stroke_limit_stays_within_it() {
-    let l = load(
+/// A slider (`body`: its mass and velocity) on a `guide` along the
+/// ground's x axis through the origin with `limits`, in a `[model]` of
+/// `gravity`, with `rest` after it.
+fn slider(gravity: &str, body: &str, limits: &str, rest: &str) -> Loaded {
+    load(&format!(
         r#"
 [model]
-gravity = [0, -9.81]
+{gravity}
 
 [[bodies]]
 name = "slider"
-mass = 2
 inertia = 0.01
+{body}
 
 [[joints]]
 name = "guide"
@@ -171,14 +151,24 @@ type = "translational"
 body_i = "ground"
 axis = [1, 0]
 body_j = "slider"
-limits = { lower = -0.05, upper = 0.1, restitution = 0.5, rest_speed = 0.02 }
+limits = {{ {limits} }}
 
-[[forces]]
-name = "push"
-type = "point_force"
-body = "slider"
-fx = 20
-"#,
+{rest}
+"#
+    ))
+}
+
+/// A 2 kg slider on the ground's x axis pushed by 20 N onto its upper
+/// stroke limit 0.1 m from rest at 0: a = 10 m/s², impacts at v₀ = √(2 a s)
+/// after √(2 s/a), then bounces v₀ eᵏ every 2 v₀ eᵏ/a (e = 0.5) until one is
+/// slower than rest_speed; the stroke stays within the limit throughout.
+#[test]
+fn issue30_a_slider_pushed_against_its_stroke_limit_stays_within_it() {
+    let l = slider(
+        "gravity = [0, -9.81]",
+        "mass = 2",
+        "lower = -0.05, upper = 0.1, restitution = 0.5, rest_speed = 0.02",
+        "[[forces]]\nname = \"push\"\ntype = \"point_force\"\nbody = \"slider\"\nfx = 20",
     );
     let (t, s) = forward(&l, 1.5, 1e-3, 1e-3);
     let (a, stroke, e): (f64, f64, f64) = (10.0, 0.1, 0.5);
@@ -225,25 +215,11 @@ fx = 20
 /// ½ m v² = k δ_mⁿ⁺¹/(n + 1) and leaves at 0.5 m/s.
 #[test]
 fn issue30_a_compliant_stop_returns_the_slider_at_its_arrival_speed() {
-    let l = load(
-        r#"
-[model]
-gravity = [0, 0]
-
-[[bodies]]
-name = "slider"
-mass = 1
-inertia = 0.01
-velocity = [0.5, 0]
-
-[[joints]]
-name = "guide"
-type = "translational"
-body_i = "ground"
-axis = [1, 0]
-body_j = "slider"
-limits = { upper = 0.01, stiffness = 1e6, exponent = 1.5 }
-"#,
+    let l = slider(
+        "gravity = [0, 0]",
+        "mass = 1\nvelocity = [0.5, 0]",
+        "upper = 0.01, stiffness = 1e6, exponent = 1.5",
+        "",
     );
     let (t, s) = forward(&l, 0.06, 1e-5, 1e-5);
     let (k, n, v): (f64, f64, f64) = (1e6, 1.5, 0.5);

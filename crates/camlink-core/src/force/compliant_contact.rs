@@ -45,6 +45,15 @@ impl HuntCrossley {
         }
         (self.stiffness * delta.powf(self.exponent) * (1.0 + self.damping * rate)).max(0.0)
     }
+
+    /// The elastic part's potential V = k δⁿ⁺¹/(n + 1) (J) at overlap δ (m).
+    pub fn potential(&self, delta: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        let n = self.exponent;
+        self.stiffness * delta.powf(n + 1.0) / (n + 1.0)
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -100,12 +109,7 @@ impl Applied for CompliantContact {
     }
 
     fn potential(&self, x: &Local) -> f64 {
-        let delta = -self.features.gap(x.q, x.qd, None).gap;
-        if delta <= 0.0 {
-            return 0.0;
-        }
-        let n = self.law.exponent;
-        self.law.stiffness * delta.powf(n + 1.0) / (n + 1.0)
+        self.law.potential(-self.features.gap(x.q, x.qd, None).gap)
     }
 }
 

@@ -84,12 +84,7 @@ impl Applied for JointStop {
     }
 
     fn potential(&self, x: &Local) -> f64 {
-        let delta = -self.gap(x).0;
-        if delta <= 0.0 {
-            return 0.0;
-        }
-        let n = self.law.exponent;
-        self.law.stiffness * delta.powf(n + 1.0) / (n + 1.0)
+        self.law.potential(-self.gap(x).0)
     }
 }
 
