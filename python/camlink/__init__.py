@@ -40,6 +40,7 @@ from camlink.warn import (
     CourseFileWarning,
     DesignWarning,
     LiftOffWarning,
+    LimitWarning,
     LoadWarning,
     NearSingularWarning,
 )
@@ -57,6 +58,7 @@ __all__ = [
     "CourseFileWarning",
     "DesignWarning",
     "LiftOffWarning",
+    "LimitWarning",
     "LoadWarning",
     "Mechanism",
     "Model",

@@ -33,7 +33,7 @@ ERROR_KINDS: Final = (
 )
 
 #: The kinds a `RunWarning` may have.
-WARNING_KINDS: Final = ("near_singular", "lift_off")
+WARNING_KINDS: Final = ("near_singular", "lift_off", "limit_exceeded")
 
 
 @dataclass(frozen=True)

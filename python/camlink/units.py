@@ -1,8 +1,9 @@
 """Units of result channels, from the kind a channel's name ends with
 (``"crank.omega"`` → ``"rad/s"``): for plot labels and result files.
 
-A driver's effort is a torque or a force by the coordinate it drives;
-`unit` tells them apart when it is given the model's joints.
+A driver's effort is a torque or a force by the coordinate it drives, and
+a joint stop's gap an angle or a length; `unit` tells them apart when it
+is given the model's joints.
 """
 
 from __future__ import annotations
@@ -49,9 +50,21 @@ def unit(channel: str, joints: Sequence[JointRecord] | None = None) -> str:
 
     A driver's ``<driver>.effort`` is in N·m or N by what it drives: given
     the model's `joints` (`Model.joints`), the driver's; without them ``""``.
+    A revolute's stop ``<joint>.lower.gap`` is in rad given the joints.
     """
     owner, _, kind = channel.rpartition(".")
     if kind == "effort":
         driver = next((j for j in joints or () if j["name"] == owner and j["driver"]), None)
         return effort_unit(driver) if driver is not None else ""
+    if kind == "gap" and stop_of_revolute(owner, joints or ()):
+        return "rad"
     return UNITS.get(kind, "")
+
+
+def stop_of_revolute(owner: str, joints: Sequence[JointRecord]) -> bool:
+    """True when `owner` is an end stop (``<joint>.lower`` or
+    ``<joint>.upper``) of a revolute joint, whose gap is an angle."""
+    joint, _, side = owner.rpartition(".")
+    return side in ("lower", "upper") and any(
+        j["name"] == joint and j["kind"] == "revolute" for j in joints
+    )

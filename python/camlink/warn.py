@@ -14,6 +14,7 @@ __all__ = [
     "CourseFileWarning",
     "DesignWarning",
     "LiftOffWarning",
+    "LimitWarning",
     "LoadWarning",
     "NearSingularWarning",
     "issue_design_warnings",
@@ -36,6 +37,12 @@ class LiftOffWarning(CamlinkWarning):
     its cam (see `Results.lift_off`)."""
 
 
+class LimitWarning(CamlinkWarning):
+    """A driven motion took a joint's angle or stroke out of its `limits`
+    (kinematics and inverse dynamics follow their drivers; forward
+    dynamics stops the joint there)."""
+
+
 class CourseFileWarning(CamlinkWarning):
     """A simEngine2D course file holds something that is read past, as the
     course engine reads past it (a joint's constant ``fun``, an empty force
@@ -56,6 +63,7 @@ class LoadWarning(CamlinkWarning):
 CATEGORIES: dict[str, type[CamlinkWarning]] = {
     "near_singular": NearSingularWarning,
     "lift_off": LiftOffWarning,
+    "limit_exceeded": LimitWarning,
 }
 
 

@@ -9,6 +9,8 @@ import math
 import numpy as np
 
 import camlink
+from camlink.cam.jump import flight_summary
+from camlink.units import unit
 from conftest import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -117,3 +119,41 @@ def test_every_dyn_example_has_a_test():
     assert names
     for name in names:
         assert f'"{name}"' in this, f"{name} has no test in {__file__}"
+
+
+def test_dyn_pendulum_stop_rebounds_with_the_closed_form_speed():
+    # "dyn_pendulum_stop.toml": a uniform bar (L = 0.4 m) released from the
+    # horizontal hits its stop at θ_s = −π/4. Energy: θ̇² = k sin(−θ),
+    # k = 3g/L, so it arrives at v = √(k sin π/4) after
+    # t₁ = ∫₀^{π/4} dψ/√(k sin ψ) (ψ = u²: a smooth integrand, Simpson's
+    # rule here) and leaves at e v (e = 0.6), never passing the stop.
+    model = load("dyn_pendulum_stop.toml")
+    res = model.run()
+    assert res.summary["analysis"] == "dynamics"
+    L, g, e = 0.4, 9.81, 0.6
+    k = 3 * g / L
+    v = math.sqrt(k * math.sin(math.pi / 4))
+    u = np.linspace(0.0, math.sqrt(math.pi / 4), 20001)
+    f = np.full_like(u, 2 / math.sqrt(k))  # the limit at u = 0
+    f[1:] = 2 * u[1:] / np.sqrt(k * np.sin(u[1:] ** 2))
+    h = u[1] - u[0]
+    t1 = h / 3 * (f[0] + f[-1] + 4 * f[1:-1:2].sum() + 2 * f[2:-1:2].sum())
+    impacts = res.impacts
+    first = impacts.iloc[0]
+    assert first["joint"] == "pivot.lower"
+    # h = 1 ms: measured 2.6e-7 s and 1.2e-6 (relative), the integrator's
+    # O(h²) error.
+    assert abs(first["time"] - t1) < 5e-7, (first["time"], t1)
+    assert abs(first["approach_speed"] - v) < 2e-6 * v, (first["approach_speed"], v)
+    assert abs(first["separation_speed"] - e * first["approach_speed"]) < 1e-9 * v
+    # The bar stays above the stop and ends resting on it.
+    assert res["bar.phi"].min() > -math.pi / 4 - 1e-9
+    assert bool(impacts["closed"].iloc[-1])
+    assert res["pivot.lower.state"][-1] == 1.0
+    # The stop's gap is an angle, its push a torque.
+    assert unit("pivot.lower.gap", model.joints) == "rad"
+    assert unit("pivot.lower.moment", model.joints) == "N·m"
+    # `camlink run`'s line on the impacts.
+    line = flight_summary(res, model.joints)
+    assert line is not None and line.startswith(f"pivot.lower: {len(impacts)} impacts")
+    assert "rad/s), on its stop from t = " in line

@@ -27,6 +27,7 @@ use crate::contact::Contacts;
 use crate::design::StepGuard;
 use crate::diagnose::{levenberg_marquardt, KeptRows, DENSE_MAX};
 use crate::fmt_num::num;
+use crate::limits::LimitWatch;
 use crate::linsolve::{Singular, SystemMatrix};
 use crate::math::rot_d;
 use crate::model::{BodyId, Model};
@@ -134,6 +135,7 @@ pub fn run_from(
     sink.begin(&names);
     let mut values = vec![0.0; names.len()];
     let mut prev_t = None;
+    let mut limits = LimitWatch::new(model);
     for &t in times {
         crate::run::check_next_time(prev_t, t)?;
         match prev_t {
@@ -142,6 +144,7 @@ pub fn run_from(
         }
         .map_err(|e| guard.explain(model, e))?;
         guard.check(model, solver.assembly(), &solver.q, t)?;
+        limits.observe(model, solver.assembly(), &solver.q, t);
         solver.outputs(points, &mut values[..plain]);
         if settings.jerk {
             solver.jerk(t)?;
@@ -150,7 +153,9 @@ pub fn run_from(
         sink.row(t, &values).map_err(|s| s.at(t))?;
         prev_t = Some(t);
     }
-    Ok(solver.summary.clone())
+    let mut summary = solver.summary.clone();
+    summary.warnings.extend(limits.warnings(model));
+    Ok(summary)
 }
 
 /// The state and scratch of a kinematic run; allocated once.

@@ -18,6 +18,7 @@
 //! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
 //! 5. [`contact`]: the curve contacts;
 //! 6. [`run`]: settings, sinks, tables, summaries, errors and warnings;
+//!    [`limits`]: joint limits, their coordinates and stops;
 //! 7. [`design`], [`diagnose`], [`cam_limits`], [`cam_contact`]: checks and reports;
 //! 8. [`kinematics`], [`cam_mechanism`] (a synthesised cam run through it);
 //! 9. [`dynamics`];
@@ -44,6 +45,8 @@ pub mod lu_program;
 pub mod contact;
 
 pub mod run;
+
+pub mod limits;
 
 pub mod cam_contact;
 pub mod cam_limits;

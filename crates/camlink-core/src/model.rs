@@ -6,10 +6,12 @@
 
 use std::collections::HashMap;
 
+use crate::constraint::relative::{RelCoord, RelativeCoord};
 pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
 use crate::force::compliant_contact::HuntCrossley;
 use crate::force::{Applied, Force};
+use crate::function::TimeFn;
 use crate::math::V2;
 
 /// A named point fixed in a body, at `s` (m) in the body frame.
@@ -69,6 +71,26 @@ pub struct Joint {
     /// it where its normal force would turn negative and closes it again
     /// at impact ([`crate::dynamics::unilateral`]).
     pub unilateral: Option<Unilateral>,
+    /// `Some` for a joint with end stops on its coordinate ([`Limits`]).
+    pub limits: Option<Limits>,
+}
+
+/// End stops on a joint's coordinate ([`crate::limits`]): a revolute's
+/// angle θ = φ_j − φ_i (rad), a translational joint's stroke s (m) or a
+/// revolute–translational pin's travel along its line (m). Forward
+/// dynamics holds the coordinate in [lower, upper] with unilateral stops
+/// ([`crate::dynamics::stops`]); kinematics warns when a driven motion
+/// leaves the range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Limits {
+    /// The least value (rad or m); `None`: no stop below.
+    pub lower: Option<f64>,
+    /// The greatest value (rad or m); `None`: no stop above.
+    pub upper: Option<f64>,
+    /// How a stop is hit: restitution, rest speed (rad/s or m/s) and event
+    /// tolerance of a rigid stop, or the Hunt–Crossley law of a compliant
+    /// one (k in N·m/radⁿ or N/mⁿ, c in s/rad or s/m).
+    pub law: Unilateral,
 }
 
 /// How a unilateral cam contact opens, flies and lands.
@@ -85,6 +107,94 @@ pub struct Unilateral {
     /// `Some` for a compliant contact: a Hunt–Crossley normal force from
     /// the overlap instead of impacts and closed phases.
     pub compliant: Option<HuntCrossley>,
+}
+
+impl Limits {
+    /// The coordinate a joint's limits bound, as the relative constraint
+    /// Φ = c(q) − `value`: θ = φ_j − φ_i of a revolute, the stroke
+    /// s = (A_i v'_i)ᵀ(r_j^P − r_i^P) of a translational joint, the travel
+    /// (A_j v'_j)ᵀ(r_i^P − r_j^Q) of a revolute–translational pin along
+    /// its line. `None` for a joint kind that has no limits.
+    pub fn coordinate(c: &Constraint, value: f64) -> Option<RelativeCoord> {
+        let f = TimeFn::Const(value);
+        Some(match c {
+            Constraint::Revolute(r) => RelativeCoord {
+                body_i: r.body_i,
+                s_i: r.s_i,
+                body_j: r.body_j,
+                s_j: r.s_j,
+                coord: RelCoord::Phi,
+                f,
+            },
+            Constraint::Translational(t) => RelativeCoord {
+                body_i: t.body_i,
+                s_i: t.s_i,
+                body_j: t.body_j,
+                s_j: t.s_j,
+                coord: RelCoord::Along(t.v_i),
+                f,
+            },
+            Constraint::RevoluteTranslational(p) => RelativeCoord {
+                body_i: p.body_j,
+                s_i: p.s_j,
+                body_j: p.body_i,
+                s_j: p.s_i,
+                coord: RelCoord::Along(p.v_j),
+                f,
+            },
+            _ => return None,
+        })
+    }
+
+    /// The name and unit of the coordinate of [`coordinate`](Self::coordinate).
+    pub fn coordinate_name(c: &Constraint) -> Option<(&'static str, &'static str)> {
+        match c {
+            Constraint::Revolute(_) => Some(("angle", "rad")),
+            Constraint::Translational(_) => Some(("stroke", "m")),
+            Constraint::RevoluteTranslational(_) => Some(("travel", "m")),
+            _ => None,
+        }
+    }
+
+    /// Checks the limits of a joint of constraint `c`: a kind that has
+    /// them, finite values, lower < upper, at least one given, a law in
+    /// range.
+    pub fn validate(&self, c: &Constraint) -> Result<(), String> {
+        if Self::coordinate_name(c).is_none() {
+            return Err(format!(
+                "a {} joint has no limits; revolute, translational and \
+                 revolute_translational joints do",
+                c.kind()
+            ));
+        }
+        let num = crate::fmt_num::num;
+        let values = [self.lower, self.upper];
+        if values.iter().flatten().any(|v| !v.is_finite()) {
+            return Err("limits must be finite numbers".into());
+        }
+        match values {
+            [None, None] => return Err("limits need a lower or an upper value".into()),
+            [Some(lo), Some(hi)] if lo >= hi => {
+                return Err(format!(
+                    "the lower limit {} must be below the upper limit {}",
+                    num(lo),
+                    num(hi)
+                ))
+            }
+            _ => {}
+        }
+        let u = &self.law;
+        if !(0.0..=1.0).contains(&u.restitution) {
+            return Err(format!(
+                "restitution must be between 0 and 1, not {}",
+                num(u.restitution)
+            ));
+        }
+        if !(u.event_tol > 0.0 && u.rest_speed >= 0.0) {
+            return Err("event_tol must be positive and rest_speed not negative".into());
+        }
+        Ok(())
+    }
 }
 
 impl Default for Unilateral {
@@ -210,6 +320,7 @@ impl Model {
             own0: None,
             driver: false,
             unilateral: None,
+            limits: None,
         });
     }
 
@@ -221,6 +332,7 @@ impl Model {
             own0: None,
             driver: true,
             unilateral: None,
+            limits: None,
         });
     }
 
@@ -295,6 +407,10 @@ impl Model {
             }
             if let Some(o) = &j.own0 {
                 finite(&format!("joint '{}' starting parameters", j.name), o)?;
+            }
+            if let Some(l) = &j.limits {
+                l.validate(&j.constraint)
+                    .map_err(|e| ModelError::Invalid(format!("joint '{}': {e}", j.name)))?;
             }
         }
         let mut forces = HashMap::new();

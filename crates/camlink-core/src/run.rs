@@ -243,11 +243,14 @@ pub enum Kind {
     /// Warning: a cam contact's normal force is negative; the follower
     /// would leave the cam.
     LiftOff,
+    /// Warning: a driven motion takes a joint's coordinate out of its
+    /// limits (kinematics follows its drivers; [`crate::limits`]).
+    LimitExceeded,
 }
 
 impl Kind {
     /// Every kind, in declaration order.
-    pub const ALL: [Kind; 16] = [
+    pub const ALL: [Kind; 17] = [
         Kind::InvalidInput,
         Kind::NotDriven,
         Kind::Redundant,
@@ -264,6 +267,7 @@ impl Kind {
         Kind::Stopped,
         Kind::NearSingular,
         Kind::LiftOff,
+        Kind::LimitExceeded,
     ];
 
     /// The stable name, e.g. `not_converged`.
@@ -285,6 +289,7 @@ impl Kind {
             Kind::Stopped => "stopped",
             Kind::NearSingular => "near_singular",
             Kind::LiftOff => "lift_off",
+            Kind::LimitExceeded => "limit_exceeded",
         }
     }
 }
@@ -611,7 +616,7 @@ mod tests {
             .iter()
             .map(|k| {
                 let level = match k {
-                    Kind::NearSingular | Kind::LiftOff => "warning",
+                    Kind::NearSingular | Kind::LiftOff | Kind::LimitExceeded => "warning",
                     _ => "error",
                 };
                 (k.name().to_string(), level.to_string())

@@ -26,7 +26,7 @@ const LAYERS: &[&[&str]] = &[
     &["model"],
     &["assembly", "linsolve"],
     &["contact"],
-    &["run", "setting"],
+    &["run", "setting", "limits"],
     &["design", "diagnose", "cam_limits", "cam_contact"],
     &["kinematics", "cam_mechanism"],
     &["dynamics"],

@@ -106,6 +106,12 @@ pub(crate) fn with_suggestion(message: &str) -> String {
     };
     // The valid names are the quoted words after "expected".
     let candidates: Vec<&str> = valid.split('`').skip(1).step_by(2).collect();
+    if name == "limits" && !candidates.contains(&"limits") {
+        return format!(
+            "{message}: this joint kind has no limits; revolute, translational and \
+             revolute_translational joints do"
+        );
+    }
     format!("{message}{}", did_you_mean(name, candidates))
 }
 

@@ -15,8 +15,10 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::Deserialize;
 
 mod forces;
+mod limits;
 mod machine;
 pub use forces::ForceSpec;
+pub use limits::LimitsSpec;
 pub use machine::{MachineSection, MotorSection};
 
 /// A number, or a string holding an expression.
@@ -332,6 +334,9 @@ pub enum JointSpec {
         /// Default: the body origin [0, 0].
         #[serde(default)]
         point_j: Option<PointRef>,
+        /// End stops on the angle θ = φ_j − φ_i (rad).
+        #[serde(default)]
+        limits: Option<LimitsSpec>,
     },
     /// `point_j` slides on the line through `point_i` along `axis` (body i
     /// frame), and the relative angle φ_j − φ_i stays `angle` (2 equations).
@@ -349,6 +354,9 @@ pub enum JointSpec {
         /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         angle: Option<Num>,
+        /// End stops on the stroke (m): point_j from point_i along the axis.
+        #[serde(default)]
+        limits: Option<LimitsSpec>,
     },
     /// A massless link of `length` between `point_i` and `point_j` (1 equation).
     RevoluteRevolute {
@@ -382,6 +390,9 @@ pub enum JointSpec {
         /// Signed offset c of the pin to the left of the line (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         offset: Option<Num>,
+        /// End stops on the pin's travel along the line from point_j (m).
+        #[serde(default)]
+        limits: Option<LimitsSpec>,
     },
     /// Global x of a body point is constant (1 equation).
     AbsoluteX(AbsoluteCoordJoint),

@@ -29,6 +29,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 mod curves;
 mod forces;
 mod initial;
+mod limits;
 mod machine;
 pub(crate) use machine::machine;
 mod scale;
@@ -660,6 +661,7 @@ impl Ctx {
                 point_i,
                 body_j,
                 point_j,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -676,6 +678,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.set_limits(limits.as_ref(), p)?;
             }
             JointSpec::Translational {
                 name,
@@ -685,6 +688,7 @@ impl Ctx {
                 body_j,
                 point_j,
                 angle,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -713,6 +717,7 @@ impl Ctx {
                     },
                 );
                 self.add(name, c, false);
+                self.set_limits(limits.as_ref(), p)?;
                 self.defer_joint(angle.is_none(), p, "angle", "rad");
             }
             JointSpec::RevoluteRevolute {
@@ -763,6 +768,7 @@ impl Ctx {
                 point_j,
                 axis,
                 offset,
+                limits,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -787,6 +793,7 @@ impl Ctx {
                     offset,
                 };
                 self.add(name, c, false);
+                self.set_limits(limits.as_ref(), p)?;
                 self.defer_joint(left_out, p, "offset", "m");
             }
             JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {

@@ -13,12 +13,12 @@ fn load(text: &str) -> Loaded {
     load_str(text, Format::Toml, "test.toml").unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn ch(t: &Table, name: &str) -> Vec<f64> {
+pub(crate) fn ch(t: &Table, name: &str) -> Vec<f64> {
     t.channel(name)
         .unwrap_or_else(|| panic!("no channel {name} in {:?}", t.channels))
 }
 
-fn forward(l: &Loaded, t_end: f64, dt: f64, step: f64) -> (Table, Summary) {
+pub(crate) fn forward(l: &Loaded, t_end: f64, dt: f64, step: f64) -> (Table, Summary) {
     let times = time_grid(t_end, dt).unwrap();
     let settings = integrator::Settings {
         step,

@@ -23,12 +23,14 @@ import numpy as np
 
 from camlink._core import ModelError
 from camlink.results import Results
+from camlink.units import stop_of_revolute
 from camlink.warn import LiftOffWarning
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from camlink.model import Model
+    from camlink.records import JointRecord
 
 __all__ = ["JumpSpeed", "flight_summary", "jump_plot", "jump_speed"]
 
@@ -86,11 +88,15 @@ def jump_plot(results: Results, joint: str | None = None, *, width: float = 6.4)
     return fig
 
 
-def flight_summary(results: Results) -> str | None:
-    """One line on the flights and impacts of the unilateral contacts, or
-    None when there were none: per joint, the number of flights and their
-    greatest gap (mm), the number of impacts and the fastest approach
-    (m/s), and when the follower came to rest on its cam."""
+def flight_summary(
+    results: Results, joints: Sequence[JointRecord] | None = None
+) -> str | None:
+    """One line on the flights and impacts of the unilateral contacts and
+    joint stops, or None when there were none: per joint, the number of
+    flights and their greatest gap (mm), the number of impacts and the
+    fastest approach (m/s; rad/s on a revolute's stop, told apart given
+    the model's `joints`), and when the follower came to rest on its cam
+    or the joint on its stop."""
     flights = results.lift_off
     flights = flights[flights["greatest_gap"].notna()]
     impacts = results.impacts
@@ -100,15 +106,22 @@ def flight_summary(results: Results) -> str | None:
     for joint in dict.fromkeys([*flights["joint"], *impacts["joint"]]):
         f = flights[flights["joint"] == joint]
         i = impacts[impacts["joint"] == joint]
-        text = f"{joint}: {len(f)} flight{'s' * (len(f) != 1)}"
-        if len(f):
-            text += f" (greatest gap {1e3 * f['greatest_gap'].max():.4g} mm)"
-        text += f", {len(i)} impact{'s' * (len(i) != 1)}"
+        # A joint stop (`<joint>.lower`, `.upper`) has impacts, no flights.
+        stop = joint.rpartition(".")[2] in ("lower", "upper")
+        if stop:
+            text = f"{joint}: {len(i)} impact{'s' * (len(i) != 1)}"
+        else:
+            text = f"{joint}: {len(f)} flight{'s' * (len(f) != 1)}"
+            if len(f):
+                text += f" (greatest gap {1e3 * f['greatest_gap'].max():.4g} mm)"
+            text += f", {len(i)} impact{'s' * (len(i) != 1)}"
         if len(i):
-            text += f" (fastest approach {i['approach_speed'].max():.4g} m/s)"
+            speed = "rad/s" if stop_of_revolute(joint, joints or ()) else "m/s"
+            text += f" (fastest approach {i['approach_speed'].max():.4g} {speed})"
             closed = i[i["closed"]]
             if len(closed):
-                text += f", on the cam again from t = {closed['time'].iloc[-1]:.6g} s"
+                rest = "on its stop" if stop else "on the cam again"
+                text += f", {rest} from t = {closed['time'].iloc[-1]:.6g} s"
         parts.append(text)
     return "; ".join(parts)
 

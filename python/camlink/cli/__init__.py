@@ -277,7 +277,7 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"max |Φ| {summary['constraint_drift']:.3g}, "
                 f"max |Φ_q q̇ − ν| {summary['velocity_drift']:.3g}"
             )
-        flights = flight_summary(res)
+        flights = flight_summary(res, model.joints)
         if flights is not None:
             print(f"  {flights}")
     return EXIT_OK

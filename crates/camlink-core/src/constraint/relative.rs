@@ -68,6 +68,21 @@ pub struct RelativeDistance {
     pub f: TimeFn,
 }
 
+impl RelativeCoord {
+    /// The coordinate g(q) of Φ = g(q) − f(t) and its rate ġ = Φ_q q̇ at
+    /// the local state `x` (m and m/s, or rad and rad/s).
+    pub fn value_and_rate(&self, x: &Local) -> (f64, f64) {
+        let mut phi = [0.0; MAX_ROWS];
+        self.phi(x, &mut phi);
+        let mut jac = Jac::default();
+        self.jacobian(x, &mut jac);
+        let rate = (0..2)
+            .map(|k| (0..3).map(|c| jac.body[k][0][c] * x.qd[k][c]).sum::<f64>())
+            .sum();
+        (phi[0] + self.f.value(x.t), rate)
+    }
+}
+
 /// v / |v|.
 pub(super) fn unit(v: V2) -> V2 {
     scale(1.0 / norm(v), v)

@@ -21,6 +21,11 @@
 //! parameters' rates) and δ = e ġ⁻ (Nᵀ n_f) on the normal row. The
 //! impulse on body j along N is Λ-derived: NᵀΛ₁₂ or (Nᵀn_f) Λ₁.
 //!
+//! A joint stop ([`super::stops`]) is the one row Φ = c − c₀ of its
+//! coordinate with gap g = σΦ: its weight is w = −σ, so that
+//! Φ̇⁺ = −σ e ġ⁻ (ġ⁺ = −e ġ⁻), and its impulse −σΛ pushes the joint back
+//! into its range (N·s, or N·m·s for an angle).
+//!
 //! For e = 0 this is the plastic impact, q̇⁺ the M-orthogonal projection
 //! of q̇⁻ onto the closed constraints, losing the kinetic energy
 //! ½ m_eff (ġ⁻)², 1/m_eff = J M⁻¹ Jᵀ on the motions the other constraints
@@ -40,10 +45,28 @@ pub struct Outcome {
     pub impulse: f64,
 }
 
+/// The contact rows of curve-contact joint `j` of system `s` at `q` and
+/// their weights w along the normal N (global): the rows' indices among
+/// the joint's equations. `None` for a joint that is not a curve contact.
+pub fn contact_rows(s: &System, j: usize, q: &[f64], normal: V2) -> Option<Vec<(usize, f64)>> {
+    match &s.model.joints[j].constraint {
+        Constraint::CamFollower(_) => Some(vec![(0, normal[0]), (1, normal[1])]),
+        Constraint::FlatFollower(f) => {
+            let body = s.asm.body_col(f.body_j.0);
+            let phi_j = body.map_or(0.0, |c| q[c + 2]);
+            let n_f = perp(rot(phi_j, f.u_j));
+            Some(vec![(0, dot(normal, n_f))])
+        }
+        _ => None,
+    }
+}
+
 /// Solves the impact of joint `j` of the closed system `s` at (q, t):
 /// `qd` the velocity before (own coordinates' rates need not be set),
-/// `normal` N (global), `approach_rate` ġ⁻ (m/s, < 0), `e` the
-/// restitution. `None` when the matrix is singular.
+/// `rows` the joint's equations along the gap and their weights w (the
+/// velocity target of row r is ν_r + e ġ⁻ w_r; [`contact_rows`] for a
+/// curve contact), `approach_rate` ġ⁻ (m/s, < 0), `e` the restitution.
+/// The impulse is Σ w_r Λ_r. `None` when the matrix is singular.
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
     s: &System,
@@ -52,7 +75,7 @@ pub fn solve(
     q: &[f64],
     qd: &[f64],
     t: f64,
-    normal: V2,
+    rows: &[(usize, f64)],
     approach_rate: f64,
     e: f64,
 ) -> Option<Outcome> {
@@ -69,23 +92,12 @@ pub fn solve(
     s.asm.nu(s.model, q, t, &mut rhs[n..]);
     let r0 = n + s.asm.rows_of(s.model, j).start;
     let target = e * approach_rate;
-    // The contact's normal row(s) and their direction along N.
-    let rows: Vec<(usize, f64)> = match &s.model.joints[j].constraint {
-        Constraint::CamFollower(_) => vec![(r0, normal[0]), (r0 + 1, normal[1])],
-        Constraint::FlatFollower(f) => {
-            let body = s.asm.body_col(f.body_j.0);
-            let phi_j = body.map_or(0.0, |c| q[c + 2]);
-            let n_f = perp(rot(phi_j, f.u_j));
-            vec![(r0, dot(normal, n_f))]
-        }
-        _ => return None,
-    };
-    for &(r, w) in &rows {
-        rhs[r] += target * w;
+    for &(r, w) in rows {
+        rhs[r0 + r] += target * w;
     }
     aug.solve_refined(&mut rhs);
     aug.invalidate();
-    let impulse = rows.iter().map(|&(r, w)| w * rhs[r]).sum();
+    let impulse = rows.iter().map(|&(r, w)| w * rhs[r0 + r]).sum();
     rhs.truncate(n);
     Some(Outcome { qd: rhs, impulse })
 }

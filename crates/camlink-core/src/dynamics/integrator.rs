@@ -1538,7 +1538,7 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let mut watch = super::drift::DriftWatch::new(sink);
     let settings = &on_output_times(settings, times);
-    let mut summary = if model.joints.iter().any(|j| j.unilateral.is_some()) {
+    let mut summary = if model.joints.iter().any(|j| j.unilateral.is_some()) || super::stops::any(model) {
         super::unilateral::run(model, times, settings, points, &mut watch)?
     } else {
         run_bilateral(model, times, settings, points, &mut watch)?
@@ -1547,7 +1547,7 @@ pub fn run(
     Ok(summary)
 }
 
-/// [`run`] of a model without unilateral contacts.
+/// [`run`] of a model without unilateral contacts or joint stops.
 fn run_bilateral(
     model: &Model,
     times: &[f64],

@@ -23,6 +23,7 @@ use super::output::{self, Scratch};
 use super::project::IDENTITY;
 use super::system::{Augmented, System};
 use crate::kinematics;
+use crate::limits::LimitWatch;
 use crate::linsolve::SystemMatrix;
 use crate::model::Model;
 use crate::run::{self, AnalysisError, Kind, PointOutput, Settings, Sink, Summary};
@@ -158,9 +159,11 @@ pub fn run(
     let mut values = vec![0.0; names.len()];
     let mut scratch = Scratch::new(&s.sys);
     let mut prev: Option<f64> = None;
+    let mut limits = LimitWatch::new(model);
     for &t in times {
         run::check_next_time(prev, t)?;
         s.step(t, prev)?;
+        limits.observe(model, s.kin.assembly(), &s.kin.q, t);
         s.kin.outputs(points, &mut values[..nk]);
         output::fill(
             &s.sys,
@@ -177,5 +180,6 @@ pub fn run(
     }
     let mut summary = s.kin.summary.clone();
     lift_off.report(&mut summary);
+    summary.warnings.extend(limits.warnings(model));
     Ok(summary)
 }

@@ -21,7 +21,8 @@
 //! - forward dynamics, implicit index-3 generalized-α, in [`integrator`],
 //!   through bifurcation points with the branch rows of [`branch`],
 //!   with unilateral cam contacts (lift-off, flight, impact) in
-//!   [`unilateral`] and the impact law in [`impact`].
+//!   [`unilateral`], joint limits as end stops in [`stops`] and the
+//!   impact law in [`impact`].
 
 pub(crate) mod branch;
 pub mod contact_force;
@@ -35,5 +36,6 @@ pub mod project;
 pub mod reaction;
 pub mod redundant;
 pub mod statics;
+pub mod stops;
 pub mod system;
 pub mod unilateral;

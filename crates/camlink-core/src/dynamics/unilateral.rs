@@ -46,6 +46,7 @@
 use super::impact;
 use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
+use super::stops::{self, Stop};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
@@ -71,7 +72,7 @@ struct Contact {
     joint: usize,
     bodies: [BodyId; 2],
     cam: BodyId,
-    features: Features,
+    features: Watched,
     law: Unilateral,
     open: bool,
     /// The gap at the current state (open joints).
@@ -85,8 +86,27 @@ struct Contact {
 impl Contact {
     /// The gap at body coordinates `q`, `qd` of bodies i and j.
     fn gap(&self, q: [[f64; 3]; 2], qd: [[f64; 3]; 2]) -> Gap {
-        self.features.gap(q, qd, self.gap.map(|g| g.params))
+        match &self.features {
+            Watched::Curves(f) => f.gap(q, qd, self.gap.map(|g| g.params)),
+            Watched::Stop(s) => s.gap(q, qd),
+        }
     }
+
+    /// The joint stop this contact is, if it is one.
+    fn stop(&self) -> Option<&Stop> {
+        match &self.features {
+            Watched::Stop(s) => Some(s),
+            Watched::Curves(_) => None,
+        }
+    }
+}
+
+/// What a unilateral joint's gap is measured between: the features of a
+/// cam contact, or a joint's coordinate and its limit ([`super::stops`]).
+#[derive(Clone, Debug)]
+enum Watched {
+    Curves(Features),
+    Stop(Stop),
 }
 
 /// The normal force N (N) of closed contact joint `j` from its multipliers
@@ -158,6 +178,7 @@ fn contacts(
     q: &[f64],
     h: f64,
     t_span: f64,
+    stops: &[(usize, Stop)],
 ) -> Result<Vec<Contact>, AnalysisError> {
     let bad = |j: usize, what: &str| {
         AnalysisError::new(
@@ -174,12 +195,14 @@ fn contacts(
         if joint.driver {
             return Err(bad(j, "a driver cannot be unilateral"));
         }
-        let Some(view) = ContactView::of(model, j) else {
+        let stop = stops.iter().find(|(k, _)| *k == j).map(|(_, s)| s);
+        let view = ContactView::of(model, j);
+        if view.is_none() && stop.is_none() {
             return Err(bad(
                 j,
                 "only cam_follower and flat_follower joints can be unilateral",
             ));
-        };
+        }
         if !(0.0..=1.0).contains(&law.restitution) {
             return Err(bad(j, "restitution must be between 0 and 1"));
         }
@@ -203,12 +226,22 @@ fn contacts(
                 ),
             ));
         }
-        let x = sys.asm.local(model, j, q, &[], 0.0);
-        let features = gap_features(model, j, x.q).map_err(|what| bad(j, what))?;
+        let (bodies, cam, features) = match (view, stop) {
+            (Some(view), _) => {
+                let x = sys.asm.local(model, j, q, &[], 0.0);
+                let features = gap_features(model, j, x.q).map_err(|what| bad(j, what))?;
+                (view.bodies, view.cam(model), Watched::Curves(features))
+            }
+            (None, Some(s)) => {
+                let bodies = joint.constraint.bodies();
+                (bodies, bodies[0], Watched::Stop(s.clone()))
+            }
+            (None, None) => unreachable!("checked above"),
+        };
         out.push(Contact {
             joint: j,
-            bodies: view.bodies,
-            cam: view.cam(model),
+            bodies,
+            cam,
             features,
             law,
             open: false,
@@ -426,16 +459,20 @@ impl<'a> Run<'a> {
         if c.open {
             return c.gap.map_or(f64::INFINITY, |g| g.gap);
         }
+        let rows = self.full.asm.rows_of(self.full.model, c.joint);
+        let f = match &c.features {
+            Watched::Stop(s) => return s.push(self.lam_watch[rows.start]),
+            Watched::Curves(f) => f,
+        };
         let (q, _) = self.bodies(k);
         let o = self.full.asm.own_col(c.joint);
         let own = [self.q[o], self.q.get(o + 1).copied().unwrap_or(0.0)];
-        let rows = self.full.asm.rows_of(self.full.model, c.joint);
         normal_force(
             self.full.model,
             c.joint,
             q[1],
             &self.lam_watch[rows],
-            c.features.normal(q, own),
+            f.normal(q, own),
         )
     }
 
@@ -819,7 +856,12 @@ impl<'a> Run<'a> {
         }
         let q = it.q.clone();
         let (sys, aug) = it.system_and_matrix();
-        let Some(out) = impact::solve(sys, aug, jm, &q, &v, t, gap.normal, gap.rate, e) else {
+        let rows = match &self.contacts[k].features {
+            Watched::Stop(s) => Some(s.impact_rows().to_vec()),
+            Watched::Curves(_) => impact::contact_rows(sys, jm, &q, gap.normal),
+        };
+        let out = rows.and_then(|rows| impact::solve(sys, aug, jm, &q, &v, t, &rows, gap.rate, e));
+        let Some(out) = out else {
             return Err(AnalysisError::new(
                 Kind::LockUp,
                 t,
@@ -955,6 +997,10 @@ impl Row<'_, '_> {
             if let (Some(law), Some(g), Some(at)) = (c.law.compliant, gap, f.normal_at[k]) {
                 values[at] = law.force(-g.gap, -g.rate);
                 values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
+            } else if let (Some(s), Some(at)) = (c.stop(), f.normal_at[k]) {
+                // A rigid stop: −σλ while closed.
+                let row = self.full.asm.rows_of(f.model, c.joint).start;
+                values[at] = if open { 0.0 } else { s.push(self.lambda[row]) };
             }
         }
     }
@@ -1027,6 +1073,9 @@ pub fn run(
              contacts: run with fixed steps h, the events being located to event_tol",
         ));
     }
+    // Joint limits as stops: unilateral joints of the model run.
+    let (expanded, stops) = stops::expand(model)?;
+    let model = &expanded;
     let full = System::new(model);
     let (n, m) = (full.n(), full.m());
     let q0 = full.asm.initial_q(model);
@@ -1036,7 +1085,7 @@ pub fn run(
         qd0[c..c + 3].copy_from_slice(&b.qd0);
     }
     let t_span = times.iter().fold(0.0f64, |a, t| a.max(t.abs()));
-    let contacts = contacts(model, &full, &q0, settings.step, t_span)?;
+    let contacts = contacts(model, &full, &q0, settings.step, t_span, &stops)?;
     let k = contacts.len();
     let all: Vec<usize> = contacts.iter().map(|c| c.joint).collect();
     let models: Vec<Model> = (0..1usize << k)
@@ -1046,12 +1095,13 @@ pub fn run(
                 .map(|b| all[b])
                 .collect();
             let mut m = without(model, &removed);
-            // A compliant contact acts through its Hunt–Crossley force.
+            // A compliant contact acts through its Hunt–Crossley force (a
+            // compliant stop's is a force of the model already).
             for c in contacts.iter() {
-                if let Some(law) = c.law.compliant {
+                if let (Some(law), Watched::Curves(features)) = (c.law.compliant, &c.features) {
                     let force = CompliantContact {
                         bodies: c.bodies,
-                        features: c.features.clone(),
+                        features: features.clone(),
                         law,
                     };
                     let name = format!("{}.contact", model.joints[c.joint].name);
@@ -1124,12 +1174,19 @@ pub fn run(
         names.push(format!("{name}.gap"));
         names.push(format!("{name}.state"));
     }
-    // Where each unilateral joint's normal force channel is.
+    for c in &r.contacts {
+        if let Some(s) = c.stop() {
+            names.push(format!("{}.{}", model.joints[c.joint].name, s.load));
+        }
+    }
+    // Where each unilateral joint's normal force channel is: a stop's
+    // push into its range.
     let normal_at: Vec<Option<usize>> = r
         .contacts
         .iter()
         .map(|c| {
-            let name = format!("{}.normal_force", model.joints[c.joint].name);
+            let kind = c.stop().map_or("normal_force", |s| s.load);
+            let name = format!("{}.{kind}", model.joints[c.joint].name);
             names.iter().position(|n| *n == name)
         })
         .collect();
@@ -1215,13 +1272,23 @@ pub fn run(
         state.fill(&mut fill, &r.contacts, contacts, &mut values);
         sink.row(t, &values).map_err(|s| s.at(t))?;
     }
-    // Flights under way at the end, then the solver counts of every model.
+    // Flights under way at the end (a stop's time off its limit is no
+    // flight), then the solver counts of every model.
     let mut summary = std::mem::take(&mut r.summary);
     for c in &mut r.contacts {
         if let Some(f) = c.flight.take() {
             summary.flights.push(f);
         }
     }
+    let stop_names: Vec<&str> = r
+        .contacts
+        .iter()
+        .filter(|c| c.stop().is_some())
+        .map(|c| model.joints[c.joint].name.as_str())
+        .collect();
+    summary
+        .flights
+        .retain(|f| !stop_names.contains(&f.joint.as_str()));
     summary
         .flights
         .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));

@@ -20,7 +20,7 @@
 //! and ∂Q/∂q̇ are central differences of Q (the witness points move with
 //! the bodies); the potential of the elastic part is V = k δⁿ⁺¹/(n + 1).
 
-use super::{Applied, BodyJac, BodyQ, ForceError};
+use super::{central_derivatives, Applied, BodyJac, BodyQ, ForceError};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::curve::distance::Features;
@@ -44,6 +44,15 @@ impl HuntCrossley {
             return 0.0;
         }
         (self.stiffness * delta.powf(self.exponent) * (1.0 + self.damping * rate)).max(0.0)
+    }
+
+    /// The elastic part's potential V = k δⁿ⁺¹/(n + 1) (J) at overlap δ (m).
+    pub fn potential(&self, delta: f64) -> f64 {
+        if delta <= 0.0 {
+            return 0.0;
+        }
+        let n = self.exponent;
+        self.stiffness * delta.powf(n + 1.0) / (n + 1.0)
     }
 }
 
@@ -96,38 +105,11 @@ impl Applied for CompliantContact {
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
-        for b in 0..2 {
-            for c in 0..3 {
-                for vel in [false, true] {
-                    let (mut xp, mut xm) = (*x, *x);
-                    let (p, m) = if vel {
-                        (&mut xp.qd[b][c], &mut xm.qd[b][c])
-                    } else {
-                        (&mut xp.q[b][c], &mut xm.q[b][c])
-                    };
-                    *p += H;
-                    *m -= H;
-                    let (mut qp, mut qm) = (BodyQ::default(), BodyQ::default());
-                    self.contact_force(&xp, &mut qp);
-                    self.contact_force(&xm, &mut qm);
-                    let d = if vel { &mut *dqd } else { &mut *dq };
-                    for a in 0..2 {
-                        for r in 0..3 {
-                            d[a][b][r][c] = (qp[a][r] - qm[a][r]) / (2.0 * H);
-                        }
-                    }
-                }
-            }
-        }
+        central_derivatives(x, H, |x, out| self.contact_force(x, out), dq, dqd);
     }
 
     fn potential(&self, x: &Local) -> f64 {
-        let delta = -self.features.gap(x.q, x.qd, None).gap;
-        if delta <= 0.0 {
-            return 0.0;
-        }
-        let n = self.law.exponent;
-        self.law.stiffness * delta.powf(n + 1.0) / (n + 1.0)
+        self.law.potential(-self.features.gap(x.q, x.qd, None).gap)
     }
 }
 

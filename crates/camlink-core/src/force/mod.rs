@@ -26,6 +26,7 @@ use crate::constraint::Local;
 
 pub mod callback;
 pub mod compliant_contact;
+pub mod joint_stop;
 pub mod point;
 pub mod rsda;
 pub mod state;
@@ -146,7 +147,44 @@ forces! {
     TranslationalDamper(translational_damper::TranslationalDamper),
     Callback(callback::Callback),
     CompliantContact(compliant_contact::CompliantContact),
+    JointStop(joint_stop::JointStop),
     State(state::StateForce),
+}
+
+/// ∂Q/∂q into `dq` and ∂Q/∂q̇ into `dqd` by central differences of step
+/// `h` (m, rad; m/s, rad/s) of `q_of`, Q at a local state: for forces
+/// whose Q is continuous but awkward to differentiate by hand (a contact's
+/// witness points move with the bodies).
+pub(crate) fn central_derivatives(
+    x: &Local,
+    h: f64,
+    q_of: impl Fn(&Local, &mut BodyQ),
+    dq: &mut BodyJac,
+    dqd: &mut BodyJac,
+) {
+    for b in 0..2 {
+        for c in 0..3 {
+            for vel in [false, true] {
+                let (mut xp, mut xm) = (*x, *x);
+                let (p, m) = if vel {
+                    (&mut xp.qd[b][c], &mut xm.qd[b][c])
+                } else {
+                    (&mut xp.q[b][c], &mut xm.q[b][c])
+                };
+                *p += h;
+                *m -= h;
+                let (mut qp, mut qm) = (BodyQ::default(), BodyQ::default());
+                q_of(&xp, &mut qp);
+                q_of(&xm, &mut qm);
+                let d = if vel { &mut *dqd } else { &mut *dq };
+                for a in 0..2 {
+                    for r in 0..3 {
+                        d[a][b][r][c] = (qp[a][r] - qm[a][r]) / (2.0 * h);
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// A force that could not be computed: a user function failed. The

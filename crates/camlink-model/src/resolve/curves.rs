@@ -49,6 +49,16 @@ impl CurveSpec {
     }
 }
 
+/// The keys of a unilateral law, in the order [`Ctx::unilateral_law`] reads them.
+const UNILATERAL_KEYS: [&str; 6] = [
+    "restitution",
+    "rest_speed",
+    "event_tol",
+    "stiffness",
+    "exponent",
+    "damping",
+];
+
 impl Ctx {
     /// Builds `curves[k]` on its body.
     pub(super) fn curve(&mut self, c: &CurveSpec, k: usize) -> R<()> {
@@ -553,14 +563,7 @@ impl Ctx {
     /// [restitution, rest_speed, event_tol, stiffness, exponent, damping]
     /// checked field by field.
     fn set_unilateral(&mut self, on: bool, law: [&Option<Num>; 6], p: &str) -> R<()> {
-        let names = [
-            "restitution",
-            "rest_speed",
-            "event_tol",
-            "stiffness",
-            "exponent",
-            "damping",
-        ];
+        let names = UNILATERAL_KEYS;
         if !on {
             if let Some(k) = law.iter().position(|v| v.is_some()) {
                 return fail(
@@ -570,6 +573,18 @@ impl Ctx {
             }
             return Ok(());
         }
+        let u = self.unilateral_law(law, p)?;
+        if let Some(j) = self.model.joints.last_mut() {
+            j.unilateral = Some(u);
+        }
+        Ok(())
+    }
+
+    /// The law of a unilateral contact or a joint stop at field `p`, from
+    /// [restitution, rest_speed, event_tol, stiffness, exponent, damping],
+    /// checked field by field.
+    pub(super) fn unilateral_law(&self, law: [&Option<Num>; 6], p: &str) -> R<Unilateral> {
+        let names = UNILATERAL_KEYS;
         let mut vals = [None; 6];
         for (k, v) in law.iter().enumerate() {
             if let Some(n) = v {
@@ -641,10 +656,7 @@ impl Ctx {
                 }
             }
         }
-        if let Some(j) = self.model.joints.last_mut() {
-            j.unilateral = Some(u);
-        }
-        Ok(())
+        Ok(u)
     }
 
     pub(super) fn flat_follower(&mut self, c: &FlatFollowerJoint, k: usize) -> R<()> {
