@@ -66,6 +66,15 @@ use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 /// the chord iteration has stalled: the next iteration refactors.
 const STALL: f64 = 0.5;
 
+/// A chord iteration whose correction is more than this fraction of the
+/// one before, short of a stall ([`STALL`]), refactors for the next
+/// iteration, while the correction is more than [`ABOVE_ROUNDING`] times
+/// the rounding of the largest coordinate.
+const SLOW: f64 = 0.2;
+
+/// See [`SLOW`].
+const ABOVE_ROUNDING: f64 = 1e3;
+
 /// The retry of a step with a fresh matrix each iteration may take this
 /// many times `max_iter` iterations.
 const SINGULAR_ITER: usize = 4;
@@ -1161,6 +1170,19 @@ impl<'m> Integrator<'m> {
             } else {
                 f64::INFINITY
             };
+            // The acceleration's bound, tol/β' (2.6e-13 m at h = 1 ms,
+            // tol = 1e-6), lies orders of magnitude below the position's:
+            // it is checked against the error left by this correction,
+            // θ/(1 − θ) |Δ_k|, not against the correction itself, which
+            // would cost a chord iteration or two more for nothing (the
+            // first correction, with no rate yet, counts whole).
+            let eta_left = if last.is_infinite() {
+                1.0
+            } else if theta < 1.0 {
+                theta / (1.0 - theta)
+            } else {
+                f64::INFINITY
+            };
             // At a singular position (S_ε factored) the lost direction
             // converges as slowly as an augmented-Lagrangian update; the
             // iteration stops when the position corrections are within tol.
@@ -1190,7 +1212,7 @@ impl<'m> Integrator<'m> {
                     let round = newton::rounding(self.q[k]);
                     let position = newton::settled(de, self.q[k], tol) || d.abs() <= round;
                     let velocity = newton::settled(gp * de, self.qd[k], tol) || d.abs() <= round;
-                    let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
+                    let acceleration = (bp * eta_left * d).abs() <= tol || d.abs() <= round;
                     if !(position && velocity && acceleration) {
                         pending = pending.max(d.abs());
                     }
@@ -1217,6 +1239,19 @@ impl<'m> Integrator<'m> {
                 self.t = t1;
                 self.summary.steps += 1;
                 return Ok(Attempt::Converged);
+            }
+            // A chord iteration that contracts slowly has an old matrix:
+            // the next iteration refactors (Newton's quadratic rate
+            // reaches the acceleration's bound in one or two iterations
+            // where the chord needs several). Corrections near the
+            // rounding of the coordinates, and the lost direction at a
+            // singular position, converge slowly whatever the matrix.
+            if !lost
+                && theta > SLOW
+                && dmax <= STALL * last
+                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
+            {
+                self.aug.invalidate();
             }
             // An iteration that stalls has reached the noise of the solve
             // (measured once per attempt; it applies from the next
