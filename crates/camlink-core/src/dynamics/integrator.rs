@@ -165,9 +165,10 @@ pub struct Settings {
     /// Spectral radius at infinity ρ∞ ∈ [0, 1].
     pub rho_inf: f64,
     /// Newton stops when every coordinate's last correction |Δq_k|, its
-    /// velocity's |Δq̇_k| = γ' |Δq_k| and its acceleration's
-    /// |Δq̈_k| = β' |Δq_k| are each ≤ tol (m or rad; m/s or rad/s; m/s² or
-    /// rad/s²) or within the rounding of the value ([`crate::newton`]),
+    /// velocity's |Δq̇_k| = γ' |Δq_k| and the acceleration error it
+    /// leaves, β' θ/(1 − θ) |Δq_k| (θ: the contraction of the largest
+    /// correction; the first counts whole), are each ≤ tol (m or rad; m/s
+    /// or rad/s; m/s² or rad/s²) or within the rounding of the value ([`crate::newton`]),
     /// whichever is larger. In the error-controlled mode tol is at most a
     /// tenth of atol + rtol |q_k|.
     pub tol: f64,
