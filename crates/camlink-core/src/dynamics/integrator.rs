@@ -165,10 +165,9 @@ pub struct Settings {
     /// Spectral radius at infinity ρ∞ ∈ [0, 1].
     pub rho_inf: f64,
     /// Newton stops when every coordinate's last correction |Δq_k|, its
-    /// velocity's |Δq̇_k| = γ' |Δq_k| and the acceleration error it
-    /// leaves, β' θ/(1 − θ) |Δq_k| (θ: the contraction of the largest
-    /// correction; the first counts whole), are each ≤ tol (m or rad; m/s
-    /// or rad/s; m/s² or rad/s²) or within the rounding of the value ([`crate::newton`]),
+    /// velocity's |Δq̇_k| = γ' |Δq_k| and its acceleration's
+    /// |Δq̈_k| = β' |Δq_k| are each ≤ tol (m or rad; m/s or rad/s; m/s² or
+    /// rad/s²) or within the rounding of the value ([`crate::newton`]),
     /// whichever is larger. In the error-controlled mode tol is at most a
     /// tenth of atol + rtol |q_k|.
     pub tol: f64,
@@ -1217,19 +1216,6 @@ impl<'m> Integrator<'m> {
             } else {
                 f64::INFINITY
             };
-            // The acceleration's bound, tol/β' (2.6e-13 m at h = 1 ms,
-            // tol = 1e-6), lies orders of magnitude below the position's:
-            // it is checked against the error left by this correction,
-            // θ/(1 − θ) |Δ_k|, not against the correction itself, which
-            // would cost a chord iteration or two more for nothing (the
-            // first correction, with no rate yet, counts whole).
-            let eta_left = if last.is_infinite() {
-                1.0
-            } else if theta < 1.0 {
-                theta / (1.0 - theta)
-            } else {
-                f64::INFINITY
-            };
             // At a singular position (S_ε factored) the lost direction
             // converges as slowly as an augmented-Lagrangian update; the
             // iteration stops when the position corrections are within tol.
@@ -1259,7 +1245,7 @@ impl<'m> Integrator<'m> {
                     let round = newton::rounding(self.q[k]);
                     let position = newton::settled(de, self.q[k], tol) || d.abs() <= round;
                     let velocity = newton::settled(gp * de, self.qd[k], tol) || d.abs() <= round;
-                    let acceleration = (bp * eta_left * d).abs() <= tol || d.abs() <= round;
+                    let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
                     if !(position && velocity && acceleration) {
                         pending = pending.max(d.abs());
                     }
