@@ -542,12 +542,7 @@ impl<'m> Integrator<'m> {
         self.t = s.t;
         self.h_prev = s.h_prev;
         self.h_a = s.h_a;
-        let from = &s.state;
-        self.q.copy_from_slice(&from.q);
-        self.qd.copy_from_slice(&from.qd);
-        self.qdd.copy_from_slice(&from.qdd);
-        self.lambda.copy_from_slice(&from.lambda);
-        self.a.copy_from_slice(&from.a);
+        self.load(&s.state);
         self.prev.qdd.copy_from_slice(&s.prev.qdd);
         self.prev.lambda.copy_from_slice(&s.prev.lambda);
     }
@@ -977,7 +972,14 @@ impl<'m> Integrator<'m> {
 
     fn restore(&mut self) {
         self.h_a = self.h_a_saved;
-        let from = &self.saved;
+        // (Moved out and back: no copy of the vectors.)
+        let saved = std::mem::take(&mut self.saved);
+        self.load(&saved);
+        self.saved = saved;
+    }
+
+    /// Sets (q, q̇, q̈, λ, a) to `from`'s.
+    fn load(&mut self, from: &State) {
         self.q.copy_from_slice(&from.q);
         self.qd.copy_from_slice(&from.qd);
         self.qdd.copy_from_slice(&from.qdd);
