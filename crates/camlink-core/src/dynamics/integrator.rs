@@ -66,6 +66,15 @@ use crate::run::{self, AnalysisError, Kind, PointOutput, Sink, Summary};
 /// the chord iteration has stalled: the next iteration refactors.
 const STALL: f64 = 0.5;
 
+/// A chord iteration whose correction is more than this fraction of the
+/// one before, short of a stall ([`STALL`]), refactors for the next
+/// iteration, while the correction is more than [`ABOVE_ROUNDING`] times
+/// the rounding of the largest coordinate.
+const SLOW: f64 = 0.2;
+
+/// See [`SLOW`].
+const ABOVE_ROUNDING: f64 = 1e3;
+
 /// The retry of a step with a fresh matrix each iteration may take this
 /// many times `max_iter` iterations.
 const SINGULAR_ITER: usize = 4;
@@ -205,6 +214,45 @@ impl Coeffs {
             gamma,
         }
     }
+
+    /// The pseudo-acceleration a_{n+1} of the recurrence
+    /// (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) q̈_{n+1} + α_f q̈_n, for
+    /// one coordinate.
+    #[inline]
+    pub fn next_a(&self, qdd1: f64, qdd0: f64, a0: f64) -> f64 {
+        ((1.0 - self.alpha_f) * qdd1 + self.alpha_f * qdd0 - self.alpha_m * a0)
+            / (1.0 - self.alpha_m)
+    }
+}
+
+/// The state at one time: positions q (m or rad), velocities q̇,
+/// accelerations q̈, multipliers λ and the pseudo-acceleration a.
+#[derive(Clone, Debug, Default)]
+struct State {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+    a: Vec<f64>,
+}
+
+impl State {
+    /// Copies `from` into this state, reusing its vectors.
+    fn copy_from(&mut self, from: &State) {
+        self.q.clone_from(&from.q);
+        self.qd.clone_from(&from.qd);
+        self.qdd.clone_from(&from.qdd);
+        self.lambda.clone_from(&from.lambda);
+        self.a.clone_from(&from.a);
+    }
+}
+
+/// q̈ and λ at the start of the last step, from which the predictor
+/// extrapolates the next step's linearly.
+#[derive(Clone, Debug, Default)]
+struct History {
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
 }
 
 /// A copy of an integrator's state: t, (q, q̇, q̈, λ, a) and the
@@ -214,7 +262,8 @@ pub struct Snapshot {
     t: f64,
     h_prev: f64,
     h_a: f64,
-    vectors: [Vec<f64>; 7],
+    state: State,
+    prev: History,
 }
 
 impl Snapshot {
@@ -223,9 +272,9 @@ impl Snapshot {
         self.t = s.t;
         self.h_prev = s.h_prev;
         self.h_a = s.h_a;
-        for (to, from) in self.vectors.iter_mut().zip(&s.vectors) {
-            to.clone_from(from);
-        }
+        self.state.copy_from(&s.state);
+        self.prev.qdd.clone_from(&s.prev.qdd);
+        self.prev.lambda.clone_from(&s.prev.lambda);
     }
 
     /// Its time (s).
@@ -265,12 +314,12 @@ pub struct Integrator<'m> {
     h_a_saved: f64,
     /// The step h the factorization was made for (0: none).
     h_factored: f64,
-    /// Start-of-step copies (q, q̇, q̈, λ, a), to retry a step, and the
-    /// time they hold (s).
-    saved: [Vec<f64>; 5],
+    /// The state at the start of the step, to retry it, and its time (s).
+    saved: State,
     t_saved: f64,
-    /// q̈ and λ of the step before, and its length (0: none), for the predictor.
-    prev: [Vec<f64>; 2],
+    /// q̈ and λ at the start of the step before, and its length (0:
+    /// none), for the predictor.
+    prev: History,
     h_prev: f64,
     rhs: Vec<f64>,
     /// Scratch of length n.
@@ -397,15 +446,18 @@ impl<'m> Integrator<'m> {
             h_a: 0.0,
             h_a_saved: 0.0,
             h_factored: 0.0,
-            saved: [
-                q.clone(),
-                qd.clone(),
-                vec![0.0; n],
-                vec![0.0; m],
-                vec![0.0; n],
-            ],
+            saved: State {
+                q: q.clone(),
+                qd: qd.clone(),
+                qdd: vec![0.0; n],
+                lambda: vec![0.0; m],
+                a: vec![0.0; n],
+            },
             t_saved: t0,
-            prev: [vec![0.0; n], vec![0.0; m]],
+            prev: History {
+                qdd: vec![0.0; n],
+                lambda: vec![0.0; m],
+            },
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
             work: vec![0.0; n],
@@ -469,15 +521,16 @@ impl<'m> Integrator<'m> {
         s.t = self.t;
         s.h_prev = self.h_prev;
         s.h_a = self.h_a;
-        for (to, from) in s.vectors.iter_mut().zip([
-            &self.q,
-            &self.qd,
-            &self.qdd,
-            &self.lambda,
-            &self.a,
-            &self.prev[0],
-            &self.prev[1],
-        ]) {
+        let to = &mut s.state;
+        for (to, from) in [
+            (&mut to.q, &self.q),
+            (&mut to.qd, &self.qd),
+            (&mut to.qdd, &self.qdd),
+            (&mut to.lambda, &self.lambda),
+            (&mut to.a, &self.a),
+            (&mut s.prev.qdd, &self.prev.qdd),
+            (&mut s.prev.lambda, &self.prev.lambda),
+        ] {
             to.clear();
             to.extend_from_slice(from);
         }
@@ -489,14 +542,9 @@ impl<'m> Integrator<'m> {
         self.t = s.t;
         self.h_prev = s.h_prev;
         self.h_a = s.h_a;
-        let [q, qd, qdd, l, a, p0, p1] = &s.vectors;
-        self.q.copy_from_slice(q);
-        self.qd.copy_from_slice(qd);
-        self.qdd.copy_from_slice(qdd);
-        self.lambda.copy_from_slice(l);
-        self.a.copy_from_slice(a);
-        self.prev[0].copy_from_slice(p0);
-        self.prev[1].copy_from_slice(p1);
+        self.load(&s.state);
+        self.prev.qdd.copy_from_slice(&s.prev.qdd);
+        self.prev.lambda.copy_from_slice(&s.prev.lambda);
     }
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
@@ -567,8 +615,8 @@ impl<'m> Integrator<'m> {
         // Projected, or where the projection fails, as interpolated.
         for project in [true, false] {
             let d = self.dense.as_mut().expect("dense output");
-            let [q0, v0, a0, ..] = &self.saved;
-            let start = (self.t_saved, [&q0[..], v0, a0]);
+            let s0 = &self.saved;
+            let start = (self.t_saved, [&s0.q[..], &s0.qd, &s0.qdd]);
             hermite(d, t, start, (self.t, [&self.q, &self.qd, &self.qdd]));
             let settled = self.settle_dense(project);
             if settled.is_ok() || !project {
@@ -591,9 +639,13 @@ impl<'m> Integrator<'m> {
         // Projected, or where the projection fails, as interpolated.
         for project in [true, false] {
             let d = self.dense.as_mut().expect("dense output");
-            let [q0, v0, a0, ..] = &start.vectors;
-            let [q1, v1, a1, ..] = &end.vectors;
-            hermite(d, t, (start.t, [q0, v0, a0]), (end.t, [q1, v1, a1]));
+            let (s0, s1) = (&start.state, &end.state);
+            hermite(
+                d,
+                t,
+                (start.t, [&s0.q, &s0.qd, &s0.qdd]),
+                (end.t, [&s1.q, &s1.qd, &s1.qdd]),
+            );
             let settled = self.settle_dense(project);
             if settled.is_ok() || !project {
                 return settled;
@@ -833,7 +885,7 @@ impl<'m> Integrator<'m> {
     fn crossed_branch(&mut self) -> Option<BranchRows> {
         let rows = self.guard.take()?;
         let n = self.sys.n();
-        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.saved[0]) {
+        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.saved.q) {
             *d = q - q0;
         }
         let across = rows
@@ -910,22 +962,29 @@ impl<'m> Integrator<'m> {
     fn save(&mut self) {
         self.t_saved = self.t;
         self.h_a_saved = self.h_a;
-        let [q, qd, qdd, l, a] = &mut self.saved;
-        q.copy_from_slice(&self.q);
-        qd.copy_from_slice(&self.qd);
-        qdd.copy_from_slice(&self.qdd);
-        l.copy_from_slice(&self.lambda);
-        a.copy_from_slice(&self.a);
+        let to = &mut self.saved;
+        to.q.copy_from_slice(&self.q);
+        to.qd.copy_from_slice(&self.qd);
+        to.qdd.copy_from_slice(&self.qdd);
+        to.lambda.copy_from_slice(&self.lambda);
+        to.a.copy_from_slice(&self.a);
     }
 
     fn restore(&mut self) {
         self.h_a = self.h_a_saved;
-        let [q, qd, qdd, l, a] = &self.saved;
-        self.q.copy_from_slice(q);
-        self.qd.copy_from_slice(qd);
-        self.qdd.copy_from_slice(qdd);
-        self.lambda.copy_from_slice(l);
-        self.a.copy_from_slice(a);
+        // (Moved out and back: no copy of the vectors.)
+        let saved = std::mem::take(&mut self.saved);
+        self.load(&saved);
+        self.saved = saved;
+    }
+
+    /// Sets (q, q̇, q̈, λ, a) to `from`'s.
+    fn load(&mut self, from: &State) {
+        self.q.copy_from_slice(&from.q);
+        self.qd.copy_from_slice(&from.qd);
+        self.qdd.copy_from_slice(&from.qdd);
+        self.lambda.copy_from_slice(&from.lambda);
+        self.a.copy_from_slice(&from.a);
     }
 
     /// One step; Ok(false) when Newton did not converge.
@@ -971,16 +1030,14 @@ impl<'m> Integrator<'m> {
             0.0
         };
         for k in 0..n {
-            self.qdd[k] += r * (self.qdd[k] - self.prev[0][k]);
+            self.qdd[k] += r * (self.qdd[k] - self.prev.qdd[k]);
         }
         for k in 0..self.lambda.len() {
-            self.lambda[k] += r * (self.lambda[k] - self.prev[1][k]);
+            self.lambda[k] += r * (self.lambda[k] - self.prev.lambda[k]);
         }
         for k in 0..n {
             let a0 = self.a[k];
-            let a1 = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
-                - c.alpha_m * a0)
-                / (1.0 - c.alpha_m);
+            let a1 = c.next_a(self.qdd[k], self.saved.qdd[k], a0);
             self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
@@ -1106,7 +1163,7 @@ impl<'m> Integrator<'m> {
                 let nm = self.rhs.len();
                 let y = &mut self.ext[..b.k];
                 for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
-                    let moved = self.q.iter().zip(&self.saved[0]).zip(&self.rhs);
+                    let moved = self.q.iter().zip(&self.saved.q).zip(&self.rhs);
                     *yw = -row
                         .iter()
                         .zip(moved)
@@ -1205,18 +1262,29 @@ impl<'m> Integrator<'m> {
             if settled && pending <= self.noise {
                 // a_{n+1} from the converged q̈_{n+1}.
                 for k in 0..n {
-                    self.a[k] = ((1.0 - c.alpha_f) * self.qdd[k] + c.alpha_f * self.saved[2][k]
-                        - c.alpha_m * self.a[k])
-                        / (1.0 - c.alpha_m);
+                    self.a[k] = c.next_a(self.qdd[k], self.saved.qdd[k], self.a[k]);
                 }
-                self.prev[0].copy_from_slice(&self.saved[2]);
-                self.lambda_max_before = max_abs(&self.prev[1]);
-                self.prev[1].copy_from_slice(&self.saved[3]);
+                self.prev.qdd.copy_from_slice(&self.saved.qdd);
+                self.lambda_max_before = max_abs(&self.prev.lambda);
+                self.prev.lambda.copy_from_slice(&self.saved.lambda);
                 self.h_prev = h;
                 self.h_a = h;
                 self.t = t1;
                 self.summary.steps += 1;
                 return Ok(Attempt::Converged);
+            }
+            // A chord iteration that contracts slowly has an old matrix:
+            // the next iteration refactors (Newton's quadratic rate
+            // reaches the acceleration's bound in one or two iterations
+            // where the chord needs several). Corrections near the
+            // rounding of the coordinates, and the lost direction at a
+            // singular position, converge slowly whatever the matrix.
+            if !lost
+                && theta > SLOW
+                && dmax <= STALL * last
+                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
+            {
+                self.aug.invalidate();
             }
             // An iteration that stalls has reached the noise of the solve
             // (measured once per attempt; it applies from the next
@@ -1269,8 +1337,8 @@ impl<'m> Integrator<'m> {
     fn lambda_jumps(&self) -> bool {
         let (l0, l1, l2) = (
             self.lambda_max_before,
-            max_abs(&self.prev[1]),
-            max_abs(&self.saved[3]),
+            max_abs(&self.prev.lambda),
+            max_abs(&self.saved.lambda),
         );
         self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
     }
@@ -1313,7 +1381,7 @@ impl<'m> Integrator<'m> {
         let w = h * h * (self.c.beta - 1.0 / 6.0).abs();
         let mut e = 0.0f64;
         for k in 0..self.q.len() {
-            let d = w * (self.qdd[k] - self.saved[2][k]);
+            let d = w * (self.qdd[k] - self.saved.qdd[k]);
             e = e.max(d.abs() / (ad.atol + ad.rtol * self.q[k].abs()));
         }
         e
