@@ -9,6 +9,7 @@ use std::collections::HashMap;
 pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
 use crate::force::compliant_contact::HuntCrossley;
+use crate::force::friction::Friction;
 use crate::force::{Applied, Force};
 use crate::math::V2;
 
@@ -69,6 +70,9 @@ pub struct Joint {
     /// it where its normal force would turn negative and closes it again
     /// at impact ([`crate::dynamics::unilateral`]).
     pub unilateral: Option<Unilateral>,
+    /// `Some` for Coulomb friction in the joint (a revolute,
+    /// translational or curve-contact joint; [`Model::friction_kinds`]).
+    pub friction: Option<Friction>,
 }
 
 /// How a unilateral cam contact opens, flies and lands.
@@ -193,6 +197,7 @@ impl Model {
             own0: None,
             driver: false,
             unilateral: None,
+            friction: None,
         });
     }
 
@@ -204,6 +209,7 @@ impl Model {
             own0: None,
             driver: true,
             unilateral: None,
+            friction: None,
         });
     }
 
@@ -272,6 +278,9 @@ impl Model {
             if let Some(o) = &j.own0 {
                 finite(&format!("joint '{}' starting parameters", j.name), o)?;
             }
+            if let Some(f) = &j.friction {
+                Self::check_friction(j, f)?;
+            }
         }
         let mut forces = HashMap::new();
         for f in &self.forces {
@@ -291,6 +300,51 @@ impl Model {
                 .map_err(|e| ModelError::Invalid(format!("force '{}': {e}", f.name)))?;
         }
         finite("gravity", &self.gravity)
+    }
+}
+
+impl Model {
+    /// The joint kinds that take friction, as model files name them.
+    pub fn friction_kinds() -> &'static [&'static str] {
+        &[
+            "revolute",
+            "translational",
+            "point_follower",
+            "cam_follower",
+            "flat_follower",
+        ]
+    }
+
+    /// Friction only on a joint (not a driver) of a kind that takes it,
+    /// a pin radius only on a revolute, valid numbers.
+    fn check_friction(j: &Joint, f: &Friction) -> Result<(), ModelError> {
+        let invalid = |m: String| ModelError::Invalid(format!("joint '{}': {m}", j.name));
+        let c = &j.constraint;
+        let takes = !j.driver
+            && matches!(
+                c,
+                Constraint::Revolute(_)
+                    | Constraint::Translational(_)
+                    | Constraint::PointFollower(_)
+                    | Constraint::CamFollower(_)
+                    | Constraint::FlatFollower(_)
+            );
+        if !takes {
+            return Err(invalid(format!(
+                "a {} {} takes no friction (friction is modelled in {} joints)",
+                c.kind(),
+                if j.driver { "driver" } else { "joint" },
+                Self::friction_kinds().join(", ")
+            )));
+        }
+        if f.radius != 0.0 && !matches!(c, Constraint::Revolute(_)) {
+            return Err(invalid(
+                "a friction radius is the pin radius of a revolute joint; a sliding \
+                 joint's friction is μ times its normal force"
+                    .into(),
+            ));
+        }
+        f.validate().map_err(invalid)
     }
 }
 

@@ -332,6 +332,9 @@ pub enum JointSpec {
         /// Default: the body origin [0, 0].
         #[serde(default)]
         point_j: Option<PointRef>,
+        /// Coulomb friction in the joint (docs/friction.md).
+        #[serde(default)]
+        friction: Option<FrictionSpec>,
     },
     /// `point_j` slides on the line through `point_i` along `axis` (body i
     /// frame), and the relative angle φ_j − φ_i stays `angle` (2 equations).
@@ -349,6 +352,9 @@ pub enum JointSpec {
         /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
         #[serde(default)]
         angle: Option<Num>,
+        /// Coulomb friction in the joint (docs/friction.md).
+        #[serde(default)]
+        friction: Option<FrictionSpec>,
     },
     /// A massless link of `length` between `point_i` and `point_j` (1 equation).
     RevoluteRevolute {
@@ -501,6 +507,9 @@ pub struct CamFollowerJoint {
     /// Damping factor c (s/m) of a compliant contact; default 0.
     #[serde(default)]
     pub damping: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// `flat_follower` joint: a curve on a straight face.
@@ -550,6 +559,9 @@ pub struct FlatFollowerJoint {
     /// Damping factor c (s/m) of a compliant contact; default 0.
     #[serde(default)]
     pub damping: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// `point_follower` joint: a pin in a slot.
@@ -569,6 +581,29 @@ pub struct PointFollowerJoint {
     /// point nearest the pin.
     #[serde(default)]
     pub alpha_j: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// `friction = { mu = 0.1, radius = 0.01 }`: Coulomb friction in a
+/// `revolute`, `translational`, `point_follower`, `cam_follower` or
+/// `flat_follower` joint, by a regularised law (docs/friction.md).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// Friction coefficient μ, ≥ 0: the friction force is μ times the
+    /// joint's normal force N.
+    pub mu: Num,
+    /// Pin radius r (m), ≥ 0, of a revolute joint (required there, refused
+    /// elsewhere): the friction torque is μ r N, N the pin force.
+    #[serde(default)]
+    pub radius: Option<Num>,
+    /// Transition speed v_s (m/s), > 0: below this slip speed the law is a
+    /// cubic through zero, and a stuck joint creeps at less than v_s;
+    /// default 1e-4.
+    #[serde(default)]
+    pub transition_speed: Option<Num>,
 }
 
 /// Whether a curve is a polar profile ρ(α) or a parametric curve (x(s), y(s)).

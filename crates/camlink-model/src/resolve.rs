@@ -28,6 +28,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
 mod curves;
 mod forces;
+mod friction;
 mod initial;
 mod machine;
 pub(crate) use machine::machine;
@@ -649,6 +650,7 @@ impl Ctx {
                 point_i,
                 body_j,
                 point_j,
+                friction,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -665,6 +667,7 @@ impl Ctx {
                     },
                     false,
                 );
+                self.friction(friction.as_ref(), true, p)?;
             }
             JointSpec::Translational {
                 name,
@@ -674,6 +677,7 @@ impl Ctx {
                 body_j,
                 point_j,
                 angle,
+                friction,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -703,6 +707,7 @@ impl Ctx {
                 );
                 self.add(name, c, false);
                 self.defer_joint(angle.is_none(), p, "angle", "rad");
+                self.friction(friction.as_ref(), false, p)?;
             }
             JointSpec::RevoluteRevolute {
                 name,

@@ -29,6 +29,7 @@ mod issue27_unilateral;
 mod issue32_machine;
 mod issue_newton_rounding_level;
 mod jerk;
+mod joint_friction;
 mod load;
 mod load_scale;
 mod outline;

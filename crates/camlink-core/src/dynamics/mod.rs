@@ -24,6 +24,7 @@
 
 pub(crate) mod branch;
 pub mod contact_force;
+pub mod friction;
 pub mod impact;
 pub mod integrator;
 pub mod inverse;

@@ -933,6 +933,7 @@ impl Row<'_, '_> {
             self.full,
             &mut f.scratch,
             self.q,
+            self.qd,
             self.lambda,
             self.t,
             &mut values[nk..nd - 5],
