@@ -508,3 +508,50 @@ fn issue30_the_incline_friction_example_runs() {
     let s = (x.last().unwrap() - x[0]).hypot(y.last().unwrap() - y[0]);
     assert!(s < 1e-4 * end, "{s}");
 }
+
+#[test]
+fn issue30_cam_friction_costs_the_motor_exactly_the_power_it_dissipates() {
+    // The valve train of examples/cam_valve_spring.toml is driven through
+    // its whole motion (inverse dynamics): friction on the flat-faced
+    // tappet's contact changes no motion, so the motor's extra power is
+    // the friction's dissipated power, −P_f, at every instant.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples/cam_valve_spring.toml");
+    let plain = std::fs::read_to_string(path).unwrap();
+    let face = "body_j = \"tappet\"\npoint_j = [0, 0]\naxis = [1, 0]\n";
+    assert!(plain.contains(face));
+    let rough = plain.replace(face, &format!("{face}friction = {{ mu = 0.15 }}\n"));
+    let run_inverse = |src: &str| {
+        let model = load_str(src, Format::Toml, "m.toml")
+            .unwrap_or_else(|e| panic!("{e}"))
+            .model;
+        let times = time_grid(0.02, 0.0000625).unwrap();
+        let mut t = Table::default();
+        inverse::run(&model, &times, &run::Settings::default(), &[], &mut t)
+            .unwrap_or_else(|e| panic!("{e}"));
+        t
+    };
+    let (with, without) = (run_inverse(&rough), run_inverse(&plain));
+    let (p1, p0) = (ch(&with, "motor.power"), ch(&without, "motor.power"));
+    let (pf, ff) = (ch(&with, "bucket.friction_power"), ch(&with, "bucket.friction_force"));
+    let n = ch(&with, "bucket.normal_force");
+    let scale = p0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+    let mut slipping = 0;
+    for k in 0..with.t.len() {
+        assert!(pf[k] <= 0.0);
+        assert!(
+            (p1[k] - p0[k] + pf[k]).abs() < 1e-9 * scale,
+            "t = {}: {} − {} vs {}",
+            with.t[k],
+            p1[k],
+            p0[k],
+            -pf[k]
+        );
+        // Sliding on the face (all but the instants the slip reverses):
+        // |F| = μ N.
+        if (ff[k].abs() - 0.15 * n[k].abs()).abs() < 1e-9 * (1.0 + n[k].abs()) {
+            slipping += 1;
+        }
+    }
+    assert!(slipping > with.t.len() * 9 / 10, "{slipping} of {}", with.t.len());
+}
