@@ -1129,7 +1129,9 @@ impl<'m> Integrator<'m> {
                 .sys
                 .friction
                 .step_fraction(&self.sys, q, qd, &self.rhs, gp, t1);
-            self.rhs.iter_mut().for_each(|v| *v *= theta);
+            if theta < 1.0 {
+                self.rhs.iter_mut().for_each(|v| *v *= theta);
+            }
             self.summary.newton_iterations += 1;
             // Converged when every position, velocity and acceleration
             // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
