@@ -533,7 +533,10 @@ fn issue30_cam_friction_costs_the_motor_exactly_the_power_it_dissipates() {
     };
     let (with, without) = (run_inverse(&rough), run_inverse(&plain));
     let (p1, p0) = (ch(&with, "motor.power"), ch(&without, "motor.power"));
-    let (pf, ff) = (ch(&with, "bucket.friction_power"), ch(&with, "bucket.friction_force"));
+    let (pf, ff) = (
+        ch(&with, "bucket.friction_power"),
+        ch(&with, "bucket.friction_force"),
+    );
     let n = ch(&with, "bucket.normal_force");
     let scale = p0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     let mut slipping = 0;
@@ -553,5 +556,9 @@ fn issue30_cam_friction_costs_the_motor_exactly_the_power_it_dissipates() {
             slipping += 1;
         }
     }
-    assert!(slipping > with.t.len() * 9 / 10, "{slipping} of {}", with.t.len());
+    assert!(
+        slipping > with.t.len() * 9 / 10,
+        "{slipping} of {}",
+        with.t.len()
+    );
 }
