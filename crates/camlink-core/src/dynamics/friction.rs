@@ -99,31 +99,37 @@ impl JointFrictions {
         lambda: &[f64],
         t: f64,
     ) -> (Load, Local) {
+        let j = self.items[k].0;
+        let x = s.asm.local(s.model, j, q, qd, t);
+        let c = &s.model.joints[j].constraint;
+        let normal = normal_force(c, &x, &lambda[s.asm.rows_of(s.model, j)]);
+        (self.load_at(s.model, k, &x, normal), x)
+    }
+
+    /// The friction load of item `k` at its joint's local state `x` and
+    /// normal force `normal` (N).
+    fn load_at(&self, model: &Model, k: usize, x: &Local, normal: f64) -> Load {
         let (j, law) = self.items[k];
-        let model = s.model;
         let c = &model.joints[j].constraint;
-        let x = s.asm.local(model, j, q, qd, t);
-        let normal = normal_force(c, &x, &lambda[s.asm.rows_of(model, j)]);
         let bodies = c.bodies();
-        let load = match c {
+        match c {
             Constraint::Revolute(_) => Load::Pin(PinFriction {
                 bodies,
                 law,
                 normal,
             }),
             _ => {
-                let (tangent, frame) = tangent(model, j, c, &x);
+                let (tangent, frame) = tangent(model, j, c, x);
                 Load::Slide(SlideFriction {
                     bodies,
                     law,
                     normal,
-                    points: c.joint_points(&x),
+                    points: c.joint_points(x),
                     tangent,
                     frame,
                 })
             }
-        };
-        (load, x)
+        }
     }
 
     /// `out += w Q_f` (length n): the friction of every joint at
@@ -214,31 +220,12 @@ impl JointFrictions {
         theta
     }
 
-    /// The slip speeds of item `k` at two local states of its joint.
+    /// The slip speeds of item `k` at two local states of its joint (the
+    /// geometry of the first).
     fn slips(&self, s: &System, k: usize, a: &Local, b: &Local) -> (f64, f64) {
-        let (j, law) = self.items[k];
-        let c = &s.model.joints[j].constraint;
-        match c {
-            Constraint::Revolute(_) => {
-                let p = PinFriction {
-                    bodies: c.bodies(),
-                    law,
-                    normal: 0.0,
-                };
-                (p.slip(a), p.slip(b))
-            }
-            _ => {
-                let (tangent, frame) = tangent(s.model, j, c, a);
-                let f = SlideFriction {
-                    bodies: c.bodies(),
-                    law,
-                    normal: 0.0,
-                    points: c.joint_points(a),
-                    tangent,
-                    frame,
-                };
-                (f.slip(a), f.slip(b))
-            }
+        match self.load_at(s.model, k, a, 0.0) {
+            Load::Pin(p) => (p.slip(a), p.slip(b)),
+            Load::Slide(f) => (f.slip(a), f.slip(b)),
         }
     }
 
