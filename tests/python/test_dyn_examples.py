@@ -113,6 +113,27 @@ def test_dyn_pendulum_small_amplitude_period():
     assert abs(np.max(theta) - 0.01) < 1e-6
 
 
+def test_dyn_incline_friction_slides_and_sticks():
+    # "dyn_incline_friction.toml": μ = 0.3. The block on the 30° guide
+    # slides at a = g (sin α − μ cos α) (2.357 m/s²), with the friction
+    # μ m g cos α up the slope; the one on the 10° guide (below the
+    # friction angle) is held by m g sin α and creeps at less than the
+    # transition speed, 1e-4 m/s (docs/friction.md).
+    model = load("dyn_incline_friction.toml")
+    res = model.run()
+    g, mu, m = 9.81, 0.3, 2.0
+    steep, shallow = math.radians(30), math.radians(10)
+    a = g * (math.sin(steep) - mu * math.cos(steep))
+    along = res["slider.ax"] * math.cos(steep) + res["slider.ay"] * math.sin(steep)
+    assert np.max(np.abs(along[1:] + a)) < 1e-6
+    assert np.allclose(res["steep_guide.friction_force"][1:], mu * m * g * math.cos(steep))
+    held = res["shallow_guide.friction_force"][10:]
+    assert np.allclose(held, m * g * math.sin(shallow), rtol=1e-5)
+    moved = math.hypot(res["sticker.x"][-1] - 0.6, res["sticker.y"][-1])
+    assert moved < 1e-4 * res.t[-1]
+    assert np.all(res["shallow_guide.friction_power"] <= 0)
+
+
 def test_every_dyn_example_has_a_test():
     this = open(__file__, encoding="utf-8").read()
     names = sorted(p.name for p in EXAMPLES.glob("dyn_*.toml"))

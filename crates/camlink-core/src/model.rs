@@ -10,6 +10,7 @@ use crate::constraint::relative::{RelCoord, RelativeCoord};
 pub use crate::constraint::BodyId;
 use crate::constraint::{Constraint, Equations, MAX_OWN};
 use crate::force::compliant_contact::HuntCrossley;
+use crate::force::friction::Friction;
 use crate::force::{Applied, Force};
 use crate::function::TimeFn;
 use crate::math::V2;
@@ -73,6 +74,9 @@ pub struct Joint {
     pub unilateral: Option<Unilateral>,
     /// `Some` for a joint with end stops on its coordinate ([`Limits`]).
     pub limits: Option<Limits>,
+    /// `Some` for Coulomb friction in the joint (a revolute,
+    /// translational or curve-contact joint; [`Model::friction_kinds`]).
+    pub friction: Option<Friction>,
 }
 
 /// End stops on a joint's coordinate ([`crate::limits`]): a revolute's
@@ -321,6 +325,7 @@ impl Model {
             driver: false,
             unilateral: None,
             limits: None,
+            friction: None,
         });
     }
 
@@ -333,6 +338,7 @@ impl Model {
             driver: true,
             unilateral: None,
             limits: None,
+            friction: None,
         });
     }
 
@@ -412,6 +418,9 @@ impl Model {
                 l.validate(&j.constraint)
                     .map_err(|e| ModelError::Invalid(format!("joint '{}': {e}", j.name)))?;
             }
+            if let Some(f) = &j.friction {
+                Self::check_friction(j, f)?;
+            }
         }
         let mut forces = HashMap::new();
         for f in &self.forces {
@@ -431,6 +440,51 @@ impl Model {
                 .map_err(|e| ModelError::Invalid(format!("force '{}': {e}", f.name)))?;
         }
         finite("gravity", &self.gravity)
+    }
+}
+
+impl Model {
+    /// The joint kinds that take friction, as model files name them.
+    pub fn friction_kinds() -> &'static [&'static str] {
+        &[
+            "revolute",
+            "translational",
+            "point_follower",
+            "cam_follower",
+            "flat_follower",
+        ]
+    }
+
+    /// Friction only on a joint (not a driver) of a kind that takes it,
+    /// a pin radius only on a revolute, valid numbers.
+    fn check_friction(j: &Joint, f: &Friction) -> Result<(), ModelError> {
+        let invalid = |m: String| ModelError::Invalid(format!("joint '{}': {m}", j.name));
+        let c = &j.constraint;
+        let takes = !j.driver
+            && matches!(
+                c,
+                Constraint::Revolute(_)
+                    | Constraint::Translational(_)
+                    | Constraint::PointFollower(_)
+                    | Constraint::CamFollower(_)
+                    | Constraint::FlatFollower(_)
+            );
+        if !takes {
+            return Err(invalid(format!(
+                "a {} {} takes no friction (friction is modelled in {} joints)",
+                c.kind(),
+                if j.driver { "driver" } else { "joint" },
+                Self::friction_kinds().join(", ")
+            )));
+        }
+        if f.radius != 0.0 && !matches!(c, Constraint::Revolute(_)) {
+            return Err(invalid(
+                "a friction radius is the pin radius of a revolute joint; a sliding \
+                 joint's friction is μ times its normal force"
+                    .into(),
+            ));
+        }
+        f.validate().map_err(invalid)
     }
 }
 

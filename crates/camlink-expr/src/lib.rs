@@ -401,6 +401,15 @@ impl fmt::Display for Expr {
     }
 }
 
+/// The smooth Coulomb law of the expression function `coulomb(v, fc, vs)`,
+/// fc·STEP(v, −vs, −1, vs, 1), and its slope: `[f, ∂f/∂v]` at slip speed
+/// `v`, friction level `fc` and transition speed `vs` > 0. Joint friction
+/// in the core evaluates this same law.
+pub fn coulomb(v: f64, fc: f64, vs: f64) -> [f64; 2] {
+    let f = vm::coulomb(Jet::variable(v), Jet::constant(fc), Jet::constant(vs));
+    [f.0[0], f.0[1]]
+}
+
 /// The names `src` reads — its variable and named constants, not the
 /// functions it calls — each once, in order of first appearance. Only the
 /// tokens are read (no parsing, no evaluation), so this is linear in the

@@ -613,7 +613,7 @@ fn impact<V: Value>([x, xd, x1, k, e, cmax, d]: [V; 7]) -> V {
 /// A smooth Coulomb law fc·STEP(v, −vs, −1, vs, 1): fc·sign(v) for
 /// |v| ≥ vs, a cubic through 0 between (C1).
 #[inline]
-fn coulomb<V: Value>(v: V, fc: V, vs: V) -> V {
+pub(crate) fn coulomb<V: Value>(v: V, fc: V, vs: V) -> V {
     fc * V::motion(Law::Step, [v, -vs, V::constant(-1.0), vs, V::constant(1.0)])
 }
 

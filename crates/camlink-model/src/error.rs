@@ -115,6 +115,53 @@ pub(crate) fn with_suggestion(message: &str) -> String {
     format!("{message}{}", did_you_mean(name, candidates))
 }
 
+/// The key `x` of a parser's "unknown field `x`, …" message.
+pub(crate) fn unknown_field(message: &str) -> Option<&str> {
+    message
+        .strip_prefix("unknown field `")?
+        .split_once('`')
+        .map(|(k, _)| k)
+}
+
+/// Inline tables of a joint that the parser reports as the joint itself
+/// when a key in them is unknown.
+const NESTED: &[&str] = &["friction"];
+
+/// Keys that only some joint kinds take, and those kinds.
+const JOINT_KEYS: &[(&str, &str)] = &[(
+    "friction",
+    "revolute, translational, point_follower, cam_follower and flat_follower joints",
+)];
+
+/// An unknown `key` reported at table `path`: the path of the key itself
+/// (`path.key`, or `path.<nested>.key` in a joint's inline table) when
+/// `exists` finds it, and the message, which for a key that only some
+/// joint kinds take says which (`kind` reads a field's text, the joint's
+/// `type`).
+pub(crate) fn unknown_key(
+    path: &str,
+    key: &str,
+    message: String,
+    exists: impl Fn(&str) -> bool,
+    kind: impl Fn(&str) -> Option<String>,
+) -> (String, String) {
+    let Some(at) = std::iter::once(format!("{path}.{key}"))
+        .chain(NESTED.iter().map(|n| format!("{path}.{n}.{key}")))
+        .find(|p| exists(p))
+    else {
+        return (path.to_string(), message);
+    };
+    let joint = path.starts_with("joints[") && !path.contains('.');
+    match JOINT_KEYS.iter().find(|(k, _)| *k == key) {
+        Some((_, kinds)) if joint => {
+            let what = kind(&format!("{path}.type")).unwrap_or_else(|| "this".into());
+            let message = format!("a {what} joint takes no {key}: {key} is modelled in {kinds}");
+            (at, message)
+        }
+        _ => (at, message),
+    }
+}
+
 pub(crate) fn did_you_mean<'a>(
     name: &str,
     candidates: impl IntoIterator<Item = &'a str>,

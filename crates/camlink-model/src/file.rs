@@ -337,6 +337,9 @@ pub enum JointSpec {
         /// End stops on the angle θ = φ_j − φ_i (rad).
         #[serde(default)]
         limits: Option<LimitsSpec>,
+        /// Coulomb friction in the joint (docs/friction.md).
+        #[serde(default)]
+        friction: Option<FrictionSpec>,
     },
     /// `point_j` slides on the line through `point_i` along `axis` (body i
     /// frame), and the relative angle φ_j − φ_i stays `angle` (2 equations).
@@ -357,6 +360,9 @@ pub enum JointSpec {
         /// End stops on the stroke (m): point_j from point_i along the axis.
         #[serde(default)]
         limits: Option<LimitsSpec>,
+        /// Coulomb friction in the joint (docs/friction.md).
+        #[serde(default)]
+        friction: Option<FrictionSpec>,
     },
     /// A massless link of `length` between `point_i` and `point_j` (1 equation).
     RevoluteRevolute {
@@ -512,6 +518,9 @@ pub struct CamFollowerJoint {
     /// Damping factor c (s/m) of a compliant contact; default 0.
     #[serde(default)]
     pub damping: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// `flat_follower` joint: a curve on a straight face.
@@ -561,6 +570,9 @@ pub struct FlatFollowerJoint {
     /// Damping factor c (s/m) of a compliant contact; default 0.
     #[serde(default)]
     pub damping: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
 }
 
 /// `point_follower` joint: a pin in a slot.
@@ -580,6 +592,29 @@ pub struct PointFollowerJoint {
     /// point nearest the pin.
     #[serde(default)]
     pub alpha_j: Option<Num>,
+    /// Coulomb friction at the contact (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// `friction = { mu = 0.1, radius = 0.01 }`: Coulomb friction in a
+/// `revolute`, `translational`, `point_follower`, `cam_follower` or
+/// `flat_follower` joint, by a regularised law (docs/friction.md).
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    /// Friction coefficient μ, ≥ 0: the friction force is μ times the
+    /// joint's normal force N.
+    pub mu: Num,
+    /// Pin radius r (m), ≥ 0, of a revolute joint (required there, refused
+    /// elsewhere): the friction torque is μ r N, N the pin force.
+    #[serde(default)]
+    pub radius: Option<Num>,
+    /// Transition speed v_s (m/s), > 0: below this slip speed the law is a
+    /// cubic through zero, and a stuck joint creeps at less than v_s;
+    /// default 1e-4.
+    #[serde(default)]
+    pub transition_speed: Option<Num>,
 }
 
 /// Whether a curve is a polar profile ρ(α) or a parametric curve (x(s), y(s)).

@@ -416,19 +416,26 @@ fn parse_toml(text: &str, source: &str) -> Result<file::ModelFile, LoadError> {
         )
     })?;
     serde_path_to_error::deserialize(de).map_err(|e| {
-        let path = field_path(e.path());
+        let mut path = field_path(e.path());
         let inner = e.inner();
-        let offset = inner
+        let mut offset = inner
             .span()
             .map(|s| s.start)
             .or_else(|| locate::toml_span(text, &path).map(|s| s.start));
-        at(
-            text,
-            source,
-            offset,
-            Some(path),
-            error::with_suggestion(inner.message().trim()),
-        )
+        let mut message = error::with_suggestion(inner.message().trim());
+        // An unknown key: its own line and path.
+        if let Some(key) = error::unknown_field(inner.message()) {
+            let exists = |p: &str| locate::toml_exact(text, p).is_some();
+            let kind = |p: &str| {
+                let span = locate::toml_exact(text, p)?;
+                Some(text[span].trim_matches('"').to_string())
+            };
+            (path, message) = error::unknown_key(&path, key, message, exists, kind);
+            if let Some(span) = locate::toml_exact(text, &path) {
+                offset = Some(span.start);
+            }
+        }
+        at(text, source, offset, Some(path), message)
     })
 }
 
@@ -451,7 +458,18 @@ fn json_error(
         return json_syntax(text, source, &inner);
     }
     let mut err = json_syntax(text, source, &inner);
-    err.message = error::with_suggestion(&strip_json_position(&inner.to_string()));
+    let plain = strip_json_position(&inner.to_string());
+    let mut message = error::with_suggestion(&plain);
+    let mut path = path;
+    // An unknown key: its own path.
+    if let Some(key) = error::unknown_field(&plain) {
+        let value: Option<serde_json::Value> = serde_json::from_str(text).ok();
+        let find = |p: &str| value.as_ref().and_then(|v| json_at(v, p)).cloned();
+        let exists = |p: &str| find(p).is_some();
+        let kind = |p: &str| find(p).and_then(|v| v.as_str().map(str::to_string));
+        (path, message) = error::unknown_key(&path, key, message, exists, kind);
+    }
+    err.message = message;
     err.field = Some(path).filter(|p| !p.is_empty());
     err
 }
@@ -470,6 +488,16 @@ fn json_syntax(_text: &str, source: &str, e: &serde_json::Error) -> LoadError {
         field: None,
         message,
     }
+}
+
+/// The value at field path `path` in `v`.
+fn json_at<'v>(v: &'v serde_json::Value, path: &str) -> Option<&'v serde_json::Value> {
+    locate::parse_path(path)
+        .into_iter()
+        .try_fold(v, |v, seg| match seg {
+            locate::Seg::Key(k) => v.get(k),
+            locate::Seg::Index(i) => v.get(i),
+        })
 }
 
 /// serde_json appends " at line L column C"; the position is reported separately.

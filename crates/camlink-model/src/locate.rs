@@ -45,7 +45,24 @@ pub(crate) fn parse_path(path: &str) -> Vec<Seg> {
 
 /// Byte span of the field at `path` in TOML `text`.
 pub(crate) fn toml_span(text: &str, path: &str) -> Option<Range<usize>> {
-    let root = DeTable::parse(text).ok()?;
+    toml_walk(text, path).0
+}
+
+/// Byte span of the field at `path` in TOML `text` when all of the path is
+/// there.
+pub(crate) fn toml_exact(text: &str, path: &str) -> Option<Range<usize>> {
+    match toml_walk(text, path) {
+        (span, true) => span,
+        _ => None,
+    }
+}
+
+/// The span of the deepest part of `path` present in TOML `text`, and
+/// whether that is all of it.
+fn toml_walk(text: &str, path: &str) -> (Option<Range<usize>>, bool) {
+    let Ok(root) = DeTable::parse(text) else {
+        return (None, false);
+    };
     let mut span = None;
     let mut table: Option<&DeTable> = Some(root.get_ref());
     let mut value: Option<&Spanned<DeValue>> = None;
@@ -60,12 +77,14 @@ pub(crate) fn toml_span(text: &str, path: &str) -> Option<Range<usize>> {
             (Seg::Index(i), None, Some(DeValue::Array(a))) => a.get(*i),
             _ => None,
         };
-        let Some(next) = next else { break };
+        let Some(next) = next else {
+            return (span, false);
+        };
         span = Some(next.span());
         table = None;
         value = Some(next);
     }
-    span
+    (span, true)
 }
 
 /// Byte span of the value at `path` in JSON `text` (already known to be valid JSON).

@@ -28,6 +28,7 @@ use crate::{AnalysisSpec, DynamicsSpec, Outline, OutlineShape};
 
 mod curves;
 mod forces;
+mod friction;
 mod initial;
 mod limits;
 mod machine;
@@ -662,6 +663,7 @@ impl Ctx {
                 body_j,
                 point_j,
                 limits,
+                friction,
             } => {
                 let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -679,6 +681,7 @@ impl Ctx {
                     false,
                 );
                 self.set_limits(limits.as_ref(), p)?;
+                self.friction(friction.as_ref(), true, p)?;
             }
             JointSpec::Translational {
                 name,
@@ -689,6 +692,7 @@ impl Ctx {
                 point_j,
                 angle,
                 limits,
+                friction,
             } => {
                 let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
                 let ((bi, s_i), (bj, s_j)) =
@@ -719,6 +723,7 @@ impl Ctx {
                 self.add(name, c, false);
                 self.set_limits(limits.as_ref(), p)?;
                 self.defer_joint(angle.is_none(), p, "angle", "rad");
+                self.friction(friction.as_ref(), false, p)?;
             }
             JointSpec::RevoluteRevolute {
                 name,

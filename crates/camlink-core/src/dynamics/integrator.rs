@@ -1180,6 +1180,15 @@ impl<'m> Integrator<'m> {
                     *mu += d / s;
                 }
             }
+            // No joint's friction jumps across its transition band.
+            let (q, qd) = (&self.q, &self.qd);
+            let theta = self
+                .sys
+                .friction
+                .step_fraction(&self.sys, q, qd, &self.rhs, gp, t1);
+            if theta < 1.0 {
+                self.rhs.iter_mut().for_each(|v| *v *= theta);
+            }
             self.summary.newton_iterations += 1;
             // Converged when every position, velocity and acceleration
             // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
@@ -1536,7 +1545,7 @@ fn hermite(d: &mut Dense, t: f64, (t0, [q0, v0, a0]): End, (t1, [q1, v1, a1]): E
 /// One end of a step: its time (s) and [q, q̇, q̈].
 type End<'a> = (f64, [&'a [f64]; 3]);
 
-/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] of system `s` at (t, q, q̇) into `rhs`
+/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q + Q_f(λ); γ] of system `s` at (t, q, q̇) into `rhs`
 /// (length n + m), λ of minimum norm; `aug` is refactored for it (q̈
 /// enters only terms the coefficients leave out).
 fn solve_consistent(
@@ -1565,8 +1574,8 @@ fn solve_consistent(
     }
     s.forces(q, qd, t, &mut rhs[..n])?;
     s.asm.gamma(s.model, q, qd, t, &mut rhs[n..]);
-    aug.solve_refined(rhs);
-    Ok(())
+    // With joint friction, λ by fixed-point iteration ([`super::friction`]).
+    super::friction::consistent(s, t, q, qd, rhs, &mut |b| aug.solve_refined(b))
 }
 
 /// An error at (t, q) of system `s`, naming the joints furthest from

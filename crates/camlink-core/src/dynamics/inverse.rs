@@ -7,7 +7,10 @@
 //!
 //! Φ_qᵀ λ = Q(q, q̇, t) − M(q) q̈,
 //!
-//! one solve with the transposed Jacobian (Haug §6.5). A model with
+//! one solve with the transposed Jacobian (Haug §6.5). With joint
+//! friction Q_f(q, q̇, λ) on the right, λ is found by fixed-point
+//! iteration from the frictionless λ ([`super::friction`]), so a driver's
+//! effort includes the friction it overcomes. A model with
 //! redundant equations (m > n, Φ_q of rank n; kinematics leaves the
 //! dependent rows out) has a family of multipliers λ + w, Φ_qᵀw = 0: the
 //! one reported is the minimum-norm λ, from
@@ -19,6 +22,7 @@
 //! ([`super::contact_force`]).
 
 use super::contact_force::LiftOffWatch;
+use super::friction;
 use super::output::{self, Scratch};
 use super::project::IDENTITY;
 use super::system::{Augmented, System};
@@ -115,6 +119,14 @@ impl<'m> InverseSolver<'m> {
                 }
                 self.lambda.copy_from_slice(&self.rhs);
                 jt.solve(&mut self.lambda);
+                if !self.sys.friction.is_empty() {
+                    let mut solve = |f: &mut [f64], out: &mut [f64]| {
+                        jt.solve(f);
+                        out.copy_from_slice(f);
+                    };
+                    let lambda = &mut self.lambda;
+                    friction::inverse(&self.sys, t, q, qd, &self.rhs, lambda, &mut solve)?;
+                }
             }
             Multipliers::MinNorm(aug) => {
                 let zeros = &self.zeros;
@@ -125,8 +137,17 @@ impl<'m> InverseSolver<'m> {
                     return Err(singular());
                 }
                 self.rhs[n..].fill(0.0);
+                let base = (!self.sys.friction.is_empty()).then(|| self.rhs.clone());
                 aug.solve_refined(&mut self.rhs);
                 self.lambda.copy_from_slice(&self.rhs[n..]);
+                if let Some(base) = base {
+                    let mut solve = |f: &mut [f64], out: &mut [f64]| {
+                        aug.solve_refined(f);
+                        out.copy_from_slice(&f[n..]);
+                    };
+                    let lambda = &mut self.lambda;
+                    friction::inverse(&self.sys, t, q, qd, &base, lambda, &mut solve)?;
+                }
             }
         }
         if self.lambda.iter().any(|v| !v.is_finite()) {

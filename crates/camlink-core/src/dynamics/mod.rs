@@ -27,6 +27,7 @@
 pub(crate) mod branch;
 pub mod contact_force;
 pub mod drift;
+pub mod friction;
 pub mod impact;
 pub mod integrator;
 pub mod inverse;

@@ -7,23 +7,26 @@
 //!   `<joint>.fx_j .fy_j .torque_j .fx_local_j .fy_local_j`
 //!   (see [`super::reaction`] for the conventions), then, for a curve
 //!   contact, `<joint>.normal_force .tangential_force` (see
-//!   [`super::contact_force`]);
+//!   [`super::contact_force`]), then, for a joint with friction,
+//!   `<joint>.friction_torque` (N·m) or `<joint>.friction_force` (N), and
+//!   `<joint>.friction_power` (W) (see [`super::friction`]);
 //! - per driver: `<driver>.effort .power`;
 //! - the shaking force and moment ([`SHAKING`]): `shaking.fx`,
 //!   `shaking.fy` (N), the sum of the forces the mechanism exerts on the
-//!   ground through its joints and drivers and through the forces with a
-//!   reaction on the ground (springs, dampers and contacts joining a body
-//!   to the ground, forces of state without another reaction body; see
-//!   [`Applied::frame_load`]), in the global frame, and `shaking.moment`
-//!   (N·m, counter-clockwise positive), their moment about the global
-//!   origin O plus the torques on the ground (a motor's reaction torque
-//!   among them);
+//!   ground through its joints and drivers and their friction, and through
+//!   the forces with a reaction on the ground (springs, dampers and
+//!   contacts joining a body to the ground, forces of state without another
+//!   reaction body; see [`Applied::frame_load`]), in the global frame, and
+//!   `shaking.moment` (N·m, counter-clockwise positive), their moment about
+//!   the global origin O plus the torques on the ground (a motor's reaction
+//!   torque among them);
 //! - `energy.kinetic`, `energy.potential` (gravity and springs) and
 //!   `energy.total` (J);
 //! - `constraint.residual`, max |Φ| (m or rad), and
 //!   `constraint.velocity`, max |Φ_q q̇ − ν| (m/s or rad/s): the drift.
 
 use super::contact_force::ContactForces;
+use super::friction::JointFrictions;
 use super::reaction::{effort, reactions, Reaction};
 use super::system::System;
 use crate::constraint::Equations;
@@ -64,6 +67,7 @@ pub fn channels(model: &Model) -> Vec<String> {
                 }
             }
             names.extend(contacts.channel_names(model, k));
+            names.extend(JointFrictions::channel_names(model, k));
         }
     }
     names.extend(SHAKING.iter().map(|c| c.to_string()));
@@ -128,8 +132,8 @@ pub fn fill(
 }
 
 /// Fills the channels of [`fill`] before the energy and drift: the
-/// reactions, contact forces, driver efforts and powers, and the shaking
-/// force and moment. Returns how many
+/// reactions, contact forces, joint friction, driver efforts and powers,
+/// and the shaking force and moment. Returns how many
 /// it wrote, and leaves ν at (q, t) in the scratch.
 pub fn fill_forces(
     s: &System,
@@ -146,6 +150,7 @@ pub fn fill_forces(
     asm.nu(model, q, t, nu);
     let mut k = 0;
     let mut shake = [0.0; 3];
+    let (sys, mut friction) = (s, 0);
     for (j, joint) in model.joints.iter().enumerate() {
         // The loads of every joint and driver on the ground.
         let rs = reactions(model, asm, j, q, lambda, t);
@@ -175,6 +180,15 @@ pub fn fill_forces(
                 let nt = w.contacts.resolve(model, asm, j, q, &rs);
                 out[k..k + 2].copy_from_slice(&nt);
                 k += 2;
+            }
+            if joint.friction.is_some() {
+                let (fp, ground) = sys.friction.channels(sys, friction, q, qd, lambda, t);
+                out[k..k + 2].copy_from_slice(&fp);
+                for (a, b) in shake.iter_mut().zip(ground) {
+                    *a += b;
+                }
+                k += 2;
+                friction += 1;
             }
         }
     }

@@ -48,6 +48,7 @@
 
 use std::collections::HashMap;
 
+use super::friction::JointFrictions;
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
@@ -70,6 +71,8 @@ pub struct System<'m> {
     pub asm: Assembly,
     /// (first column, inertia) of each moving body.
     bodies: Vec<(usize, Inertia)>,
+    /// The joints with Coulomb friction ([`super::friction`]).
+    pub friction: JointFrictions,
 }
 
 impl<'m> System<'m> {
@@ -79,7 +82,13 @@ impl<'m> System<'m> {
             .moving_bodies()
             .map(|(id, b)| (asm.body_col(id.0).expect("moving body"), Inertia::from(b)))
             .collect();
-        System { model, asm, bodies }
+        let friction = JointFrictions::new(model);
+        System {
+            model,
+            asm,
+            bodies,
+            friction,
+        }
     }
 
     /// Number of coordinates n.
@@ -172,7 +181,8 @@ impl<'m> System<'m> {
             .jacobian(self.model, q, t, |r, c, v| out[c] += v * lambda[r]);
     }
 
-    /// R = M q̈ − Q + Φ_qᵀλ, the residual of the equations of motion, into
+    /// R = M q̈ − Q − Q_f(λ) + Φ_qᵀλ, the residual of the equations of
+    /// motion with the joint friction Q_f at λ ([`super::friction`]), into
     /// `out` (length n).
     pub fn residual(
         &self,
@@ -185,6 +195,7 @@ impl<'m> System<'m> {
     ) -> Result<(), AnalysisError> {
         self.motion_residual(q, qd, qdd, t, out)?;
         self.add_jt_lambda(q, t, lambda, out);
+        self.friction.add(self, q, qd, lambda, t, -1.0, out);
         Ok(())
     }
 
@@ -204,6 +215,7 @@ impl<'m> System<'m> {
         self.motion_residual(q, qd, qdd, t, out)?;
         self.asm
             .phi_and_jacobian(self.model, q, t, phi, |r, c, v| out[c] += v * lambda[r]);
+        self.friction.add(self, q, qd, lambda, t, -1.0, out);
         Ok(())
     }
 
@@ -256,6 +268,23 @@ impl<'m> System<'m> {
     }
 }
 
+/// `vals −= k.scale (k.stiffness ∂Q/∂q + k.damping ∂Q/∂q̇)` over the
+/// blocks `slots` of one force (R has −Q).
+fn add_pair(vals: &mut [f64], slots: &PairSlots, dq: &BodyJac, dqd: &BodyJac, k: Coefficients) {
+    for a in 0..2 {
+        for b in 0..2 {
+            if let Some(slots) = slots[a][b] {
+                for r in 0..3 {
+                    for col in 0..3 {
+                        vals[slots[3 * r + col]] -= k.scale
+                            * (k.stiffness * dq[a][b][r][col] + k.damping * dqd[a][b][r][col]);
+                    }
+                }
+            }
+        }
+    }
+}
+
 /// (x, y, φ) of the body whose first column is `c`.
 #[inline]
 fn body(v: &[f64], c: usize) -> [f64; 3] {
@@ -287,7 +316,9 @@ pub struct Augmented {
     /// Slots of each own coordinate's diagonal entry.
     own_slots: Vec<usize>,
     /// Per force, per (a, b) body pair, the 3 × 3 block's slots (None for ground).
-    force_slots: Vec<[[Option<[usize; 9]>; 2]; 2]>,
+    force_slots: Vec<PairSlots>,
+    /// The same for each joint friction.
+    friction_slots: Vec<PairSlots>,
     /// Per joint: the local coordinates its Φ is nonlinear in (local
     /// index, global column) and the slots of their L × L curvature block,
     /// row-major.
@@ -305,6 +336,10 @@ pub struct Augmented {
     /// Scratch for (Φ_qᵀλ)_q.
     jac: [Jac; 2],
 }
+
+/// Per (a, b) body pair of a force, the slots of its 3 × 3 block (None
+/// for the ground).
+type PairSlots = [[Option<[usize; 9]>; 2]; 2];
 
 /// A joint's nonlinear local coordinates (local index, global column) and
 /// the slots of its curvature block.
@@ -363,22 +398,28 @@ impl Augmented {
                 own_slots.push(slot(o + k, o + k));
             }
         }
+        let mut pair_slots = |bodies: [crate::constraint::BodyId; 2]| {
+            let cols = bodies.map(|b| s.asm.body_col(b.0));
+            let mut out: PairSlots = [[None; 2]; 2];
+            for a in 0..2 {
+                for b in 0..2 {
+                    if let (Some(ca), Some(cb)) = (cols[a], cols[b]) {
+                        out[a][b] = Some(block(&mut slot, ca, cb));
+                    }
+                }
+            }
+            out
+        };
         let force_slots = s
             .model
             .forces
             .iter()
-            .map(|f| {
-                let cols = f.kind.bodies().map(|b| s.asm.body_col(b.0));
-                let mut out = [[None; 2]; 2];
-                for a in 0..2 {
-                    for b in 0..2 {
-                        if let (Some(ca), Some(cb)) = (cols[a], cols[b]) {
-                            out[a][b] = Some(block(&mut slot, ca, cb));
-                        }
-                    }
-                }
-                out
-            })
+            .map(|f| pair_slots(f.kind.bodies()))
+            .collect();
+        let friction_slots = s
+            .friction
+            .joints()
+            .map(|j| pair_slots(s.model.joints[j].constraint.bodies()))
             .collect();
         let joint_slots = (0..s.model.joints.len())
             .map(|j| {
@@ -428,6 +469,7 @@ impl Augmented {
             body_slots,
             own_slots,
             force_slots,
+            friction_slots,
             joint_slots,
             jac_slots,
             mult_slots,
@@ -481,18 +523,14 @@ impl Augmented {
         for (f, force) in s.model.forces.iter().enumerate() {
             let x = s.force_local(f, q, qd, t);
             force.kind.derivatives(&x, &mut dq, &mut dqd);
-            for a in 0..2 {
-                for b in 0..2 {
-                    if let Some(slots) = self.force_slots[f][a][b] {
-                        for r in 0..3 {
-                            for col in 0..3 {
-                                self.vals[slots[3 * r + col]] -= k.scale
-                                    * (k.stiffness * dq[a][b][r][col]
-                                        + k.damping * dqd[a][b][r][col]);
-                            }
-                        }
-                    }
-                }
+            add_pair(&mut self.vals, &self.force_slots[f], &dq, &dqd, k);
+        }
+        // Joint friction at λ: R has −Q_f.
+        if let Some(lambda) = lambda {
+            for (f, slots) in self.friction_slots.iter().enumerate() {
+                s.friction
+                    .derivatives(s, f, q, qd, lambda, t, &mut dq, &mut dqd);
+                add_pair(&mut self.vals, slots, &dq, &dqd, k);
             }
         }
         // Constraint curvature (Φ_qᵀλ)_q, by central differences of the

@@ -27,6 +27,7 @@ use crate::constraint::Local;
 pub mod callback;
 pub mod compliant_contact;
 pub mod joint_stop;
+pub mod friction;
 pub mod point;
 pub mod rsda;
 pub mod state;

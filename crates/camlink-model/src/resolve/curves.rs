@@ -556,7 +556,8 @@ impl Ctx {
             &c.exponent,
             &c.damping,
         ];
-        self.set_unilateral(c.unilateral, law, p)
+        self.set_unilateral(c.unilateral, law, p)?;
+        self.friction(c.friction.as_ref(), false, p)
     }
 
     /// Makes the contact just added unilateral when `on`, with its law
@@ -693,7 +694,8 @@ impl Ctx {
             &c.exponent,
             &c.damping,
         ];
-        self.set_unilateral(c.unilateral, law, p)
+        self.set_unilateral(c.unilateral, law, p)?;
+        self.friction(c.friction.as_ref(), false, p)
     }
 
     pub(super) fn point_follower(&mut self, c: &PointFollowerJoint, k: usize) -> R<()> {
@@ -718,7 +720,7 @@ impl Ctx {
             .map(|n| self.num(n, &format!("{p}.alpha_j")).map(|a| [a, 0.0]))
             .transpose()?;
         self.add_contact(name, PointFollower::new(bi, s_i, bj, cj).into(), own0);
-        Ok(())
+        self.friction(c.friction.as_ref(), false, p)
     }
 
     fn different(&self, bi: BodyId, bj: BodyId, ci: &str, cj: &str, path: &str) -> R<()> {
