@@ -77,7 +77,7 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
         traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
         channels = [c for c in [*poses, *traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
-                      channels=channels, all_names=True)
+                      channels=channels, all_names=True, units=sol.units)
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()

@@ -33,7 +33,7 @@ import os
 import shutil
 import tempfile
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -45,6 +45,7 @@ import tomlkit.items
 import camlink
 from camlink._core import AnalysisError, ModelError
 from camlink.model import Model
+from camlink.units import unit_of
 from camlink.viz.scene import GROUND, Scene
 
 __all__ = ["Document", "Handle", "Solution", "solve"]
@@ -104,6 +105,8 @@ class Solution:
     ok: npt.NDArray[np.bool_]
     handles: list[Handle]
     error: str | None = None
+    #: Each channel's unit, as the core states it.
+    units: dict[str, str] = field(default_factory=dict)
 
     def pose(self, body: str, row: int) -> tuple[float, float, float]:
         """(x, y, φ) of `body` at `row` (m, m, rad): the nearest solved row,
@@ -130,31 +133,36 @@ def _points(model: Model) -> list[str]:
     return [str(p) for p in pts]
 
 
-def _kinematics(model: Model, times: Array, points: list[str]) -> tuple[list[str], Array]:
-    """Names and rows of the kinematic run at `times`, up to the first time
-    at which the mechanism does not assemble (no rows when it does not at
-    the first)."""
+def _kinematics(
+    model: Model, times: Array, points: list[str]
+) -> tuple[list[str], Array, dict[str, str]]:
+    """Names, rows and units of the kinematic run at `times`, up to the
+    first time at which the mechanism does not assemble (no rows when it
+    does not at the first)."""
     try:
         res = model.kinematics(times=times, points=points)
     except AnalysisError as e:
         res = e.results
     names = list(res.channels)
     if len(res) == 0:
-        return names, np.empty((0, len(names)))
-    return names, np.column_stack([res[c] for c in names])
+        return names, np.empty((0, len(names))), res.units
+    return names, np.column_stack([res[c] for c in names]), res.units
 
 
-def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]:
+def solve(
+    model: Model,
+) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_], dict[str, str]]:
     """The cycle of `model`: times, channel names, rows (NaN where the
-    mechanism does not assemble) and the mask of solved rows."""
+    mechanism does not assemble), the mask of solved rows and each
+    channel's unit."""
     t = _times(model)
     points = _points(model)
     n = len(t)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        names, rows = _kinematics(model, t, points)
+        names, rows, units = _kinematics(model, t, points)
         if not names:
-            names, _ = _kinematics(model, t[:1], points)
+            names, _, units = _kinematics(model, t[:1], points)
         values = np.full((n, len(names)), np.nan)
         ok = np.zeros(n, dtype=bool)
         values[: len(rows)] = rows
@@ -165,7 +173,7 @@ def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]
             # Past a row that does not assemble: the next time that does.
             found = False
             for j in range(start + 1, n, stride):
-                part_names, part = _kinematics(model, t[j:], points)
+                part_names, part, _ = _kinematics(model, t[j:], points)
                 if len(part) and part_names == names:
                     values[j : j + len(part)] = part
                     ok[j : j + len(part)] = True
@@ -174,7 +182,7 @@ def solve(model: Model) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_]]
                     break
             if not found:
                 break
-    return t, names, values, ok
+    return t, names, values, ok, units
 
 
 def _handles(model: Model, scene: Scene, data: Any) -> list[Handle]:
@@ -327,7 +335,7 @@ class Document:
             warnings.simplefilter("ignore")
             model = self.model(text)
         scene = Scene.of(model, tol=1e-4)
-        t, names, values, ok = solve(model)
+        t, names, values, ok, units = solve(model)
         error = None
         if not names:
             # No kinematic run at all (a model that is not fully driven):
@@ -335,12 +343,14 @@ class Document:
             error = (f"model '{model.name}' has no kinematic motion (is every degree of freedom "
                      "driven?): the studio shows its placement")
             t = np.zeros(1)
-            names = [f"{b}.{c}" for b in scene.bodies for c in ("x", "y", "phi")]
+            pose = (("x", "length"), ("y", "length"), ("phi", "angle"))
+            names = [f"{b}.{c}" for b in scene.bodies for c, _ in pose]
+            units = {f"{b}.{c}": unit_of(q)[0] for b in scene.bodies for c, q in pose}
             values = np.array([[v for b in scene.bodies for v in scene.placement[b]]])
             ok = np.ones(1, dtype=bool)
         self._plain_data = self._plain()
         return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._plain_data),
-                        error)
+                        error, units)
 
     # -- edits ------------------------------------------------------------
 

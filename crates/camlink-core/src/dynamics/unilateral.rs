@@ -55,6 +55,7 @@ use crate::force::compliant_contact::CompliantContact;
 use crate::force::Force;
 use crate::math::{dot, perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
+use crate::quantity::{Channel, Quantity};
 use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
 
 pub use crate::diagnose::OPEN_AT_START;
@@ -1120,8 +1121,11 @@ pub fn run(
     let nd = names.len();
     for c in &r.contacts {
         let name = &model.joints[c.joint].name;
-        names.push(format!("{name}.gap"));
-        names.push(format!("{name}.state"));
+        names.push(Channel::new(format!("{name}.gap"), Quantity::Length));
+        names.push(Channel::new(
+            format!("{name}.state"),
+            Quantity::Dimensionless,
+        ));
     }
     // Where each unilateral joint's normal force channel is.
     let normal_at: Vec<Option<usize>> = r
@@ -1129,7 +1133,7 @@ pub fn run(
         .iter()
         .map(|c| {
             let name = format!("{}.normal_force", model.joints[c.joint].name);
-            names.iter().position(|n| *n == name)
+            names.iter().position(|n| n.name == name)
         })
         .collect();
     sink.begin(&names);
