@@ -37,3 +37,4 @@ mod schema;
 mod state_forces;
 mod time_messages;
 mod unilateral;
+mod units;
