@@ -588,14 +588,13 @@ class Results:
             else:
                 names, data, meta = _read_arrow(path, kind)
             model, summary = _file_metadata(meta, path)
-            quantities = meta.get("quantities")
-            known = isinstance(quantities, dict) and all(
-                isinstance(quantities.get(n), str) for n in names
+            stored = meta.get("quantities")
+            quantities = (
+                [stored[n] for n in names]
+                if isinstance(stored, dict) and all(isinstance(stored.get(n), str) for n in names)
+                else None
             )
-            res = cls(
-                names, data, model=model, summary=summary,
-                quantities=[quantities[n] for n in names] if known else None,
-            )
+            res = cls(names, data, model=model, summary=summary, quantities=quantities)
             value_units = meta.get("value_units")
             res._value_units = parse_units(value_units) if isinstance(value_units, str) else SI
             units = meta.get("units")

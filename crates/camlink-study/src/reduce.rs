@@ -11,7 +11,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use camlink_core::fmt_num::apart;
-use camlink_core::quantity::Quantity;
 use camlink_core::run::{Channel, Sink, Stop, Summary};
 use serde::Deserialize;
 
@@ -294,6 +293,7 @@ impl Sink for Reducer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use camlink_core::quantity::Quantity;
 
     fn reduce(outputs: &[(&str, &str)], rows: &[(f64, [f64; 2])]) -> Result<Vec<f64>, String> {
         let outputs: Vec<(String, Reduction)> = outputs
