@@ -219,7 +219,7 @@ def test_the_background_writer_writes_the_chunks_waiting_together() -> None:
     class Slow:
         path = Path("slow.csv")
 
-        def write(self, names: list[str], rows: np.ndarray) -> None:
+        def write(self, names: list[str], rows: np.ndarray, quantities: list[str]) -> None:
             calls.append(rows.copy())
             assert rows.flags.f_contiguous
             gate.wait(60)
