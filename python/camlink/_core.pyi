@@ -28,6 +28,7 @@ __all__ = [
     "Model",
     "ModelError",
     "__version__",
+    "cam_base_radius_question",
     "cam_materials",
     "check_setting",
     "contact_modulus",
@@ -37,8 +38,11 @@ __all__ = [
     "fourbar_transmission",
     "helical_spring",
     "json_schema",
+    "length_units",
     "line_contact",
     "machine_report",
+    "parse_units",
+    "quantity_unit",
     "run_batch",
     "synth_file",
     "synth_path_starts",
@@ -49,8 +53,8 @@ __all__ = [
     "toml_position",
 ]
 
-_OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64]], object]
-_RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]
+_OnChunk: TypeAlias = Callable[[list[str], npt.NDArray[np.float64], list[str]], object]
+_RunOutput: TypeAlias = tuple[list[str], npt.NDArray[np.float64], dict[str, Any], list[str]]
 
 class ModelError(ValueError):
     """A model file, a builder call or an argument is not valid."""
@@ -63,6 +67,7 @@ class AnalysisError(RuntimeError):
     joints: list[str]
     residual: float
     names: list[str]
+    quantities: list[str]
     data: npt.NDArray[np.float64] | None
     # Set by camlink.Model.run: the partial results and the file written.
     results: Results
@@ -175,6 +180,10 @@ def convert_adm(
     path: str | PathLike[str], format: str, acf: str | PathLike[str] | None = None
 ) -> str: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
+def cam_base_radius_question(r: float) -> str | None: ...
+def quantity_unit(quantity: str, units: str = "m,rad") -> tuple[str, float]: ...
+def parse_units(units: str) -> tuple[str, str]: ...
+def length_units() -> list[tuple[str, float]]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...
 def check_setting(key: str, value: float) -> None: ...

@@ -30,7 +30,7 @@ from camlink.records import (
 from camlink.results import ImpactRecord, LiftOffRecord, Results, RunSummary, plain_summary
 from camlink.settings import check_settings
 from camlink.signals import stop_on_termination
-from camlink.units import unit
+from camlink.units import channel_units
 from camlink.warn import (
     CourseFileWarning,
     issue_design_warnings,
@@ -565,7 +565,9 @@ class Model:
         self,
         kind: str,
         output: str | os.PathLike[str] | None,
-        core: Callable[..., tuple[list[str], npt.NDArray[np.float64], dict[str, Any]]],
+        core: Callable[
+            ..., tuple[list[str], npt.NDArray[np.float64], dict[str, Any], list[str]]
+        ],
         points: Sequence[str] | None,
         on_rows: Callable[[int], object] | None = None,
     ) -> Results:
@@ -581,14 +583,18 @@ class Model:
         if output is not None:
             check_not_input(Path(output), self.inputs)
             head = {"camlink": _core.__version__, "model": self.name, "analysis": kind}
-            writer = BackgroundWriter(open_writer(output, head=head, joints=self.joints))
+            writer = BackgroundWriter(open_writer(output, head=head))
         names: list[str] = []
+        quantities: list[str] = []
         complete = False
 
-        def on_chunk(chunk_names: list[str], rows: npt.NDArray[np.float64]) -> None:
+        def on_chunk(
+            chunk_names: list[str], rows: npt.NDArray[np.float64], chunk_quantities: list[str]
+        ) -> None:
             names[:] = chunk_names
+            quantities[:] = chunk_quantities
             if writer is not None:
-                writer.write(chunk_names, rows)
+                writer.write(chunk_names, rows, chunk_quantities)
             if on_rows is not None:
                 on_rows(len(rows))
 
@@ -597,36 +603,38 @@ class Model:
             # SIGTERM and SIGHUP, left at their defaults, stop the run as
             # Ctrl-C does (camlink.signals).
             with stop_on_termination(only_default=True):
-                names, data, summary = core(
+                names, data, summary, quantities = core(
                     points=points,
                     on_chunk=on_chunk,
                     chunk_rows=CHUNK_ROWS,
                     keep_rows=writer is None,
                 )
             complete = True
-            joints = self.joints
             metadata = {
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,
-                "units": {n: unit(n, joints) for n in names},
+                "units": channel_units(names, quantities),
+                "quantities": dict(zip(names, quantities, strict=True)),
                 # As `Results.save` writes it: one form of the summary in files.
                 "summary": plain_summary(_summary(kind, summary)),
             }
         except AnalysisError as e:
             names = list(e.names)
+            quantities = list(e.quantities)
             if writer is not None:
                 e.output = writer.close(names, complete=False)
                 e.results = Results._from_file(
                     writer.columns(), names, model=self.name, complete=False,
-                    summary={"analysis": kind},
+                    summary={"analysis": kind}, quantities=quantities or None,
                 )
                 writer = None
             else:
                 e.output = None
                 partial = e.data if e.data is not None else np.empty((0, len(names)))
                 e.results = Results(
-                    names, partial, model=self.name, complete=False, summary={"analysis": kind}
+                    names, partial, model=self.name, complete=False, summary={"analysis": kind},
+                    quantities=quantities or None,
                 )
             e.results.mechanism = self
             raise
@@ -642,9 +650,11 @@ class Model:
         typed = _summary(kind, summary)
         issue_run_warnings(typed)
         if writer is not None:
-            results = Results._from_file(writer.columns(), names, model=self.name, summary=typed)
+            results = Results._from_file(
+                writer.columns(), names, model=self.name, summary=typed, quantities=quantities
+            )
         else:
-            results = Results(names, data, model=self.name, summary=typed)
+            results = Results(names, data, model=self.name, summary=typed, quantities=quantities)
         results.mechanism = self
         return results
 

@@ -27,7 +27,7 @@ from camlink.io.output import (
     read_csv_metadata,
     sidecar_path,
 )
-from camlink.units import unit
+from camlink.units import SI, Units, channel_units, parse_units, unit_of
 
 if TYPE_CHECKING:
     from collections.abc import Sequence
@@ -124,8 +124,14 @@ class ResultsMetadata(TypedDict, total=False):
     model: str
     #: The analysis: one of `camlink.ANALYSES`.
     analysis: str
-    #: Each channel's unit (``""`` where the kind does not fix it).
+    #: Each channel's unit (``""`` in files written before channels
+    #: carried their quantity).
     units: dict[str, str]
+    #: Each channel's quantity as the core names it (``"velocity"``…).
+    quantities: dict[str, str]
+    #: The length and angle units of the values (``"m,rad"`` unless the
+    #: results were converted, `Results.in_units`).
+    value_units: str
     #: The run summary as plain JSON values (warnings as dicts).
     summary: dict[str, Any]
 
@@ -184,6 +190,7 @@ class Results:
         model: str = "",
         complete: bool = True,
         summary: RunSummary | None = None,
+        quantities: Sequence[str] | None = None,
     ) -> None:
         data = np.asarray(data, dtype=np.float64)
         if data.ndim != 2 or (names and data.shape[1] != len(names)):
@@ -210,10 +217,18 @@ class Results:
         #: read from a file.
         self.summary: RunSummary = summary if summary is not None else {}
         #: The model that produced these results (None when read from a
-        #: file); drawings and animations take their geometry from it.
+        #: file or converted to other units); drawings and animations take
+        #: their geometry from it.
         self.mechanism: Model | None = None
-        # Each channel's unit as a results file gave it (None otherwise).
+        # Each channel's quantity as the core named it ("" when unknown).
+        self._quantities: dict[str, str] = (
+            dict(zip(self._names, quantities, strict=True)) if quantities is not None else {}
+        )
+        # Each channel's unit as a results file gave it, for files that
+        # carry no quantities (None otherwise).
         self._file_units: dict[str, str] | None = None
+        # The units of the values: SI unless converted (`in_units`).
+        self._value_units: Units = SI
 
     @classmethod
     def _from_file(
@@ -224,10 +239,11 @@ class Results:
         model: str = "",
         complete: bool = True,
         summary: RunSummary | None = None,
+        quantities: Sequence[str] | None = None,
     ) -> Results:
         """Results whose rows stay in the file `source` until asked for."""
         res = cls(names, np.empty((0, len(names))), model=model, complete=complete,
-                  summary=summary)
+                  summary=summary, quantities=quantities)
         res._data = None
         res._source = source
         return res
@@ -391,13 +407,68 @@ class Results:
 
     @property
     def units(self) -> dict[str, str]:
-        """Each column's unit (``"t"`` first), ``""`` where the kind does
-        not fix it: a driver's effort in N·m or N by what it drives, from
-        the model's joints, or as the results file read gave it."""
-        joints = self.mechanism.joints if self.mechanism is not None else None
-        if joints is None and self._file_units is not None:
-            return {n: self._file_units.get(n) or unit(n) for n in self._names}
-        return {n: unit(n, joints) for n in self._names}
+        """Each column's unit (``"t"`` first), as the core states it with
+        the channel (a driver's effort in N·m or N by what it drives), in
+        `value_units`; ``""`` only for a column of a file written before
+        channels carried their quantity."""
+        if not self._quantities and self._file_units is not None:
+            return {n: self._file_units.get(n, "") for n in self._names}
+        return channel_units(self._names, self._quantities, self._value_units)
+
+    @property
+    def quantities(self) -> dict[str, str]:
+        """Each column's quantity as the core names it (``"t"``:
+        ``"time"``, ``"crank.omega"``: ``"angular_velocity"``, a contact's
+        ``normal_force``: ``"force"``…); ``""`` where a file did not say."""
+        return {n: self._quantities.get(n, "") for n in self._names}
+
+    @property
+    def value_units(self) -> str:
+        """The length and angle units of the values, ``"m,rad"`` unless
+        the results were converted with `in_units`."""
+        return str(self._value_units)
+
+    def _like(self, names: list[str], data: npt.NDArray[np.float64]) -> Results:
+        """Results of the columns `names` (of these) with the rows `data`:
+        the same model, summary, units and mechanism (a thinned copy for a
+        viewer)."""
+        known = all(self._quantities.get(n) for n in names)
+        out = Results(
+            names, data, model=self.model, complete=self.complete, summary=self.summary,
+            quantities=[self._quantities[n] for n in names] if known else None,
+        )
+        out._file_units = self._file_units
+        out._value_units = self._value_units
+        out.mechanism = self.mechanism
+        return out
+
+    def in_units(self, units: str | Units) -> Results:
+        """These results with lengths and angles (and their rates) in
+        `units`, e.g. ``"mm,deg"``: for tables, files and plots. Forces,
+        torques, energies and times stay SI; residuals stay as computed.
+        The copy has no `mechanism` (drawings need SI geometry). A
+        `camlink.ModelError` names units camlink does not know, and a
+        column whose quantity a file did not record."""
+        target = parse_units(units)
+        if target == self._value_units:
+            return self
+        factors = []
+        for n in self._names:
+            q = self._quantities.get(n, "")
+            if not q:
+                raise ModelError(
+                    f"channel '{n}' has no recorded quantity (a results file of an earlier "
+                    "version): its values cannot be converted"
+                )
+            # From the current units back to SI, then on to `target`.
+            factors.append(unit_of(q, target)[1] / unit_of(q, self._value_units)[1])
+        res = Results(
+            self._names, self.data * np.asarray(factors), model=self.model,
+            complete=self.complete, summary=self.summary,
+            quantities=[self._quantities[n] for n in self._names],
+        )
+        res._value_units = target
+        return res
 
     def __repr__(self) -> str:
         span = (
@@ -472,14 +543,19 @@ class Results:
 
         return results_html(self)
 
-    def save(self, path: str | os.PathLike[str]) -> Path:
+    def save(self, path: str | os.PathLike[str], *, units: str | Units | None = None) -> Path:
         """Writes the results as CSV or Parquet, chosen by the suffix, to a
-        temporary file renamed over `path` once complete."""
+        temporary file renamed over `path` once complete; with `units`
+        (``"mm,deg"``) in those units (`in_units`), which the file's
+        metadata records."""
+        if units is not None and parse_units(units) != self._value_units:
+            return self.in_units(units).save(path)
         meta = self.metadata()
         writer = open_writer(path, head=meta)
         complete = False
         try:
-            writer.write(self._names, self.data)
+            known = [self._quantities[n] for n in self._names] if self._quantities else []
+            writer.write(self._names, self.data, known)
             complete = True
         finally:
             writer.close(self._names, complete, metadata=meta)
@@ -499,6 +575,10 @@ class Results:
         if "analysis" in summary:
             meta["analysis"] = summary["analysis"]
         meta["units"] = self.units
+        if self._quantities:
+            meta["quantities"] = self.quantities
+        if self._value_units != SI:
+            meta["value_units"] = self.value_units
         if summary:
             meta["summary"] = summary
         return meta
@@ -517,7 +597,15 @@ class Results:
             else:
                 names, data, meta = _read_arrow(path, kind)
             model, summary = _file_metadata(meta, path)
-            res = cls(names, data, model=model, summary=summary)
+            stored = meta.get("quantities")
+            quantities = (
+                [stored[n] for n in names]
+                if isinstance(stored, dict) and all(isinstance(stored.get(n), str) for n in names)
+                else None
+            )
+            res = cls(names, data, model=model, summary=summary, quantities=quantities)
+            value_units = meta.get("value_units")
+            res._value_units = parse_units(value_units) if isinstance(value_units, str) else SI
             units = meta.get("units")
             if isinstance(units, dict):
                 res._file_units = {str(k): v for k, v in units.items() if isinstance(v, str)}

@@ -1,71 +1,72 @@
-"""Units of result channels, from the kind a channel's name ends with
-(``"crank.omega"`` → ``"rad/s"``): for plot labels and result files.
+"""Units of result channels and of what camlink shows, as the Rust core
+states them.
 
-A driver's effort is a torque or a force by the coordinate it drives, and
-a joint stop's gap an angle or a length; `unit` tells them apart when it
-is given the model's joints.
+Every channel carries its quantity from the core, where it is named
+(``"crank.omega"`` is an ``"angular_velocity"``, a driver's ``effort`` a
+``"torque"`` or a ``"force"`` by the coordinate it drives, a gear's
+``theta`` an ``"angle"``); `unit_of` gives its SI unit, or its unit in the
+units a user asks for (``"mm,deg"``) and the factor that converts it.
+Lengths and angles and their rates follow the asked units; forces,
+torques, energies and times stay SI.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Mapping, Sequence
+from typing import NamedTuple
 
-if TYPE_CHECKING:
-    from camlink.records import JointRecord
+from camlink import _core
 
-__all__ = ["UNITS", "effort_unit", "unit"]
+__all__ = ["LENGTH_UNITS", "Units", "channel_units", "parse_units", "unit_of"]
 
-#: Units of channels by the last part of their name.
-UNITS = {
-    "t": "s",
-    "x": "m", "y": "m", "cx": "m", "cy": "m",
-    "phi": "rad", "alpha_i": "rad", "alpha_j": "rad", "pressure_angle": "rad",
-    "theta": "rad",
-    "vx": "m/s", "vy": "m/s", "omega": "rad/s",
-    "ax": "m/s²", "ay": "m/s²", "alpha": "rad/s²",
-    "jx": "m/s³", "jy": "m/s³", "jphi": "rad/s³",
-    "fx": "N", "fy": "N", "fx_j": "N", "fy_j": "N", "fx_local": "N", "fy_local": "N",
-    "fx_local_j": "N", "fy_local_j": "N", "normal": "N", "force": "N",
-    "normal_force": "N", "tangential_force": "N", "friction_force": "N",
-    "friction_torque": "N·m", "friction_power": "W",
-    "torque": "N·m", "torque_j": "N·m", "moment": "N·m", "power": "W",
-    "kinetic": "J", "potential": "J", "total": "J", "elastic": "J", "work": "J",
-    "residual": "m", "velocity": "m/s", "gap": "m",
-}
-
-#: Equations of a driver whose effort is a torque: it drives an angle.
-ANGLE_EQUATIONS = frozenset({"phi"})
+#: Length units camlink knows: symbol → metres in one unit.
+LENGTH_UNITS: dict[str, float] = dict(_core.length_units())
 
 
-def effort_unit(driver: JointRecord) -> str:
-    """The unit of a driver's effort: ``"N·m"`` when it drives an angle,
-    ``"N"`` when it drives a length (x, y, a distance, travel along a
-    guide)."""
-    names = driver.get("equation_names") or []
-    return "N·m" if any(n in ANGLE_EQUATIONS for n in names) else "N"
+class Units(NamedTuple):
+    """A length unit and an angle unit, e.g. ``Units("mm", "deg")``."""
+
+    length: str
+    angle: str
+
+    def __str__(self) -> str:
+        return f"{self.length},{self.angle}"
 
 
-def unit(channel: str, joints: Sequence[JointRecord] | None = None) -> str:
-    """The unit of a channel from its kind (``"crank.omega"`` → ``"rad/s"``).
-
-    A driver's ``<driver>.effort`` is in N·m or N by what it drives: given
-    the model's `joints` (`Model.joints`), the driver's; without them ``""``.
-    A revolute's stop ``<joint>.lower.gap`` is in rad given the joints.
-    """
-    owner, _, kind = channel.rpartition(".")
-    if kind == "effort":
-        driver = next((j for j in joints or () if j["name"] == owner and j["driver"]), None)
-        return effort_unit(driver) if driver is not None else ""
-    if kind == "gap" and stop_of_revolute(owner, joints or ()):
-        return "rad"
-    return UNITS.get(kind, "")
+#: Metres and radians.
+SI = Units("m", "rad")
 
 
-def stop_of_revolute(owner: str, joints: Sequence[JointRecord]) -> bool:
-    """True when `owner` is an end stop (``<joint>.lower`` or
-    ``<joint>.upper``) of a revolute joint, whose gap is an angle."""
-    joint, _, side = owner.rpartition(".")
-    return side in ("lower", "upper") and any(
-        j["name"] == joint and j["kind"] == "revolute" for j in joints
-    )
+def parse_units(text: str | Units | None) -> Units:
+    """Units written ``"LENGTH,ANGLE"`` (``"mm,deg"``), either part alone
+    (the other stays SI), or ``"si"``; None is SI. A `camlink.ModelError`
+    names what is accepted."""
+    if text is None:
+        return SI
+    if isinstance(text, Units):
+        text = str(text)
+    length, angle = _core.parse_units(text)
+    return Units(length, angle)
+
+
+def unit_of(quantity: str, units: str | Units | None = None) -> tuple[str, float]:
+    """The unit of `quantity` (as the core names it, e.g. ``"velocity"``)
+    in `units` (default SI) and the factor k that turns an SI value into it
+    (value = k · SI value). ``""`` and 1 for an unknown quantity (a column
+    of results read from a file written before channels carried theirs)."""
+    if not quantity:
+        return "", 1.0
+    return _core.quantity_unit(quantity, str(parse_units(units)))
+
+
+def channel_units(
+    names: Sequence[str], quantities: Sequence[str] | Mapping[str, str],
+    units: str | Units | None = None,
+) -> dict[str, str]:
+    """Each channel's unit in `units` (default SI) from its quantity:
+    `quantities` in the order of `names`, or by name."""
+    if isinstance(quantities, Mapping):
+        by_name = quantities
+    else:
+        by_name = dict(zip(names, quantities, strict=True))
+    return {n: unit_of(by_name.get(n, ""), units)[0] for n in names}

@@ -15,8 +15,9 @@ def test_analysis_settings_are_keyword_only(four_bar_file):
         model._core.run_kinematics(times, 1e-10)  # type: ignore[call-arg]
     with pytest.raises(TypeError):
         model._core.run_dynamics(times, 1e-3)  # type: ignore[call-arg]
-    names, data, _ = model._core.run_kinematics(times, tol=1e-10)
+    names, data, _, quantities = model._core.run_kinematics(times, tol=1e-10)
     assert names[0] == "t" and data.shape == (3, len(names))
+    assert quantities[0] == "time" and len(quantities) == len(names)
 
 
 def test_run_takes_its_settings_by_keyword(four_bar_file):

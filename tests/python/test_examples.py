@@ -36,3 +36,6 @@ def test_example_runs_end_to_end(path, tmp_path):
     assert res.t[0] == 0.0
     back = camlink.Results.load(out)
     assert back.channels == res.channels and len(back) == len(res)
+    # Every channel has its unit from the core, and the file keeps it.
+    assert all(res.units.values()), [n for n, u in res.units.items() if not u]
+    assert back.units == res.units and back.quantities == res.quantities

@@ -8,18 +8,17 @@ import numpy as np
 import pytest
 
 import camlink
-from camlink.viz.plots import plot, pressure_angle, reactions, svaj, svaj_data, unit
+from camlink.viz.plots import plot, pressure_angle, reactions, svaj, svaj_data
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
 
 
-def test_units_follow_the_channel_kind() -> None:
-    assert unit("crank.omega") == "rad/s"
-    assert unit("coupler.P.ax") == "m/s²"
-    assert unit("O.fx_j") == "N"
-    assert unit("contact.pressure_angle") == "rad"
-    assert unit("motor.effort") == ""
+def test_units_are_those_the_core_states() -> None:
+    res = camlink.load(EXAMPLES / "four_bar.toml").inverse_dynamics(t_end=0.02, step=0.01)
+    units = res.units
+    assert units["crank.omega"] == "rad/s" and units["coupler.P.ax"] == "m/s²"
+    assert units["O2.fx_j"] == "N" and units["motor.effort"] == "N·m"
 
 
 def test_channels_overlays_and_xy(tmp_path: Path) -> None:

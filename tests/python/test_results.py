@@ -127,7 +127,7 @@ def test_output_to_a_missing_directory_fails_before_running(four_bar_file, tmp_p
 def test_callback_error_propagates(four_bar_file):
     model = camlink.load(four_bar_file)
 
-    def boom(names, rows):
+    def boom(names, rows, quantities):
         raise ZeroDivisionError("from the callback")
 
     with pytest.raises(ZeroDivisionError, match="from the callback"):
@@ -138,7 +138,7 @@ def test_callback_error_stops_the_run(four_bar_file):
     model = camlink.load(four_bar_file)
     calls = []
 
-    def stop_at_second_chunk(names, rows):
+    def stop_at_second_chunk(names, rows, quantities):
         calls.append(len(rows))
         if len(calls) == 2:
             raise KeyboardInterrupt

@@ -181,14 +181,14 @@ def test_the_binding_keeps_no_rows_when_told_and_hands_column_major_chunks() -> 
     times = model.times(t_end=0.5, step=0.01)
     chunks: list[np.ndarray] = []
 
-    def collect(names: list[str], rows: np.ndarray) -> None:
-        assert rows.flags.f_contiguous
+    def collect(names: list[str], rows: np.ndarray, quantities: list[str]) -> None:
+        assert rows.flags.f_contiguous and len(quantities) == len(names)
         chunks.append(rows.copy())
 
-    names, kept, _ = model._core.run_kinematics(times, on_chunk=collect, chunk_rows=10)
+    names, kept, _, _ = model._core.run_kinematics(times, on_chunk=collect, chunk_rows=10)
     streamed: list[np.ndarray] = chunks[:]
     chunks.clear()
-    names2, none, _ = model._core.run_kinematics(
+    names2, none, _, _ = model._core.run_kinematics(
         times, on_chunk=collect, chunk_rows=10, keep_rows=False
     )
     assert names2 == names and none.shape == (0, len(names))
@@ -201,9 +201,9 @@ def test_a_chunk_holds_at_most_two_mebibytes_of_rows() -> None:
     model = camlink.load(EXAMPLES / "four_bar.toml")
     times = model.times(t_end=0.1, step=1e-5)
     sizes: list[int] = []
-    names, _, _ = model._core.run_kinematics(
+    names, _, _, _ = model._core.run_kinematics(
         times,
-        on_chunk=lambda names, rows: sizes.append(len(rows)),
+        on_chunk=lambda names, rows, quantities: sizes.append(len(rows)),
         chunk_rows=10**9,
         keep_rows=False,
     )
@@ -219,7 +219,7 @@ def test_the_background_writer_writes_the_chunks_waiting_together() -> None:
     class Slow:
         path = Path("slow.csv")
 
-        def write(self, names: list[str], rows: np.ndarray) -> None:
+        def write(self, names: list[str], rows: np.ndarray, quantities: list[str]) -> None:
             calls.append(rows.copy())
             assert rows.flags.f_contiguous
             gate.wait(60)

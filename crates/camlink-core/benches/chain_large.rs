@@ -11,13 +11,13 @@ mod mechanisms;
 mod shared;
 
 use camlink_core::kinematics::run;
-use camlink_core::run::{time_grid, Settings, Sink, Stop};
+use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 
 /// Discards rows; the benchmark measures the solver alone.
 struct Discard;
 
 impl Sink for Discard {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, _: f64, values: &[f64]) -> Result<(), Stop> {
         divan::black_box(values);
         Ok(())

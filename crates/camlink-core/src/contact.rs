@@ -36,6 +36,7 @@ use crate::constraint::{Constraint, Equations, Feature};
 use crate::curve::Curve;
 use crate::math::{cross, dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
+use crate::quantity::{Channel, Quantity};
 
 /// How a follower body is guided by the ground.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -215,17 +216,20 @@ impl Contacts {
 
     /// Channel names, in fill order: `<joint>.cx`, `<joint>.cy` and, where
     /// the follower's motion is known, `<joint>.pressure_angle`.
-    pub fn channels(&self, model: &Model) -> Vec<String> {
-        let mut names = Vec::new();
+    pub fn channels(&self, model: &Model) -> Vec<Channel> {
+        let mut out = Vec::new();
         for it in &self.items {
             let name = &model.joints[it.joint].name;
-            names.push(format!("{name}.cx"));
-            names.push(format!("{name}.cy"));
+            out.push(Channel::new(format!("{name}.cx"), Quantity::Length));
+            out.push(Channel::new(format!("{name}.cy"), Quantity::Length));
             if it.follower.is_some() {
-                names.push(format!("{name}.pressure_angle"));
+                out.push(Channel::new(
+                    format!("{name}.pressure_angle"),
+                    Quantity::Angle,
+                ));
             }
         }
-        names
+        out
     }
 
     /// Number of channels.

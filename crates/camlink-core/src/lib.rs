@@ -10,9 +10,10 @@
 //! The modules are layered; each imports only modules of its own or an
 //! earlier line, with no cycle (`tests/layers.rs` checks it):
 //!
-//! 1. [`math`], [`cam`], [`curve`], [`function`], [`motion`], [`newton`]:
-//!    geometry (a synthesised cam's profile too), functions of time, time
-//!    derivatives of points along a motion, and Newton's stopping test;
+//! 1. [`math`], [`quantity`], [`cam`], [`curve`], [`function`], [`motion`],
+//!    [`newton`]: geometry (a synthesised cam's profile too), units of
+//!    channels, functions of time, time derivatives of points along a
+//!    motion, and Newton's stopping test;
 //! 2. [`constraint`], [`force`]: Φ, Φ_q, ν, γ and applied forces Q;
 //! 3. [`model`]: the validated, immutable description;
 //! 4. [`assembly`], [`linsolve`]: layout, sparsity and factorisations;
@@ -31,6 +32,7 @@ pub mod function;
 pub mod math;
 pub mod motion;
 pub mod newton;
+pub mod quantity;
 
 pub mod constraint;
 pub mod force;

@@ -8,6 +8,8 @@ use crate::contact::Contacts;
 use crate::fmt_num::num;
 use crate::math::{point, point_vel, rot, rot_d, V2};
 use crate::model::{BodyId, Model};
+pub use crate::quantity::Channel;
+use crate::quantity::{self, Quantity};
 
 /// Solver settings.
 #[derive(Clone, Debug)]
@@ -73,8 +75,9 @@ impl PointOutput {
 
 /// Receives results as the run goes.
 pub trait Sink {
-    /// Called once before the first row with the channel names (not `t`).
-    fn begin(&mut self, channels: &[String]);
+    /// Called once before the first row with the channels (not `t`): their
+    /// names and quantities.
+    fn begin(&mut self, channels: &[Channel]);
     /// One time step: time t (s) and the values, in channel order. An error
     /// stops the run, which returns an [`AnalysisError`] of kind
     /// [`Kind::Stopped`] at `t`.
@@ -102,6 +105,8 @@ impl Stop {
 #[derive(Clone, Debug, Default)]
 pub struct Table {
     pub channels: Vec<String>,
+    /// What each channel measures, in the order of `channels`.
+    pub quantities: Vec<Quantity>,
     pub t: Vec<f64>,
     /// Row-major values, `channels.len()` per step.
     pub values: Vec<f64>,
@@ -117,8 +122,9 @@ impl Table {
 }
 
 impl Sink for Table {
-    fn begin(&mut self, channels: &[String]) {
-        self.channels = channels.to_vec();
+    fn begin(&mut self, channels: &[Channel]) {
+        self.channels = quantity::names(channels);
+        self.quantities = channels.iter().map(|c| c.quantity).collect();
     }
     fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
         self.t.push(t);
@@ -415,45 +421,69 @@ pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
     Ok((0..=n).map(|k| k as f64 * step).collect())
 }
 
-/// The output channel names of a run.
-pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
+/// The output channels of a run: per moving body `x y phi vx vy omega ax
+/// ay alpha`, per output point `x y vx vy ax ay`, each joint's own
+/// coordinates, then the contacts' ([`Contacts::channels`]).
+pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
+    use Quantity::*;
+    let mut out = Vec::new();
     for (_, b) in model.moving_bodies() {
-        for c in ["x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha"] {
-            names.push(format!("{}.{c}", b.name));
+        for (c, q) in [
+            ("x", Length),
+            ("y", Length),
+            ("phi", Angle),
+            ("vx", Velocity),
+            ("vy", Velocity),
+            ("omega", AngularVelocity),
+            ("ax", Acceleration),
+            ("ay", Acceleration),
+            ("alpha", AngularAcceleration),
+        ] {
+            out.push(Channel::new(format!("{}.{c}", b.name), q));
         }
     }
     for p in points {
-        for c in ["x", "y", "vx", "vy", "ax", "ay"] {
-            names.push(format!("{}.{c}", p.name));
+        for (c, q) in [
+            ("x", Length),
+            ("y", Length),
+            ("vx", Velocity),
+            ("vy", Velocity),
+            ("ax", Acceleration),
+            ("ay", Acceleration),
+        ] {
+            out.push(Channel::new(format!("{}.{c}", p.name), q));
         }
     }
     for j in &model.joints {
         for k in 0..j.constraint.own_count() {
             let n = j.constraint.own_names().get(k).copied().unwrap_or("own");
-            names.push(format!("{}.{n}", j.name));
+            out.push(Channel::new(
+                format!("{}.{n}", j.name),
+                j.constraint.own_quantity(k),
+            ));
         }
     }
-    names.extend(Contacts::new(model).channels(model));
-    names
+    out.extend(Contacts::new(model).channels(model));
+    out
 }
 
 /// The jerk channels of a run with [`Settings::jerk`], after those of
 /// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
 /// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
-pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<String> {
-    let mut names = Vec::new();
+pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
+    use Quantity::*;
+    let mut out = Vec::new();
     for (_, b) in model.moving_bodies() {
-        for c in ["jx", "jy", "jphi"] {
-            names.push(format!("{}.{c}", b.name));
+        for (c, q) in [("jx", Jerk), ("jy", Jerk), ("jphi", AngularJerk)] {
+            out.push(Channel::new(format!("{}.{c}", b.name), q));
         }
     }
     for p in points {
         for c in ["jx", "jy"] {
-            names.push(format!("{}.{c}", p.name));
+            out.push(Channel::new(format!("{}.{c}", p.name), Jerk));
         }
     }
-    names
+    out
 }
 
 /// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,

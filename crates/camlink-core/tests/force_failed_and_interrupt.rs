@@ -10,7 +10,7 @@ use camlink_core::constraint::absolute::{AbsoluteCoord, Coord};
 use camlink_core::dynamics::{integrator, inverse, statics};
 use camlink_core::force::callback::Callback;
 use camlink_core::force::{Force, ForceError};
-use camlink_core::run::{Kind, Sink, Stop, Table};
+use camlink_core::run::{Channel, Kind, Sink, Stop, Table};
 use camlink_core::TimeFn;
 use mechanisms::pendulum;
 
@@ -87,7 +87,7 @@ struct Interrupt {
 }
 
 impl Sink for Interrupt {
-    fn begin(&mut self, _channels: &[String]) {}
+    fn begin(&mut self, _channels: &[Channel]) {}
     fn row(&mut self, _t: f64, _values: &[f64]) -> Result<(), Stop> {
         Ok(())
     }

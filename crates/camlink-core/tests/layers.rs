@@ -15,6 +15,7 @@ const LAYERS: &[&[&str]] = &[
     &[
         "math",
         "fmt_num",
+        "quantity",
         "cam",
         "curve",
         "function",

@@ -5,7 +5,7 @@ use crate::mechanisms;
 
 use camlink_core::dynamics::integrator;
 use camlink_core::kinematics;
-use camlink_core::run::{time_grid, Kind, Settings, Sink, Stop};
+use camlink_core::run::{time_grid, Channel, Kind, Settings, Sink, Stop};
 use mechanisms::{pendulum, slider_crank};
 
 /// Takes `limit` rows, then refuses.
@@ -15,7 +15,7 @@ struct Limited {
 }
 
 impl Sink for Limited {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, t: f64, _: &[f64]) -> Result<(), Stop> {
         if self.rows.len() == self.limit {
             return Err(Stop("full".into()));

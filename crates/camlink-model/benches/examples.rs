@@ -6,14 +6,14 @@
 use std::path::Path;
 
 use camlink_core::kinematics::run;
-use camlink_core::run::{time_grid, Settings, Sink, Stop};
+use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 use camlink_expr::Expr;
 
 /// Discards rows; the benchmark measures the solver alone.
 struct Discard;
 
 impl Sink for Discard {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, _: f64, values: &[f64]) -> Result<(), Stop> {
         divan::black_box(values);
         Ok(())

@@ -16,7 +16,7 @@ use std::process::ExitCode;
 
 use camlink_core::dynamics::integrator::{Integrator, Settings as DynSettings};
 use camlink_core::kinematics::run;
-use camlink_core::run::{time_grid, Settings, Sink, Stop};
+use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 
 #[path = "../../camlink-core/tests/mechanisms/mod.rs"]
 mod mechanisms;
@@ -25,7 +25,7 @@ mod mechanisms;
 struct Last(f64);
 
 impl Sink for Last {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, _: f64, values: &[f64]) -> Result<(), Stop> {
         self.0 = values.first().copied().unwrap_or(0.0);
         Ok(())

@@ -236,9 +236,51 @@ pub struct ModelSection {
     /// Model name; defaults to the file name without extension.
     #[serde(default)]
     pub name: Option<String>,
-    /// Gravity vector g in the global frame (m/s²); default [0, -9.81].
+    /// Gravity vector g in the global frame (m/s², or the length unit of
+    /// `units` per s²); default [0, -9.81] m/s².
     #[serde(default)]
     pub gravity: Option<Vec2>,
+    /// The length and angle units the file's values are written in,
+    /// e.g. `{ length = "mm", angle = "deg" }`; default metres and
+    /// radians. Converted to SI on loading (docs/units.md lists the keys
+    /// that follow them); masses, forces and inertias stay SI.
+    #[serde(default)]
+    pub units: Option<UnitsSpec>,
+}
+
+/// `[model] units`: the units of the file's lengths and angles.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct UnitsSpec {
+    /// Unit of every length, position and length rate; default `m`.
+    #[serde(default)]
+    pub length: Option<LengthUnit>,
+    /// Unit of every angle and angle rate; default `rad`.
+    #[serde(default)]
+    pub angle: Option<AngleUnit>,
+}
+
+/// A length unit of `[model] units`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+pub enum LengthUnit {
+    #[serde(rename = "m")]
+    M,
+    #[serde(rename = "cm")]
+    Cm,
+    #[serde(rename = "mm")]
+    Mm,
+    /// The inch, 25.4 mm.
+    #[serde(rename = "in")]
+    In,
+}
+
+/// An angle unit of `[model] units`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, JsonSchema)]
+pub enum AngleUnit {
+    #[serde(rename = "rad")]
+    Rad,
+    #[serde(rename = "deg")]
+    Deg,
 }
 
 /// `[ground]`: the fixed body, whose frame is the global frame.

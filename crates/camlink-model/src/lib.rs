@@ -15,6 +15,7 @@ mod eval;
 pub mod file;
 mod locate;
 mod resolve;
+mod units;
 mod variant;
 
 use std::io::Read;

@@ -91,16 +91,21 @@ struct Ctx {
     /// Per body id: the initial frame (x, y, φ) of a body given by
     /// `global_points`, whose [x, y] points are global.
     global_frames: Vec<Option<[f64; 3]>>,
+    /// The units the file declares, for the data files it reads (its own
+    /// values are SI already, [`crate::units::to_si`]).
+    units: camlink_core::quantity::Units,
 }
 
-/// Builds the model and analysis settings described by `file`.
-/// Data files named in the model (CSV points) are read through `data`.
+/// Builds the model and analysis settings described by `file`, which is
+/// in SI ([`crate::units::to_si`]) but for the data files it names, read
+/// through `data` in the file's declared `units`.
 pub(crate) fn resolve(
     file: &ModelFile,
     default_name: &str,
     data: DataFiles,
 ) -> R<(Model, AnalysisSpec, Vec<Outline>, DataFiles)> {
     let params = parameters(&file.parameters)?;
+    let units = crate::units::declared(file);
     let mut cx = Ctx {
         params,
         model: Model::new(default_name),
@@ -111,6 +116,7 @@ pub(crate) fn resolve(
         body_ids: HashMap::from([("ground".to_string(), BodyId::GROUND)]),
         deferred: Vec::new(),
         global_frames: vec![None],
+        units,
     };
     if let Some(m) = &file.model {
         if let Some(name) = &m.name {

@@ -4,7 +4,7 @@
 //! the location of an event polls the sink like the steps do.
 
 use camlink_core::dynamics::integrator;
-use camlink_core::run::{time_grid, Kind, Sink, Stop, Summary, Table};
+use camlink_core::run::{time_grid, Channel, Kind, Sink, Stop, Summary, Table};
 use camlink_model::{load_str, Format, Loaded};
 
 const G: f64 = 9.81;
@@ -107,7 +107,7 @@ struct Ticks {
 }
 
 impl Sink for Ticks {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, _: f64, _: &[f64]) -> Result<(), Stop> {
         self.rows += 1;
         Ok(())

@@ -39,3 +39,4 @@ mod schema;
 mod state_forces;
 mod time_messages;
 mod unilateral;
+mod units;

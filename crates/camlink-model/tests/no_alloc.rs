@@ -16,7 +16,7 @@ use std::path::Path;
 use camlink_core::dynamics::integrator::{self, Settings as DynSettings};
 use camlink_core::kinematics;
 use camlink_core::run::PointOutput;
-use camlink_core::run::{time_grid, Settings, Sink, Stop};
+use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 use camlink_core::Model;
 
 #[path = "../../camlink-core/tests/mechanisms/mod.rs"]
@@ -70,7 +70,7 @@ struct Window {
 }
 
 impl Sink for Window {
-    fn begin(&mut self, _: &[String]) {}
+    fn begin(&mut self, _: &[Channel]) {}
     fn row(&mut self, _: f64, _: &[f64]) -> Result<(), Stop> {
         if self.rows == self.first {
             COUNT.with(|c| c.set(0));

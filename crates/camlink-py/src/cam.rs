@@ -437,6 +437,13 @@ impl CamCore {
 }
 
 /// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
+/// The question camlink asks of a base circle radius `r` (m) metres long
+/// (`camlink_core::cam::base_radius_question`), or None.
+#[pyfunction]
+pub fn cam_base_radius_question(r: f64) -> Option<String> {
+    camlink_core::cam::base_radius_question(r)
+}
+
 #[pyfunction]
 pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
     hertz::MATERIALS

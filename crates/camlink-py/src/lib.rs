@@ -13,6 +13,7 @@ mod fourbar;
 mod machine;
 mod study;
 mod synth;
+mod units;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
@@ -27,9 +28,10 @@ use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
 use camlink_core::force::ForceError;
 use camlink_core::kinematics;
+use camlink_core::quantity::Quantity;
 use camlink_core::run::{
-    self, AnalysisError as CoreAnalysisError, Kind, LiftOff, PointOutput, Settings, Sink, Stop,
-    Summary,
+    self, AnalysisError as CoreAnalysisError, Channel, Kind, LiftOff, PointOutput, Settings, Sink,
+    Stop, Summary,
 };
 use camlink_core::setting;
 use camlink_core::Equations;
@@ -52,7 +54,8 @@ create_exception!(
     AnalysisError,
     PyRuntimeError,
     "An analysis could not proceed. Attributes: time (s), joints (names), \
-     residual (largest |Φ|), names and data (the results computed so far)."
+     residual (largest |Φ|), names, quantities and data (the results computed \
+     so far)."
 );
 
 /// Rows buffered between two calls of `on_chunk`, unless the caller says.
@@ -95,8 +98,14 @@ fn model_format(name: &str) -> PyResult<Format> {
     }
 }
 
-/// What `run_kinematics` returns: channel names, data, summary.
-type RunOutput<'py> = (Vec<String>, Bound<'py, PyArray2<f64>>, Bound<'py, PyDict>);
+/// What `run_kinematics` returns: channel names, data, summary and each
+/// channel's quantity ([`Quantity::name`]).
+type RunOutput<'py> = (
+    Vec<String>,
+    Bound<'py, PyArray2<f64>>,
+    Bound<'py, PyDict>,
+    Vec<&'static str>,
+);
 
 /// A loaded model: the core model and the file's `[analysis]` settings.
 #[pyclass(frozen, module = "camlink._core")]
@@ -547,14 +556,16 @@ impl Model {
         })
     }
 
-    /// Kinematic analysis at `times` (s). Returns `(names, data, summary)`:
-    /// channel names starting with `"t"`, a `steps × len(names)` array and
-    /// a dict of solver counts, warnings, assembly moves and `lift_off`
-    /// (empty here; see `run_inverse_dynamics`). With `jerk`, Φ_q q⃛ = η is
+    /// Kinematic analysis at `times` (s). Returns `(names, data, summary,
+    /// quantities)`: channel names starting with `"t"`, a `steps ×
+    /// len(names)` array, a dict of solver counts, warnings, assembly moves
+    /// and `lift_off` (empty here; see `run_inverse_dynamics`), and what
+    /// each channel measures (`"time"`, `"angle"`, `"force"`…, the names of
+    /// `quantity_unit`). With `jerk`, Φ_q q⃛ = η is
     /// solved too and the jerk channels `<body>.jx .jy .jphi` and
     /// `<point>.jx .jy` follow the others.
     ///
-    /// `on_chunk(names, rows)` is called every `chunk_rows` rows (fewer
+    /// `on_chunk(names, rows, quantities)` is called every `chunk_rows` rows (fewer
     /// when that many would exceed [`CHUNK_BYTES`]) and once at the end,
     /// also when the analysis fails, so a caller can write results as the
     /// run goes; `rows` is a column-major (Fortran-order) array, so that
@@ -800,6 +811,7 @@ impl Model {
             sink.flush();
             let ChunkSink {
                 names,
+                quantities,
                 all,
                 callback_error,
                 ..
@@ -814,13 +826,13 @@ impl Model {
                     "internal error: run stopped without a Python error ({e})"
                 ))),
                 Ok(Err(e)) => {
-                    let err = analysis_error(py, &e, names, Some(data));
+                    let err = analysis_error(py, &e, names, quantities, Some(data));
                     if e.kind == Kind::ForceFailed {
                         err.set_cause(py, force_error);
                     }
                     Err(err)
                 }
-                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?)),
+                Ok(Ok(summary)) => Ok((names, data, summary_dict(py, &summary)?, quantities)),
             }
         })
     }
@@ -1017,6 +1029,7 @@ fn analysis_error(
     py: Python<'_>,
     e: &CoreAnalysisError,
     names: Vec<String>,
+    quantities: Vec<&'static str>,
     data: Option<Bound<'_, PyArray2<f64>>>,
 ) -> PyErr {
     let err = AnalysisError::new_err(e.to_string());
@@ -1027,6 +1040,7 @@ fn analysis_error(
         value.setattr("joints", e.joints.clone())?;
         value.setattr("residual", e.residual)?;
         value.setattr("names", names)?;
+        value.setattr("quantities", quantities)?;
         match data {
             Some(d) => value.setattr("data", d)?,
             None => value.setattr("data", py.None())?,
@@ -1060,6 +1074,8 @@ impl Delivery {
 /// Collects rows and hands them to Python in chunks.
 struct ChunkSink {
     names: Vec<String>,
+    /// What each of `names` measures ([`Quantity::name`]), `"time"` first.
+    quantities: Vec<&'static str>,
     /// Rows of the current chunk, row-major.
     chunk: Vec<f64>,
     /// Every row so far, row-major, when `keep_rows`; else empty.
@@ -1082,6 +1098,7 @@ impl ChunkSink {
     fn new(delivery: Delivery) -> Self {
         ChunkSink {
             names: Vec::new(),
+            quantities: Vec::new(),
             chunk: Vec::new(),
             all: Vec::new(),
             keep_rows: delivery.keep_rows,
@@ -1130,7 +1147,7 @@ impl ChunkSink {
             py.check_signals()?;
             if let Some(cb) = &self.on_chunk {
                 let rows = to_column_major_array(py, &self.chunk, self.width())?;
-                cb.call1(py, (self.names.clone(), rows))?;
+                cb.call1(py, (self.names.clone(), rows, self.quantities.clone()))?;
             }
             Ok(())
         });
@@ -1162,9 +1179,12 @@ fn to_column_major_array<'py>(
 }
 
 impl Sink for ChunkSink {
-    fn begin(&mut self, channels: &[String]) {
+    fn begin(&mut self, channels: &[Channel]) {
         self.names = std::iter::once("t".to_string())
-            .chain(channels.iter().cloned())
+            .chain(channels.iter().map(|c| c.name.clone()))
+            .collect();
+        self.quantities = std::iter::once(Quantity::Time.name())
+            .chain(channels.iter().map(|c| c.quantity.name()))
             .collect();
         let width = self.width().max(1);
         self.chunk_rows = self
@@ -1235,6 +1255,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<cam::CamCore>()?;
     m.add_class::<machine::MachineCycle>()?;
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_base_radius_question, m)?)?;
     m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
     m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
@@ -1248,6 +1269,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
     synth::register(m)?;
     fourbar::register(m)?;
+    units::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -38,7 +38,7 @@ pub fn machine_report(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDic
         let (loaded, spec) = load(py, &path)?;
         let report = py
             .detach(|| analyse(&loaded.model, &spec))
-            .map_err(|e| analysis_error(py, &e, Vec::new(), None))?;
+            .map_err(|e| analysis_error(py, &e, Vec::new(), Vec::new(), None))?;
         to_dict(py, &report, &spec)
     })
 }

@@ -11,7 +11,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use camlink_core::fmt_num::apart;
-use camlink_core::run::{Sink, Stop, Summary};
+use camlink_core::run::{Channel, Sink, Stop, Summary};
 use serde::Deserialize;
 
 /// One output of a run, as declared (`{ kind = "range", channel = "rocker.phi" }`).
@@ -211,11 +211,11 @@ fn transmission_angle(phi_i: f64, phi_j: f64) -> f64 {
 }
 
 impl Sink for Reducer {
-    fn begin(&mut self, channels: &[String]) {
+    fn begin(&mut self, channels: &[Channel]) {
         for s in &mut self.slots {
             s.columns.clear();
             for c in s.reduction.channels() {
-                match channels.iter().position(|n| *n == c) {
+                match channels.iter().position(|n| n.name == c) {
                     Some(k) => s.columns.push(k),
                     None => {
                         self.missing.get_or_insert_with(|| {
@@ -293,6 +293,7 @@ impl Sink for Reducer {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use camlink_core::quantity::Quantity;
 
     fn reduce(outputs: &[(&str, &str)], rows: &[(f64, [f64; 2])]) -> Result<Vec<f64>, String> {
         let outputs: Vec<(String, Reduction)> = outputs
@@ -300,7 +301,10 @@ mod tests {
             .map(|(n, j)| Ok((n.to_string(), Reduction::from_json(n, j)?)))
             .collect::<Result<_, String>>()?;
         let mut r = Reducer::new(&outputs, None, None);
-        r.begin(&["a.phi".into(), "b.phi".into()]);
+        r.begin(&[
+            Channel::new("a.phi", Quantity::Angle),
+            Channel::new("b.phi", Quantity::Angle),
+        ]);
         for (t, v) in rows {
             r.row(*t, v).map_err(|s| s.0)?;
         }

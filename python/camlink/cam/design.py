@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
@@ -20,9 +21,10 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from camlink._core import CamCore, ModelError
+from camlink._core import CamCore, ModelError, cam_base_radius_question
 from camlink.cam.export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
 from camlink.cam.sizing import SURGE_RATIO, ContactSpec, SpringSpec, VibrationSpec
+from camlink.warn import LoadWarning
 
 FOLLOWERS: dict[str, tuple[str, ...]] = {
     "translating-roller": ("offset", "roller_radius"),
@@ -287,6 +289,12 @@ def load(path: str | Path) -> Design:
     cam = _Table(p, "cam", doc.get("cam", {}))
     top.used.add("cam")
     base = cam.length("base_radius", positive=True)
+    question = cam_base_radius_question(base)
+    if question is not None:
+        warnings.warn(
+            LoadWarning(f"{p}: [cam] base_radius: {question} (design files are in metres)"),
+            stacklevel=2,
+        )
     rotation = cam.text("rotation", "ccw", ("ccw", "cw"))
     cam.finish()
     fol = _Table(p, "follower", doc.get("follower", {}))

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from camlink._core import CamCore
+from camlink.units import LENGTH_UNITS as METRES
 
 Points: TypeAlias = NDArray[np.float64]
 
@@ -32,8 +33,9 @@ MAX_CSV_ROWS = 1_000_000
 #: Most points `angles_by_chord` gives.
 MAX_POINTS = 2_000_000
 
-#: Length units of exports: name -> units per metre.
-LENGTH_UNITS = {"m": 1.0, "mm": 1000.0}
+#: Length units of exports: name -> units per metre (of camlink's length
+#: units, `camlink.units.LENGTH_UNITS`).
+LENGTH_UNITS = {u: 1.0 / METRES[u] for u in ("m", "mm")}
 
 #: DXF $INSUNITS codes of `LENGTH_UNITS`.
 _DXF_UNITS = {"m": 6, "mm": 4}

@@ -23,7 +23,6 @@ import numpy as np
 
 from camlink._core import ModelError
 from camlink.results import Results
-from camlink.units import stop_of_revolute
 from camlink.warn import LiftOffWarning
 
 if TYPE_CHECKING:
@@ -94,8 +93,8 @@ def flight_summary(
     """One line on the flights and impacts of the unilateral contacts and
     joint stops, or None when there were none: per joint, the number of
     flights and their greatest gap (mm), the number of impacts and the
-    fastest approach (m/s; rad/s on a revolute's stop, told apart given
-    the model's `joints`), and when the follower came to rest on its cam
+    fastest approach (m/s; rad/s on a revolute's stop, whose gap is an
+    angle), and when the follower came to rest on its cam
     or the joint on its stop."""
     flights = results.lift_off
     flights = flights[flights["greatest_gap"].notna()]
@@ -116,7 +115,8 @@ def flight_summary(
                 text += f" (greatest gap {1e3 * f['greatest_gap'].max():.4g} mm)"
             text += f", {len(i)} impact{'s' * (len(i) != 1)}"
         if len(i):
-            speed = "rad/s" if stop_of_revolute(joint, joints or ()) else "m/s"
+            angle = results.quantities.get(f"{joint}.gap") == "angle"
+            speed = "rad/s" if angle else "m/s"
             text += f" (fastest approach {i['approach_speed'].max():.4g} {speed})"
             closed = i[i["closed"]]
             if len(closed):

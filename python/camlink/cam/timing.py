@@ -30,11 +30,13 @@ from numpy.typing import NDArray
 from camlink._core import ModelError
 from camlink.cam import design as cam_design
 from camlink.cam.design import CamDesignError, _Table
+from camlink.units import LENGTH_UNITS as METRES
 
 RPM = 2.0 * math.pi / 60.0
 
-#: Length units of tables and the diagram: name -> metres per unit.
-UNITS = {"m": 1.0, "mm": 1e-3}
+#: Length units of tables and the diagram: name -> metres per unit (of
+#: camlink's length units, `camlink.units.LENGTH_UNITS`).
+UNITS = {u: METRES[u] for u in ("m", "mm")}
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ from camlink.io.output import check_not_input
 from camlink.model import ANALYSES
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
+from camlink.units import SI, parse_units
 from camlink.viz import fourbar
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
@@ -80,6 +81,12 @@ def _parser() -> argparse.ArgumentParser:
         "--force",
         action="store_true",
         help="replace an existing file at the default output path",
+    )
+    run.add_argument(
+        "--units",
+        metavar="LENGTH,ANGLE",
+        help="units of the results written, e.g. mm,deg (lengths, angles and their rates; "
+        "forces, torques and energies stay SI; default: m,rad)",
     )
     _data_option(run)
     run.add_argument("--t-end", type=float, metavar="T", help="end time (s)")
@@ -187,6 +194,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
             f"{output} exists; pass --force to replace it, or -o to name another output"
         )
         return EXIT_INPUT
+    try:
+        units = parse_units(args.units)
+    except ModelError as e:
+        _error(f"--units: {e}")
+        return EXIT_INPUT
     settings = {
         "t_end": args.t_end,
         "step": args.step,
@@ -233,6 +245,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
             print(f"camlink: {'; '.join(details)}", file=sys.stderr)
         partial = e.results
         where = getattr(e, "output", None) or output
+        if units != SI and getattr(e, "output", None) is not None:
+            partial.save(where, units=units)
         if len(partial):
             print(
                 f"camlink: {len(partial)} steps (t = {partial.t[0]:g} … {partial.t[-1]:g} s) "
@@ -260,8 +274,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
         )
         print(f"camlink: {kind}: {counts}", file=sys.stderr)
     if to_stdout:
-        _write_csv_to_stdout(res)
+        _write_csv_to_stdout(res.in_units(units))
         return EXIT_OK
+    if units != SI:
+        # The file was written in SI as the run went: write it over.
+        res.in_units(units).save(output)
     if not args.quiet:
         what = f"{kind} of {model.name}"
         if kind == "equilibrium":

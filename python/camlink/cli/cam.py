@@ -20,6 +20,7 @@ from camlink.cam import design as cam_design
 from camlink.cam import export as cam_export
 from camlink.cam import plots as cam_plots
 from camlink.io.output import check_not_input, replacing
+from camlink.units import parse_units
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 
@@ -222,15 +223,18 @@ def _run_timing(args: argparse.Namespace) -> int:
 
 
 def _units(text: str) -> str:
-    """The length unit of ``--units LENGTH,ANGLE``."""
-    parts = [x.strip() for x in text.split(",")]
-    if len(parts) == 1:
-        parts.append("deg")
-    if len(parts) != 2 or parts[0] not in ("m", "mm") or parts[1] != "deg":
+    """The length unit of ``--units LENGTH,ANGLE`` (read as `camlink run
+    --units` reads it, `camlink.units.parse_units`): m or mm, angles in
+    degrees (a length alone means degrees too)."""
+    try:
+        units = parse_units(text if "," in text else f"{text},deg")
+    except ModelError:
+        units = None
+    if units is None or units.length not in ("m", "mm") or units.angle != "deg":
         raise cam_design.CamDesignError(
             f"--units {text}: give a length unit (m or mm) and deg, e.g. --units mm,deg"
         )
-    return parts[0]
+    return units.length
 
 
 def run(args: argparse.Namespace) -> int:

@@ -22,8 +22,10 @@ A CSV file is a plain table: a header line of channel names, then one
 line of numbers per step, which ``pandas.read_csv`` and spreadsheet
 programs read as is. Its metadata goes to a JSON sidecar beside it,
 ``<name>.csv.json`` (`sidecar_path`): ``camlink`` (the version), ``model``,
-``analysis``, ``units`` (each channel's unit, ``""`` where the kind does
-not fix it), ``columns`` (the header's names), and for a complete run
+``analysis``, ``units`` (each channel's unit), ``quantities`` (what each
+channel measures, as the core names it: ``"velocity"``, ``"force"``…),
+``value_units`` (``"mm,deg"`` for results saved in other units than SI),
+``columns`` (the header's names), and for a complete run
 ``rows`` (the number of rows) and ``summary``. The sidecar is written at
 the header (for a run that is killed) and again at the end, each time to
 a temporary file renamed over it, and follows its CSV to the output or
@@ -55,7 +57,7 @@ import os
 import tempfile
 from collections.abc import Iterable, Iterator, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -63,9 +65,6 @@ import numpy.typing as npt
 from camlink import _core
 from camlink._core import ModelError
 from camlink.io.results_file import ColumnSource, CsvColumns, ParquetColumns
-
-if TYPE_CHECKING:
-    from camlink.records import JointRecord
 
 __all__ = [
     "ROW_GROUP_BYTES",
@@ -197,12 +196,17 @@ class _Target:
 COMMENT = "# "
 
 
-def _units(names: Sequence[str], joints: Sequence[JointRecord] = ()) -> dict[str, str]:
-    """Each channel's unit (``""`` where the kind does not fix it); the
-    model's `joints` give a driver's effort its unit."""
-    from camlink.units import unit
+def _channel_meta(names: Sequence[str], quantities: Sequence[str]) -> dict[str, Any]:
+    """The ``units`` (SI) and ``quantities`` of the channels `names`, from
+    their `quantities` as the core gave them (none: no such keys)."""
+    if not quantities:
+        return {}
+    from camlink.units import channel_units
 
-    return {n: unit(n, joints) for n in names}
+    return {
+        "units": channel_units(names, quantities),
+        "quantities": dict(zip(names, quantities, strict=True)),
+    }
 
 
 def _write_json(path: Path, value: Mapping[str, Any]) -> None:
@@ -223,19 +227,14 @@ class CsvWriter:
     """Writes a header line of channel names, then each chunk of rows with
     one write and a flush: numbers in their shortest exact form, names
     quoted as CSV requires. The metadata (`head`'s ``camlink``, ``model``,
-    ``analysis``, each channel's unit, `joints` giving a driver's effort
-    its unit) goes to the sidecar (`sidecar_path`) when the header is
+    ``analysis``, each channel's unit and quantity as the first `write`
+    gives them) goes to the sidecar (`sidecar_path`) when the header is
     written, and again, with the row count and summary, at `close`."""
 
-    def __init__(
-        self,
-        path: Path,
-        head: Mapping[str, Any] | None = None,
-        joints: Sequence[JointRecord] = (),
-    ) -> None:
+    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
         self.path = path
         self._head = head or {}
-        self._joints = list(joints)
+        self._quantities: list[str] = []
         self._target = _Target(path, path.suffix)
         self._file = self._target.temp.open("wb")
         self._header = False
@@ -253,13 +252,18 @@ class CsvWriter:
             meta = dict(metadata)
         else:
             meta = {k: self._head[k] for k in ("camlink", "model", "analysis") if k in self._head}
-            meta["units"] = _units(self._names, self._joints)
+            meta.update(_channel_meta(self._names, self._quantities))
         meta["columns"] = list(self._names)
         return meta
 
-    def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
+    def write(
+        self, names: Sequence[str], rows: npt.NDArray[np.float64], quantities: Sequence[str] = ()
+    ) -> None:
+        """Writes `rows` of the channels `names`, whose `quantities` (as
+        the core names them) the first call records."""
         if not self._header:
             self._names = list(names)
+            self._quantities = list(quantities)
             _write_json(sidecar_path(self._target.temp), self._meta(None))
             line = io.StringIO()
             csv.writer(line, lineterminator="\n").writerow(names)
@@ -320,15 +324,9 @@ class ParquetWriter:
     only at the end of the run, is what readers see as the schema
     metadata."""
 
-    def __init__(
-        self,
-        path: Path,
-        head: Mapping[str, Any] | None = None,
-        joints: Sequence[JointRecord] = (),
-    ) -> None:
+    def __init__(self, path: Path, head: Mapping[str, Any] | None = None) -> None:
         self.path = path
         self._head = dict(head or {})
-        self._joints = list(joints)
         self._target = _Target(path, ".arrows")
         journal = self._target.temp
         self._parquet = journal.with_name(f".{journal.stem}{path.suffix}")
@@ -343,14 +341,15 @@ class ParquetWriter:
         #: Rows written so far.
         self.rows = 0
 
-    def _open(self, names: Sequence[str]) -> None:
+    def _open(self, names: Sequence[str], quantities: Sequence[str] = ()) -> None:
         import pyarrow as pa
         import pyarrow.parquet as pq
 
         self._schema = pa.schema([(n, pa.float64()) for n in names])
         width = max(len(names), 1)
         self._group_rows = max(1, min(ROW_GROUP_ROWS, ROW_GROUP_BYTES // (8 * width)))
-        head = {**self._head, "units": _units(names, self._joints)}
+        self._head.update(_channel_meta(names, quantities))
+        head = self._head
         # Buffered, flushed once per chunk: one system call instead of one
         # per column.
         self._journal_sink = pa.BufferedOutputStream(
@@ -370,11 +369,15 @@ class ParquetWriter:
             store_schema=False,
         )
 
-    def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
+    def write(
+        self, names: Sequence[str], rows: npt.NDArray[np.float64], quantities: Sequence[str] = ()
+    ) -> None:
+        """Writes `rows` of the channels `names`, whose `quantities` (as
+        the core names them) the first call records."""
         import pyarrow as pa
 
         if self._writer is None:
-            self._open(names)
+            self._open(names, quantities)
         if not len(rows):
             return
         batch = pa.record_batch(
@@ -407,17 +410,13 @@ class ParquetWriter:
     ) -> Path:
         """Writes the last row group and, as the Parquet key-value metadata
         ``camlink``, `metadata` as JSON (for a run that stopped early, the
-        head given at open with each channel's unit); returns where the
+        head given at open with each channel's unit and quantity); returns where the
         file is (the output, or its partial name when not `complete`)."""
         if self._writer is None:
             self._open(names)
         if self._pending_rows:
             self._write_groups(whole_only=False)
-        meta = (
-            dict(metadata)
-            if metadata is not None
-            else {**self._head, "units": _units(names, self._joints)}
-        )
+        meta = dict(metadata) if metadata is not None else dict(self._head)
         self._writer.add_key_value_metadata({"camlink": json.dumps(meta, default=str)})
         self._writer.close()
         self._journal.close()
@@ -498,9 +497,9 @@ class BackgroundWriter:
 
         self._writer = writer
         self.path = writer.path
-        self._queue: queue.Queue[tuple[Sequence[str], npt.NDArray[np.float64]] | None] = (
-            queue.Queue(maxsize=self.QUEUED_CHUNKS)
-        )
+        self._queue: queue.Queue[
+            tuple[Sequence[str], npt.NDArray[np.float64], Sequence[str]] | None
+        ] = queue.Queue(maxsize=self.QUEUED_CHUNKS)
         self._error: BaseException | None = None
         self._thread = threading.Thread(target=self._work, name="camlink-writer", daemon=True)
         self._thread.start()
@@ -519,7 +518,7 @@ class BackgroundWriter:
                 continue
             if item is None:
                 return
-            names, rows = item
+            names, rows, quantities = item
             waiting = [rows]
             end = False
             while sum(len(r) for r in waiting) < self.BATCH_ROWS:
@@ -533,7 +532,7 @@ class BackgroundWriter:
                 waiting.append(more[1])
             if self._error is None:
                 try:
-                    self._writer.write(names, _stacked(waiting))
+                    self._writer.write(names, _stacked(waiting), quantities)
                 except BaseException as e:
                     self._error = e
             if end:
@@ -544,9 +543,11 @@ class BackgroundWriter:
             error, self._error = self._error, None
             raise error
 
-    def write(self, names: Sequence[str], rows: npt.NDArray[np.float64]) -> None:
+    def write(
+        self, names: Sequence[str], rows: npt.NDArray[np.float64], quantities: Sequence[str] = ()
+    ) -> None:
         self._raise()
-        self._queue.put((list(names), rows))
+        self._queue.put((list(names), rows, list(quantities)))
 
     def close(
         self, names: Sequence[str], complete: bool = True, metadata: Mapping[str, Any] | None = None
@@ -568,20 +569,18 @@ class BackgroundWriter:
 
 
 def open_writer(
-    path: str | os.PathLike[str],
-    head: Mapping[str, Any] | None = None,
-    joints: Sequence[JointRecord] = (),
+    path: str | os.PathLike[str], head: Mapping[str, Any] | None = None
 ) -> CsvWriter | ParquetWriter:
     """A writer for `path` (CSV or Parquet by suffix), its temporary file
     created now so that an unwritable folder fails before any work. The
     metadata of `head` goes to a CSV's sidecar with the header (Parquet
     gets its metadata at `close`, the `head` for a run that stopped early);
-    the model's `joints` give a driver's effort its unit."""
+    the first `write` gives each channel's quantity, hence its unit."""
     path = Path(path)
     kind = kind_of(path)
     if path.is_dir():
         raise IsADirectoryError(21, "is a directory", str(path))
-    return CsvWriter(path, head, joints) if kind == "csv" else ParquetWriter(path, head, joints)
+    return CsvWriter(path, head) if kind == "csv" else ParquetWriter(path, head)
 
 
 def read_csv_metadata(lines: Iterable[str]) -> dict[str, Any]:

@@ -82,7 +82,8 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
         traced = [f"{p}.{c}" for p in points for c in ("x", "y")]
         channels = [c for c in [*traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
-                      channels=channels, all_names=True, plots=doc.default_plots(points))
+                      channels=channels, all_names=True, units=sol.units,
+                      plots=doc.default_plots(points))
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()

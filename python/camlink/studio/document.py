@@ -39,7 +39,7 @@ import shutil
 import tempfile
 import tomllib
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -51,6 +51,7 @@ import tomlkit.items
 import camlink
 from camlink._core import AnalysisError, ModelError
 from camlink.model import Model
+from camlink.units import unit_of
 from camlink.viz.front import default_plots
 from camlink.viz.scene import GROUND, Scene
 
@@ -114,6 +115,8 @@ class Solution:
     #: Whether the cycle kept the last cycle's assembly branch where the
     #: file's placement assembles on another (the CLI would follow that).
     kept_branch: bool = False
+    #: Each channel's unit, as the core states it.
+    units: dict[str, str] = field(default_factory=dict)
 
     def coordinates(self, names: list[str]) -> Array | None:
         """The coordinates `names` (a model's `coordinates`) at every row
@@ -150,8 +153,8 @@ def _points(model: Model) -> list[str]:
 
 
 def _kinematics(model: Model, times: Array, points: list[str],
-                start: Array | None = None) -> tuple[list[str], Array]:
-    """Names and rows of the kinematic run at `times` (assembled from the
+                start: Array | None = None) -> tuple[list[str], Array, dict[str, str]]:
+    """Names, rows and units of the kinematic run at `times` (assembled from the
     coordinates `start` when given and finite, else from the placement), up
     to the first time at which the mechanism does not assemble (no rows when
     it does not at the first)."""
@@ -163,8 +166,8 @@ def _kinematics(model: Model, times: Array, points: list[str],
         res = e.results
     names = list(res.channels)
     if len(res) == 0:
-        return names, np.empty((0, len(names)))
-    return names, np.column_stack([res[c] for c in names])
+        return names, np.empty((0, len(names))), res.units
+    return names, np.column_stack([res[c] for c in names]), res.units
 
 
 def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Array) -> bool:
@@ -177,7 +180,7 @@ def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Arra
         return True
     if len(rows) == 0:
         return False
-    got, mine = _kinematics(model, np.array([t0]), [], q)
+    got, mine, _ = _kinematics(model, np.array([t0]), [], q)
     if len(mine) == 0:
         return True
     col = {c: i for i, c in enumerate(names)}
@@ -194,9 +197,10 @@ def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Arra
 
 
 def solve(model: Model, previous: Solution | None = None
-          ) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_], bool]:
+          ) -> tuple[Array, list[str], Array, npt.NDArray[np.bool_], bool, dict[str, str]]:
     """The cycle of `model`: times, channel names, rows (NaN where the
-    mechanism does not assemble), the mask of solved rows, and whether the
+    mechanism does not assemble), the mask of solved rows, each channel's
+    unit, and whether the
     branch of the `previous` cycle (over the same times) was kept against
     the placement's: then the run starts from its first row, and each
     restart from its row at that time."""
@@ -210,12 +214,12 @@ def solve(model: Model, previous: Solution | None = None
         warnings.simplefilter("ignore")
         # From the placement, as the CLI runs the saved file; from the last
         # cycle's first row when the placement is on another branch.
-        names, rows = _kinematics(model, t, points)
+        names, rows, units = _kinematics(model, t, points)
         kept = q is not None and not _same_branch(model, names, rows, t[0], q[0])
         if kept and q is not None:
-            names, rows = _kinematics(model, t, points, q[0])
+            names, rows, units = _kinematics(model, t, points, q[0])
         if not names:
-            names, _ = _kinematics(model, t[:1], points)
+            names, _, units = _kinematics(model, t[:1], points)
         values = np.full((n, len(names)), np.nan)
         ok = np.zeros(n, dtype=bool)
         values[: len(rows)] = rows
@@ -226,7 +230,7 @@ def solve(model: Model, previous: Solution | None = None
             # Past a row that does not assemble: the next time that does.
             found = False
             for j in range(start + 1, n, stride):
-                part_names, part = _kinematics(model, t[j:], points, None if q is None else q[j])
+                part_names, part, _ = _kinematics(model, t[j:], points, None if q is None else q[j])
                 if len(part) and part_names == names:
                     values[j : j + len(part)] = part
                     ok[j : j + len(part)] = True
@@ -235,7 +239,7 @@ def solve(model: Model, previous: Solution | None = None
                     break
             if not found:
                 break
-    return t, names, values, ok, kept
+    return t, names, values, ok, kept, units
 
 
 def _handles(model: Model, scene: Scene, data: Any) -> list[Handle]:
@@ -427,7 +431,7 @@ class Document:
             model = self.model()
         scene = Scene.of(model, tol=1e-4)
         previous = getattr(self, "solution", None)
-        t, names, values, ok, kept = solve(model, previous)
+        t, names, values, ok, kept, units = solve(model, previous)
         error = None
         if not names:
             # No kinematic run at all (a model that is not fully driven):
@@ -435,11 +439,13 @@ class Document:
             error = (f"model '{model.name}' has no kinematic motion (is every degree of freedom "
                      "driven?): the studio shows its placement")
             t = np.zeros(1)
-            names = [f"{b}.{c}" for b in scene.bodies for c in ("x", "y", "phi")]
+            pose = (("x", "length"), ("y", "length"), ("phi", "angle"))
+            names = [f"{b}.{c}" for b in scene.bodies for c, _ in pose]
+            units = {f"{b}.{c}": unit_of(q)[0] for b in scene.bodies for c, q in pose}
             values = np.array([[v for b in scene.bodies for v in scene.placement[b]]])
             ok = np.ones(1, dtype=bool)
         return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._data),
-                        error, kept)
+                        error, kept, units)
 
     # -- edits ------------------------------------------------------------
 

@@ -9,14 +9,13 @@ Shared by the studio (`camlink.studio`) and the viewer file
 from __future__ import annotations
 
 import base64
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from importlib import resources
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
 
-from camlink.units import unit
 from camlink.viz.fourbar import marks
 from camlink.viz.scene import GROUND, Scene
 
@@ -197,6 +196,7 @@ def frame_data(
     pose_dtype: str = "f64",
     channels: Sequence[str] | None = None,
     all_names: bool = False,
+    units: Mapping[str, str] | None = None,
 ) -> dict[str, Any]:
     """Everything the page draws for a run: `values` (rows × `names`,
     NaN on rows where `ok` is false) over the times `t`; `channels` limits
@@ -232,14 +232,14 @@ def frame_data(
         "plots": chosen,
         "marks": marks(model, scene, t, list(names), values, ok),
     }
-    joints = model.joints
+    units = units or {}
     if all_names:
         # Every name, values for those in `sent` only (null for the rest).
         have = set(sent)
         return {**base, "channels": {
-            "names": list(names), "units": [unit(c, joints) for c in names],
-            "values": [b64(column(c), pose_dtype) if c in have else None
+            "names": list(names), "units": [units.get(c, "") for c in names],
+            "values": [b64(_column(names, values, c), pose_dtype) if c in have else None
                        for c in names]}}
     return {**base, "channels": {
-        "names": sent, "units": [unit(c, joints) for c in sent],
-        "values": [b64(column(c), pose_dtype) for c in sent]}}
+        "names": sent, "units": [units.get(c, "") for c in sent],
+        "values": [b64(_column(names, values, c), pose_dtype) for c in sent]}}

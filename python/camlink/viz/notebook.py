@@ -107,8 +107,6 @@ def _envelope(results: Results, channels: list[str]) -> Results:
     the same lines as every row."""
     import numpy as np
 
-    from camlink.results import Results
-
     n = len(results)
     if n <= PLOT_ROWS or "t" not in results:
         return results
@@ -123,6 +121,4 @@ def _envelope(results: Results, channels: list[str]) -> Results:
         picks += [starts + np.argmin(block, axis=1), starts + np.argmax(block, axis=1)]
     rows = np.unique(np.concatenate(picks))
     data = np.column_stack([results.t[rows], *(y[rows] for y in columns)])
-    out = Results(["t", *channels], data, model=results.model, complete=results.complete)
-    out.mechanism = results.mechanism
-    return out
+    return results._like(["t", *channels], data)

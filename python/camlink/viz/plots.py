@@ -3,13 +3,13 @@ overlaid, a joint's reactions, and a cam's SVAJ diagram and pressure angle
 against the cam angle in degrees.
 
 Every function returns a matplotlib `Figure`; labels carry the channel's
-unit, taken from its kind (`unit`) and, for a driver's effort, from what
-the driver drives.
+unit as the results state it (`camlink.Results.units`: from the core, in
+the units of results converted with `camlink.Results.in_units`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -18,19 +18,18 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from camlink._core import ModelError
-from camlink.records import JointRecord
 from camlink.results import Results
-from camlink.units import unit
+from camlink.units import unit_of
 
-__all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj", "svaj_data", "unit"]
+__all__ = ["Svaj", "cam_contacts", "plot", "pressure_angle", "reactions", "svaj", "svaj_data"]
 
 Array = npt.NDArray[np.float64]
 
 
-def label(channel: str, joints: Sequence[JointRecord] | None = None) -> str:
-    """An axis label: the channel and its unit in parentheses (`joints`,
-    the model's, give a driver's effort its unit)."""
-    u = unit(channel, joints)
+def label(channel: str, units: Mapping[str, str]) -> str:
+    """An axis label: the channel and its unit (from `units`, a results'
+    `camlink.Results.units`) in parentheses."""
+    u = units.get(channel, "")
     return f"{channel} ({u})" if u else channel
 
 
@@ -67,8 +66,8 @@ def plot(
     run_labels = list(labels) if labels is not None else [
         r.model or f"run {k + 1}" for k, r in enumerate(runs)
     ]
-    model = runs[0].mechanism
-    joints = model.joints if model is not None else None
+    units = runs[0].units
+    quantities = runs[0].quantities
     fig = Figure(figsize=(width, height), dpi=100, layout="constrained")
     (ax,) = _axes(fig)
     for r, run_label in zip(runs, run_labels, strict=True):
@@ -76,13 +75,13 @@ def plot(
         for name in names:
             tag = [run_label] * (len(runs) > 1) + [name] * (len(names) > 1)
             ax.plot(xs, r[name], linewidth=1.3, label=", ".join(tag) or None, gid=f"{run_label}:{name}")
-    ax.set_xlabel(label(x, joints), fontsize=9)
-    units = {unit(n, joints) for n in names}
-    ax.set_ylabel(label(names[0], joints) if len(names) == 1 else
-                  (f"({units.pop()})" if len(units) == 1 else "value"), fontsize=9)
+    ax.set_xlabel(label(x, units), fontsize=9)
+    shown = {units.get(n, "") for n in names}
+    ax.set_ylabel(label(names[0], units) if len(names) == 1 else
+                  (f"({shown.pop()})" if len(shown) == 1 else "value"), fontsize=9)
     if len(runs) > 1 or len(names) > 1:
         ax.legend(fontsize=8, frameon=False)
-    if x != "t" and unit(x) == "m" and all(unit(n) == "m" for n in names):
+    if x != "t" and all(quantities.get(n) == "length" for n in [x, *names]):
         ax.set_aspect("equal", adjustable="datalim")
     return fig
 
@@ -100,11 +99,11 @@ def reactions(results: Results, joint: str, *, width: float = 6.4) -> Figure:
     axes = _axes(fig, 2 if torque in results else 1)
     for name in parts:
         axes[0].plot(results.t, results[name], linewidth=1.3, label=name)
-    axes[0].set_ylabel("force on body i (N)", fontsize=9)
+    axes[0].set_ylabel(f"force on body i ({results.units[parts[0]]})", fontsize=9)
     axes[0].legend(fontsize=8, frameon=False)
     if torque in results:
         axes[1].plot(results.t, results[torque], linewidth=1.3, color="C2")
-        axes[1].set_ylabel(label(torque), fontsize=9)
+        axes[1].set_ylabel(label(torque, results.units), fontsize=9)
     axes[-1].set_xlabel("t (s)", fontsize=9)
     axes[0].set_title(f"reactions of {joint}", fontsize=10)
     return fig
@@ -169,14 +168,15 @@ def svaj_data(results: Results, joint: str | None = None) -> Svaj:
         a = u[0] * results[f"{follower}.ax"] + u[1] * results[f"{follower}.ay"]
         jj = jerk([f"{follower}.jx", f"{follower}.jy"])
         j = None if jj is None else u[0] * jj[0] + u[1] * jj[1]
-        units = ("m", "m/s", "m/s²", "m/s³")
+        kinds = ("length", "velocity", "acceleration", "jerk")
     else:
         pos = results[f"{follower}.phi"]
         v, a = results[f"{follower}.omega"], results[f"{follower}.alpha"]
         jj = jerk([f"{follower}.jphi"])
         j = None if jj is None else jj[0]
-        units = ("rad", "rad/s", "rad/s²", "rad/s³")
-    return Svaj(joint, angle, pos - pos.min(), v, a, j, units)
+        kinds = ("angle", "angular_velocity", "angular_acceleration", "angular_jerk")
+    units = tuple(unit_of(q, results.value_units)[0] for q in kinds)
+    return Svaj(joint, angle, pos - pos.min(), v, a, j, units)  # type: ignore[arg-type]
 
 
 def _follower_guide(results: Results, follower: str) -> tuple[float, float] | None:

@@ -109,7 +109,8 @@ def page_data(results: Results, model: Model, plots: Sequence[str] | None = None
     points = [str(p) for p in (model.analysis.get("points") or [])]
     sent = None if values.size <= MOST_VALUES else list(plots or [])
     data = frame_data(model, scene, np.asarray(results.t, dtype=np.float64), names, values, None,
-                      points=points, plots=plots, pose_dtype="f32", channels=sent)
+                      points=points, plots=plots, pose_dtype="f32", channels=sent,
+                      units=results.units)
     data["t"] = data["t"]["f64"]
     data["handles"] = [{"id": f"pin:{p.joint}", "label": p.joint, "body": p.body_i, "s": list(p.s_i)}
                        for p in scene.pins]
@@ -139,10 +140,7 @@ def thin(results: Results, most: int = MOST_ROWS) -> Results:
     rows = np.unique(np.linspace(0, n - 1, most).round().astype(np.intp))
     names = ["t", *results.channels]
     data = np.column_stack([results[c][rows] for c in names])
-    out = Results(names, data, model=results.model, complete=results.complete,
-                  summary=results.summary)
-    out.mechanism = results.mechanism
-    return out
+    return results._like(names, data)
 
 
 def fill(template: str, values: dict[str, str]) -> str:

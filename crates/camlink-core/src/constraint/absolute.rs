@@ -25,6 +25,7 @@ use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, point, point_vel, rot, rot_d, sub, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 /// Which coordinate a coordinate constraint holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,6 +64,13 @@ impl Equations for AbsoluteCoord {
 
     fn kind(&self) -> &'static str {
         "absolute_coordinate"
+    }
+
+    fn driven_quantity(&self) -> Quantity {
+        match self.coord {
+            Coord::Phi => Quantity::Angle,
+            Coord::X | Coord::Y => Quantity::Length,
+        }
     }
 
     fn equations(&self) -> &'static [&'static str] {

@@ -39,6 +39,7 @@ use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{cross, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 #[derive(Clone, Debug)]
 pub struct CamFollower {
@@ -90,6 +91,10 @@ impl Equations for CamFollower {
 
     fn own_names(&self) -> &'static [&'static str] {
         &["alpha_i", "alpha_j"]
+    }
+
+    fn own_quantity(&self, k: usize) -> Quantity {
+        [&self.curve_i, &self.curve_j][k.min(1)].parameter_quantity()
     }
 
     /// The contact pair from [`search::contact_pair`]: refined from the

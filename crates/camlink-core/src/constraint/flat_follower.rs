@@ -39,6 +39,7 @@ use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{dot, norm, perp, rot, rot_t, scale, sub, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 #[derive(Clone, Debug)]
 pub struct FlatFollower {
@@ -104,6 +105,10 @@ impl Equations for FlatFollower {
 
     fn own_names(&self) -> &'static [&'static str] {
         &["alpha_i"]
+    }
+
+    fn own_quantity(&self, _k: usize) -> Quantity {
+        self.curve_i.parameter_quantity()
     }
 
     /// The support point of C_i toward the face: the cam point extreme in

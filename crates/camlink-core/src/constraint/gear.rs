@@ -36,6 +36,7 @@ use super::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::math::{dot, perp, point, rot, rot_d, scale, sub, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GearKind {
@@ -128,6 +129,10 @@ impl Equations for Gear {
 
     fn own_names(&self) -> &'static [&'static str] {
         &["theta"]
+    }
+
+    fn own_quantity(&self, _k: usize) -> Quantity {
+        Quantity::Angle
     }
 
     /// θ from the current centre line, on the branch θ + 2πk nearest the

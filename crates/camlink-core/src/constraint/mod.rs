@@ -17,6 +17,7 @@
 use crate::curve::Curve;
 use crate::math::{point, rot_t, sub, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 pub mod absolute;
 pub mod cam_follower;
@@ -154,6 +155,10 @@ pub trait Equations {
     fn own_names(&self) -> &'static [&'static str] {
         &[]
     }
+    /// What own coordinate `k` measures (its output channel's quantity).
+    fn own_quantity(&self, _k: usize) -> Quantity {
+        Quantity::Dimensionless
+    }
     /// A starting value for the own coordinates from the body coordinates
     /// in `x`, refined from `guess` when there is one.
     fn initial_own(&self, _x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
@@ -178,6 +183,12 @@ pub trait Equations {
     /// through Φ = dᵀd − f². Used to turn λ into a driver's effort.
     fn driver_slope(&self, _t: f64) -> f64 {
         -1.0
+    }
+    /// What the coordinate a driver prescribes measures; a length unless
+    /// the driver says otherwise. Its effort is the generalized force
+    /// conjugate to it (N for a length, N·m for an angle).
+    fn driven_quantity(&self) -> Quantity {
+        Quantity::Length
     }
     /// The local coordinates Φ depends on nonlinearly: Φ_q changes with
     /// these only, so the curvature (Φ_qᵀλ)_q vanishes outside their rows
@@ -261,6 +272,9 @@ macro_rules! constraints {
             fn driver_slope(&self, t: f64) -> f64 {
                 match self { $(Constraint::$variant(c) => c.driver_slope(t),)* }
             }
+            fn driven_quantity(&self) -> Quantity {
+                match self { $(Constraint::$variant(c) => c.driven_quantity(),)* }
+            }
             fn nonlinear(&self) -> CoordMask {
                 match self { $(Constraint::$variant(c) => c.nonlinear(),)* }
             }
@@ -272,6 +286,9 @@ macro_rules! constraints {
             }
             fn own_names(&self) -> &'static [&'static str] {
                 match self { $(Constraint::$variant(c) => c.own_names(),)* }
+            }
+            fn own_quantity(&self, k: usize) -> Quantity {
+                match self { $(Constraint::$variant(c) => c.own_quantity(k),)* }
             }
             fn initial_own(&self, x: &Local, guess: Option<[f64; MAX_OWN]>) -> [f64; MAX_OWN] {
                 match self { $(Constraint::$variant(c) => c.initial_own(x, guess),)* }

@@ -30,6 +30,7 @@ use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::function::TimeFn;
 use crate::math::{rot_t, sub, V2};
+use crate::quantity::Quantity;
 
 #[derive(Clone, Debug)]
 pub struct PointFollower {
@@ -97,6 +98,14 @@ impl Equations for PointFollower {
 
     fn own_names(&self) -> &'static [&'static str] {
         &["alpha_j"]
+    }
+
+    fn own_quantity(&self, _k: usize) -> Quantity {
+        self.curve_j.parameter_quantity()
+    }
+
+    fn driven_quantity(&self) -> Quantity {
+        self.curve_j.parameter_quantity()
     }
 
     /// The point of C_j nearest to the pin; refined from the guess when

@@ -36,6 +36,7 @@ use crate::constraint::BodyId;
 use crate::function::TimeFn;
 use crate::math::{dot, norm, point, point_vel, rot, rot_d, scale, sub, V2};
 use crate::motion;
+use crate::quantity::Quantity;
 
 /// Which relative coordinate a [`RelativeCoord`] holds.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -174,6 +175,13 @@ impl Equations for RelativeCoord {
 
     fn kind(&self) -> &'static str {
         "relative_coordinate"
+    }
+
+    fn driven_quantity(&self) -> Quantity {
+        match self.coord {
+            RelCoord::Phi => Quantity::Angle,
+            RelCoord::X | RelCoord::Y | RelCoord::Along(_) => Quantity::Length,
+        }
     }
 
     fn equations(&self) -> &'static [&'static str] {

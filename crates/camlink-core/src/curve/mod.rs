@@ -36,6 +36,7 @@ use std::f64::consts::TAU;
 
 use crate::fmt_num::num;
 use crate::math::{cross, norm, sub, V2};
+use crate::quantity::Quantity;
 
 pub mod carried;
 pub mod distance;
@@ -120,6 +121,17 @@ impl Curve {
         match self {
             Curve::Polar(c) => c.jet4(s),
             Curve::Parametric(c) => c.jet4(s),
+        }
+    }
+
+    /// What the parameter measures: the angle α (rad) of a polar profile
+    /// or a synthesised cam, arc length (m) of a line, arc, circle or
+    /// spline, a pure number for a curve written as expressions in `s`.
+    pub fn parameter_quantity(&self) -> Quantity {
+        match self {
+            Curve::Polar(_) | Curve::Parametric(Parametric::Cam { .. }) => Quantity::Angle,
+            Curve::Parametric(Parametric::Expr { .. }) => Quantity::Dimensionless,
+            Curve::Parametric(_) => Quantity::Length,
         }
     }
 

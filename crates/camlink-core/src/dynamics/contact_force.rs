@@ -50,6 +50,7 @@ use crate::contact::ContactView;
 use crate::curve::Curve;
 use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
 use crate::model::{BodyId, Model};
+use crate::quantity::{Channel, Quantity};
 use crate::run::{Crossing, Kind, LiftOff, Summary, Warning};
 
 /// Samples of a curve for the mean point of an open curve.
@@ -107,15 +108,15 @@ impl ContactForces {
         self.items.iter().any(|it| it.joint == j)
     }
 
-    /// The channel names of joint `j` (empty when it is not a contact).
-    pub fn channel_names(&self, model: &Model, j: usize) -> Vec<String> {
+    /// The channels of joint `j` (empty when it is not a contact).
+    pub fn channels(&self, model: &Model, j: usize) -> Vec<Channel> {
         if !self.has(j) {
             return Vec::new();
         }
         let name = &model.joints[j].name;
         vec![
-            format!("{name}.normal_force"),
-            format!("{name}.tangential_force"),
+            Channel::new(format!("{name}.normal_force"), Quantity::Force),
+            Channel::new(format!("{name}.tangential_force"), Quantity::Force),
         ]
     }
 
@@ -220,9 +221,9 @@ pub struct LiftOffWatch {
 impl LiftOffWatch {
     /// Watches the cam contacts of `model` in rows with channels `names`
     /// (which hold `<joint>.normal_force` and the cam's `<body>.phi`).
-    pub fn new(model: &Model, names: &[String]) -> Self {
+    pub fn new<C: AsRef<str>>(model: &Model, channels: &[C]) -> Self {
         let cf = ContactForces::new(model);
-        let find = |s: String| names.iter().position(|c| *c == s);
+        let find = |s: String| channels.iter().position(|c| c.as_ref() == s);
         let watched = cf
             .items
             .iter()

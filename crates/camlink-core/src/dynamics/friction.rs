@@ -37,6 +37,7 @@ use crate::force::friction::{Friction, PinFriction, SlideFriction};
 use crate::force::{Applied, BodyJac, BodyQ};
 use crate::math::{norm, V2};
 use crate::model::Model;
+use crate::quantity::{Channel, Quantity};
 use crate::run::{AnalysisError, Kind};
 
 /// The fixed-point iteration on the multipliers stops when no multiplier
@@ -234,23 +235,23 @@ impl JointFrictions {
         model.joints[self.items[k].0].constraint.bodies()
     }
 
-    /// Names of the friction channels of joint `j` (none without friction):
+    /// The friction channels of joint `j` (none without friction):
     /// `<joint>.friction_torque` (N·m, on body j) for a revolute joint,
     /// `<joint>.friction_force` (N, on body j along the contact tangent)
     /// otherwise, then `<joint>.friction_power` (W, ≤ 0: the power of the
     /// friction on both bodies).
-    pub fn channel_names(model: &Model, j: usize) -> Vec<String> {
+    pub fn channels_of(model: &Model, j: usize) -> Vec<Channel> {
         let joint = &model.joints[j];
         if joint.friction.is_none() {
             return Vec::new();
         }
-        let what = match joint.constraint {
-            Constraint::Revolute(_) => "friction_torque",
-            _ => "friction_force",
+        let (what, quantity) = match joint.constraint {
+            Constraint::Revolute(_) => ("friction_torque", Quantity::Torque),
+            _ => ("friction_force", Quantity::Force),
         };
         vec![
-            format!("{}.{what}", joint.name),
-            format!("{}.friction_power", joint.name),
+            Channel::new(format!("{}.{what}", joint.name), quantity),
+            Channel::new(format!("{}.friction_power", joint.name), Quantity::Power),
         ]
     }
 

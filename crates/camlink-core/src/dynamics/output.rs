@@ -33,6 +33,7 @@ use crate::constraint::Equations;
 use crate::force::Applied;
 use crate::math::cross;
 use crate::model::Model;
+use crate::quantity::{Channel, Quantity};
 
 /// The shaking channels, after the joints' and drivers' channels.
 pub use crate::model::SHAKING;
@@ -51,36 +52,58 @@ pub fn shaking<'a>(loads: impl IntoIterator<Item = (usize, &'a Reaction)>) -> [f
     out
 }
 
-/// Names of the dynamic channels (after the kinematic ones).
-pub fn channels(model: &Model) -> Vec<String> {
+/// The dynamic channels (after the kinematic ones). A driver's effort is
+/// the generalized force conjugate to the coordinate it drives
+/// ([`effort_quantity`]).
+pub fn channels(model: &Model) -> Vec<Channel> {
+    use Quantity::*;
     let contacts = ContactForces::new(model);
-    let mut names = Vec::new();
+    let mut out = Vec::new();
     for (k, j) in model.joints.iter().enumerate() {
         if j.driver {
-            for c in ["effort", "power"] {
-                names.push(format!("{}.{c}", j.name));
-            }
+            let effort = effort_quantity(j.constraint.driven_quantity());
+            out.push(Channel::new(format!("{}.effort", j.name), effort));
+            out.push(Channel::new(format!("{}.power", j.name), Power));
         } else {
             for side in ["", "_j"] {
-                for c in ["fx", "fy", "torque", "fx_local", "fy_local"] {
-                    names.push(format!("{}.{c}{side}", j.name));
+                for (c, q) in [
+                    ("fx", Force),
+                    ("fy", Force),
+                    ("torque", Torque),
+                    ("fx_local", Force),
+                    ("fy_local", Force),
+                ] {
+                    out.push(Channel::new(format!("{}.{c}{side}", j.name), q));
                 }
             }
-            names.extend(contacts.channel_names(model, k));
-            names.extend(JointFrictions::channel_names(model, k));
+            out.extend(contacts.channels(model, k));
+            out.extend(JointFrictions::channels_of(model, k));
         }
     }
-    names.extend(SHAKING.iter().map(|c| c.to_string()));
-    for c in [
-        "energy.kinetic",
-        "energy.potential",
-        "energy.total",
-        "constraint.residual",
-        "constraint.velocity",
-    ] {
-        names.push(c.to_string());
+    for (name, q) in SHAKING.iter().zip([Force, Force, Torque]) {
+        out.push(Channel::new(*name, q));
     }
-    names
+    for (name, q) in [
+        ("energy.kinetic", Energy),
+        ("energy.potential", Energy),
+        ("energy.total", Energy),
+        ("constraint.residual", Residual),
+        ("constraint.velocity", ResidualRate),
+    ] {
+        out.push(Channel::new(name, q));
+    }
+    out
+}
+
+/// The quantity of the generalized force conjugate to a coordinate that
+/// measures `driven`: N for a length, N·m for an angle, J (N·m per unit)
+/// for a pure number (the parameter of a curve written as expressions).
+pub fn effort_quantity(driven: Quantity) -> Quantity {
+    match driven {
+        Quantity::Angle => Quantity::Torque,
+        Quantity::Length => Quantity::Force,
+        _ => Quantity::Energy,
+    }
 }
 
 /// Scratch for [`fill`], allocated once. [`fill_forces`] leaves ν at

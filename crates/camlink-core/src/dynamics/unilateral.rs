@@ -56,6 +56,7 @@ use crate::force::compliant_contact::CompliantContact;
 use crate::force::Force;
 use crate::math::{dot, perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
+use crate::quantity::{Channel, Quantity};
 use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
 
 pub use crate::diagnose::OPEN_AT_START;
@@ -1171,8 +1172,11 @@ pub fn run(
     let nd = names.len();
     for c in &r.contacts {
         let name = &model.joints[c.joint].name;
-        names.push(format!("{name}.gap"));
-        names.push(format!("{name}.state"));
+        names.push(Channel::new(format!("{name}.gap"), Quantity::Length));
+        names.push(Channel::new(
+            format!("{name}.state"),
+            Quantity::Dimensionless,
+        ));
     }
     for c in &r.contacts {
         if let Some(s) = c.stop() {
@@ -1187,7 +1191,7 @@ pub fn run(
         .map(|c| {
             let kind = c.stop().map_or("normal_force", |s| s.load);
             let name = format!("{}.{kind}", model.joints[c.joint].name);
-            names.iter().position(|n| *n == name)
+            names.iter().position(|n| n.name == name)
         })
         .collect();
     sink.begin(&names);

@@ -76,6 +76,19 @@ impl Ctx {
         if let Err(e) = curve.check(CHECK_SAMPLES) {
             return fail(path, format!("curve '{name}': {e}"));
         }
+        if let CurveSpec::Motion { base_radius, .. } = c {
+            let field = format!("{path}.base_radius");
+            let rb = self.num(base_radius, &field)?;
+            if let Some(question) = camlink_core::cam::base_radius_question(rb) {
+                self.model.warnings.push(camlink_core::ModelWarning {
+                    kind: super::scale::KIND,
+                    field,
+                    message: format!(
+                        "{question} (lengths are in metres unless [model] units says otherwise)"
+                    ),
+                });
+            }
+        }
         self.curves
             .insert(name.to_string(), CurveEntry { body: b, curve });
         Ok(())
@@ -430,8 +443,9 @@ impl Ctx {
                             .data
                             .resolve(f)
                             .or_else(|e| fail(format!("{p}.file"), e))?;
-                        let pts = read_points_csv(&path)
+                        let mut pts = read_points_csv(&path)
                             .or_else(|e| fail(format!("{p}.file"), e.to_string()))?;
+                        crate::units::points_to_si(self.units, *kind, &mut pts);
                         (pts, "file")
                     }
                     (Some(_), Some(_)) => {

@@ -1,5 +1,5 @@
-//! The scale check: a model whose bodies differ in size by more than
-//! [`SPAN`] is warned about, naming the bodies far from the typical size (a
+//! The scale check: a model whose bodies differ in size by [`SPAN`] or
+//! more is warned about, naming the bodies far from the typical size (a
 //! length in millimetres among lengths in metres).
 
 use camlink_core::fmt_num::num;
@@ -9,8 +9,9 @@ use camlink_core::{Model, ModelWarning};
 /// Warning kind of the scale check.
 pub(crate) const KIND: &str = "length_scale";
 
-/// Largest ratio of the largest to the smallest body size taken as one
-/// scale.
+/// Ratio of the largest to the smallest body size from which a model is
+/// taken to mix scales: three orders of magnitude (a link of 100 among
+/// links of 0.1, millimetres written as metres, is warned about).
 const SPAN: f64 = 1e3;
 
 /// The size of a body (m): the largest distance between two of its points,
@@ -28,8 +29,8 @@ fn size(points: &[V2]) -> f64 {
 }
 
 /// Adds a [`KIND`] warning to `model` for each body whose size is more
-/// than √[`SPAN`] away from the median size, when the sizes span more than
-/// [`SPAN`]. Bodies with a single point (at the origin) have no size.
+/// than √[`SPAN`] away from the median size, when the sizes span [`SPAN`]
+/// or more. Bodies with a single point (at the origin) have no size.
 pub(crate) fn check(model: &mut Model) {
     let sizes: Vec<(usize, f64)> = model
         .bodies
@@ -44,7 +45,7 @@ pub(crate) fn check(model: &mut Model) {
     ) else {
         return;
     };
-    if hi <= SPAN * lo {
+    if hi < SPAN * lo {
         return;
     }
     let mut sorted: Vec<f64> = sizes.iter().map(|s| s.1).collect();
