@@ -526,9 +526,13 @@ impl Convert {
                 point_i,
                 body_j: _,
                 point_j,
+                limits,
+                friction,
             } => {
                 s.point(point_i);
                 s.point(point_j);
+                self.limits(limits, ANGLE);
+                self.friction(friction);
             }
             JointSpec::Translational {
                 name: _,
@@ -538,10 +542,14 @@ impl Convert {
                 body_j: _,
                 point_j,
                 angle,
+                limits,
+                friction,
             } => {
                 s.point(point_i);
                 s.point(point_j);
                 s.opt(angle, ANGLE);
+                self.limits(limits, LENGTH);
+                self.friction(friction);
             }
             JointSpec::RevoluteRevolute {
                 name: _,
@@ -563,10 +571,12 @@ impl Convert {
                 point_j,
                 axis: _,
                 offset,
+                limits,
             } => {
                 s.point(point_i);
                 s.point(point_j);
                 s.opt(offset, LENGTH);
+                self.limits(limits, LENGTH);
             }
             JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
                 let AbsoluteCoordJoint {
@@ -666,9 +676,11 @@ impl Convert {
                     stiffness: _,
                     exponent: _,
                     damping: _,
+                    friction,
                 } = c;
                 s.opt(alpha_i, self.on_curve(curve_i));
                 s.opt(alpha_j, self.on_curve(curve_j));
+                self.friction(friction);
             }
             JointSpec::FlatFollower(c) => {
                 let FlatFollowerJoint {
@@ -685,9 +697,11 @@ impl Convert {
                     stiffness: _,
                     exponent: _,
                     damping: _,
+                    friction,
                 } = c;
                 s.point(point_j);
                 s.opt(alpha_i, self.on_curve(curve_i));
+                self.friction(friction);
             }
             JointSpec::PointFollower(p) => {
                 let PointFollowerJoint {
@@ -696,11 +710,49 @@ impl Convert {
                     point_i,
                     curve_j,
                     alpha_j,
+                    friction,
                 } = p;
                 s.point(point_i);
                 s.opt(alpha_j, self.on_curve(curve_j));
+                self.friction(friction);
             }
         }
+    }
+
+    /// A joint's limits: `lower` and `upper` in the unit of the joint's
+    /// coordinate (`dim`: an angle or a length); the law's figures
+    /// (restitution, rest speed, event tolerance, stiffness, exponent,
+    /// damping) stay SI, as a cam contact's do.
+    fn limits(&self, limits: &mut Option<LimitsSpec>, dim: Dim) {
+        let Some(LimitsSpec {
+            lower,
+            upper,
+            restitution: _,
+            rest_speed: _,
+            event_tol: _,
+            stiffness: _,
+            exponent: _,
+            damping: _,
+        }) = limits
+        else {
+            return;
+        };
+        self.scale.opt(lower, dim);
+        self.scale.opt(upper, dim);
+    }
+
+    /// A joint's friction: the pin `radius` is a length; μ and the
+    /// transition speed (m/s) stay SI.
+    fn friction(&self, friction: &mut Option<FrictionSpec>) {
+        let Some(FrictionSpec {
+            mu: _,
+            radius,
+            transition_speed: _,
+        }) = friction
+        else {
+            return;
+        };
+        self.scale.opt(radius, LENGTH);
     }
 
     fn driver(&self, d: &mut DriverSpec) {

@@ -4,6 +4,7 @@
 //! the run (memory, a file, a study's reducer) gets the same figures in the
 //! run's [`Summary`].
 
+use crate::quantity::Channel;
 use crate::run::{Drift, Sink, Stop};
 
 /// A [`Sink`] that passes every row on to `inner` and keeps, of the
@@ -37,8 +38,8 @@ impl<'a> DriftWatch<'a> {
 }
 
 impl Sink for DriftWatch<'_> {
-    fn begin(&mut self, channels: &[String]) {
-        let column = |name: &str| channels.iter().position(|c| c == name);
+    fn begin(&mut self, channels: &[Channel]) {
+        let column = |name: &str| channels.iter().position(|c| c.name == name);
         self.columns = [
             column("energy.total"),
             column("constraint.residual"),

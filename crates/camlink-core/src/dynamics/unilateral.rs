@@ -1172,7 +1172,12 @@ pub fn run(
     let nd = names.len();
     for c in &r.contacts {
         let name = &model.joints[c.joint].name;
-        names.push(Channel::new(format!("{name}.gap"), Quantity::Length));
+        // A revolute's stop (its push a moment) has an angle for its gap.
+        let gap = match c.stop() {
+            Some(s) if s.load == "moment" => Quantity::Angle,
+            _ => Quantity::Length,
+        };
+        names.push(Channel::new(format!("{name}.gap"), gap));
         names.push(Channel::new(
             format!("{name}.state"),
             Quantity::Dimensionless,
@@ -1180,7 +1185,15 @@ pub fn run(
     }
     for c in &r.contacts {
         if let Some(s) = c.stop() {
-            names.push(format!("{}.{}", model.joints[c.joint].name, s.load));
+            let quantity = if s.load == "moment" {
+                Quantity::Torque
+            } else {
+                Quantity::Force
+            };
+            names.push(Channel::new(
+                format!("{}.{}", model.joints[c.joint].name, s.load),
+                quantity,
+            ));
         }
     }
     // Where each unilateral joint's normal force channel is: a stop's
