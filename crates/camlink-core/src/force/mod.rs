@@ -38,6 +38,22 @@ pub type BodyQ = [[f64; 3]; 2];
 /// Derivative blocks: `d[a][b][r][c]` = ∂Q_a,r / ∂q_b,c for bodies a, b ∈ {i, j}.
 pub type BodyJac = [[[[f64; 3]; 3]; 2]; 2];
 
+/// Most bodies, besides i and j, whose motion one force may read.
+pub const MAX_READ: usize = 4;
+
+/// Coordinates (x, y, φ) and velocities (ẋ, ẏ, φ̇) of the bodies a force
+/// reads besides i and j, in the order of [`Applied::reads`] (m, rad;
+/// m/s, rad/s); zero past them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reads {
+    pub q: [[f64; 3]; MAX_READ],
+    pub qd: [[f64; 3]; MAX_READ],
+}
+
+/// Derivative blocks of the read bodies: `d[a][k][r][c]` = ∂Q_a,r / ∂q_k,c
+/// for a ∈ {i, j} and read body k.
+pub type ReadJac = [[[[f64; 3]; 3]; MAX_READ]; 2];
+
 /// The equations of one applied force.
 pub trait Applied {
     /// Short kind name, e.g. `"tsda"`.
@@ -57,6 +73,36 @@ pub trait Applied {
     /// Potential energy V (J) of a conservative part; 0 otherwise.
     fn potential(&self, _x: &Local) -> f64 {
         0.0
+    }
+    /// The bodies besides i and j whose motion the force reads (at most
+    /// [`MAX_READ`]; none for most forces). Their forces are zero: the
+    /// force acts on i and j only.
+    fn reads(&self) -> &[BodyId] {
+        &[]
+    }
+    /// Q_i and Q_j with the read bodies' state `r`; [`Applied::generalized`]
+    /// for a force that reads none.
+    fn generalized_reading(
+        &self,
+        x: &Local,
+        _r: &Reads,
+        out: &mut BodyQ,
+    ) -> Result<(), ForceError> {
+        self.generalized(x, out)
+    }
+    /// [`Applied::derivatives`], and ∂Q/∂q, ∂Q/∂q̇ of the read bodies into
+    /// `rq`, `rqd` (the blocks of read bodies k < `reads().len()` are
+    /// written, no others).
+    fn derivatives_reading(
+        &self,
+        x: &Local,
+        _r: &Reads,
+        dq: &mut BodyJac,
+        dqd: &mut BodyJac,
+        _rq: &mut ReadJac,
+        _rqd: &mut ReadJac,
+    ) {
+        self.derivatives(x, dq, dqd)
     }
 }
 
@@ -111,6 +157,31 @@ macro_rules! forces {
             }
             fn potential(&self, x: &Local) -> f64 {
                 match self { $(ForceKind::$variant(c) => c.potential(x),)* }
+            }
+            fn reads(&self) -> &[BodyId] {
+                match self { $(ForceKind::$variant(c) => c.reads(),)* }
+            }
+            #[inline]
+            fn generalized_reading(
+                &self,
+                x: &Local,
+                r: &Reads,
+                out: &mut BodyQ,
+            ) -> Result<(), ForceError> {
+                match self { $(ForceKind::$variant(c) => c.generalized_reading(x, r, out),)* }
+            }
+            fn derivatives_reading(
+                &self,
+                x: &Local,
+                r: &Reads,
+                dq: &mut BodyJac,
+                dqd: &mut BodyJac,
+                rq: &mut ReadJac,
+                rqd: &mut ReadJac,
+            ) {
+                match self {
+                    $(ForceKind::$variant(c) => c.derivatives_reading(x, r, dq, dqd, rq, rqd),)*
+                }
             }
         }
     };
