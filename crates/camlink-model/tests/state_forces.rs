@@ -7,7 +7,7 @@ use std::sync::Arc;
 use camlink_core::constraint::Local;
 use camlink_core::dynamics::integrator::{run, Settings};
 use camlink_core::force::callback::Callback;
-use camlink_core::force::{Applied, BodyJac, BodyQ, Force, ForceKind, ReadJac, Reads};
+use camlink_core::force::{Applied, BodyJac, BodyQ, Force, ForceJac, ForceKind, Reads};
 use camlink_core::run::{time_grid, Table};
 use camlink_core::BodyId;
 use camlink_model::{load_str, Format};
@@ -343,9 +343,9 @@ fx = "{fx}"
     let mut r = Reads::default();
     r.q[0] = [0.5, 0.0, 0.4];
     r.qd[0] = [0.0, 0.0, -0.8];
-    let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
-    let (mut rq, mut rqd) = (ReadJac::default(), ReadJac::default());
-    f.derivatives_reading(&x, &r, &mut dq, &mut dqd, &mut rq, &mut rqd);
+    let mut j = ForceJac::default();
+    f.derivatives_reading(&x, &r, &mut j);
+    let (rq, rqd) = (j.rq, j.rqd);
     let h = 1e-6;
     for c in 0..3 {
         for vel in [false, true] {

@@ -51,7 +51,7 @@ use std::collections::HashMap;
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
-use crate::force::{Applied, BodyJac, BodyQ, ReadJac, Reads, MAX_READ};
+use crate::force::{Applied, BodyQ, ForceJac, Reads, MAX_READ};
 use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
 use crate::run::{AnalysisError, Kind};
@@ -515,14 +515,12 @@ impl Augmented {
             self.vals[o] += k.identity;
         }
         // Applied forces: R has −Q.
-        let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
-        let (mut rq, mut rqd) = (ReadJac::default(), ReadJac::default());
+        let mut jac = ForceJac::default();
         for (f, force) in s.model.forces.iter().enumerate() {
             let x = s.force_local(f, q, qd, t);
             let reads = s.force_reads(f, q, qd);
-            force
-                .kind
-                .derivatives_reading(&x, &reads, &mut dq, &mut dqd, &mut rq, &mut rqd);
+            force.kind.derivatives_reading(&x, &reads, &mut jac);
+            let ForceJac { dq, dqd, rq, rqd } = &jac;
             let mut add = |slots: Option<[usize; 9]>, dq: &[[f64; 3]; 3], dqd: &[[f64; 3]; 3]| {
                 let Some(slots) = slots else { return };
                 for r in 0..3 {

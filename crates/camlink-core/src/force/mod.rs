@@ -54,6 +54,16 @@ pub struct Reads {
 /// for a ∈ {i, j} and read body k.
 pub type ReadJac = [[[[f64; 3]; 3]; MAX_READ]; 2];
 
+/// ∂Q/∂q and ∂Q/∂q̇ of one force: the blocks of its bodies i and j
+/// (`dq`, `dqd`) and of its read bodies (`rq`, `rqd`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForceJac {
+    pub dq: BodyJac,
+    pub dqd: BodyJac,
+    pub rq: ReadJac,
+    pub rqd: ReadJac,
+}
+
 /// The equations of one applied force.
 pub trait Applied {
     /// Short kind name, e.g. `"tsda"`.
@@ -90,19 +100,11 @@ pub trait Applied {
     ) -> Result<(), ForceError> {
         self.generalized(x, out)
     }
-    /// [`Applied::derivatives`], and ∂Q/∂q, ∂Q/∂q̇ of the read bodies into
-    /// `rq`, `rqd` (the blocks of read bodies k < `reads().len()` are
-    /// written, no others).
-    fn derivatives_reading(
-        &self,
-        x: &Local,
-        _r: &Reads,
-        dq: &mut BodyJac,
-        dqd: &mut BodyJac,
-        _rq: &mut ReadJac,
-        _rqd: &mut ReadJac,
-    ) {
-        self.derivatives(x, dq, dqd)
+    /// [`Applied::derivatives`] into `out.dq`, `out.dqd`, and ∂Q/∂q, ∂Q/∂q̇
+    /// of the read bodies into `out.rq`, `out.rqd` (the blocks of read
+    /// bodies k < `reads().len()` are written, no others).
+    fn derivatives_reading(&self, x: &Local, _r: &Reads, out: &mut ForceJac) {
+        self.derivatives(x, &mut out.dq, &mut out.dqd)
     }
 }
 
@@ -170,18 +172,8 @@ macro_rules! forces {
             ) -> Result<(), ForceError> {
                 match self { $(ForceKind::$variant(c) => c.generalized_reading(x, r, out),)* }
             }
-            fn derivatives_reading(
-                &self,
-                x: &Local,
-                r: &Reads,
-                dq: &mut BodyJac,
-                dqd: &mut BodyJac,
-                rq: &mut ReadJac,
-                rqd: &mut ReadJac,
-            ) {
-                match self {
-                    $(ForceKind::$variant(c) => c.derivatives_reading(x, r, dq, dqd, rq, rqd),)*
-                }
+            fn derivatives_reading(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
+                match self { $(ForceKind::$variant(c) => c.derivatives_reading(x, r, out),)* }
             }
         }
     };

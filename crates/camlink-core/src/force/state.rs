@@ -26,7 +26,7 @@ use std::sync::Arc;
 
 use camlink_expr::Expr;
 
-use super::{Applied, BodyJac, BodyQ, ForceError, ReadJac, Reads, MAX_READ};
+use super::{Applied, BodyJac, BodyQ, ForceError, ForceJac, Reads, MAX_READ};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::math::V2;
@@ -431,15 +431,7 @@ impl StateForce {
 
 impl StateForce {
     /// ∂Q/∂q and ∂Q/∂q̇ over N local state variables.
-    fn jacobians<const N: usize>(
-        &self,
-        x: &Local,
-        r: &Reads,
-        dq: &mut BodyJac,
-        dqd: &mut BodyJac,
-        rq: &mut ReadJac,
-        rqd: &mut ReadJac,
-    ) {
+    fn jacobians<const N: usize>(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
         let s = State::<D<N>>::of(x, r);
         let value = |p: &Option<StateExpr>| p.as_ref().map_or(D::c(0.0), |p| p.dual(&s));
         let q = self.loads(
@@ -454,12 +446,13 @@ impl StateForce {
             for row in 0..3 {
                 for c in 0..3 {
                     for b in 0..2 {
-                        dq[a][b][row][c] = partial(a, row, var_index(b, c, false));
-                        dqd[a][b][row][c] = partial(a, row, var_index(b, c, true));
+                        out.dq[a][b][row][c] = partial(a, row, var_index(b, c, false));
+                        out.dqd[a][b][row][c] = partial(a, row, var_index(b, c, true));
                     }
                     for k in 0..MAX_READ {
-                        rq[a][k][row][c] = partial(a, row, var_index(READ_SLOT + k, c, false));
-                        rqd[a][k][row][c] = partial(a, row, var_index(READ_SLOT + k, c, true));
+                        let slot = READ_SLOT + k;
+                        out.rq[a][k][row][c] = partial(a, row, var_index(slot, c, false));
+                        out.rqd[a][k][row][c] = partial(a, row, var_index(slot, c, true));
                     }
                 }
             }
@@ -547,25 +540,18 @@ impl Applied for StateForce {
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
-        let (mut rq, mut rqd) = (ReadJac::default(), ReadJac::default());
-        self.derivatives_reading(x, &Reads::default(), dq, dqd, &mut rq, &mut rqd);
+        let mut j = ForceJac::default();
+        self.derivatives_reading(x, &Reads::default(), &mut j);
+        (*dq, *dqd) = (j.dq, j.dqd);
     }
 
-    fn derivatives_reading(
-        &self,
-        x: &Local,
-        r: &Reads,
-        dq: &mut BodyJac,
-        dqd: &mut BodyJac,
-        rq: &mut ReadJac,
-        rqd: &mut ReadJac,
-    ) {
+    fn derivatives_reading(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
         // Twelve variables, the cost of a built-in force, unless the
         // force reads other bodies.
         if self.reads.is_empty() {
-            self.jacobians::<NV>(x, r, dq, dqd, rq, rqd);
+            self.jacobians::<NV>(x, r, out);
         } else {
-            self.jacobians::<NV_READ>(x, r, dq, dqd, rq, rqd);
+            self.jacobians::<NV_READ>(x, r, out);
         }
     }
 }
@@ -799,9 +785,8 @@ mod tests {
         assert_eq!(f.validate(), Ok(()));
         for seed in 0..20 {
             let (x, r) = (check::state(seed), reads(seed));
-            let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
-            let (mut rq, mut rqd) = (ReadJac::default(), ReadJac::default());
-            f.derivatives_reading(&x, &r, &mut dq, &mut dqd, &mut rq, &mut rqd);
+            let mut j = ForceJac::default();
+            f.derivatives_reading(&x, &r, &mut j);
             let q_at = |x: &Local, r: &Reads| {
                 let mut q = BodyQ::default();
                 f.generalized_reading(x, r, &mut q).unwrap();
@@ -828,10 +813,10 @@ mod tests {
                             for row in 0..3 {
                                 let fd = (qp[a][row] - qm[a][row]) / (2.0 * h);
                                 let an = match (k, vel) {
-                                    (0 | 1, false) => dq[a][k][row][c],
-                                    (0 | 1, true) => dqd[a][k][row][c],
-                                    (_, false) => rq[a][k - 2][row][c],
-                                    (_, true) => rqd[a][k - 2][row][c],
+                                    (0 | 1, false) => j.dq[a][k][row][c],
+                                    (0 | 1, true) => j.dqd[a][k][row][c],
+                                    (_, false) => j.rq[a][k - 2][row][c],
+                                    (_, true) => j.rqd[a][k - 2][row][c],
                                 };
                                 assert!(
                                     (fd - an).abs() <= 1e-6 * (1.0 + fd.abs()),
@@ -852,13 +837,11 @@ mod tests {
         let f = force(false);
         let x = check::state(7);
         let r = Reads::default();
-        let (mut a, mut b) = (BodyJac::default(), BodyJac::default());
-        let (mut c, mut d) = (BodyJac::default(), BodyJac::default());
-        let (mut rq, mut rqd) = (ReadJac::default(), ReadJac::default());
-        f.jacobians::<NV>(&x, &r, &mut a, &mut b, &mut rq, &mut rqd);
-        f.jacobians::<NV_READ>(&x, &r, &mut c, &mut d, &mut rq, &mut rqd);
-        assert_eq!((a, b), (c, d));
-        assert_eq!(rq, ReadJac::default());
+        let (mut a, mut b) = (ForceJac::default(), ForceJac::default());
+        f.jacobians::<NV>(&x, &r, &mut a);
+        f.jacobians::<NV_READ>(&x, &r, &mut b);
+        assert_eq!(a, b);
+        assert_eq!(b.rq, ForceJac::default().rq);
     }
 
     #[test]
