@@ -31,6 +31,7 @@ __all__ = [
     "check_setting",
     "contact_modulus",
     "convert_adm",
+    "convert_model",
     "csv_rows",
     "fourbar_class",
     "fourbar_transmission",
@@ -38,6 +39,7 @@ __all__ = [
     "json_schema",
     "line_contact",
     "machine_report",
+    "model_error_of",
     "run_batch",
     "synth_file",
     "synth_str",
@@ -167,6 +169,12 @@ def json_schema() -> str: ...
 def convert_adm(
     path: str | PathLike[str], format: str, acf: str | PathLike[str] | None = None
 ) -> str: ...
+def convert_model(
+    path: str | PathLike[str], form: str, allow_outside: bool = False
+) -> tuple[str, list[str]]: ...
+def model_error_of(
+    text: str, format: str, base_dir: str | PathLike[str] | None = None
+) -> dict[str, Any] | None: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...

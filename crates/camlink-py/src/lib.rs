@@ -11,6 +11,7 @@ mod cam;
 mod csv_text;
 mod fourbar;
 mod machine;
+mod model_file;
 mod study;
 mod synth;
 
@@ -1228,6 +1229,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
     synth::register(m)?;
     fourbar::register(m)?;
+    model_file::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
