@@ -33,6 +33,7 @@ __all__ = [
     "check_setting",
     "contact_modulus",
     "convert_adm",
+    "convert_model",
     "csv_rows",
     "fourbar_class",
     "fourbar_transmission",
@@ -41,6 +42,7 @@ __all__ = [
     "length_units",
     "line_contact",
     "machine_report",
+    "model_error_of",
     "parse_units",
     "quantity_unit",
     "run_batch",
@@ -179,6 +181,12 @@ def json_schema() -> str: ...
 def convert_adm(
     path: str | PathLike[str], format: str, acf: str | PathLike[str] | None = None
 ) -> str: ...
+def convert_model(
+    path: str | PathLike[str], form: str, allow_outside: bool = False
+) -> tuple[str, list[str]]: ...
+def model_error_of(
+    text: str, format: str, base_dir: str | PathLike[str] | None = None
+) -> dict[str, Any] | None: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
 def cam_base_radius_question(r: float) -> str | None: ...
 def quantity_unit(quantity: str, units: str = "m,rad") -> tuple[str, float]: ...

@@ -12,6 +12,16 @@ written as a file are identical. Values may be numbers or expression strings
     m.revolute("O", "ground", "O", "crank", "O")
     m.revolute_driver("motor", "O", f="2*pi*t")
     model = m.build()
+
+Each call is checked as it is made, by the loader's own rules (the model
+built so far is loaded through the binding): a call that the loader
+refuses (an unknown body, point, curve or joint name, a wrong type, an
+unknown joint kind, a bad expression) raises `ModelError` at once, naming
+the Python file and line of the call, and leaves the model as it was. A
+name must therefore be declared (by an earlier call) before it is used.
+What only the whole model can tell (a body that no joint holds) is
+reported by `build()`, again with the line of the call that added the
+entry at fault.
 """
 
 from __future__ import annotations
@@ -20,9 +30,11 @@ import json
 import math
 import numbers
 import os
+import sys
 from collections.abc import Callable, Sequence
 from typing import Any, TypeAlias
 
+from camlink import _core
 from camlink._core import ModelError
 from camlink.model import Model, loads
 from camlink.results import Results
@@ -56,6 +68,19 @@ def _fields(**kw: Any) -> dict[str, Any]:
     return {k: _value(v) for k, v in kw.items() if v is not None}
 
 
+def _caller() -> str:
+    """``file:line`` of the code that called into this module."""
+    f = sys._getframe(1)
+    while f.f_back is not None and f.f_code.co_filename == __file__:
+        f = f.f_back
+    return f"{f.f_code.co_filename}:{f.f_lineno}"
+
+
+def _within(field: str, prefix: str) -> bool:
+    """True when the field path `field` is `prefix` or inside it."""
+    return field == prefix or (field.startswith(prefix) and field[len(prefix)] in ".[")
+
+
 class Mechanism:
     """A model under construction, with one method per model-file table."""
 
@@ -79,6 +104,8 @@ class Mechanism:
         self._forces: list[dict[str, Any]] = []
         self._python_forces: list[tuple[str, str, Callable[..., Any]]] = []
         self._analysis: dict[str, Any] = {}
+        #: Where each entry was added: field path prefix → ``file:line``.
+        self._sites: dict[str, str] = {}
 
     @property
     def name(self) -> str:
@@ -88,12 +115,12 @@ class Mechanism:
 
     def parameter(self, name: str, value: Num) -> str:
         """A named parameter usable in expressions; returns its name."""
-        self._parameters[name] = _value(value)
+        self._keyed(self._parameters, name, _value(value), f"parameters.{name}")
         return name
 
     def ground_point(self, name: str, xy: Vec2) -> str:
         """A named point of the ground (m); returns its name."""
-        self._ground_points[name] = _value(xy)
+        self._keyed(self._ground_points, name, _value(xy), f"ground.points.{name}")
         return name
 
     def body(
@@ -114,7 +141,9 @@ class Mechanism:
         mass (kg), inertia about the centroid (kg·m²), named points in the
         body frame (m), or `global_points` at their global positions at the
         initial instant (m; see `link`). Returns its name."""
-        self._bodies.append(
+        self._append(
+            "bodies",
+            self._bodies,
             _fields(
                 name=name,
                 position=position,
@@ -126,7 +155,7 @@ class Mechanism:
                 omega=omega,
                 points=dict(points) if points else None,
                 global_points=dict(global_points) if global_points else None,
-            )
+            ),
         )
         return name
 
@@ -167,11 +196,15 @@ class Mechanism:
         if body == "ground":
             self.ground_point(name, xy)
             return f"ground.{name}"
-        for b in self._bodies:
+        for k, b in enumerate(self._bodies):
             if b["name"] == body:
                 # A body given by global points takes more of them.
                 key = "global_points" if "global_points" in b else "points"
-                b.setdefault(key, {})[name] = _value(xy)
+                try:
+                    self._keyed(b.setdefault(key, {}), name, _value(xy), f"bodies[{k}].{key}.{name}")
+                finally:
+                    if not b[key]:
+                        del b[key]
                 return f"{body}.{name}"
         known = ", ".join(b["name"] for b in self._bodies) or "none yet"
         raise KeyError(f"no body named {body!r} (bodies: {known})")
@@ -185,7 +218,9 @@ class Mechanism:
         ``curve("lobe", "cam", "expression", kind="polar", rho="1 + 0.2*cos(a)")``
         or ``curve("slot", "rocker", "spline", kind="parametric", file="slot.csv")``.
         Returns its name, for ``curve_i`` / ``curve_j`` of a contact joint."""
-        self._curves.append({"name": name, "body": body, "source": source, **_fields(**fields)})
+        self._append(
+            "curves", self._curves, {"name": name, "body": body, "source": source, **_fields(**fields)}
+        )
         return name
 
     # -- joints ---------------------------------------------------------
@@ -193,7 +228,7 @@ class Mechanism:
     def joint(self, name: str, type: str, **fields: Any) -> str:
         """Any joint of the model-file schema, e.g.
         ``joint("g", "gear", body_i=…, radius_i=…, …)``; returns its name."""
-        self._joints.append({"name": name, "type": type, **_fields(**fields)})
+        self._append("joints", self._joints, {"name": name, "type": type, **_fields(**fields)})
         return name
 
     def revolute(
@@ -257,7 +292,7 @@ class Mechanism:
     def driver(self, name: str, type: str, **fields: Any) -> str:
         """Any driver of the model-file schema, e.g.
         ``driver("lift", "absolute_y", body="slider", f="0.1*sin(t)")``."""
-        self._drivers.append({"name": name, "type": type, **_fields(**fields)})
+        self._append("drivers", self._drivers, {"name": name, "type": type, **_fields(**fields)})
         return name
 
     def revolute_driver(self, name: str, joint: str, f: Num) -> str:
@@ -275,7 +310,7 @@ class Mechanism:
     def force(self, type: str, name: str | None = None, **fields: Any) -> str | None:
         """A ``[[forces]]`` entry: ``point_force``, ``torque``, ``tsda`` or
         ``rsda`` with the fields of model-files.md."""
-        self._forces.append(_fields(type=type, name=name, **fields))
+        self._append("forces", self._forces, _fields(type=type, name=name, **fields))
         return name
 
     def python_force(
@@ -288,6 +323,13 @@ class Mechanism:
         """A force computed in Python by ``f(t, q, qd) -> (fx, fy, torque)``
         on `body` (the slow path; see `Model.with_force`). It is added by
         `build()` and has no model-file form."""
+        names = [b["name"] for b in self._bodies]
+        if body not in names:
+            known = ", ".join(names) or "none yet"
+            raise ModelError(
+                f"{_caller()}: python_force {name!r}: no moving body named {body!r} "
+                f"(bodies: {known})"
+            )
         self._python_forces.append((name, body, f))
         return name
 
@@ -311,6 +353,7 @@ class Mechanism:
         ``rho_inf``, ``adaptive``, ``atol``, ``rtol``, ``h_min``,
         ``projection_tol``). Each call adds to the table; a `type` other
         than the current one starts it afresh."""
+        before = dict(self._analysis)
         if type is not None and type != self._analysis.get("type", "kinematics"):
             self._analysis.clear()
         self._analysis.update(
@@ -326,6 +369,63 @@ class Mechanism:
                 **dynamics,
             )
         )
+        self._sites["analysis"] = _caller()
+        error = self._error_within("analysis")
+        if error is not None:
+            self._analysis.clear()
+            self._analysis.update(before)
+            raise error
+
+    # -- checks at each call ----------------------------------------------
+
+    def _append(self, section: str, items: list[dict[str, Any]], item: dict[str, Any]) -> None:
+        """Adds `item` to `section`, or raises the loader's error about it
+        and leaves the model as it was."""
+        items.append(item)
+        where = f"{section}[{len(items) - 1}]"
+        self._sites[where] = _caller()
+        error = self._error_within(where)
+        if error is not None:
+            items.pop()
+            del self._sites[where]
+            raise error
+
+    def _keyed(self, table: dict[str, Any], key: str, value: Any, where: str) -> None:
+        """Sets `table[key]`, or raises the loader's error about the entry
+        at `where` and leaves the model as it was."""
+        had, old = key in table, table.get(key)
+        table[key] = value
+        site = self._sites.get(where)
+        self._sites[where] = _caller()
+        error = self._error_within(where)
+        if error is None:
+            return
+        if had:
+            table[key] = old
+        else:
+            del table[key]
+        if site is None:
+            del self._sites[where]
+        else:
+            self._sites[where] = site
+        raise error
+
+    def _error_within(self, where: str) -> ModelError | None:
+        """The loader's first error about the model so far, when it lies in
+        the entry at `where` (a field path prefix)."""
+        found = _core.model_error_of(json.dumps(self.to_dict()), "json", self._base_dir)
+        if found is None or not _within(found["field"] or "", where):
+            return None
+        return self._located(found)
+
+    def _located(self, found: dict[str, Any]) -> ModelError:
+        """The error `found` (of `_core.model_error_of`) naming the Python
+        line of the call that added the entry at fault."""
+        field = found["field"] or ""
+        sites = [(p, s) for p, s in self._sites.items() if _within(field, p)]
+        site = max(sites, key=lambda ps: len(ps[0]))[1] if sites else f"<Mechanism '{self.name}'>"
+        what = f"{field}: " if field else ""
+        return ModelError(f"{site}: {what}{found['message']}")
 
     def to_dict(self) -> dict[str, Any]:
         """The model as the model-file tables (JSON-compatible)."""
@@ -373,7 +473,11 @@ class Mechanism:
         return "\n".join(out)
 
     def build(self) -> Model:
-        """Validates and loads the model (raises `ModelError` if invalid)."""
+        """Validates and loads the model; `ModelError` names the Python
+        line of the call that added the entry at fault."""
+        found = _core.model_error_of(json.dumps(self.to_dict()), "json", self._base_dir)
+        if found is not None:
+            raise self._located(found)
         model = loads(
             json.dumps(self.to_dict()),
             "json",

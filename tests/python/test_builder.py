@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -92,11 +93,72 @@ def test_slider_crank_in_code():
     assert res["slider.y"] == pytest.approx(0.0, abs=1e-9)
 
 
+def _line() -> int:
+    """The line of the caller."""
+    return sys._getframe(1).f_lineno
+
+
 def test_builder_errors_go_through_the_loader():
     m = camlink.Mechanism("broken")
     m.body("arm", points={"A": (1, 0)})
-    m.revolute("pin", "ground", (0, 0), "amr", (0, 0))
     with pytest.raises(camlink.ModelError, match="amr"):
+        m.revolute("pin", "ground", (0, 0), "amr", (0, 0))
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        # An unknown body, with the nearest name.
+        (lambda m: m.revolute("pin", "ground", (0, 0), "amr", (0, 0)),
+         "joints[0].body_j: no body named 'amr' (did you mean 'arm'?)"),
+        # An unknown point.
+        (lambda m: m.revolute("pin", "ground", (0, 0), "arm", "B"),
+         "joints[0].point_j: body 'arm' has no point named 'B'"),
+        # A bad joint kind.
+        (lambda m: m.joint("pin", "revolut", body_i="ground", body_j="arm"),
+         "(did you mean 'revolute'?)"),
+        # A wrong type.
+        (lambda m: m.body("rod", mass=[1, 2]), "bodies[1].mass: invalid type"),
+        # A bad expression, and a parameter not declared before.
+        (lambda m: m.parameter("w", "2*pi*"), "parameters.w: invalid expression"),
+        (lambda m: m.body("rod", angle="th0"), "unknown name 'th0'"),
+        # A point of an existing body.
+        (lambda m: m.point("arm", "B", ("r", 0)), "unknown name 'r'"),
+        (lambda m: m.analysis(t_end=-1.0, step=0.1), "analysis.t_end"),
+    ],
+)
+def test_a_faulty_call_raises_at_the_call_naming_its_line(call, message):
+    m = camlink.Mechanism("m")
+    m.body("arm", points={"A": (1, 0)})
+    before = m.to_dict()
+    with pytest.raises(camlink.ModelError) as e:
+        call(m)
+    text = str(e.value)
+    # The call is in this file (in the lambda above).
+    assert text.startswith(f"{__file__}:"), text
+    assert message in text, text
+    # The model is as it was before the call, and goes on.
+    assert m.to_dict() == before
+    m.revolute("O", "ground", (0, 0), "arm", (0, 0))
+    assert m.build().joints
+
+
+def test_a_call_site_names_the_line_of_the_user_code():
+    m = camlink.Mechanism("m")
+    m.body("arm", points={"A": (1, 0)})
+    line = _line() + 2
+    with pytest.raises(camlink.ModelError, match=rf"test_builder.py:{line}: joints\[0\]"):
+        m.revolute("pin", "ground", (0, 0), "arm", "Q")
+
+
+def test_an_error_found_by_build_names_the_line_of_its_call():
+    # A joint before its bodies cannot be checked at its call (the model
+    # has no body yet); build() names the joint's line.
+    m = camlink.Mechanism("m")
+    line = _line() + 1
+    m.revolute("pin", "ground", (0, 0), "arm", "A")
+    m.body("rod", points={"A": (1, 0)})
+    with pytest.raises(camlink.ModelError, match=rf"test_builder.py:{line}: joints\[0\].body_j"):
         m.build()
 
 

@@ -118,6 +118,16 @@ VALVE = (ROOT / "examples" / "cam_design_valve.toml").read_text()
         (("lift = -0.009", "lift = -0.008"), "return"),
         (("mass = 0.12", "mass = 'heavy'"), "dynamics.mass: must be a number"),
         (("[limits]", "[limits]\nmin_radiuss = 1"), "limits.min_radiuss: unknown key"),
+        (
+            ("[limits]", "[limits]\nmax_presure_angle_deg = 30"),
+            "unknown key (did you mean 'max_pressure_angle_deg'?)",
+        ),
+        (
+            ("[limits]", "[limits]\nbase_radius_serach = [0.01, 0.05]"),
+            "(did you mean 'base_radius_search'?)",
+        ),
+        (('law = "4-5-6-7"', 'law = "cycloidl"'), "(did you mean 'cycloidal'?)"),
+        (('type = "translating-flat"', 'type = "translating-flatt"'), "'translating-flat'?"),
         (('type = "translating-flat"', 'type = "sideways"'), "follower.type"),
         (("name = ", "name = = "), "design.toml"),
     ],

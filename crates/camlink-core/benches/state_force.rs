@@ -58,6 +58,7 @@ fn rsda_of_state() -> StateForce {
     let expr =
         Expr::parse_inputs("40*(th - 0.3) + 0.7*thd", &["th", "thd"], &HashMap::new()).unwrap();
     StateForce {
+        reads: Vec::new(),
         body_i: BodyId(1),
         s_i: [0.0; 2],
         body_j: BodyId(2),
@@ -108,6 +109,7 @@ fn slide_of_state() -> StateForce {
     let expr =
         Expr::parse_inputs("-(40*(s - 0.5) + 0.7*sd)", &["s", "sd"], &HashMap::new()).unwrap();
     StateForce {
+        reads: Vec::new(),
         body_i: BodyId(2),
         s_i: [0.0; 2],
         body_j: BodyId(0),

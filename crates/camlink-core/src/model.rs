@@ -427,7 +427,7 @@ impl Model {
             if forces.insert(f.name.as_str(), ()).is_some() {
                 return Err(ModelError::DuplicateForce(f.name.clone()));
             }
-            for b in f.kind.bodies() {
+            for &b in f.kind.bodies().iter().chain(f.kind.reads()) {
                 if b.0 >= self.bodies.len() {
                     return Err(ModelError::Invalid(format!(
                         "force '{}' refers to body number {}, which does not exist",

@@ -9,6 +9,7 @@
 //! itself is documented in `docs/model-files.md`.
 
 pub mod adm;
+pub mod convert;
 mod data_file;
 mod error;
 mod eval;

@@ -113,6 +113,86 @@ pub(crate) fn json_span(text: &str, path: &str) -> Option<Range<usize>> {
     span
 }
 
+/// Byte spans of the key and of the value of the field at `path`, whose
+/// last segment is a key, in TOML `text`; `None` when it is not there.
+pub(crate) fn toml_entry(text: &str, path: &str) -> Option<(Range<usize>, Range<usize>)> {
+    let root = DeTable::parse(text).ok()?;
+    let segs = parse_path(path);
+    let (last, init) = segs.split_last()?;
+    let Seg::Key(last) = last else { return None };
+    let mut table: &DeTable = root.get_ref();
+    let mut value: Option<&Spanned<DeValue>> = None;
+    for seg in init {
+        let next = match (seg, value.map(|v| v.get_ref())) {
+            (Seg::Key(k), None) => table.iter().find(|(key, _)| key.get_ref() == k)?.1,
+            (Seg::Key(k), Some(DeValue::Table(t))) => {
+                t.iter().find(|(key, _)| key.get_ref() == k)?.1
+            }
+            (Seg::Index(i), Some(DeValue::Array(a))) => a.get(*i)?,
+            _ => return None,
+        };
+        value = Some(next);
+    }
+    if let Some(v) = value {
+        let DeValue::Table(t) = v.get_ref() else {
+            return None;
+        };
+        table = t;
+    }
+    let (key, v) = table.iter().find(|(key, _)| key.get_ref() == last)?;
+    Some((key.span(), v.span()))
+}
+
+/// Byte spans of the key (with its quotes) and of the value of the field
+/// at `path`, whose last segment is a key, in JSON `text`.
+pub(crate) fn json_entry(text: &str, path: &str) -> Option<(Range<usize>, Range<usize>)> {
+    let segs = parse_path(path);
+    let (last, init) = segs.split_last()?;
+    let Seg::Key(last) = last else { return None };
+    let mut s = Scanner {
+        b: text.as_bytes(),
+        k: 0,
+    };
+    for seg in init {
+        s.ws();
+        let found = match (seg, s.peek()?) {
+            (Seg::Key(key), b'{') => s.find_key(key)?,
+            (Seg::Index(i), b'[') => s.find_index(*i)?,
+            _ => false,
+        };
+        if !found {
+            return None;
+        }
+    }
+    s.ws();
+    if s.peek()? != b'{' {
+        return None;
+    }
+    s.k += 1;
+    loop {
+        s.ws();
+        if s.peek()? == b'}' {
+            return None;
+        }
+        let key_start = s.k;
+        let name = s.string()?;
+        let hit = name == last.as_bytes();
+        let key = key_start..s.k;
+        s.ws();
+        s.k += 1; // ':'
+        s.ws();
+        let start = s.k;
+        s.skip_value()?;
+        if hit {
+            return Some((key, start..s.k));
+        }
+        s.ws();
+        if s.peek()? == b',' {
+            s.k += 1;
+        }
+    }
+}
+
 /// A minimal scanner over valid JSON, used only to find value positions.
 struct Scanner<'a> {
     b: &'a [u8],

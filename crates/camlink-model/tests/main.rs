@@ -15,6 +15,7 @@ mod bad_models;
 mod cam_dynamics;
 mod cam_examples;
 mod check_contacts;
+mod convert;
 mod examples;
 mod fast_path;
 mod forces;

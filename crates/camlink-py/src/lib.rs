@@ -11,6 +11,7 @@ mod cam;
 mod csv_text;
 mod fourbar;
 mod machine;
+mod model_file;
 mod study;
 mod synth;
 mod units;
@@ -1270,6 +1271,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     synth::register(m)?;
     fourbar::register(m)?;
     units::register(m)?;
+    model_file::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

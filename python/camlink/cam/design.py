@@ -11,9 +11,11 @@ Inside, everything is SI and radians; the mechanics run in the Rust core
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 import warnings
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path, PureWindowsPath
 from typing import Any, Literal
@@ -251,13 +253,27 @@ class _Table:
                 key, "is required" if v is None else f"must be a string, got {v!r}"
             )
         if choices and v not in choices:
-            raise self.fail(key, f"'{v}' is not one of {', '.join(choices)}")
+            raise self.fail(
+                key, f"'{v}' is not one of {', '.join(choices)}{_did_you_mean(v, choices)}"
+            )
         return v
 
     def finish(self) -> None:
+        """Refuses a key no read asked for, suggesting the nearest known one."""
         extra = sorted(set(self.data) - self.used)
         if extra:
-            raise self.fail(extra[0], "unknown key")
+            known = sorted(k for k in self.used if not k.startswith("_"))
+            raise self.fail(
+                extra[0],
+                f"unknown key{_did_you_mean(extra[0], known)}; "
+                f"the keys here are {', '.join(known)}",
+            )
+
+
+def _did_you_mean(name: str, candidates: Iterable[str]) -> str:
+    """`` (did you mean 'x'?)`` for the candidate closest to `name`, if any is close."""
+    close = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
+    return f" (did you mean '{close[0]}'?)" if close else ""
 
 
 def _ends(
@@ -343,8 +359,8 @@ def load(path: str | Path) -> Design:
     top.used.add("limits")
     phi = lim.optional("max_pressure_angle_deg", positive=True, most=90.0, unit="°")
     rng = None
+    lim.used.add("base_radius_search")
     if "base_radius_search" in lim.data:
-        lim.used.add("base_radius_search")
         v = lim.data["base_radius_search"]
         if not (
             isinstance(v, list)

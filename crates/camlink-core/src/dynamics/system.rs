@@ -52,7 +52,7 @@ use super::friction::JointFrictions;
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
-use crate::force::{Applied, BodyJac, BodyQ};
+use crate::force::{Applied, BodyQ, ForceJac, Reads, MAX_READ};
 use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
 use crate::run::{AnalysisError, Kind};
@@ -117,6 +117,19 @@ impl<'m> System<'m> {
         x
     }
 
+    /// The state of the bodies force `f` reads besides its own, at (q, q̇).
+    #[inline]
+    pub fn force_reads(&self, f: usize, q: &[f64], qd: &[f64]) -> Reads {
+        let mut r = Reads::default();
+        for (k, b) in self.model.forces[f].kind.reads().iter().enumerate() {
+            if let Some(c) = self.asm.body_col(b.0) {
+                r.q[k].copy_from_slice(&q[c..c + 3]);
+                r.qd[k].copy_from_slice(&qd[c..c + 3]);
+            }
+        }
+        r
+    }
+
     /// Q(q, q̇, t) = Q_g + Q_v + Q_a into `out` (length n); an error of
     /// kind `force_failed` when a user force function fails.
     pub fn forces(
@@ -147,13 +160,17 @@ impl<'m> System<'m> {
         let mut qf = BodyQ::default();
         for (f, force) in self.model.forces.iter().enumerate() {
             let x = self.force_local(f, q, qd, t);
-            force.kind.generalized(&x, &mut qf).map_err(|e| {
-                AnalysisError::new(
-                    Kind::ForceFailed,
-                    t,
-                    format!("force '{}' failed: {e}", force.name),
-                )
-            })?;
+            let r = self.force_reads(f, q, qd);
+            force
+                .kind
+                .generalized_reading(&x, &r, &mut qf)
+                .map_err(|e| {
+                    AnalysisError::new(
+                        Kind::ForceFailed,
+                        t,
+                        format!("force '{}' failed: {e}", force.name),
+                    )
+                })?;
             for (k, b) in force.kind.bodies().iter().enumerate() {
                 if let Some(c) = self.asm.body_col(b.0) {
                     for d in 0..3 {
@@ -268,18 +285,29 @@ impl<'m> System<'m> {
     }
 }
 
-/// `vals −= k.scale (k.stiffness ∂Q/∂q + k.damping ∂Q/∂q̇)` over the
-/// blocks `slots` of one force (R has −Q).
+/// `vals −= k.scale (k.stiffness ∂Q/∂q + k.damping ∂Q/∂q̇)` over one
+/// 3 × 3 block (R has −Q).
+fn add_block(
+    vals: &mut [f64],
+    slots: [usize; 9],
+    dq: &[[f64; 3]; 3],
+    dqd: &[[f64; 3]; 3],
+    k: Coefficients,
+) {
+    for r in 0..3 {
+        for col in 0..3 {
+            vals[slots[3 * r + col]] -= k.scale * (k.stiffness * dq[r][col] + k.damping * dqd[r][col]);
+        }
+    }
+}
+
+/// [`add_block`] over the blocks `slots` of one force or friction on a
+/// pair of bodies.
 fn add_pair(vals: &mut [f64], slots: &PairSlots, dq: &BodyJac, dqd: &BodyJac, k: Coefficients) {
     for a in 0..2 {
         for b in 0..2 {
             if let Some(slots) = slots[a][b] {
-                for r in 0..3 {
-                    for col in 0..3 {
-                        vals[slots[3 * r + col]] -= k.scale
-                            * (k.stiffness * dq[a][b][r][col] + k.damping * dqd[a][b][r][col]);
-                    }
-                }
+                add_block(vals, slots, &dq[a][b], &dqd[a][b], k);
             }
         }
     }
@@ -319,6 +347,9 @@ pub struct Augmented {
     force_slots: Vec<PairSlots>,
     /// The same for each joint friction.
     friction_slots: Vec<PairSlots>,
+    /// Per force, per body a ∈ {i, j} and read body k, the 3 × 3 block's
+    /// slots of ∂Q_a/∂q_k (None for the ground or past the reads).
+    read_slots: Vec<[[Option<[usize; 9]>; MAX_READ]; 2]>,
     /// Per joint: the local coordinates its Φ is nonlinear in (local
     /// index, global column) and the slots of their L × L curvature block,
     /// row-major.
@@ -421,6 +452,23 @@ impl Augmented {
             .joints()
             .map(|j| pair_slots(s.model.joints[j].constraint.bodies()))
             .collect();
+        let read_slots = s
+            .model
+            .forces
+            .iter()
+            .map(|f| {
+                let cols = f.kind.bodies().map(|b| s.asm.body_col(b.0));
+                let mut out = [[None; MAX_READ]; 2];
+                for (k, b) in f.kind.reads().iter().enumerate() {
+                    for a in 0..2 {
+                        if let (Some(ca), Some(cb)) = (cols[a], s.asm.body_col(b.0)) {
+                            out[a][k] = Some(block(&mut slot, ca, cb));
+                        }
+                    }
+                }
+                out
+            })
+            .collect();
         let joint_slots = (0..s.model.joints.len())
             .map(|j| {
                 let c = &s.model.joints[j].constraint;
@@ -470,6 +518,7 @@ impl Augmented {
             own_slots,
             force_slots,
             friction_slots,
+            read_slots,
             joint_slots,
             jac_slots,
             mult_slots,
@@ -519,18 +568,26 @@ impl Augmented {
             self.vals[o] += k.identity;
         }
         // Applied forces: R has −Q.
-        let (mut dq, mut dqd) = (BodyJac::default(), BodyJac::default());
+        let mut jac = ForceJac::default();
         for (f, force) in s.model.forces.iter().enumerate() {
             let x = s.force_local(f, q, qd, t);
-            force.kind.derivatives(&x, &mut dq, &mut dqd);
-            add_pair(&mut self.vals, &self.force_slots[f], &dq, &dqd, k);
+            let reads = s.force_reads(f, q, qd);
+            force.kind.derivatives_reading(&x, &reads, &mut jac);
+            add_pair(&mut self.vals, &self.force_slots[f], &jac.dq, &jac.dqd, k);
+            for a in 0..2 {
+                for r in 0..force.kind.reads().len() {
+                    if let Some(slots) = self.read_slots[f][a][r] {
+                        add_block(&mut self.vals, slots, &jac.rq[a][r], &jac.rqd[a][r], k);
+                    }
+                }
+            }
         }
         // Joint friction at λ: R has −Q_f.
         if let Some(lambda) = lambda {
             for (f, slots) in self.friction_slots.iter().enumerate() {
                 s.friction
-                    .derivatives(s, f, q, qd, lambda, t, &mut dq, &mut dqd);
-                add_pair(&mut self.vals, slots, &dq, &dqd, k);
+                    .derivatives(s, f, q, qd, lambda, t, &mut jac.dq, &mut jac.dqd);
+                add_pair(&mut self.vals, slots, &jac.dq, &jac.dqd, k);
             }
         }
         // Constraint curvature (Φ_qᵀλ)_q, by central differences of the
@@ -687,5 +744,135 @@ impl Augmented {
 
     pub fn invalidate(&mut self) {
         self.sys.invalidate();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::collections::HashMap;
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::force::state::{Channel, StateExpr, StateForce, READ_SLOT};
+    use crate::force::Force;
+    use crate::model::Body;
+    use crate::BodyId;
+    use camlink_expr::Expr;
+
+    /// Three free bodies; a force of state on body 1 that reads bodies 2
+    /// and 3 besides its own.
+    fn model() -> Model {
+        let mut m = Model::new("reads");
+        for k in 1..=3 {
+            let mut b = Body::new(format!("b{k}"), [0.1 * k as f64, -0.2, 0.3 * k as f64]);
+            b.mass = 1.0;
+            b.inertia = 0.5;
+            b.qd0 = [0.2, -0.1 * k as f64, 0.4];
+            m.add_body(b);
+        }
+        let names = ["x1", "phi2", "w3", "p3y"];
+        let channels = vec![
+            Channel::Body {
+                slot: 0,
+                c: 0,
+                rate: false,
+            },
+            Channel::Body {
+                slot: READ_SLOT,
+                c: 2,
+                rate: false,
+            },
+            Channel::Body {
+                slot: READ_SLOT + 1,
+                c: 2,
+                rate: true,
+            },
+            Channel::Point {
+                slot: READ_SLOT + 1,
+                s: [0.3, 0.1],
+                axis: 1,
+                rate: false,
+            },
+        ];
+        let part = |src: &str| {
+            Some(StateExpr {
+                expr: Arc::new(Expr::parse_inputs(src, &names, &HashMap::new()).unwrap()),
+                channels: channels.clone(),
+            })
+        };
+        m.add_force(Force::new(
+            "f",
+            StateForce {
+                reads: vec![BodyId(2), BodyId(3)],
+                body_i: BodyId(1),
+                s_i: [0.2, 0.1],
+                body_j: BodyId::GROUND,
+                s_j: [0.0; 2],
+                f: [part("-3*sin(phi2)*w3 + x1^2"), part("p3y*w3 - phi2")],
+                torque: part("phi2*x1 + 0.5*w3"),
+                local: false,
+            },
+        ));
+        m
+    }
+
+    #[test]
+    fn issue30_the_matrix_holds_the_read_bodies_columns() {
+        let m = model();
+        let s = System::new(&m);
+        let n = s.n();
+        let q: Vec<f64> = (0..n).map(|k| 0.1 + 0.37 * k as f64).collect();
+        let qd: Vec<f64> = (0..n).map(|k| 0.3 - 0.21 * k as f64).collect();
+        let t = 0.2;
+        let mut aug = Augmented::new(&s, &q).unwrap();
+        // D = ∂R/∂q with R = M q̈ − Q: the stiffness block alone, then
+        // the damping block alone.
+        for (stiffness, damping) in [(1.0, 0.0), (0.0, 1.0)] {
+            let k = Coefficients {
+                mass: 0.0,
+                damping,
+                stiffness,
+                identity: 0.0,
+                scale: 1.0,
+            };
+            let _ = aug.refactor(&s, &q, &qd, &vec![0.0; n], None, t, k);
+            let entry = |r: usize, c: usize| {
+                aug.pattern
+                    .iter()
+                    .position(|&p| p == (r, c))
+                    .map_or(0.0, |k| aug.vals[k])
+            };
+            let h = 1e-6;
+            let mut checked = 0;
+            for c in 0..n {
+                let forces = |dh: f64| {
+                    let (mut q, mut qd) = (q.clone(), qd.clone());
+                    if stiffness != 0.0 {
+                        q[c] += dh;
+                    } else {
+                        qd[c] += dh;
+                    }
+                    let mut out = vec![0.0; n];
+                    s.forces(&q, &qd, t, &mut out).unwrap();
+                    out
+                };
+                let (qp, qm) = (forces(h), forces(-h));
+                for r in 0..n {
+                    let fd = -(qp[r] - qm[r]) / (2.0 * h);
+                    let an = entry(r, c);
+                    assert!(
+                        (fd - an).abs() <= 1e-6 * (1.0 + fd.abs()),
+                        "d R[{r}] / d {}[{c}]: {an} vs {fd}",
+                        if stiffness != 0.0 { "q" } else { "qd" }
+                    );
+                    checked += usize::from(fd.abs() > 1e-3);
+                }
+            }
+            // Body 1's rows depend on bodies 2 and 3: f_x on φ₂ (column 5)
+            // and φ̇₃ (column 8).
+            assert!(checked >= 3, "{checked}");
+            let column = if stiffness != 0.0 { 5 } else { 8 };
+            assert!(entry(0, column).abs() > 1e-3, "{}", entry(0, column));
+        }
     }
 }

@@ -40,6 +40,32 @@ pub type BodyQ = [[f64; 3]; 2];
 /// Derivative blocks: `d[a][b][r][c]` = ∂Q_a,r / ∂q_b,c for bodies a, b ∈ {i, j}.
 pub type BodyJac = [[[[f64; 3]; 3]; 2]; 2];
 
+/// Most bodies, besides i and j, whose motion one force may read.
+pub const MAX_READ: usize = 4;
+
+/// Coordinates (x, y, φ) and velocities (ẋ, ẏ, φ̇) of the bodies a force
+/// reads besides i and j, in the order of [`Applied::reads`] (m, rad;
+/// m/s, rad/s); zero past them.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Reads {
+    pub q: [[f64; 3]; MAX_READ],
+    pub qd: [[f64; 3]; MAX_READ],
+}
+
+/// Derivative blocks of the read bodies: `d[a][k][r][c]` = ∂Q_a,r / ∂q_k,c
+/// for a ∈ {i, j} and read body k.
+pub type ReadJac = [[[[f64; 3]; 3]; MAX_READ]; 2];
+
+/// ∂Q/∂q and ∂Q/∂q̇ of one force: the blocks of its bodies i and j
+/// (`dq`, `dqd`) and of its read bodies (`rq`, `rqd`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ForceJac {
+    pub dq: BodyJac,
+    pub dqd: BodyJac,
+    pub rq: ReadJac,
+    pub rqd: ReadJac,
+}
+
 /// The equations of one applied force.
 pub trait Applied {
     /// Short kind name, e.g. `"tsda"`.
@@ -78,6 +104,28 @@ pub trait Applied {
         let mut q = BodyQ::default();
         self.generalized(x, &mut q)?;
         Ok(Some(q[slot]))
+    }
+    /// The bodies besides i and j whose motion the force reads (at most
+    /// [`MAX_READ`]; none for most forces). Their forces are zero: the
+    /// force acts on i and j only.
+    fn reads(&self) -> &[BodyId] {
+        &[]
+    }
+    /// Q_i and Q_j with the read bodies' state `r`; [`Applied::generalized`]
+    /// for a force that reads none.
+    fn generalized_reading(
+        &self,
+        x: &Local,
+        _r: &Reads,
+        out: &mut BodyQ,
+    ) -> Result<(), ForceError> {
+        self.generalized(x, out)
+    }
+    /// [`Applied::derivatives`] into `out.dq`, `out.dqd`, and ∂Q/∂q, ∂Q/∂q̇
+    /// of the read bodies into `out.rq`, `out.rqd` (the blocks of read
+    /// bodies k < `reads().len()` are written, no others).
+    fn derivatives_reading(&self, x: &Local, _r: &Reads, out: &mut ForceJac) {
+        self.derivatives(x, &mut out.dq, &mut out.dqd)
     }
 }
 
@@ -135,6 +183,21 @@ macro_rules! forces {
             }
             fn frame_load(&self, x: &Local) -> Result<Option<[f64; 3]>, ForceError> {
                 match self { $(ForceKind::$variant(c) => c.frame_load(x),)* }
+            }
+            fn reads(&self) -> &[BodyId] {
+                match self { $(ForceKind::$variant(c) => c.reads(),)* }
+            }
+            #[inline]
+            fn generalized_reading(
+                &self,
+                x: &Local,
+                r: &Reads,
+                out: &mut BodyQ,
+            ) -> Result<(), ForceError> {
+                match self { $(ForceKind::$variant(c) => c.generalized_reading(x, r, out),)* }
+            }
+            fn derivatives_reading(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
+                match self { $(ForceKind::$variant(c) => c.derivatives_reading(x, r, out),)* }
             }
         }
     };

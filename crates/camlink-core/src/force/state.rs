@@ -1,9 +1,10 @@
 //! A force and torque given by expressions of the motion: a force of state.
 //!
 //! The expressions read [`Channel`]s of the two bodies the force acts on,
-//! i and j (the ground, or the reaction body): their coordinates and
-//! velocities, points' positions and velocities, a revolute's relative
-//! angle, a translational joint's stroke, their rates, and time. With
+//! i and j (the ground, or the reaction body), and of up to [`MAX_READ`]
+//! other bodies it reads: their coordinates and velocities, points'
+//! positions and velocities, a revolute's relative angle, a translational
+//! joint's stroke, their rates, and time. With
 //! F = (f_x, f_y) (N; global components, or body-i components turning with
 //! body i when `local`) at P_i (s'_i in body i) and a torque T (N·m,
 //! counter-clockwise), body i receives F at P_i and T, body j the reaction
@@ -13,8 +14,8 @@
 //!
 //! Derivatives ∂Q/∂q and ∂Q/∂q̇ are exact: the channels, F and Q are
 //! evaluated once more over dual numbers ([`D`]) carrying the partials
-//! with respect to the twelve local state variables (q_i, q_j, q̇_i, q̇_j),
-//! and each expression's partials ∂f/∂u_k with respect to its channels come
+//! with respect to the local state variables (q_i, q_j, q̇_i, q̇_j, and
+//! q_k, q̇_k of the read bodies k), and each expression's partials ∂f/∂u_k with respect to its channels come
 //! from the expression engine's jets ([`Expr::gradient`]), chained as
 //! ∂f = Σ_k ∂f/∂u_k ∂u_k. At the switch of an `if`, `sign` or `min` the
 //! derivative is that of the branch taken. A force of state has no
@@ -25,7 +26,7 @@ use std::sync::Arc;
 
 use camlink_expr::Expr;
 
-use super::{Applied, BodyJac, BodyQ, ForceError};
+use super::{Applied, BodyJac, BodyQ, ForceError, ForceJac, Reads, MAX_READ};
 use crate::constraint::BodyId;
 use crate::constraint::Local;
 use crate::math::V2;
@@ -37,9 +38,17 @@ pub const MAX_CHANNELS: usize = 16;
 /// between the ground and one of the force's bodies.
 pub const GROUND_SLOT: usize = 2;
 
-/// A quantity of the motion, read from the local state of the force's two
-/// bodies, slot 0 being body i and slot 1 body j, and slot
-/// [`GROUND_SLOT`] the ground (the ground reads as zero in any slot).
+/// The slot of the first body the force reads besides i and j; read body
+/// k is in slot `READ_SLOT + k`.
+pub const READ_SLOT: usize = 3;
+
+/// Number of slots: i, j, the ground and the read bodies.
+const SLOTS: usize = READ_SLOT + MAX_READ;
+
+/// A quantity of the motion, read from the local state of the force's
+/// bodies, slot 0 being body i and slot 1 body j, slot [`GROUND_SLOT`]
+/// the ground (the ground reads as zero in any slot) and slots from
+/// [`READ_SLOT`] the bodies the force reads ([`StateForce::reads`]).
 /// Lengths in m, angles in rad, rates per second.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Channel {
@@ -90,24 +99,42 @@ impl Scalar for f64 {
     }
 }
 
-/// Number of local state variables: q_i, q_j, q̇_i, q̇_j.
+/// Number of local state variables of a force that reads no other body:
+/// q_i, q_j, q̇_i, q̇_j.
 const NV: usize = 12;
 
-/// A dual number: a value and its partials with respect to the local
-/// state variables, in the order (q_i, q_j, q̇_i, q̇_j), 3 each.
-#[derive(Clone, Copy, Debug)]
-struct D {
-    v: f64,
-    d: [f64; NV],
+/// Number of local state variables of a force that reads other bodies:
+/// q_i, q_j, q̇_i, q̇_j, then q_k of each read body, then q̇_k.
+const NV_READ: usize = NV + 6 * MAX_READ;
+
+/// Index of q_k,c (or q̇_k,c with `rate`) of the body in `slot` among the
+/// local state variables; `None` for the ground.
+fn var_index(slot: usize, c: usize, rate: bool) -> Option<usize> {
+    match slot {
+        0 | 1 => Some(if rate { 6 } else { 0 } + 3 * slot + c),
+        GROUND_SLOT => None,
+        _ => {
+            let k = slot - READ_SLOT;
+            Some(NV + if rate { 3 * MAX_READ } else { 0 } + 3 * k + c)
+        }
+    }
 }
 
-impl D {
-    fn var(v: f64, k: usize) -> D {
-        let mut d = [0.0; NV];
+/// A dual number: a value and its partials with respect to N local state
+/// variables, in the order of [`var_index`].
+#[derive(Clone, Copy, Debug)]
+struct D<const N: usize> {
+    v: f64,
+    d: [f64; N],
+}
+
+impl<const N: usize> D<N> {
+    fn var(v: f64, k: usize) -> Self {
+        let mut d = [0.0; N];
         d[k] = 1.0;
         D { v, d }
     }
-    fn scale(self, a: f64) -> D {
+    fn scale(self, a: f64) -> Self {
         D {
             v: self.v * a,
             d: self.d.map(|x| x * a),
@@ -115,10 +142,10 @@ impl D {
     }
 }
 
-impl Add for D {
-    type Output = D;
+impl<const N: usize> Add for D<N> {
+    type Output = Self;
     #[inline]
-    fn add(self, o: D) -> D {
+    fn add(self, o: Self) -> Self {
         let mut d = self.d;
         for (x, y) in d.iter_mut().zip(o.d) {
             *x += y;
@@ -127,27 +154,27 @@ impl Add for D {
     }
 }
 
-impl Sub for D {
-    type Output = D;
+impl<const N: usize> Sub for D<N> {
+    type Output = Self;
     #[inline]
-    fn sub(self, o: D) -> D {
+    fn sub(self, o: Self) -> Self {
         self + (-o)
     }
 }
 
-impl Neg for D {
-    type Output = D;
+impl<const N: usize> Neg for D<N> {
+    type Output = Self;
     #[inline]
-    fn neg(self) -> D {
+    fn neg(self) -> Self {
         self.scale(-1.0)
     }
 }
 
-impl Mul for D {
-    type Output = D;
+impl<const N: usize> Mul for D<N> {
+    type Output = Self;
     #[inline]
-    fn mul(self, o: D) -> D {
-        let mut d = [0.0; NV];
+    fn mul(self, o: Self) -> Self {
+        let mut d = [0.0; N];
         for (k, x) in d.iter_mut().enumerate() {
             *x = self.d[k] * o.v + self.v * o.d[k];
         }
@@ -155,13 +182,13 @@ impl Mul for D {
     }
 }
 
-impl Scalar for D {
+impl<const N: usize> Scalar for D<N> {
     #[inline]
-    fn c(v: f64) -> D {
-        D { v, d: [0.0; NV] }
+    fn c(v: f64) -> Self {
+        D { v, d: [0.0; N] }
     }
     #[inline]
-    fn sin_cos(self) -> (D, D) {
+    fn sin_cos(self) -> (Self, Self) {
         let (s, c) = crate::math::sin_cos(self.v);
         (
             D {
@@ -176,33 +203,43 @@ impl Scalar for D {
     }
 }
 
-/// The local state over a scalar type.
-/// Slots 0 and 1 are bodies i and j, slot 2 the ground.
+/// The local state over a scalar type: slots 0 and 1 are bodies i and j,
+/// slot [`GROUND_SLOT`] the ground, slots from [`READ_SLOT`] the read bodies.
 struct State<S> {
     t: f64,
-    q: [[S; 3]; 3],
-    qd: [[S; 3]; 3],
+    q: [[S; 3]; SLOTS],
+    qd: [[S; 3]; SLOTS],
 }
 
 impl State<f64> {
     #[inline]
-    fn of(x: &Local) -> Self {
-        State {
-            t: x.t,
-            q: [x.q[0], x.q[1], [0.0; 3]],
-            qd: [x.qd[0], x.qd[1], [0.0; 3]],
-        }
+    fn of(x: &Local, r: &Reads) -> Self {
+        let mut q = [[0.0; 3]; SLOTS];
+        let mut qd = [[0.0; 3]; SLOTS];
+        q[..2].copy_from_slice(&x.q);
+        qd[..2].copy_from_slice(&x.qd);
+        q[READ_SLOT..].copy_from_slice(&r.q);
+        qd[READ_SLOT..].copy_from_slice(&r.qd);
+        State { t: x.t, q, qd }
     }
 }
 
-impl State<D> {
-    fn of(x: &Local) -> Self {
-        let mut q = [[D::c(0.0); 3]; 3];
-        let mut qd = [[D::c(0.0); 3]; 3];
-        for k in 0..2 {
+impl<const N: usize> State<D<N>> {
+    /// The state with a variable for every slot whose index fits in N.
+    fn of(x: &Local, r: &Reads) -> Self {
+        let v = State::<f64>::of(x, r);
+        let mut q = [[D::c(0.0); 3]; SLOTS];
+        let mut qd = [[D::c(0.0); 3]; SLOTS];
+        for slot in 0..SLOTS {
             for c in 0..3 {
-                q[k][c] = D::var(x.q[k][c], 3 * k + c);
-                qd[k][c] = D::var(x.qd[k][c], 6 + 3 * k + c);
+                q[slot][c] = match var_index(slot, c, false).filter(|&k| k < N) {
+                    Some(k) => D::var(v.q[slot][c], k),
+                    None => D::c(v.q[slot][c]),
+                };
+                qd[slot][c] = match var_index(slot, c, true).filter(|&k| k < N) {
+                    Some(k) => D::var(v.qd[slot][c], k),
+                    None => D::c(v.qd[slot][c]),
+                };
             }
         }
         State { t: x.t, q, qd }
@@ -319,7 +356,7 @@ impl StateExpr {
     }
 
     /// The value with its partials over the local state.
-    fn dual(&self, x: &State<D>) -> D {
+    fn dual<const N: usize>(&self, x: &State<D<N>>) -> D<N> {
         let mut u = [D::c(0.0); MAX_CHANNELS];
         let mut v = [0.0; MAX_CHANNELS];
         let n = self.channels.len();
@@ -342,6 +379,9 @@ impl StateExpr {
 /// A force and torque of state on body i, with the reaction on body j.
 #[derive(Clone, Debug)]
 pub struct StateForce {
+    /// The bodies besides i and j the expressions read, slot
+    /// [`READ_SLOT`] + k being `reads[k]` (at most [`MAX_READ`]).
+    pub reads: Vec<BodyId>,
     pub body_i: BodyId,
     /// s'_i: the point of application on body i, in its frame (m).
     pub s_i: V2,
@@ -389,6 +429,37 @@ impl StateForce {
     }
 }
 
+impl StateForce {
+    /// ∂Q/∂q and ∂Q/∂q̇ over N local state variables.
+    fn jacobians<const N: usize>(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
+        let s = State::<D<N>>::of(x, r);
+        let value = |p: &Option<StateExpr>| p.as_ref().map_or(D::c(0.0), |p| p.dual(&s));
+        let q = self.loads(
+            &s,
+            [value(&self.f[0]), value(&self.f[1])],
+            value(&self.torque),
+        );
+        let partial = |a: usize, row: usize, k: Option<usize>| {
+            k.filter(|&k| k < N).map_or(0.0, |k| q[a][row].d[k])
+        };
+        for a in 0..2 {
+            for row in 0..3 {
+                for c in 0..3 {
+                    for b in 0..2 {
+                        out.dq[a][b][row][c] = partial(a, row, var_index(b, c, false));
+                        out.dqd[a][b][row][c] = partial(a, row, var_index(b, c, true));
+                    }
+                    for k in 0..MAX_READ {
+                        let slot = READ_SLOT + k;
+                        out.rq[a][k][row][c] = partial(a, row, var_index(slot, c, false));
+                        out.rqd[a][k][row][c] = partial(a, row, var_index(slot, c, true));
+                    }
+                }
+            }
+        }
+    }
+}
+
 impl Applied for StateForce {
     fn kind(&self) -> &'static str {
         "state_force"
@@ -398,6 +469,10 @@ impl Applied for StateForce {
         [self.body_i, self.body_j]
     }
 
+    fn reads(&self) -> &[BodyId] {
+        &self.reads
+    }
+
     fn validate(&self) -> Result<(), String> {
         if self.body_i.is_ground() {
             return Err("a force of state acts on a moving body".into());
@@ -405,6 +480,25 @@ impl Applied for StateForce {
         if self.body_i == self.body_j {
             return Err("the reaction body must differ from the body".into());
         }
+        if self.reads.len() > MAX_READ {
+            return Err(format!(
+                "it reads {} bodies besides its own; at most {MAX_READ}",
+                self.reads.len()
+            ));
+        }
+        for (k, b) in self.reads.iter().enumerate() {
+            if b.is_ground()
+                || *b == self.body_i
+                || *b == self.body_j
+                || self.reads[..k].contains(b)
+            {
+                return Err(format!(
+                    "read body {} is the ground, one of the force's bodies or read twice",
+                    b.0
+                ));
+            }
+        }
+        let slots = READ_SLOT + self.reads.len();
         for p in self.parts() {
             if p.channels.len() > MAX_CHANNELS {
                 return Err(format!(
@@ -422,8 +516,8 @@ impl Applied for StateForce {
                 ));
             }
             for c in &p.channels {
-                if c.slots().iter().flatten().any(|&s| s > GROUND_SLOT) {
-                    return Err(format!("channel {c:?} reads a slot past {GROUND_SLOT}"));
+                if c.slots().iter().flatten().any(|&s| s >= slots) {
+                    return Err(format!("channel {c:?} reads a slot past {}", slots - 1));
                 }
             }
         }
@@ -432,7 +526,12 @@ impl Applied for StateForce {
 
     #[inline]
     fn generalized(&self, x: &Local, out: &mut BodyQ) -> Result<(), ForceError> {
-        let s = State::<f64>::of(x);
+        self.generalized_reading(x, &Reads::default(), out)
+    }
+
+    #[inline]
+    fn generalized_reading(&self, x: &Local, r: &Reads, out: &mut BodyQ) -> Result<(), ForceError> {
+        let s = State::<f64>::of(x, r);
         let value = |p: &Option<StateExpr>| p.as_ref().map_or(Ok(0.0), |p| p.value(&s));
         let f = [value(&self.f[0])?, value(&self.f[1])?];
         let torque = value(&self.torque)?;
@@ -457,22 +556,18 @@ impl Applied for StateForce {
     }
 
     fn derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
-        let s = State::<D>::of(x);
-        let value = |p: &Option<StateExpr>| p.as_ref().map_or(D::c(0.0), |p| p.dual(&s));
-        let q = self.loads(
-            &s,
-            [value(&self.f[0]), value(&self.f[1])],
-            value(&self.torque),
-        );
-        for a in 0..2 {
-            for b in 0..2 {
-                for r in 0..3 {
-                    for c in 0..3 {
-                        dq[a][b][r][c] = q[a][r].d[3 * b + c];
-                        dqd[a][b][r][c] = q[a][r].d[6 + 3 * b + c];
-                    }
-                }
-            }
+        let mut j = ForceJac::default();
+        self.derivatives_reading(x, &Reads::default(), &mut j);
+        (*dq, *dqd) = (j.dq, j.dqd);
+    }
+
+    fn derivatives_reading(&self, x: &Local, r: &Reads, out: &mut ForceJac) {
+        // Twelve variables, the cost of a built-in force, unless the
+        // force reads other bodies.
+        if self.reads.is_empty() {
+            self.jacobians::<NV>(x, r, out);
+        } else {
+            self.jacobians::<NV_READ>(x, r, out);
         }
     }
 }
@@ -573,6 +668,7 @@ mod tests {
     fn force(local: bool) -> StateForce {
         let ch = channels();
         StateForce {
+            reads: Vec::new(),
             body_i: BodyId(1),
             s_i: [0.2, 0.1],
             body_j: BodyId(2),
@@ -597,10 +693,186 @@ mod tests {
         }
     }
 
+    /// A force on bodies 1 and 2 that reads bodies 3 and 4 (slots
+    /// READ_SLOT and READ_SLOT + 1) through every channel kind.
+    fn reading_force() -> StateForce {
+        let (r0, r1) = (READ_SLOT, READ_SLOT + 1);
+        let ch = vec![
+            ("t", Channel::Time),
+            (
+                "x3",
+                Channel::Body {
+                    slot: r0,
+                    c: 0,
+                    rate: false,
+                },
+            ),
+            (
+                "w4",
+                Channel::Body {
+                    slot: r1,
+                    c: 2,
+                    rate: true,
+                },
+            ),
+            (
+                "p3",
+                Channel::Point {
+                    slot: r0,
+                    s: [0.3, -0.2],
+                    axis: 1,
+                    rate: false,
+                },
+            ),
+            (
+                "v4",
+                Channel::Point {
+                    slot: r1,
+                    s: [-0.1, 0.4],
+                    axis: 0,
+                    rate: true,
+                },
+            ),
+            (
+                "th",
+                Channel::Angle {
+                    a: r0,
+                    b: 0,
+                    rate: false,
+                },
+            ),
+            (
+                "thd",
+                Channel::Angle {
+                    a: GROUND_SLOT,
+                    b: r1,
+                    rate: true,
+                },
+            ),
+            (
+                "s",
+                Channel::Stroke {
+                    a: r1,
+                    s_a: [0.1, 0.2],
+                    v_a: [0.6, 0.8],
+                    b: r0,
+                    s_b: [-0.3, 0.1],
+                    rate: false,
+                },
+            ),
+            (
+                "sd",
+                Channel::Stroke {
+                    a: r0,
+                    s_a: [0.2, -0.1],
+                    v_a: [0.0, 1.0],
+                    b: 1,
+                    s_b: [0.05, 0.3],
+                    rate: true,
+                },
+            ),
+        ];
+        StateForce {
+            reads: vec![BodyId(3), BodyId(4)],
+            f: [
+                Some(part("3*x3*w4 + sin(p3)*v4 - 2*s*sd + t^2", &ch)),
+                Some(part("th^2 - thd*s + coulomb(sd, 2, 5)", &ch)),
+            ],
+            torque: Some(part("-5*th - 0.7*thd + p3*v4*w4", &ch)),
+            ..force(true)
+        }
+    }
+
+    /// The read bodies' state for a seed.
+    fn reads(seed: u64) -> Reads {
+        let a = check::state(seed + 100);
+        let b = check::state(seed + 200);
+        let mut r = Reads::default();
+        r.q[..2].copy_from_slice(&a.q);
+        r.qd[..2].copy_from_slice(&a.qd);
+        r.q[2] = b.q[0];
+        r.qd[2] = b.qd[0];
+        r
+    }
+
+    #[test]
+    fn issue30_derivatives_over_read_bodies_match_finite_differences() {
+        let f = reading_force();
+        assert_eq!(f.validate(), Ok(()));
+        for seed in 0..20 {
+            let (x, r) = (check::state(seed), reads(seed));
+            let mut j = ForceJac::default();
+            f.derivatives_reading(&x, &r, &mut j);
+            let q_at = |x: &Local, r: &Reads| {
+                let mut q = BodyQ::default();
+                f.generalized_reading(x, r, &mut q).unwrap();
+                q
+            };
+            let h = 1e-6;
+            // Columns of the force's own bodies and of each read body.
+            for k in 0..4 {
+                for c in 0..3 {
+                    for vel in [false, true] {
+                        // The state with variable (k, c) moved by dh.
+                        let moved = |dh: f64| {
+                            let (mut x, mut r) = (x, r);
+                            match (k, vel) {
+                                (0 | 1, false) => x.q[k][c] += dh,
+                                (0 | 1, true) => x.qd[k][c] += dh,
+                                (_, false) => r.q[k - 2][c] += dh,
+                                (_, true) => r.qd[k - 2][c] += dh,
+                            }
+                            q_at(&x, &r)
+                        };
+                        let (qp, qm) = (moved(h), moved(-h));
+                        for a in 0..2 {
+                            for row in 0..3 {
+                                let fd = (qp[a][row] - qm[a][row]) / (2.0 * h);
+                                let an = match (k, vel) {
+                                    (0 | 1, false) => j.dq[a][k][row][c],
+                                    (0 | 1, true) => j.dqd[a][k][row][c],
+                                    (_, false) => j.rq[a][k - 2][row][c],
+                                    (_, true) => j.rqd[a][k - 2][row][c],
+                                };
+                                assert!(
+                                    (fd - an).abs() <= 1e-6 * (1.0 + fd.abs()),
+                                    "seed {seed}: dQ[{a}][{row}]/d{}[{k}][{c}]: {an} vs {fd}",
+                                    if vel { "qd" } else { "q" }
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn issue30_a_force_without_reads_takes_the_short_path() {
+        // The same derivatives whichever dual size computes them.
+        let f = force(false);
+        let x = check::state(7);
+        let r = Reads::default();
+        let (mut a, mut b) = (ForceJac::default(), ForceJac::default());
+        f.jacobians::<NV>(&x, &r, &mut a);
+        f.jacobians::<NV_READ>(&x, &r, &mut b);
+        assert_eq!(a, b);
+        assert_eq!(b.rq, ForceJac::default().rq);
+    }
+
+    #[test]
+    fn issue30_read_bodies_are_checked() {
+        let mut f = reading_force();
+        f.reads = vec![BodyId(3)];
+        assert!(f.validate().unwrap_err().contains("past"));
+        f.reads = vec![BodyId(3), BodyId(1)];
+        assert!(f.validate().unwrap_err().contains("force's bodies"));
+    }
+
     #[test]
     fn issue30_channels_match_the_closed_forms() {
         let x = check::state(3);
-        let s = State::<f64>::of(&x);
+        let s = State::<f64>::of(&x, &Reads::default());
         let value = |name: &str| {
             let c = channels().into_iter().find(|c| c.0 == name).unwrap().1;
             c.value(&s)

@@ -46,8 +46,11 @@ impl Ctx {
                     || self.reads_motion(fy.as_ref())
                 {
                     let bj = self.reaction(reaction.as_ref(), b, p)?;
-                    let fx = self.state_expr(fx.as_ref(), [b, bj], &format!("{p}.fx"))?;
-                    let fy = self.state_expr(fy.as_ref(), [b, bj], &format!("{p}.fy"))?;
+                    let mut reads = Vec::new();
+                    let fx =
+                        self.state_expr(fx.as_ref(), [b, bj], &mut reads, &format!("{p}.fx"))?;
+                    let fy =
+                        self.state_expr(fy.as_ref(), [b, bj], &mut reads, &format!("{p}.fy"))?;
                     let s_j = match (reaction_point, bj.is_ground()) {
                         (Some(rp), false) => {
                             self.point(bj, Some(rp), &format!("{p}.reaction_point"))?
@@ -67,6 +70,7 @@ impl Ctx {
                         _ => [0.0; 2],
                     };
                     let kind = StateForce {
+                        reads,
                         body_i: b,
                         s_i: s,
                         body_j: bj,
@@ -109,8 +113,11 @@ impl Ctx {
                 let b = self.body(body, &format!("{p}.body"))?;
                 if reaction.is_some() || self.reads_motion(Some(torque)) {
                     let bj = self.reaction(reaction.as_ref(), b, p)?;
-                    let t = self.state_expr(Some(torque), [b, bj], &format!("{p}.torque"))?;
+                    let mut reads = Vec::new();
+                    let t =
+                        self.state_expr(Some(torque), [b, bj], &mut reads, &format!("{p}.torque"))?;
                     let kind = StateForce {
+                        reads,
                         body_i: b,
                         s_i: [0.0; 2],
                         body_j: bj,

@@ -1,8 +1,9 @@
 //! Forces of state: `[[forces]]` expressions that read the motion.
 //!
 //! Besides `t` and the parameters, a force's expressions may read channels
-//! of the bodies it acts on (its `body` and its `reaction` body, the
-//! ground by default):
+//! of any body and joint of the model; bodies other than those it acts on
+//! (its `body` and its `reaction` body, the ground by default) are the
+//! force's read bodies, at most [`MAX_READ`] of them:
 //!
 //! - `<body>_x`, `_y`, `_phi` (m, m, rad) and `_vx`, `_vy`, `_omega`
 //!   (m/s, m/s, rad/s): the body frame's coordinates and velocities;
@@ -14,12 +15,12 @@
 //!   distance s of its point on body j from its point on body i along its
 //!   axis (m), and ṡ (m/s),
 //!
-//! where a joint's bodies must be among the force's bodies and the ground.
 //! A parameter of the same name shadows a channel.
 
 use std::sync::Arc;
 
-use camlink_core::force::state::{Channel, StateExpr, GROUND_SLOT};
+use camlink_core::force::state::{Channel, StateExpr, GROUND_SLOT, READ_SLOT};
+use camlink_core::force::MAX_READ;
 use camlink_core::math::V2;
 use camlink_core::BodyId;
 
@@ -59,16 +60,22 @@ enum Def {
 }
 
 impl Def {
-    /// The channel in the slots of a force on `bodies`, or the first body
-    /// it reads that the force does not act on.
-    fn place(&self, bodies: [BodyId; 2]) -> Result<Channel, BodyId> {
-        let slot = |b: BodyId| {
+    /// The channel in the slots of a force on `bodies` reading `reads`
+    /// besides, another body being added to `reads`; the body that would
+    /// make more than [`MAX_READ`] read bodies is the error.
+    fn place(&self, bodies: [BodyId; 2], reads: &mut Vec<BodyId>) -> Result<Channel, BodyId> {
+        let mut slot = |b: BodyId| {
             if b == bodies[0] {
                 Ok(0)
             } else if b == bodies[1] {
                 Ok(1)
             } else if b.is_ground() {
                 Ok(GROUND_SLOT)
+            } else if let Some(k) = reads.iter().position(|&r| r == b) {
+                Ok(READ_SLOT + k)
+            } else if reads.len() < MAX_READ {
+                reads.push(b);
+                Ok(READ_SLOT + reads.len() - 1)
             } else {
                 Err(b)
             }
@@ -202,11 +209,14 @@ impl Ctx {
     }
 
     /// The expression `n` of a force on `bodies` ([body, reaction body]),
-    /// with the channels it reads; `None` when `n` is absent.
+    /// with the channels it reads; `None` when `n` is absent. Bodies it
+    /// reads besides `bodies` are added to `reads`, the force's read
+    /// bodies (shared by its expressions).
     pub(super) fn state_expr(
         &self,
         n: Option<&Num>,
         bodies: [BodyId; 2],
+        reads: &mut Vec<BodyId>,
         path: &str,
     ) -> R<Option<StateExpr>> {
         let src = match n {
@@ -228,18 +238,24 @@ impl Ctx {
             let Some((_, def)) = defs.iter().find(|(n, _)| n == name) else {
                 return fail(path, self.unknown_channel(name, &defs, bodies));
             };
-            match def.place(bodies) {
+            match def.place(bodies, reads) {
                 Ok(c) => channels.push(c),
                 Err(b) => {
+                    let names: Vec<&str> = reads
+                        .iter()
+                        .map(|&r| self.model.body(r).name.as_str())
+                        .collect();
                     return fail(
                         path,
                         format!(
-                            "'{name}' reads body '{}', which this force does not act on; a force \
-                             reads the motion of its body and its reaction body ({})",
+                            "'{name}' reads body '{}'; a force reads the motion of its own \
+                             bodies ({}) and of at most {MAX_READ} others, and this one reads \
+                             '{}' already",
                             self.model.body(b).name,
-                            self.force_bodies(bodies)
+                            self.force_bodies(bodies),
+                            names.join("', '")
                         ),
-                    )
+                    );
                 }
             }
             inputs.push(name);
@@ -263,21 +279,10 @@ impl Ctx {
     /// The message for a name that is neither a parameter nor a channel:
     /// the closest channel, and the channels this force can read.
     fn unknown_channel(&self, name: &str, defs: &[(String, Def)], bodies: [BodyId; 2]) -> String {
-        let readable: Vec<&str> = defs
-            .iter()
-            .filter(|(_, d)| d.place(bodies).is_ok())
-            .map(|(n, _)| n.as_str())
-            .collect();
+        let readable: Vec<&str> = defs.iter().map(|(n, _)| n.as_str()).collect();
         let mut params: Vec<&str> = self.params.keys().map(String::as_str).collect();
         params.sort_unstable();
-        let hint = did_you_mean(
-            name,
-            readable
-                .iter()
-                .copied()
-                .chain(params.iter().copied())
-                .chain(defs.iter().map(|(n, _)| n.as_str())),
-        );
+        let hint = did_you_mean(name, readable.iter().copied().chain(params.iter().copied()));
         // The channels nearest the name: those sharing its first word, else all.
         let stem = name.split('_').next().unwrap_or(name);
         let near: Vec<&str> = readable
