@@ -1615,11 +1615,12 @@ pub fn run(
 ) -> Result<Summary, AnalysisError> {
     let mut watch = super::drift::DriftWatch::new(sink);
     let settings = &on_output_times(settings, times);
-    let mut summary = if model.joints.iter().any(|j| j.unilateral.is_some()) || super::stops::any(model) {
-        super::unilateral::run(model, times, settings, points, &mut watch)?
-    } else {
-        run_bilateral(model, times, settings, points, &mut watch)?
-    };
+    let mut summary =
+        if model.joints.iter().any(|j| j.unilateral.is_some()) || super::stops::any(model) {
+            super::unilateral::run(model, times, settings, points, &mut watch)?
+        } else {
+            run_bilateral(model, times, settings, points, &mut watch)?
+        };
     summary.drift = watch.drift();
     Ok(summary)
 }

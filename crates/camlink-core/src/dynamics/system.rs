@@ -52,6 +52,7 @@ use super::friction::JointFrictions;
 use super::mass::Inertia;
 use crate::assembly::Assembly;
 use crate::constraint::{Equations, Jac, Local, Rows, LOCAL_COORDS, MAX_ROWS};
+use crate::force::BodyJac;
 use crate::force::{Applied, BodyQ, ForceJac, Reads, MAX_READ};
 use crate::linsolve::{SetupError, Singular, SystemMatrix};
 use crate::model::Model;
@@ -296,7 +297,8 @@ fn add_block(
 ) {
     for r in 0..3 {
         for col in 0..3 {
-            vals[slots[3 * r + col]] -= k.scale * (k.stiffness * dq[r][col] + k.damping * dqd[r][col]);
+            vals[slots[3 * r + col]] -=
+                k.scale * (k.stiffness * dq[r][col] + k.damping * dqd[r][col]);
         }
     }
 }

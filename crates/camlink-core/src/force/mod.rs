@@ -26,8 +26,8 @@ use crate::constraint::Local;
 
 pub mod callback;
 pub mod compliant_contact;
-pub mod joint_stop;
 pub mod friction;
+pub mod joint_stop;
 pub mod point;
 pub mod rsda;
 pub mod state;

@@ -518,6 +518,7 @@ fn motor_law(m: &Motor, link: BodyId, sign: f64) -> Result<StateForce, AnalysisE
     let parsed = camlink_expr::Expr::parse_inputs(&src, &["w"], &Default::default())
         .map_err(|e| input(format!("machine.motor.curve: {e}")))?;
     Ok(StateForce {
+        reads: Vec::new(),
         body_i: link,
         s_i: [0.0; 2],
         body_j: BodyId::GROUND,
