@@ -79,14 +79,14 @@ mod tests {
         let mut table = Table::default();
         let mut watch = DriftWatch::new(&mut table);
         assert_eq!(watch.drift(), None);
-        let names: Vec<String> = [
+        let names: Vec<Channel> = [
             "a",
             "energy.total",
             "constraint.residual",
             "constraint.velocity",
         ]
         .iter()
-        .map(|s| s.to_string())
+        .map(|s| Channel::new(*s, crate::quantity::Quantity::Dimensionless))
         .collect();
         watch.begin(&names);
         watch.row(0.0, &[9.0, 2.0, 1e-12, 3e-12]).unwrap();
