@@ -758,7 +758,7 @@ mod tests {
     use crate::force::state::{Channel, StateExpr, StateForce, READ_SLOT};
     use crate::force::Force;
     use crate::model::Body;
-    use crate::BodyId;
+    use crate::model::BodyId;
     use camlink_expr::Expr;
 
     /// Three free bodies; a force of state on body 1 that reads bodies 2
