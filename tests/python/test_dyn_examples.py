@@ -10,7 +10,6 @@ import numpy as np
 
 import camlink
 from camlink.cam.jump import flight_summary
-from camlink.units import unit
 from conftest import ROOT
 
 EXAMPLES = ROOT / "examples"
@@ -172,8 +171,8 @@ def test_dyn_pendulum_stop_rebounds_with_the_closed_form_speed():
     assert bool(impacts["closed"].iloc[-1])
     assert res["pivot.lower.state"][-1] == 1.0
     # The stop's gap is an angle, its push a torque.
-    assert unit("pivot.lower.gap", model.joints) == "rad"
-    assert unit("pivot.lower.moment", model.joints) == "N·m"
+    assert res.units["pivot.lower.gap"] == "rad"
+    assert res.units["pivot.lower.moment"] == "N·m"
     # `camlink run`'s line on the impacts.
     line = flight_summary(res, model.joints)
     assert line is not None and line.startswith(f"pivot.lower: {len(impacts)} impacts")
