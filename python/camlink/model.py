@@ -704,7 +704,7 @@ def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
     )
     for key in ("energy_drift", "constraint_drift", "velocity_drift"):
         if key in raw:
-            typed[key] = float(raw[key])  # type: ignore[literal-required]
+            typed[key] = float(raw[key])
     return typed
 
 
