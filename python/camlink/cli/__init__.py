@@ -19,7 +19,6 @@ from typing import NoReturn, TextIO
 
 import camlink
 from camlink._core import AnalysisError, ModelError
-from camlink.cam.jump import flight_summary
 from camlink.cli import cam as cam_cli
 from camlink.cli import convert as cli_convert
 from camlink.cli import machine as machine_cli
@@ -32,7 +31,6 @@ from camlink.model import ANALYSES
 from camlink.settings import check_settings
 from camlink.signals import Terminated, stop_on_termination
 from camlink.units import SI, parse_units
-from camlink.viz import fourbar
 
 EXIT_OK, EXIT_ANALYSIS, EXIT_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
@@ -294,6 +292,8 @@ def _cmd_run(args: argparse.Namespace) -> int:
                 f"max |Φ| {summary['constraint_drift']:.3g}, "
                 f"max |Φ_q q̇ − ν| {summary['velocity_drift']:.3g}"
             )
+        from camlink.cam.jump import flight_summary
+
         flights = flight_summary(res, model.joints)
         if flights is not None:
             print(f"  {flights}")
@@ -360,6 +360,8 @@ def _cmd_check(args: argparse.Namespace) -> int:
     model = _load(args)
     r = model.check()
     design = model.design_check()
+    from camlink.viz import fourbar
+
     loop = fourbar.summary(model)
     if args.json:
         print(json.dumps({"model": model.name, **r, "design": design, "four_bar": loop}, indent=2))

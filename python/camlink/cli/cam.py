@@ -13,14 +13,19 @@ import math
 import sys
 from pathlib import Path
 
-import numpy as np
+from typing import TYPE_CHECKING
 
 from camlink._core import ModelError
-from camlink.cam import design as cam_design
-from camlink.cam import export as cam_export
-from camlink.cam import plots as cam_plots
 from camlink.io.output import check_not_input, replacing
 from camlink.units import parse_units
+
+if TYPE_CHECKING:
+    from camlink.cam import design as cam_design
+    from camlink.cam import export as cam_export
+
+# The cam design, its plots and exports (matplotlib, ezdxf) are imported by
+# the functions that use them, so that building the parser of every
+# `camlink` command stays cheap.
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 
@@ -64,6 +69,8 @@ def _targets(design: cam_design.Design, out: Path, force: bool) -> dict[str, Pat
     """The files to write by their ``[export]`` key, checked before any is
     written: none is the design file, and none of a default name exists
     unless `force`."""
+    from camlink.cam import design as cam_design
+
     ex = design.export
     names = {
         "svaj_plot": ex.svaj,
@@ -101,6 +108,10 @@ def _targets(design: cam_design.Design, out: Path, force: bool) -> dict[str, Pat
 def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> list[str]:
     """Writes the pictures and exports into `out`, each to a temporary file
     renamed over its name when complete; returns the paths written."""
+    from camlink.cam import design as cam_design
+    from camlink.cam import export as cam_export
+    from camlink.cam import plots as cam_plots
+
     core = design.core()
     ex = design.export
     if out.exists() and not out.is_dir():
@@ -166,6 +177,10 @@ def _write_files(design: cam_design.Design, out: Path, force: bool = False) -> l
 
 def _hub(design: cam_design.Design) -> cam_export.Hub | None:
     """The bore, keyway and timing mark of `design`, or None."""
+    import numpy as np
+
+    from camlink.cam import export as cam_export
+
     ex = design.export
     if ex.bore_radius is None:
         return None
@@ -196,6 +211,7 @@ def _run_timing(args: argparse.Namespace) -> int:
     servo cam tables."""
     from dataclasses import asdict
 
+    from camlink.cam import design as cam_design
     from camlink.cam import timing as cam_timing
 
     try:
@@ -226,6 +242,8 @@ def _units(text: str) -> str:
     """The length unit of ``--units LENGTH,ANGLE`` (read as `camlink run
     --units` reads it, `camlink.units.parse_units`): m or mm, angles in
     degrees (a length alone means degrees too)."""
+    from camlink.cam import design as cam_design
+
     try:
         units = parse_units(text if "," in text else f"{text},deg")
     except ModelError:
@@ -239,6 +257,7 @@ def _units(text: str) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Runs `camlink cam`."""
+    from camlink.cam import design as cam_design
     from camlink.cam import timing as cam_timing
 
     if cam_timing.is_timing(args.design):

@@ -13,10 +13,13 @@ import sys
 from dataclasses import asdict
 from pathlib import Path
 
-from camlink import machine
+from typing import TYPE_CHECKING
+
 from camlink._core import AnalysisError, ModelError
 from camlink.io.output import check_not_input, replacing
-from camlink.study.balance import PartialBalance, partial_balance
+
+if TYPE_CHECKING:
+    from camlink.study.balance import PartialBalance
 
 EXIT_OK, EXIT_FAIL, EXIT_INPUT = 0, 1, 2
 
@@ -85,6 +88,11 @@ def _partial_text(p: PartialBalance) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Runs `camlink machine`."""
+    # Imported here, not at the top: the study stack (pandas) and the
+    # machine's pictures (matplotlib) are not needed to build the parser.
+    from camlink import machine
+    from camlink.study.balance import partial_balance
+
     src = Path(args.model)
     part: PartialBalance | None = None
     try:
