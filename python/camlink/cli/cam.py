@@ -12,7 +12,6 @@ import json
 import math
 import sys
 from pathlib import Path
-
 from typing import TYPE_CHECKING
 
 from camlink._core import ModelError

@@ -12,7 +12,6 @@ import json
 import sys
 from dataclasses import asdict
 from pathlib import Path
-
 from typing import TYPE_CHECKING
 
 from camlink._core import AnalysisError, ModelError
