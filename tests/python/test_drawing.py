@@ -68,6 +68,21 @@ def test_frame_holds_the_whole_motion_on_one_scale() -> None:
     assert np.allclose(trace.get_ydata(), res["coupler.P.y"], atol=1e-12)
 
 
+def test_sliders_on_guides_are_framed_with_their_travel() -> None:
+    # Blocks on guides to the ground, with no other named point: the frame
+    # once shrank to the ground's one point (0.3 mm across) and hatched the
+    # rails with 77,000 strokes.
+    model = camlink.load(EXAMPLES / "dyn_incline_friction.toml")
+    res = model.run()
+    drawing = Drawing(model, res)
+    (x0, x1), (y0, y1) = drawing.frame.xlim, drawing.frame.ylim
+    for body in ("slider", "sticker"):
+        x, y = res[f"{body}.x"], res[f"{body}.y"]
+        assert x0 < x.min() and x.max() < x1 and y0 < y.min() and y.max() < y1, body
+    hatches = [ln for ln in drawing.ax.lines if str(ln.get_gid()).endswith(":hatch")]
+    assert 0 < len(hatches) < 200
+
+
 def _distance_to_polyline(
     p: npt.NDArray[np.float64], poly: npt.NDArray[np.float64]
 ) -> npt.NDArray[np.float64]:

@@ -39,7 +39,7 @@ def test_the_scanner_finds_long_numbers() -> None:
 
 
 def _pendulum() -> camlink.Model:
-    return camlink.load(EXAMPLES / "dyn_pendulum.toml")
+    return camlink.load(EXAMPLES / "pendulum.toml")
 
 
 def _four_bar() -> camlink.Model:

@@ -915,6 +915,10 @@ def _extent(scene: Scene, poses: dict[str, Array]) -> tuple[Array, Array]:
         local.setdefault(f.body, []).append(np.array([f.s]))
     for p in scene.pins:
         local.setdefault(p.body_i, []).append(np.array([p.s_i]))
+    # A slider's block travels with body j's point along the guide of body i.
+    for g in scene.guides:
+        local.setdefault(g.body_i, []).append(np.array([g.s_i]))
+        local.setdefault(g.body_j, []).append(np.array([g.s_j]))
     found = [np.zeros((1, 2))] if not local else []
     for body, parts in local.items():
         pts = np.vstack(parts)
