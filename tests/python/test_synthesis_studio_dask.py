@@ -54,22 +54,38 @@ def test_issue31_cli_no_browser_goes_with_studio(tmp_path: Path, capsys: pytest.
     assert "--no-browser goes with --studio" in capsys.readouterr().err
 
 
-def test_issue31_path_search_on_dask_equals_the_local_run() -> None:
+def test_issue31_path_search_on_dask_equals_the_local_run(tmp_path: Path) -> None:
     distributed = pytest.importorskip("distributed")
     local = synth.solve(PATH)
     with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None,
-        silence_logs=logging.CRITICAL,
+        n_workers=2, threads_per_worker=1, processes=False, protocol="tcp://",
+        dashboard_address=None, silence_logs=logging.CRITICAL,
     ) as cluster, distributed.Client(cluster) as client:
         on_dask = synth.solve(PATH, client=client)
         # A problem without a search is solved here, as without Dask.
         two = ROOT / "examples" / "synthesis_two_positions.toml"
         assert synth.solve(two, client=client) == synth.solve(two)
+        # The command line sends the search to a scheduler by its address.
+        out = tmp_path / "out"
+        address = cluster.scheduler_address
+        assert main(["synth", str(PATH), "-o", str(out), "-q", "--scheduler", address]) == 0
+    written = sorted(out.glob("*.toml"))
+    assert [p.read_text() for p in written] == [
+        p.read_text() for p in sorted(synth.write(local, tmp_path / "local"))
+    ]
     assert on_dask.kind == local.kind == "path"
     assert len(on_dask.solutions) == len(local.solutions)
     for d, s in zip(on_dask.solutions, local.solutions, strict=True):
         assert d.model_text == s.model_text
         assert d.report == s.report
+
+
+def test_issue31_cli_synth_unreachable_scheduler_is_a_clear_error(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    assert main(["synth", str(PATH), "-o", str(tmp_path), "--scheduler", "tcp://127.0.0.1:9"]) == 2
+    assert "cannot reach the Dask scheduler" in capsys.readouterr().err
+    assert not list(tmp_path.iterdir())
 
 
 def test_issue31_ball_point_example_runs_straight_there(tmp_path: Path) -> None:

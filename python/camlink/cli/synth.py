@@ -38,6 +38,12 @@ def add_parser(
         help="draw the candidates' coupler curves against the targets (path and cognates problems)",
     )
     p.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="Dask scheduler (tcp://host:8786) to spread a path search's starts over; "
+        "the result is the same as on local cores (default: local cores)",
+    )
+    p.add_argument(
         "--studio",
         action="store_true",
         help="then open the best solution (the first written) in `camlink studio`",
@@ -64,7 +70,16 @@ def run(args: argparse.Namespace) -> int:
         if atlas_path.suffix.lower() != ".png":
             raise ModelError(f"--atlas {args.atlas}: the atlas is a picture; name a .png file")
         check_not_input(atlas_path, [args.problem])
-    result = synth.solve(args.problem)
+    if args.scheduler:
+        from camlink.study.runner import connect
+
+        client = connect(args.scheduler)
+        try:
+            result = synth.solve(args.problem, client=client)
+        finally:
+            client.close()
+    else:
+        result = synth.solve(args.problem)
     paths = synth.write(result, args.output, inputs=[args.problem], force=args.force)
     if args.atlas:
         from camlink.synth import atlas as synth_atlas

@@ -46,6 +46,7 @@ __all__ = [
     "STATUSES",
     "VARIANT",
     "check_size",
+    "connect",
     "run_variants",
     "variant_key",
 ]
@@ -450,7 +451,7 @@ def _run_dask(
     """Sends each batch to the cluster as one task and hands each result
     to `arrived` as it completes. A worker that dies has its tasks run
     again on another (Dask's own recovery)."""
-    from distributed import Client, as_completed
+    from distributed import as_completed
 
     # Workers may run in other folders: data files resolve against an
     # absolute folder.
@@ -460,12 +461,7 @@ def _run_dask(
     own = client is None
     if client is None:
         assert scheduler is not None
-        connection = _connection_args(scheduler)
-        _probe_scheduler(scheduler, connection, CONNECT_TIMEOUT)
-        try:
-            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
-        except (OSError, TimeoutError, ValueError, TypeError) as e:
-            raise ModelError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({e})") from None
+        client = connect(scheduler)
     try:
         futures = {}
         for batch in batches:
@@ -483,6 +479,20 @@ def _run_dask(
     finally:
         if own:
             client.close()
+
+
+def connect(scheduler: str) -> Client:
+    """A client of the Dask scheduler at `scheduler` (``tcp://host:8786``,
+    ``tls://…``); `ModelError` naming ``--scheduler`` when the address is
+    not one or nothing answers there within `CONNECT_TIMEOUT` seconds."""
+    from distributed import Client
+
+    connection = _connection_args(scheduler)
+    _probe_scheduler(scheduler, connection, CONNECT_TIMEOUT)
+    try:
+        return Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
+    except (OSError, TimeoutError, ValueError, TypeError) as e:
+        raise ModelError(f"--scheduler {scheduler}: cannot reach the Dask scheduler ({e})") from None
 
 
 def _connection_args(address: str) -> dict[str, Any]:
