@@ -171,7 +171,7 @@ def core_kinematics_row(bench: str, divan_name: str, rows: list[Row]) -> None:
     """The core's divan benchmark `divan_name` (10,000 kinematic steps of an
     example file) as the base row of `bench`."""
     try:
-        res = cargo("camlink-model", "examples", [divan_name])[divan_name]
+        res = cargo("camlink-bench", "examples", [divan_name])[divan_name]
     except (RuntimeError, KeyError, OSError) as e:
         print(f"  camlink core: failed ({e})")
         return
@@ -236,8 +236,8 @@ def camlink_slider_error() -> float | None:
         "-p",
         "camlink-core",
         "--test",
-        "dynamics_forward",
-        "slider_crank_matches_minimal_coordinates",
+        "integration",
+        "dynamics_forward::slider_crank_matches_minimal_coordinates",
         "--",
         "--nocapture",
     ]
@@ -273,7 +273,7 @@ def slider_crank(args: argparse.Namespace, rows: list[Row]) -> None:
 
     if not args.no_cargo:
         try:
-            res = cargo("camlink-core", "dynamics", ["slider_crank_1000_steps"])[
+            res = cargo("camlink-bench", "dynamics", ["slider_crank_1000_steps"])[
                 "slider_crank_1000_steps"
             ]
             err = camlink_slider_error()
@@ -351,7 +351,7 @@ def chain(args: argparse.Namespace, rows: list[Row]) -> None:
 
     if not args.no_cargo:
         try:
-            res = cargo("camlink-core", "dynamics", ["chain_100_steps"])
+            res = cargo("camlink-bench", "dynamics", ["chain_100_steps"])
             for n in sizes:
                 r = res[f"chain_100_steps/{n}"]
                 rows.append(

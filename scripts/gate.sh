@@ -5,8 +5,8 @@
 #   bash scripts/gate.sh          the default gate (CI, .ci/run)
 #   bash scripts/gate.sh --full   the default gate, then the full tier: the
 #                                 long numerical matrices (#[ignore]d Rust
-#                                 tests) in release; about two hours on
-#                                 2 cores (docs/validation.md)
+#                                 tests), optimised (profile ci); figures
+#                                 and time in docs/validation.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,33 +27,36 @@ else
     uv=(python3 -m uv)
 fi
 
-# The three compilations run at once, each in its own target directory (so
-# that none waits for another's lock): clippy's check build, the tests'
-# build (dev profile: optimised dependencies), and the extension that uv
-# builds through maturin (release) with the locked Python dependencies.
-# Alone, each leaves a core idle in its serial stretches (the largest
-# crates, the links); together they keep both cores busy. Their output
-# goes to a log each, printed when the step fails.
+# Two compilations run at once, each in its own target directory (so that
+# neither waits for the other's lock): clippy's check build, and the one
+# optimised build (profile `ci`, Cargo.toml) from which both the Rust tests
+# and the Python extension come. The extension is built second, by uv
+# through maturin with the same profile, so that it reuses every artifact
+# of the tests' build and compiles only the binding and PyO3. Their output
+# goes to a log each, printed when a step fails.
 logs=target/gate-logs
 mkdir -p "$logs"
-ext_target="$PWD/target/extension"
+# Every crate but the benchmarks (camlink-bench: divan) and the binding's
+# test target (none: it is tested through pytest).
+crates=(--workspace --exclude camlink-bench)
 step() {  # step NAME COMMAND...: run in the background, output to its log
     local name=$1; shift
     ( rc=0; "$@" >"$logs/$name.log" 2>&1 || rc=$?; echo "$rc" >"$logs/$name.rc" ) &
 }
+build() {  # the tests' build, then the extension from its artifacts
+    cargo test --profile ci "${crates[@]}" --no-run || return
+    # uv installs the locked dependencies and builds the extension (maturin;
+    # --locked fails if uv.lock is out of date with pyproject.toml).
+    MATURIN_PEP517_ARGS="--profile ci" "${uv[@]}" sync --locked
+}
 rm -f "$logs"/*.rc
-echo "== cargo clippy, cargo test --no-run, uv sync (maturin), at once"
+echo "== cargo clippy; cargo test --no-run then uv sync (maturin), at once"
 step clippy env CARGO_TARGET_DIR="$PWD/target/clippy" \
     cargo clippy --workspace --all-targets -- -D warnings
-# Default members: everything but the Python binding, which needs an
-# interpreter to link and is tested through pytest below.
-step build cargo test --no-run
-# uv builds the extension (release, via maturin) and installs the locked
-# dependencies; --locked fails if uv.lock is out of date with pyproject.toml.
-step extension env CARGO_TARGET_DIR="$ext_target" "${uv[@]}" sync --locked
+step build build
 wait
 failed=0
-for name in clippy build extension; do
+for name in clippy build; do
     rc=$(cat "$logs/$name.rc")
     if [ "$rc" != 0 ]; then
         echo "== $name failed (exit $rc):"
@@ -66,24 +69,23 @@ done
 [ "$failed" = 0 ] || exit 1
 
 echo "== cargo test"
-cargo test
+cargo test --profile ci "${crates[@]}"
 
 echo "== pytest"
 # Two workers (pytest-xdist), one per core of the CI machine; a module's
 # tests stay on one worker so its fixtures are built once. The slowest tests
-# are listed at the end. CARGO_TARGET_DIR keeps uv's check of the extension
-# on the build above.
-export CARGO_TARGET_DIR="$ext_target"
-"${uv[@]}" run --locked pytest -q -n 2 --dist loadscope --durations=15 tests/python
+# are listed at the end. --no-sync: the environment is the one synced above
+# (a sync here could rebuild the extension in release).
+"${uv[@]}" run --no-sync pytest -q -n 2 --dist loadscope --durations=15 tests/python
 
 echo "== ruff, mypy, stubtest"
 # Lints and types of the package and its tests (configured in
 # pyproject.toml), and the binding's stub against the compiled module.
-"${uv[@]}" run --locked ruff check python tests
-"${uv[@]}" run --locked mypy
-"${uv[@]}" run --locked python -m mypy.stubtest camlink._core
+"${uv[@]}" run --no-sync ruff check python tests
+"${uv[@]}" run --no-sync mypy
+"${uv[@]}" run --no-sync python -m mypy.stubtest camlink._core
 
 if [ "$full" = 1 ]; then
-    echo "== full tier: the long matrices (release)"
-    env -u CARGO_TARGET_DIR cargo test --release -- --ignored --nocapture
+    echo "== full tier: the long matrices (profile ci, the build above)"
+    cargo test --profile ci "${crates[@]}" -- --ignored --nocapture
 fi

@@ -1,8 +1,8 @@
 //! Forward-dynamics benchmarks (generalized-α, fixed step).
 //!
-//! `cargo bench -p camlink-core --bench dynamics`
+//! `cargo bench -p camlink-bench --bench dynamics`
 
-#[path = "../tests/mechanisms/mod.rs"]
+#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
 mod mechanisms;
 
 #[path = "shared/mod.rs"]

@@ -1,6 +1,6 @@
 //! Kinematics of example models loaded from their files, per 10,000 steps.
 //!
-//! `cargo bench -p camlink-model --bench examples` (divide the times by
+//! `cargo bench -p camlink-bench --bench examples` (divide the times by
 //! 10,000 for the cost per step; the model is loaded outside the timing).
 
 use std::path::Path;

@@ -4,7 +4,7 @@
 //! camlink-core --bench chain_large` (divide by 100 N for the cost per body
 //! per step; `benches/dynamics.rs` has N = 10 … 1000).
 
-#[path = "../tests/mechanisms/mod.rs"]
+#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
 mod mechanisms;
 
 #[path = "shared/mod.rs"]

@@ -1,6 +1,6 @@
 //! Synthesis speed: each method on the examples' problems.
 //!
-//! `cargo bench -p camlink-synth --bench synthesis`. `solve_*` time the
+//! `cargo bench -p camlink-bench --bench synthesis`. `solve_*` time the
 //! whole problem file (parsing, synthesis, checks, model file and report);
 //! the others the mathematics and checks alone.
 

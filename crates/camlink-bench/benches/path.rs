@@ -1,6 +1,6 @@
 //! Path-generation speed: the least-squares fit of a 20-point target.
 //!
-//! `cargo bench -p camlink-synth --bench path`. Rayon runs the starts on
+//! `cargo bench -p camlink-bench --bench path`. Rayon runs the starts on
 //! every local core (`RAYON_NUM_THREADS=2` for two).
 
 use std::path::Path;

@@ -1,11 +1,11 @@
 //! Kinematics benchmarks: positions, velocities and accelerations per step.
 //!
-//! `cargo bench -p camlink-core --bench kinematics`
+//! `cargo bench -p camlink-bench --bench kinematics`
 
-#[path = "../tests/common/mod.rs"]
+#[path = "../../camlink-core/tests/common/mod.rs"]
 mod common;
 
-#[path = "../tests/mechanisms/mod.rs"]
+#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
 mod mechanisms;
 
 use camlink_core::kinematics::run;

@@ -1,6 +1,6 @@
 //! Evaluation speed of the expressions camlink evaluates every step.
 //!
-//! Run with `cargo bench -p camlink-expr`.
+//! Run with `cargo bench -p camlink-bench`.
 
 use camlink_expr::Expr;
 use divan::black_box;

@@ -2,7 +2,7 @@
 //! one: Q and its derivatives for a torsion spring–damper between two
 //! bodies, and for a translational one on a slide.
 //!
-//! `cargo bench -p camlink-core --bench state_force`
+//! `cargo bench -p camlink-bench --bench state_force`
 
 use std::collections::HashMap;
 use std::sync::Arc;
