@@ -4,11 +4,9 @@
 //! camlink-core --bench chain_large` (divide by 100 N for the cost per body
 //! per step; `benches/dynamics.rs` has N = 10 … 1000).
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
-#[path = "shared/mod.rs"]
-mod shared;
+use camlink_bench::shared;
 
 use camlink_core::kinematics::run;
 use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};

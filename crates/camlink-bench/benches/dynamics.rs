@@ -2,11 +2,9 @@
 //!
 //! `cargo bench -p camlink-bench --bench dynamics`
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
-#[path = "shared/mod.rs"]
-mod shared;
+use camlink_bench::shared;
 
 fn main() {
     divan::main();

@@ -2,11 +2,9 @@
 //!
 //! `cargo bench -p camlink-bench --bench kinematics`
 
-#[path = "../../camlink-core/tests/common/mod.rs"]
-mod common;
+use camlink_testkit::common;
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
 use camlink_core::kinematics::run;
 use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};

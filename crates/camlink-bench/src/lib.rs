@@ -1,1 +1,4 @@
-//! camlink's benchmarks are in `benches/` (`cargo bench -p camlink-bench`); this library is empty.
+//! camlink's benchmarks are in `benches/` (`cargo bench -p camlink-bench
+//! [--bench NAME]`); this library holds what they share.
+
+pub mod shared;

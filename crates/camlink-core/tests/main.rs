@@ -2,8 +2,7 @@
 //! (one link instead of one per file). camlink-core's `test_layout` checks
 //! that every file in `tests/` is listed here or built on its own.
 
-mod common;
-mod mechanisms;
+use camlink_testkit::{common, mechanisms};
 
 mod andrews;
 mod assembly;

@@ -18,8 +18,7 @@ use camlink_core::dynamics::integrator::{Integrator, Settings as DynSettings};
 use camlink_core::kinematics::run;
 use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
 /// Keeps the last row so that the solver's work cannot be optimised away.
 struct Last(f64);

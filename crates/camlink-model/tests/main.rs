@@ -2,8 +2,7 @@
 //! (one link instead of one per file). camlink-core's `test_layout` checks
 //! that every file in `tests/` is listed here or built on its own.
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 #[path = "../../../fuzz/src/lib.rs"]
 mod targets;
 

@@ -19,8 +19,7 @@ use camlink_core::run::PointOutput;
 use camlink_core::run::{time_grid, Channel, Settings, Sink, Stop};
 use camlink_core::Model;
 
-#[path = "../../camlink-core/tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
 thread_local! {
     static COUNTING: Cell<bool> = const { Cell::new(false) };

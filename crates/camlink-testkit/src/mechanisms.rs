@@ -1,6 +1,5 @@
 //! Mechanisms with mass, built in code, shared by the dynamics tests and
 //! benchmarks.
-#![allow(dead_code)]
 
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
 use camlink_core::constraint::revolute::Revolute;

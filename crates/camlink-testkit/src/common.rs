@@ -1,5 +1,4 @@
 //! Mechanisms built in code, shared by integration tests and benchmarks.
-#![allow(dead_code)]
 
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord};
 use camlink_core::constraint::revolute::Revolute;
