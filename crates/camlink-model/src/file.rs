@@ -364,84 +364,15 @@ pub enum GearKindSpec {
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum JointSpec {
     /// Point `point_i` of `body_i` coincides with `point_j` of `body_j` (2 equations).
-    Revolute {
-        /// Unique joint name; default `<type>_<index>`.
-        #[serde(default)]
-        name: Option<String>,
-        body_i: String,
-        /// Default: the body origin [0, 0].
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        body_j: String,
-        /// Default: the body origin [0, 0].
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// End stops on the angle θ = φ_j − φ_i (rad).
-        #[serde(default)]
-        limits: Option<LimitsSpec>,
-        /// Coulomb friction in the joint (docs/friction.md).
-        #[serde(default)]
-        friction: Option<FrictionSpec>,
-    },
+    Revolute(RevoluteJoint),
     /// `point_j` slides on the line through `point_i` along `axis` (body i
     /// frame), and the relative angle φ_j − φ_i stays `angle` (2 equations).
-    Translational {
-        #[serde(default)]
-        name: Option<String>,
-        body_i: String,
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        /// Sliding direction in body i's frame; normalised, must not be zero.
-        axis: Vec2,
-        body_j: String,
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
-        #[serde(default)]
-        angle: Option<Num>,
-        /// End stops on the stroke (m): point_j from point_i along the axis.
-        #[serde(default)]
-        limits: Option<LimitsSpec>,
-        /// Coulomb friction in the joint (docs/friction.md).
-        #[serde(default)]
-        friction: Option<FrictionSpec>,
-    },
+    Translational(TranslationalJoint),
     /// A massless link of `length` between `point_i` and `point_j` (1 equation).
-    RevoluteRevolute {
-        #[serde(default)]
-        name: Option<String>,
-        body_i: String,
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        body_j: String,
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// Link length L (m), > 0; default: the initial distance.
-        #[serde(default)]
-        length: Option<Num>,
-    },
+    RevoluteRevolute(RevoluteRevoluteJoint),
     /// Pin `point_i` of `body_i` runs on the line of `body_j` through
     /// `point_j` along `axis`, at signed `offset` to its left (1 equation).
-    RevoluteTranslational {
-        #[serde(default)]
-        name: Option<String>,
-        /// The body carrying the pin.
-        body_i: String,
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        /// The body carrying the line.
-        body_j: String,
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// Line direction in body j's frame; normalised, must not be zero.
-        axis: Vec2,
-        /// Signed offset c of the pin to the left of the line (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
-        #[serde(default)]
-        offset: Option<Num>,
-        /// End stops on the pin's travel along the line from point_j (m).
-        #[serde(default)]
-        limits: Option<LimitsSpec>,
-    },
+    RevoluteTranslational(RevoluteTranslationalJoint),
     /// Global x of a body point is constant (1 equation).
     AbsoluteX(AbsoluteCoordJoint),
     /// Global y of a body point is constant (1 equation).
@@ -459,50 +390,9 @@ pub enum JointSpec {
     /// Distance between two body points is constant (1 equation).
     RelativeDistance(RelativeCoordJoint),
     /// Two gears rolling on their pitch circles (2 equations, 1 own coordinate).
-    Gear {
-        #[serde(default)]
-        name: Option<String>,
-        body_i: String,
-        /// Centre of gear i; default the body origin.
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        /// Pitch radius R_i (m), > 0.
-        radius_i: Num,
-        body_j: String,
-        /// Centre of gear j; default the body origin.
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// Pitch radius R_j (m), > 0.
-        radius_j: Num,
-        /// `external` (default) or `internal` (body j is the ring gear).
-        #[serde(default)]
-        kind: GearKindSpec,
-        /// Phase constant c (m); default: the initial placement.
-        #[serde(default)]
-        phase: Option<Num>,
-    },
+    Gear(GearJoint),
     /// Pinion `body_i` rolls on the pitch line of rack `body_j` (1 equation).
-    RackPinion {
-        #[serde(default)]
-        name: Option<String>,
-        /// The pinion.
-        body_i: String,
-        /// Pinion centre; default the body origin.
-        #[serde(default)]
-        point_i: Option<PointRef>,
-        /// Pitch radius R (m), > 0.
-        radius: Num,
-        /// The rack.
-        body_j: String,
-        /// A point of the pitch line; default the body origin.
-        #[serde(default)]
-        point_j: Option<PointRef>,
-        /// Rack direction in body j's frame; normalised, must not be zero.
-        axis: Vec2,
-        /// Phase constant c (m); default: the initial placement.
-        #[serde(default)]
-        phase: Option<Num>,
-    },
+    RackPinion(RackPinionJoint),
     /// Curve `curve_i` touches curve `curve_j` (2 equations for the shared
     /// point, 1 for collinear tangents; 2 own coordinates α_i, α_j).
     CamFollower(CamFollowerJoint),
@@ -512,6 +402,146 @@ pub enum JointSpec {
     /// Pin `point_i` of `body_i` runs in the slot `curve_j` (2 equations,
     /// 1 own coordinate α_j).
     PointFollower(PointFollowerJoint),
+}
+
+/// `revolute` joint: see [`JointSpec::Revolute`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RevoluteJoint {
+    /// Unique joint name; default `<type>_<index>`.
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    /// Default: the body origin [0, 0].
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    pub body_j: String,
+    /// Default: the body origin [0, 0].
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// End stops on the angle θ = φ_j − φ_i (rad).
+    #[serde(default)]
+    pub limits: Option<LimitsSpec>,
+    /// Coulomb friction in the joint (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// `translational` joint: see [`JointSpec::Translational`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct TranslationalJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    /// Sliding direction in body i's frame; normalised, must not be zero.
+    pub axis: Vec2,
+    pub body_j: String,
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// θ₀ = φ_j − φ_i (rad); default: its initial value (docs/model-files.md, "Defaults marked initial").
+    #[serde(default)]
+    pub angle: Option<Num>,
+    /// End stops on the stroke (m): point_j from point_i along the axis.
+    #[serde(default)]
+    pub limits: Option<LimitsSpec>,
+    /// Coulomb friction in the joint (docs/friction.md).
+    #[serde(default)]
+    pub friction: Option<FrictionSpec>,
+}
+
+/// `revolute_revolute` joint: see [`JointSpec::RevoluteRevolute`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RevoluteRevoluteJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    pub body_j: String,
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// Link length L (m), > 0; default: the initial distance.
+    #[serde(default)]
+    pub length: Option<Num>,
+}
+
+/// `revolute_translational` joint: see [`JointSpec::RevoluteTranslational`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RevoluteTranslationalJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The body carrying the pin.
+    pub body_i: String,
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    /// The body carrying the line.
+    pub body_j: String,
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// Line direction in body j's frame; normalised, must not be zero.
+    pub axis: Vec2,
+    /// Signed offset c of the pin to the left of the line (m); default: its initial value (docs/model-files.md, "Defaults marked initial").
+    #[serde(default)]
+    pub offset: Option<Num>,
+    /// End stops on the pin's travel along the line from point_j (m).
+    #[serde(default)]
+    pub limits: Option<LimitsSpec>,
+}
+
+/// `gear` joint: see [`JointSpec::Gear`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GearJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    pub body_i: String,
+    /// Centre of gear i; default the body origin.
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    /// Pitch radius R_i (m), > 0.
+    pub radius_i: Num,
+    pub body_j: String,
+    /// Centre of gear j; default the body origin.
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// Pitch radius R_j (m), > 0.
+    pub radius_j: Num,
+    /// `external` (default) or `internal` (body j is the ring gear).
+    #[serde(default)]
+    pub kind: GearKindSpec,
+    /// Phase constant c (m); default: the initial placement.
+    #[serde(default)]
+    pub phase: Option<Num>,
+}
+
+/// `rack_pinion` joint: see [`JointSpec::RackPinion`].
+#[derive(Clone, Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct RackPinionJoint {
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The pinion.
+    pub body_i: String,
+    /// Pinion centre; default the body origin.
+    #[serde(default)]
+    pub point_i: Option<PointRef>,
+    /// Pitch radius R (m), > 0.
+    pub radius: Num,
+    /// The rack.
+    pub body_j: String,
+    /// A point of the pitch line; default the body origin.
+    #[serde(default)]
+    pub point_j: Option<PointRef>,
+    /// Rack direction in body j's frame; normalised, must not be zero.
+    pub axis: Vec2,
+    /// Phase constant c (m); default: the initial placement.
+    #[serde(default)]
+    pub phase: Option<Num>,
 }
 
 /// `cam_follower` joint: two curves in contact.

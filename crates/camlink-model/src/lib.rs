@@ -28,6 +28,7 @@ use camlink_core::dynamics::statics::Settings as StaticsSettings;
 pub use data_file::LoadOptions;
 pub use error::LoadError;
 pub use file::AnalysisType;
+pub use resolve::joints::{JointKindEntry, JOINT_KINDS};
 pub use variant::Recipe;
 
 /// Largest model file accepted (bytes).

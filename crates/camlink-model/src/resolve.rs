@@ -10,12 +10,8 @@ use crate::data_file::DataFiles;
 use std::collections::{BTreeMap, HashMap};
 
 use camlink_core::constraint::absolute::{AbsoluteCoord, AbsoluteDistance, Coord};
-use camlink_core::constraint::composite::{RevoluteRevolute, RevoluteTranslational};
-use camlink_core::constraint::gear::{Gear, GearKind, RackPinion};
 use camlink_core::constraint::relative::{RelCoord, RelativeCoord, RelativeDistance};
-use camlink_core::constraint::revolute::Revolute;
-use camlink_core::constraint::translational::Translational;
-use camlink_core::math::{dot, norm, perp, point, rot, scale, sub, V2};
+use camlink_core::math::{norm, point, rot, scale, sub, V2};
 use camlink_core::{Body, BodyId, Constraint, Model, Point, TimeFn};
 
 use crate::error::did_you_mean;
@@ -30,6 +26,7 @@ mod curves;
 mod forces;
 mod friction;
 mod initial;
+pub(crate) mod joints;
 mod limits;
 mod machine;
 pub(crate) use machine::machine;
@@ -43,7 +40,7 @@ pub(crate) struct Fail {
     pub message: String,
 }
 
-type R<T> = Result<T, Fail>;
+pub(crate) type R<T> = Result<T, Fail>;
 
 fn fail<T>(path: impl Into<String>, message: impl Into<String>) -> R<T> {
     Err(Fail {
@@ -57,7 +54,7 @@ const TIME_VAR: &str = "t";
 
 /// What a driver of a named joint needs to know about that joint.
 #[derive(Clone, Debug)]
-enum JointInfo {
+pub(crate) enum JointInfo {
     Revolute {
         bi: BodyId,
         s_i: V2,
@@ -74,7 +71,7 @@ enum JointInfo {
     Other(&'static str),
 }
 
-struct Ctx {
+pub(crate) struct Ctx {
     params: HashMap<String, f64>,
     model: Model,
     /// File path of each joint or driver name, for duplicate reports.
@@ -656,365 +653,6 @@ impl Ctx {
             return fail(path, format!("{what} must be positive ({} m)", num(v)));
         }
         Ok(v)
-    }
-
-    fn joint(&mut self, j: &JointSpec, k: usize) -> R<()> {
-        let path = format!("joints[{k}]");
-        let p = path.as_str();
-        match j {
-            JointSpec::Revolute {
-                name,
-                body_i,
-                point_i,
-                body_j,
-                point_j,
-                limits,
-                friction,
-            } => {
-                let name = self.name(name.as_ref(), format!("revolute_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                self.joints
-                    .insert(name.clone(), JointInfo::Revolute { bi, s_i, bj, s_j });
-                self.add(
-                    name,
-                    Revolute {
-                        body_i: bi,
-                        s_i,
-                        body_j: bj,
-                        s_j,
-                    },
-                    false,
-                );
-                self.set_limits(limits.as_ref(), p)?;
-                self.friction(friction.as_ref(), true, p)?;
-            }
-            JointSpec::Translational {
-                name,
-                body_i,
-                point_i,
-                axis,
-                body_j,
-                point_j,
-                angle,
-                limits,
-                friction,
-            } => {
-                let name = self.name(name.as_ref(), format!("translational_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                let v_i = self.axis(axis, &format!("{p}.axis"))?;
-                let mut c = Translational {
-                    body_i: bi,
-                    s_i,
-                    v_i,
-                    body_j: bj,
-                    s_j,
-                    angle: 0.0,
-                };
-                c.angle = match angle {
-                    Some(a) => self.num(a, &format!("{p}.angle"))?,
-                    None => Translational::angle_from(self.q0(bi), self.q0(bj)),
-                };
-                self.joints.insert(
-                    name.clone(),
-                    JointInfo::Translational {
-                        bi,
-                        s_i,
-                        v_i,
-                        bj,
-                        s_j,
-                    },
-                );
-                self.add(name, c, false);
-                self.set_limits(limits.as_ref(), p)?;
-                self.defer_joint(angle.is_none(), p, "angle", "rad");
-                self.friction(friction.as_ref(), false, p)?;
-            }
-            JointSpec::RevoluteRevolute {
-                name,
-                body_i,
-                point_i,
-                body_j,
-                point_j,
-                length,
-            } => {
-                let name = self.name(name.as_ref(), format!("revolute_revolute_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                let left_out = length.is_none();
-                let length = match length {
-                    Some(l) => self.positive(l, &format!("{p}.length"), "length")?,
-                    None => {
-                        let l = norm(sub(self.r0(bj, s_j), self.r0(bi, s_i)));
-                        if l <= 0.0 {
-                            return fail(
-                                format!("{p}.length"),
-                                "the two points coincide initially; give the length",
-                            );
-                        }
-                        l
-                    }
-                };
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("revolute_revolute"));
-                self.add(
-                    name,
-                    RevoluteRevolute {
-                        body_i: bi,
-                        s_i,
-                        body_j: bj,
-                        s_j,
-                        length,
-                    },
-                    false,
-                );
-                self.defer_joint(left_out, p, "length", "m");
-            }
-            JointSpec::RevoluteTranslational {
-                name,
-                body_i,
-                point_i,
-                body_j,
-                point_j,
-                axis,
-                offset,
-                limits,
-            } => {
-                let name = self.name(name.as_ref(), format!("revolute_translational_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                let v_j = self.axis(axis, &format!("{p}.axis"))?;
-                let left_out = offset.is_none();
-                let offset = match offset {
-                    Some(c) => self.num(c, &format!("{p}.offset"))?,
-                    None => {
-                        let u = rot(self.q0(bj)[2], v_j);
-                        dot(perp(u), sub(self.r0(bi, s_i), self.r0(bj, s_j)))
-                    }
-                };
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("revolute_translational"));
-                let c = RevoluteTranslational {
-                    body_i: bi,
-                    s_i,
-                    body_j: bj,
-                    s_j,
-                    v_j,
-                    offset,
-                };
-                self.add(name, c, false);
-                self.set_limits(limits.as_ref(), p)?;
-                self.defer_joint(left_out, p, "offset", "m");
-            }
-            JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
-                let (kind, coord, axis) = match j {
-                    JointSpec::AbsoluteX(_) => ("absolute_x", Coord::X, 0),
-                    _ => ("absolute_y", Coord::Y, 1),
-                };
-                let name = self.name(a.name.as_ref(), format!("{kind}_{k}"), p)?;
-                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
-                self.moving(b, &format!("{p}.body"))?;
-                let f = self.opt(a.value.as_ref(), self.r0(b, s)[axis], &format!("{p}.value"))?;
-                self.joints.insert(name.clone(), JointInfo::Other(kind));
-                self.add(
-                    name,
-                    AbsoluteCoord {
-                        body: b,
-                        s,
-                        coord,
-                        f: TimeFn::Const(f),
-                    },
-                    false,
-                );
-                self.defer_joint(a.value.is_none(), p, "value", "m");
-            }
-            JointSpec::AbsolutePhi(a) => {
-                let name = self.name(a.name.as_ref(), format!("absolute_phi_{k}"), p)?;
-                let b = self.body(&a.body, &format!("{p}.body"))?;
-                self.moving(b, &format!("{p}.body"))?;
-                let f = self.opt(a.value.as_ref(), self.q0(b)[2], &format!("{p}.value"))?;
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("absolute_phi"));
-                let c = AbsoluteCoord {
-                    body: b,
-                    s: [0.0; 2],
-                    coord: Coord::Phi,
-                    f: TimeFn::Const(f),
-                };
-                self.add(name, c, false);
-                self.defer_joint(a.value.is_none(), p, "value", "rad");
-            }
-            JointSpec::AbsoluteDistance(a) => {
-                let name = self.name(a.name.as_ref(), format!("absolute_distance_{k}"), p)?;
-                let (b, s) = self.at(&a.body, a.point.as_ref(), p, "body", "point")?;
-                self.moving(b, &format!("{p}.body"))?;
-                let c0 = self.point(
-                    BodyId::GROUND,
-                    Some(&a.ground_point),
-                    &format!("{p}.ground_point"),
-                )?;
-                let f = match &a.distance {
-                    Some(d) => self.positive(d, &format!("{p}.distance"), "distance")?,
-                    None => norm(sub(self.r0(b, s), c0)),
-                };
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("absolute_distance"));
-                let c = AbsoluteDistance {
-                    body: b,
-                    s,
-                    ground_point: c0,
-                    f: TimeFn::Const(f),
-                };
-                self.add(name, c, false);
-                self.defer_joint(a.distance.is_none(), p, "distance", "m");
-            }
-            JointSpec::RelativeX(r) | JointSpec::RelativeY(r) | JointSpec::RelativeDistance(r) => {
-                let kind = match j {
-                    JointSpec::RelativeX(_) => "relative_x",
-                    JointSpec::RelativeY(_) => "relative_y",
-                    _ => "relative_distance",
-                };
-                let name = self.name(r.name.as_ref(), format!("{kind}_{k}"), p)?;
-                let (bi, s_i) = self.at(&r.body_i, r.point_i.as_ref(), p, "body_i", "point_i")?;
-                let (bj, s_j) = self.at(&r.body_j, r.point_j.as_ref(), p, "body_j", "point_j")?;
-                self.distinct(bi, bj, p)?;
-                let d = sub(self.r0(bj, s_j), self.r0(bi, s_i));
-                let vp = format!("{p}.value");
-                self.joints.insert(name.clone(), JointInfo::Other(kind));
-                let c: Constraint = match j {
-                    JointSpec::RelativeDistance(_) => {
-                        let f = match &r.value {
-                            Some(v) => self.positive(v, &vp, "distance")?,
-                            None => norm(d),
-                        };
-                        RelativeDistance {
-                            body_i: bi,
-                            s_i,
-                            body_j: bj,
-                            s_j,
-                            f: TimeFn::Const(f),
-                        }
-                        .into()
-                    }
-                    _ => {
-                        let (coord, k) = if kind == "relative_x" {
-                            (RelCoord::X, 0)
-                        } else {
-                            (RelCoord::Y, 1)
-                        };
-                        let f = self.opt(r.value.as_ref(), d[k], &vp)?;
-                        RelativeCoord {
-                            body_i: bi,
-                            s_i,
-                            body_j: bj,
-                            s_j,
-                            coord,
-                            f: TimeFn::Const(f),
-                        }
-                        .into()
-                    }
-                };
-                self.add(name, c, false);
-                self.defer_joint(r.value.is_none(), p, "value", "m");
-            }
-            JointSpec::RelativePhi(r) => {
-                let name = self.name(r.name.as_ref(), format!("relative_phi_{k}"), p)?;
-                let bi = self.body(&r.body_i, &format!("{p}.body_i"))?;
-                let bj = self.body(&r.body_j, &format!("{p}.body_j"))?;
-                self.distinct(bi, bj, p)?;
-                let f0 = self.q0(bj)[2] - self.q0(bi)[2];
-                let f = self.opt(r.value.as_ref(), f0, &format!("{p}.value"))?;
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("relative_phi"));
-                let c = RelativeCoord {
-                    body_i: bi,
-                    s_i: [0.0; 2],
-                    body_j: bj,
-                    s_j: [0.0; 2],
-                    coord: RelCoord::Phi,
-                    f: TimeFn::Const(f),
-                };
-                self.add(name, c, false);
-                self.defer_joint(r.value.is_none(), p, "value", "rad");
-            }
-            JointSpec::Gear {
-                name,
-                body_i,
-                point_i,
-                radius_i,
-                body_j,
-                point_j,
-                radius_j,
-                kind,
-                phase,
-            } => {
-                let name = self.name(name.as_ref(), format!("gear_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                let mut c = Gear {
-                    body_i: bi,
-                    s_i,
-                    radius_i: self.positive(radius_i, &format!("{p}.radius_i"), "radius")?,
-                    body_j: bj,
-                    s_j,
-                    radius_j: self.positive(radius_j, &format!("{p}.radius_j"), "radius")?,
-                    kind: match kind {
-                        GearKindSpec::External => GearKind::External,
-                        GearKindSpec::Internal => GearKind::Internal,
-                    },
-                    phase: 0.0,
-                };
-                if norm(sub(self.r0(bj, s_j), self.r0(bi, s_i))) <= 0.0 && phase.is_none() {
-                    return fail(
-                        format!("{p}.point_j"),
-                        "the gear centres coincide initially, so the centre line is undefined",
-                    );
-                }
-                c.phase = match phase {
-                    Some(v) => self.num(v, &format!("{p}.phase"))?,
-                    None => c.phase_from(self.q0(bi), self.q0(bj)),
-                };
-                self.joints.insert(name.clone(), JointInfo::Other("gear"));
-                self.add(name, c, false);
-                self.defer_joint(phase.is_none(), p, "phase", "m");
-            }
-            JointSpec::RackPinion {
-                name,
-                body_i,
-                point_i,
-                radius,
-                body_j,
-                point_j,
-                axis,
-                phase,
-            } => {
-                let name = self.name(name.as_ref(), format!("rack_pinion_{k}"), p)?;
-                let ((bi, s_i), (bj, s_j)) =
-                    self.two_bodies(body_i, point_i.as_ref(), body_j, point_j.as_ref(), p)?;
-                let mut c = RackPinion {
-                    body_i: bi,
-                    s_i,
-                    radius: self.positive(radius, &format!("{p}.radius"), "radius")?,
-                    body_j: bj,
-                    s_j,
-                    u_j: self.axis(axis, &format!("{p}.axis"))?,
-                    phase: 0.0,
-                };
-                c.phase = match phase {
-                    Some(v) => self.num(v, &format!("{p}.phase"))?,
-                    None => c.phase_from(self.q0(bi), self.q0(bj)),
-                };
-                self.joints
-                    .insert(name.clone(), JointInfo::Other("rack_pinion"));
-                self.add(name, c, false);
-                self.defer_joint(phase.is_none(), p, "phase", "m");
-            }
-            JointSpec::CamFollower(c) => self.cam_follower(c, k)?,
-            JointSpec::FlatFollower(c) => self.flat_follower(c, k)?,
-            JointSpec::PointFollower(c) => self.point_follower(c, k)?,
-        }
-        Ok(())
     }
 
     /// Body i and its point (`body_i`, `point_i`) and body j and its point

@@ -226,7 +226,7 @@ impl Scale {
 
 /// The conversion of one file: its scale and what a contact parameter on
 /// each named curve measures.
-struct Convert {
+pub(crate) struct Convert {
     scale: Scale,
     /// Curve name → the dimension of its parameter.
     curves: HashMap<String, Dim>,
@@ -517,206 +517,50 @@ impl Convert {
         }
     }
 
+    /// A joint's values, by its kind ([`crate::resolve::JointKind::to_si`]).
     fn joint(&self, j: &mut JointSpec) {
-        let s = self.scale;
-        match j {
-            JointSpec::Revolute {
-                name: _,
-                body_i: _,
-                point_i,
-                body_j: _,
-                point_j,
-                limits,
-                friction,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                self.limits(limits, ANGLE);
-                self.friction(friction);
-            }
-            JointSpec::Translational {
-                name: _,
-                body_i: _,
-                point_i,
-                axis: _,
-                body_j: _,
-                point_j,
-                angle,
-                limits,
-                friction,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                s.opt(angle, ANGLE);
-                self.limits(limits, LENGTH);
-                self.friction(friction);
-            }
-            JointSpec::RevoluteRevolute {
-                name: _,
-                body_i: _,
-                point_i,
-                body_j: _,
-                point_j,
-                length,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                s.opt(length, LENGTH);
-            }
-            JointSpec::RevoluteTranslational {
-                name: _,
-                body_i: _,
-                point_i,
-                body_j: _,
-                point_j,
-                axis: _,
-                offset,
-                limits,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                s.opt(offset, LENGTH);
-                self.limits(limits, LENGTH);
-            }
-            JointSpec::AbsoluteX(a) | JointSpec::AbsoluteY(a) => {
-                let AbsoluteCoordJoint {
-                    name: _,
-                    body: _,
-                    point,
-                    value,
-                } = a;
-                s.point(point);
-                s.opt(value, LENGTH);
-            }
-            JointSpec::AbsolutePhi(a) => {
-                let AbsolutePhiJoint {
-                    name: _,
-                    body: _,
-                    value,
-                } = a;
-                s.opt(value, ANGLE);
-            }
-            JointSpec::AbsoluteDistance(a) => {
-                let AbsoluteDistanceJoint {
-                    name: _,
-                    body: _,
-                    point,
-                    ground_point,
-                    distance,
-                } = a;
-                s.point(point);
-                s.point_ref(ground_point);
-                s.opt(distance, LENGTH);
-            }
-            JointSpec::RelativeX(r) | JointSpec::RelativeY(r) | JointSpec::RelativeDistance(r) => {
-                let RelativeCoordJoint {
-                    name: _,
-                    body_i: _,
-                    point_i,
-                    body_j: _,
-                    point_j,
-                    value,
-                } = r;
-                s.point(point_i);
-                s.point(point_j);
-                s.opt(value, LENGTH);
-            }
-            JointSpec::RelativePhi(r) => {
-                let RelativePhiJoint {
-                    name: _,
-                    body_i: _,
-                    body_j: _,
-                    value,
-                } = r;
-                s.opt(value, ANGLE);
-            }
-            JointSpec::Gear {
-                name: _,
-                body_i: _,
-                point_i,
-                radius_i,
-                body_j: _,
-                point_j,
-                radius_j,
-                kind: _,
-                phase,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                s.num(radius_i, LENGTH);
-                s.num(radius_j, LENGTH);
-                s.opt(phase, LENGTH);
-            }
-            JointSpec::RackPinion {
-                name: _,
-                body_i: _,
-                point_i,
-                radius,
-                body_j: _,
-                point_j,
-                axis: _,
-                phase,
-            } => {
-                s.point(point_i);
-                s.point(point_j);
-                s.num(radius, LENGTH);
-                s.opt(phase, LENGTH);
-            }
-            JointSpec::CamFollower(c) => {
-                let CamFollowerJoint {
-                    name: _,
-                    curve_i,
-                    curve_j,
-                    alpha_i,
-                    alpha_j,
-                    unilateral: _,
-                    restitution: _,
-                    rest_speed: _,
-                    event_tol: _,
-                    stiffness: _,
-                    exponent: _,
-                    damping: _,
-                    friction,
-                } = c;
-                s.opt(alpha_i, self.on_curve(curve_i));
-                s.opt(alpha_j, self.on_curve(curve_j));
-                self.friction(friction);
-            }
-            JointSpec::FlatFollower(c) => {
-                let FlatFollowerJoint {
-                    name: _,
-                    curve_i,
-                    body_j: _,
-                    point_j,
-                    axis: _,
-                    alpha_i,
-                    unilateral: _,
-                    restitution: _,
-                    rest_speed: _,
-                    event_tol: _,
-                    stiffness: _,
-                    exponent: _,
-                    damping: _,
-                    friction,
-                } = c;
-                s.point(point_j);
-                s.opt(alpha_i, self.on_curve(curve_i));
-                self.friction(friction);
-            }
-            JointSpec::PointFollower(p) => {
-                let PointFollowerJoint {
-                    name: _,
-                    body_i: _,
-                    point_i,
-                    curve_j,
-                    alpha_j,
-                    friction,
-                } = p;
-                s.point(point_i);
-                s.opt(alpha_j, self.on_curve(curve_j));
-                self.friction(friction);
-            }
-        }
+        j.kind_mut().to_si(self);
+    }
+
+    /// A body point: [x, y] is a length; a name stays.
+    pub(crate) fn point(&self, p: &mut Option<PointRef>) {
+        self.scale.point(p);
+    }
+
+    /// A point that must be given: [x, y] is a length; a name stays.
+    pub(crate) fn point_ref(&self, p: &mut PointRef) {
+        self.scale.point_ref(p);
+    }
+
+    /// A length that must be given.
+    pub(crate) fn length(&self, n: &mut Num) {
+        self.scale.num(n, LENGTH);
+    }
+
+    /// A length that may be left out.
+    pub(crate) fn opt_length(&self, n: &mut Option<Num>) {
+        self.scale.opt(n, LENGTH);
+    }
+
+    /// An angle that may be left out.
+    pub(crate) fn opt_angle(&self, n: &mut Option<Num>) {
+        self.scale.opt(n, ANGLE);
+    }
+
+    /// A contact parameter on curve `curve`: an angle on a polar profile,
+    /// a length on a parametric curve.
+    pub(crate) fn opt_on_curve(&self, n: &mut Option<Num>, curve: &str) {
+        self.scale.opt(n, self.on_curve(curve));
+    }
+
+    /// End stops on a rotation (`lower`, `upper` are angles).
+    pub(crate) fn angle_limits(&self, limits: &mut Option<LimitsSpec>) {
+        self.limits(limits, ANGLE);
+    }
+
+    /// End stops on a travel (`lower`, `upper` are lengths).
+    pub(crate) fn length_limits(&self, limits: &mut Option<LimitsSpec>) {
+        self.limits(limits, LENGTH);
     }
 
     /// A joint's limits: `lower` and `upper` in the unit of the joint's
@@ -743,7 +587,7 @@ impl Convert {
 
     /// A joint's friction: the pin `radius` is a length; μ and the
     /// transition speed (m/s) stay SI.
-    fn friction(&self, friction: &mut Option<FrictionSpec>) {
+    pub(crate) fn friction(&self, friction: &mut Option<FrictionSpec>) {
         let Some(FrictionSpec {
             mu: _,
             radius,

@@ -30,6 +30,7 @@ mod issue32_machine;
 mod issue_newton_rounding_level;
 mod jerk;
 mod joint_friction;
+mod joint_kinds;
 mod joint_limits;
 mod load;
 mod load_scale;

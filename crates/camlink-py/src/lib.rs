@@ -21,6 +21,7 @@ use std::path::PathBuf;
 
 use std::sync::Arc;
 
+use camlink_core::constraint::sketch::{Mark, Side};
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
 use camlink_core::dynamics::integrator::{self, Adaptive};
@@ -392,75 +393,31 @@ impl Model {
     }
 
     /// What a drawing needs of every joint, in model order: a list of dicts
-    /// with `name`, `kind`, `bodies` and `driver`, and by kind the points
-    /// `s_i`, `s_j` (m, body frames), axes `v_i`, `u_j`, pitch radii
-    /// `radius_i`, `radius_j`, `radius` (m), `internal`, and curves
-    /// `curve_i`, `curve_j` as dicts of `closed` and `points` (n × 2, body
-    /// frame, m) within `tol` (m) of the exact curve.
+    /// with `name`, `kind`, `bodies` [i, j], `driver` and `marks`, the
+    /// joint's sketch (`camlink_core::constraint::sketch::Mark`) as dicts
+    /// with a `shape` and its fields: `pin` (`s_i`, `s_j`), `rod` (`s_i`,
+    /// `s_j`), `guide` (`s_i`, `v_i`, `s_j`), `slider` (`body`, `s`), `face`
+    /// (`body`, `s`, `u`), `circle` (`body`, `s`, `radius`, `internal`),
+    /// `curve` (`body`, `role`, `closed`, `points` n × 2 within `tol` (m) of
+    /// the exact curve). Points and directions are in the frame of the body
+    /// that carries them (m).
     #[pyo3(signature = (tol = 1e-4))]
     fn geometry<'py>(&self, py: Python<'py>, tol: f64) -> PyResult<Bound<'py, PyList>> {
-        use camlink_core::constraint::gear::GearKind;
-        use camlink_core::Constraint as C;
         guard(|| {
             let model = &self.loaded.model;
             let list = PyList::empty(py);
             for j in &model.joints {
                 let d = PyDict::new(py);
-                let [bi, bj] = j.constraint.bodies();
+                let bodies = j.constraint.bodies().map(|b| &model.body(b).name);
                 d.set_item("name", &j.name)?;
                 d.set_item("kind", j.constraint.kind())?;
-                d.set_item("bodies", [&model.body(bi).name, &model.body(bj).name])?;
+                d.set_item("bodies", bodies)?;
                 d.set_item("driver", j.driver)?;
-                match &j.constraint {
-                    C::Revolute(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("s_j", c.s_j)?;
-                    }
-                    C::Translational(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("v_i", c.v_i)?;
-                        d.set_item("s_j", c.s_j)?;
-                    }
-                    C::RevoluteRevolute(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("s_j", c.s_j)?;
-                    }
-                    C::RevoluteTranslational(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("s_j", c.s_j)?;
-                        d.set_item("v_j", c.v_j)?;
-                    }
-                    C::Gear(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("s_j", c.s_j)?;
-                        d.set_item("radius_i", c.radius_i)?;
-                        d.set_item("radius_j", c.radius_j)?;
-                        d.set_item("internal", matches!(c.kind, GearKind::Internal))?;
-                    }
-                    C::RackPinion(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("radius", c.radius)?;
-                        d.set_item("s_j", c.s_j)?;
-                        d.set_item("u_j", c.u_j)?;
-                    }
-                    C::CamFollower(c) => {
-                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
-                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
-                    }
-                    C::FlatFollower(c) => {
-                        d.set_item("curve_i", curve_dict(py, &c.curve_i, tol)?)?;
-                        d.set_item("s_j", c.s_j)?;
-                        d.set_item("u_j", c.u_j)?;
-                    }
-                    C::PointFollower(c) => {
-                        d.set_item("s_i", c.s_i)?;
-                        d.set_item("curve_j", curve_dict(py, &c.curve_j, tol)?)?;
-                    }
-                    C::AbsoluteCoord(_)
-                    | C::AbsoluteDistance(_)
-                    | C::RelativeCoord(_)
-                    | C::RelativeDistance(_) => {}
+                let marks = PyList::empty(py);
+                for mark in j.constraint.sketch() {
+                    marks.append(mark_dict(py, &mark, bodies, tol)?)?;
                 }
+                d.set_item("marks", marks)?;
                 list.append(d)?;
             }
             Ok(list)
@@ -906,16 +863,69 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
 /// of [`lift_off_dict`]s.
 /// A curve sampled for drawing: `closed` and `points` (n × 2, body frame,
 /// m) within `tol` (m) of the curve.
-fn curve_dict<'py>(
+/// One mark of a joint's sketch as a dict (see `Model.geometry`); `bodies`
+/// names the joint's bodies i and j.
+fn mark_dict<'py>(
     py: Python<'py>,
-    curve: &camlink_core::curve::Curve,
+    mark: &Mark,
+    bodies: [&String; 2],
     tol: f64,
 ) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
-    let pts = curve.sample(tol);
-    let flat: Vec<f64> = pts.iter().flat_map(|(_, p)| [p[0], p[1]]).collect();
-    d.set_item("closed", curve.closed())?;
-    d.set_item("points", to_array(py, flat, 2)?)?;
+    let body = |side: Side| match side {
+        Side::I => bodies[0],
+        Side::J => bodies[1],
+    };
+    match *mark {
+        Mark::Pin { s_i, s_j } | Mark::Rod { s_i, s_j } => {
+            let shape = if matches!(mark, Mark::Pin { .. }) {
+                "pin"
+            } else {
+                "rod"
+            };
+            d.set_item("shape", shape)?;
+            d.set_item("s_i", s_i)?;
+            d.set_item("s_j", s_j)?;
+        }
+        Mark::Guide { s_i, v_i, s_j } => {
+            d.set_item("shape", "guide")?;
+            d.set_item("s_i", s_i)?;
+            d.set_item("v_i", v_i)?;
+            d.set_item("s_j", s_j)?;
+        }
+        Mark::Slider { side, s } => {
+            d.set_item("shape", "slider")?;
+            d.set_item("body", body(side))?;
+            d.set_item("s", s)?;
+        }
+        Mark::Face { side, s, u } => {
+            d.set_item("shape", "face")?;
+            d.set_item("body", body(side))?;
+            d.set_item("s", s)?;
+            d.set_item("u", u)?;
+        }
+        Mark::Circle {
+            side,
+            s,
+            radius,
+            internal,
+        } => {
+            d.set_item("shape", "circle")?;
+            d.set_item("body", body(side))?;
+            d.set_item("s", s)?;
+            d.set_item("radius", radius)?;
+            d.set_item("internal", internal)?;
+        }
+        Mark::Curve { side, curve, role } => {
+            let pts = curve.sample(tol);
+            let flat: Vec<f64> = pts.iter().flat_map(|(_, p)| [p[0], p[1]]).collect();
+            d.set_item("shape", "curve")?;
+            d.set_item("body", body(side))?;
+            d.set_item("role", role.drawn(curve.closed()))?;
+            d.set_item("closed", curve.closed())?;
+            d.set_item("points", to_array(py, flat, 2)?)?;
+        }
+    }
     Ok(d)
 }
 

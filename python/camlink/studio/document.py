@@ -283,7 +283,7 @@ def _handles(model: Model, scene: Scene, data: Any) -> list[Handle]:
                 targets.append(Target("joint", body, k, f"point_{side}"))
         else:
             bi = str(spec.get("body_i"))
-            s = geo["s_i"]
+            s = next(m["s_i"] for m in geo["marks"] if m["shape"] == "pin")
             handles.append(Handle(f"joint:{name}", name, bi, (float(s[0]), float(s[1])), tuple(targets)))
     for body, pts in scene.points.items():
         for pname, s in pts.items():

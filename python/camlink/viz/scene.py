@@ -154,54 +154,37 @@ class Scene:
         def pt(v: list[float]) -> tuple[float, float]:
             return (float(v[0]), float(v[1]))
 
+        # Each joint's sketch: generic marks in body frames (Model.geometry).
         for j in core.geometry(tol):
             if j["driver"]:
                 continue
-            name, kind = j["name"], j["kind"]
+            name = j["name"]
             bi, bj = j["bodies"]
-            if kind == "revolute_revolute":
-                scene.rods.append(Rod(name, bi, pt(j["s_i"]), bj, pt(j["s_j"])))
-            elif kind == "revolute":
-                pin = Pin(name, bi, pt(j["s_i"]), bj, pt(j["s_j"]), GROUND in (bi, bj))
-                scene.pins.append(pin)
-                attach[bi].append(pin.s_i)
-                attach[bj].append(pin.s_j)
-            elif kind == "translational":
-                guide = Guide(name, bi, pt(j["s_i"]), pt(j["v_i"]), bj, pt(j["s_j"]))
-                scene.guides.append(guide)
-            elif kind == "revolute_translational":
-                scene.pins.append(Pin(name, bi, pt(j["s_i"]), bi, pt(j["s_i"]), False))
-                scene.faces.append(Face(name, bj, pt(j["s_j"]), pt(j["v_j"])))
-                attach[bi].append(pt(j["s_i"]))
-            elif kind == "gear":
-                scene.gears.append(GearCircle(name, bi, pt(j["s_i"]), j["radius_i"], False))
-                scene.gears.append(
-                    GearCircle(name, bj, pt(j["s_j"]), j["radius_j"], bool(j["internal"]))
-                )
-            elif kind == "rack_pinion":
-                scene.gears.append(GearCircle(name, bi, pt(j["s_i"]), j["radius"], False))
-                scene.faces.append(Face(name, bj, pt(j["s_j"]), pt(j["u_j"])))
-            elif kind == "cam-follower":
-                for side, body, role in (("curve_i", bi, "cam"), ("curve_j", bj, "roller")):
-                    c = j[side]
-                    scene.curves.append(
-                        CurveShape(name, body, np.asarray(c["points"]), bool(c["closed"]),
-                                   role if c["closed"] else "curve")
+            for m in j["marks"]:
+                shape = m["shape"]
+                if shape == "pin":
+                    pin = Pin(name, bi, pt(m["s_i"]), bj, pt(m["s_j"]), GROUND in (bi, bj))
+                    scene.pins.append(pin)
+                    attach[bi].append(pin.s_i)
+                    attach[bj].append(pin.s_j)
+                elif shape == "slider":
+                    body, s = m["body"], pt(m["s"])
+                    scene.pins.append(Pin(name, body, s, body, s, False))
+                    attach[body].append(s)
+                elif shape == "rod":
+                    scene.rods.append(Rod(name, bi, pt(m["s_i"]), bj, pt(m["s_j"])))
+                elif shape == "guide":
+                    scene.guides.append(Guide(name, bi, pt(m["s_i"]), pt(m["v_i"]), bj, pt(m["s_j"])))
+                elif shape == "face":
+                    scene.faces.append(Face(name, m["body"], pt(m["s"]), pt(m["u"])))
+                elif shape == "circle":
+                    scene.gears.append(
+                        GearCircle(name, m["body"], pt(m["s"]), m["radius"], bool(m["internal"]))
                     )
-            elif kind == "flat-follower":
-                c = j["curve_i"]
-                scene.curves.append(
-                    CurveShape(name, bi, np.asarray(c["points"]), bool(c["closed"]),
-                               "cam" if c["closed"] else "curve")
-                )
-                scene.faces.append(Face(name, bj, pt(j["s_j"]), pt(j["u_j"])))
-            elif kind.endswith("point-follower"):
-                c = j["curve_j"]
-                scene.curves.append(
-                    CurveShape(name, bj, np.asarray(c["points"]), bool(c["closed"]), "slot")
-                )
-                scene.pins.append(Pin(name, bi, pt(j["s_i"]), bi, pt(j["s_i"]), False))
-                attach[bi].append(pt(j["s_i"]))
+                elif shape == "curve":
+                    scene.curves.append(
+                        CurveShape(name, m["body"], np.asarray(m["points"]), bool(m["closed"]), m["role"])
+                    )
         for body in scene.bodies:
             unique = _unique(attach[body])
             if len(unique) >= 2 and body not in scene.outlines:

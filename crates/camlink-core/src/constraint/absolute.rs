@@ -20,6 +20,7 @@
 //!
 //! Body j of the [`Local`] view is the ground.
 
+use super::sketch::Sketch;
 use super::{CoordMask, Equations, Jac, Local, Rows, MAX_ROWS};
 use crate::constraint::BodyId;
 use crate::function::TimeFn;
@@ -83,6 +84,10 @@ impl Equations for AbsoluteCoord {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body, BodyId::GROUND]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        Vec::new()
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {
@@ -171,6 +176,10 @@ impl Equations for AbsoluteDistance {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body, BodyId::GROUND]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        Vec::new()
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {

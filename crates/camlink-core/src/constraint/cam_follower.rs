@@ -34,6 +34,7 @@
 //! taken with the jerks set to zero ([`carried_paths`], which needs p⁗ for
 //! g⃛*), the cross product's by Leibniz's rule.
 
+use super::sketch::{CurveRole, Mark, Side, Sketch};
 use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
@@ -79,6 +80,21 @@ impl Equations for CamFollower {
 
     fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
         Some([Feature::Curve(&self.curve_i), Feature::Curve(&self.curve_j)])
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Curve {
+                side: Side::I,
+                curve: &self.curve_i,
+                role: CurveRole::Cam,
+            },
+            Mark::Curve {
+                side: Side::J,
+                curve: &self.curve_j,
+                role: CurveRole::Roller,
+            },
+        ]
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -372,6 +372,9 @@ mod tests {
         fn bodies(&self) -> [BodyId; 2] {
             self.0.bodies()
         }
+        fn sketch(&self) -> crate::constraint::sketch::Sketch<'_> {
+            Vec::new()
+        }
         fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
             self.0.joint_points(x)
         }
@@ -703,6 +706,9 @@ mod tests {
             }
             fn bodies(&self) -> [BodyId; 2] {
                 self.0.bodies()
+            }
+            fn sketch(&self) -> crate::constraint::sketch::Sketch<'_> {
+                Vec::new()
             }
             fn joint_points(&self, x: &Local) -> [crate::math::V2; 2] {
                 self.0.joint_points(x)

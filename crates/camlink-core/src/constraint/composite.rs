@@ -18,6 +18,7 @@ use super::relative::{
     projection_eta, projection_gamma, projection_jac, projection_phi, rel, rel_centripetal,
     rel_path, rel_vel, unit,
 };
+use super::sketch::{Mark, Side, Sketch};
 use super::{Equations, Jac, Local, Rows};
 use crate::constraint::BodyId;
 use crate::math::{dot, perp, rot_d, V2};
@@ -59,6 +60,13 @@ impl Equations for RevoluteRevolute {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![Mark::Rod {
+            s_i: self.s_i,
+            s_j: self.s_j,
+        }]
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {
@@ -114,6 +122,20 @@ impl Equations for RevoluteTranslational {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Slider {
+                side: Side::I,
+                s: self.s_i,
+            },
+            Mark::Face {
+                side: Side::J,
+                s: self.s_j,
+                u: self.v_j,
+            },
+        ]
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -34,6 +34,7 @@
 //! The follower stays in contact only where the cam is convex: see
 //! [`Curve::concave_ranges`](crate::curve::Curve::concave_ranges).
 
+use super::sketch::{CurveRole, Mark, Side, Sketch};
 use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
@@ -92,6 +93,21 @@ impl Equations for FlatFollower {
 
     fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
         Some([Feature::Curve(&self.curve_i), Feature::Face(self.u_j)])
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Curve {
+                side: Side::I,
+                curve: &self.curve_i,
+                role: CurveRole::Cam,
+            },
+            Mark::Face {
+                side: Side::J,
+                s: self.s_j,
+                u: self.u_j,
+            },
+        ]
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -32,6 +32,7 @@ use std::f64::consts::TAU;
 use super::relative::{
     projection_eta, projection_gamma, projection_jac, projection_phi, rel, rel_path, rel_vel, unit,
 };
+use super::sketch::{Mark, Side, Sketch};
 use super::{Equations, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::math::{dot, perp, point, rot, rot_d, scale, sub, V2};
@@ -117,6 +118,23 @@ impl Equations for Gear {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Circle {
+                side: Side::I,
+                s: self.s_i,
+                radius: self.radius_i,
+                internal: false,
+            },
+            Mark::Circle {
+                side: Side::J,
+                s: self.s_j,
+                radius: self.radius_j,
+                internal: matches!(self.kind, GearKind::Internal),
+            },
+        ]
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {
@@ -230,6 +248,22 @@ impl Equations for RackPinion {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Circle {
+                side: Side::I,
+                s: self.s_i,
+                radius: self.radius,
+                internal: false,
+            },
+            Mark::Face {
+                side: Side::J,
+                s: self.s_j,
+                u: self.u_j,
+            },
+        ]
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -12,7 +12,9 @@
 //! parameter α, a centre-line angle θ). It writes per-body Jacobian blocks;
 //! only assembly knows global indices.
 //!
-//! Adding a constraint is one new file and one line in [`constraints!`].
+//! Adding a constraint is one new file (its equations and its drawing,
+//! [`Equations::sketch`]) and one line in [`constraints!`];
+//! `docs/adding-a-joint.md` lists the model-file side.
 
 use crate::curve::Curve;
 use crate::math::{point, rot_t, sub, V2};
@@ -27,6 +29,7 @@ pub mod gear;
 pub mod point_follower;
 pub mod relative;
 pub mod revolute;
+pub mod sketch;
 pub mod translational;
 
 #[cfg(any(test, feature = "check"))]
@@ -178,6 +181,9 @@ pub trait Equations {
     /// Where the joint's reaction acts on bodies i and j, each in its own
     /// body frame (m): the joint points, or the current contact point.
     fn joint_points(&self, x: &Local) -> [V2; 2];
+    /// What a drawing shows of the joint ([`sketch::Mark`]); empty for a
+    /// constraint with nothing to draw (a held coordinate or distance).
+    fn sketch(&self) -> sketch::Sketch<'_>;
     /// ∂Φ/∂f, how a driver's equation changes with the value of its
     /// function f(t): −1 for Φ = g(q) − f(t), −2f for a distance driven
     /// through Φ = dᵀd − f². Used to turn λ into a driver's effort.
@@ -268,6 +274,9 @@ macro_rules! constraints {
             }
             fn joint_points(&self, x: &Local) -> [V2; 2] {
                 match self { $(Constraint::$variant(c) => c.joint_points(x),)* }
+            }
+            fn sketch(&self) -> sketch::Sketch<'_> {
+                match self { $(Constraint::$variant(c) => c.sketch(),)* }
             }
             fn driver_slope(&self, t: f64) -> f64 {
                 match self { $(Constraint::$variant(c) => c.driver_slope(t),)* }

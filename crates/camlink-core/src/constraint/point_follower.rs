@@ -25,6 +25,7 @@
 //! in the unit of α_j (rad on a polar slot, m of length on a line, arc,
 //! circle or spline slot, the user's parameter on an expression slot).
 
+use super::sketch::{CurveRole, Mark, Side, Sketch};
 use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
 use crate::curve::{carried_paths, search, Carried, Curve};
@@ -86,6 +87,20 @@ impl Equations for PointFollower {
 
     fn contact_sides(&self) -> Option<[Feature<'_>; 2]> {
         Some([Feature::Point(self.s_i), Feature::Curve(&self.curve_j)])
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![
+            Mark::Curve {
+                side: Side::J,
+                curve: &self.curve_j,
+                role: CurveRole::Slot,
+            },
+            Mark::Slider {
+                side: Side::I,
+                s: self.s_i,
+            },
+        ]
     }
 
     fn joint_points(&self, x: &Local) -> [V2; 2] {

@@ -31,6 +31,7 @@
 //! ∂Φ/∂r_b = (A_a w')ᵀ, ∂Φ/∂φ_b = (A_a w')ᵀB_b s'_b, ν = 0,
 //! γ = (A_a w')ᵀe φ̇_a² − 2 φ̇_a (B_a w')ᵀė − (A_a w')ᵀ(A_a s'_a φ̇_a² − A_b s'_b φ̇_b²).
 
+use super::sketch::Sketch;
 use super::{CoordMask, Equations, Jac, Local, Rows, ALL_COORDS, MAX_ROWS};
 use crate::constraint::BodyId;
 use crate::function::TimeFn;
@@ -197,6 +198,10 @@ impl Equations for RelativeCoord {
         [self.body_i, self.body_j]
     }
 
+    fn sketch(&self) -> Sketch<'_> {
+        Vec::new()
+    }
+
     fn joint_points(&self, _x: &Local) -> [V2; 2] {
         [self.s_i, self.s_j]
     }
@@ -302,6 +307,10 @@ impl Equations for RelativeDistance {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        Vec::new()
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {

@@ -7,6 +7,7 @@
 //! η = −(r⃛_i^P* − r⃛_j^P*), r⃛^P* = −3 A s' φ̇ φ̈ − B s' φ̇³ (see [`motion`](crate::motion))
 //! (Φ_qᵀλ)_q: −λᵀA_i s'_i at (φ_i, φ_i), λᵀA_j s'_j at (φ_j, φ_j)
 
+use super::sketch::{Mark, Sketch};
 use super::{CoordMask, Equations, Jac, Local, LocalBlock, Rows, MAX_ROWS};
 use crate::constraint::BodyId;
 use crate::math::{point, rot, rot_d, V2};
@@ -33,6 +34,13 @@ impl Equations for Revolute {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![Mark::Pin {
+            s_i: self.s_i,
+            s_j: self.s_j,
+        }]
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {

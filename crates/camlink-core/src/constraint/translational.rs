@@ -18,6 +18,7 @@
 //! in metres whatever the length of the given vector (which must not be zero).
 
 use super::relative::{projection_eta, projection_gamma, projection_jac, projection_phi, unit};
+use super::sketch::{Mark, Sketch};
 use super::{Equations, Jac, Local, Rows};
 use crate::constraint::BodyId;
 use crate::math::{perp, V2};
@@ -60,6 +61,14 @@ impl Equations for Translational {
 
     fn bodies(&self) -> [BodyId; 2] {
         [self.body_i, self.body_j]
+    }
+
+    fn sketch(&self) -> Sketch<'_> {
+        vec![Mark::Guide {
+            s_i: self.s_i,
+            v_i: self.v_i,
+            s_j: self.s_j,
+        }]
     }
 
     fn joint_points(&self, _x: &Local) -> [V2; 2] {

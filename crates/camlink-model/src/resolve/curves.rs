@@ -9,14 +9,11 @@
 use std::sync::Arc;
 
 use camlink_core::cam::{Cam, Follower, LawKind, MotionError, Program, SegmentSpec};
-use camlink_core::constraint::cam_follower::CamFollower;
-use camlink_core::constraint::flat_follower::FlatFollower;
-use camlink_core::constraint::point_follower::PointFollower;
 use camlink_core::constraint::{Constraint, MAX_OWN};
 use camlink_core::curve::{read_points_csv, search, Curve, Parametric, Polar, Radius};
 use camlink_core::fmt_num::num;
 use camlink_core::force::compliant_contact::HuntCrossley;
-use camlink_core::math::{point, rot_t, sub, V2};
+use camlink_core::math::{rot_t, sub, V2};
 use camlink_core::model::Unilateral;
 use camlink_core::BodyId;
 
@@ -490,7 +487,7 @@ impl Ctx {
     }
 
     /// Resolves a curve name.
-    fn curve_ref(&self, name: &str, path: &str) -> R<(BodyId, Curve)> {
+    pub(super) fn curve_ref(&self, name: &str, path: &str) -> R<(BodyId, Curve)> {
         match self.curves.get(name) {
             Some(e) => Ok((e.body, e.curve.clone())),
             None => {
@@ -506,78 +503,29 @@ impl Ctx {
 
     /// The parameter of the point of `c` (on body `b`) nearest to the global
     /// point `r`, at the initial placement.
-    fn nearest(&self, b: BodyId, c: &Curve, r: V2) -> f64 {
+    pub(super) fn nearest(&self, b: BodyId, c: &Curve, r: V2) -> f64 {
         let q = self.q0(b);
         let local = rot_t(q[2], sub(r, [q[0], q[1]]));
         search::closest(c, local, None)
     }
 
     /// Adds a contact joint with its starting guesses.
-    fn add_contact(&mut self, name: String, c: Constraint, own0: Option<[f64; MAX_OWN]>) {
-        let kind = match &c {
-            Constraint::CamFollower(_) => "cam_follower",
-            Constraint::FlatFollower(_) => "flat_follower",
-            _ => "point_follower",
-        };
-        self.joints.insert(name.clone(), JointInfo::Other(kind));
+    pub(super) fn add_contact(
+        &mut self,
+        name: String,
+        c: Constraint,
+        own0: Option<[f64; MAX_OWN]>,
+    ) {
         self.add(name, c, false);
         if let Some(j) = self.model.joints.last_mut() {
             j.own0 = own0;
         }
     }
 
-    pub(super) fn cam_follower(&mut self, c: &CamFollowerJoint, k: usize) -> R<()> {
-        let path = format!("joints[{k}]");
-        let p = path.as_str();
-        let name = self.name(c.name.as_ref(), format!("cam_follower_{k}"), p)?;
-        let (bi, ci) = self.curve_ref(&c.curve_i, &format!("{p}.curve_i"))?;
-        let (bj, cj) = self.curve_ref(&c.curve_j, &format!("{p}.curve_j"))?;
-        self.different(bi, bj, &c.curve_i, &c.curve_j, &format!("{p}.curve_j"))?;
-        let ai = c
-            .alpha_i
-            .as_ref()
-            .map(|n| self.num(n, &format!("{p}.alpha_i")))
-            .transpose()?;
-        let aj = c
-            .alpha_j
-            .as_ref()
-            .map(|n| self.num(n, &format!("{p}.alpha_j")))
-            .transpose()?;
-        let own0 = match (ai, aj) {
-            (None, None) => None,
-            (Some(a), Some(b)) => Some([a, b]),
-            (Some(a), None) => {
-                let r = point(self.q0(bi), ci.jet(a).p);
-                Some([a, self.nearest(bj, &cj, r)])
-            }
-            (None, Some(b)) => {
-                let r = point(self.q0(bj), cj.jet(b).p);
-                Some([self.nearest(bi, &ci, r), b])
-            }
-        };
-        let cf = CamFollower {
-            body_i: bi,
-            curve_i: ci,
-            body_j: bj,
-            curve_j: cj,
-        };
-        self.add_contact(name, cf.into(), own0);
-        let law = [
-            &c.restitution,
-            &c.rest_speed,
-            &c.event_tol,
-            &c.stiffness,
-            &c.exponent,
-            &c.damping,
-        ];
-        self.set_unilateral(c.unilateral, law, p)?;
-        self.friction(c.friction.as_ref(), false, p)
-    }
-
     /// Makes the contact just added unilateral when `on`, with its law
     /// [restitution, rest_speed, event_tol, stiffness, exponent, damping]
     /// checked field by field.
-    fn set_unilateral(&mut self, on: bool, law: [&Option<Num>; 6], p: &str) -> R<()> {
+    pub(super) fn set_unilateral(&mut self, on: bool, law: [&Option<Num>; 6], p: &str) -> R<()> {
         let names = UNILATERAL_KEYS;
         if !on {
             if let Some(k) = law.iter().position(|v| v.is_some()) {
@@ -674,70 +622,14 @@ impl Ctx {
         Ok(u)
     }
 
-    pub(super) fn flat_follower(&mut self, c: &FlatFollowerJoint, k: usize) -> R<()> {
-        let path = format!("joints[{k}]");
-        let p = path.as_str();
-        let name = self.name(c.name.as_ref(), format!("flat_follower_{k}"), p)?;
-        let (bi, ci) = self.curve_ref(&c.curve_i, &format!("{p}.curve_i"))?;
-        let (bj, s_j) = self.at(&c.body_j, c.point_j.as_ref(), p, "body_j", "point_j")?;
-        if bi == bj {
-            return fail(
-                format!("{p}.body_j"),
-                format!(
-                    "curve '{}' is on body '{}' itself; the face must be on another body",
-                    c.curve_i,
-                    self.model.body(bi).name
-                ),
-            );
-        }
-        let u_j = self.axis(&c.axis, &format!("{p}.axis"))?;
-        let Some(ff) = FlatFollower::new(bi, ci, bj, s_j, u_j) else {
-            return fail(format!("{p}.axis"), "axis has zero length");
-        };
-        let own0 = c
-            .alpha_i
-            .as_ref()
-            .map(|n| self.num(n, &format!("{p}.alpha_i")).map(|a| [a, 0.0]))
-            .transpose()?;
-        self.add_contact(name, ff.into(), own0);
-        let law = [
-            &c.restitution,
-            &c.rest_speed,
-            &c.event_tol,
-            &c.stiffness,
-            &c.exponent,
-            &c.damping,
-        ];
-        self.set_unilateral(c.unilateral, law, p)?;
-        self.friction(c.friction.as_ref(), false, p)
-    }
-
-    pub(super) fn point_follower(&mut self, c: &PointFollowerJoint, k: usize) -> R<()> {
-        let path = format!("joints[{k}]");
-        let p = path.as_str();
-        let name = self.name(c.name.as_ref(), format!("point_follower_{k}"), p)?;
-        let (bi, s_i) = self.at(&c.body_i, c.point_i.as_ref(), p, "body_i", "point_i")?;
-        let (bj, cj) = self.curve_ref(&c.curve_j, &format!("{p}.curve_j"))?;
-        if bi == bj {
-            return fail(
-                format!("{p}.curve_j"),
-                format!(
-                    "curve '{}' is on body '{}', which also carries the pin; the slot must be on another body",
-                    c.curve_j,
-                    self.model.body(bi).name
-                ),
-            );
-        }
-        let own0 = c
-            .alpha_j
-            .as_ref()
-            .map(|n| self.num(n, &format!("{p}.alpha_j")).map(|a| [a, 0.0]))
-            .transpose()?;
-        self.add_contact(name, PointFollower::new(bi, s_i, bj, cj).into(), own0);
-        self.friction(c.friction.as_ref(), false, p)
-    }
-
-    fn different(&self, bi: BodyId, bj: BodyId, ci: &str, cj: &str, path: &str) -> R<()> {
+    pub(super) fn different(
+        &self,
+        bi: BodyId,
+        bj: BodyId,
+        ci: &str,
+        cj: &str,
+        path: &str,
+    ) -> R<()> {
         if bi == bj {
             return fail(
                 path,
