@@ -22,7 +22,7 @@
 //! ([`super::contact_force`]).
 
 use super::contact_force::LiftOffWatch;
-use super::friction;
+
 use super::output::{self, Scratch};
 use super::project::IDENTITY;
 use super::system::{Augmented, System};
@@ -125,7 +125,16 @@ impl<'m> InverseSolver<'m> {
                         out.copy_from_slice(f);
                     };
                     let lambda = &mut self.lambda;
-                    friction::inverse(&self.sys, t, q, qd, &self.rhs, lambda, &mut solve)?;
+                    self.sys.friction.inverse(
+                        self.sys.model,
+                        &self.sys.asm,
+                        t,
+                        q,
+                        qd,
+                        &self.rhs,
+                        lambda,
+                        &mut solve,
+                    )?;
                 }
             }
             Multipliers::MinNorm(aug) => {
@@ -146,7 +155,16 @@ impl<'m> InverseSolver<'m> {
                         out.copy_from_slice(&f[n..]);
                     };
                     let lambda = &mut self.lambda;
-                    friction::inverse(&self.sys, t, q, qd, &base, lambda, &mut solve)?;
+                    self.sys.friction.inverse(
+                        self.sys.model,
+                        &self.sys.asm,
+                        t,
+                        q,
+                        qd,
+                        &base,
+                        lambda,
+                        &mut solve,
+                    )?;
                 }
             }
         }

@@ -205,7 +205,9 @@ pub fn fill_forces(
                 k += 2;
             }
             if joint.friction.is_some() {
-                let (fp, ground) = sys.friction.channels(sys, friction, q, qd, lambda, t);
+                let (fp, ground) = sys
+                    .friction
+                    .channels(model, asm, friction, q, qd, lambda, t);
                 out[k..k + 2].copy_from_slice(&fp);
                 for (a, b) in shake.iter_mut().zip(ground) {
                     *a += b;

@@ -43,8 +43,10 @@
 //! ([`Integrator::dense_between`]) in the model of that step. The
 //! error-controlled mode is refused in a run with unilateral contacts.
 
+use super::generalized_alpha::{
+    arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot,
+};
 use super::impact;
-use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
 use super::stops::{self, Stop};
 use super::system::{Augmented, System};
