@@ -53,6 +53,7 @@
 use super::branch::{self, BranchRows};
 use super::project;
 use super::redundant::Redundant;
+use super::retry::{self, Way, SINGULAR_ITER};
 use super::system::{Augmented, Coefficients, System};
 use crate::linsolve::DenseLu;
 use crate::math::{inner, max_abs};
@@ -72,10 +73,6 @@ const SLOW: f64 = 0.2;
 
 /// See [`SLOW`].
 const ABOVE_ROUNDING: f64 = 1e3;
-
-/// The retry of a step with a fresh matrix each iteration may take this
-/// many times `max_iter` iterations.
-const SINGULAR_ITER: usize = 4;
 
 /// A correction within this many times the measured rounding noise of the
 /// solve counts as converged.
@@ -291,12 +288,51 @@ enum Attempt {
     MetSingular,
 }
 
-/// The state and scratch of a forward-dynamics run; allocated once.
+/// The coefficients of one step of h from t: t₁ = t + h, β' and γ'
+/// (Δq̈ = β' Δq, Δq̇ = γ' Δq) and the scale s = 1/β' of the equations
+/// of motion in Newton's matrix.
+#[derive(Clone, Copy, Debug)]
+struct StepCoeffs {
+    h: f64,
+    t1: f64,
+    bp: f64,
+    gp: f64,
+    s: f64,
+}
+
+impl StepCoeffs {
+    fn new(c: &Coeffs, t: f64, h: f64) -> Self {
+        let bp = (1.0 - c.alpha_m) / (c.beta * h * h * (1.0 - c.alpha_f));
+        StepCoeffs {
+            h,
+            t1: t + h,
+            bp,
+            gp: c.gamma / (c.beta * h),
+            s: 1.0 / bp,
+        }
+    }
+}
+
+/// One Newton correction applied: its largest |Δq_k| (m or rad), its
+/// ratio θ to the one before, and whether the iteration has converged.
+struct Correction {
+    dmax: f64,
+    theta: f64,
+    converged: bool,
+}
+
+/// A forward-dynamics run: the system, the state at t, the start of the
+/// step being taken, the predictor's history, Newton's scratch, the
+/// branch being followed and the run's diagnostics; allocated once.
 pub struct Integrator<'m> {
     pub sys: System<'m>,
+    /// The model's redundant equations, if any.
+    pub redundant: Option<Redundant>,
     aug: Augmented,
     settings: Settings,
     c: Coeffs,
+
+    // The state.
     /// Time t (s) and the state there.
     pub t: f64,
     pub q: Vec<f64>,
@@ -308,41 +344,63 @@ pub struct Integrator<'m> {
     /// The step (s) that made `a`, a ≈ q̈(t + (α_m − α_f) h_a), or 0 when
     /// `a` is not known to lie so (it is q̈, or q̈ was solved afresh).
     h_a: f64,
-    /// `h_a` at the start of the step.
-    h_a_saved: f64,
-    /// The step h the factorization was made for (0: none).
-    h_factored: f64,
-    /// The state at the start of the step, to retry it, and its time (s).
-    saved: State,
-    t_saved: f64,
+    /// The state at the start of the step, to retry it.
+    start: Start,
+
+    // The predictor.
     /// q̈ and λ at the start of the step before, and its length (0:
     /// none), for the predictor.
     prev: History,
     h_prev: f64,
+    /// max |λ| two steps back (0: not known).
+    lambda_max_before: f64,
+    /// The weighted error of the last accepted error-controlled step.
+    err_prev: Option<f64>,
+
+    // Newton's matrix and scratch.
+    /// The step h the factorization was made for (0: none).
+    h_factored: f64,
+    /// Right side and correction, length n + m.
     rhs: Vec<f64>,
     /// Scratch of length n.
     work: Vec<f64>,
     /// The rounding noise of a Newton correction, the same level for
     /// every coordinate (zero until measured in an attempt at a step).
     noise: f64,
+
+    /// Near a bifurcation point, the branch being followed.
+    follow: Follow,
+
+    // The diagnostics.
     pub summary: Summary,
-    /// The model's redundant equations, if any.
-    pub redundant: Option<Redundant>,
     /// Steps rejected by the error control.
     pub rejected: usize,
-    /// The weighted error of the last accepted error-controlled step.
-    err_prev: Option<f64>,
     /// Whether the last step ended at a singular position (warned once
     /// per visit).
     near_singular: bool,
-    /// max |λ| two steps back (0: not known).
-    lambda_max_before: f64,
-    /// Near a bifurcation point: the branch rows in use ([`branch`]),
-    /// their multipliers μ, and the bordered matrix [S_ε Bᵀ; B −ε I]
-    /// (B = [A 0]) solved through S_ε's factorization: X = S_ε⁻¹ Bᵀ
-    /// (k columns of n + m) and the LU of the Schur complement
-    /// C = −ε I − B X; `ext` holds the k row corrections of a solve.
-    branch: Option<BranchRows>,
+
+    /// The state at an output time inside the last step
+    /// ([`dense_output`](Self::dense_output)); made at its first use.
+    pub dense: Option<Dense>,
+}
+
+/// The start of the step being taken: its time (s), `h_a` there and the
+/// state (q, q̇, q̈, λ, a).
+#[derive(Debug, Default)]
+struct Start {
+    t: f64,
+    h_a: f64,
+    state: State,
+}
+
+/// Near a bifurcation point ([`branch`]): the branch rows in use, their
+/// multipliers μ, and the bordered matrix [S_ε Bᵀ; B −ε I] (B = [A 0])
+/// solved through S_ε's factorization: X = S_ε⁻¹ Bᵀ (`border`, k columns
+/// of n + m) and the LU of the Schur complement C = −ε I − B X; `ext`
+/// holds the k row corrections of a solve.
+#[derive(Default)]
+struct Follow {
+    rows: Option<BranchRows>,
     /// At the last look for a lost rank after a plain step: the smallest
     /// pivot over σ_rel² there.
     seen: Option<f64>,
@@ -352,9 +410,6 @@ pub struct Integrator<'m> {
     border: Vec<f64>,
     schur: Option<DenseLu>,
     ext: Vec<f64>,
-    /// The state at an output time inside the last step
-    /// ([`dense_output`](Self::dense_output)); made at its first use.
-    pub dense: Option<Dense>,
 }
 
 /// The state at an output time t inside a step [t₀, t₁]: q and q̇ from the
@@ -442,16 +497,18 @@ impl<'m> Integrator<'m> {
             lambda: vec![0.0; m],
             a: vec![0.0; n],
             h_a: 0.0,
-            h_a_saved: 0.0,
             h_factored: 0.0,
-            saved: State {
-                q: q.clone(),
-                qd: qd.clone(),
-                qdd: vec![0.0; n],
-                lambda: vec![0.0; m],
-                a: vec![0.0; n],
+            start: Start {
+                t: t0,
+                h_a: 0.0,
+                state: State {
+                    q: q.clone(),
+                    qd: qd.clone(),
+                    qdd: vec![0.0; n],
+                    lambda: vec![0.0; m],
+                    a: vec![0.0; n],
+                },
             },
-            t_saved: t0,
             prev: History {
                 qdd: vec![0.0; n],
                 lambda: vec![0.0; m],
@@ -469,13 +526,7 @@ impl<'m> Integrator<'m> {
             err_prev: None,
             near_singular: false,
             lambda_max_before: 0.0,
-            branch: None,
-            seen: None,
-            guard: None,
-            mu: Vec::new(),
-            border: Vec::new(),
-            schur: None,
-            ext: Vec::new(),
+            follow: Follow::default(),
             dense: None,
         };
         it.accelerations()?;
@@ -613,8 +664,8 @@ impl<'m> Integrator<'m> {
         // Projected, or where the projection fails, as interpolated.
         for project in [true, false] {
             let d = self.dense.as_mut().expect("dense output");
-            let s0 = &self.saved;
-            let start = (self.t_saved, [&s0.q[..], &s0.qd, &s0.qdd]);
+            let s0 = &self.start.state;
+            let start = (self.start.t, [&s0.q[..], &s0.qd, &s0.qdd]);
             hermite(d, t, start, (self.t, [&self.q, &self.qd, &self.qdd]));
             let settled = self.settle_dense(project);
             if settled.is_ok() || !project {
@@ -713,12 +764,14 @@ impl<'m> Integrator<'m> {
     }
 
     /// Advances one step of size `h`; the state is unchanged on failure.
+    /// The ways of taking it are tried in the order of the retry policy
+    /// ([`retry`]), each from the state at the start of the step.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
         // At a singular position (S_ε factored last) the multipliers of the
         // lost direction are not determined, and the ones carried over can
         // be arbitrarily large: follow the branch with its rows, or start
         // from the consistent q̈ and the minimum-norm λ.
-        if self.branch.is_none()
+        if self.follow.rows.is_none()
             && self.at_singular_position()
             && !(self.slow(h) && self.enter_branch())
         {
@@ -726,55 +779,21 @@ impl<'m> Integrator<'m> {
             self.h_prev = 0.0;
         }
         self.save();
-        if self.branch.is_some() {
-            // Along the branch, with a fresh matrix each iteration; then
-            // from the constant predictor; then with Φ alone from the
-            // consistent q̈ and λ.
-            for _ in 0..2 {
-                if self.try_step(h, true)? {
-                    return self.after_branch_step();
-                }
-                self.restore();
-                self.h_prev = 0.0;
-            }
-            self.leave_branch();
-            self.accelerations()?;
-            self.save();
-            if self.try_step(h, true)? {
-                return self.after_plain_step(h);
+        let mut last = Attempt::Failed;
+        for &way in retry::ladder(self.follow.rows.is_some()) {
+            let Some(outcome) = self.take(way, h, last)? else {
+                continue;
+            };
+            if outcome == Attempt::Converged {
+                return if way.along_branch() {
+                    self.after_branch_step()
+                } else {
+                    self.after_plain_step(h)
+                };
             }
             self.restore();
-        } else {
-            let first = self.attempt(h, false, true)?;
-            if first == Attempt::Converged {
-                return self.after_plain_step(h);
-            }
-            self.restore();
-            // A slow mechanism that reaches a lost rank within the step:
-            // along the branch from the start of the step.
-            if first == Attempt::MetSingular && self.enter_branch() {
-                if self.try_step(h, true)? {
-                    return self.after_branch_step();
-                }
-                self.restore();
-                self.leave_branch();
-                self.accelerations()?;
-                self.save();
-            }
-            // Slow convergence with an old matrix: retry from the constant
-            // predictor with a fresh matrix each iteration.
-            self.h_prev = 0.0;
-            if self.try_step(h, true)? {
-                return self.after_plain_step(h);
-            }
-            self.restore();
-            // Near a bifurcation point: retry along the branch.
-            if self.enter_branch() {
-                if self.try_step(h, true)? {
-                    return self.after_branch_step();
-                }
-                self.restore();
-            }
+            self.after_failed(way)?;
+            last = outcome;
         }
         Err(self.error(
             Kind::NotConverged,
@@ -790,6 +809,48 @@ impl<'m> Integrator<'m> {
         ))
     }
 
+    /// One attempt at a step of `h` the [`Way`] `way`, from the start of
+    /// the step (`last`: how the attempt before ended); None when the way
+    /// does not apply here.
+    fn take(&mut self, way: Way, h: f64, last: Attempt) -> Result<Option<Attempt>, AnalysisError> {
+        match way {
+            Way::Chord => return self.attempt(h, false, true).map(Some),
+            Way::BranchAtSingular => {
+                if last != Attempt::MetSingular || !self.enter_branch() {
+                    return Ok(None);
+                }
+            }
+            Way::Fresh => self.h_prev = 0.0,
+            Way::BranchWhereLost => {
+                if !self.enter_branch() {
+                    return Ok(None);
+                }
+            }
+            Way::AlongBranch => {}
+            Way::LeaveBranch => {
+                self.leave_branch();
+                self.accelerations()?;
+                self.save();
+            }
+        }
+        self.attempt(h, true, false).map(Some)
+    }
+
+    /// After a failed attempt the [`Way`] `way`, back at the start of the
+    /// step: what the next way starts from.
+    fn after_failed(&mut self, way: Way) -> Result<(), AnalysisError> {
+        match way {
+            Way::BranchAtSingular => {
+                self.leave_branch();
+                self.accelerations()?;
+                self.save();
+            }
+            Way::AlongBranch => self.h_prev = 0.0,
+            Way::Chord | Way::Fresh | Way::BranchWhereLost | Way::LeaveBranch => {}
+        }
+        Ok(())
+    }
+
     /// After a step with Φ alone: the first one past a window of branch
     /// rows that crossed to the other branch is taken again along the
     /// branch; a step that ends near a singular position looks for a lost
@@ -798,7 +859,7 @@ impl<'m> Integrator<'m> {
         if let Some(rows) = self.crossed_branch() {
             // Back to the start of the step: its state, time and count.
             self.restore();
-            self.t = self.t_saved;
+            self.t = self.start.t;
             self.summary.steps -= 1;
             self.use_rows(rows);
             self.save();
@@ -814,7 +875,7 @@ impl<'m> Integrator<'m> {
         if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) && self.slow(h) {
             self.watch_branch();
         } else {
-            self.seen = None;
+            self.follow.seen = None;
         }
         self.watch_singularity();
         Ok(())
@@ -837,11 +898,11 @@ impl<'m> Integrator<'m> {
     /// Follows the branch with `rows` from the current state.
     fn use_rows(&mut self, rows: BranchRows) {
         let (n, m, k) = (self.sys.n(), self.sys.m(), rows.k);
-        self.mu = vec![0.0; k];
-        self.ext = vec![0.0; k];
-        self.border = vec![0.0; k * (n + m)];
-        self.schur = Some(DenseLu::new(k));
-        self.branch = Some(rows);
+        self.follow.mu = vec![0.0; k];
+        self.follow.ext = vec![0.0; k];
+        self.follow.border = vec![0.0; k * (n + m)];
+        self.follow.schur = Some(DenseLu::new(k));
+        self.follow.rows = Some(rows);
         self.aug.set_regularised(true);
         self.aug.invalidate();
         self.h_prev = 0.0;
@@ -868,10 +929,10 @@ impl<'m> Integrator<'m> {
     /// Stops following a branch (Φ alone from here); the rows that were
     /// in use.
     fn leave_branch(&mut self) -> Option<BranchRows> {
-        self.seen = None;
-        self.guard = None;
-        let rows = self.branch.take()?;
-        self.schur = None;
+        self.follow.seen = None;
+        self.follow.guard = None;
+        let rows = self.follow.rows.take()?;
+        self.follow.schur = None;
         self.aug.set_regularised(false);
         self.aug.invalidate();
         Some(rows)
@@ -881,9 +942,9 @@ impl<'m> Integrator<'m> {
     /// A when the step crossed to the other branch, moving across them
     /// (|A Δq| > [`GUARD`] |Δq|; along the branch A Δq is of second order).
     fn crossed_branch(&mut self) -> Option<BranchRows> {
-        let rows = self.guard.take()?;
+        let rows = self.follow.guard.take()?;
         let n = self.sys.n();
-        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.saved.q) {
+        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.start.state.q) {
             *d = q - q0;
         }
         let across = rows
@@ -906,17 +967,17 @@ impl<'m> Integrator<'m> {
         // The smallest pivot falls as σ² near the point: scaled by the
         // ratio found at the last look, it tells cheaply whether a new
         // look is due.
-        if let Some(ratio) = self.seen {
+        if let Some(ratio) = self.follow.seen {
             let sigma = (pivot / ratio).sqrt();
             if sigma > 2.0 * branch::WINDOW {
                 return;
             }
         }
         let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
-            self.seen = None;
+            self.follow.seen = None;
             return;
         };
-        self.seen = Some(pivot / (rows.sigma_rel * rows.sigma_rel));
+        self.follow.seen = Some(pivot / (rows.sigma_rel * rows.sigma_rel));
         if rows.sigma_rel < branch::WINDOW {
             self.use_rows(rows);
         }
@@ -926,7 +987,7 @@ impl<'m> Integrator<'m> {
     /// ([`branch::WINDOW_EXIT`]), back to Φ alone from the consistent q̈
     /// and λ.
     fn after_branch_step(&mut self) -> Result<(), AnalysisError> {
-        let Some(old) = &self.branch else {
+        let Some(old) = &self.follow.rows else {
             return Ok(());
         };
         let next = branch::analyse(&self.sys, &self.q, self.t, &old.tangent);
@@ -936,19 +997,19 @@ impl<'m> Integrator<'m> {
                 let n = self.sys.n();
                 let force = &mut self.work;
                 force.fill(0.0);
-                for (row, mu) in old.a.chunks(n).zip(&self.mu) {
+                for (row, mu) in old.a.chunks(n).zip(&self.follow.mu) {
                     for (f, x) in force.iter_mut().zip(row) {
                         *f += x * mu;
                     }
                 }
-                for (row, mu) in rows.a.chunks(n).zip(self.mu.iter_mut()) {
+                for (row, mu) in rows.a.chunks(n).zip(self.follow.mu.iter_mut()) {
                     *mu = inner(row, force);
                 }
-                self.branch = Some(rows);
+                self.follow.rows = Some(rows);
             }
             _ => {
                 // The first plain step is checked against the last rows.
-                self.guard = self.leave_branch();
+                self.follow.guard = self.leave_branch();
                 self.accelerations()?;
                 self.h_prev = 0.0;
             }
@@ -958,9 +1019,9 @@ impl<'m> Integrator<'m> {
     }
 
     fn save(&mut self) {
-        self.t_saved = self.t;
-        self.h_a_saved = self.h_a;
-        let to = &mut self.saved;
+        self.start.t = self.t;
+        self.start.h_a = self.h_a;
+        let to = &mut self.start.state;
         to.q.copy_from_slice(&self.q);
         to.qd.copy_from_slice(&self.qd);
         to.qdd.copy_from_slice(&self.qdd);
@@ -969,11 +1030,11 @@ impl<'m> Integrator<'m> {
     }
 
     fn restore(&mut self) {
-        self.h_a = self.h_a_saved;
+        self.h_a = self.start.h_a;
         // (Moved out and back: no copy of the vectors.)
-        let saved = std::mem::take(&mut self.saved);
+        let saved = std::mem::take(&mut self.start.state);
         self.load(&saved);
-        self.saved = saved;
+        self.start.state = saved;
     }
 
     /// Sets (q, q̇, q̈, λ, a) to `from`'s.
@@ -999,12 +1060,88 @@ impl<'m> Integrator<'m> {
         fresh: bool,
         stop_at_singular: bool,
     ) -> Result<Attempt, AnalysisError> {
+        let k = StepCoeffs::new(&self.c, self.t, h);
+        self.predict(h)?;
+        let mut last = f64::INFINITY;
+        self.noise = 0.0;
+        let mut noise_known = false;
+        // Near a singular position Newton converges only linearly (the
+        // root is singular); the retry with a fresh matrix each iteration
+        // has [`SINGULAR_ITER`] times the iterations.
+        let max_iter = if fresh {
+            SINGULAR_ITER * self.settings.max_iter
+        } else {
+            self.settings.max_iter
+        };
+        for _ in 0..max_iter {
+            self.newton_residual(&k)?;
+            // The factorization serves steps within rounding of its own.
+            let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
+            if fresh || !self.aug.is_valid() || !same_h || self.follow.rows.is_some() {
+                self.newton_matrix(&k)?;
+                // Near a bifurcation point S_ε's regularisation damps the
+                // lost direction's correction while Φ barely sees it: a
+                // slow mechanism's step would stop on a point off both
+                // branches. It is taken along the branch instead
+                // ([`Integrator::step`]).
+                if stop_at_singular
+                    && self.follow.rows.is_none()
+                    && self.at_singular_position()
+                    && self.slow(h)
+                {
+                    return Ok(Attempt::MetSingular);
+                }
+                self.border_matrix()?;
+            }
+            self.newton_correction(&k);
+            self.summary.newton_iterations += 1;
+            let Correction {
+                dmax,
+                theta,
+                converged,
+            } = self.apply_correction(&k, last);
+            if !dmax.is_finite() {
+                return Ok(Attempt::Failed);
+            }
+            if converged {
+                self.accept(&k);
+                return Ok(Attempt::Converged);
+            }
+            // A chord iteration that contracts slowly has an old matrix:
+            // the next iteration refactors (Newton's quadratic rate
+            // reaches the acceleration's bound in one or two iterations
+            // where the chord needs several). Corrections near the
+            // rounding of the coordinates, and the lost direction at a
+            // singular position, converge slowly whatever the matrix.
+            let lost = self.at_singular_position() || self.follow.rows.is_some();
+            if !lost
+                && theta > SLOW
+                && dmax <= STALL * last
+                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
+            {
+                self.aug.invalidate();
+            }
+            // An iteration that stalls has reached the noise of the solve
+            // (measured once per attempt; it applies from the next
+            // iteration) or needs a fresh matrix: it gets both.
+            if dmax > STALL * last {
+                if !noise_known {
+                    self.measure_noise(k.t1, k.s)?;
+                    noise_known = true;
+                }
+                self.aug.invalidate();
+            }
+            last = dmax;
+        }
+        self.aug.invalidate();
+        Ok(Attempt::Failed)
+    }
+
+    /// The predicted state at the end of a step of `h`: q̈ and λ
+    /// extrapolated, a_{n+1}, q and q̇ from them.
+    fn predict(&mut self, h: f64) -> Result<(), AnalysisError> {
         let c = self.c;
         let n = self.sys.n();
-        let t1 = self.t + h;
-        let bp = (1.0 - c.alpha_m) / (c.beta * h * h * (1.0 - c.alpha_f));
-        let gp = c.gamma / (c.beta * h);
-        let s = 1.0 / bp;
         // a_n ≈ q̈(t_n + (α_m − α_f) h_a) + O(h²) (Arnold & Brüls 2007) for
         // the step h_a that made it; a step of another length h needs
         // q̈(t_n + (α_m − α_f) h), q̈_n + (h/h_a)(a_n − q̈_n) to that order.
@@ -1035,7 +1172,7 @@ impl<'m> Integrator<'m> {
         }
         for k in 0..n {
             let a0 = self.a[k];
-            let a1 = c.next_a(self.qdd[k], self.saved.qdd[k], a0);
+            let a1 = c.next_a(self.qdd[k], self.start.state.qdd[k], a0);
             self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
             self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
@@ -1049,269 +1186,262 @@ impl<'m> Integrator<'m> {
         // predicted state.
         if self.lambda_jumps() {
             self.consistent()?;
-            let n = self.sys.n();
             self.lambda.copy_from_slice(&self.rhs[n..]);
         }
-        let mut last = f64::INFINITY;
-        self.noise = 0.0;
-        let mut noise_known = false;
-        // Near a singular position Newton converges only linearly (the
-        // root is singular); the retry with a fresh matrix each iteration
-        // has [`SINGULAR_ITER`] times the iterations.
-        let max_iter = if fresh {
-            SINGULAR_ITER * self.settings.max_iter
-        } else {
-            self.settings.max_iter
+        Ok(())
+    }
+
+    /// Newton's right side −[s R; Φ] at the current iterate into `rhs`:
+    /// with the branch rows' forces Aᵀμ in R, and without the residual of
+    /// the lost equations the rows replace.
+    fn newton_residual(&mut self, k: &StepCoeffs) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (r_motion, r_phi) = self.rhs.split_at_mut(n);
+        self.sys.residual_and_phi(
+            &self.q,
+            &self.qd,
+            &self.qdd,
+            &self.lambda,
+            k.t1,
+            r_motion,
+            r_phi,
+        )?;
+        if let Some(b) = &self.follow.rows {
+            for (row, mu) in b.a.chunks(n).zip(&self.follow.mu) {
+                for (r, x) in r_motion.iter_mut().zip(row) {
+                    *r += x * mu;
+                }
+            }
+        }
+        for v in r_motion {
+            *v *= -k.s;
+        }
+        for v in r_phi.iter_mut() {
+            *v = -*v;
+        }
+        // The rows take the place of the lost equations wᵀΦ = 0, which
+        // hold along the branch only to the rows' linearisation: their
+        // residual is left out, so the two do not pull against each other.
+        if let Some(b) = &self.follow.rows {
+            for w in b.lost.chunks(r_phi.len()) {
+                let c = inner(w, r_phi);
+                for (r, x) in r_phi.iter_mut().zip(w) {
+                    *r -= c * x;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Factors Newton's matrix at the current iterate for the step `k`.
+    fn newton_matrix(&mut self, k: &StepCoeffs) -> Result<(), AnalysisError> {
+        let coefficients = Coefficients {
+            mass: k.bp,
+            damping: k.gp,
+            stiffness: 1.0,
+            identity: 0.0,
+            scale: k.s,
         };
-        for _ in 0..max_iter {
-            // r = [s R ; Φ].
-            let sys = &self.sys;
-            let (r_motion, r_phi) = self.rhs.split_at_mut(n);
-            sys.residual_and_phi(
-                &self.q,
-                &self.qd,
-                &self.qdd,
-                &self.lambda,
-                t1,
-                r_motion,
-                r_phi,
-            )?;
-            if let Some(b) = &self.branch {
-                for (row, mu) in b.a.chunks(n).zip(&self.mu) {
-                    for (r, x) in r_motion.iter_mut().zip(row) {
-                        *r += x * mu;
-                    }
-                }
-            }
-            for v in r_motion {
-                *v *= -s;
-            }
-            for v in r_phi.iter_mut() {
-                *v = -*v;
-            }
-            // The rows take the place of the lost equations wᵀΦ = 0, which
-            // hold along the branch only to the rows' linearisation: their
-            // residual is left out, so the two do not pull against each other.
-            if let Some(b) = &self.branch {
-                for w in b.lost.chunks(r_phi.len()) {
-                    let c = inner(w, r_phi);
-                    for (r, x) in r_phi.iter_mut().zip(w) {
-                        *r -= c * x;
-                    }
-                }
-            }
-            // The factorization serves steps within rounding of its own.
-            let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
-            if fresh || !self.aug.is_valid() || !same_h || self.branch.is_some() {
-                let k = Coefficients {
-                    mass: bp,
-                    damping: gp,
-                    stiffness: 1.0,
-                    identity: 0.0,
-                    scale: s,
-                };
-                if self
-                    .aug
-                    .refactor(sys, &self.q, &self.qd, &self.qdd, Some(&self.lambda), t1, k)
-                    .is_err()
-                {
-                    self.h_factored = 0.0;
-                    return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
-                }
-                self.h_factored = h;
-                self.summary.factorizations += 1;
-                // Near a bifurcation point S_ε's regularisation damps the
-                // lost direction's correction while Φ barely sees it: a
-                // slow mechanism's step would stop on a point off both
-                // branches. It is taken along the branch instead
-                // ([`Integrator::step`]).
-                if stop_at_singular
-                    && self.branch.is_none()
-                    && self.at_singular_position()
-                    && self.slow(h)
-                {
-                    return Ok(Attempt::MetSingular);
-                }
-                if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
-                    // X = S_ε⁻¹ Bᵀ, C = −ε I − B X.
-                    let nm = self.rhs.len();
-                    for (x, row) in self.border.chunks_mut(nm).zip(b.a.chunks(n)) {
-                        x[..n].copy_from_slice(row);
-                        x[n..].fill(0.0);
-                        self.aug.solve(x);
-                    }
-                    let eps = self.aug.eps();
-                    let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
-                        let bx = inner(&b.a[v * n..(v + 1) * n], &self.border[w * nm..w * nm + n]);
-                        -bx - if v == w { eps } else { 0.0 }
-                    });
-                    if lu.factor(c.as_ref()).is_err() {
-                        self.h_factored = 0.0;
-                        return Err(
-                            self.error(Kind::LockUp, "the Newton iteration matrix is singular")
-                        );
-                    }
-                }
-            }
-            self.aug.solve(&mut self.rhs);
-            if let (Some(b), Some(lu)) = (&self.branch, &mut self.schur) {
-                // With z = S_ε⁻¹ b₁ in `rhs`: y = C⁻¹ (b₂ − B z) for the
-                // rows A (q − q_n) = 0 from the start of the step, then
-                // x = z − X y.
-                let nm = self.rhs.len();
-                let y = &mut self.ext[..b.k];
-                for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
-                    let moved = self.q.iter().zip(&self.saved.q).zip(&self.rhs);
-                    *yw = -row
-                        .iter()
-                        .zip(moved)
-                        .map(|(a, ((q, q0), dq))| a * (q - q0 + dq))
-                        .sum::<f64>();
-                }
-                lu.solve(y);
-                for (x, &yw) in self.border.chunks(nm).zip(y.iter()) {
-                    for (r, xi) in self.rhs.iter_mut().zip(x) {
-                        *r -= xi * yw;
-                    }
-                }
-                for (mu, d) in self.mu.iter_mut().zip(y.iter()) {
-                    *mu += d / s;
-                }
-            }
-            // No joint's friction jumps across its transition band.
-            let (q, qd) = (&self.q, &self.qd);
-            let theta = self.sys.friction.step_fraction(
-                self.sys.model,
-                &self.sys.asm,
+        let (q, qd, qdd) = (&self.q, &self.qd, &self.qdd);
+        if self
+            .aug
+            .refactor(
+                &self.sys,
                 q,
                 qd,
-                &self.rhs,
-                gp,
-                t1,
-            );
-            if theta < 1.0 {
-                self.rhs.iter_mut().for_each(|v| *v *= theta);
-            }
-            self.summary.newton_iterations += 1;
-            // Converged when every position, velocity and acceleration
-            // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
-            // rounding of its own value ([`newton::settled`]); a position
-            // settled at its rounding settles its rates too. What Newton
-            // leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves
-            // positions by up to δq̈ t²/2 by time t whatever h: bounding
-            // the velocity correction alone (δq ≤ tol β h/γ) lets that
-            // drift grow as 1/h at a fixed tol. A correction's floor is the
-            // rounding of the residual carried through the solve, `noise`,
-            // measured when the iteration first stalls, and applied from
-            // the next iteration, whose matrix is fresh: at small steps
-            // (γ' = γ/(βh) large) or near a singular position (S
-            // ill-conditioned) a velocity's tol can lie below it. A chord
-            // iteration is not stopped at a coarser floor (such as the
-            // rounding of the largest coordinate): it contracts slowly,
-            // so what it leaves is systematic, and at small steps its
-            // acceleration β'Δq adds up over the steps into a drift of
-            // the energy and the phase.
-            // A slow iteration's correction understates its error: with
-            // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
-            // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
-            // At a singular position without branch rows S_ε's
-            // regularisation damps the lost direction's correction (by
-            // σ²/(σ² + ε) at singular value σ): a first correction within
-            // tol does not bound the error there: the iteration goes on
-            // at least once more.
-            let tol = self.settings.tol;
-            let share = self.settings.adaptive.as_ref().map(|ad| (ad.atol, ad.rtol));
-            let dnew = max_abs(&self.rhs[..n]);
-            let unproven =
-                self.at_singular_position() && self.branch.is_none() && last.is_infinite();
-            let theta = dnew / last;
-            let eta = if theta < 1.0 {
-                (theta / (1.0 - theta)).max(1.0)
-            } else {
-                f64::INFINITY
-            };
-            // At a singular position (S_ε factored) the lost direction
-            // converges as slowly as an augmented-Lagrangian update; the
-            // iteration stops when the position corrections are within tol.
-            let lost = self.at_singular_position() || self.branch.is_some();
-            let mut dmax = 0.0f64;
-            // The largest correction of a coordinate whose position or
-            // velocity has not settled by tol or its rounding: within the
-            // noise, it has settled too.
-            let mut pending = 0.0f64;
-            let mut settled = true;
-            for k in 0..n {
-                let d = self.rhs[k];
-                let de = eta * d;
-                self.q[k] += d;
-                self.qd[k] += gp * d;
-                self.qdd[k] += bp * d;
-                dmax = dmax.max(d.abs());
-                // Error-controlled: within NEWTON_SHARE of the local error
-                // allowed to the coordinate, atol + rtol |q_k|.
-                let tol = match share {
-                    Some((atol, rtol)) => tol.min(NEWTON_SHARE * (atol + rtol * self.q[k].abs())),
-                    None => tol,
-                };
-                if lost {
-                    settled &= !unproven && newton::settled(d, self.q[k], tol);
-                } else {
-                    let round = newton::rounding(self.q[k]);
-                    let position = newton::settled(de, self.q[k], tol) || d.abs() <= round;
-                    let velocity = newton::settled(gp * de, self.qd[k], tol) || d.abs() <= round;
-                    let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
-                    if !(position && velocity && acceleration) {
-                        pending = pending.max(d.abs());
-                    }
-                }
-            }
-            for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
-                *l += d / s;
-            }
-            if !dmax.is_finite() {
-                return Ok(Attempt::Failed);
-            }
-            if settled && pending <= self.noise {
-                // a_{n+1} from the converged q̈_{n+1}.
-                for k in 0..n {
-                    self.a[k] = c.next_a(self.qdd[k], self.saved.qdd[k], self.a[k]);
-                }
-                self.prev.qdd.copy_from_slice(&self.saved.qdd);
-                self.lambda_max_before = max_abs(&self.prev.lambda);
-                self.prev.lambda.copy_from_slice(&self.saved.lambda);
-                self.h_prev = h;
-                self.h_a = h;
-                self.t = t1;
-                self.summary.steps += 1;
-                return Ok(Attempt::Converged);
-            }
-            // A chord iteration that contracts slowly has an old matrix:
-            // the next iteration refactors (Newton's quadratic rate
-            // reaches the acceleration's bound in one or two iterations
-            // where the chord needs several). Corrections near the
-            // rounding of the coordinates, and the lost direction at a
-            // singular position, converge slowly whatever the matrix.
-            if !lost
-                && theta > SLOW
-                && dmax <= STALL * last
-                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
-            {
-                self.aug.invalidate();
-            }
-            // An iteration that stalls has reached the noise of the solve
-            // (measured once per attempt; it applies from the next
-            // iteration) or needs a fresh matrix: it gets both.
-            if dmax > STALL * last {
-                if !noise_known {
-                    self.measure_noise(t1, s)?;
-                    noise_known = true;
-                }
-                self.aug.invalidate();
-            }
-            last = dmax;
+                qdd,
+                Some(&self.lambda),
+                k.t1,
+                coefficients,
+            )
+            .is_err()
+        {
+            self.h_factored = 0.0;
+            return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
         }
-        self.aug.invalidate();
-        Ok(Attempt::Failed)
+        self.h_factored = k.h;
+        self.summary.factorizations += 1;
+        Ok(())
+    }
+
+    /// Along a branch, the border of the factored matrix,
+    /// [S_ε Bᵀ; B −ε I] with B = [A 0]: X = S_ε⁻¹ Bᵀ and the LU of
+    /// C = −ε I − B X.
+    fn border_matrix(&mut self) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) else {
+            return Ok(());
+        };
+        let nm = self.rhs.len();
+        for (x, row) in self.follow.border.chunks_mut(nm).zip(b.a.chunks(n)) {
+            x[..n].copy_from_slice(row);
+            x[n..].fill(0.0);
+            self.aug.solve(x);
+        }
+        let eps = self.aug.eps();
+        let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
+            let bx = inner(
+                &b.a[v * n..(v + 1) * n],
+                &self.follow.border[w * nm..w * nm + n],
+            );
+            -bx - if v == w { eps } else { 0.0 }
+        });
+        if lu.factor(c.as_ref()).is_err() {
+            self.h_factored = 0.0;
+            return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
+        }
+        Ok(())
+    }
+
+    /// Newton's correction (Δq, s Δλ) into `rhs`: the factored matrix
+    /// applied to the right side, through the border along a branch
+    /// (updating μ), and cut so that no joint's friction jumps across its
+    /// transition band.
+    fn newton_correction(&mut self, k: &StepCoeffs) {
+        let n = self.sys.n();
+        self.aug.solve(&mut self.rhs);
+        if let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) {
+            // With z = S_ε⁻¹ b₁ in `rhs`: y = C⁻¹ (b₂ − B z) for the
+            // rows A (q − q_n) = 0 from the start of the step, then
+            // x = z − X y.
+            let nm = self.rhs.len();
+            let y = &mut self.follow.ext[..b.k];
+            for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
+                let moved = self.q.iter().zip(&self.start.state.q).zip(&self.rhs);
+                *yw = -row
+                    .iter()
+                    .zip(moved)
+                    .map(|(a, ((q, q0), dq))| a * (q - q0 + dq))
+                    .sum::<f64>();
+            }
+            lu.solve(y);
+            for (x, &yw) in self.follow.border.chunks(nm).zip(y.iter()) {
+                for (r, xi) in self.rhs.iter_mut().zip(x) {
+                    *r -= xi * yw;
+                }
+            }
+            for (mu, d) in self.follow.mu.iter_mut().zip(y.iter()) {
+                *mu += d / k.s;
+            }
+        }
+        // No joint's friction jumps across its transition band.
+        let (q, qd) = (&self.q, &self.qd);
+        let theta = self.sys.friction.step_fraction(
+            self.sys.model,
+            &self.sys.asm,
+            q,
+            qd,
+            &self.rhs,
+            k.gp,
+            k.t1,
+        );
+        if theta < 1.0 {
+            self.rhs.iter_mut().for_each(|v| *v *= theta);
+        }
+    }
+
+    /// Applies the correction in `rhs` to (q, q̇, q̈, λ) and tells how
+    /// far the iteration is (`last`: the largest |Δq_k| of the iteration
+    /// before, infinite on the first).
+    fn apply_correction(&mut self, k: &StepCoeffs, last: f64) -> Correction {
+        let n = self.sys.n();
+        let (bp, gp) = (k.bp, k.gp);
+        // Converged when every position, velocity and acceleration
+        // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
+        // rounding of its own value ([`newton::settled`]); a position
+        // settled at its rounding settles its rates too. What Newton
+        // leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves
+        // positions by up to δq̈ t²/2 by time t whatever h: bounding
+        // the velocity correction alone (δq ≤ tol β h/γ) lets that
+        // drift grow as 1/h at a fixed tol. A correction's floor is the
+        // rounding of the residual carried through the solve, `noise`,
+        // measured when the iteration first stalls, and applied from
+        // the next iteration, whose matrix is fresh: at small steps
+        // (γ' = γ/(βh) large) or near a singular position (S
+        // ill-conditioned) a velocity's tol can lie below it. A chord
+        // iteration is not stopped at a coarser floor (such as the
+        // rounding of the largest coordinate): it contracts slowly,
+        // so what it leaves is systematic, and at small steps its
+        // acceleration β'Δq adds up over the steps into a drift of
+        // the energy and the phase.
+        // A slow iteration's correction understates its error: with
+        // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
+        // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
+        // At a singular position without branch rows S_ε's
+        // regularisation damps the lost direction's correction (by
+        // σ²/(σ² + ε) at singular value σ): a first correction within
+        // tol does not bound the error there: the iteration goes on
+        // at least once more.
+        let tol = self.settings.tol;
+        let share = self.settings.adaptive.as_ref().map(|ad| (ad.atol, ad.rtol));
+        let dnew = max_abs(&self.rhs[..n]);
+        let unproven =
+            self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
+        let theta = dnew / last;
+        let eta = if theta < 1.0 {
+            (theta / (1.0 - theta)).max(1.0)
+        } else {
+            f64::INFINITY
+        };
+        // At a singular position (S_ε factored) the lost direction
+        // converges as slowly as an augmented-Lagrangian update; the
+        // iteration stops when the position corrections are within tol.
+        let lost = self.at_singular_position() || self.follow.rows.is_some();
+        let mut dmax = 0.0f64;
+        // The largest correction of a coordinate whose position or
+        // velocity has not settled by tol or its rounding: within the
+        // noise, it has settled too.
+        let mut pending = 0.0f64;
+        let mut settled = true;
+        for i in 0..n {
+            let d = self.rhs[i];
+            let de = eta * d;
+            self.q[i] += d;
+            self.qd[i] += gp * d;
+            self.qdd[i] += bp * d;
+            dmax = dmax.max(d.abs());
+            // Error-controlled: within NEWTON_SHARE of the local error
+            // allowed to the coordinate, atol + rtol |q_i|.
+            let tol = match share {
+                Some((atol, rtol)) => tol.min(NEWTON_SHARE * (atol + rtol * self.q[i].abs())),
+                None => tol,
+            };
+            if lost {
+                settled &= !unproven && newton::settled(d, self.q[i], tol);
+            } else {
+                let round = newton::rounding(self.q[i]);
+                let position = newton::settled(de, self.q[i], tol) || d.abs() <= round;
+                let velocity = newton::settled(gp * de, self.qd[i], tol) || d.abs() <= round;
+                let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
+                if !(position && velocity && acceleration) {
+                    pending = pending.max(d.abs());
+                }
+            }
+        }
+        for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
+            *l += d / k.s;
+        }
+        Correction {
+            dmax,
+            theta,
+            converged: settled && pending <= self.noise,
+        }
+    }
+
+    /// Ends a converged step `k`: a_{n+1} from q̈_{n+1}, the predictor's
+    /// history, t = t₁.
+    fn accept(&mut self, k: &StepCoeffs) {
+        let c = self.c;
+        for i in 0..self.a.len() {
+            self.a[i] = c.next_a(self.qdd[i], self.start.state.qdd[i], self.a[i]);
+        }
+        self.prev.qdd.copy_from_slice(&self.start.state.qdd);
+        self.lambda_max_before = max_abs(&self.prev.lambda);
+        self.prev.lambda.copy_from_slice(&self.start.state.lambda);
+        self.h_prev = k.h;
+        self.h_a = k.h;
+        self.t = k.t1;
+        self.summary.steps += 1;
     }
 
     /// Records a `near_singular` warning, naming the joints whose
@@ -1330,7 +1460,7 @@ impl<'m> Integrator<'m> {
                      (a toggle, a dead centre, the flat position of a parallelogram); \
                      the multipliers of the lost direction are not determined here{}",
                     crate::diagnose::losing_rank(&joints),
-                    if self.branch.is_some() {
+                    if self.follow.rows.is_some() {
                         "; the motion keeps to the branch nearest to its direction of motion"
                     } else {
                         ""
@@ -1350,7 +1480,7 @@ impl<'m> Integrator<'m> {
         let (l0, l1, l2) = (
             self.lambda_max_before,
             max_abs(&self.prev.lambda),
-            max_abs(&self.saved.lambda),
+            max_abs(&self.start.state.lambda),
         );
         self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
     }
@@ -1393,7 +1523,7 @@ impl<'m> Integrator<'m> {
         let w = h * h * (self.c.beta - 1.0 / 6.0).abs();
         let mut e = 0.0f64;
         for k in 0..self.q.len() {
-            let d = w * (self.qdd[k] - self.saved.qdd[k]);
+            let d = w * (self.qdd[k] - self.start.state.qdd[k]);
             e = e.max(d.abs() / (ad.atol + ad.rtol * self.q[k].abs()));
         }
         e
@@ -1636,7 +1766,7 @@ mod tests {
         }
         let (t0, steps) = (it.t, it.summary.steps);
         let phi0 = it.q[2];
-        it.guard = Some(BranchRows {
+        it.follow.guard = Some(BranchRows {
             k: 1,
             a: vec![0.0, 0.0, 1.0],
             tangent: vec![1.0, 0.0, 0.0],

@@ -20,7 +20,8 @@
 //! - equilibrium, in [`statics`];
 //! - forward dynamics: the run with output, in [`integrator`]; the
 //!   implicit index-3 generalized-α integrator, in [`generalized_alpha`],
-//!   through bifurcation points with the branch rows of [`branch`]; the
+//!   through bifurcation points with the branch rows of [`branch`], its
+//!   retry policy in [`retry`]; the
 //!   layer of unilateral cam contacts (lift-off, flight, impact) over it
 //!   in [`unilateral`], joint limits as end stops in [`stops`] and the
 //!   impact law in [`impact`].
@@ -38,6 +39,7 @@ pub mod output;
 pub mod project;
 pub mod reaction;
 pub mod redundant;
+pub mod retry;
 pub mod statics;
 pub mod stops;
 pub mod system;
