@@ -12,6 +12,7 @@ pub use super::generalized_alpha::{Adaptive, Coeffs, Dense, Integrator, Settings
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
+use crate::contact::Contacts;
 use crate::model::Model;
 use crate::run::{self, AnalysisError, PointOutput, Sink, Summary};
 
@@ -62,68 +63,114 @@ fn run_bilateral(
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
     let t0 = times.first().copied().unwrap_or(0.0);
-    let mut it = Integrator::starting_at(model, settings.clone(), t0)?;
-    let contacts = crate::contact::Contacts::new(model);
+    let it = Integrator::starting_at(model, settings.clone(), t0)?;
     let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
-    sink.begin(&names);
-    let mut lift_off = LiftOffWatch::new(model, &names);
-    let mut values = vec![0.0; names.len()];
-    let mut scratch = Scratch::new(&it.sys);
-    let mut h_next = settings.step;
-    let mut lambda = vec![0.0; it.sys.m()];
-    for (k, &t) in times.iter().enumerate() {
-        let mut inside = false;
-        if k > 0 {
-            run::check_next_time(Some(times[k - 1]), t)?;
-            inside =
-                it.advance_to_output(t, &mut h_next, &mut || sink.tick().map_err(|s| s.at(t)))?;
-        }
+    let mut r = BilateralRun {
+        model,
+        points,
+        nk,
+        contacts: Contacts::new(model),
+        lift_off: LiftOffWatch::new(model, &names),
+        scratch: Scratch::new(&it.sys),
+        h_next: settings.step,
+        lambda: vec![0.0; it.sys.m()],
+        inside: false,
+        it,
+    };
+    run::output_loop(&mut r, times, &names, sink)?;
+    let mut summary = r.it.summary.clone();
+    r.lift_off.report(&mut summary);
+    Ok(summary)
+}
+
+/// A forward-dynamics run without unilateral contacts or joint stops as
+/// the output loop drives it.
+struct BilateralRun<'a, 'm> {
+    model: &'m Model,
+    points: &'a [PointOutput],
+    /// The number of kinematic channels, before the dynamic ones.
+    nk: usize,
+    contacts: Contacts,
+    lift_off: LiftOffWatch,
+    scratch: Scratch,
+    /// The next step of the error control (s).
+    h_next: f64,
+    /// The multipliers of a row.
+    lambda: Vec<f64>,
+    /// Whether the output time reached lies inside the last step.
+    inside: bool,
+    it: Integrator<'m>,
+}
+
+impl run::Analysis for BilateralRun<'_, '_> {
+    fn reach(
+        &mut self,
+        t: f64,
+        prev: Option<f64>,
+        tick: &mut run::Tick,
+    ) -> Result<(), AnalysisError> {
+        self.inside = prev.is_some() && self.it.advance_to_output(t, &mut self.h_next, tick)?;
+        Ok(())
+    }
+
+    fn fill(&mut self, _t: f64, values: &mut [f64]) -> Result<(), AnalysisError> {
+        let (it, nk) = (&mut self.it, self.nk);
+        let (model, asm) = (self.model, &it.sys.asm);
         // An output time inside a step: the state there, its multipliers
         // of minimum norm ([`Integrator::dense_output`]).
-        if let (true, Some(d)) = (inside, &it.dense) {
+        if let (true, Some(d)) = (self.inside, &it.dense) {
+            let state = [&d.q[..], &d.qd, &d.qdd];
             run::fill_outputs(
                 model,
-                &it.sys.asm,
-                &contacts,
-                [&d.q, &d.qd, &d.qdd],
-                points,
+                asm,
+                &self.contacts,
+                state,
+                self.points,
                 &mut values[..nk],
             );
             let (q, qd, lam) = (&d.q, &d.qd, &d.lambda);
-            output::fill(&it.sys, &mut scratch, q, qd, lam, d.t, &mut values[nk..]);
-            sink.row(t, &values).map_err(|s| s.at(t))?;
-            lift_off.observe(t, &values);
-            continue;
+            output::fill(
+                &it.sys,
+                &mut self.scratch,
+                q,
+                qd,
+                lam,
+                d.t,
+                &mut values[nk..],
+            );
+            return Ok(());
         }
+        let state = [&it.q[..], &it.qd, &it.qdd];
         run::fill_outputs(
             model,
-            &it.sys.asm,
-            &contacts,
-            [&it.q, &it.qd, &it.qdd],
-            points,
+            asm,
+            &self.contacts,
+            state,
+            self.points,
             &mut values[..nk],
         );
         // Reactions of a redundant model: the minimum-norm split.
         if it.redundant.is_some() {
-            it.min_norm_multipliers(&mut lambda)?;
+            it.min_norm_multipliers(&mut self.lambda)?;
         } else {
-            lambda.copy_from_slice(&it.lambda);
+            self.lambda.copy_from_slice(&it.lambda);
         }
+        let (q, qd) = (&it.q, &it.qd);
         output::fill(
             &it.sys,
-            &mut scratch,
-            &it.q,
-            &it.qd,
-            &lambda,
+            &mut self.scratch,
+            q,
+            qd,
+            &self.lambda,
             it.t,
             &mut values[nk..],
         );
-        sink.row(t, &values).map_err(|s| s.at(t))?;
-        lift_off.observe(t, &values);
+        Ok(())
     }
-    let mut summary = it.summary.clone();
-    lift_off.report(&mut summary);
-    Ok(summary)
+
+    fn observe(&mut self, t: f64, values: &[f64]) {
+        self.lift_off.observe(t, values);
+    }
 }
