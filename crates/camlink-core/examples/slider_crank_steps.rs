@@ -9,7 +9,6 @@
 use camlink_core::dynamics::integrator::{Integrator, Settings};
 
 #[path = "../tests/mechanisms/mod.rs"]
-#[allow(dead_code)]
 mod mechanisms;
 
 fn main() {

@@ -91,6 +91,7 @@ impl JointFrictions {
 
     /// The friction load of item `k` and the local state of its joint at
     /// (q, q̇, λ, t).
+    #[allow(clippy::too_many_arguments)]
     pub fn load(
         &self,
         model: &Model,
@@ -263,6 +264,7 @@ impl JointFrictions {
     /// or force on body j and the friction power, and the friction load
     /// (F_x, F_y, moment about the global origin) on the ground, zero when
     /// neither body is the ground (for the shaking channels).
+    #[allow(clippy::too_many_arguments)]
     pub fn channels(
         &self,
         model: &Model,
