@@ -80,7 +80,7 @@ const NOISE_SAFETY: f64 = 4.0;
 
 /// A step whose largest multiplier grew by more than this factor makes
 /// the next one start from the multipliers consistent with its predicted
-/// state (see `Integrator::attempt`).
+/// state (see `Integrator::predict`).
 const LAMBDA_JUMP: f64 = 1.5;
 
 /// A growth of the largest multiplier by more than this factor in one
