@@ -126,36 +126,66 @@ pub fn run_from(
     if let Some(q) = start {
         solver.start_from(q)?;
     }
-    let guard = StepGuard::new(model);
     let mut names = channels(model, points);
     let plain = names.len();
     if settings.jerk {
         names.extend(jerk_channels(model, points));
     }
-    sink.begin(&names);
-    let mut values = vec![0.0; names.len()];
-    let mut prev_t = None;
-    let mut limits = LimitWatch::new(model);
-    for &t in times {
-        crate::run::check_next_time(prev_t, t)?;
-        match prev_t {
+    let mut run = KinematicRun {
+        model,
+        points,
+        plain,
+        jerk: settings.jerk,
+        guard: StepGuard::new(model),
+        limits: LimitWatch::new(model),
+        solver,
+    };
+    crate::run::output_loop(&mut run, times, &names, sink)?;
+    let mut summary = run.solver.summary.clone();
+    summary.warnings.extend(run.limits.warnings(model));
+    Ok(summary)
+}
+
+/// A kinematic run as the output loop drives it: the solver, the check
+/// of the curve contacts after each step and the watch on joint limits.
+struct KinematicRun<'a, 'm> {
+    model: &'m Model,
+    points: &'a [PointOutput],
+    /// The number of channels before the jerk's.
+    plain: usize,
+    jerk: bool,
+    guard: StepGuard,
+    limits: LimitWatch,
+    solver: Solver<'m>,
+}
+
+impl crate::run::Analysis for KinematicRun<'_, '_> {
+    fn reach(
+        &mut self,
+        t: f64,
+        prev: Option<f64>,
+        _tick: &mut crate::run::Tick,
+    ) -> Result<(), AnalysisError> {
+        let (model, solver) = (self.model, &mut self.solver);
+        match prev {
             None => solver.step(t, None).map(|_| ()),
             Some(p) => solver.advance(p, t, 0),
         }
-        .map_err(|e| guard.explain(model, e))?;
-        guard.check(model, solver.assembly(), &solver.q, t)?;
-        limits.observe(model, solver.assembly(), &solver.q, t);
-        solver.outputs(points, &mut values[..plain]);
-        if settings.jerk {
-            solver.jerk(t)?;
-            solver.jerk_outputs(points, &mut values[plain..]);
-        }
-        sink.row(t, &values).map_err(|s| s.at(t))?;
-        prev_t = Some(t);
+        .map_err(|e| self.guard.explain(model, e))?;
+        self.guard.check(model, solver.assembly(), &solver.q, t)?;
+        self.limits.observe(model, solver.assembly(), &solver.q, t);
+        Ok(())
     }
-    let mut summary = solver.summary.clone();
-    summary.warnings.extend(limits.warnings(model));
-    Ok(summary)
+
+    fn fill(&mut self, t: f64, values: &mut [f64]) -> Result<(), AnalysisError> {
+        let (solver, plain) = (&mut self.solver, self.plain);
+        solver.outputs(self.points, &mut values[..plain]);
+        if self.jerk {
+            solver.jerk(t)?;
+            solver.jerk_outputs(self.points, &mut values[plain..]);
+        }
+        Ok(())
+    }
 }
 
 /// The state and scratch of a kinematic run; allocated once.

@@ -353,6 +353,47 @@ impl AnalysisError {
     }
 }
 
+/// What is called before every step of an analysis: the sink's
+/// [`Sink::tick`], whose error (an interrupt) stops the run.
+pub type Tick<'a> = dyn FnMut() -> Result<(), AnalysisError> + 'a;
+
+/// An analysis as the output loop drives it ([`output_loop`]).
+pub trait Analysis {
+    /// Reaches output time `t` (s) from the previous one, `prev` (None at
+    /// the first), calling `tick` before every step.
+    fn reach(&mut self, t: f64, prev: Option<f64>, tick: &mut Tick) -> Result<(), AnalysisError>;
+
+    /// The row of the channels at `t`, reached, into `values`.
+    fn fill(&mut self, t: f64, values: &mut [f64]) -> Result<(), AnalysisError>;
+
+    /// Sees the row at `t` once it is written (watches over the run).
+    fn observe(&mut self, _t: f64, _values: &[f64]) {}
+}
+
+/// The output loop of every analysis: the channels `names` to `sink`,
+/// then, for each output time in turn (checked to increase,
+/// [`check_next_time`]), the analysis reaches it and its row goes to
+/// `sink` at once, so a run that fails keeps every row before.
+pub fn output_loop(
+    analysis: &mut dyn Analysis,
+    times: &[f64],
+    names: &[Channel],
+    sink: &mut dyn Sink,
+) -> Result<(), AnalysisError> {
+    sink.begin(names);
+    let mut values = vec![0.0; names.len()];
+    let mut prev = None;
+    for &t in times {
+        check_next_time(prev, t)?;
+        analysis.reach(t, prev, &mut || sink.tick().map_err(|s| s.at(t)))?;
+        analysis.fill(t, &mut values)?;
+        sink.row(t, &values).map_err(|s| s.at(t))?;
+        analysis.observe(t, &values);
+        prev = Some(t);
+    }
+    Ok(())
+}
+
 /// Checks that output time `t` (s) follows the previous one, `prev`
 /// (`None` for the first): an `invalid_input` error when it does not
 /// increase or is NaN.

@@ -30,7 +30,7 @@
 //! and in inverse dynamics, λ is found by fixed-point iteration on
 //! Q_f(λ), from the frictionless answer, to [`FIXED_POINT_TOL`].
 
-use super::system::System;
+use crate::assembly::Assembly;
 use crate::constraint::{Constraint, Equations, Feature, Jac, Local};
 use crate::contact::ContactView;
 use crate::force::friction::{Friction, PinFriction, SlideFriction};
@@ -91,9 +91,11 @@ impl JointFrictions {
 
     /// The friction load of item `k` and the local state of its joint at
     /// (q, q̇, λ, t).
+    #[allow(clippy::too_many_arguments)]
     pub fn load(
         &self,
-        s: &System,
+        model: &Model,
+        asm: &Assembly,
         k: usize,
         q: &[f64],
         qd: &[f64],
@@ -101,10 +103,10 @@ impl JointFrictions {
         t: f64,
     ) -> (Load, Local) {
         let j = self.items[k].0;
-        let x = s.asm.local(s.model, j, q, qd, t);
-        let c = &s.model.joints[j].constraint;
-        let normal = normal_force(c, &x, &lambda[s.asm.rows_of(s.model, j)]);
-        (self.load_at(s.model, k, &x, normal), x)
+        let x = asm.local(model, j, q, qd, t);
+        let c = &model.joints[j].constraint;
+        let normal = normal_force(c, &x, &lambda[asm.rows_of(model, j)]);
+        (self.load_at(model, k, &x, normal), x)
     }
 
     /// The friction load of item `k` at its joint's local state `x` and
@@ -138,7 +140,8 @@ impl JointFrictions {
     #[allow(clippy::too_many_arguments)]
     pub fn add(
         &self,
-        s: &System,
+        model: &Model,
+        asm: &Assembly,
         q: &[f64],
         qd: &[f64],
         lambda: &[f64],
@@ -148,12 +151,12 @@ impl JointFrictions {
     ) {
         let mut qf = BodyQ::default();
         for k in 0..self.items.len() {
-            let (load, x) = self.load(s, k, q, qd, lambda, t);
+            let (load, x) = self.load(model, asm, k, q, qd, lambda, t);
             let f = load.applied();
             // A friction load cannot fail: its law is built in.
             let _ = f.generalized(&x, &mut qf);
             for (b, body) in f.bodies().iter().enumerate() {
-                if let Some(c) = s.asm.body_col(body.0) {
+                if let Some(c) = asm.body_col(body.0) {
                     for d in 0..3 {
                         out[c + d] += w * qf[b][d];
                     }
@@ -168,7 +171,8 @@ impl JointFrictions {
     #[allow(clippy::too_many_arguments)]
     pub fn derivatives(
         &self,
-        s: &System,
+        model: &Model,
+        asm: &Assembly,
         k: usize,
         q: &[f64],
         qd: &[f64],
@@ -177,7 +181,7 @@ impl JointFrictions {
         dq: &mut BodyJac,
         dqd: &mut BodyJac,
     ) {
-        let (load, x) = self.load(s, k, q, qd, lambda, t);
+        let (load, x) = self.load(model, asm, k, q, qd, lambda, t);
         match load {
             Load::Pin(p) => p.newton_derivatives(&x, dq, dqd),
             Load::Slide(f) => f.newton_derivatives(&x, dq, dqd),
@@ -194,7 +198,8 @@ impl JointFrictions {
     #[allow(clippy::too_many_arguments)]
     pub fn step_fraction(
         &self,
-        s: &System,
+        model: &Model,
+        asm: &Assembly,
         q: &[f64],
         qd: &[f64],
         dx: &[f64],
@@ -203,16 +208,16 @@ impl JointFrictions {
     ) -> f64 {
         let mut theta = 1.0f64;
         for (k, &(j, law)) in self.items.iter().enumerate() {
-            let x = s.asm.local(s.model, j, q, qd, t);
+            let x = asm.local(model, j, q, qd, t);
             let mut moved = x;
-            for (b, body) in s.model.joints[j].constraint.bodies().iter().enumerate() {
-                if let Some(c) = s.asm.body_col(body.0) {
+            for (b, body) in model.joints[j].constraint.bodies().iter().enumerate() {
+                if let Some(c) = asm.body_col(body.0) {
                     for d in 0..3 {
                         moved.qd[b][d] += gp * dx[c + d];
                     }
                 }
             }
-            let (v0, v1) = self.slips(s, k, &x, &moved);
+            let (v0, v1) = self.slips(model, k, &x, &moved);
             let vs = law.transition_speed;
             if v0.abs() >= vs && v1 * v0 < 0.0 && v1.abs() > vs {
                 theta = theta.min(v0 / (v0 - v1));
@@ -223,8 +228,8 @@ impl JointFrictions {
 
     /// The slip speeds of item `k` at two local states of its joint (the
     /// geometry of the first).
-    fn slips(&self, s: &System, k: usize, a: &Local, b: &Local) -> (f64, f64) {
-        match self.load_at(s.model, k, a, 0.0) {
+    fn slips(&self, model: &Model, k: usize, a: &Local, b: &Local) -> (f64, f64) {
+        match self.load_at(model, k, a, 0.0) {
             Load::Pin(p) => (p.slip(a), p.slip(b)),
             Load::Slide(f) => (f.slip(a), f.slip(b)),
         }
@@ -259,16 +264,18 @@ impl JointFrictions {
     /// or force on body j and the friction power, and the friction load
     /// (F_x, F_y, moment about the global origin) on the ground, zero when
     /// neither body is the ground (for the shaking channels).
+    #[allow(clippy::too_many_arguments)]
     pub fn channels(
         &self,
-        s: &System,
+        model: &Model,
+        asm: &Assembly,
         k: usize,
         q: &[f64],
         qd: &[f64],
         lambda: &[f64],
         t: f64,
     ) -> ([f64; 2], [f64; 3]) {
-        let (load, x) = self.load(s, k, q, qd, lambda, t);
+        let (load, x) = self.load(model, asm, k, q, qd, lambda, t);
         let value = match &load {
             Load::Pin(p) => p.torque(&x).0,
             Load::Slide(f) => {
@@ -288,6 +295,62 @@ impl JointFrictions {
             .find(|&b| bodies[b].is_ground())
             .map_or([0.0; 3], |b| qf[b]);
         ([value, power], ground)
+    }
+
+    /// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q + Q_f(λ); γ] in place in `rhs` (length
+    /// n + m), which holds [Q; γ] on entry; `solve` applies the factored
+    /// matrix's inverse in place. One solve without friction, then, when the
+    /// model has friction, fixed-point iteration on λ.
+    #[allow(clippy::too_many_arguments)]
+    pub fn consistent(
+        &self,
+        model: &Model,
+        asm: &Assembly,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        rhs: &mut [f64],
+        solve: &mut dyn FnMut(&mut [f64]),
+    ) -> Result<(), AnalysisError> {
+        if self.is_empty() {
+            solve(rhs);
+            return Ok(());
+        }
+        let n = asm.n;
+        let base = rhs.to_vec();
+        solve(rhs);
+        let g = |lambda: &[f64], next: &mut [f64]| {
+            next.copy_from_slice(&base);
+            self.add(model, asm, q, qd, lambda, t, 1.0, &mut next[..n]);
+            solve(next);
+        };
+        fixed_point(t, g, rhs, n)
+    }
+
+    /// The multipliers λ of inverse dynamics with friction, by fixed-point
+    /// iteration from the frictionless λ they hold on entry: `base` is the
+    /// right side without friction (Q − M q̈ in its first n entries) and
+    /// `solve(f, λ)` writes the multipliers of right side f into λ.
+    #[allow(clippy::too_many_arguments)]
+    pub fn inverse(
+        &self,
+        model: &Model,
+        asm: &Assembly,
+        t: f64,
+        q: &[f64],
+        qd: &[f64],
+        base: &[f64],
+        lambda: &mut [f64],
+        solve: &mut dyn FnMut(&mut [f64], &mut [f64]),
+    ) -> Result<(), AnalysisError> {
+        let n = asm.n;
+        let mut f = vec![0.0; base.len()];
+        let g = |lam: &[f64], next: &mut [f64]| {
+            f.copy_from_slice(base);
+            self.add(model, asm, q, qd, lam, t, 1.0, &mut f[..n]);
+            solve(&mut f, next);
+        };
+        fixed_point(t, g, lambda, 0)
     }
 }
 
@@ -327,57 +390,6 @@ fn tangent(model: &Model, j: usize, c: &Constraint, x: &Local) -> (V2, usize) {
         Some((side, curve)) => (unit(curve.jet(x.own[0]).d1), side),
         None => ([f64::NAN; 2], 0),
     }
-}
-
-/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q + Q_f(λ); γ] in place in `rhs` (length
-/// n + m), which holds [Q; γ] on entry; `solve` applies the factored
-/// matrix's inverse in place. One solve without friction, then, when the
-/// model has friction, fixed-point iteration on λ.
-pub fn consistent(
-    s: &System,
-    t: f64,
-    q: &[f64],
-    qd: &[f64],
-    rhs: &mut [f64],
-    solve: &mut dyn FnMut(&mut [f64]),
-) -> Result<(), AnalysisError> {
-    if s.friction.is_empty() {
-        solve(rhs);
-        return Ok(());
-    }
-    let n = s.n();
-    let base = rhs.to_vec();
-    solve(rhs);
-    let g = |lambda: &[f64], next: &mut [f64]| {
-        next.copy_from_slice(&base);
-        s.friction.add(s, q, qd, lambda, t, 1.0, &mut next[..n]);
-        solve(next);
-    };
-    fixed_point(t, g, rhs, n)
-}
-
-/// The multipliers λ of inverse dynamics with friction, by fixed-point
-/// iteration from the frictionless λ they hold on entry: `base` is the
-/// right side without friction (Q − M q̈ in its first n entries) and
-/// `solve(f, λ)` writes the multipliers of right side f into λ.
-#[allow(clippy::too_many_arguments)]
-pub fn inverse(
-    s: &System,
-    t: f64,
-    q: &[f64],
-    qd: &[f64],
-    base: &[f64],
-    lambda: &mut [f64],
-    solve: &mut dyn FnMut(&mut [f64], &mut [f64]),
-) -> Result<(), AnalysisError> {
-    let n = s.n();
-    let mut f = vec![0.0; base.len()];
-    let g = |lam: &[f64], next: &mut [f64]| {
-        f.copy_from_slice(base);
-        s.friction.add(s, q, qd, lam, t, 1.0, &mut f[..n]);
-        solve(&mut f, next);
-    };
-    fixed_point(t, g, lambda, 0)
 }
 
 /// Fixed-point iteration x ← g(x) where g reads only the multipliers

@@ -22,7 +22,7 @@
 //! ([`super::contact_force`]).
 
 use super::contact_force::LiftOffWatch;
-use super::friction;
+
 use super::output::{self, Scratch};
 use super::project::IDENTITY;
 use super::system::{Augmented, System};
@@ -125,7 +125,16 @@ impl<'m> InverseSolver<'m> {
                         out.copy_from_slice(f);
                     };
                     let lambda = &mut self.lambda;
-                    friction::inverse(&self.sys, t, q, qd, &self.rhs, lambda, &mut solve)?;
+                    self.sys.friction.inverse(
+                        self.sys.model,
+                        &self.sys.asm,
+                        t,
+                        q,
+                        qd,
+                        &self.rhs,
+                        lambda,
+                        &mut solve,
+                    )?;
                 }
             }
             Multipliers::MinNorm(aug) => {
@@ -146,7 +155,16 @@ impl<'m> InverseSolver<'m> {
                         out.copy_from_slice(&f[n..]);
                     };
                     let lambda = &mut self.lambda;
-                    friction::inverse(&self.sys, t, q, qd, &base, lambda, &mut solve)?;
+                    self.sys.friction.inverse(
+                        self.sys.model,
+                        &self.sys.asm,
+                        t,
+                        q,
+                        qd,
+                        &base,
+                        lambda,
+                        &mut solve,
+                    )?;
                 }
             }
         }
@@ -171,36 +189,68 @@ pub fn run(
     points: &[PointOutput],
     sink: &mut dyn Sink,
 ) -> Result<Summary, AnalysisError> {
-    let mut s = InverseSolver::new(model, settings.clone())?;
+    let s = InverseSolver::new(model, settings.clone())?;
     let mut names = run::channels(model, points);
     let nk = names.len();
     names.extend(output::channels(model));
-    sink.begin(&names);
-    let mut lift_off = LiftOffWatch::new(model, &names);
-    let mut values = vec![0.0; names.len()];
-    let mut scratch = Scratch::new(&s.sys);
-    let mut prev: Option<f64> = None;
-    let mut limits = LimitWatch::new(model);
-    for &t in times {
-        run::check_next_time(prev, t)?;
+    let mut r = InverseRun {
+        model,
+        points,
+        nk,
+        lift_off: LiftOffWatch::new(model, &names),
+        scratch: Scratch::new(&s.sys),
+        limits: LimitWatch::new(model),
+        s,
+    };
+    run::output_loop(&mut r, times, &names, sink)?;
+    let mut summary = r.s.kin.summary.clone();
+    r.lift_off.report(&mut summary);
+    summary.warnings.extend(r.limits.warnings(model));
+    Ok(summary)
+}
+
+/// An inverse-dynamics run as the output loop drives it.
+struct InverseRun<'a, 'm> {
+    model: &'m Model,
+    points: &'a [PointOutput],
+    /// The number of kinematic channels, before the dynamic ones.
+    nk: usize,
+    lift_off: LiftOffWatch,
+    scratch: Scratch,
+    limits: LimitWatch,
+    s: InverseSolver<'m>,
+}
+
+impl run::Analysis for InverseRun<'_, '_> {
+    fn reach(
+        &mut self,
+        t: f64,
+        prev: Option<f64>,
+        _tick: &mut run::Tick,
+    ) -> Result<(), AnalysisError> {
+        let s = &mut self.s;
         s.step(t, prev)?;
-        limits.observe(model, s.kin.assembly(), &s.kin.q, t);
-        s.kin.outputs(points, &mut values[..nk]);
+        self.limits
+            .observe(self.model, s.kin.assembly(), &s.kin.q, t);
+        Ok(())
+    }
+
+    fn fill(&mut self, t: f64, values: &mut [f64]) -> Result<(), AnalysisError> {
+        let (s, nk) = (&mut self.s, self.nk);
+        s.kin.outputs(self.points, &mut values[..nk]);
         output::fill(
             &s.sys,
-            &mut scratch,
+            &mut self.scratch,
             &s.kin.q,
             &s.kin.qd,
             &s.lambda,
             t,
             &mut values[nk..],
         );
-        sink.row(t, &values).map_err(|s| s.at(t))?;
-        lift_off.observe(t, &values);
-        prev = Some(t);
+        Ok(())
     }
-    let mut summary = s.kin.summary.clone();
-    lift_off.report(&mut summary);
-    summary.warnings.extend(limits.warnings(model));
-    Ok(summary)
+
+    fn observe(&mut self, t: f64, values: &[f64]) {
+        self.lift_off.observe(t, values);
+    }
 }

@@ -18,16 +18,19 @@
 //!   drift, in [`drift`];
 //! - inverse dynamics of a driven (zero-DOF) model, in [`inverse`];
 //! - equilibrium, in [`statics`];
-//! - forward dynamics, implicit index-3 generalized-α, in [`integrator`],
-//!   through bifurcation points with the branch rows of [`branch`],
-//!   with unilateral cam contacts (lift-off, flight, impact) in
-//!   [`unilateral`], joint limits as end stops in [`stops`] and the
+//! - forward dynamics: the run with output, in [`integrator`]; the
+//!   implicit index-3 generalized-α integrator, in [`generalized_alpha`],
+//!   through bifurcation points with the branch rows of [`branch`], its
+//!   retry policy in [`retry`]; the
+//!   layer of unilateral cam contacts (lift-off, flight, impact) over it
+//!   in [`unilateral`], joint limits as end stops in [`stops`] and the
 //!   impact law in [`impact`].
 
 pub(crate) mod branch;
 pub mod contact_force;
 pub mod drift;
 pub mod friction;
+pub mod generalized_alpha;
 pub mod impact;
 pub mod integrator;
 pub mod inverse;
@@ -36,6 +39,7 @@ pub mod output;
 pub mod project;
 pub mod reaction;
 pub mod redundant;
+pub mod retry;
 pub mod statics;
 pub mod stops;
 pub mod system;

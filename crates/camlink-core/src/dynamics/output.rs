@@ -83,17 +83,21 @@ pub fn channels(model: &Model) -> Vec<Channel> {
     for (name, q) in SHAKING.iter().zip([Force, Force, Torque]) {
         out.push(Channel::new(*name, q));
     }
-    for (name, q) in [
-        ("energy.kinetic", Energy),
-        ("energy.potential", Energy),
-        ("energy.total", Energy),
-        ("constraint.residual", Residual),
-        ("constraint.velocity", ResidualRate),
-    ] {
+    for (name, q) in ENERGY_AND_DRIFT {
         out.push(Channel::new(name, q));
     }
     out
 }
+
+/// The last dynamic channels, in the order [`energy_and_drift`] writes
+/// them.
+pub const ENERGY_AND_DRIFT: [(&str, Quantity); 5] = [
+    ("energy.kinetic", Quantity::Energy),
+    ("energy.potential", Quantity::Energy),
+    ("energy.total", Quantity::Energy),
+    ("constraint.residual", Quantity::Residual),
+    ("constraint.velocity", Quantity::ResidualRate),
+];
 
 /// The quantity of the generalized force conjugate to a coordinate that
 /// measures `driven`: N for a length, N·m for an angle, J (N·m per unit)
@@ -151,7 +155,13 @@ pub fn fill(
 ) {
     // fill_forces leaves ν of the same (q, t) in w.drift.nu.
     let k = fill_forces(s, w, q, qd, lambda, t, out);
-    out[k..k + 5].copy_from_slice(&energy_and_drift_from_nu(s, &mut w.drift, q, qd, t));
+    out[k..k + ENERGY_AND_DRIFT.len()].copy_from_slice(&energy_and_drift_from_nu(
+        s,
+        &mut w.drift,
+        q,
+        qd,
+        t,
+    ));
 }
 
 /// Fills the channels of [`fill`] before the energy and drift: the
@@ -205,7 +215,9 @@ pub fn fill_forces(
                 k += 2;
             }
             if joint.friction.is_some() {
-                let (fp, ground) = sys.friction.channels(sys, friction, q, qd, lambda, t);
+                let (fp, ground) = sys
+                    .friction
+                    .channels(model, asm, friction, q, qd, lambda, t);
                 out[k..k + 2].copy_from_slice(&fp);
                 for (a, b) in shake.iter_mut().zip(ground) {
                     *a += b;
@@ -242,7 +254,7 @@ pub fn energy_and_drift(
     q: &[f64],
     qd: &[f64],
     t: f64,
-) -> [f64; 5] {
+) -> [f64; ENERGY_AND_DRIFT.len()] {
     w.nu.resize(s.m(), 0.0);
     s.asm.nu(s.model, q, t, &mut w.nu);
     energy_and_drift_from_nu(s, w, q, qd, t)
@@ -255,7 +267,7 @@ fn energy_and_drift_from_nu(
     q: &[f64],
     qd: &[f64],
     t: f64,
-) -> [f64; 5] {
+) -> [f64; ENERGY_AND_DRIFT.len()] {
     let (model, asm, m) = (s.model, &s.asm, s.m());
     debug_assert_eq!(w.nu.len(), m, "ν of every equation");
     let kin = s.kinetic(q, qd);

@@ -213,7 +213,8 @@ impl<'m> System<'m> {
     ) -> Result<(), AnalysisError> {
         self.motion_residual(q, qd, qdd, t, out)?;
         self.add_jt_lambda(q, t, lambda, out);
-        self.friction.add(self, q, qd, lambda, t, -1.0, out);
+        self.friction
+            .add(self.model, &self.asm, q, qd, lambda, t, -1.0, out);
         Ok(())
     }
 
@@ -233,7 +234,8 @@ impl<'m> System<'m> {
         self.motion_residual(q, qd, qdd, t, out)?;
         self.asm
             .phi_and_jacobian(self.model, q, t, phi, |r, c, v| out[c] += v * lambda[r]);
-        self.friction.add(self, q, qd, lambda, t, -1.0, out);
+        self.friction
+            .add(self.model, &self.asm, q, qd, lambda, t, -1.0, out);
         Ok(())
     }
 
@@ -587,8 +589,17 @@ impl Augmented {
         // Joint friction at λ: R has −Q_f.
         if let Some(lambda) = lambda {
             for (f, slots) in self.friction_slots.iter().enumerate() {
-                s.friction
-                    .derivatives(s, f, q, qd, lambda, t, &mut jac.dq, &mut jac.dqd);
+                s.friction.derivatives(
+                    s.model,
+                    &s.asm,
+                    f,
+                    q,
+                    qd,
+                    lambda,
+                    t,
+                    &mut jac.dq,
+                    &mut jac.dqd,
+                );
                 add_pair(&mut self.vals, slots, &jac.dq, &jac.dqd, k);
             }
         }

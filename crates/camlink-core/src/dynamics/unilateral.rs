@@ -43,8 +43,10 @@
 //! ([`Integrator::dense_between`]) in the model of that step. The
 //! error-controlled mode is refused in a run with unilateral contacts.
 
+use super::generalized_alpha::{
+    arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot,
+};
 use super::impact;
-use super::integrator::{arrived_within, fixed_step, steps_over, Integrator, Settings, Snapshot};
 use super::output::{self, DriftScratch, Scratch};
 use super::stops::{self, Stop};
 use super::system::{Augmented, System};
@@ -57,7 +59,9 @@ use crate::force::Force;
 use crate::math::{dot, perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::quantity::{Channel, Quantity};
-use crate::run::{self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary};
+use crate::run::{
+    self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary, Tick,
+};
 
 pub use crate::diagnose::OPEN_AT_START;
 
@@ -270,10 +274,6 @@ fn contacts(
 pub fn event_tol_bounds(h: f64, t_span: f64) -> (f64, f64) {
     (16.0 * f64::EPSILON * h.max(t_span), h)
 }
-
-/// What is called before every step and every trial of an event's
-/// location: a sink's [`Sink::tick`], whose error stops the run.
-type Tick<'a> = dyn FnMut() -> Result<(), AnalysisError> + 'a;
 
 /// What the event functions say at the end of a step.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -504,12 +504,7 @@ impl<'a> Run<'a> {
 
     /// One step of length `h`, or up to the first event inside it, located
     /// and handled; `tick` is called before every trial of the location.
-    fn step(
-        &mut self,
-        h: f64,
-        snap: &mut Snapshot,
-        tick: &mut Tick<'_>,
-    ) -> Result<(), AnalysisError> {
+    fn step(&mut self, h: f64, snap: &mut Snapshot, tick: &mut Tick) -> Result<(), AnalysisError> {
         let mut gaps = std::mem::take(&mut self.gaps);
         gaps.clear();
         gaps.extend(self.contacts.iter().map(|c| c.gap));
@@ -524,7 +519,7 @@ impl<'a> Run<'a> {
         h: f64,
         snap: &mut Snapshot,
         gaps: &[Option<Gap>],
-        tick: &mut Tick<'_>,
+        tick: &mut Tick,
     ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
         let t0 = self.it().t;
@@ -545,7 +540,7 @@ impl<'a> Run<'a> {
         gaps: &[Option<Gap>],
         t0: f64,
         n0: &[Option<f64>],
-        tick: &mut Tick<'_>,
+        tick: &mut Tick,
     ) -> Result<(), AnalysisError> {
         self.it().step(h)?;
         self.pull()?;
@@ -972,19 +967,19 @@ impl Row<'_, '_> {
             f.points,
             &mut values[..nk],
         );
-        output::fill_forces(
+        let forces = output::fill_forces(
             self.full,
             &mut f.scratch,
             self.q,
             self.qd,
             self.lambda,
             self.t,
-            &mut values[nk..nd - 5],
+            &mut values[nk..nd],
         );
         // Energy and drift of the model in force: its potential includes
         // the compliant contacts' and an open joint's equations are released.
         let [q, qd] = self.own;
-        values[nd - 5..nd].copy_from_slice(&output::energy_and_drift(
+        values[nk + forces..nd].copy_from_slice(&output::energy_and_drift(
             self.sys,
             &mut f.drift,
             q,
@@ -1004,6 +999,92 @@ impl Row<'_, '_> {
                 values[at] = if open { 0.0 } else { s.push(self.lambda[row]) };
             }
         }
+    }
+}
+
+/// A run with unilateral contacts as the output loop drives it: steps
+/// of h from the last landing or event, and the output scratch.
+struct UnilateralRun<'a, 'r> {
+    r: Run<'a>,
+    fill: Fill<'r, 'a>,
+    /// The state at the start of the step being taken.
+    snap: Snapshot,
+    h_max: f64,
+    /// The active set of the step that holds the output time reached,
+    /// when it lies inside that step.
+    inside: Option<usize>,
+}
+
+impl run::Analysis for UnilateralRun<'_, '_> {
+    fn reach(&mut self, t: f64, prev: Option<f64>, tick: &mut Tick) -> Result<(), AnalysisError> {
+        let (r, h_max) = (&mut self.r, self.h_max);
+        if prev.is_some() {
+            // Steps of h from the last landing or event; one that would
+            // land on t short of a whole step goes past it, keeping its
+            // ends for the output there.
+            let done = arrived_within(t, h_max);
+            while t - r.it().t > done {
+                tick()?;
+                let left = t - r.it().t;
+                r.hold = steps_over(left, h_max);
+                let h = if r.hold {
+                    h_max
+                } else {
+                    fixed_step(left, h_max)
+                };
+                r.step(h, &mut self.snap, tick)?;
+                let now = r.it().t;
+                r.track_flights(now);
+            }
+        }
+        // Past t: the state there from the step that holds it.
+        self.inside = if r.it().t - t > arrived_within(t, h_max) {
+            r.dense_row(t)?
+        } else {
+            None
+        };
+        if self.inside.is_none() {
+            r.pull()?;
+        }
+        Ok(())
+    }
+
+    fn fill(&mut self, t: f64, values: &mut [f64]) -> Result<(), AnalysisError> {
+        let r = &mut self.r;
+        if let Some(mask) = self.inside {
+            let [q, qd, qdd, lambda] = &r.out;
+            let it = r.its[mask].as_ref().expect("integrator");
+            let d = it.dense.as_ref().expect("dense output");
+            let opens = (0..r.contacts.len()).map(|k| mask & (1 << k) != 0);
+            let state = Row {
+                q,
+                qd,
+                qdd,
+                lambda,
+                t,
+                full: &r.full,
+                sys: &it.sys,
+                own: [&d.q, &d.qd],
+            };
+            let states = opens.zip(r.out_gaps.iter().copied());
+            state.fill(&mut self.fill, &r.contacts, states, values);
+            return Ok(());
+        }
+        let tr = r.it().t;
+        let it = r.its[r.mask].as_ref().expect("integrator");
+        let state = Row {
+            q: &r.q,
+            qd: &r.qd,
+            qdd: &r.qdd,
+            lambda: &r.lambda,
+            t: tr,
+            full: &r.full,
+            sys: &it.sys,
+            own: [&it.q, &it.qd],
+        };
+        let states = r.contacts.iter().map(|c| (c.open, c.gap));
+        state.fill(&mut self.fill, &r.contacts, states, values);
+        Ok(())
     }
 }
 
@@ -1207,9 +1288,7 @@ pub fn run(
             names.iter().position(|n| n.name == name)
         })
         .collect();
-    sink.begin(&names);
-    let mut values = vec![0.0; names.len()];
-    let mut fill = Fill {
+    let fill = Fill {
         model,
         view: Contacts::new(model),
         points,
@@ -1219,76 +1298,15 @@ pub fn run(
         nk,
         nd,
     };
-    let mut snap = Snapshot::default();
-    let h_max = settings.step;
-    for (i, &t) in times.iter().enumerate() {
-        if i > 0 {
-            run::check_next_time(Some(times[i - 1]), t)?;
-            // Steps of h from the last landing or event; one that would
-            // land on t short of a whole step goes past it, keeping its
-            // ends for the output there.
-            let done = arrived_within(t, h_max);
-            while t - r.it().t > done {
-                sink.tick().map_err(|s| s.at(t))?;
-                let left = t - r.it().t;
-                r.hold = steps_over(left, h_max);
-                let h = if r.hold {
-                    h_max
-                } else {
-                    fixed_step(left, h_max)
-                };
-                r.step(h, &mut snap, &mut || sink.tick().map_err(|s| s.at(t)))?;
-                let now = r.it().t;
-                r.track_flights(now);
-            }
-        }
-        // Past t: the state there from the step that holds it.
-        let inside = if r.it().t - t > arrived_within(t, h_max) {
-            r.dense_row(t)?
-        } else {
-            None
-        };
-        if let Some(mask) = inside {
-            let [q, qd, qdd, lambda] = &r.out;
-            let it = r.its[mask].as_ref().expect("integrator");
-            let d = it.dense.as_ref().expect("dense output");
-            let opens = (0..r.contacts.len()).map(|k| mask & (1 << k) != 0);
-            let state = Row {
-                q,
-                qd,
-                qdd,
-                lambda,
-                t,
-                full: &r.full,
-                sys: &it.sys,
-                own: [&d.q, &d.qd],
-            };
-            state.fill(
-                &mut fill,
-                &r.contacts,
-                opens.zip(r.out_gaps.iter().copied()),
-                &mut values,
-            );
-            sink.row(t, &values).map_err(|s| s.at(t))?;
-            continue;
-        }
-        r.pull()?;
-        let tr = r.it().t;
-        let it = r.its[r.mask].as_ref().expect("integrator");
-        let state = Row {
-            q: &r.q,
-            qd: &r.qd,
-            qdd: &r.qdd,
-            lambda: &r.lambda,
-            t: tr,
-            full: &r.full,
-            sys: &it.sys,
-            own: [&it.q, &it.qd],
-        };
-        let contacts = r.contacts.iter().map(|c| (c.open, c.gap));
-        state.fill(&mut fill, &r.contacts, contacts, &mut values);
-        sink.row(t, &values).map_err(|s| s.at(t))?;
-    }
+    let mut u = UnilateralRun {
+        r,
+        fill,
+        snap: Snapshot::default(),
+        h_max: settings.step,
+        inside: None,
+    };
+    run::output_loop(&mut u, times, &names, sink)?;
+    let mut r = u.r;
     // Flights under way at the end (a stop's time off its limit is no
     // flight), then the solver counts of every model.
     let mut summary = std::mem::take(&mut r.summary);

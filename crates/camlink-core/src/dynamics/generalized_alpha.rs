@@ -1,0 +1,1786 @@
+//! Forward dynamics: the implicit index-3 generalized-α method
+//! (Chung & Hulbert 1993; Arnold & Brüls 2007) with Newton's method on the
+//! discretised equations.
+//!
+//! The equations M(q) q̈ + Φ_qᵀλ = Q(q, q̇, t), Φ(q, t) = 0 are enforced at
+//! every t_{n+1} = t_n + h. The pseudo-acceleration a carries the numerical
+//! damping:
+//!
+//! (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) q̈_{n+1} + α_f q̈_n,
+//! q_{n+1} = q_n + h q̇_n + h² (½ − β) a_n + h² β a_{n+1},
+//! q̇_{n+1} = q̇_n + h (1 − γ) a_n + h γ a_{n+1},
+//!
+//! with, for a spectral radius at infinity ρ∞ ∈ [0, 1] (1: no numerical
+//! damping, 0: the most), α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1),
+//! γ = ½ + α_f − α_m, β = ¼ (γ + ½)². Second-order accurate in q and q̇.
+//!
+//! Newton unknowns are q̈_{n+1} and λ_{n+1}; a change Δq of positions goes
+//! with Δq̇ = γ' Δq and Δq̈ = β' Δq, β' = (1 − α_m)/(β h² (1 − α_f)),
+//! γ' = γ/(β h). The iteration matrix is the augmented matrix
+//!
+//! [ s (β' M + γ' ∂R/∂q̇ + ∂R/∂q)  Φ_qᵀ ; Φ_q  0 ],  s = 1/β',
+//!
+//! whose first block row is the equations of motion scaled by s (so that
+//! both block rows are O(1) for small h, Bottasso et al. 2007) and whose
+//! unknowns are (Δq, s Δλ). ∂R/∂q includes the constraint curvature
+//! (Φ_qᵀλ)_q and the derivatives of gravity, springs and dampers, so stiff
+//! springs converge. The factorization is kept from step to step and
+//! refreshed only when Newton converges slowly (chord iterations).
+//!
+//! Where Φ_q loses rank S is singular and S_ε, the regularised matrix of
+//! the augmented Lagrangian formulation, is factored instead
+//! ([`super::system::Augmented`]). Within a small window around a
+//! bifurcation point, where two branches of Φ = 0 cross (the flat position
+//! of a parallelogram), the lost equations are joined by branch rows that
+//! hold the branch being followed ([`super::branch`]).
+//!
+//! Initial conditions are made consistent: positions and velocities
+//! projected onto Φ = 0 and Φ_q q̇ = ν ([`super::project`]), then q̈₀ and λ₀
+//! from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ], and a₀ = q̈₀.
+//!
+//! Steps keep to their own grid: an output time inside a step, short of
+//! its end, is served by [`Integrator::dense_output`] (cubic Hermite
+//! interpolants of q and q̇, projected onto the constraints, then the
+//! consistent q̈ and λ), never by a step cut short to meet it.
+//!
+//! The error-controlled mode estimates the local error of a step as
+//! h² |β − 1/6| |q̈_{n+1} − q̈_n| per coordinate, the leading term of the
+//! Newmark truncation error (with q̈ for a, whose parasitic oscillation
+//! after a change of step would trigger needless rejections), rejects steps
+//! whose weighted norm exceeds 1 and changes h by a PI controller on the
+//! errors of the last two accepted steps.
+
+use super::branch::{self, BranchRows};
+use super::project;
+use super::redundant::Redundant;
+use super::retry::{self, Way, SINGULAR_ITER};
+use super::system::{Augmented, Coefficients, System};
+use crate::linsolve::DenseLu;
+use crate::math::{inner, max_abs};
+use crate::model::Model;
+use crate::newton;
+use crate::run::{self, AnalysisError, Kind, Summary};
+
+/// A Newton correction larger than this fraction of the one before means
+/// the chord iteration has stalled: the next iteration refactors.
+const STALL: f64 = 0.5;
+
+/// A chord iteration whose correction is more than this fraction of the
+/// one before, short of a stall ([`STALL`]), refactors for the next
+/// iteration, while the correction is more than [`ABOVE_ROUNDING`] times
+/// the rounding of the largest coordinate.
+const SLOW: f64 = 0.2;
+
+/// See [`SLOW`].
+const ABOVE_ROUNDING: f64 = 1e3;
+
+/// A correction within this many times the measured rounding noise of the
+/// solve counts as converged.
+const NOISE_SAFETY: f64 = 4.0;
+
+/// A step whose largest multiplier grew by more than this factor makes
+/// the next one start from the multipliers consistent with its predicted
+/// state (see `Integrator::predict`).
+const LAMBDA_JUMP: f64 = 1.5;
+
+/// A growth of the largest multiplier by more than this factor in one
+/// step triggers the same restart even when it is not accelerating.
+const LAMBDA_LEAP: f64 = 3.0;
+
+/// In the error-controlled mode Newton's tolerance is at most this
+/// fraction of the local error allowed to a coordinate, atol + rtol |q_k|
+/// (m or rad; the same number in m/s and m/s² for its velocity and
+/// acceleration corrections), so that what Newton leaves stays well within
+/// the error the step controller estimates.
+const NEWTON_SHARE: f64 = 0.1;
+
+/// The fixed-step mode stretches a step by up to this fraction of h rather
+/// than leave a sliver before an output time.
+const SLIVER: f64 = 1e-6;
+
+/// A factorization whose smallest relative pivot falls below this makes
+/// the step look for a lost rank of Φ_q ([`branch`]).
+const PIVOT_WATCH: f64 = 1e-6;
+
+/// The first plain step past a window of branch rows has kept to the
+/// branch when its motion across the rows is within this fraction of it.
+const GUARD: f64 = 0.1;
+
+/// A step that moves a coordinate by this much (m or rad) or more passes a
+/// bifurcation point at speed, without branch rows.
+const SLOW_STEP: f64 = 1e-4;
+
+/// How close to `t_end` (s) a run of steps of at most `h_max` (s) counts
+/// as there: a few ulps of t_end, or a trillionth of the step (a step
+/// larger than the interval counts as the interval, so a huge h still
+/// steps).
+pub(crate) fn arrived_within(t_end: f64, h_max: f64) -> f64 {
+    let scale = h_max.min(t_end.abs()).max(f64::MIN_POSITIVE);
+    (4.0 * f64::EPSILON * t_end.abs()).max(1e-12 * scale)
+}
+
+/// The next fixed step with `left` (s) to go: `h_max`, or the whole of
+/// `left` when it is at most [`SLIVER`] longer than `h_max`. The rounding
+/// of t accumulated over the steps of an output interval would otherwise
+/// leave a sliver of a step (~1e-14 s at h = 1e-5 s), whose Newton matrix
+/// (β' ∝ 1/h²) cannot be factored.
+pub(crate) fn fixed_step(left: f64, h_max: f64) -> f64 {
+    if left <= h_max * (1.0 + SLIVER) {
+        left
+    } else {
+        h_max
+    }
+}
+
+/// True when an output time `left` (s) ahead lies inside the next fixed
+/// step of `h_max` (s), short of a whole step by more than [`SLIVER`]: the
+/// step goes past it and the output is interpolated
+/// ([`Integrator::dense_output`]).
+pub(crate) fn steps_over(left: f64, h_max: f64) -> bool {
+    left < h_max * (1.0 - SLIVER)
+}
+
+/// Error control of the variable-step mode: the weighted local error
+/// |e_k| / (atol + rtol |q_k|) is kept ≤ 1.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Adaptive {
+    /// Absolute tolerance (m or rad).
+    pub atol: f64,
+    /// Relative tolerance.
+    pub rtol: f64,
+    /// Smallest step allowed (s).
+    pub h_min: f64,
+}
+
+/// Integrator settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    /// Time step h (s); the largest step in the error-controlled mode.
+    pub step: f64,
+    /// Spectral radius at infinity ρ∞ ∈ [0, 1].
+    pub rho_inf: f64,
+    /// Newton stops when every coordinate's last correction |Δq_k|, its
+    /// velocity's |Δq̇_k| = γ' |Δq_k| and its acceleration's
+    /// |Δq̈_k| = β' |Δq_k| are each ≤ tol (m or rad; m/s or rad/s; m/s² or
+    /// rad/s²) or within the rounding of the value ([`crate::newton`]),
+    /// whichever is larger. In the error-controlled mode tol is at most a
+    /// tenth of atol + rtol |q_k|.
+    pub tol: f64,
+    /// Newton iterations per step.
+    pub max_iter: usize,
+    /// Tolerance of the initial position projection (m or rad).
+    pub projection_tol: f64,
+    /// `Some` for the error-controlled mode.
+    pub adaptive: Option<Adaptive>,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            step: 1e-3,
+            rho_inf: 0.8,
+            tol: 1e-6,
+            max_iter: 12,
+            projection_tol: 1e-12,
+            adaptive: None,
+        }
+    }
+}
+
+/// The method's coefficients for ρ∞.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Coeffs {
+    pub alpha_m: f64,
+    pub alpha_f: f64,
+    pub beta: f64,
+    pub gamma: f64,
+}
+
+impl Coeffs {
+    pub fn new(rho_inf: f64) -> Self {
+        let r = rho_inf.clamp(0.0, 1.0);
+        let alpha_m = (2.0 * r - 1.0) / (r + 1.0);
+        let alpha_f = r / (r + 1.0);
+        let gamma = 0.5 + alpha_f - alpha_m;
+        Coeffs {
+            alpha_m,
+            alpha_f,
+            beta: 0.25 * (gamma + 0.5) * (gamma + 0.5),
+            gamma,
+        }
+    }
+
+    /// The pseudo-acceleration a_{n+1} of the recurrence
+    /// (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) q̈_{n+1} + α_f q̈_n, for
+    /// one coordinate.
+    #[inline]
+    pub fn next_a(&self, qdd1: f64, qdd0: f64, a0: f64) -> f64 {
+        ((1.0 - self.alpha_f) * qdd1 + self.alpha_f * qdd0 - self.alpha_m * a0)
+            / (1.0 - self.alpha_m)
+    }
+}
+
+/// The state at one time: positions q (m or rad), velocities q̇,
+/// accelerations q̈, multipliers λ and the pseudo-acceleration a.
+#[derive(Clone, Debug, Default)]
+struct State {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+    a: Vec<f64>,
+}
+
+impl State {
+    /// Copies `from` into this state, reusing its vectors.
+    fn copy_from(&mut self, from: &State) {
+        self.q.clone_from(&from.q);
+        self.qd.clone_from(&from.qd);
+        self.qdd.clone_from(&from.qdd);
+        self.lambda.clone_from(&from.lambda);
+        self.a.clone_from(&from.a);
+    }
+}
+
+/// q̈ and λ at the start of the last step, from which the predictor
+/// extrapolates the next step's linearly.
+#[derive(Clone, Debug, Default)]
+struct History {
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+}
+
+/// A copy of an integrator's state: t, (q, q̇, q̈, λ, a) and the
+/// predictor's history, for stepping again from the same start.
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    t: f64,
+    h_prev: f64,
+    h_a: f64,
+    state: State,
+    prev: History,
+}
+
+impl Snapshot {
+    /// Copies `s` into this snapshot, reusing its vectors.
+    pub fn copy_from(&mut self, s: &Snapshot) {
+        self.t = s.t;
+        self.h_prev = s.h_prev;
+        self.h_a = s.h_a;
+        self.state.copy_from(&s.state);
+        self.prev.qdd.clone_from(&s.prev.qdd);
+        self.prev.lambda.clone_from(&s.prev.lambda);
+    }
+
+    /// Its time (s).
+    pub fn t(&self) -> f64 {
+        self.t
+    }
+}
+
+/// How an attempt at a step ended.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Attempt {
+    Converged,
+    /// Newton did not converge.
+    Failed,
+    /// A slow step found S singular: to be taken along the branch.
+    MetSingular,
+}
+
+/// The coefficients of one step of h from t: t₁ = t + h, β' and γ'
+/// (Δq̈ = β' Δq, Δq̇ = γ' Δq) and the scale s = 1/β' of the equations
+/// of motion in Newton's matrix.
+#[derive(Clone, Copy, Debug)]
+struct StepCoeffs {
+    h: f64,
+    t1: f64,
+    bp: f64,
+    gp: f64,
+    s: f64,
+}
+
+impl StepCoeffs {
+    fn new(c: &Coeffs, t: f64, h: f64) -> Self {
+        let bp = (1.0 - c.alpha_m) / (c.beta * h * h * (1.0 - c.alpha_f));
+        StepCoeffs {
+            h,
+            t1: t + h,
+            bp,
+            gp: c.gamma / (c.beta * h),
+            s: 1.0 / bp,
+        }
+    }
+}
+
+/// One Newton correction applied: its largest |Δq_k| (m or rad), its
+/// ratio θ to the one before, and whether the iteration has converged.
+struct Correction {
+    dmax: f64,
+    theta: f64,
+    converged: bool,
+}
+
+/// A forward-dynamics run: the system, the state at t, the start of the
+/// step being taken, the predictor's history, Newton's scratch, the
+/// branch being followed and the run's diagnostics; allocated once.
+pub struct Integrator<'m> {
+    pub sys: System<'m>,
+    /// The model's redundant equations, if any.
+    pub redundant: Option<Redundant>,
+    aug: Augmented,
+    settings: Settings,
+    c: Coeffs,
+
+    // The state.
+    /// Time t (s) and the state there.
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    /// The pseudo-acceleration a.
+    a: Vec<f64>,
+    /// The step (s) that made `a`, a ≈ q̈(t + (α_m − α_f) h_a), or 0 when
+    /// `a` is not known to lie so (it is q̈, or q̈ was solved afresh).
+    h_a: f64,
+    /// The state at the start of the step, to retry it.
+    start: Start,
+
+    // The predictor.
+    /// q̈ and λ at the start of the step before, and its length (0:
+    /// none), for the predictor.
+    prev: History,
+    h_prev: f64,
+    /// max |λ| two steps back (0: not known).
+    lambda_max_before: f64,
+    /// The weighted error of the last accepted error-controlled step.
+    err_prev: Option<f64>,
+
+    // Newton's matrix and scratch.
+    /// The step h the factorization was made for (0: none).
+    h_factored: f64,
+    /// Right side and correction, length n + m.
+    rhs: Vec<f64>,
+    /// Scratch of length n.
+    work: Vec<f64>,
+    /// The rounding noise of a Newton correction, the same level for
+    /// every coordinate (zero until measured in an attempt at a step).
+    noise: f64,
+
+    /// Near a bifurcation point, the branch being followed.
+    follow: Follow,
+
+    // The diagnostics.
+    pub summary: Summary,
+    /// Steps rejected by the error control.
+    pub rejected: usize,
+    /// Whether the last step ended at a singular position (warned once
+    /// per visit).
+    near_singular: bool,
+
+    /// The state at an output time inside the last step
+    /// ([`dense_output`](Self::dense_output)); made at its first use.
+    pub dense: Option<Dense>,
+}
+
+/// The start of the step being taken: its time (s), `h_a` there and the
+/// state (q, q̇, q̈, λ, a).
+#[derive(Debug, Default)]
+struct Start {
+    t: f64,
+    h_a: f64,
+    state: State,
+}
+
+/// Near a bifurcation point ([`branch`]): the branch rows in use, their
+/// multipliers μ, and the bordered matrix [S_ε Bᵀ; B −ε I] (B = [A 0])
+/// solved through S_ε's factorization: X = S_ε⁻¹ Bᵀ (`border`, k columns
+/// of n + m) and the LU of the Schur complement C = −ε I − B X; `ext`
+/// holds the k row corrections of a solve.
+#[derive(Default)]
+struct Follow {
+    rows: Option<BranchRows>,
+    /// At the last look for a lost rank after a plain step: the smallest
+    /// pivot over σ_rel² there.
+    seen: Option<f64>,
+    /// The last rows of a window just left, to check the first plain step.
+    guard: Option<BranchRows>,
+    mu: Vec<f64>,
+    border: Vec<f64>,
+    schur: Option<DenseLu>,
+    ext: Vec<f64>,
+}
+
+/// The state at an output time t inside a step [t₀, t₁]: q and q̇ from the
+/// cubic Hermite interpolants of (q, q̇) and (q̇, q̈) at the step's ends,
+/// projected onto Φ = 0 and Φ_q q̇ = ν, then q̈ and λ consistent with them,
+/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ]. Its own matrix leaves the step's
+/// factorization alone.
+pub struct Dense {
+    /// Time (s).
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    aug: Augmented,
+    rhs: Vec<f64>,
+    /// The projections' scratch.
+    proj: project::Workspace,
+}
+
+impl<'m> Integrator<'m> {
+    /// Lays the model out and makes the initial conditions consistent at t = 0.
+    pub fn new(model: &'m Model, settings: Settings) -> Result<Self, AnalysisError> {
+        Self::starting_at(model, settings, 0.0)
+    }
+
+    /// As [`new`](Self::new), starting at `t0`.
+    pub fn starting_at(
+        model: &'m Model,
+        settings: Settings,
+        t0: f64,
+    ) -> Result<Self, AnalysisError> {
+        let fail = |kind: Kind, message: String, residual: f64| {
+            AnalysisError::new(kind, t0, message).at_joints(Vec::new(), residual)
+        };
+        if !(settings.step.is_finite() && settings.step > 0.0) {
+            return Err(fail(
+                Kind::InvalidInput,
+                format!(
+                    "the time step must be a positive number, not {}",
+                    crate::fmt_num::num(settings.step)
+                ),
+                0.0,
+            ));
+        }
+        let sys = System::new(model);
+        let (n, m) = (sys.n(), sys.m());
+        if n == 0 {
+            return Err(fail(
+                Kind::InvalidInput,
+                "the model has no moving bodies".into(),
+                0.0,
+            ));
+        }
+        let mut q = sys.asm.initial_q(model);
+        let mut qd = vec![0.0; n];
+        for (id, b) in model.moving_bodies() {
+            let c = sys.asm.body_col(id.0).expect("moving body");
+            qd[c..c + 3].copy_from_slice(&b.qd0);
+        }
+        let mut aug =
+            Augmented::new(&sys, &q).map_err(|e| fail(Kind::Internal, e.to_string(), 0.0))?;
+        let redundant = Redundant::detect(&sys, &mut aug, &q, t0);
+        let mut summary = Summary::default();
+        if let Some(r) = &redundant {
+            aug.set_regularised(true);
+            summary.warnings.push(r.warning(t0));
+        }
+        // The joints furthest from Φ = 0 at q when a projection fails.
+        let named = |e: project::ProjectionError, q: &[f64]| {
+            let mut phi = vec![0.0; m];
+            sys.asm.phi(model, q, t0, &mut phi);
+            let (joints, _) = run::worst_joints(model, &sys.asm, &phi, 0.0);
+            fail(e.kind, e.message, e.residual).at_joints(joints, e.residual)
+        };
+        project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
+            .map_err(|e| named(e, &q))?;
+        project::velocities(&sys, &mut aug, &q, &mut qd, t0).map_err(|e| named(e, &q))?;
+        let mut it = Integrator {
+            c: Coeffs::new(settings.rho_inf),
+            aug,
+            settings,
+            t: t0,
+            qdd: vec![0.0; n],
+            lambda: vec![0.0; m],
+            a: vec![0.0; n],
+            h_a: 0.0,
+            h_factored: 0.0,
+            start: Start {
+                t: t0,
+                h_a: 0.0,
+                state: State {
+                    q: q.clone(),
+                    qd: qd.clone(),
+                    qdd: vec![0.0; n],
+                    lambda: vec![0.0; m],
+                    a: vec![0.0; n],
+                },
+            },
+            prev: History {
+                qdd: vec![0.0; n],
+                lambda: vec![0.0; m],
+            },
+            h_prev: 0.0,
+            rhs: vec![0.0; n + m],
+            work: vec![0.0; n],
+            noise: 0.0,
+            q,
+            qd,
+            sys,
+            summary,
+            redundant,
+            rejected: 0,
+            err_prev: None,
+            near_singular: false,
+            lambda_max_before: 0.0,
+            follow: Follow::default(),
+            dense: None,
+        };
+        it.accelerations()?;
+        it.a.copy_from_slice(&it.qdd);
+        it.watch_singularity();
+        Ok(it)
+    }
+
+    /// Restarts at an event of a unilateral contact ([`super::unilateral`])
+    /// from (t, q, q̇): positions and velocities projected onto this
+    /// model's constraints, q̈ and λ consistent, the predictor's history
+    /// dropped.
+    pub fn restart(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Result<(), AnalysisError> {
+        self.leave_branch();
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.qd.copy_from_slice(qd);
+        let tol = self.settings.projection_tol;
+        let projected = project::positions(&self.sys, &mut self.aug, &mut self.q, t, tol, 100)
+            .and_then(|_| project::velocities(&self.sys, &mut self.aug, &self.q, &mut self.qd, t));
+        if let Err(e) = projected {
+            return Err(self.error(e.kind, &e.message));
+        }
+        self.accelerations()?;
+        self.a.copy_from_slice(&self.qdd);
+        self.h_a = 0.0;
+        self.h_prev = 0.0;
+        self.err_prev = None;
+        Ok(())
+    }
+
+    /// The system and its augmented matrix, for a one-shot solve of the
+    /// caller's (the impact's); the step's factorization is dropped.
+    pub fn system_and_matrix(&mut self) -> (&System<'m>, &mut Augmented) {
+        self.h_factored = 0.0;
+        (&self.sys, &mut self.aug)
+    }
+
+    /// Copies the state into `s`, to [`resume`](Self::resume) from it.
+    pub fn snapshot(&self, s: &mut Snapshot) {
+        s.t = self.t;
+        s.h_prev = self.h_prev;
+        s.h_a = self.h_a;
+        let to = &mut s.state;
+        for (to, from) in [
+            (&mut to.q, &self.q),
+            (&mut to.qd, &self.qd),
+            (&mut to.qdd, &self.qdd),
+            (&mut to.lambda, &self.lambda),
+            (&mut to.a, &self.a),
+            (&mut s.prev.qdd, &self.prev.qdd),
+            (&mut s.prev.lambda, &self.prev.lambda),
+        ] {
+            to.clear();
+            to.extend_from_slice(from);
+        }
+    }
+
+    /// Returns to the state of a [`snapshot`](Self::snapshot).
+    pub fn resume(&mut self, s: &Snapshot) {
+        self.leave_branch();
+        self.t = s.t;
+        self.h_prev = s.h_prev;
+        self.h_a = s.h_a;
+        self.load(&s.state);
+        self.prev.qdd.copy_from_slice(&s.prev.qdd);
+        self.prev.lambda.copy_from_slice(&s.prev.lambda);
+    }
+
+    /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
+    pub fn accelerations(&mut self) -> Result<(), AnalysisError> {
+        self.consistent()?;
+        let n = self.sys.n();
+        self.qdd.copy_from_slice(&self.rhs[..n]);
+        self.lambda.copy_from_slice(&self.rhs[n..]);
+        self.h_a = 0.0;
+        Ok(())
+    }
+
+    /// The multipliers μ of minimum norm with the same constraint forces
+    /// Φ_qᵀμ = Φ_qᵀλ as the current λ, into `out` (length m): the
+    /// reactions of a model with redundant equations. From
+    /// [I Φ_qᵀ; Φ_q 0][x; μ] = [Φ_qᵀλ; 0] (x = 0), solved by
+    /// [`Augmented::solve_refined`]; the integrator's state is unchanged.
+    pub fn min_norm_multipliers(&mut self, out: &mut [f64]) -> Result<(), AnalysisError> {
+        let (n, s) = (self.sys.n(), &self.sys);
+        let k = Coefficients {
+            identity: 1.0,
+            scale: 1.0,
+            ..Default::default()
+        };
+        self.h_factored = 0.0;
+        if self
+            .aug
+            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .is_err()
+        {
+            return Err(self.error(Kind::LockUp, "the constraint Jacobian is singular"));
+        }
+        self.rhs.fill(0.0);
+        s.add_jt_lambda(&self.q, self.t, &self.lambda, &mut self.rhs[..n]);
+        self.aug.solve_refined(&mut self.rhs);
+        out.copy_from_slice(&self.rhs[n..]);
+        Ok(())
+    }
+
+    /// Solves [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] into `rhs`, λ of minimum norm.
+    fn consistent(&mut self) -> Result<(), AnalysisError> {
+        self.h_factored = 0.0;
+        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
+        solve_consistent(&self.sys, &mut self.aug, t, q, qd, qdd, &mut self.rhs)
+    }
+
+    /// [`consistent`](Self::consistent) at the current state with the
+    /// caller's matrix `aug` (made for this system) into the caller's
+    /// `rhs` (resized to n + m: q̈, then λ); the integrator and its
+    /// factorization are unchanged.
+    pub(crate) fn consistent_into(
+        &self,
+        aug: &mut Augmented,
+        rhs: &mut Vec<f64>,
+    ) -> Result<(), AnalysisError> {
+        rhs.resize(self.sys.n() + self.sys.m(), 0.0);
+        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
+        solve_consistent(&self.sys, aug, t, q, qd, qdd, rhs)
+    }
+
+    /// The state at `t` (s) inside the last step, t₀ ≤ t ≤ t₁ = `self.t`,
+    /// into [`dense`](Self::dense) ([`Dense`]). The accelerations and
+    /// multipliers of a step scale like 1/h², so a step cut short to land
+    /// on t would not give them; the integrator's state and factorization
+    /// are unchanged.
+    pub fn dense_output(&mut self, t: f64) -> Result<(), AnalysisError> {
+        self.make_dense(t)?;
+        // Projected, or where the projection fails, as interpolated.
+        for project in [true, false] {
+            let d = self.dense.as_mut().expect("dense output");
+            let s0 = &self.start.state;
+            let start = (self.start.t, [&s0.q[..], &s0.qd, &s0.qdd]);
+            hermite(d, t, start, (self.t, [&self.q, &self.qd, &self.qdd]));
+            let settled = self.settle_dense(project);
+            if settled.is_ok() || !project {
+                return settled;
+            }
+        }
+        unreachable!("the unprojected state returns")
+    }
+
+    /// [`dense_output`](Self::dense_output) at `t` (s) between the states
+    /// of two snapshots of this integrator, `start` and `end`, the ends of
+    /// one step.
+    pub fn dense_between(
+        &mut self,
+        start: &Snapshot,
+        end: &Snapshot,
+        t: f64,
+    ) -> Result<(), AnalysisError> {
+        self.make_dense(t)?;
+        // Projected, or where the projection fails, as interpolated.
+        for project in [true, false] {
+            let d = self.dense.as_mut().expect("dense output");
+            let (s0, s1) = (&start.state, &end.state);
+            hermite(
+                d,
+                t,
+                (start.t, [&s0.q, &s0.qd, &s0.qdd]),
+                (end.t, [&s1.q, &s1.qd, &s1.qdd]),
+            );
+            let settled = self.settle_dense(project);
+            if settled.is_ok() || !project {
+                return settled;
+            }
+        }
+        unreachable!("the unprojected state returns")
+    }
+
+    /// Makes [`dense`](Self::dense) at its first use.
+    fn make_dense(&mut self, t: f64) -> Result<(), AnalysisError> {
+        if self.dense.is_none() {
+            let (n, m) = (self.sys.n(), self.sys.m());
+            let aug = Augmented::new(&self.sys, &self.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
+            self.dense = Some(Dense {
+                t,
+                q: vec![0.0; n],
+                qd: vec![0.0; n],
+                qdd: vec![0.0; n],
+                lambda: vec![0.0; m],
+                aug,
+                rhs: vec![0.0; n + m],
+                proj: project::Workspace::new(&self.sys),
+            });
+        }
+        Ok(())
+    }
+
+    /// The interpolated (q, q̇) of [`dense`](Self::dense) projected onto
+    /// Φ = 0 (to `projection_tol`) and Φ_q q̇ = ν when `project`, then q̈
+    /// and λ (of minimum norm) from [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] there.
+    /// (The interpolant is off the constraints by its O(h⁴) error only: at
+    /// a singular position, where the projection can fail, it serves
+    /// unprojected.)
+    fn settle_dense(&mut self, project: bool) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (sys, tol) = (&self.sys, self.settings.projection_tol);
+        let Dense {
+            t,
+            q,
+            qd,
+            qdd,
+            lambda,
+            aug,
+            rhs,
+            proj,
+        } = self.dense.as_mut().expect("dense output");
+        let t = *t;
+        aug.set_regularised(self.redundant.is_some());
+        if project {
+            let projected = project::positions_in(sys, aug, q, t, tol, 100, proj)
+                .and_then(|_| project::velocities_in(sys, aug, q, qd, t, proj));
+            if let Err(e) = projected {
+                return Err(error_at(sys, t, q, e.kind, &e.message));
+            }
+        }
+        solve_consistent(sys, aug, t, q, qd, qdd, rhs)?;
+        qdd.copy_from_slice(&rhs[..n]);
+        lambda.copy_from_slice(&rhs[n..]);
+        Ok(())
+    }
+
+    /// An error at the current state, naming the joints furthest from
+    /// Φ = 0 (at most five) and the largest |Φ|.
+    fn error(&self, kind: Kind, what: &str) -> AnalysisError {
+        error_at(&self.sys, self.t, &self.q, kind, what)
+    }
+
+    /// Advances one step of size `h`; the state is unchanged on failure.
+    /// The ways of taking it are tried in the order of the retry policy
+    /// ([`retry`]), each from the state at the start of the step.
+    pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        // At a singular position (S_ε factored last) the multipliers of the
+        // lost direction are not determined, and the ones carried over can
+        // be arbitrarily large: follow the branch with its rows, or start
+        // from the consistent q̈ and the minimum-norm λ.
+        if self.follow.rows.is_none()
+            && self.at_singular_position()
+            && !(self.slow(h) && self.enter_branch())
+        {
+            self.accelerations()?;
+            self.h_prev = 0.0;
+        }
+        self.save();
+        let mut last = Attempt::Failed;
+        for &way in retry::ladder(self.follow.rows.is_some()) {
+            let Some(outcome) = self.take(way, h, last)? else {
+                continue;
+            };
+            if outcome == Attempt::Converged {
+                return if way.along_branch() {
+                    self.after_branch_step()
+                } else {
+                    self.after_plain_step(h)
+                };
+            }
+            self.restore();
+            self.after_failed(way)?;
+            last = outcome;
+        }
+        Err(self.error(
+            Kind::NotConverged,
+            &format!(
+                "Newton did not converge in {} iterations at step {} s, nor in {} \
+                 with a fresh matrix each iteration: near a singular position (a toggle, \
+                 a dead centre, the flat position of a parallelogram) try another step h; \
+                 with stiff springs or contacts, a smaller h",
+                self.settings.max_iter,
+                crate::fmt_num::num(h),
+                SINGULAR_ITER * self.settings.max_iter
+            ),
+        ))
+    }
+
+    /// One attempt at a step of `h` the [`Way`] `way`, from the start of
+    /// the step (`last`: how the attempt before ended); None when the way
+    /// does not apply here.
+    fn take(&mut self, way: Way, h: f64, last: Attempt) -> Result<Option<Attempt>, AnalysisError> {
+        match way {
+            Way::Chord => return self.attempt(h, false, true).map(Some),
+            Way::BranchAtSingular => {
+                if last != Attempt::MetSingular || !self.enter_branch() {
+                    return Ok(None);
+                }
+            }
+            Way::Fresh => self.h_prev = 0.0,
+            Way::BranchWhereLost => {
+                if !self.enter_branch() {
+                    return Ok(None);
+                }
+            }
+            Way::AlongBranch => {}
+            Way::LeaveBranch => {
+                self.leave_branch();
+                self.accelerations()?;
+                self.save();
+            }
+        }
+        self.attempt(h, true, false).map(Some)
+    }
+
+    /// After a failed attempt the [`Way`] `way`, back at the start of the
+    /// step: what the next way starts from.
+    fn after_failed(&mut self, way: Way) -> Result<(), AnalysisError> {
+        match way {
+            Way::BranchAtSingular => {
+                self.leave_branch();
+                self.accelerations()?;
+                self.save();
+            }
+            Way::AlongBranch => self.h_prev = 0.0,
+            Way::Chord | Way::Fresh | Way::BranchWhereLost | Way::LeaveBranch => {}
+        }
+        Ok(())
+    }
+
+    /// After a step with Φ alone: the first one past a window of branch
+    /// rows that crossed to the other branch is taken again along the
+    /// branch; a step that ends near a singular position looks for a lost
+    /// rank.
+    fn after_plain_step(&mut self, h: f64) -> Result<(), AnalysisError> {
+        if let Some(rows) = self.crossed_branch() {
+            // Back to the start of the step: its state, time and count.
+            self.restore();
+            self.t = self.start.t;
+            self.summary.steps -= 1;
+            self.use_rows(rows);
+            self.save();
+            if !self.try_step(h, true)? {
+                self.restore();
+                return Err(self.error(
+                    Kind::NotConverged,
+                    "Newton did not converge along the branch past a singular position",
+                ));
+            }
+            return self.after_branch_step();
+        }
+        if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) && self.slow(h) {
+            self.watch_branch();
+        } else {
+            self.follow.seen = None;
+        }
+        self.watch_singularity();
+        Ok(())
+    }
+
+    /// Starts following the branch with its rows ([`branch`]) when Φ_q
+    /// has lost rank here; false when it has not (or the model has
+    /// redundant equations, whose lost directions are exact).
+    fn enter_branch(&mut self) -> bool {
+        if self.redundant.is_some() {
+            return false;
+        }
+        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+            return false;
+        };
+        self.use_rows(rows);
+        true
+    }
+
+    /// Follows the branch with `rows` from the current state.
+    fn use_rows(&mut self, rows: BranchRows) {
+        let (n, m, k) = (self.sys.n(), self.sys.m(), rows.k);
+        self.follow.mu = vec![0.0; k];
+        self.follow.ext = vec![0.0; k];
+        self.follow.border = vec![0.0; k * (n + m)];
+        self.follow.schur = Some(DenseLu::new(k));
+        self.follow.rows = Some(rows);
+        self.aug.set_regularised(true);
+        self.aug.invalidate();
+        self.h_prev = 0.0;
+    }
+
+    /// True when a step of `h` moves every coordinate by less than
+    /// [`SLOW_STEP`]: the branch rows serve a mechanism that reaches a
+    /// bifurcation point at rest or nearly; one that passes it at speed
+    /// steps over it with Φ alone, whose roots are then a step's motion
+    /// apart, while the rows' linearisation would err by the square of it.
+    fn slow(&self, h: f64) -> bool {
+        h * max_abs(&self.qd) < SLOW_STEP
+    }
+
+    /// The direction of motion: the velocity, or at rest the acceleration.
+    fn direction(&self) -> &[f64] {
+        if max_abs(&self.qd) > 0.0 {
+            &self.qd
+        } else {
+            &self.qdd
+        }
+    }
+
+    /// Stops following a branch (Φ alone from here); the rows that were
+    /// in use.
+    fn leave_branch(&mut self) -> Option<BranchRows> {
+        self.follow.seen = None;
+        self.follow.guard = None;
+        let rows = self.follow.rows.take()?;
+        self.follow.schur = None;
+        self.aug.set_regularised(false);
+        self.aug.invalidate();
+        Some(rows)
+    }
+
+    /// After the first plain step past a window: the window's last rows
+    /// A when the step crossed to the other branch, moving across them
+    /// (|A Δq| > [`GUARD`] |Δq|; along the branch A Δq is of second order).
+    fn crossed_branch(&mut self) -> Option<BranchRows> {
+        let rows = self.follow.guard.take()?;
+        let n = self.sys.n();
+        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.start.state.q) {
+            *d = q - q0;
+        }
+        let across = rows
+            .a
+            .chunks(n)
+            .map(|row| inner(row, &self.work).abs())
+            .fold(0.0, f64::max);
+        (across > GUARD * max_abs(&self.work)).then_some(rows)
+    }
+
+    /// After a plain step that ended near a singular position: follows
+    /// the branch with its rows from here when inside the window.
+    fn watch_branch(&mut self) {
+        if self.redundant.is_some() {
+            return;
+        }
+        let Some(pivot) = self.aug.min_pivot() else {
+            return;
+        };
+        // The smallest pivot falls as σ² near the point: scaled by the
+        // ratio found at the last look, it tells cheaply whether a new
+        // look is due.
+        if let Some(ratio) = self.follow.seen {
+            let sigma = (pivot / ratio).sqrt();
+            if sigma > 2.0 * branch::WINDOW {
+                return;
+            }
+        }
+        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+            self.follow.seen = None;
+            return;
+        };
+        self.follow.seen = Some(pivot / (rows.sigma_rel * rows.sigma_rel));
+        if rows.sigma_rel < branch::WINDOW {
+            self.use_rows(rows);
+        }
+    }
+
+    /// After a step along the branch: out of the window
+    /// ([`branch::WINDOW_EXIT`]), back to Φ alone from the consistent q̈
+    /// and λ.
+    fn after_branch_step(&mut self) -> Result<(), AnalysisError> {
+        let Some(old) = &self.follow.rows else {
+            return Ok(());
+        };
+        let next = branch::analyse(&self.sys, &self.q, self.t, &old.tangent);
+        match next {
+            Some(rows) if rows.k == old.k && rows.sigma_rel < branch::WINDOW_EXIT => {
+                // The same forces Aᵀμ on the new rows (orthonormal).
+                let n = self.sys.n();
+                let force = &mut self.work;
+                force.fill(0.0);
+                for (row, mu) in old.a.chunks(n).zip(&self.follow.mu) {
+                    for (f, x) in force.iter_mut().zip(row) {
+                        *f += x * mu;
+                    }
+                }
+                for (row, mu) in rows.a.chunks(n).zip(self.follow.mu.iter_mut()) {
+                    *mu = inner(row, force);
+                }
+                self.follow.rows = Some(rows);
+            }
+            _ => {
+                // The first plain step is checked against the last rows.
+                self.follow.guard = self.leave_branch();
+                self.accelerations()?;
+                self.h_prev = 0.0;
+            }
+        }
+        self.watch_singularity();
+        Ok(())
+    }
+
+    fn save(&mut self) {
+        self.start.t = self.t;
+        self.start.h_a = self.h_a;
+        let to = &mut self.start.state;
+        to.q.copy_from_slice(&self.q);
+        to.qd.copy_from_slice(&self.qd);
+        to.qdd.copy_from_slice(&self.qdd);
+        to.lambda.copy_from_slice(&self.lambda);
+        to.a.copy_from_slice(&self.a);
+    }
+
+    fn restore(&mut self) {
+        self.h_a = self.start.h_a;
+        // (Moved out and back: no copy of the vectors.)
+        let saved = std::mem::take(&mut self.start.state);
+        self.load(&saved);
+        self.start.state = saved;
+    }
+
+    /// Sets (q, q̇, q̈, λ, a) to `from`'s.
+    fn load(&mut self, from: &State) {
+        self.q.copy_from_slice(&from.q);
+        self.qd.copy_from_slice(&from.qd);
+        self.qdd.copy_from_slice(&from.qdd);
+        self.lambda.copy_from_slice(&from.lambda);
+        self.a.copy_from_slice(&from.a);
+    }
+
+    /// One step; Ok(false) when Newton did not converge.
+    fn try_step(&mut self, h: f64, fresh: bool) -> Result<bool, AnalysisError> {
+        Ok(self.attempt(h, fresh, false)? == Attempt::Converged)
+    }
+
+    /// One step, with a fresh matrix each iteration when `fresh`; with
+    /// `stop_at_singular`, a slow step that finds S singular stops at once
+    /// ([`Attempt::MetSingular`]).
+    fn attempt(
+        &mut self,
+        h: f64,
+        fresh: bool,
+        stop_at_singular: bool,
+    ) -> Result<Attempt, AnalysisError> {
+        let k = StepCoeffs::new(&self.c, self.t, h);
+        self.predict(h)?;
+        let mut last = f64::INFINITY;
+        self.noise = 0.0;
+        let mut noise_known = false;
+        // Near a singular position Newton converges only linearly (the
+        // root is singular); the retry with a fresh matrix each iteration
+        // has [`SINGULAR_ITER`] times the iterations.
+        let max_iter = if fresh {
+            SINGULAR_ITER * self.settings.max_iter
+        } else {
+            self.settings.max_iter
+        };
+        for _ in 0..max_iter {
+            self.newton_residual(&k)?;
+            // The factorization serves steps within rounding of its own.
+            let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
+            if fresh || !self.aug.is_valid() || !same_h || self.follow.rows.is_some() {
+                self.newton_matrix(&k)?;
+                // Near a bifurcation point S_ε's regularisation damps the
+                // lost direction's correction while Φ barely sees it: a
+                // slow mechanism's step would stop on a point off both
+                // branches. It is taken along the branch instead
+                // ([`Integrator::step`]).
+                if stop_at_singular
+                    && self.follow.rows.is_none()
+                    && self.at_singular_position()
+                    && self.slow(h)
+                {
+                    return Ok(Attempt::MetSingular);
+                }
+                self.border_matrix()?;
+            }
+            self.newton_correction(&k);
+            self.summary.newton_iterations += 1;
+            let Correction {
+                dmax,
+                theta,
+                converged,
+            } = self.apply_correction(&k, last);
+            if !dmax.is_finite() {
+                return Ok(Attempt::Failed);
+            }
+            if converged {
+                self.accept(&k);
+                return Ok(Attempt::Converged);
+            }
+            // A chord iteration that contracts slowly has an old matrix:
+            // the next iteration refactors (Newton's quadratic rate
+            // reaches the acceleration's bound in one or two iterations
+            // where the chord needs several). Corrections near the
+            // rounding of the coordinates, and the lost direction at a
+            // singular position, converge slowly whatever the matrix.
+            let lost = self.at_singular_position() || self.follow.rows.is_some();
+            if !lost
+                && theta > SLOW
+                && dmax <= STALL * last
+                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
+            {
+                self.aug.invalidate();
+            }
+            // An iteration that stalls has reached the noise of the solve
+            // (measured once per attempt; it applies from the next
+            // iteration) or needs a fresh matrix: it gets both.
+            if dmax > STALL * last {
+                if !noise_known {
+                    self.measure_noise(k.t1, k.s)?;
+                    noise_known = true;
+                }
+                self.aug.invalidate();
+            }
+            last = dmax;
+        }
+        self.aug.invalidate();
+        Ok(Attempt::Failed)
+    }
+
+    /// The predicted state at the end of a step of `h`: q̈ and λ
+    /// extrapolated, a_{n+1}, q and q̇ from them.
+    fn predict(&mut self, h: f64) -> Result<(), AnalysisError> {
+        let c = self.c;
+        let n = self.sys.n();
+        // a_n ≈ q̈(t_n + (α_m − α_f) h_a) + O(h²) (Arnold & Brüls 2007) for
+        // the step h_a that made it; a step of another length h needs
+        // q̈(t_n + (α_m − α_f) h), q̈_n + (h/h_a)(a_n − q̈_n) to that order.
+        // Left as it is, a change of step costs an error of order
+        // |h − h_a| in q̈ that the local error estimate does not see:
+        // error-controlled runs, whose steps change all the time, fell to
+        // first order (IFToMM A02, atol = 1e-8: 4.5e-3 rad against 9e-5 at
+        // a fixed step of the same mean length). Fixed steps that differ by
+        // the rounding of t, or a stretch within SLIVER, are left alone.
+        if self.h_a > 0.0 && (h - self.h_a).abs() > SLIVER * self.h_a {
+            let r = h / self.h_a;
+            for (a, qdd) in self.a.iter_mut().zip(&self.qdd) {
+                *a = qdd + r * (*a - qdd);
+            }
+        }
+        // Predictor: q̈ and λ extrapolated linearly from the last two steps
+        // (held constant on the first); a_{n+1} and (q, q̇) follow.
+        let r = if self.h_prev > 0.0 {
+            h / self.h_prev
+        } else {
+            0.0
+        };
+        for k in 0..n {
+            self.qdd[k] += r * (self.qdd[k] - self.prev.qdd[k]);
+        }
+        for k in 0..self.lambda.len() {
+            self.lambda[k] += r * (self.lambda[k] - self.prev.lambda[k]);
+        }
+        for k in 0..n {
+            let a0 = self.a[k];
+            let a1 = c.next_a(self.qdd[k], self.start.state.qdd[k], a0);
+            self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
+            self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
+        }
+        // Near a singular position the multipliers of the lost direction
+        // grow as 1/δ with the distance δ from it, and their tension pulls
+        // through the constraint curvature towards the position: started
+        // from the multipliers of a step nearer to it, Newton converges to
+        // a spurious root there (λ ~ 1e9), where the mechanism sticks.
+        // When λ grew fast, and faster and faster, in the last steps,
+        // Newton starts instead from the multipliers consistent with the
+        // predicted state.
+        if self.lambda_jumps() {
+            self.consistent()?;
+            self.lambda.copy_from_slice(&self.rhs[n..]);
+        }
+        Ok(())
+    }
+
+    /// Newton's right side −[s R; Φ] at the current iterate into `rhs`:
+    /// with the branch rows' forces Aᵀμ in R, and without the residual of
+    /// the lost equations the rows replace.
+    fn newton_residual(&mut self, k: &StepCoeffs) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (r_motion, r_phi) = self.rhs.split_at_mut(n);
+        self.sys.residual_and_phi(
+            &self.q,
+            &self.qd,
+            &self.qdd,
+            &self.lambda,
+            k.t1,
+            r_motion,
+            r_phi,
+        )?;
+        if let Some(b) = &self.follow.rows {
+            for (row, mu) in b.a.chunks(n).zip(&self.follow.mu) {
+                for (r, x) in r_motion.iter_mut().zip(row) {
+                    *r += x * mu;
+                }
+            }
+        }
+        for v in r_motion {
+            *v *= -k.s;
+        }
+        for v in r_phi.iter_mut() {
+            *v = -*v;
+        }
+        // The rows take the place of the lost equations wᵀΦ = 0, which
+        // hold along the branch only to the rows' linearisation: their
+        // residual is left out, so the two do not pull against each other.
+        if let Some(b) = &self.follow.rows {
+            for w in b.lost.chunks(r_phi.len()) {
+                let c = inner(w, r_phi);
+                for (r, x) in r_phi.iter_mut().zip(w) {
+                    *r -= c * x;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Factors Newton's matrix at the current iterate for the step `k`.
+    fn newton_matrix(&mut self, k: &StepCoeffs) -> Result<(), AnalysisError> {
+        let coefficients = Coefficients {
+            mass: k.bp,
+            damping: k.gp,
+            stiffness: 1.0,
+            identity: 0.0,
+            scale: k.s,
+        };
+        let (q, qd, qdd) = (&self.q, &self.qd, &self.qdd);
+        if self
+            .aug
+            .refactor(
+                &self.sys,
+                q,
+                qd,
+                qdd,
+                Some(&self.lambda),
+                k.t1,
+                coefficients,
+            )
+            .is_err()
+        {
+            self.h_factored = 0.0;
+            return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
+        }
+        self.h_factored = k.h;
+        self.summary.factorizations += 1;
+        Ok(())
+    }
+
+    /// Along a branch, the border of the factored matrix,
+    /// [S_ε Bᵀ; B −ε I] with B = [A 0]: X = S_ε⁻¹ Bᵀ and the LU of
+    /// C = −ε I − B X.
+    fn border_matrix(&mut self) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) else {
+            return Ok(());
+        };
+        let nm = self.rhs.len();
+        for (x, row) in self.follow.border.chunks_mut(nm).zip(b.a.chunks(n)) {
+            x[..n].copy_from_slice(row);
+            x[n..].fill(0.0);
+            self.aug.solve(x);
+        }
+        let eps = self.aug.eps();
+        let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
+            let bx = inner(
+                &b.a[v * n..(v + 1) * n],
+                &self.follow.border[w * nm..w * nm + n],
+            );
+            -bx - if v == w { eps } else { 0.0 }
+        });
+        if lu.factor(c.as_ref()).is_err() {
+            self.h_factored = 0.0;
+            return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
+        }
+        Ok(())
+    }
+
+    /// Newton's correction (Δq, s Δλ) into `rhs`: the factored matrix
+    /// applied to the right side, through the border along a branch
+    /// (updating μ), and cut so that no joint's friction jumps across its
+    /// transition band.
+    fn newton_correction(&mut self, k: &StepCoeffs) {
+        let n = self.sys.n();
+        self.aug.solve(&mut self.rhs);
+        if let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) {
+            // With z = S_ε⁻¹ b₁ in `rhs`: y = C⁻¹ (b₂ − B z) for the
+            // rows A (q − q_n) = 0 from the start of the step, then
+            // x = z − X y.
+            let nm = self.rhs.len();
+            let y = &mut self.follow.ext[..b.k];
+            for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
+                let moved = self.q.iter().zip(&self.start.state.q).zip(&self.rhs);
+                *yw = -row
+                    .iter()
+                    .zip(moved)
+                    .map(|(a, ((q, q0), dq))| a * (q - q0 + dq))
+                    .sum::<f64>();
+            }
+            lu.solve(y);
+            for (x, &yw) in self.follow.border.chunks(nm).zip(y.iter()) {
+                for (r, xi) in self.rhs.iter_mut().zip(x) {
+                    *r -= xi * yw;
+                }
+            }
+            for (mu, d) in self.follow.mu.iter_mut().zip(y.iter()) {
+                *mu += d / k.s;
+            }
+        }
+        // No joint's friction jumps across its transition band.
+        let (q, qd) = (&self.q, &self.qd);
+        let theta = self.sys.friction.step_fraction(
+            self.sys.model,
+            &self.sys.asm,
+            q,
+            qd,
+            &self.rhs,
+            k.gp,
+            k.t1,
+        );
+        if theta < 1.0 {
+            self.rhs.iter_mut().for_each(|v| *v *= theta);
+        }
+    }
+
+    /// Applies the correction in `rhs` to (q, q̇, q̈, λ) and tells how
+    /// far the iteration is (`last`: the largest |Δq_k| of the iteration
+    /// before, infinite on the first).
+    fn apply_correction(&mut self, k: &StepCoeffs, last: f64) -> Correction {
+        let n = self.sys.n();
+        let (bp, gp) = (k.bp, k.gp);
+        // Converged when every position, velocity and acceleration
+        // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
+        // rounding of its own value ([`newton::settled`]); a position
+        // settled at its rounding settles its rates too. What Newton
+        // leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves
+        // positions by up to δq̈ t²/2 by time t whatever h: bounding
+        // the velocity correction alone (δq ≤ tol β h/γ) lets that
+        // drift grow as 1/h at a fixed tol. A correction's floor is the
+        // rounding of the residual carried through the solve, `noise`,
+        // measured when the iteration first stalls, and applied from
+        // the next iteration, whose matrix is fresh: at small steps
+        // (γ' = γ/(βh) large) or near a singular position (S
+        // ill-conditioned) a velocity's tol can lie below it. A chord
+        // iteration is not stopped at a coarser floor (such as the
+        // rounding of the largest coordinate): it contracts slowly,
+        // so what it leaves is systematic, and at small steps its
+        // acceleration β'Δq adds up over the steps into a drift of
+        // the energy and the phase.
+        // A slow iteration's correction understates its error: with
+        // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
+        // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
+        // At a singular position without branch rows S_ε's
+        // regularisation damps the lost direction's correction (by
+        // σ²/(σ² + ε) at singular value σ): a first correction within
+        // tol does not bound the error there: the iteration goes on
+        // at least once more.
+        let tol = self.settings.tol;
+        let share = self.settings.adaptive.as_ref().map(|ad| (ad.atol, ad.rtol));
+        let dnew = max_abs(&self.rhs[..n]);
+        let unproven =
+            self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
+        let theta = dnew / last;
+        let eta = if theta < 1.0 {
+            (theta / (1.0 - theta)).max(1.0)
+        } else {
+            f64::INFINITY
+        };
+        // At a singular position (S_ε factored) the lost direction
+        // converges as slowly as an augmented-Lagrangian update; the
+        // iteration stops when the position corrections are within tol.
+        let lost = self.at_singular_position() || self.follow.rows.is_some();
+        let mut dmax = 0.0f64;
+        // The largest correction of a coordinate whose position or
+        // velocity has not settled by tol or its rounding: within the
+        // noise, it has settled too.
+        let mut pending = 0.0f64;
+        let mut settled = true;
+        for i in 0..n {
+            let d = self.rhs[i];
+            let de = eta * d;
+            self.q[i] += d;
+            self.qd[i] += gp * d;
+            self.qdd[i] += bp * d;
+            dmax = dmax.max(d.abs());
+            // Error-controlled: within NEWTON_SHARE of the local error
+            // allowed to the coordinate, atol + rtol |q_i|.
+            let tol = match share {
+                Some((atol, rtol)) => tol.min(NEWTON_SHARE * (atol + rtol * self.q[i].abs())),
+                None => tol,
+            };
+            if lost {
+                settled &= !unproven && newton::settled(d, self.q[i], tol);
+            } else {
+                let round = newton::rounding(self.q[i]);
+                let position = newton::settled(de, self.q[i], tol) || d.abs() <= round;
+                let velocity = newton::settled(gp * de, self.qd[i], tol) || d.abs() <= round;
+                let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
+                if !(position && velocity && acceleration) {
+                    pending = pending.max(d.abs());
+                }
+            }
+        }
+        for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
+            *l += d / k.s;
+        }
+        Correction {
+            dmax,
+            theta,
+            converged: settled && pending <= self.noise,
+        }
+    }
+
+    /// Ends a converged step `k`: a_{n+1} from q̈_{n+1}, the predictor's
+    /// history, t = t₁.
+    fn accept(&mut self, k: &StepCoeffs) {
+        let c = self.c;
+        for i in 0..self.a.len() {
+            self.a[i] = c.next_a(self.qdd[i], self.start.state.qdd[i], self.a[i]);
+        }
+        self.prev.qdd.copy_from_slice(&self.start.state.qdd);
+        self.lambda_max_before = max_abs(&self.prev.lambda);
+        self.prev.lambda.copy_from_slice(&self.start.state.lambda);
+        self.h_prev = k.h;
+        self.h_a = k.h;
+        self.t = k.t1;
+        self.summary.steps += 1;
+    }
+
+    /// Records a `near_singular` warning, naming the joints whose
+    /// equations lose rank ([`crate::diagnose::weakest_joints`]), when a
+    /// step ends at a singular position after one that did not.
+    fn watch_singularity(&mut self) {
+        let near = self.at_singular_position();
+        if near && !self.near_singular {
+            let (model, asm) = (self.sys.model, &self.sys.asm);
+            let joints = crate::diagnose::weakest_joints(model, asm, &self.q, self.t);
+            self.summary.warnings.push(run::Warning {
+                kind: Kind::NearSingular,
+                time: self.t,
+                message: format!(
+                    "near-singular configuration{}: the constraint Jacobian loses rank \
+                     (a toggle, a dead centre, the flat position of a parallelogram); \
+                     the multipliers of the lost direction are not determined here{}",
+                    crate::diagnose::losing_rank(&joints),
+                    if self.follow.rows.is_some() {
+                        "; the motion keeps to the branch nearest to its direction of motion"
+                    } else {
+                        ""
+                    }
+                ),
+                joints,
+            });
+        }
+        self.near_singular = near;
+    }
+
+    /// True when the largest multiplier grew by more than [`LAMBDA_JUMP`]
+    /// times in the last step and faster than in the step before (the
+    /// 1/δ growth near a singular position, not that of loads building up
+    /// from rest, which slows), or by more than [`LAMBDA_LEAP`] times.
+    fn lambda_jumps(&self) -> bool {
+        let (l0, l1, l2) = (
+            self.lambda_max_before,
+            max_abs(&self.prev.lambda),
+            max_abs(&self.start.state.lambda),
+        );
+        self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
+    }
+
+    /// True when the last factorization found S singular in a model
+    /// without redundant equations (which always factors S_ε, its lost
+    /// directions being exact and harmless): a singular position.
+    fn at_singular_position(&self) -> bool {
+        self.aug.eps() > 0.0 && self.redundant.is_none()
+    }
+
+    /// The rounding noise of a Newton correction at the current iterate
+    /// into `noise` (the same level for every coordinate): S⁻¹ applied to the rounding of the
+    /// residual, [`newton::ULPS`] ε_mach (|Q| + |M q̈| + |Φ_qᵀλ|) scaled by
+    /// `s` in the equations of motion and ULPS ε_mach max |q| in Φ. Small
+    /// where S is well conditioned, it sets the floor of the corrections
+    /// near a singular position, where it is not.
+    fn measure_noise(&mut self, t: f64, s: f64) -> Result<(), AnalysisError> {
+        let n = self.sys.n();
+        let u = newton::ULPS * f64::EPSILON;
+        let (head, tail) = self.rhs.split_at_mut(n);
+        self.sys.forces(&self.q, &self.qd, t, head)?;
+        head.iter_mut().for_each(|v| *v = v.abs());
+        self.work.fill(0.0);
+        self.sys.add_mass_times(&self.q, &self.qdd, &mut self.work);
+        self.sys
+            .add_jt_lambda(&self.q, t, &self.lambda, &mut self.work);
+        for (h, w) in head.iter_mut().zip(&self.work) {
+            *h = u * s * (*h + w.abs());
+        }
+        tail.fill(u * max_abs(&self.q));
+        self.aug.solve(&mut self.rhs);
+        // One level for all: the pattern of the rounding errors is unknown.
+        self.noise = NOISE_SAFETY * max_abs(&self.rhs[..n]);
+        Ok(())
+    }
+
+    /// The weighted local error estimate of the last step (≤ 1 to accept).
+    fn local_error(&self, h: f64, ad: &Adaptive) -> f64 {
+        let w = h * h * (self.c.beta - 1.0 / 6.0).abs();
+        let mut e = 0.0f64;
+        for k in 0..self.q.len() {
+            let d = w * (self.qdd[k] - self.start.state.qdd[k]);
+            e = e.max(d.abs() / (ad.atol + ad.rtol * self.q[k].abs()));
+        }
+        e
+    }
+
+    /// Advances to `t_end`: fixed steps of `settings.step` (the last one
+    /// shortened to land on `t_end`), or error-controlled steps.
+    pub fn advance_to(&mut self, t_end: f64, h_next: &mut f64) -> Result<(), AnalysisError> {
+        self.advance_watching(t_end, h_next, &mut || Ok(()))
+    }
+
+    /// [`Integrator::advance_to`], calling `tick` before every step; an
+    /// error from `tick` stops the run.
+    pub fn advance_watching(
+        &mut self,
+        t_end: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+    ) -> Result<(), AnalysisError> {
+        self.advance(t_end, h_next, tick, false)
+    }
+
+    /// Advances for an output at `t_out` (s), calling `tick` before every
+    /// step; true when `t_out` lies inside the last step, whose state there
+    /// is then in [`dense`](Self::dense) ([`dense_output`](Self::dense_output)).
+    /// A step lands on `t_out` only when it is within [`SLIVER`] of a whole
+    /// fixed step, or at least a quarter of the step the error control
+    /// proposes; otherwise the integrator steps on past `t_out`. A later
+    /// output time inside the same step is served from it without a step.
+    pub fn advance_to_output(
+        &mut self,
+        t_out: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+    ) -> Result<bool, AnalysisError> {
+        self.advance(t_out, h_next, tick, true)?;
+        if t_out - self.t >= -arrived_within(t_out, self.settings.step) {
+            return Ok(false);
+        }
+        self.dense_output(t_out)?;
+        Ok(true)
+    }
+
+    /// [`advance_watching`](Self::advance_watching); with `over`, a step
+    /// that would land on `t_end` short of a whole step goes past it.
+    fn advance(
+        &mut self,
+        t_end: f64,
+        h_next: &mut f64,
+        tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
+        over: bool,
+    ) -> Result<(), AnalysisError> {
+        let h_max = self.settings.step;
+        let done = arrived_within(t_end, h_max);
+        while t_end - self.t > done {
+            tick()?;
+            let left = t_end - self.t;
+            match self.settings.adaptive.clone() {
+                None if over && steps_over(left, h_max) => self.step(h_max)?,
+                None => self.step(fixed_step(left, h_max))?,
+                Some(ad) => {
+                    // The step lands on the output time, or leaves at least
+                    // a step's worth: two equal steps rather than one and
+                    // a sliver (a sliver's Newton matrix is ill conditioned).
+                    let h = h_next.min(h_max);
+                    let h = if over && 4.0 * left < h {
+                        h
+                    } else if h >= left {
+                        left
+                    } else if h > 0.5 * left {
+                        0.5 * left
+                    } else {
+                        h
+                    };
+                    // A step below the rounding of t leaves t unchanged.
+                    if h < 4.0 * f64::EPSILON * self.t.abs() || self.t + h == self.t {
+                        return Err(self.error(
+                            Kind::NotConverged,
+                            &format!(
+                                "the step fell to {} s, below the rounding of t = {} s; \
+                             raise h_min or loosen atol/rtol",
+                                crate::fmt_num::num(h),
+                                crate::fmt_num::num(self.t)
+                            ),
+                        ));
+                    }
+                    // A step whose Newton fails is rejected like one whose
+                    // error is too large, down to h_min.
+                    match self.step(h) {
+                        Err(e) if e.kind == Kind::NotConverged && h > ad.h_min => {
+                            self.h_prev = 0.0;
+                            self.rejected += 1;
+                            *h_next = (0.25 * h).max(ad.h_min);
+                            continue;
+                        }
+                        outcome => outcome?,
+                    }
+                    let err = self.local_error(h, &ad).max(1e-10);
+                    // A PI controller on accepted steps (Gustafsson; Hairer
+                    // & Wanner IV.2): the last accepted error damps the
+                    // proposal, so h does not oscillate around rejection.
+                    let factor = match self.err_prev {
+                        Some(prev) if err <= 1.0 => {
+                            0.9 * err.powf(-0.7 / 3.0) * prev.powf(0.4 / 3.0)
+                        }
+                        _ => 0.9 * err.powf(-1.0 / 3.0),
+                    }
+                    .clamp(0.2, 2.0);
+                    if err > 1.0 && h > ad.h_min {
+                        self.restore();
+                        self.h_prev = 0.0;
+                        self.t -= h;
+                        self.summary.steps -= 1;
+                        self.rejected += 1;
+                        *h_next = (h * factor).max(ad.h_min);
+                        continue;
+                    }
+                    self.err_prev = Some(err);
+                    if h != left {
+                        *h_next = (h * factor).max(ad.h_min);
+                    }
+                }
+            }
+        }
+        self.t = t_end.max(self.t);
+        Ok(())
+    }
+}
+
+/// The step's state at `t` (s) into `d`: q from the cubic Hermite
+/// interpolant of (q, q̇) at the step's ends (t₀, [q, q̇, q̈]₀) and
+/// (t₁, [q, q̇, q̈]₁), q̇ from that of (q̇, q̈).
+fn hermite(d: &mut Dense, t: f64, (t0, [q0, v0, a0]): End, (t1, [q1, v1, a1]): End) {
+    d.t = t;
+    let h = t1 - t0;
+    let th = if h > 0.0 {
+        ((t - t0) / h).clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let (t2, t3) = (th * th, th * th * th);
+    let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
+    let h10 = (t3 - 2.0 * t2 + th) * h;
+    let h01 = 3.0 * t2 - 2.0 * t3;
+    let h11 = (t3 - t2) * h;
+    for k in 0..d.q.len() {
+        d.q[k] = h00 * q0[k] + h10 * v0[k] + h01 * q1[k] + h11 * v1[k];
+        d.qd[k] = h00 * v0[k] + h10 * a0[k] + h01 * v1[k] + h11 * a1[k];
+    }
+}
+
+/// One end of a step: its time (s) and [q, q̇, q̈].
+type End<'a> = (f64, [&'a [f64]; 3]);
+
+/// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q + Q_f(λ); γ] of system `s` at (t, q, q̇) into `rhs`
+/// (length n + m), λ of minimum norm; `aug` is refactored for it (q̈
+/// enters only terms the coefficients leave out).
+fn solve_consistent(
+    s: &System,
+    aug: &mut Augmented,
+    t: f64,
+    q: &[f64],
+    qd: &[f64],
+    qdd: &[f64],
+    rhs: &mut [f64],
+) -> Result<(), AnalysisError> {
+    let n = s.n();
+    let k = Coefficients {
+        mass: 1.0,
+        scale: 1.0,
+        ..Default::default()
+    };
+    if aug.refactor(s, q, qd, qdd, None, t, k).is_err() {
+        let mut message = "the mass matrix is singular on the constraints: give every \
+             moving body a mass and an inertia, or constrain the massless ones"
+            .to_string();
+        if let Err(e) = s.model.check_mass_properties() {
+            message.push_str(&format!(" ({e})"));
+        }
+        return Err(error_at(s, t, q, Kind::SingularMass, &message));
+    }
+    s.forces(q, qd, t, &mut rhs[..n])?;
+    s.asm.gamma(s.model, q, qd, t, &mut rhs[n..]);
+    // With joint friction, λ by fixed-point iteration ([`super::friction`]).
+    s.friction
+        .consistent(s.model, &s.asm, t, q, qd, rhs, &mut |b| {
+            aug.solve_refined(b)
+        })
+}
+
+/// An error at (t, q) of system `s`, naming the joints furthest from
+/// Φ = 0 (at most five) and the largest |Φ|.
+fn error_at(s: &System, t: f64, q: &[f64], kind: Kind, what: &str) -> AnalysisError {
+    let mut phi = vec![0.0; s.m()];
+    s.asm.phi(s.model, q, t, &mut phi);
+    let (joints, _) = run::worst_joints(s.model, &s.asm, &phi, 0.0);
+    AnalysisError::new(kind, t, what).at_joints(joints, max_abs(&phi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constraint::revolute::Revolute;
+    use crate::model::{Body, BodyId};
+
+    /// A pendulum pivoted at the origin (frame at the pivot, centroid
+    /// 0.5 m out), at 0.3 rad, under gravity.
+    fn pendulum() -> Model {
+        let mut m = Model::new("pendulum");
+        let mut b = Body::new("bob", [0.0, 0.0, 0.3]);
+        b.mass = 1.0;
+        b.inertia = 0.02;
+        b.centroid = [0.5, 0.0];
+        let bob = m.add_body(b);
+        let pivot = Revolute {
+            body_i: BodyId::GROUND,
+            s_i: [0.0, 0.0],
+            body_j: bob,
+            s_j: [0.0, 0.0],
+        };
+        m.add_joint("pivot", pivot);
+        m
+    }
+
+    /// Issue 27: a plain step past a window of branch rows that crossed
+    /// them is retried along the rows from the start of the step, t to
+    /// t + h, and counts once. The rows here hold the pendulum's angle
+    /// (A = [0 0 1]), which its swing crosses at once.
+    #[test]
+    fn issue27_crossed_branch_retry_keeps_the_time() {
+        let model = pendulum();
+        let h = 1e-3;
+        let settings = Settings {
+            step: h,
+            ..Settings::default()
+        };
+        let mut it = Integrator::new(&model, settings).unwrap();
+        for _ in 0..10 {
+            it.step(h).unwrap();
+        }
+        let (t0, steps) = (it.t, it.summary.steps);
+        let phi0 = it.q[2];
+        it.follow.guard = Some(BranchRows {
+            k: 1,
+            a: vec![0.0, 0.0, 1.0],
+            tangent: vec![1.0, 0.0, 0.0],
+            sigma_rel: 0.0,
+            lost: vec![0.0; it.sys.m()],
+        });
+        it.step(h).unwrap();
+        assert_eq!(it.t, t0 + h, "the retried step ends at t = {} s", it.t);
+        assert_eq!(it.summary.steps, steps + 1);
+        // The retry held the rows: the angle of the start of the step.
+        assert!(
+            (it.q[2] - phi0).abs() < 1e-9,
+            "φ moved by {}",
+            it.q[2] - phi0
+        );
+    }
+}
