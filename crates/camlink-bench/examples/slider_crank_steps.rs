@@ -4,12 +4,11 @@
 //! `valgrind --tool=callgrind` the difference between two runs and one is
 //! the cost of 1,000 steps (and of one start), with loading cancelled out.
 //!
-//! `cargo run --release -p camlink-core --example slider_crank_steps -- <runs>`
+//! `cargo run --release -p camlink-bench --example slider_crank_steps -- <runs>`
 
 use camlink_core::dynamics::integrator::{Integrator, Settings};
 
-#[path = "../tests/mechanisms/mod.rs"]
-mod mechanisms;
+use camlink_testkit::mechanisms;
 
 fn main() {
     let runs: usize = std::env::args()
