@@ -30,13 +30,14 @@ from typing import Any
 from aiohttp import WSMsgType, web
 
 from camlink._core import ModelError
-from camlink.studio.document import Document, Solution
+from camlink.studio.cam import CamDocument, cam_payload, open_document
+from camlink.studio.document import Document, Editable, Solution
 from camlink.viz.front import asset, frame_data
 
 __all__ = ["StudioServer", "make_app", "payload", "run"]
 
 TOKEN_KEY = web.AppKey("token", str)
-DOC_KEY = web.AppKey("doc", Document)
+DOC_KEY = web.AppKey("doc", Editable)
 EXECUTOR_KEY = web.AppKey("executor", ThreadPoolExecutor)
 
 
@@ -50,7 +51,7 @@ class _Sockets:
 SOCKETS_KEY = web.AppKey("sockets", _Sockets)
 
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
-_ASSETS = ("camlink.js", "studio.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
+_ASSETS = ("camlink.js", "studio.js", "cam.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
 _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
            "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; "
            "frame-ancestors 'none'")
@@ -125,7 +126,8 @@ async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
 
 
 async def _index(request: web.Request) -> web.Response:
-    text = asset("studio.html").replace("__TOKEN__", request.app[TOKEN_KEY])
+    page = "cam.html" if isinstance(request.app[DOC_KEY], CamDocument) else "studio.html"
+    text = asset(page).replace("__TOKEN__", request.app[TOKEN_KEY])
     return web.Response(text=text, content_type="text/html")
 
 
@@ -136,8 +138,11 @@ async def _asset(request: web.Request) -> web.Response:
     return web.Response(text=asset(name), content_type=_TYPES[Path(name).suffix])
 
 
-def _handle(doc: Document, msg: dict[str, Any]) -> dict[str, Any]:
+def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
     """One message from the page, in the worker thread: the reply."""
+    if isinstance(doc, CamDocument):
+        return _handle_cam(doc, msg)
+    assert isinstance(doc, Document)
     op = msg.get("op")
     try:
         if op == "hello":
@@ -147,30 +152,62 @@ def _handle(doc: Document, msg: dict[str, Any]) -> dict[str, Any]:
                      msg.get("gesture"))
         elif op == "param":
             doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
-        elif op == "end":
-            doc.end_gesture()
-            return {"type": "ack", "seq": msg.get("seq")}
-        elif op == "undo":
-            doc.undo()
-        elif op == "redo":
-            doc.redo()
-        elif op == "save":
-            path = doc.save()
-            return {"type": "saved", "seq": msg.get("seq"), "file": path.name, "dirty": doc.dirty}
+        elif op in ("undo", "redo", "save", "end"):
+            reply = _common(doc, op, msg)
+            if reply is not None:
+                return reply
         else:
             return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
     except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
-        text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
-        return {"type": "error", "seq": msg.get("seq"), "message": text}
+        return _error(msg, e)
     plots = msg.get("plots")
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
     return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc, shown)}
 
 
+def _handle_cam(doc: CamDocument, msg: dict[str, Any]) -> dict[str, Any]:
+    """One message from the cam page, in the worker thread: the reply."""
+    op = msg.get("op")
+    try:
+        if op == "segment":
+            doc.set_segment(int(msg["index"]), str(msg["key"]), msg["value"], msg.get("gesture"))
+        elif op in ("hello", "undo", "redo", "save", "end"):
+            reply = _common(doc, op, msg)
+            if reply is not None:
+                return reply
+        else:
+            return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
+    except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
+        return _error(msg, e)
+    return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc)}
+
+
+def _common(doc: Editable, op: str, msg: dict[str, Any]) -> dict[str, Any] | None:
+    """The requests every document answers (hello, end, undo, redo, save):
+    the reply for those that have their own, else None (send the frames)."""
+    if op == "end":
+        doc.end_gesture()
+        return {"type": "ack", "seq": msg.get("seq")}
+    if op == "undo":
+        doc.undo()
+    elif op == "redo":
+        doc.redo()
+    elif op == "save":
+        path = doc.save()
+        return {"type": "saved", "seq": msg.get("seq"), "file": path.name, "dirty": doc.dirty}
+    return None
+
+
+def _error(msg: dict[str, Any], e: Exception) -> dict[str, Any]:
+    text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
+    return {"type": "error", "seq": msg.get("seq"), "message": text}
+
+
 def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:
-    if a.get("op") != b.get("op") or a.get("op") not in ("move", "param"):
+    if a.get("op") != b.get("op") or a.get("op") not in ("move", "param", "segment"):
         return False
-    return a.get("handle") == b.get("handle") and a.get("name") == b.get("name")
+    return (a.get("handle") == b.get("handle") and a.get("name") == b.get("name")
+            and a.get("index") == b.get("index") and a.get("key") == b.get("key"))
 
 
 async def _socket(request: web.Request) -> web.WebSocketResponse:
@@ -220,7 +257,7 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     return ws
 
 
-def make_app(doc: Document, token: str) -> web.Application:
+def make_app(doc: Editable, token: str) -> web.Application:
     """The studio's application for `doc`, answering only with `token`."""
     app = web.Application(middlewares=[_guard])
     app[TOKEN_KEY] = token
@@ -247,7 +284,7 @@ class StudioServer:
     """A running studio on 127.0.0.1 (`url` carries the token)."""
 
     def __init__(self, path: str | Path, port: int = 0) -> None:
-        self.doc = Document(path)
+        self.doc = open_document(path)
         self.token = secrets.token_urlsafe(24)
         self.port = port
         self.url = ""
