@@ -122,13 +122,18 @@ class CamDocument(Editable):
 
     def segments(self) -> list[dict[str, Any]]:
         """Each segment's law, span (deg) and lift (m, or swing in deg for
-        an oscillating follower) as the data gives them, and whether it has
+        an oscillating follower) as the data gives them, the cam angle it
+        starts at (deg: the sum of the spans before it) and whether it has
         end conditions (a polynomial's ``start``/``end``)."""
         key = "swing_deg" if self.oscillating else "lift"
         out = []
+        at: float | None = 0.0
         for seg in self._data.get("segments") or []:
-            out.append({"law": seg.get("law"), "span_deg": seg.get("span_deg"),
-                        "lift": seg.get(key, 0.0), "ends": "start" in seg or "end" in seg})
+            span = seg.get("span_deg")
+            out.append({"law": seg.get("law"), "span_deg": span, "lift": seg.get(key, 0.0),
+                        "from_deg": at, "ends": "start" in seg or "end" in seg})
+            number = isinstance(span, int | float) and not isinstance(span, bool)
+            at = at + float(span) if at is not None and number else None
         return out
 
     def _solve(self) -> CamSolution:

@@ -2,20 +2,23 @@
 // websocket to the server, which answers with the re-solved cycle.
 "use strict";
 (function () {
-  const token = document.querySelector('meta[name="camlink-token"]').content;
   const front = camlinkFront.create(document.getElementById("app"), { width: 720, height: 520 });
-  const message = document.getElementById("message");
-  let ws = null, seq = 0, answered = 0, sentAt = {};
   const timing = { edits: 0, last: null, waits: [] };
   let params = [];
-
-  function say(text, bad) { message.textContent = text; message.classList.toggle("bad", !!bad); }
-  function send(msg) {
-    seq += 1; msg.seq = seq; sentAt[seq] = performance.now();
-    if (front.data()) msg.plots = front.picked();
-    ws.send(JSON.stringify(msg));
-    return seq;
-  }
+  const link = camlinkFront.editor({
+    before: function (msg) { if (front.data()) msg.plots = front.picked(); },
+    reply: function (reply) {
+      if (reply.type === "frames") {
+        show(reply.data);
+        const t0 = link.sentAt[reply.seq];
+        if (t0 !== undefined) timing.last = performance.now() - t0;
+        if (reply.data.error) link.say(reply.data.error, true);
+        else if (reply.seq > 1) link.say("");
+      }
+      window.camlinkStudio.answered = link.answered;
+    },
+  });
+  const send = link.send;
 
   function sliders(list) {
     const box = document.getElementById("params");
@@ -52,12 +55,7 @@
   }
 
   function show(data) {
-    document.getElementById("title").textContent = data.title;
-    document.getElementById("file").textContent = data.file;
-    document.getElementById("dirty").textContent = data.dirty ? "● unsaved" : "";
-    document.title = data.title + " · camlink studio";
-    document.getElementById("undo").disabled = !data.undo;
-    document.getElementById("redo").disabled = !data.redo;
+    link.shown(data);
     front.setData(data);
     sliders(data.parameters);
   }
@@ -72,47 +70,9 @@
     setTimeout(function () { needed = false; send({ op: "hello" }); }, 0);
   };
   front.onEditEnd = function (gesture) { send({ op: "end", gesture: gesture }); };
-  document.getElementById("undo").addEventListener("click", function () { send({ op: "undo" }); });
-  document.getElementById("redo").addEventListener("click", function () { send({ op: "redo" }); });
-  document.getElementById("save").addEventListener("click", function () { send({ op: "save" }); });
-  document.addEventListener("keydown", function (ev) {
-    if ((ev.ctrlKey || ev.metaKey) && ev.key === "z") { ev.preventDefault(); send({ op: ev.shiftKey ? "redo" : "undo" }); }
-    else if ((ev.ctrlKey || ev.metaKey) && ev.key === "y") { ev.preventDefault(); send({ op: "redo" }); }
-    else if ((ev.ctrlKey || ev.metaKey) && ev.key === "s") { ev.preventDefault(); send({ op: "save" }); }
-  });
 
-  const url = (location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws?token=" + encodeURIComponent(token);
-  ws = new WebSocket(url);
-  ws.onopen = function () { send({ op: "hello" }); };
-  ws.onclose = function () { say("disconnected from the server", true); };
-  ws.onmessage = function (ev) {
-    const reply = JSON.parse(ev.data);
-    if (reply.seq) answered = Math.max(answered, reply.seq);
-    if (reply.type === "frames") {
-      show(reply.data);
-      const t0 = sentAt[reply.seq];
-      if (t0 !== undefined) timing.last = performance.now() - t0;
-      if (reply.data.error) say(reply.data.error, true);
-      else if (reply.seq > 1) say("");
-    } else if (reply.type === "saved") {
-      document.getElementById("dirty").textContent = reply.dirty ? "● unsaved" : "";
-      say("saved " + reply.file + " (the previous file kept as " + reply.file + ".bak)");
-    } else if (reply.type === "error") {
-      say(reply.message, true);
-    }
-    window.camlinkStudio.answered = answered;
-    for (const n of Object.keys(waiting)) {
-      if (Number(n) <= answered) { for (const f of waiting[n]) f(); delete waiting[n]; }
-    }
-  };
-
-  // For scripts and benchmarks: a promise of the reply to request `n`
-  // having been shown (the page redrawn).
-  const waiting = {};
-  function after(n) {
-    if (answered >= n) return Promise.resolve();
-    return new Promise(function (resolve) { (waiting[n] = waiting[n] || []).push(resolve); });
-  }
-  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: after,
-                           sent: function () { return seq; } };
+  // For scripts and benchmarks: `after(n)` is a promise of the reply to
+  // request `n` having been shown (the page redrawn).
+  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after,
+                           sent: link.sent };
 })();
