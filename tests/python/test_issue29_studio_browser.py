@@ -5,6 +5,7 @@ unassemblable edits and markup in names. Marked `browser`."""
 from __future__ import annotations
 
 import asyncio
+import json
 import shutil
 import threading
 import tomllib
@@ -16,6 +17,7 @@ import numpy as np
 import pytest
 
 import camlink
+from camlink.cli import main
 from camlink.studio import StudioServer
 from conftest import STUCK_FOUR_BAR, four_bar_toml
 
@@ -345,3 +347,81 @@ def test_issue29_viewer_marks_and_picked_point(browser: Any, tmp_path: Path) -> 
             res[f"rocker.B.{c}"][k], rel=1e-6, abs=1e-9), c
     assert errors == []
     page.close()
+
+
+class CamPage(Page):
+    """The studio's cam design page."""
+
+    def wait(self) -> None:
+        self.page.wait_for_function(
+            "() => window.camlinkCam && camlinkCam.answered >= camlinkCam.sent()"
+            " && camlinkCam.sent() > 0", timeout=20_000)
+
+    def segment(self, index: int, key: str, value: str) -> None:
+        sel = f'#segments [data-index="{index}"][data-key="{key}"]'
+        if key == "law":
+            self.page.select_option(sel, value)
+        else:
+            self.page.fill(sel, value)
+            self.page.press(sel, "Enter")
+        self.wait()
+
+    def bad(self) -> bool:
+        return bool(self.js("document.getElementById('message').classList.contains('bad')"))
+
+
+def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "valve.toml"
+    shutil.copy(EXAMPLES / "cam_design_valve.toml", path)
+    s = Studio(path)
+    try:
+        pg = CamPage(browser, s.url)
+        assert pg.js("document.querySelectorAll('#checks li.ok').length") > 5
+        h = 0.0105
+        # The rise alone breaks the program: said at the top, the last
+        # curves stay (dimmed), the page keeps working.
+        pg.segment(1, "lift", str(h))
+        assert pg.bad() and "does not close" in pg.page.locator("#message").text_content()
+        assert pg.js("document.getElementById('svaj').classList.contains('stale')")
+        pg.segment(3, "lift", str(-h))
+        assert not pg.bad()
+        assert not pg.js("document.getElementById('svaj').classList.contains('stale')")
+        # The page's peak readout: s peak h at 250°, s′ peak of the 4-5-6-7
+        # rise C_v h / β (closed form), as the page's data and its text.
+        peak_s = float(pg.js("document.querySelector('.cam-svaj-head[data-channel=s]').dataset.peak"))
+        peak_v = float(pg.js("document.querySelector('.cam-svaj-head[data-channel=v]').dataset.peak"))
+        assert peak_s == pytest.approx(h, abs=1e-12)
+        assert abs(peak_v) == pytest.approx(35 / 16 * h / np.radians(100.0), rel=1e-9)
+        assert "peak 10.5000 at 250.00°" in pg.js("document.querySelector('.cam-svaj-head').textContent")
+        # A law with velocity jumps: its row marked, the boundaries say C0.
+        pg.segment(1, "law", "constant-velocity")
+        assert pg.js("document.querySelectorAll('#segments tr.cam-bad').length") == 2
+        assert "C0 at 150°" in pg.page.locator("#boundaries").text_content()
+        pg.page.click("#undo")
+        pg.wait()
+        assert pg.js("document.querySelectorAll('#segments tr.cam-bad').length") == 0
+        pg.page.click("#save")
+        pg.wait()
+        assert "saved valve.toml" in pg.page.locator("#message").text_content()
+        assert "# Pa, the designer's allowable for this pair" in path.read_text()
+        segs = tomllib.loads(path.read_text())["segments"]
+        assert [g.get("lift", 0.0) for g in segs] == [0.0, h, 0.0, -h]
+        assert [g["law"] for g in segs] == ["dwell", "4-5-6-7", "dwell", "4-5-6-7"]
+        # The CLI on the saved file: its profile CSV (every 1°) is the
+        # page's profile at those angles (1e-9 m), its report the page's.
+        out = tmp_path / "out"
+        capsys.readouterr()
+        assert main(["cam", str(path), "--out", str(out), "--json"]) in (0, 1)
+        page_report = pg.js("camlinkCam.data().report")
+        cli = json.loads(capsys.readouterr().out)
+        assert cli["ok"] == page_report["ok"]
+        for a, b in zip(cli["checks"], page_report["checks"], strict=True):
+            assert a["name"] == b["name"] and a["ok"] == b["ok"]
+            assert a["value"] == pytest.approx(b["value"], rel=1e-9, abs=1e-12)
+        rows = np.loadtxt(out / "valve.csv", delimiter=",", skiprows=1)
+        surface = np.array(pg.js("Array.from(camlinkCam.curves().surface)")).reshape(-1, 2)
+        assert np.max(np.abs(surface[::4][: len(rows), :] - rows[:, 1:3])) <= 1e-9
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()

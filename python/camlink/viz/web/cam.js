@@ -38,11 +38,16 @@
   // -- the segments table -------------------------------------------------
   let rowsKey = "";
   const gestures = {};
-  function edit(index, key, value, input) {
-    const id = index + ":" + key;
-    if (!gestures[id]) gestures[id] = "seg" + Date.now() + Math.random();
-    link.send({ op: "segment", index: index, key: key, value: value, gesture: gestures[id] });
-    if (input === "change") { link.send({ op: "end", gesture: gestures[id] }); delete gestures[id]; }
+  // An edit: "input" events send each value of a gesture (typing, the
+  // spinner); "change" ends the gesture, sending the value only when no
+  // input sent it and it differs from the data's (so a change at blur
+  // makes no empty undo step).
+  function edit(index, key, value, event) {
+    const id = index + ":" + key, open = gestures[id];
+    if (event === "change" && !open && D.segments[index][key === "span_deg" ? "span_deg" : key] === value) return;
+    if (!open) gestures[id] = "seg" + Date.now() + Math.random();
+    if (event === "input" || !open) link.send({ op: "segment", index: index, key: key, value: value, gesture: gestures[id] });
+    if (event === "change") { link.send({ op: "end", gesture: gestures[id] }); delete gestures[id]; }
   }
   function numberCell(index, key, value, step) {
     const td = el("td"), input = el("input");
