@@ -19,6 +19,7 @@ import pytest
 import camlink
 from camlink.cli import main
 from camlink.studio import StudioServer
+from camlink.studio.document import Document
 from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 pytestmark = pytest.mark.browser
@@ -99,8 +100,10 @@ def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[S
     scale = pg.js("camlinkStudio.front.scale()")
     old = pg.js("camlinkStudio.front.handle('joint:A')")
     u, v = pg.js(f"camlinkStudio.front.pixel({old[0]}, {old[1]})")
-    crank = s.server.doc.solution.pose("crank", k)
-    coupler = s.server.doc.solution.pose("coupler", k)
+    doc = s.server.doc
+    assert isinstance(doc, Document)
+    crank = doc.solution.pose("crank", k)
+    coupler = doc.solution.pose("coupler", k)
     page.mouse.move(u, v)
     page.mouse.down()
     for n in range(1, 6):
