@@ -32,6 +32,7 @@ from aiohttp import WSMsgType, web
 from camlink._core import ModelError
 from camlink.studio.cam import CamDocument, cam_payload, open_document
 from camlink.studio.document import Document, Editable, Solution
+from camlink.studio.runs import Run, Runs
 from camlink.viz.front import asset, frame_data
 
 __all__ = ["StudioServer", "make_app", "payload", "run"]
@@ -49,6 +50,7 @@ class _Sockets:
 
 
 SOCKETS_KEY = web.AppKey("sockets", _Sockets)
+RUNS_KEY = web.AppKey("runs", Runs)
 
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
 _ASSETS = ("camlink.js", "studio.js", "cam.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
@@ -92,6 +94,7 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     if sol.kept_branch:
         data["info"].append(BRANCH_NOTE)
     data["file"] = doc.path.name
+    data["analysis"] = sol.model.analysis_type
     data["error"] = sol.error
     data["dirty"] = doc.dirty
     data["undo"] = doc.can_undo
@@ -230,6 +233,14 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                     return
                 await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
+    def report(run: Run) -> None:
+        # In the run's thread: its status to this page, from the loop.
+        msg = run.status(shown)
+        if not ws.closed:
+            asyncio.run_coroutine_threadsafe(_send(ws, msg), loop)
+
+    shown: list[str] = []
+    runs = request.app[RUNS_KEY]
     task = asyncio.create_task(worker())
     request.app[SOCKETS_KEY].open.add(ws)
     try:
@@ -244,6 +255,12 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if msg.get("op") == "param" and not math.isfinite(float(msg.get("value", "nan"))):
                 continue
+            if msg.get("op") in ("run", "stop", "runchannel"):
+                # Runs go on beside the edits: answered here, off the queue.
+                if isinstance(msg.get("plots"), list):
+                    shown[:] = [str(p) for p in msg["plots"]]
+                await _send(ws, _run_request(doc, runs, msg, report))
+                continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
             if queue and _same_target(queue[-1], msg):
@@ -257,6 +274,33 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     return ws
 
 
+async def _send(ws: web.WebSocketResponse, msg: dict[str, Any]) -> None:
+    if not ws.closed:
+        await ws.send_str(json.dumps(msg, separators=(",", ":"), allow_nan=False))
+
+
+def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any],
+                 report: Any) -> dict[str, Any]:
+    """A ``run``, ``stop`` or ``runchannel`` request: the reply (the run
+    itself reports through `report` from its thread)."""
+    op = msg.get("op")
+    seq = msg.get("seq")
+    try:
+        if not isinstance(doc, Document):
+            raise ValueError("a cam design file has no analyses to run; run `camlink cam` on it")
+        if op == "run":
+            run = runs.start(doc.solution.model, str(msg.get("analysis")), report)
+            return {**run.status(), "seq": seq}
+        if op == "stop":
+            runs.stop()
+            return {"type": "ack", "seq": seq}
+        if runs.current is None:
+            raise KeyError("no run yet")
+        return {**runs.current.channel(str(msg.get("name"))), "seq": seq}
+    except (ModelError, ValueError, KeyError) as e:
+        return _error(msg, e)
+
+
 def make_app(doc: Editable, token: str) -> web.Application:
     """The studio's application for `doc`, answering only with `token`."""
     app = web.Application(middlewares=[_guard])
@@ -264,12 +308,14 @@ def make_app(doc: Editable, token: str) -> web.Application:
     app[DOC_KEY] = doc
     app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
     app[SOCKETS_KEY] = _Sockets()
+    app[RUNS_KEY] = Runs()
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _socket)
     app.router.add_get("/static/{name}", _asset)
 
     async def close(app: web.Application) -> None:
         app[EXECUTOR_KEY].shutdown(wait=False, cancel_futures=True)
+        app[RUNS_KEY].close()
 
     async def shutdown(app: web.Application) -> None:
         for ws in list(app[SOCKETS_KEY].open):

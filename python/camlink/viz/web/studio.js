@@ -8,6 +8,8 @@
   const link = camlinkFront.editor({
     before: function (msg) { if (front.data()) msg.plots = front.picked(); },
     reply: function (reply) {
+      if (reply.type === "run") runStatus(reply);
+      else if (reply.type === "runchannel") runPlot(reply.name, camlinkFront.decode(reply.values));
       if (reply.type === "frames") {
         show(reply.data);
         const t0 = link.sentAt[reply.seq];
@@ -54,8 +56,61 @@
     }
   }
 
+  // -- analyses run from the page: started, followed and stopped here,
+  // run by the server in a thread of its own; the finished run's channels
+  // plotted against t. Messages may arrive out of order: the highest
+  // numbered (run id, then n) wins.
+  const RUN = { id: 0, n: 0, state: "idle", done: 0, total: 0, t: null, names: [], units: {},
+                channel: null, values: null, plot: null };
+  const pickRun = document.getElementById("run-analysis");
+  for (const a of ["kinematics", "inverse_dynamics", "equilibrium", "dynamics"]) {
+    const o = document.createElement("option"); o.value = a; o.textContent = a.replace("_", " "); pickRun.appendChild(o);
+  }
+  let analysisSet = false;
+  const pickChannel = document.getElementById("run-channel");
+  document.getElementById("run").addEventListener("click", function () { send({ op: "run", analysis: pickRun.value }); });
+  document.getElementById("stop").addEventListener("click", function () { send({ op: "stop" }); });
+  pickChannel.addEventListener("change", function () { send({ op: "runchannel", name: pickChannel.value }); });
+  function runStatus(r) {
+    if (r.id < RUN.id || (r.id === RUN.id && r.n < RUN.n)) return;
+    RUN.id = r.id; RUN.n = r.n; RUN.state = r.state; RUN.done = r.done; RUN.total = r.total;
+    const bar = document.getElementById("run-progress"), status = document.getElementById("run-status");
+    bar.max = Math.max(1, r.total); bar.value = r.done;
+    document.getElementById("run").disabled = r.state === "running";
+    document.getElementById("stop").disabled = r.state !== "running";
+    status.textContent = r.state === "running" ? r.analysis.replace("_", " ") + ": " + r.done + " of " + r.total + " rows" : r.message;
+    status.dataset.state = r.state;
+    if (!r.names) return;
+    RUN.t = camlinkFront.decode(r.t); RUN.names = r.names; RUN.units = r.units;
+    pickChannel.textContent = "";
+    for (const nm of r.names) { if (nm === "t") continue; const o = document.createElement("option"); o.value = nm; o.textContent = nm; pickChannel.appendChild(o); }
+    pickChannel.hidden = false;
+    const given = Object.keys(r.channels);
+    const first = given.length ? given[0] : r.names.find(function (nm) { return nm !== "t"; });
+    pickChannel.value = first;
+    if (given.length) runPlot(first, camlinkFront.decode(r.channels[first]));
+    else send({ op: "runchannel", name: first });
+  }
+  function runPlot(name, values) {
+    RUN.channel = name; RUN.values = values;
+    const box = document.getElementById("run-plot");
+    if (RUN.plot) { RUN.plot.destroy(); RUN.plot = null; }
+    const unitText = RUN.units[name] ? " (" + RUN.units[name] + ")" : "";
+    RUN.plot = new uPlot({
+      width: 720, height: 180, legend: { show: false }, scales: { x: { time: false } },
+      axes: [{ label: "t (s)", size: 34, labelSize: 14 }, { label: name + unitText, size: 64, labelSize: 14 }],
+      series: [{}, { stroke: "#b07aa1", width: 1.4 }],
+      hooks: { setCursor: [function (u) {
+        const i = u.cursor.idx;
+        document.getElementById("run-value").textContent = (i === null || i === undefined) ? "" :
+          "t = " + RUN.t[i].toFixed(4) + " s: " + Number(values[i]).toPrecision(7) + unitText;
+      }] },
+    }, [Array.from(RUN.t), Array.from(values)], box);
+  }
+
   function show(data) {
     link.shown(data);
+    if (!analysisSet) { pickRun.value = data.analysis; analysisSet = true; }
     front.setData(data);
     sliders(data.parameters);
   }
@@ -74,5 +129,5 @@
   // For scripts and benchmarks: `after(n)` is a promise of the reply to
   // request `n` having been shown (the page redrawn).
   window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after,
-                           sent: link.sent };
+                           sent: link.sent, run: function () { return RUN; } };
 })();
