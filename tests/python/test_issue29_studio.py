@@ -5,6 +5,7 @@ browser tests are in test_issue29_studio_browser.py."""
 from __future__ import annotations
 
 import asyncio
+import base64
 import json
 import math
 import shutil
@@ -288,3 +289,45 @@ def test_issue29_studio_edit_keeps_the_branch(tmp_path: Path) -> None:
         assert doc.solution.kept_branch == other
         assert (BRANCH_NOTE in payload(doc, [])["info"]) == other
     assert flipped >= 2
+
+
+async def _run_checks(path: Path) -> None:
+    token = "s3cret-token"
+    doc = Document(path)
+    app = make_app(doc, token)
+    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
+        port = client.server.port
+        for bad in ({"Origin": "http://evil.example"}, {"Host": "evil.example"}):
+            with pytest.raises(Exception, match="403"):
+                await client.ws_connect(f"/ws?token={token}", headers=bad)
+        with pytest.raises(Exception, match="403"):
+            await client.ws_connect("/ws")
+        ws = await client.ws_connect(f"/ws?token={token}", headers={"Origin": f"http://127.0.0.1:{port}"})
+        await ws.send_str(json.dumps({"op": "runchannel", "name": "t", "seq": 1}))
+        assert json.loads((await ws.receive()).data) == {"type": "error", "seq": 1, "message": "no run yet"}
+        await ws.send_str(json.dumps({"op": "run", "analysis": "statics", "seq": 2}))
+        reply = json.loads((await ws.receive()).data)
+        assert reply["type"] == "error" and "unknown analysis 'statics'" in reply["message"]
+        await ws.send_str(json.dumps({"op": "run", "analysis": "inverse_dynamics", "seq": 3,
+                                      "plots": ["O2.fx"]}))
+        last: dict[str, object] = {}
+        while last.get("state") in (None, "running"):
+            msg = json.loads((await ws.receive(timeout=30)).data)
+            assert msg["type"] == "run"
+            if not last or (msg["id"], msg["n"]) > (last["id"], last["n"]):
+                last = msg
+        assert last["state"] == "done" and last["done"] == last["total"] == 401
+        expected = doc.solution.model.inverse_dynamics()
+        channels = last["channels"]
+        assert isinstance(channels, dict) and "O2.fx" in channels
+        got = np.frombuffer(base64.b64decode(channels["O2.fx"]["f64"]), "<f8")
+        assert np.array_equal(got, expected["O2.fx"])
+        await ws.send_str(json.dumps({"op": "runchannel", "name": "motor.effort", "seq": 4}))
+        reply = json.loads((await ws.receive()).data)
+        got = np.frombuffer(base64.b64decode(reply["values"]["f64"]), "<f8")
+        assert reply["name"] == "motor.effort" and np.array_equal(got, expected["motor.effort"])
+        await ws.close()
+
+
+def test_issue29_studio_runs_over_the_socket(tmp_path: Path) -> None:
+    asyncio.run(_run_checks(_copy(tmp_path, "four_bar.toml")))

@@ -428,3 +428,64 @@ def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path
         assert pg.errors == [] and pg.blocked == []
     finally:
         s.close()
+
+
+def test_issue29_studio_runs_dynamics_with_progress_and_stop(
+        browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # A long run (a million rows): progress shows, the stop stops it, and
+    # the page keeps working.
+    long = tmp_path / "long.toml"
+    long.write_text((EXAMPLES / "dyn_pendulum.toml").read_text().replace(
+        "t_end = 3.0", "t_end = 1000.0"))
+    s = Studio(long)
+    try:
+        pg = Page(browser, s.url)
+        assert pg.js("document.getElementById('run-analysis').value") == "dynamics"
+        pg.page.click("#run")
+        pg.page.wait_for_function(
+            "() => camlinkStudio.run().state === 'running' && camlinkStudio.run().done > 0", timeout=20_000)
+        assert "of 1000001 rows" in pg.page.locator("#run-status").text_content()
+        assert pg.js("document.getElementById('run-progress').value") > 0
+        assert pg.js("document.getElementById('run').disabled")
+        pg.page.click("#stop")
+        pg.page.wait_for_function("() => camlinkStudio.run().state !== 'running'", timeout=20_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["state"] == "stopped" and 0 < run["done"] < run["total"]
+        assert "stopped after" in pg.page.locator("#run-status").text_content()
+        assert not pg.js("document.getElementById('run').disabled")
+        pg.slider("L", 0.6)
+        assert s.server.doc._data["parameters"]["L"] == 0.6
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+    # A run to its end: its channel is the CLI run's (1e-9).
+    path = tmp_path / "pendulum.toml"
+    shutil.copy(EXAMPLES / "dyn_pendulum.toml", path)
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        pg.page.click("#run")
+        pg.page.wait_for_function(
+            "() => camlinkStudio.run().state === 'done' && camlinkStudio.run().values", timeout=30_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["done"] == run["total"] == 3001
+        channel = run["channel"]
+        assert channel == "arm.bob.x"
+        values = np.array(pg.js("Array.from(camlinkStudio.run().values)"))
+        t = np.array(pg.js("Array.from(camlinkStudio.run().t)"))
+        out = tmp_path / "cli.csv"
+        assert main(["run", str(path), "-o", str(out), "-q"]) == 0
+        capsys.readouterr()
+        with out.open() as f:
+            head = f.readline().strip().split(",")
+        table = np.loadtxt(out, delimiter=",", skiprows=1)
+        assert np.max(np.abs(table[:, head.index("t")] - t)) <= 1e-12
+        assert np.max(np.abs(table[:, head.index(channel)] - values)) <= 1e-9
+        # Another channel on request.
+        pg.page.select_option("#run-channel", "arm.phi")
+        pg.page.wait_for_function("() => camlinkStudio.run().channel === 'arm.phi'", timeout=20_000)
+        phi = np.array(pg.js("Array.from(camlinkStudio.run().values)"))
+        assert np.max(np.abs(table[:, head.index("arm.phi")] - phi)) <= 1e-9
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
