@@ -489,3 +489,46 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         assert pg.errors == [] and pg.blocked == []
     finally:
         s.close()
+
+
+def test_issue29_studio_motion_curve_segments_applied(browser: Any, tmp_path: Path) -> None:
+    path = tmp_path / "cam.toml"
+    shutil.copy(EXAMPLES / "cam_motion_roller.toml", path)
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        assert not pg.js("document.getElementById('motion').hidden")
+
+        def cell(index: int, key: str) -> str:
+            return f'#motion input[data-index="{index}"][data-key="{key}"]'
+
+        assert pg.page.input_value(cell(1, "lift")) == "lift"
+        # The rise alone does not close the program: refused, said, kept
+        # staged; with the return it applies.
+        pg.page.fill(cell(1, "lift"), "0.015")
+        pg.page.press(cell(1, "lift"), "Enter")
+        pg.page.click("#motion-apply")
+        pg.wait()
+        assert "does not close" in pg.page.locator("#message").text_content()
+        assert pg.js(f"document.querySelector('{cell(1, 'lift')}').classList.contains('staged')")
+        pg.page.fill(cell(3, "lift"), "-lift * 1.25")
+        pg.page.press(cell(3, "lift"), "Enter")
+        pg.page.click("#motion-apply")
+        pg.wait()
+        assert not pg.js(f"document.querySelector('{cell(1, 'lift')}').classList.contains('staged')")
+        assert pg.js("document.getElementById('motion-apply').disabled")
+        # The follower's lift is a default plot of a cam: the page has it.
+        assert pg.js("camlinkStudio.front.picked()").count("follower.y") == 1
+        page_y = np.array(pg.js("Array.from(camlinkStudio.front.channel('follower.y'))"))
+        pg.page.click("#save")
+        pg.wait()
+        segs = tomllib.loads(path.read_text())["curves"][0]["segments"]
+        assert segs[1]["lift"] == 0.015 and segs[3]["lift"] == "-lift * 1.25"
+        assert "# base circle radius" in path.read_text()
+        # The saved file run as the CLI runs it: the follower's lift.
+        res = camlink.load(path).run()
+        assert np.abs(page_y - res["follower.y"]).max() <= 1e-9
+        assert np.ptp(res["follower.y"]) == pytest.approx(0.015, abs=1e-9)
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()

@@ -90,6 +90,7 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
+    data["segments"] = doc.motion_segments()
     data["info"] = info_lines(sol)
     if sol.kept_branch:
         data["info"].append(BRANCH_NOTE)
@@ -155,6 +156,9 @@ def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
                      msg.get("gesture"))
         elif op == "param":
             doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
+        elif op == "segments":
+            doc.set_segments([(str(c["curve"]), int(c["index"]), str(c["key"]), c["value"])
+                              for c in msg["changes"]])
         elif op in ("undo", "redo", "save", "end"):
             reply = _common(doc, op, msg)
             if reply is not None:
@@ -209,8 +213,7 @@ def _error(msg: dict[str, Any], e: Exception) -> dict[str, Any]:
 def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:
     if a.get("op") != b.get("op") or a.get("op") not in ("move", "param", "segment"):
         return False
-    return (a.get("handle") == b.get("handle") and a.get("name") == b.get("name")
-            and a.get("index") == b.get("index") and a.get("key") == b.get("key"))
+    return all(a.get(k) == b.get(k) for k in ("handle", "name", "curve", "index", "key"))
 
 
 async def _socket(request: web.Request) -> web.WebSocketResponse:

@@ -592,3 +592,52 @@ class Document(Editable):
         if not math.isfinite(value):
             raise ValueError(f"parameter {name!r}: {value} is not a finite number")
         return self._apply(gesture, lambda: params.__setitem__(name, float(value)))
+
+    def motion_segments(self) -> list[dict[str, Any]]:
+        """The segments of the file's ``source = "motion"`` curves: curve
+        name, index in its program, law, span (rad) and lift (m, or rad of
+        swing) as the file gives them (numbers or expressions)."""
+        out = []
+        for c in self._data.get("curves") or []:
+            if c.get("source") != "motion":
+                continue
+            for k, seg in enumerate(c.get("segments") or []):
+                out.append({"curve": str(c.get("name")), "index": k, "law": seg.get("law"),
+                            "span": seg.get("span"), "lift": seg.get("lift", 0.0)})
+        return out
+
+    def set_segments(self, changes: list[tuple[str, int, str, str | float]],
+                     gesture: object = None) -> Solution:
+        """Sets, for each (curve, index, key, value) of `changes`, `key`
+        (``law``, ``span`` in rad or ``lift`` in m, or rad of swing; a
+        number or an expression of the parameters) of segment `index` of
+        the motion curve `curve`, all at once (a rise and its return
+        together: a program that does not close is not a model), and
+        re-solves. Changes that make the model invalid are refused with
+        its message."""
+        curves = {str(c.get("name")): c for c in self._data.get("curves") or []
+                  if c.get("source") == "motion"}
+        edits: list[tuple[dict[str, Any], str, str | float]] = []
+        for curve, index, key, value in changes:
+            if curve not in curves:
+                raise KeyError(f"no motion curve {curve!r}")
+            segs = curves[curve].get("segments") or []
+            if not 0 <= index < len(segs):
+                raise KeyError(f"curve {curve!r} has no segment {index} (its program has {len(segs)})")
+            if key not in ("law", "span", "lift"):
+                raise KeyError(f"segment key {key!r} is not one of law, span, lift")
+            if isinstance(value, bool) or not isinstance(value, str | int | float):
+                raise TypeError(f"curve {curve!r} segments[{index}].{key}: {value!r} is not a "
+                                "number or an expression")
+            if not isinstance(value, str):
+                value = float(value)
+                if not math.isfinite(value):
+                    raise ValueError(f"curve {curve!r} segments[{index}].{key}: {value} is not finite")
+            edits.append((segs[index], key, value))
+
+        def change() -> None:
+            for seg, key, value in edits:
+                seg[key] = value
+
+        solution: Solution = self._apply(gesture, change)
+        return solution

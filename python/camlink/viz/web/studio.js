@@ -11,7 +11,7 @@
       if (reply.type === "run") runStatus(reply);
       else if (reply.type === "runchannel") runPlot(reply.name, camlinkFront.decode(reply.values));
       if (reply.type === "frames") {
-        show(reply.data);
+        show(reply.data, reply.seq);
         const t0 = link.sentAt[reply.seq];
         if (t0 !== undefined) timing.last = performance.now() - t0;
         if (reply.data.error) link.say(reply.data.error, true);
@@ -108,8 +108,58 @@
     }, [Array.from(RUN.t), Array.from(values)], box);
   }
 
-  function show(data) {
+  // -- motion programs of `motion` curves: cells edited are staged and
+  // applied together (a rise and its return: a program that does not
+  // close is refused), as numbers or expressions of the parameters.
+  const staged = {};
+  let motionKey = "", applying = 0;
+  const applyButton = document.getElementById("motion-apply");
+  function stage(input, seg, key) {
+    const id = seg.curve + "\n" + seg.index + "\n" + key, text = input.value.trim();
+    const number = /^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(text);
+    staged[id] = { curve: seg.curve, index: seg.index, key: key, value: number ? Number(text) : text };
+    input.classList.add("staged");
+    applyButton.disabled = false;
+  }
+  applyButton.addEventListener("click", function () {
+    const changes = Object.keys(staged).map(function (id) { return staged[id]; });
+    if (changes.length) applying = send({ op: "segments", changes: changes });
+  });
+  function motion(list, seq) {
+    const box = document.getElementById("motion"), body = box.querySelector("tbody");
+    box.hidden = list.length === 0;
+    if (seq === applying && applying) {
+      for (const id of Object.keys(staged)) delete staged[id];
+      applyButton.disabled = true;
+    }
+    const key = list.map(function (g) { return g.curve + "/" + g.index; }).join(",");
+    if (key !== motionKey) {
+      motionKey = key;
+      body.textContent = "";
+      for (const g of list) {
+        const tr = document.createElement("tr");
+        for (const text of [g.curve, String(g.index)]) { const td = document.createElement("td"); td.textContent = text; tr.appendChild(td); }
+        for (const k of ["law", "span", "lift"]) {
+          const td = document.createElement("td"), input = document.createElement("input");
+          input.type = "text"; input.dataset.curve = g.curve; input.dataset.index = String(g.index); input.dataset.key = k;
+          input.addEventListener("change", function () { stage(input, g, k); });
+          td.appendChild(input); tr.appendChild(td);
+        }
+        body.appendChild(tr);
+      }
+    }
+    body.querySelectorAll("input").forEach(function (input) {
+      const g = list.find(function (v) { return v.curve === input.dataset.curve && String(v.index) === input.dataset.index; });
+      const id = g.curve + "\n" + g.index + "\n" + input.dataset.key;
+      if (staged[id]) return;
+      input.classList.remove("staged");
+      if (document.activeElement !== input) input.value = String(g[input.dataset.key]);
+    });
+  }
+
+  function show(data, seq) {
     link.shown(data);
+    motion(data.segments || [], seq);
     if (!analysisSet) { pickRun.value = data.analysis; analysisSet = true; }
     front.setData(data);
     sliders(data.parameters);
