@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from aiohttp.test_utils import TestClient, TestServer
 
+import camlink
 from camlink.cam.design import CamDesignError, analyse, json_safe, load, sample
 from camlink.cli import main
 from camlink.studio import make_app
@@ -174,3 +175,35 @@ async def _cam_guard_checks(path: Path) -> None:
 
 def test_issue29_studio_cam_refuses_without_token_or_from_another_origin(tmp_path: Path) -> None:
     asyncio.run(_cam_guard_checks(_copy(tmp_path, "cam_design_valve.toml")))
+
+
+def test_issue29_studio_motion_curve_segments(tmp_path: Path) -> None:
+    path = _copy(tmp_path, "cam_motion_roller.toml")
+    doc = Document(path)
+    assert [(g["law"], g["span"], g["lift"]) for g in doc.motion_segments()] == [
+        ("dwell", "pi/3", 0.0), ("cycloidal", "2*pi/3", "lift"), ("dwell", "pi/3", 0.0),
+        ("3-4-5", "2*pi/3", "-lift")]
+    before = doc.text()
+    with pytest.raises(camlink.ModelError, match=r"curves\[0\]\.segments: the program does not close"):
+        doc.set_segments([("profile", 1, "lift", 0.015)])
+    assert doc.text() == before and not doc.can_undo
+    for bad, match in (
+        (("nope", 1, "lift", 0.0), "no motion curve 'nope'"),
+        (("roller", 1, "lift", 0.0), "no motion curve 'roller'"),
+        (("profile", 4, "lift", 0.0), "has no segment 4"),
+        (("profile", 1, "offset", 0.0), "not one of law, span, lift"),
+    ):
+        with pytest.raises(KeyError, match=match):
+            doc.set_segments([bad])
+    with pytest.raises(ValueError, match="not finite"):
+        doc.set_segments([("profile", 1, "lift", math.nan)])
+    # A rise and its return at once, the return as an expression; the
+    # follower's stroke (y along its guide) is the new lift.
+    doc.set_segments([("profile", 1, "lift", 0.015), ("profile", 3, "lift", "-1.25*lift")])
+    y = doc.solution.values[:, doc.solution.names.index("follower.y")]
+    assert np.ptp(y) == pytest.approx(0.015, abs=1e-9)
+    doc.save()
+    saved = camlink.load(path).run()
+    assert np.max(np.abs(saved["follower.y"] - y)) <= 1e-12
+    doc.undo()
+    assert doc.text() == before
