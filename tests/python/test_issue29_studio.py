@@ -331,3 +331,25 @@ async def _run_checks(path: Path) -> None:
 
 def test_issue29_studio_runs_over_the_socket(tmp_path: Path) -> None:
     asyncio.run(_run_checks(_copy(tmp_path, "four_bar.toml")))
+
+
+def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
+    from camlink.studio.runs import Run, studies_of
+
+    for name in ("four_bar.toml", "study_four_bar.toml"):
+        shutil.copy(EXAMPLES / name, tmp_path / name)
+    assert studies_of(tmp_path / "four_bar.toml") == ["study_four_bar.toml"]
+    model = camlink.load(tmp_path / "four_bar.toml")
+    seen: list[tuple[str, int, int]] = []
+    run = Run(model, "study", tmp_path / "study_four_bar.toml")
+
+    def report(r: Run) -> None:
+        seen.append((r.state, r.done, r.total))
+        if r.done >= 3:
+            r.stop.set()
+
+    run.execute(report)
+    # Three variants a batch: stopped after the first.
+    assert run.state == "stopped" and run.done == 3 and run.total == 9
+    assert run.message == "study stopped after 3 of 9 variants"
+    assert seen[0] == ("running", 0, 9) and seen[-1] == ("stopped", 3, 9)

@@ -532,3 +532,35 @@ def test_issue29_studio_motion_curve_segments_applied(browser: Any, tmp_path: Pa
         assert pg.errors == [] and pg.blocked == []
     finally:
         s.close()
+
+
+def test_issue29_studio_runs_a_study_of_the_model(
+        browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    for name in ("four_bar.toml", "study_four_bar.toml"):
+        shutil.copy(EXAMPLES / name, tmp_path / name)
+    s = Studio(tmp_path / "four_bar.toml")
+    try:
+        pg = Page(browser, s.url)
+        pg.page.select_option("#run-analysis", "study:study_four_bar.toml")
+        pg.page.click("#run")
+        pg.page.wait_for_function("() => camlinkStudio.run().state === 'done' && camlinkStudio.run().table",
+                                  timeout=60_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["done"] == run["total"] == 9
+        assert "9 variants, 9 ok" in pg.page.locator("#run-status").text_content()
+        assert pg.js("document.querySelectorAll('#study tr').length") == 10
+        table = run["table"]
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+    # `camlink study` of the same file: the same outputs (1e-9).
+    import pandas as pd
+
+    out = tmp_path / "sweep.parquet"
+    assert main(["study", str(tmp_path / "study_four_bar.toml"), "-o", str(out), "-q"]) == 0
+    capsys.readouterr()
+    cli = pd.read_parquet(out).sort_values("study.variant")
+    cols = table["columns"]
+    for name in ("a", "swing", "rocker_max", "rocker_min", "least_transmission"):
+        page = np.array([row[cols.index(name)] for row in table["rows"]], dtype=float)
+        assert np.max(np.abs(page - cli[name].to_numpy())) <= 1e-9, name

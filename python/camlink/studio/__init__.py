@@ -32,7 +32,7 @@ from aiohttp import WSMsgType, web
 from camlink._core import ModelError
 from camlink.studio.cam import CamDocument, cam_payload, open_document
 from camlink.studio.document import Document, Editable, Solution
-from camlink.studio.runs import Run, Runs
+from camlink.studio.runs import Run, Runs, studies_of
 from camlink.viz.front import asset, frame_data
 
 __all__ = ["StudioServer", "make_app", "payload", "run"]
@@ -169,7 +169,10 @@ def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
         return _error(msg, e)
     plots = msg.get("plots")
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
-    return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc, shown)}
+    data = payload(doc, shown)
+    if op == "hello":
+        data["studies"] = studies_of(doc.path)
+    return {"type": "frames", "seq": msg.get("seq"), "data": data}
 
 
 def _handle_cam(doc: CamDocument, msg: dict[str, Any]) -> dict[str, Any]:
@@ -292,7 +295,13 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any],
         if not isinstance(doc, Document):
             raise ValueError("a cam design file has no analyses to run; run `camlink cam` on it")
         if op == "run":
-            run = runs.start(doc.solution.model, str(msg.get("analysis")), report)
+            analysis, study = str(msg.get("analysis")), None
+            if analysis.startswith("study:"):
+                name = analysis[len("study:"):]
+                if name not in studies_of(doc.path):
+                    raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
+                analysis, study = "study", doc.path.parent / name
+            run = runs.start(doc.solution.model, analysis, report, study)
             return {**run.status(), "seq": seq}
         if op == "stop":
             runs.stop()

@@ -21,11 +21,14 @@ then those the page asked for (float64, base64), and ``message``.
 from __future__ import annotations
 
 import itertools
+import math
 import threading
 import time
+import tomllib
 from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
-from typing import Any
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -34,7 +37,15 @@ from camlink.model import ANALYSES, Model
 from camlink.results import Results
 from camlink.viz.front import b64, default_plots
 
-__all__ = ["ANALYSES", "Run", "Runs"]
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from camlink.study.study_file import StudyFile
+
+__all__ = ["ANALYSES", "Run", "Runs", "studies_of"]
+
+#: Most rows of a study's table sent to the page.
+MAX_TABLE = 500
 
 #: Least time (s) between two progress messages of a run.
 INTERVAL = 0.05
@@ -49,14 +60,22 @@ class Stopped(Exception):
 
 
 class Run:
-    """One analysis of `model` (`analysis`: one of `ANALYSES`)."""
+    """One analysis of `model` (`analysis`: one of `ANALYSES`), or the
+    study of the file `study` (`analysis` = ``"study"``) on `model`."""
 
-    def __init__(self, model: Model, analysis: str) -> None:
-        if analysis not in ANALYSES:
+    def __init__(self, model: Model, analysis: str, study: Path | None = None) -> None:
+        if analysis not in ANALYSES and not (analysis == "study" and study is not None):
             raise ModelError(f"unknown analysis {analysis!r} (one of {', '.join(ANALYSES)})")
         self.model = model
         self.analysis = analysis
-        self.total = 1 if analysis == "equilibrium" else len(model.times())
+        self.study: StudyFile | None = None
+        if study is not None:
+            from camlink.study.study_file import read_study
+
+            self.study = read_study(study)
+        self.table: pd.DataFrame | None = None
+        self.total = (1 if analysis == "equilibrium" else 0 if study is not None
+                      else len(model.times()))
         self.done = 0
         self.state = "running"
         self.message = ""
@@ -72,6 +91,8 @@ class Run:
                                "analysis": self.analysis, "state": self.state,
                                "done": self.done, "total": self.total, "message": self.message}
         res = self.results
+        if self.table is not None and self.state != "running":
+            out["table"] = _table(self.table)
         if res is not None and self.state != "running" and len(res):
             names = list(res.channels)
             out["names"] = names
@@ -107,13 +128,29 @@ class Run:
                 last = now
                 report(self)
 
+        def on_batch(done: int, total: int) -> None:
+            self.done, self.total = done, total
+            report(self)
+            if self.stop.is_set():
+                raise Stopped()
+
+        unit = "variants" if self.study is not None else "rows"
         try:
-            self.results = self.model.run(analysis=self.analysis, on_rows=on_rows)
+            if self.study is not None:
+                from camlink.study.runner import STATUS
+
+                self.table = _run_study(self.model, self.study, on_batch)
+                ok = int((self.table[STATUS] == "ok").sum())
+                self.message = (f"study {self.study.path.name}: {len(self.table)} variants, {ok} ok"
+                                + ("" if len(self.table) <= MAX_TABLE else
+                                   f" (the first {MAX_TABLE} shown)"))
+            else:
+                self.results = self.model.run(analysis=self.analysis, on_rows=on_rows)
+                self.message = f"{self.analysis}: {len(self.results)} rows"
             self.state = "done"
-            self.message = f"{self.analysis}: {len(self.results)} rows"
         except Stopped:
             self.state = "stopped"
-            self.message = f"{self.analysis} stopped after {self.done} of {self.total} rows"
+            self.message = f"{self.analysis} stopped after {self.done} of {self.total} {unit}"
         except AnalysisError as e:
             self.results = e.results
             self.state = "failed"
@@ -124,6 +161,51 @@ class Run:
         report(self)
 
 
+def _run_study(model: Model, sf: StudyFile,
+               on_batch: Callable[[int, int], None]) -> pd.DataFrame:
+    """The study `sf` on `model` (the model as edited, not its file), as
+    `camlink study` runs it but writing no files, on local cores."""
+    from camlink.study.sampling import monte_carlo
+    from camlink.study.sweeps import sweep
+    execution: dict[str, Any] = {"threads": sf.threads, "batch_size": sf.batch_size,
+                                 "time_limit": sf.time_limit, "quiet": True,
+                                 "on_batch": on_batch}
+    if sf.kind == "sweep":
+        return sweep(model, sf.values, sf.outputs, mode="zip" if sf.mode == "zip" else "grid",
+                     **execution)
+    mc = monte_carlo(model, sf.distributions, sf.outputs, n=sf.n or 0, seed=sf.seed,
+                     sampling="sobol" if sf.sampling == "sobol" else
+                     "lhs" if sf.sampling == "lhs" else "random", **execution)
+    return mc.table
+
+
+def _table(table: pd.DataFrame) -> dict[str, Any]:
+    """A study's table for the page: its columns but the key and batch,
+    and its first `MAX_TABLE` rows (numbers, NaN as None, and text)."""
+    from camlink.study.runner import BATCH, KEY
+    columns = [c for c in table.columns if c not in (KEY, BATCH)]
+    rows = []
+    for row in table[columns].head(MAX_TABLE).itertuples(index=False):
+        rows.append([None if isinstance(v, float) and not math.isfinite(v) else
+                     v.item() if isinstance(v, np.generic) else v for v in row])
+    return {"columns": columns, "rows": rows}
+
+
+def studies_of(path: Path) -> list[str]:
+    """The study files beside the model file `path` that name it
+    (``[study] model``), by file name."""
+    out = []
+    for f in sorted(path.parent.glob("*.toml")):
+        try:
+            data = tomllib.loads(f.read_text(encoding="utf-8"))
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            continue
+        study = data.get("study")
+        if isinstance(study, dict) and study.get("model") == path.name:
+            out.append(f.name)
+    return out
+
+
 class Runs:
     """The studio's runs: one at a time, in a thread of their own."""
 
@@ -131,11 +213,13 @@ class Runs:
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-run")
         self.current: Run | None = None
 
-    def start(self, model: Model, analysis: str, report: Callable[[Run], None]) -> Run:
-        """Starts `analysis` of `model`; raises ValueError while a run is going."""
+    def start(self, model: Model, analysis: str, report: Callable[[Run], None],
+              study: Path | None = None) -> Run:
+        """Starts `analysis` of `model` (the study `study` when `analysis`
+        is ``"study"``); raises ValueError while a run is going."""
         if self.current is not None and self.current.state == "running":
             raise ValueError("a run is going: stop it first")
-        run = Run(model, analysis)
+        run = Run(model, analysis, study)
         self.current = run
         self.executor.submit(run.execute, report)
         return run

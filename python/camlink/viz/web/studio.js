@@ -78,8 +78,10 @@
     bar.max = Math.max(1, r.total); bar.value = r.done;
     document.getElementById("run").disabled = r.state === "running";
     document.getElementById("stop").disabled = r.state !== "running";
-    status.textContent = r.state === "running" ? r.analysis.replace("_", " ") + ": " + r.done + " of " + r.total + " rows" : r.message;
+    const unit = r.analysis === "study" ? " variants" : " rows";
+    status.textContent = r.state === "running" ? r.analysis.replace("_", " ") + ": " + r.done + " of " + r.total + unit : r.message;
     status.dataset.state = r.state;
+    studyTable(r.table);
     if (!r.names) return;
     RUN.t = camlinkFront.decode(r.t); RUN.names = r.names; RUN.units = r.units;
     pickChannel.textContent = "";
@@ -90,6 +92,26 @@
     pickChannel.value = first;
     if (given.length) runPlot(first, camlinkFront.decode(r.channels[first]));
     else send({ op: "runchannel", name: first });
+  }
+  // A study's table: one row per variant, parameters, outputs, status.
+  function studyTable(table) {
+    const box = document.getElementById("study");
+    RUN.table = table || null;
+    box.textContent = "";
+    if (!table) return;
+    const t = document.createElement("table"), head = document.createElement("tr");
+    for (const c of table.columns) { const th = document.createElement("th"); th.textContent = c; head.appendChild(th); }
+    t.appendChild(head);
+    for (const row of table.rows) {
+      const tr = document.createElement("tr");
+      for (const v of row) {
+        const td = document.createElement("td");
+        td.textContent = v === null ? "–" : typeof v === "number" && !Number.isInteger(v) ? v.toPrecision(7) : String(v);
+        tr.appendChild(td);
+      }
+      t.appendChild(tr);
+    }
+    box.appendChild(t);
   }
   function runPlot(name, values) {
     RUN.channel = name; RUN.values = values;
@@ -161,6 +183,13 @@
     link.shown(data);
     motion(data.segments || [], seq);
     if (!analysisSet) { pickRun.value = data.analysis; analysisSet = true; }
+    if (data.studies) {
+      pickRun.querySelectorAll("option.study").forEach(function (o) { o.remove(); });
+      for (const name of data.studies) {
+        const o = document.createElement("option"); o.className = "study"; o.value = "study:" + name;
+        o.textContent = "study " + name; pickRun.appendChild(o);
+      }
+    }
     front.setData(data);
     sliders(data.parameters);
   }
