@@ -874,7 +874,10 @@ def analyse(design: Design) -> Report:
 
 
 def json_safe(v: object) -> object:
-    """`v` (a report's dict) with infinities and NaN as None, for JSON."""
+    """`v` (a report's dict) with arrays as lists and infinities and NaN
+    as None, for JSON."""
+    if isinstance(v, np.ndarray):
+        return json_safe(v.tolist())
     if isinstance(v, float) and not math.isfinite(v):
         return None
     if isinstance(v, dict):

@@ -2,7 +2,9 @@
 cycle re-solved in the core on each edit.
 
 An aiohttp server bound to 127.0.0.1 serves the packaged page
-(``web/studio.html``, ``web/camlink.js``, the vendored uPlot) and a
+(``web/studio.html`` with the body of ``web/studio_model.html`` or, for a
+cam design file, ``web/studio_cam.html``; ``web/camlink.js``, the
+vendored uPlot) and a
 websocket for edits. Every request must carry the session's random token
 (``?token=…``) and, when it has an ``Origin`` or a ``Host`` header, name
 this server: anything else gets 403. The page loads nothing from a
@@ -130,8 +132,11 @@ async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
 
 
 async def _index(request: web.Request) -> web.Response:
-    page = "cam.html" if isinstance(request.app[DOC_KEY], CamDocument) else "studio.html"
-    text = asset(page).replace("__TOKEN__", request.app[TOKEN_KEY])
+    cam = isinstance(request.app[DOC_KEY], CamDocument)
+    body = asset("studio_cam.html" if cam else "studio_model.html")
+    page = asset("studio.html").replace("__BODY__", body)
+    page = page.replace("__SCRIPT__", "cam.js" if cam else "studio.js")
+    text = page.replace("__TOKEN__", request.app[TOKEN_KEY])
     return web.Response(text=text, content_type="text/html")
 
 
@@ -142,54 +147,49 @@ async def _asset(request: web.Request) -> web.Response:
     return web.Response(text=asset(name), content_type=_TYPES[Path(name).suffix])
 
 
+def _edit(doc: Editable, op: object, msg: dict[str, Any]) -> bool:
+    """Applies the edit request `msg` to `doc`; False when `op` is no edit
+    of this kind of document."""
+    if isinstance(doc, CamDocument):
+        if op != "segment":
+            return False
+        doc.set_segment(int(msg["index"]), str(msg["key"]), msg["value"], msg.get("gesture"))
+        return True
+    assert isinstance(doc, Document)
+    if op == "move":
+        doc.move(str(msg["handle"]), int(msg["row"]), float(msg["x"]), float(msg["y"]),
+                 msg.get("gesture"))
+    elif op == "param":
+        doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
+    elif op == "segments":
+        doc.set_segments([(str(c["curve"]), int(c["index"]), str(c["key"]), c["value"])
+                          for c in msg["changes"]])
+    else:
+        return False
+    return True
+
+
 def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
     """One message from the page, in the worker thread: the reply."""
-    if isinstance(doc, CamDocument):
-        return _handle_cam(doc, msg)
-    assert isinstance(doc, Document)
     op = msg.get("op")
     try:
-        if op == "hello":
-            pass
-        elif op == "move":
-            doc.move(str(msg["handle"]), int(msg["row"]), float(msg["x"]), float(msg["y"]),
-                     msg.get("gesture"))
-        elif op == "param":
-            doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
-        elif op == "segments":
-            doc.set_segments([(str(c["curve"]), int(c["index"]), str(c["key"]), c["value"])
-                              for c in msg["changes"]])
-        elif op in ("undo", "redo", "save", "end"):
-            reply = _common(doc, op, msg)
+        if op in ("undo", "redo", "save", "end"):
+            reply = _common(doc, str(op), msg)
             if reply is not None:
                 return reply
-        else:
+        elif op != "hello" and not _edit(doc, op, msg):
             return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
     except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
         return _error(msg, e)
+    if isinstance(doc, CamDocument):
+        return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc)}
+    assert isinstance(doc, Document)
     plots = msg.get("plots")
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
     data = payload(doc, shown)
     if op == "hello":
         data["studies"] = studies_of(doc.path)
     return {"type": "frames", "seq": msg.get("seq"), "data": data}
-
-
-def _handle_cam(doc: CamDocument, msg: dict[str, Any]) -> dict[str, Any]:
-    """One message from the cam page, in the worker thread: the reply."""
-    op = msg.get("op")
-    try:
-        if op == "segment":
-            doc.set_segment(int(msg["index"]), str(msg["key"]), msg["value"], msg.get("gesture"))
-        elif op in ("hello", "undo", "redo", "save", "end"):
-            reply = _common(doc, op, msg)
-            if reply is not None:
-                return reply
-        else:
-            return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
-    except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
-        return _error(msg, e)
-    return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc)}
 
 
 def _common(doc: Editable, op: str, msg: dict[str, Any]) -> dict[str, Any] | None:
