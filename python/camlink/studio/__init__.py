@@ -265,7 +265,7 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 # Runs go on beside the edits: answered here, off the queue.
                 if isinstance(msg.get("plots"), list):
                     shown[:] = [str(p) for p in msg["plots"]]
-                await _send(ws, _run_request(doc, runs, msg, report))
+                await _send(ws, _run_request(doc, runs, msg, report, shown))
                 continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
@@ -285,10 +285,11 @@ async def _send(ws: web.WebSocketResponse, msg: dict[str, Any]) -> None:
         await ws.send_str(json.dumps(msg, separators=(",", ":"), allow_nan=False))
 
 
-def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any],
-                 report: Any) -> dict[str, Any]:
+def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
+                 shown: list[str]) -> dict[str, Any]:
     """A ``run``, ``stop`` or ``runchannel`` request: the reply (the run
-    itself reports through `report` from its thread)."""
+    itself reports through `report` from its thread; a reply, as a report,
+    carries the channels `shown` of a finished run)."""
     op = msg.get("op")
     seq = msg.get("seq")
     try:
@@ -302,7 +303,7 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any],
                     raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
                 analysis, study = "study", doc.path.parent / name
             run = runs.start(doc.solution.model, analysis, report, study)
-            return {**run.status(), "seq": seq}
+            return {**run.status(shown), "seq": seq}
         if op == "stop":
             runs.stop()
             return {"type": "ack", "seq": seq}
