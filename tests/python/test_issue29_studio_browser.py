@@ -564,3 +564,26 @@ def test_issue29_studio_runs_a_study_of_the_model(
     for name in ("a", "swing", "rocker_max", "rocker_min", "least_transmission"):
         page = np.array([row[cols.index(name)] for row in table["rows"]], dtype=float)
         assert np.max(np.abs(page - cli[name].to_numpy())) <= 1e-9, name
+
+
+def test_issue29_studio_cam_names_with_markup_render_as_text(browser: Any, tmp_path: Path) -> None:
+    path = tmp_path / "design.toml"
+    name = '<img src=x onerror="window.pwned=1"><b>cam</b>'
+    path.write_text((EXAMPLES / "cam_design_indexing.toml").read_text().replace(
+        'name = "indexing cam"', f"name = '{name}'"))
+    s = Studio(path)
+    try:
+        pg = CamPage(browser, s.url)
+        assert pg.page.locator("#title").text_content() == name
+        assert pg.js("document.querySelectorAll('#top img, #top b').length") == 0
+        # A law that is no law: its message (quoting it) is text too.
+        pg.segment(1, "law", "cycloidal")
+        pg.page.evaluate("() => camlinkCam.send({op: 'segment', index: 1, key: 'law', "
+                         "value: '<i>septic</i>'})")
+        pg.wait()
+        assert "'<i>septic</i>' is not one of" in pg.page.locator("#message").text_content()
+        assert pg.js("document.querySelectorAll('#message i').length") == 0
+        assert pg.js("window.pwned === undefined")
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
