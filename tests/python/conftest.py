@@ -6,12 +6,13 @@ the examples; `test_examples.py` covers those.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import shutil
 import subprocess
 import sys
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -190,3 +191,21 @@ async def refuses_strangers(client: Any, token: str, asset: str) -> None:
         await client.ws_connect(f"/ws?token={token}", headers={"Host": "evil.example"})
     with pytest.raises(Exception, match="403"):
         await client.ws_connect("/ws?token=nope")
+
+
+#: The token of the studio servers the tests start in-process.
+TOKEN = "s3cret-token"
+
+
+@contextlib.asynccontextmanager
+async def studio_client(doc: Any) -> AsyncIterator[tuple[Any, int]]:
+    """An aiohttp test client of a studio server for `doc` answering with
+    `TOKEN`, and the server's port."""
+    from aiohttp.test_utils import TestClient, TestServer
+
+    from camlink.studio import make_app
+
+    async with TestClient(TestServer(make_app(doc, TOKEN), host="127.0.0.1")) as client:
+        port = client.server.port
+        assert port is not None
+        yield client, port

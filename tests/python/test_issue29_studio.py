@@ -14,16 +14,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from aiohttp.test_utils import TestClient, TestServer
 
 import camlink
 from camlink import _core
 from camlink.cli import main
-from camlink.studio import BRANCH_NOTE, make_app, payload
+from camlink.studio import BRANCH_NOTE, payload
 from camlink.studio.document import Document
 from camlink.viz.fourbar import find, transmission
 from camlink.viz.scene import Scene
-from conftest import STUCK_FOUR_BAR, four_bar_toml, refuses_strangers
+from conftest import STUCK_FOUR_BAR, TOKEN, four_bar_toml, refuses_strangers, studio_client
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -179,11 +178,8 @@ def test_issue29_fourbar_not_found_in_a_six_bar() -> None:
 
 
 async def _guard_checks(path: Path) -> None:
-    token = "s3cret-token"
-    app = make_app(Document(path), token)
-    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
-        port = client.server.port
-        assert port is not None
+    token = TOKEN
+    async with studio_client(Document(path)) as (client, port):
         ok = await client.get(f"/?token={token}")
         assert ok.status == 200
         assert "default-src 'none'" in ok.headers["Content-Security-Policy"]
@@ -278,11 +274,9 @@ def test_issue29_studio_edit_keeps_the_branch(tmp_path: Path) -> None:
 
 
 async def _run_checks(path: Path) -> None:
-    token = "s3cret-token"
+    token = TOKEN
     doc = Document(path)
-    app = make_app(doc, token)
-    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
-        port = client.server.port
+    async with studio_client(doc) as (client, port):
         await refuses_strangers(client, token, "/static/studio.js")
         ws = await client.ws_connect(f"/ws?token={token}", headers={"Origin": f"http://127.0.0.1:{port}"})
         await ws.send_str(json.dumps({"op": "runchannel", "name": "t", "seq": 1}))

@@ -14,15 +14,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from aiohttp.test_utils import TestClient, TestServer
 
 import camlink
 from camlink.cam.design import CamDesignError, analyse, json_safe, load, sample
 from camlink.cli import main
-from camlink.studio import make_app
 from camlink.studio.cam import SAMPLES, CamDocument, cam_payload, open_document
 from camlink.studio.document import Document
-from conftest import refuses_strangers
+from conftest import TOKEN, refuses_strangers, studio_client
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -140,11 +138,8 @@ def test_issue29_studio_opens_model_or_design(tmp_path: Path, capsys: pytest.Cap
 
 
 async def _cam_guard_checks(path: Path) -> None:
-    token = "s3cret-token"
-    app = make_app(CamDocument(path), token)
-    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
-        port = client.server.port
-        assert port is not None
+    token = TOKEN
+    async with studio_client(CamDocument(path)) as (client, port):
         ok = await client.get(f"/?token={token}")
         assert ok.status == 200 and "static/cam.js" in await ok.text()
         await refuses_strangers(client, token, "/static/cam.js")
