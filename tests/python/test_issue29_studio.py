@@ -188,6 +188,8 @@ async def _guard_checks(path: Path) -> None:
         await ws.send_str(json.dumps({"op": "hello", "seq": 1}))
         reply = json.loads((await ws.receive()).data)
         assert reply["type"] == "frames" and reply["data"]["title"] == "four_bar"
+        # A slider value that is no number is dropped; the socket goes on.
+        await ws.send_str(json.dumps({"op": "param", "name": "a", "value": "abc", "seq": 9}))
         await ws.send_str(json.dumps({"op": "move", "handle": "nope", "row": 0, "x": 0, "y": 0, "seq": 2}))
         reply = json.loads((await ws.receive()).data)
         assert reply == {"type": "error", "seq": 2, "message": "no handle 'nope'"}

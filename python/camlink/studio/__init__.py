@@ -259,7 +259,7 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if not isinstance(msg, dict):
                 continue
-            if msg.get("op") == "param" and not math.isfinite(float(msg.get("value", "nan"))):
+            if msg.get("op") == "param" and not _finite(msg.get("value")):
                 continue
             if msg.get("op") in ("run", "stop", "runchannel"):
                 # Runs go on beside the edits: answered here, off the queue.
@@ -278,6 +278,14 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
         task.cancel()
         request.app[SOCKETS_KEY].open.discard(ws)
     return ws
+
+
+def _finite(v: object) -> bool:
+    """Whether `v` is a finite number (or a number's text)."""
+    try:
+        return math.isfinite(float(v))  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return False
 
 
 async def _send(ws: web.WebSocketResponse, msg: dict[str, Any]) -> None:
