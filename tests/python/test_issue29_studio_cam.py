@@ -120,7 +120,16 @@ def test_issue29_studio_cam_oscillating_swing(tmp_path: Path) -> None:
     for k, v in ((0, 25), (2, -25), (4, 25), (6, -25)):
         doc.set_segment(k, "lift", v)
     assert doc.solution.error is None
-    assert cam_payload(doc)["peaks"]["s"][0] == pytest.approx(math.radians(25.0), abs=1e-12)
+    data = cam_payload(doc)
+    assert data["peaks"]["s"][0] == pytest.approx(math.radians(25.0), abs=1e-12)
+    # The pressure angle over the turn, sampled every 0.25°: its peak is
+    # the report's (found by the core's search between samples) to 1e-3°,
+    # never above it; the limit is the file's 35°.
+    rise = {c["name"]: c for c in data["report"]["checks"]}["pressure angle, rise"]
+    peak = math.degrees(data["peaks"]["p"][0])
+    assert peak <= rise["value"] + 1e-9 and peak == pytest.approx(rise["value"], abs=1e-3)
+    assert data["pressure_limit"] == pytest.approx(math.radians(35.0), abs=1e-15)
+    assert "pressure" not in cam_payload(CamDocument(EXAMPLES / "cam_design_valve.toml"))
     doc.save()
     saved = tomllib.loads(path.read_text())["segments"]
     assert [s.get("swing_deg") for s in saved[::2]] == [25, -25, 25, -25]

@@ -68,12 +68,15 @@ class CamSolution:
     motion: Array
     surface: Array
     pitch: Array | None
+    #: Pressure angle at each θ (rad; None for a translating flat face,
+    #: whose pressure angle is 0).
+    pressure: Array | None = None
     error: str | None = None
 
 
 def _invalid(message: str) -> CamSolution:
     empty = np.empty((0, 4))
-    return CamSolution(None, None, np.empty(0), empty, np.empty((0, 2)), None, message)
+    return CamSolution(None, None, np.empty(0), empty, np.empty((0, 2)), None, None, message)
 
 
 def analyse_data(data: dict[str, Any], path: Path) -> CamSolution:
@@ -90,8 +93,10 @@ def analyse_data(data: dict[str, Any], path: Path) -> CamSolution:
         theta, motion = sample(core, SAMPLES)
         surface = np.asarray(core.surface(theta), dtype=np.float64)
         pitch = core.pitch(theta)
+        pressure = (None if design.follower == "translating-flat" else
+                    np.asarray(core.contact(theta)["pressure_angle"], dtype=np.float64))
     return CamSolution(design, report, theta, motion, surface,
-                       None if pitch is None else np.asarray(pitch, dtype=np.float64))
+                       None if pitch is None else np.asarray(pitch, dtype=np.float64), pressure)
 
 
 class CamDocument(Editable):
@@ -184,7 +189,9 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
     """The cam page's data: the segments, and for a valid design SVAJ over
     a turn (θ in rad; s, v = s′, a = s″, j = s‴ in m or rad per rad^k),
     their peaks, the profile (cam frame, m, x and y interleaved), the base
-    circle and `camlink cam`'s report (as ``--json`` gives it)."""
+    circle, the pressure angle at each θ (rad; not for a translating flat
+    face) with its peak and the limit (rad, or None), and `camlink cam`'s
+    report (as ``--json`` gives it)."""
     sol = doc.solution
     data: dict[str, Any] = {
         "kind": "cam",
@@ -205,6 +212,12 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
     for k, name in enumerate(("s", "v", "a", "j")):
         data[name] = b64(sol.motion[:, k])
     data["peaks"] = _peaks(sol.theta, sol.motion)
+    if sol.pressure is not None:
+        data["pressure"] = b64(sol.pressure)
+        i = int(np.argmax(np.abs(sol.pressure)))
+        data["peaks"]["p"] = [float(sol.pressure[i]), math.degrees(float(sol.theta[i]))]
+        limit = sol.design.limits.max_pressure_angle
+        data["pressure_limit"] = limit
     data["surface"] = b64(sol.surface.ravel())
     data["pitch"] = None if sol.pitch is None else b64(sol.pitch.ravel())
     data["base_radius"] = sol.design.base_radius

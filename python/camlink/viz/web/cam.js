@@ -7,7 +7,8 @@
 // lift, from_deg, ends}], laws, oscillating, error; for a valid design
 // theta (rad), s, v, a, j (m or rad, per rad of cam angle), peaks
 // {s: [value, θ°], …}, surface and pitch (cam frame, m, x y interleaved),
-// base_radius (m) and report (as `camlink cam --json`).
+// base_radius (m), pressure (rad, not for a translating flat face) with
+// pressure_limit (rad or null), and report (as `camlink cam --json`).
 "use strict";
 (function () {
   const F = camlinkFront;
@@ -27,6 +28,8 @@
     return D.oscillating ? { k: 180 / Math.PI, s: "°" } : { k: 1000, s: "mm" };
   }
   const NAMES = [["s", "s", ""], ["v", "s′", "/rad"], ["a", "s″", "/rad²"], ["j", "s‴", "/rad³"]];
+  // The pressure angle's plot: degrees, whatever the follower.
+  const PRESSURE = ["p", "pressure angle φ", ""];
 
   function el(tag, cls, text) {
     const e = document.createElement(tag);
@@ -101,19 +104,21 @@
   }
 
   // -- SVAJ -----------------------------------------------------------------
+  function scaleOf(key) { return key === "p" ? 180 / Math.PI : unit().k; }
   function makePlots() {
     const u = unit();
-    for (const [key, label, per] of NAMES) {
+    for (const [key, label, per] of NAMES.concat(D.pressure ? [PRESSURE] : [])) {
       const box = el("div", "cl-plot"), head = el("div", "cam-svaj-head");
       head.dataset.channel = key;
       box.appendChild(head); svajBox.appendChild(box);
-      const p = { key: key, head: head, box: box, u: null, label: label + " (" + u.s + per + ")" };
+      const p = { key: key, head: head, box: box, u: null,
+                  label: label + " (" + (key === "p" ? "°" : u.s + per) + ")" };
       const opts = {
         width: 640, height: 150, legend: { show: false },
         cursor: { sync: { key: "svaj" }, drag: { x: false, y: false } },
         scales: { x: { time: false, range: [0, 360] } },
         axes: [{ label: "cam angle θ (°)", size: 34, labelSize: 14, incrs: [15, 30, 45, 90] },
-               { label: p.label, size: 64, labelSize: 14 }],
+               { label: key === "p" ? "φ (°)" : p.label, size: 64, labelSize: 14 }],
         series: [{}, { stroke: "#1f4e79", width: 1.4 }],
         hooks: {
           setCursor: [function (uu) { readout(p, uu.cursor.idx); }],
@@ -127,6 +132,15 @@
               g.beginPath(); g.moveTo(X, uu.bbox.top); g.lineTo(X, uu.bbox.top + uu.bbox.height); g.stroke();
             }
             g.restore();
+            if (p.key === "p" && C.pressure_limit !== null && C.pressure_limit !== undefined) {
+              // The limit ±φ_max, red dashed.
+              g.save(); g.strokeStyle = "#c0392b"; g.lineWidth = dpr; g.setLineDash([6 * dpr, 4 * dpr]);
+              for (const sgn of [1, -1]) {
+                const Y = uu.valToPos(sgn * C.pressure_limit * 180 / Math.PI, "y", true);
+                g.beginPath(); g.moveTo(uu.bbox.left, Y); g.lineTo(uu.bbox.left + uu.bbox.width, Y); g.stroke();
+              }
+              g.restore();
+            }
           }],
         },
       };
@@ -135,10 +149,10 @@
     }
   }
   function readout(p, i) {
-    const u = unit(), peak = C.peaks[p.key];
-    let text = p.label + "   peak " + (peak[0] * u.k).toPrecision(6) + " at " + peak[1].toFixed(2) + "°";
+    const k = scaleOf(p.key), peak = C.peaks[p.key];
+    let text = p.label + "   peak " + (peak[0] * k).toPrecision(6) + " at " + peak[1].toFixed(2) + "°";
     if (i !== null && i !== undefined && i >= 0 && i < C.theta.length) {
-      text += "   cursor θ = " + (C.theta[i] * 180 / Math.PI).toFixed(2) + "°: " + (C[p.key][i] * u.k).toPrecision(6);
+      text += "   cursor θ = " + (C.theta[i] * 180 / Math.PI).toFixed(2) + "°: " + (C[p.key][i] * k).toPrecision(6);
       cursor = i;
       profile();
     }
@@ -147,9 +161,10 @@
   }
   function svaj() {
     if (!plots.length) makePlots();
-    const u = unit(), deg = Array.from(C.theta, function (t) { return t * 180 / Math.PI; });
+    const deg = Array.from(C.theta, function (t) { return t * 180 / Math.PI; });
     for (const p of plots) {
-      p.u.setData([deg, Array.from(C[p.key], function (v) { return v * u.k; })]);
+      const k = scaleOf(p.key);
+      p.u.setData([deg, Array.from(C[p.key], function (v) { return v * k; })]);
       readout(p, null);
     }
   }
@@ -246,6 +261,7 @@
     C = {
       theta: F.decode(data.theta), s: F.decode(data.s), v: F.decode(data.v), a: F.decode(data.a),
       j: F.decode(data.j), surface: F.decode(data.surface), pitch: data.pitch ? F.decode(data.pitch) : null,
+      p: data.pressure ? F.decode(data.pressure) : null, pressure_limit: data.pressure_limit,
       peaks: data.peaks, base_radius: data.base_radius, report: data.report,
     };
     if (cursor !== null && cursor >= C.theta.length) cursor = null;
