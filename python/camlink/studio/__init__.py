@@ -1,19 +1,24 @@
 """``camlink studio MODEL``: edit a mechanism in the browser, the whole
-cycle re-solved in the core on each edit.
+cycle re-solved in the core on each edit; or a cam design file, its
+motion program analysed again on each edit (`camlink.studio.cam`).
 
 An aiohttp server bound to 127.0.0.1 serves the packaged page
 (``web/studio.html`` with the body of ``web/studio_model.html`` or, for a
 cam design file, ``web/studio_cam.html``; ``web/camlink.js``, the
-vendored uPlot) and a
-websocket for edits. Every request must carry the session's random token
-(``?token=…``) and, when it has an ``Origin`` or a ``Host`` header, name
-this server: anything else gets 403. The page loads nothing from a
-network (its Content-Security-Policy allows only this server).
+vendored uPlot) and a websocket for edits and runs. Every request must
+carry the session's random token (``?token=…``) and, when it has an
+``Origin`` or a ``Host`` header, name this server: anything else gets
+403. The page loads nothing from a network (its Content-Security-Policy
+allows only this server).
 
 Edits are solved one at a time in a worker thread, off the event loop; an
 edit that arrives while another is solving replaces a pending edit of the
-same handle or parameter, so a fast drag solves only its latest position.
-Each reply carries the whole re-solved cycle (`camlink.viz.front.frame_data`).
+same handle, parameter or segment key, so a fast drag solves only its
+latest position. Each reply carries the whole re-solved cycle
+(`camlink.viz.front.frame_data`), or the analysed design. Analyses and
+studies started from the page run in a thread of their own
+(`camlink.studio.runs`), reporting their progress to the page that
+started them.
 """
 
 from __future__ import annotations
