@@ -1,21 +1,28 @@
-"""Analyses started from the studio page: kinematics, inverse dynamics,
-equilibrium or dynamics of the model being edited, run by the core in a
-thread of their own (never on the server's event loop, nor in the thread
-that solves edits), with progress and a stop.
+"""Analyses and studies started from the studio page: kinematics,
+inverse dynamics, equilibrium or dynamics of the model being edited, or a
+study of it, run by the core in a thread of their own (never on the
+server's event loop, nor in the thread that solves edits), with progress
+and a stop.
 
 A run is `Model.run(analysis=…)` of the model as the page shows it, which
 is the model `camlink run` reads from the saved file. Its rows are counted
 as the core hands them over (`on_rows`, every `camlink.model.CHUNK_ROWS`
 rows and at the end); the stop is seen there too, so a run stops within a
 chunk of rows (a stopped run keeps no rows: run it from the command line
-with ``-o`` for partial output).
+with ``-o`` for partial output). A study is the one of a study file
+beside the model that names it, run on the model as edited, as `camlink
+study` runs it but writing no files; its variants are counted as each
+batch comes back (`run_variants`' ``on_batch``), and it stops between
+batches.
 
 Messages to the page (``type = "run"``): ``state`` is ``running``,
 ``done``, ``stopped`` or ``failed``; ``done`` and ``total`` count output
-rows; ``id`` numbers the run and ``n`` its messages (the page keeps the
-highest: they may arrive out of order); a finished run adds its channels' names and units, its time column
-and channels worth seeing (`camlink.viz.front.default_plots` of the run)
-then those the page asked for (float64, base64), and ``message``.
+rows (variants for a study); ``id`` numbers the run and ``n`` its
+messages (the page keeps the highest: they may arrive out of order); a
+finished run adds its channels' names and units, its time column and
+channels worth seeing (`camlink.viz.front.default_plots` of the run)
+then those the page asked for (float64, base64), a finished study its
+table (``columns``, ``rows``: the first `MAX_TABLE`), and ``message``.
 """
 
 from __future__ import annotations
