@@ -8,6 +8,7 @@ import asyncio
 import json
 import shutil
 import threading
+import time
 import tomllib
 from collections.abc import Iterator
 from pathlib import Path
@@ -18,7 +19,7 @@ import pytest
 
 import camlink
 from camlink.cli import main
-from camlink.studio import StudioServer
+from camlink.studio import RUNS_KEY, StudioServer
 from camlink.studio.document import Document
 from conftest import STUCK_FOUR_BAR, four_bar_toml
 
@@ -456,6 +457,17 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         pg.slider("L", 0.6)
         assert s.server.doc._data["parameters"]["L"] == 0.6
         assert pg.errors == [] and pg.blocked == []
+        # A page that goes away stops the run it started.
+        pg.page.click("#run")
+        pg.page.wait_for_function("() => camlinkStudio.run().state === 'running'", timeout=20_000)
+        pg.page.close()
+        runs = s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+        assert runs.current is not None
+        for _ in range(200):
+            if runs.current.state != "running":
+                break
+            time.sleep(0.05)
+        assert runs.current.state == "stopped"
     finally:
         s.close()
     # A run to its end: its channel is the CLI run's (1e-9).

@@ -245,10 +245,19 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
     def report(run: Run) -> None:
-        # In the run's thread: its status to this page, from the loop.
+        # In the run's thread: its status to this page, from the loop
+        # (unless the page or the server has gone).
         msg = run.status(shown)
-        if not ws.closed:
-            asyncio.run_coroutine_threadsafe(_send(ws, msg), loop)
+        if ws.closed or loop.is_closed():
+            return
+        coro = _send(ws, msg)
+        try:
+            asyncio.run_coroutine_threadsafe(coro, loop)
+        except RuntimeError:
+            coro.close()
+
+    # The runs this page started: stopped when it goes.
+    mine: set[int] = set()
 
     shown: list[str] = []
     runs = request.app[RUNS_KEY]
@@ -270,7 +279,10 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 # Runs go on beside the edits: answered here, off the queue.
                 if isinstance(msg.get("plots"), list):
                     shown[:] = [str(p) for p in msg["plots"]]
-                await _send(ws, _run_request(doc, runs, msg, report, shown))
+                reply = _run_request(doc, runs, msg, report, shown)
+                if reply.get("type") == "run":
+                    mine.add(int(reply["id"]))
+                await _send(ws, reply)
                 continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
@@ -282,6 +294,8 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     finally:
         task.cancel()
         request.app[SOCKETS_KEY].open.discard(ws)
+        if runs.current is not None and runs.current.id in mine:
+            runs.stop()
     return ws
 
 
