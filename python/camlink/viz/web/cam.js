@@ -47,7 +47,7 @@
   // makes no empty undo step).
   function edit(index, key, value, event) {
     const id = index + ":" + key, open = gestures[id];
-    if (event === "change" && !open && D.segments[index][key === "span_deg" ? "span_deg" : key] === value) return;
+    if (event === "change" && !open && D.segments[index][key] === value) return;
     if (!open) gestures[id] = "seg" + Date.now() + Math.random();
     if (event === "input" || !open) link.send({ op: "segment", index: index, key: key, value: value, gesture: gestures[id] });
     if (event === "change") { link.send({ op: "end", gesture: gestures[id] }); delete gestures[id]; }
