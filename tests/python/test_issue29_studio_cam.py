@@ -56,6 +56,13 @@ def test_issue29_studio_cam_lift_edit_saved_and_rerun(tmp_path: Path) -> None:
     assert data["peaks"]["s"][0] == pytest.approx(h, abs=1e-12)
     assert data["peaks"]["s"][1] == pytest.approx(250.0, abs=1e-9)
     assert abs(data["peaks"]["v"][0]) == pytest.approx(CV_4567 * h / beta, rel=1e-9)
+    # The largest convex curvature sampled is 1 / the report's least convex
+    # radius (the core's search between samples) to 1e-3, never above it.
+    least = {c["name"]: c for c in data["report"]["checks"]}["least radius of curvature (convex)"]
+    kappa = data["peaks"]["k"][0]
+    assert kappa <= 1 / least["value"] * (1 + 1e-12)
+    assert kappa == pytest.approx(1 / least["value"], rel=1e-3)
+    assert data["curvature_limit"] == pytest.approx(1 / 0.003, rel=1e-15)
     doc.save()
     text = path.read_text()
     assert "# Pa, the designer's allowable for this pair" in text

@@ -71,12 +71,15 @@ class CamSolution:
     #: Pressure angle at each θ (rad; None for a translating flat face,
     #: whose pressure angle is 0).
     pressure: Array | None = None
+    #: Curvature κ = 1/ρ of the cam surface at each θ (1/m; > 0 convex,
+    #: < 0 concave).
+    curvature: Array | None = None
     error: str | None = None
 
 
 def _invalid(message: str) -> CamSolution:
     empty = np.empty((0, 4))
-    return CamSolution(None, None, np.empty(0), empty, np.empty((0, 2)), None, None, message)
+    return CamSolution(None, None, np.empty(0), empty, np.empty((0, 2)), None, None, None, message)
 
 
 def analyse_data(data: dict[str, Any], path: Path) -> CamSolution:
@@ -93,10 +96,14 @@ def analyse_data(data: dict[str, Any], path: Path) -> CamSolution:
         theta, motion = sample(core, SAMPLES)
         surface = np.asarray(core.surface(theta), dtype=np.float64)
         pitch = core.pitch(theta)
+        contact = core.contact(theta)
         pressure = (None if design.follower == "translating-flat" else
-                    np.asarray(core.contact(theta)["pressure_angle"], dtype=np.float64))
+                    np.asarray(contact["pressure_angle"], dtype=np.float64))
+        with np.errstate(divide="ignore"):
+            curvature = 1.0 / np.asarray(contact["rho"], dtype=np.float64)
     return CamSolution(design, report, theta, motion, surface,
-                       None if pitch is None else np.asarray(pitch, dtype=np.float64), pressure)
+                       None if pitch is None else np.asarray(pitch, dtype=np.float64), pressure,
+                       curvature)
 
 
 class CamDocument(Editable):
@@ -190,8 +197,10 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
     a turn (θ in rad; s, v = s′, a = s″, j = s‴ in m or rad per rad^k),
     their peaks, the profile (cam frame, m, x and y interleaved), the base
     circle, the pressure angle at each θ (rad; not for a translating flat
-    face) with its peak and the limit (rad, or None), and `camlink cam`'s
-    report (as ``--json`` gives it)."""
+    face) with its peak and the limit (rad, or None), the surface's
+    curvature κ = 1/ρ at each θ (1/m, > 0 convex) with its largest and the
+    limit 1/min_radius (1/m, or None), and `camlink cam`'s report (as
+    ``--json`` gives it)."""
     sol = doc.solution
     data: dict[str, Any] = {
         "kind": "cam",
@@ -216,8 +225,13 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
         data["pressure"] = b64(sol.pressure)
         i = int(np.argmax(np.abs(sol.pressure)))
         data["peaks"]["p"] = [float(sol.pressure[i]), math.degrees(float(sol.theta[i]))]
-        limit = sol.design.limits.max_pressure_angle
-        data["pressure_limit"] = limit
+        data["pressure_limit"] = sol.design.limits.max_pressure_angle
+    if sol.curvature is not None:
+        data["curvature"] = b64(sol.curvature)
+        i = int(np.argmax(sol.curvature))
+        data["peaks"]["k"] = [float(sol.curvature[i]), math.degrees(float(sol.theta[i]))]
+        least = sol.design.limits.min_radius
+        data["curvature_limit"] = None if least is None else 1.0 / least
     data["surface"] = b64(sol.surface.ravel())
     data["pitch"] = None if sol.pitch is None else b64(sol.pitch.ravel())
     data["base_radius"] = sol.design.base_radius

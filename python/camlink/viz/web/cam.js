@@ -8,7 +8,8 @@
 // theta (rad), s, v, a, j (m or rad, per rad of cam angle), peaks
 // {s: [value, θ°], …}, surface and pitch (cam frame, m, x y interleaved),
 // base_radius (m), pressure (rad, not for a translating flat face) with
-// pressure_limit (rad or null), and report (as `camlink cam --json`).
+// pressure_limit (rad or null), curvature (1/m) with curvature_limit (1/m
+// or null), and report (as `camlink cam --json`).
 "use strict";
 (function () {
   const F = camlinkFront;
@@ -28,8 +29,11 @@
     return D.oscillating ? { k: 180 / Math.PI, s: "°" } : { k: 1000, s: "mm" };
   }
   const NAMES = [["s", "s", ""], ["v", "s′", "/rad"], ["a", "s″", "/rad²"], ["j", "s‴", "/rad³"]];
-  // The pressure angle's plot: degrees, whatever the follower.
+  // The pressure angle's plot (degrees, whatever the follower) and the
+  // surface's curvature κ = 1/ρ (1/mm; > 0 convex).
   const PRESSURE = ["p", "pressure angle φ", ""];
+  const CURVATURE = ["k", "curvature κ = 1/ρ", ""];
+  const LIMITS = { p: "pressure_limit", k: "curvature_limit" };
 
   function el(tag, cls, text) {
     const e = document.createElement(tag);
@@ -104,21 +108,21 @@
   }
 
   // -- SVAJ -----------------------------------------------------------------
-  function scaleOf(key) { return key === "p" ? 180 / Math.PI : unit().k; }
+  function scaleOf(key) { return key === "p" ? 180 / Math.PI : key === "k" ? 1e-3 : unit().k; }
+  function unitOf(key, per) { return key === "p" ? "°" : key === "k" ? "1/mm" : unit().s + per; }
   function makePlots() {
     const u = unit();
-    for (const [key, label, per] of NAMES.concat(D.pressure ? [PRESSURE] : [])) {
+    for (const [key, label, per] of NAMES.concat(D.pressure ? [PRESSURE] : [], D.curvature ? [CURVATURE] : [])) {
       const box = el("div", "cl-plot"), head = el("div", "cam-svaj-head");
       head.dataset.channel = key;
       box.appendChild(head); svajBox.appendChild(box);
-      const p = { key: key, head: head, box: box, u: null,
-                  label: label + " (" + (key === "p" ? "°" : u.s + per) + ")" };
+      const p = { key: key, head: head, box: box, u: null, label: label + " (" + unitOf(key, per) + ")" };
       const opts = {
         width: 640, height: 150, legend: { show: false },
         cursor: { sync: { key: "svaj" }, drag: { x: false, y: false } },
         scales: { x: { time: false, range: [0, 360] } },
         axes: [{ label: "cam angle θ (°)", size: 34, labelSize: 14, incrs: [15, 30, 45, 90] },
-               { label: key === "p" ? "φ (°)" : p.label, size: 64, labelSize: 14 }],
+               { label: key === "p" ? "φ (°)" : key === "k" ? "κ (1/mm)" : p.label, size: 64, labelSize: 14 }],
         series: [{}, { stroke: "#1f4e79", width: 1.4 }],
         hooks: {
           setCursor: [function (uu) { readout(p, uu.cursor.idx); }],
@@ -132,11 +136,13 @@
               g.beginPath(); g.moveTo(X, uu.bbox.top); g.lineTo(X, uu.bbox.top + uu.bbox.height); g.stroke();
             }
             g.restore();
-            if (p.key === "p" && C.pressure_limit !== null && C.pressure_limit !== undefined) {
-              // The limit ±φ_max, red dashed.
+            const limit = LIMITS[p.key] ? C[LIMITS[p.key]] : null;
+            if (limit !== null && limit !== undefined) {
+              // The limit, red dashed: ±φ_max, or κ = 1/ρ_min (convex).
               g.save(); g.strokeStyle = "#c0392b"; g.lineWidth = dpr; g.setLineDash([6 * dpr, 4 * dpr]);
-              for (const sgn of [1, -1]) {
-                const Y = uu.valToPos(sgn * C.pressure_limit * 180 / Math.PI, "y", true);
+              for (const sgn of p.key === "p" ? [1, -1] : [1]) {
+                const Y = uu.valToPos(sgn * limit * scaleOf(p.key), "y", true);
+                if (Y < uu.bbox.top || Y > uu.bbox.top + uu.bbox.height) continue;
                 g.beginPath(); g.moveTo(uu.bbox.left, Y); g.lineTo(uu.bbox.left + uu.bbox.width, Y); g.stroke();
               }
               g.restore();
@@ -262,6 +268,7 @@
       theta: F.decode(data.theta), s: F.decode(data.s), v: F.decode(data.v), a: F.decode(data.a),
       j: F.decode(data.j), surface: F.decode(data.surface), pitch: data.pitch ? F.decode(data.pitch) : null,
       p: data.pressure ? F.decode(data.pressure) : null, pressure_limit: data.pressure_limit,
+      k: data.curvature ? F.decode(data.curvature) : null, curvature_limit: data.curvature_limit,
       peaks: data.peaks, base_radius: data.base_radius, report: data.report,
     };
     if (cursor !== null && cursor >= C.theta.length) cursor = null;
