@@ -210,19 +210,9 @@ def format_report(r: MachineReport, name: str = "") -> str:
 
 def to_json(r: MachineReport) -> dict[str, Any]:
     """The report with arrays as lists, for JSON."""
+    from camlink.cam.design import json_safe
 
-    def clean(v: object) -> object:
-        if isinstance(v, np.ndarray):
-            return [clean(x) for x in v.tolist()]
-        if isinstance(v, float) and not math.isfinite(v):
-            return None
-        if isinstance(v, dict):
-            return {k: clean(x) for k, x in v.items()}
-        if isinstance(v, (list, tuple)):
-            return [clean(x) for x in v]
-        return v
-
-    return cast(dict[str, Any], clean(dict(r)))
+    return cast(dict[str, Any], json_safe(dict(r)))
 
 
 def polar(r: MachineReport, title: str = "") -> Figure:

@@ -6,12 +6,13 @@ the examples; `test_examples.py` covers those.
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import shutil
 import subprocess
 import sys
-from collections.abc import Iterator
+from collections.abc import AsyncIterator, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -169,3 +170,42 @@ def browser() -> Iterator[Any]:
         b = p.chromium.launch(executable_path=_chromium(), args=["--no-sandbox"])
         yield b
         b.close()
+
+
+async def refuses_strangers(client: Any, token: str, asset: str) -> None:
+    """The studio server behind the aiohttp test `client` answers its page
+    and `asset` (a path) with `token` only, and refuses them and its
+    websocket (403) without the token, with a wrong one, or from another
+    origin or host."""
+    port = client.server.port
+    for url in ("/", "/?token=wrong", f"{asset}?token={token}x", asset, "/ws"):
+        assert (await client.get(url)).status == 403, url
+    for url in ("/", asset):
+        assert (await client.get(f"{url}?token={token}")).status == 200, url
+        for headers in ({"Origin": "http://evil.example"}, {"Host": "evil.example"},
+                        {"Origin": f"http://localhost:{port + 1}"}):
+            assert (await client.get(f"{url}?token={token}", headers=headers)).status == 403, headers
+    with pytest.raises(Exception, match="403"):
+        await client.ws_connect(f"/ws?token={token}", headers={"Origin": "http://evil.example"})
+    with pytest.raises(Exception, match="403"):
+        await client.ws_connect(f"/ws?token={token}", headers={"Host": "evil.example"})
+    with pytest.raises(Exception, match="403"):
+        await client.ws_connect("/ws?token=nope")
+
+
+#: The token of the studio servers the tests start in-process.
+TOKEN = "s3cret-token"
+
+
+@contextlib.asynccontextmanager
+async def studio_client(doc: Any) -> AsyncIterator[tuple[Any, int]]:
+    """An aiohttp test client of a studio server for `doc` answering with
+    `TOKEN`, and the server's port."""
+    from aiohttp.test_utils import TestClient, TestServer
+
+    from camlink.studio import make_app
+
+    async with TestClient(TestServer(make_app(doc, TOKEN), host="127.0.0.1")) as client:
+        port = client.server.port
+        assert port is not None
+        yield client, port

@@ -5,6 +5,7 @@ browser tests are in test_issue29_studio_browser.py."""
 from __future__ import annotations
 
 import asyncio
+import base64
 import json
 import math
 import shutil
@@ -13,16 +14,15 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from aiohttp.test_utils import TestClient, TestServer
 
 import camlink
 from camlink import _core
 from camlink.cli import main
-from camlink.studio import BRANCH_NOTE, make_app, payload
+from camlink.studio import BRANCH_NOTE, payload
 from camlink.studio.document import Document
 from camlink.viz.fourbar import find, transmission
 from camlink.viz.scene import Scene
-from conftest import STUCK_FOUR_BAR, four_bar_toml
+from conftest import STUCK_FOUR_BAR, TOKEN, four_bar_toml, refuses_strangers, studio_client
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -178,33 +178,18 @@ def test_issue29_fourbar_not_found_in_a_six_bar() -> None:
 
 
 async def _guard_checks(path: Path) -> None:
-    token = "s3cret-token"
-    app = make_app(Document(path), token)
-    async with TestClient(TestServer(app, host="127.0.0.1")) as client:
-        port = client.server.port
-        assert port is not None
+    token = TOKEN
+    async with studio_client(Document(path)) as (client, port):
         ok = await client.get(f"/?token={token}")
         assert ok.status == 200
         assert "default-src 'none'" in ok.headers["Content-Security-Policy"]
-        for url in ("/", "/?token=wrong", f"/static/camlink.js?token={token}x", "/ws"):
-            r = await client.get(url)
-            assert r.status == 403, url
-        r = await client.get(f"/static/camlink.js?token={token}")
-        assert r.status == 200
-        r = await client.get(f"/?token={token}", headers={"Origin": "http://evil.example"})
-        assert r.status == 403
-        r = await client.get(f"/?token={token}", headers={"Origin": f"http://localhost:{port + 1}"})
-        assert r.status == 403
-        r = await client.get(f"/?token={token}", headers={"Host": "evil.example"})
-        assert r.status == 403
-        with pytest.raises(Exception, match="403"):
-            await client.ws_connect(f"/ws?token={token}", headers={"Origin": "http://evil.example"})
-        with pytest.raises(Exception, match="403"):
-            await client.ws_connect("/ws?token=nope")
+        await refuses_strangers(client, token, "/static/camlink.js")
         ws = await client.ws_connect(f"/ws?token={token}", headers={"Origin": f"http://127.0.0.1:{port}"})
         await ws.send_str(json.dumps({"op": "hello", "seq": 1}))
         reply = json.loads((await ws.receive()).data)
         assert reply["type"] == "frames" and reply["data"]["title"] == "four_bar"
+        # A slider value that is no number is dropped; the socket goes on.
+        await ws.send_str(json.dumps({"op": "param", "name": "a", "value": "abc", "seq": 9}))
         await ws.send_str(json.dumps({"op": "move", "handle": "nope", "row": 0, "x": 0, "y": 0, "seq": 2}))
         reply = json.loads((await ws.receive()).data)
         assert reply == {"type": "error", "seq": 2, "message": "no handle 'nope'"}
@@ -288,3 +273,61 @@ def test_issue29_studio_edit_keeps_the_branch(tmp_path: Path) -> None:
         assert doc.solution.kept_branch == other
         assert (BRANCH_NOTE in payload(doc, [])["info"]) == other
     assert flipped >= 2
+
+
+async def _run_checks(path: Path) -> None:
+    token = TOKEN
+    doc = Document(path)
+    async with studio_client(doc) as (client, port):
+        await refuses_strangers(client, token, "/static/studio.js")
+        ws = await client.ws_connect(f"/ws?token={token}", headers={"Origin": f"http://127.0.0.1:{port}"})
+        await ws.send_str(json.dumps({"op": "runchannel", "name": "t", "seq": 1}))
+        assert json.loads((await ws.receive()).data) == {"type": "error", "seq": 1, "message": "no run yet"}
+        await ws.send_str(json.dumps({"op": "run", "analysis": "statics", "seq": 2}))
+        reply = json.loads((await ws.receive()).data)
+        assert reply["type"] == "error" and "unknown analysis 'statics'" in reply["message"]
+        await ws.send_str(json.dumps({"op": "run", "analysis": "inverse_dynamics", "seq": 3,
+                                      "plots": ["O2.fx"]}))
+        last: dict[str, object] = {}
+        while last.get("state") in (None, "running"):
+            msg = json.loads((await ws.receive(timeout=30)).data)
+            assert msg["type"] == "run"
+            if not last or (msg["id"], msg["n"]) > (last["id"], last["n"]):
+                last = msg
+        assert last["state"] == "done" and last["done"] == last["total"] == 401
+        expected = doc.solution.model.inverse_dynamics()
+        channels = last["channels"]
+        assert isinstance(channels, dict) and "O2.fx" in channels
+        got = np.frombuffer(base64.b64decode(channels["O2.fx"]["f64"]), "<f8")
+        assert np.array_equal(got, expected["O2.fx"])
+        await ws.send_str(json.dumps({"op": "runchannel", "name": "motor.effort", "seq": 4}))
+        reply = json.loads((await ws.receive()).data)
+        got = np.frombuffer(base64.b64decode(reply["values"]["f64"]), "<f8")
+        assert reply["name"] == "motor.effort" and np.array_equal(got, expected["motor.effort"])
+        await ws.close()
+
+
+def test_issue29_studio_runs_over_the_socket(tmp_path: Path) -> None:
+    asyncio.run(_run_checks(_copy(tmp_path, "four_bar.toml")))
+
+
+def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
+    from camlink.studio.runs import Run, studies_of
+
+    for name in ("four_bar.toml", "study_four_bar.toml"):
+        shutil.copy(EXAMPLES / name, tmp_path / name)
+    assert studies_of(tmp_path / "four_bar.toml") == ["study_four_bar.toml"]
+    model = camlink.load(tmp_path / "four_bar.toml")
+    seen: list[tuple[str, int, int]] = []
+    run = Run(model, "study", tmp_path / "study_four_bar.toml")
+
+    def report(r: Run) -> None:
+        seen.append((r.state, r.done, r.total))
+        if r.done >= 3:
+            r.stop.set()
+
+    run.execute(report)
+    # Three variants a batch: stopped after the first.
+    assert run.state == "stopped" and run.done == 3 and run.total == 9
+    assert run.message == "study stopped after 3 of 9 variants"
+    assert seen[0] == ("running", 0, 9) and seen[-1] == ("stopped", 3, 9)

@@ -5,8 +5,10 @@ unassemblable edits and markup in names. Marked `browser`."""
 from __future__ import annotations
 
 import asyncio
+import json
 import shutil
 import threading
+import time
 import tomllib
 from collections.abc import Iterator
 from pathlib import Path
@@ -16,7 +18,9 @@ import numpy as np
 import pytest
 
 import camlink
-from camlink.studio import StudioServer
+from camlink.cli import main
+from camlink.studio import RUNS_KEY, StudioServer
+from camlink.studio.document import Document
 from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 pytestmark = pytest.mark.browser
@@ -97,8 +101,10 @@ def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[S
     scale = pg.js("camlinkStudio.front.scale()")
     old = pg.js("camlinkStudio.front.handle('joint:A')")
     u, v = pg.js(f"camlinkStudio.front.pixel({old[0]}, {old[1]})")
-    crank = s.server.doc.solution.pose("crank", k)
-    coupler = s.server.doc.solution.pose("coupler", k)
+    doc = s.server.doc
+    assert isinstance(doc, Document)
+    crank = doc.solution.pose("crank", k)
+    coupler = doc.solution.pose("coupler", k)
     page.mouse.move(u, v)
     page.mouse.down()
     for n in range(1, 6):
@@ -345,3 +351,251 @@ def test_issue29_viewer_marks_and_picked_point(browser: Any, tmp_path: Path) -> 
             res[f"rocker.B.{c}"][k], rel=1e-6, abs=1e-9), c
     assert errors == []
     page.close()
+
+
+class CamPage(Page):
+    """The studio's cam design page."""
+
+    def wait(self) -> None:
+        self.page.wait_for_function(
+            "() => window.camlinkCam && camlinkCam.answered >= camlinkCam.sent()"
+            " && camlinkCam.sent() > 0", timeout=20_000)
+
+    def segment(self, index: int, key: str, value: str) -> None:
+        sel = f'#segments [data-index="{index}"][data-key="{key}"]'
+        if key == "law":
+            self.page.select_option(sel, value)
+        else:
+            self.page.fill(sel, value)
+            self.page.press(sel, "Enter")
+        self.wait()
+
+    def bad(self) -> bool:
+        return bool(self.js("document.getElementById('message').classList.contains('bad')"))
+
+
+def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "valve.toml"
+    shutil.copy(EXAMPLES / "cam_design_valve.toml", path)
+    s = Studio(path)
+    try:
+        pg = CamPage(browser, s.url)
+        assert pg.js("document.querySelectorAll('#checks li.ok').length") > 5
+        h = 0.0105
+        # The rise alone breaks the program: said at the top, the last
+        # curves stay (dimmed), the page keeps working.
+        pg.segment(1, "lift", str(h))
+        assert pg.bad() and "does not close" in pg.page.locator("#message").text_content()
+        assert pg.js("document.getElementById('svaj').classList.contains('stale')")
+        pg.segment(3, "lift", str(-h))
+        assert not pg.bad()
+        assert not pg.js("document.getElementById('svaj').classList.contains('stale')")
+        # The page's peak readout: s peak h at 250°, s′ peak of the 4-5-6-7
+        # rise C_v h / β (closed form), as the page's data and its text.
+        peak_s = float(pg.js("document.querySelector('.cam-svaj-head[data-channel=s]').dataset.peak"))
+        peak_v = float(pg.js("document.querySelector('.cam-svaj-head[data-channel=v]').dataset.peak"))
+        assert peak_s == pytest.approx(h, abs=1e-12)
+        assert abs(peak_v) == pytest.approx(35 / 16 * h / np.radians(100.0), rel=1e-9)
+        assert "peak 10.5000 at 250.00°" in pg.js("document.querySelector('.cam-svaj-head').textContent")
+        # A law with velocity jumps: its row marked, the boundaries say C0.
+        pg.segment(1, "law", "constant-velocity")
+        assert pg.js("document.querySelectorAll('#segments tr.cam-bad').length") == 2
+        assert "C0 at 150°" in pg.page.locator("#boundaries").text_content()
+        pg.page.click("#undo")
+        pg.wait()
+        assert pg.js("document.querySelectorAll('#segments tr.cam-bad').length") == 0
+        pg.page.click("#save")
+        pg.wait()
+        assert "saved valve.toml" in pg.page.locator("#message").text_content()
+        assert "# Pa, the designer's allowable for this pair" in path.read_text()
+        segs = tomllib.loads(path.read_text())["segments"]
+        assert [g.get("lift", 0.0) for g in segs] == [0.0, h, 0.0, -h]
+        assert [g["law"] for g in segs] == ["dwell", "4-5-6-7", "dwell", "4-5-6-7"]
+        # The CLI on the saved file: its profile CSV (every 1°) is the
+        # page's profile at those angles (1e-9 m), its report the page's.
+        out = tmp_path / "out"
+        capsys.readouterr()
+        assert main(["cam", str(path), "--out", str(out), "--json"]) in (0, 1)
+        page_report = pg.js("camlinkCam.data().report")
+        cli = json.loads(capsys.readouterr().out)
+        assert cli["ok"] == page_report["ok"]
+        for a, b in zip(cli["checks"], page_report["checks"], strict=True):
+            assert a["name"] == b["name"] and a["ok"] == b["ok"]
+            assert a["value"] == pytest.approx(b["value"], rel=1e-9, abs=1e-12)
+        rows = np.loadtxt(out / "valve.csv", delimiter=",", skiprows=1)
+        surface = np.array(pg.js("Array.from(camlinkCam.curves().surface)")).reshape(-1, 2)
+        assert np.max(np.abs(surface[::4][: len(rows), :] - rows[:, 1:3])) <= 1e-9
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+
+
+def test_issue29_studio_runs_dynamics_with_progress_and_stop(
+        browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # A long run (a million rows): progress shows, the stop stops it, and
+    # the page keeps working.
+    long = tmp_path / "long.toml"
+    long.write_text((EXAMPLES / "dyn_pendulum.toml").read_text().replace(
+        "t_end = 3.0", "t_end = 1000.0"))
+    s = Studio(long)
+    try:
+        pg = Page(browser, s.url)
+        assert pg.js("document.getElementById('run-analysis').value") == "dynamics"
+        pg.page.click("#run")
+        pg.page.wait_for_function(
+            "() => camlinkStudio.run().state === 'running' && camlinkStudio.run().done > 0", timeout=20_000)
+        assert "of 1000001 rows" in pg.page.locator("#run-status").text_content()
+        assert pg.js("document.getElementById('run-progress').value") > 0
+        assert pg.js("document.getElementById('run').disabled")
+        pg.page.click("#stop")
+        pg.page.wait_for_function("() => camlinkStudio.run().state !== 'running'", timeout=20_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["state"] == "stopped" and 0 < run["done"] < run["total"]
+        assert "stopped after" in pg.page.locator("#run-status").text_content()
+        assert not pg.js("document.getElementById('run').disabled")
+        pg.slider("L", 0.6)
+        assert s.server.doc._data["parameters"]["L"] == 0.6
+        assert pg.errors == [] and pg.blocked == []
+        # A page that goes away stops the run it started.
+        pg.page.click("#run")
+        pg.page.wait_for_function("() => camlinkStudio.run().state === 'running'", timeout=20_000)
+        pg.page.close()
+        runs = s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+        assert runs.current is not None
+        for _ in range(200):
+            if runs.current.state != "running":
+                break
+            time.sleep(0.05)
+        assert runs.current.state == "stopped"
+    finally:
+        s.close()
+    # A run to its end: its channel is the CLI run's (1e-9).
+    path = tmp_path / "pendulum.toml"
+    shutil.copy(EXAMPLES / "dyn_pendulum.toml", path)
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        pg.page.click("#run")
+        pg.page.wait_for_function(
+            "() => camlinkStudio.run().state === 'done' && camlinkStudio.run().values", timeout=30_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["done"] == run["total"] == 3001
+        channel = run["channel"]
+        assert channel == "arm.bob.x"
+        values = np.array(pg.js("Array.from(camlinkStudio.run().values)"))
+        t = np.array(pg.js("Array.from(camlinkStudio.run().t)"))
+        out = tmp_path / "cli.csv"
+        assert main(["run", str(path), "-o", str(out), "-q"]) == 0
+        capsys.readouterr()
+        with out.open() as f:
+            head = f.readline().strip().split(",")
+        table = np.loadtxt(out, delimiter=",", skiprows=1)
+        assert np.max(np.abs(table[:, head.index("t")] - t)) <= 1e-12
+        assert np.max(np.abs(table[:, head.index(channel)] - values)) <= 1e-9
+        # Another channel on request.
+        pg.page.select_option("#run-channel", "arm.phi")
+        pg.page.wait_for_function("() => camlinkStudio.run().channel === 'arm.phi'", timeout=20_000)
+        phi = np.array(pg.js("Array.from(camlinkStudio.run().values)"))
+        assert np.max(np.abs(table[:, head.index("arm.phi")] - phi)) <= 1e-9
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+
+
+def test_issue29_studio_motion_curve_segments_applied(browser: Any, tmp_path: Path) -> None:
+    path = tmp_path / "cam.toml"
+    shutil.copy(EXAMPLES / "cam_motion_roller.toml", path)
+    s = Studio(path)
+    try:
+        pg = Page(browser, s.url)
+        assert not pg.js("document.getElementById('motion').hidden")
+
+        def cell(index: int, key: str) -> str:
+            return f'#motion input[data-index="{index}"][data-key="{key}"]'
+
+        assert pg.page.input_value(cell(1, "lift")) == "lift"
+        # The rise alone does not close the program: refused, said, kept
+        # staged; with the return it applies.
+        pg.page.fill(cell(1, "lift"), "0.015")
+        pg.page.press(cell(1, "lift"), "Enter")
+        pg.page.click("#motion-apply")
+        pg.wait()
+        assert "does not close" in pg.page.locator("#message").text_content()
+        assert pg.js(f"document.querySelector('{cell(1, 'lift')}').classList.contains('staged')")
+        pg.page.fill(cell(3, "lift"), "-lift * 1.25")
+        pg.page.press(cell(3, "lift"), "Enter")
+        pg.page.click("#motion-apply")
+        pg.wait()
+        assert not pg.js(f"document.querySelector('{cell(1, 'lift')}').classList.contains('staged')")
+        assert pg.js("document.getElementById('motion-apply').disabled")
+        # The follower's lift is a default plot of a cam: the page has it.
+        assert pg.js("camlinkStudio.front.picked()").count("follower.y") == 1
+        page_y = np.array(pg.js("Array.from(camlinkStudio.front.channel('follower.y'))"))
+        pg.page.click("#save")
+        pg.wait()
+        segs = tomllib.loads(path.read_text())["curves"][0]["segments"]
+        assert segs[1]["lift"] == 0.015 and segs[3]["lift"] == "-lift * 1.25"
+        assert "# base circle radius" in path.read_text()
+        # The saved file run as the CLI runs it: the follower's lift.
+        res = camlink.load(path).run()
+        assert np.abs(page_y - res["follower.y"]).max() <= 1e-9
+        assert np.ptp(res["follower.y"]) == pytest.approx(0.015, abs=1e-9)
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+
+
+def test_issue29_studio_runs_a_study_of_the_model(
+        browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    for name in ("four_bar.toml", "study_four_bar.toml"):
+        shutil.copy(EXAMPLES / name, tmp_path / name)
+    s = Studio(tmp_path / "four_bar.toml")
+    try:
+        pg = Page(browser, s.url)
+        pg.page.select_option("#run-analysis", "study:study_four_bar.toml")
+        pg.page.click("#run")
+        pg.page.wait_for_function("() => camlinkStudio.run().state === 'done' && camlinkStudio.run().table",
+                                  timeout=60_000)
+        run = pg.js("camlinkStudio.run()")
+        assert run["done"] == run["total"] == 9
+        assert "9 variants, 9 ok" in pg.page.locator("#run-status").text_content()
+        assert pg.js("document.querySelectorAll('#study tr').length") == 10
+        table = run["table"]
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+    # `camlink study` of the same file: the same outputs (1e-9).
+    import pandas as pd
+
+    out = tmp_path / "sweep.parquet"
+    assert main(["study", str(tmp_path / "study_four_bar.toml"), "-o", str(out), "-q"]) == 0
+    capsys.readouterr()
+    cli = pd.read_parquet(out).sort_values("study.variant")
+    cols = table["columns"]
+    for name in ("a", "swing", "rocker_max", "rocker_min", "least_transmission"):
+        page = np.array([row[cols.index(name)] for row in table["rows"]], dtype=float)
+        assert np.max(np.abs(page - cli[name].to_numpy())) <= 1e-9, name
+
+
+def test_issue29_studio_cam_names_with_markup_render_as_text(browser: Any, tmp_path: Path) -> None:
+    path = tmp_path / "design.toml"
+    name = '<img src=x onerror="window.pwned=1"><b>cam</b>'
+    path.write_text((EXAMPLES / "cam_design_indexing.toml").read_text().replace(
+        'name = "indexing cam"', f"name = '{name}'"))
+    s = Studio(path)
+    try:
+        pg = CamPage(browser, s.url)
+        assert pg.page.locator("#title").text_content() == name
+        assert pg.js("document.querySelectorAll('#top img, #top b').length") == 0
+        # A law that is no law: its message (quoting it) is text too.
+        pg.segment(1, "law", "cycloidal")
+        pg.page.evaluate("() => camlinkCam.send({op: 'segment', index: 1, key: 'law', "
+                         "value: '<i>septic</i>'})")
+        pg.wait()
+        assert "'<i>septic</i>' is not one of" in pg.page.locator("#message").text_content()
+        assert pg.js("document.querySelectorAll('#message i').length") == 0
+        assert pg.js("window.pwned === undefined")
+        assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()

@@ -300,6 +300,21 @@ def load(path: str | Path) -> Design:
             doc = tomllib.load(f)
     except tomllib.TOMLDecodeError as e:
         raise CamDesignError(f"{p}: {e}") from None
+    return from_data(doc, p)
+
+
+def is_design(doc: dict[str, Any]) -> bool:
+    """Whether the parsed TOML `doc` is a cam design file (a motion
+    program: top-level ``[[segments]]`` and ``[follower]``) rather than a
+    model file."""
+    return isinstance(doc.get("segments"), list) and "follower" in doc and "bodies" not in doc
+
+
+def from_data(doc: dict[str, Any], path: str | Path) -> Design:
+    """Checks the parsed TOML `doc` of the design file `path` (named in
+    messages; its stem names the default exports) as `load` does; raises
+    CamDesignError naming the field."""
+    p = Path(path)
     top = _Table(p, "design", doc)
     name = top.text("name", p.stem)
     cam = _Table(p, "cam", doc.get("cam", {}))
@@ -856,6 +871,20 @@ def analyse(design: Design) -> Report:
         face_travel=travel,
         sizing=sizing,
     )
+
+
+def json_safe(v: object) -> object:
+    """`v` (a report's dict) with arrays as lists and infinities and NaN
+    as None, for JSON."""
+    if isinstance(v, np.ndarray):
+        return json_safe(v.tolist())
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: json_safe(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [json_safe(x) for x in v]
+    return v
 
 
 def in_units(r: Report, units: str) -> Report:

@@ -194,17 +194,6 @@ def _hub(design: cam_design.Design) -> cam_export.Hub | None:
     )
 
 
-def _clean(v: object) -> object:
-    """JSON-safe values: infinities and NaN become null."""
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if isinstance(v, dict):
-        return {k: _clean(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_clean(x) for x in v]
-    return v
-
-
 def _run_timing(args: argparse.Namespace) -> int:
     """`camlink cam TIMING.toml`: clearances, the timing diagram and the
     servo cam tables."""
@@ -231,7 +220,7 @@ def _run_timing(args: argparse.Namespace) -> int:
             "clearances": [asdict(c) for c in report],
             "files": files,
         }
-        print(json.dumps(_clean(d), indent=2))
+        print(json.dumps(cam_design.json_safe(d), indent=2))
     else:
         print(cam_timing.format_report(timing, report, files))
     return EXIT_OK if ok else EXIT_FAIL
@@ -277,7 +266,7 @@ def run(args: argparse.Namespace) -> int:
         return EXIT_INPUT
     report = cam_design.in_units(report, design.export.units)
     if args.json:
-        print(json.dumps(_clean(report.to_dict()), indent=2))
+        print(json.dumps(cam_design.json_safe(report.to_dict()), indent=2))
     else:
         print(cam_design.format_report(report))
     return EXIT_OK if report.ok else EXIT_FAIL

@@ -16,10 +16,13 @@ def add_parser(
         help="edit a model in the browser, the whole cycle re-solved on each drag",
         description="Serve an editor for MODEL (.toml or .json) on 127.0.0.1 and open it in the "
         "browser: drag joints and body points, move [parameters] sliders, and see the whole "
-        "cycle re-solved; save writes MODEL with its comments (the old file kept as MODEL.bak). "
+        "cycle re-solved; edit a motion program's segments, run analyses with progress and a "
+        "stop. A cam design file (camlink cam's DESIGN.toml) opens with its segments, SVAJ, "
+        "profile and limits analysed again on each edit. Save writes the file with its comments "
+        "(the old file kept as MODEL.bak). "
         "The URL carries a random token; requests without it are refused.",
     )
-    p.add_argument("model", metavar="MODEL", help="model file (.toml or .json)")
+    p.add_argument("model", metavar="MODEL", help="model file (.toml or .json) or cam design file")
     p.add_argument("--port", type=_port, default=0, help="port on 127.0.0.1 (default: any free port)")
     p.add_argument("--no-browser", action="store_true", help="print the URL, do not open a browser")
     return run

@@ -1,17 +1,24 @@
 """``camlink studio MODEL``: edit a mechanism in the browser, the whole
-cycle re-solved in the core on each edit.
+cycle re-solved in the core on each edit; or a cam design file, its
+motion program analysed again on each edit (`camlink.studio.cam`).
 
 An aiohttp server bound to 127.0.0.1 serves the packaged page
-(``web/studio.html``, ``web/camlink.js``, the vendored uPlot) and a
-websocket for edits. Every request must carry the session's random token
-(``?token=…``) and, when it has an ``Origin`` or a ``Host`` header, name
-this server: anything else gets 403. The page loads nothing from a
-network (its Content-Security-Policy allows only this server).
+(``web/studio.html`` with the body of ``web/studio_model.html`` or, for a
+cam design file, ``web/studio_cam.html``; ``web/camlink.js``, the
+vendored uPlot) and a websocket for edits and runs. Every request must
+carry the session's random token (``?token=…``) and, when it has an
+``Origin`` or a ``Host`` header, name this server: anything else gets
+403. The page loads nothing from a network (its Content-Security-Policy
+allows only this server).
 
 Edits are solved one at a time in a worker thread, off the event loop; an
 edit that arrives while another is solving replaces a pending edit of the
-same handle or parameter, so a fast drag solves only its latest position.
-Each reply carries the whole re-solved cycle (`camlink.viz.front.frame_data`).
+same handle, parameter or segment key, so a fast drag solves only its
+latest position. Each reply carries the whole re-solved cycle
+(`camlink.viz.front.frame_data`), or the analysed design. Analyses and
+studies started from the page run in a thread of their own
+(`camlink.studio.runs`), reporting their progress to the page that
+started them.
 """
 
 from __future__ import annotations
@@ -30,13 +37,15 @@ from typing import Any
 from aiohttp import WSMsgType, web
 
 from camlink._core import ModelError
-from camlink.studio.document import Document, Solution
+from camlink.studio.cam import CamDocument, cam_payload, open_document
+from camlink.studio.document import Document, Editable, Solution
+from camlink.studio.runs import Run, Runs, studies_of
 from camlink.viz.front import asset, frame_data
 
 __all__ = ["StudioServer", "make_app", "payload", "run"]
 
 TOKEN_KEY = web.AppKey("token", str)
-DOC_KEY = web.AppKey("doc", Document)
+DOC_KEY = web.AppKey("doc", Editable)
 EXECUTOR_KEY = web.AppKey("executor", ThreadPoolExecutor)
 
 
@@ -48,9 +57,10 @@ class _Sockets:
 
 
 SOCKETS_KEY = web.AppKey("sockets", _Sockets)
+RUNS_KEY = web.AppKey("runs", Runs)
 
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
-_ASSETS = ("camlink.js", "studio.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
+_ASSETS = ("camlink.js", "studio.js", "cam.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
 _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
            "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; "
            "frame-ancestors 'none'")
@@ -87,10 +97,12 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
+    data["segments"] = doc.motion_segments()
     data["info"] = info_lines(sol)
     if sol.kept_branch:
         data["info"].append(BRANCH_NOTE)
     data["file"] = doc.path.name
+    data["analysis"] = sol.model.analysis_type
     data["error"] = sol.error
     data["dirty"] = doc.dirty
     data["undo"] = doc.can_undo
@@ -125,7 +137,11 @@ async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
 
 
 async def _index(request: web.Request) -> web.Response:
-    text = asset("studio.html").replace("__TOKEN__", request.app[TOKEN_KEY])
+    cam = isinstance(request.app[DOC_KEY], CamDocument)
+    body = asset("studio_cam.html" if cam else "studio_model.html")
+    page = asset("studio.html").replace("__BODY__", body)
+    page = page.replace("__SCRIPT__", "cam.js" if cam else "studio.js")
+    text = page.replace("__TOKEN__", request.app[TOKEN_KEY])
     return web.Response(text=text, content_type="text/html")
 
 
@@ -136,41 +152,76 @@ async def _asset(request: web.Request) -> web.Response:
     return web.Response(text=asset(name), content_type=_TYPES[Path(name).suffix])
 
 
-def _handle(doc: Document, msg: dict[str, Any]) -> dict[str, Any]:
+def _edit(doc: Editable, op: object, msg: dict[str, Any]) -> bool:
+    """Applies the edit request `msg` to `doc`; False when `op` is no edit
+    of this kind of document."""
+    if isinstance(doc, CamDocument):
+        if op != "segment":
+            return False
+        doc.set_segment(int(msg["index"]), str(msg["key"]), msg["value"], msg.get("gesture"))
+        return True
+    assert isinstance(doc, Document)
+    if op == "move":
+        doc.move(str(msg["handle"]), int(msg["row"]), float(msg["x"]), float(msg["y"]),
+                 msg.get("gesture"))
+    elif op == "param":
+        doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
+    elif op == "segments":
+        doc.set_segments([(str(c["curve"]), int(c["index"]), str(c["key"]), c["value"])
+                          for c in msg["changes"]])
+    else:
+        return False
+    return True
+
+
+def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
     """One message from the page, in the worker thread: the reply."""
     op = msg.get("op")
     try:
-        if op == "hello":
-            pass
-        elif op == "move":
-            doc.move(str(msg["handle"]), int(msg["row"]), float(msg["x"]), float(msg["y"]),
-                     msg.get("gesture"))
-        elif op == "param":
-            doc.set_parameter(str(msg["name"]), float(msg["value"]), msg.get("gesture"))
-        elif op == "end":
-            doc.end_gesture()
-            return {"type": "ack", "seq": msg.get("seq")}
-        elif op == "undo":
-            doc.undo()
-        elif op == "redo":
-            doc.redo()
-        elif op == "save":
-            path = doc.save()
-            return {"type": "saved", "seq": msg.get("seq"), "file": path.name, "dirty": doc.dirty}
-        else:
+        if op in ("undo", "redo", "save", "end"):
+            reply = _common(doc, str(op), msg)
+            if reply is not None:
+                return reply
+        elif op != "hello" and not _edit(doc, op, msg):
             return {"type": "error", "seq": msg.get("seq"), "message": f"unknown request {op!r}"}
     except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
-        text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
-        return {"type": "error", "seq": msg.get("seq"), "message": text}
+        return _error(msg, e)
+    if isinstance(doc, CamDocument):
+        return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc)}
+    assert isinstance(doc, Document)
     plots = msg.get("plots")
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
-    return {"type": "frames", "seq": msg.get("seq"), "data": payload(doc, shown)}
+    data = payload(doc, shown)
+    if op == "hello":
+        data["studies"] = studies_of(doc.path)
+    return {"type": "frames", "seq": msg.get("seq"), "data": data}
+
+
+def _common(doc: Editable, op: str, msg: dict[str, Any]) -> dict[str, Any] | None:
+    """The requests every document answers (hello, end, undo, redo, save):
+    the reply for those that have their own, else None (send the frames)."""
+    if op == "end":
+        doc.end_gesture()
+        return {"type": "ack", "seq": msg.get("seq")}
+    if op == "undo":
+        doc.undo()
+    elif op == "redo":
+        doc.redo()
+    elif op == "save":
+        path = doc.save()
+        return {"type": "saved", "seq": msg.get("seq"), "file": path.name, "dirty": doc.dirty}
+    return None
+
+
+def _error(msg: dict[str, Any], e: Exception) -> dict[str, Any]:
+    text = e.args[0] if e.args and isinstance(e.args[0], str) else str(e)
+    return {"type": "error", "seq": msg.get("seq"), "message": text}
 
 
 def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:
-    if a.get("op") != b.get("op") or a.get("op") not in ("move", "param"):
+    if a.get("op") != b.get("op") or a.get("op") not in ("move", "param", "segment"):
         return False
-    return a.get("handle") == b.get("handle") and a.get("name") == b.get("name")
+    return all(a.get(k) == b.get(k) for k in ("handle", "name", "curve", "index", "key"))
 
 
 async def _socket(request: web.Request) -> web.WebSocketResponse:
@@ -193,6 +244,23 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                     return
                 await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
+    def report(run: Run) -> None:
+        # In the run's thread: its status to this page, from the loop
+        # (unless the page or the server has gone).
+        msg = run.status(shown)
+        if ws.closed or loop.is_closed():
+            return
+        coro = _send(ws, msg)
+        try:
+            asyncio.run_coroutine_threadsafe(coro, loop)
+        except RuntimeError:
+            coro.close()
+
+    # The runs this page started: stopped when it goes.
+    mine: set[int] = set()
+
+    shown: list[str] = []
+    runs = request.app[RUNS_KEY]
     task = asyncio.create_task(worker())
     request.app[SOCKETS_KEY].open.add(ws)
     try:
@@ -205,7 +273,16 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if not isinstance(msg, dict):
                 continue
-            if msg.get("op") == "param" and not math.isfinite(float(msg.get("value", "nan"))):
+            if msg.get("op") == "param" and not _finite(msg.get("value")):
+                continue
+            if msg.get("op") in ("run", "stop", "runchannel"):
+                # Runs go on beside the edits: answered here, off the queue.
+                if isinstance(msg.get("plots"), list):
+                    shown[:] = [str(p) for p in msg["plots"]]
+                reply = _run_request(doc, runs, msg, report, shown)
+                if reply.get("type") == "run":
+                    mine.add(int(reply["id"]))
+                await _send(ws, reply)
                 continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
@@ -217,22 +294,68 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     finally:
         task.cancel()
         request.app[SOCKETS_KEY].open.discard(ws)
+        if runs.current is not None and runs.current.id in mine:
+            runs.stop()
     return ws
 
 
-def make_app(doc: Document, token: str) -> web.Application:
+def _finite(v: object) -> bool:
+    """Whether `v` is a finite number (or a number's text)."""
+    try:
+        return math.isfinite(float(v))  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        return False
+
+
+async def _send(ws: web.WebSocketResponse, msg: dict[str, Any]) -> None:
+    if not ws.closed:
+        await ws.send_str(json.dumps(msg, separators=(",", ":"), allow_nan=False))
+
+
+def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
+                 shown: list[str]) -> dict[str, Any]:
+    """A ``run``, ``stop`` or ``runchannel`` request: the reply (the run
+    itself reports through `report` from its thread; a reply, as a report,
+    carries the channels `shown` of a finished run)."""
+    op = msg.get("op")
+    seq = msg.get("seq")
+    try:
+        if not isinstance(doc, Document):
+            raise ValueError("a cam design file has no analyses to run; run `camlink cam` on it")
+        if op == "run":
+            analysis, study = str(msg.get("analysis")), None
+            if analysis.startswith("study:"):
+                name = analysis[len("study:"):]
+                if name not in studies_of(doc.path):
+                    raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
+                analysis, study = "study", doc.path.parent / name
+            run = runs.start(doc.solution.model, analysis, report, study)
+            return {**run.status(shown), "seq": seq}
+        if op == "stop":
+            runs.stop()
+            return {"type": "ack", "seq": seq}
+        if runs.current is None:
+            raise KeyError("no run yet")
+        return {**runs.current.channel(str(msg.get("name"))), "seq": seq}
+    except (ModelError, ValueError, KeyError) as e:
+        return _error(msg, e)
+
+
+def make_app(doc: Editable, token: str) -> web.Application:
     """The studio's application for `doc`, answering only with `token`."""
     app = web.Application(middlewares=[_guard])
     app[TOKEN_KEY] = token
     app[DOC_KEY] = doc
     app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
     app[SOCKETS_KEY] = _Sockets()
+    app[RUNS_KEY] = Runs()
     app.router.add_get("/", _index)
     app.router.add_get("/ws", _socket)
     app.router.add_get("/static/{name}", _asset)
 
     async def close(app: web.Application) -> None:
         app[EXECUTOR_KEY].shutdown(wait=False, cancel_futures=True)
+        app[RUNS_KEY].close()
 
     async def shutdown(app: web.Application) -> None:
         for ws in list(app[SOCKETS_KEY].open):
@@ -247,7 +370,7 @@ class StudioServer:
     """A running studio on 127.0.0.1 (`url` carries the token)."""
 
     def __init__(self, path: str | Path, port: int = 0) -> None:
-        self.doc = Document(path)
+        self.doc = open_document(path)
         self.token = secrets.token_urlsafe(24)
         self.port = port
         self.url = ""

@@ -55,7 +55,7 @@ from camlink.units import unit_of
 from camlink.viz.front import default_plots
 from camlink.viz.scene import GROUND, Scene
 
-__all__ = ["Document", "Handle", "Solution", "solve"]
+__all__ = ["Document", "Editable", "Handle", "Solution", "solve"]
 
 Array = npt.NDArray[np.float64]
 
@@ -338,40 +338,29 @@ def _sync(container: Any, plain: dict[str, Any]) -> None:
             container[key] = item
 
 
-class Document:
-    """A model file open for editing. `solution` is the cycle of the
-    current data; `move` and `set_parameter` change the data and re-solve;
-    `undo`, `redo` and `save` as their names say."""
+class Editable:
+    """A file open for editing, held as plain data (`_data`): its edits
+    with undo and redo, its text and saving. A subclass solves the data
+    (`_solve`, giving `solution`) after each edit."""
 
-    def __init__(self, path: str | os.PathLike[str]) -> None:
-        self.path = Path(path).resolve()
-        if not self.path.is_file():
-            raise FileNotFoundError(f"no such model file: {path}")
-        self.format = "json" if self.path.suffix.lower() == ".json" else "toml"
-        if self.path.suffix.lower() not in (".toml", ".json"):
-            raise ModelError(f"{path}: the studio edits .toml and .json model files")
-        text = self.path.read_text(encoding="utf-8")
+    solution: Any
+
+    def _open(self, path: Path, text: str) -> None:
+        """Holds `text`, the text of the file `path` as opened."""
+        self.path = path
+        self.format = "json" if path.suffix.lower() == ".json" else "toml"
         #: The file's text as opened: a TOML text is rendered from it.
         self._opened = text
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            model = camlink.loads(text, self.format, str(self.path), base_dir=self.path.parent)
         self._data: Any = json.loads(text) if self.format == "json" else tomllib.loads(text)
         self._json = self._dump()
         self._saved = self._json
         self._undo: list[str] = []
         self._redo: list[str] = []
         self._gesture: object = None
-        self._plots: list[str] | None = None
-        self.solution = self._solve(model)
 
-    def default_plots(self, points: list[str]) -> list[str]:
-        """The page's first plots (`camlink.viz.front.default_plots`), chosen
-        from the cycle as opened (the page keeps its plots through edits)."""
-        if self._plots is None:
-            sol = self.solution
-            self._plots = default_plots(sol.scene.bodies, points, sol.t, sol.names, sol.values)
-        return [c for c in self._plots if c in self.solution.names] or self.solution.names[:2]
+    def _solve(self) -> Any:
+        """The solution of the current data (set `_json` to its dump)."""
+        raise NotImplementedError
 
     # -- text -------------------------------------------------------------
 
@@ -400,6 +389,104 @@ class Document:
     @property
     def can_redo(self) -> bool:
         return bool(self._redo)
+
+    # -- edits ------------------------------------------------------------
+
+    def _apply(self, gesture: object, change: Any) -> Any:
+        """Applies `change` to the data and re-solves; on an error the
+        data, undo and redo are as before and the error is raised. A drag
+        is many edits and one undo step: the data before the first edit of
+        a gesture is kept for undo."""
+        before = self._json
+        undo, redo, last = list(self._undo), list(self._redo), self._gesture
+        if gesture is None or gesture != self._gesture:
+            self._undo.append(before)
+            self._redo.clear()
+        self._gesture = gesture
+        try:
+            change()
+            self.solution = self._solve()
+        except (ModelError, ValueError, KeyError, TypeError):
+            self._data = json.loads(before)
+            self._json = before
+            self._undo, self._redo, self._gesture = undo, redo, last
+            raise
+        return self.solution
+
+    def _restore(self, state: str) -> Any:
+        self._data = json.loads(state)
+        self._gesture = None
+        self.solution = self._solve()
+        return self.solution
+
+    def undo(self) -> Any:
+        """Goes back one edit (a whole drag); None when there is none."""
+        if not self._undo:
+            return None
+        self._redo.append(self._json)
+        return self._restore(self._undo.pop())
+
+    def redo(self) -> Any:
+        """Does again the edit last undone; None when there is none."""
+        if not self._redo:
+            return None
+        self._undo.append(self._json)
+        return self._restore(self._redo.pop())
+
+    def end_gesture(self) -> None:
+        """Ends a drag or a slider move: the next edit is a new undo step."""
+        self._gesture = None
+
+    # -- saving -----------------------------------------------------------
+
+    def save(self) -> Path:
+        """Writes the text over the model file: into a temporary file in
+        its folder, the old file kept as ``NAME.bak`` beside it, then the
+        temporary file renamed over the file. Nothing is written outside
+        the file's folder."""
+        text = self.text()
+        folder = self.path.parent
+        fd, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=folder)
+        try:
+            with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
+                f.write(text)
+            if self.path.exists():
+                shutil.copy2(self.path, self.path.with_name(self.path.name + ".bak"))
+            os.replace(tmp, self.path)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+        self._saved = self._json
+        return self.path
+
+
+class Document(Editable):
+    """A model file open for editing. `solution` is the cycle of the
+    current data; `move` and `set_parameter` change the data and re-solve;
+    `undo`, `redo` and `save` as their names say."""
+
+    def __init__(self, path: str | os.PathLike[str]) -> None:
+        full = Path(path).resolve()
+        if not full.is_file():
+            raise FileNotFoundError(f"no such model file: {path}")
+        if full.suffix.lower() not in (".toml", ".json"):
+            raise ModelError(f"{path}: the studio edits .toml and .json model files")
+        text = full.read_text(encoding="utf-8")
+        fmt = "json" if full.suffix.lower() == ".json" else "toml"
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            model = camlink.loads(text, fmt, str(full), base_dir=full.parent)
+        self._open(full, text)
+        self._plots: list[str] | None = None
+        self.solution = self._solve(model)
+
+    def default_plots(self, points: list[str]) -> list[str]:
+        """The page's first plots (`camlink.viz.front.default_plots`), chosen
+        from the cycle as opened (the page keeps its plots through edits)."""
+        if self._plots is None:
+            sol = self.solution
+            self._plots = default_plots(sol.scene.bodies, points, sol.t, sol.names, sol.values)
+        return [c for c in self._plots if c in self.solution.names] or self.solution.names[:2]
 
     # -- solving ----------------------------------------------------------
 
@@ -446,29 +533,6 @@ class Document:
             ok = np.ones(1, dtype=bool)
         return Solution(model, scene, t, names, values, ok, _handles(model, scene, self._data),
                         error, kept, units)
-
-    # -- edits ------------------------------------------------------------
-
-    def _apply(self, gesture: object, change: Any) -> Solution:
-        """Applies `change` to the data and re-solves; on an error the
-        data, undo and redo are as before and the error is raised. A drag
-        is many edits and one undo step: the data before the first edit of
-        a gesture is kept for undo."""
-        before = self._json
-        undo, redo, last = list(self._undo), list(self._redo), self._gesture
-        if gesture is None or gesture != self._gesture:
-            self._undo.append(before)
-            self._redo.clear()
-        self._gesture = gesture
-        try:
-            change()
-            self.solution = self._solve()
-        except (ModelError, ValueError, KeyError, TypeError):
-            self._data = json.loads(before)
-            self._json = before
-            self._undo, self._redo, self._gesture = undo, redo, last
-            raise
-        return self.solution
 
     def move(self, handle_id: str, row: int, x: float, y: float, gesture: object = None) -> Solution:
         """Moves the handle `handle_id` to the global point (x, y) (m) at
@@ -529,48 +593,51 @@ class Document:
             raise ValueError(f"parameter {name!r}: {value} is not a finite number")
         return self._apply(gesture, lambda: params.__setitem__(name, float(value)))
 
-    def _restore(self, state: str) -> Solution:
-        self._data = json.loads(state)
-        self._gesture = None
-        self.solution = self._solve()
-        return self.solution
+    def motion_segments(self) -> list[dict[str, Any]]:
+        """The segments of the file's ``source = "motion"`` curves: curve
+        name, index in its program, law, span (rad) and lift (m, or rad of
+        swing) as the file gives them (numbers or expressions)."""
+        out = []
+        for c in self._data.get("curves") or []:
+            if c.get("source") != "motion":
+                continue
+            for k, seg in enumerate(c.get("segments") or []):
+                out.append({"curve": str(c.get("name")), "index": k, "law": seg.get("law"),
+                            "span": seg.get("span"), "lift": seg.get("lift", 0.0)})
+        return out
 
-    def undo(self) -> Solution | None:
-        """Goes back one edit (a whole drag); None when there is none."""
-        if not self._undo:
-            return None
-        self._redo.append(self._json)
-        return self._restore(self._undo.pop())
+    def set_segments(self, changes: list[tuple[str, int, str, str | float]],
+                     gesture: object = None) -> Solution:
+        """Sets, for each (curve, index, key, value) of `changes`, `key`
+        (``law``, ``span`` in rad or ``lift`` in m, or rad of swing; a
+        number or an expression of the parameters) of segment `index` of
+        the motion curve `curve`, all at once (a rise and its return
+        together: a program that does not close is not a model), and
+        re-solves. Changes that make the model invalid are refused with
+        its message."""
+        curves = {str(c.get("name")): c for c in self._data.get("curves") or []
+                  if c.get("source") == "motion"}
+        edits: list[tuple[dict[str, Any], str, str | float]] = []
+        for curve, index, key, value in changes:
+            if curve not in curves:
+                raise KeyError(f"no motion curve {curve!r}")
+            segs = curves[curve].get("segments") or []
+            if not 0 <= index < len(segs):
+                raise KeyError(f"curve {curve!r} has no segment {index} (its program has {len(segs)})")
+            if key not in ("law", "span", "lift"):
+                raise KeyError(f"segment key {key!r} is not one of law, span, lift")
+            if isinstance(value, bool) or not isinstance(value, str | int | float):
+                raise TypeError(f"curve {curve!r} segments[{index}].{key}: {value!r} is not a "
+                                "number or an expression")
+            if not isinstance(value, str):
+                value = float(value)
+                if not math.isfinite(value):
+                    raise ValueError(f"curve {curve!r} segments[{index}].{key}: {value} is not finite")
+            edits.append((segs[index], key, value))
 
-    def redo(self) -> Solution | None:
-        """Does again the edit last undone; None when there is none."""
-        if not self._redo:
-            return None
-        self._undo.append(self._json)
-        return self._restore(self._redo.pop())
+        def change() -> None:
+            for seg, key, value in edits:
+                seg[key] = value
 
-    def end_gesture(self) -> None:
-        """Ends a drag or a slider move: the next edit is a new undo step."""
-        self._gesture = None
-
-    # -- saving -----------------------------------------------------------
-
-    def save(self) -> Path:
-        """Writes the text over the model file: into a temporary file in
-        its folder, the old file kept as ``NAME.bak`` beside it, then the
-        temporary file renamed over the file. Nothing is written outside
-        the file's folder."""
-        text = self.text()
-        folder = self.path.parent
-        fd, tmp = tempfile.mkstemp(prefix=f".{self.path.name}.", suffix=".tmp", dir=folder)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8", newline="") as f:
-                f.write(text)
-            if self.path.exists():
-                shutil.copy2(self.path, self.path.with_name(self.path.name + ".bak"))
-            os.replace(tmp, self.path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        self._saved = self._json
-        return self.path
+        solution: Solution = self._apply(gesture, change)
+        return solution

@@ -109,6 +109,7 @@ def run_variants(
     time_limit: float | None = None,
     quiet: bool = True,
     check_outputs: bool = True,
+    on_batch: Callable[[int, int], object] | None = None,
 ) -> pd.DataFrame:
     """Runs each parameter set of `variants` on `model` (its file's
     ``[analysis]``) and reduces each run to `outputs`.
@@ -125,7 +126,10 @@ def run_variants(
     `check_outputs` is false, the model itself is run once first, so that
     an output naming a channel the run lacks is an error at once. A study
     whose table cannot fit in the memory available is refused
-    (`check_size`).
+    (`check_size`). `on_batch(done, total)`, if given, is called with the
+    variants done (those found in `output` included) before the first
+    batch and after each; an exception it raises stops the study (the
+    batches written to `output` stay, and a rerun resumes from them).
     """
     named = parse_outputs(outputs)
     check_size(len(variants), len(named) + (len(variants[0]) if len(variants) else 0), "study")
@@ -164,8 +168,12 @@ def run_variants(
             _write_batch(folder, frame)
         frames.append(frame)
         progress.update(len(batch))
+        if on_batch is not None:
+            on_batch(progress.done, len(variants))
 
     with progress:
+        if on_batch is not None:
+            on_batch(progress.done, len(variants))
         if client is not None or scheduler is not None:
             _run_dask(client, scheduler, recipe, full, batches, spec, time_limit, arrived)
         else:

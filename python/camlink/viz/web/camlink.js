@@ -808,5 +808,66 @@
     return api;
   }
 
-  root.camlinkFront = { create: create, decode: decode };
+  // The studio pages' link to their server: a websocket carrying the
+  // page's requests ({op, …}, numbered by `seq`) and the server's replies,
+  // the undo/redo/save buttons and keys (Ctrl+Z, Ctrl+Shift+Z or Ctrl+Y,
+  // Ctrl+S), and the message line. `opts.reply(reply)` gets each reply,
+  // `opts.before(msg)` may add to each request. `after(n)` is a promise of
+  // the reply to request n having been handled (for scripts and benchmarks).
+  function editor(opts) {
+    const token = document.querySelector('meta[name="camlink-token"]').content;
+    const message = document.getElementById("message");
+    const waiting = {}, sentAt = {};
+    let ws = null, seq = 0;
+    const api = { answered: 0, sentAt: sentAt };
+    api.say = function (text, bad) { message.textContent = text; message.classList.toggle("bad", !!bad); };
+    api.send = function (msg) {
+      seq += 1; msg.seq = seq; sentAt[seq] = performance.now();
+      if (opts.before) opts.before(msg);
+      ws.send(JSON.stringify(msg));
+      return seq;
+    };
+    api.sent = function () { return seq; };
+    api.after = function (n) {
+      if (api.answered >= n) return Promise.resolve();
+      return new Promise(function (resolve) { (waiting[n] = waiting[n] || []).push(resolve); });
+    };
+    api.shown = function (data) {
+      document.getElementById("title").textContent = data.title;
+      document.getElementById("file").textContent = data.file;
+      document.getElementById("dirty").textContent = data.dirty ? "● unsaved" : "";
+      document.title = data.title + " · camlink studio";
+      document.getElementById("undo").disabled = !data.undo;
+      document.getElementById("redo").disabled = !data.redo;
+    };
+    document.getElementById("undo").addEventListener("click", function () { api.send({ op: "undo" }); });
+    document.getElementById("redo").addEventListener("click", function () { api.send({ op: "redo" }); });
+    document.getElementById("save").addEventListener("click", function () { api.send({ op: "save" }); });
+    document.addEventListener("keydown", function (ev) {
+      if ((ev.ctrlKey || ev.metaKey) && ev.key === "z") { ev.preventDefault(); api.send({ op: ev.shiftKey ? "redo" : "undo" }); }
+      else if ((ev.ctrlKey || ev.metaKey) && ev.key === "y") { ev.preventDefault(); api.send({ op: "redo" }); }
+      else if ((ev.ctrlKey || ev.metaKey) && ev.key === "s") { ev.preventDefault(); api.send({ op: "save" }); }
+    });
+    const url = (location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws?token=" + encodeURIComponent(token);
+    ws = new WebSocket(url);
+    ws.onopen = function () { api.send({ op: "hello" }); };
+    ws.onclose = function () { api.say("disconnected from the server", true); };
+    ws.onmessage = function (ev) {
+      const reply = JSON.parse(ev.data);
+      if (reply.seq) api.answered = Math.max(api.answered, reply.seq);
+      if (reply.type === "saved") {
+        document.getElementById("dirty").textContent = reply.dirty ? "● unsaved" : "";
+        api.say("saved " + reply.file + " (the previous file kept as " + reply.file + ".bak)");
+      } else if (reply.type === "error") {
+        api.say(reply.message, true);
+      }
+      opts.reply(reply);
+      for (const n of Object.keys(waiting)) {
+        if (Number(n) <= api.answered) { for (const f of waiting[n]) f(); delete waiting[n]; }
+      }
+    };
+    return api;
+  }
+
+  root.camlinkFront = { create: create, decode: decode, editor: editor, niceStep: niceStep, fmt: fmt };
 })(window);
