@@ -106,8 +106,6 @@ class Model:
     @property
     def analysis(self) -> AnalysisSettings: ...
     def check(self) -> CheckReport: ...
-    @staticmethod
-    def analysis_defaults() -> dict[str, tuple[float, int]]: ...
     @property
     def gravity(self) -> tuple[float, float]: ...
     @property
@@ -128,8 +126,8 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -143,8 +141,8 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -154,8 +152,8 @@ class Model:
         self,
         time: float = 0.0,
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -165,12 +163,16 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        h: float = ...,
-        rho_inf: float = ...,
-        tol: float = ...,
-        max_iter: int = ...,
-        projection_tol: float = ...,
-        adaptive: tuple[float, float, float] | None = None,
+        step: float | None = None,
+        h: float | None = None,
+        rho_inf: float | None = None,
+        adaptive: bool | None = None,
+        atol: float | None = None,
+        rtol: float | None = None,
+        h_min: float | None = None,
+        projection_tol: float | None = None,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -195,6 +197,11 @@ def length_units() -> list[tuple[str, float]]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...
 def check_setting(key: str, value: float) -> None: ...
+def analysis_settings() -> dict[str, list[str]]: ...
+def not_applicable(key: str, kind: str) -> str: ...
+def integration_step(h: float | None = None, step: float | None = None) -> float: ...
+def check_times(times: npt.NDArray[np.float64]) -> None: ...
+def default_step(t_end: float) -> float: ...
 def run_batch(
     model: Model,
     variants: Sequence[Mapping[str, float]],
