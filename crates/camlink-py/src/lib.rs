@@ -1274,6 +1274,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(machine::machine_report, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
+    m.add_function(wrap_pyfunction!(study::output_kinds, m)?)?;
+    m.add_function(wrap_pyfunction!(study::check_output, m)?)?;
     synth::register(m)?;
     fourbar::register(m)?;
     units::register(m)?;
