@@ -1263,6 +1263,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<machine::MachineCycle>()?;
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_base_radius_question, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_followers, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_laws, m)?)?;
     m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
     m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
