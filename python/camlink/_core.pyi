@@ -106,8 +106,6 @@ class Model:
     @property
     def analysis(self) -> AnalysisSettings: ...
     def check(self) -> CheckReport: ...
-    @staticmethod
-    def analysis_defaults() -> dict[str, tuple[float, int]]: ...
     @property
     def gravity(self) -> tuple[float, float]: ...
     @property
@@ -128,8 +126,8 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -143,8 +141,8 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -154,8 +152,8 @@ class Model:
         self,
         time: float = 0.0,
         *,
-        tol: float = ...,
-        max_iter: int = ...,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -165,12 +163,16 @@ class Model:
         self,
         times: npt.NDArray[np.float64],
         *,
-        h: float = ...,
-        rho_inf: float = ...,
-        tol: float = ...,
-        max_iter: int = ...,
-        projection_tol: float = ...,
-        adaptive: tuple[float, float, float] | None = None,
+        step: float | None = None,
+        h: float | None = None,
+        rho_inf: float | None = None,
+        adaptive: bool | None = None,
+        atol: float | None = None,
+        rtol: float | None = None,
+        h_min: float | None = None,
+        projection_tol: float | None = None,
+        tol: float | None = None,
+        max_iter: int | None = None,
         points: Sequence[str] = ...,
         on_chunk: _OnChunk | None = None,
         chunk_rows: int = ...,
@@ -189,12 +191,19 @@ def model_error_of(
 ) -> dict[str, Any] | None: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
 def cam_base_radius_question(r: float) -> str | None: ...
+def cam_followers() -> list[tuple[str, list[str]]]: ...
+def cam_laws() -> list[str]: ...
 def quantity_unit(quantity: str, units: str = "m,rad") -> tuple[str, float]: ...
 def parse_units(units: str) -> tuple[str, str]: ...
 def length_units() -> list[tuple[str, float]]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...
 def check_setting(key: str, value: float) -> None: ...
+def analysis_settings() -> dict[str, list[str]]: ...
+def not_applicable(key: str, kind: str) -> str: ...
+def integration_step(h: float | None = None, step: float | None = None) -> float: ...
+def check_times(times: npt.NDArray[np.float64]) -> None: ...
+def default_step(t_end: float) -> float: ...
 def run_batch(
     model: Model,
     variants: Sequence[Mapping[str, float]],
@@ -204,6 +213,8 @@ def run_batch(
     time_limit: float | None = None,
 ) -> tuple[npt.NDArray[np.float64], list[str], list[str]]: ...
 def toml_position(text: str, path: str) -> tuple[int, int] | None: ...
+def output_kinds() -> dict[str, list[str]]: ...
+def check_output(field: str, spec: dict[str, Any]) -> None: ...
 
 # The machine report of a model file's [machine] table: camlink.machine.MachineReport.
 def machine_report(path: str | PathLike[str]) -> dict[str, Any]: ...

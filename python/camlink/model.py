@@ -46,19 +46,6 @@ CHUNK_ROWS = 1024
 #: The analyses a model can run; ``[analysis] type`` names one.
 ANALYSES = ("kinematics", "inverse_dynamics", "equilibrium", "dynamics")
 
-#: Largest integration step (s) chosen when neither `h` nor a smaller
-#: output step is given.
-DEFAULT_H = 1e-3
-
-_GRID = {"t_end", "step", "times", "tol", "max_iter", "points"}
-#: The settings each analysis takes (besides `output`).
-_SETTINGS = {
-    "kinematics": _GRID | {"jerk"},
-    "inverse_dynamics": _GRID,
-    "equilibrium": {"time", "tol", "max_iter", "points"},
-    "dynamics": _GRID
-    | {"h", "rho_inf", "adaptive", "atol", "rtol", "h_min", "projection_tol"},
-}
 
 
 def load(
@@ -233,7 +220,7 @@ class Model:
                 "(or set [analysis] t_end in the file)"
             )
         if step is None:
-            step = float(t_end) / 100 if t_end > 0 else 1.0
+            step = _core.default_step(float(t_end))
         return _core.time_grid(float(t_end), float(step))
 
     @property
@@ -365,12 +352,11 @@ class Model:
             "max_iter": max_iter,
             **settings,
         }
-        allowed = _SETTINGS[kind]
+        # The settings each analysis takes are the core's (camlink_model::analysis).
+        allowed = _core.analysis_settings()[kind]
         for key, value in given.items():
             if key not in allowed and value is not None:
-                users = [k for k in ANALYSES if key in _SETTINGS[k]]
-                hint = f" (it is a setting of {', '.join(users)})" if users else ""
-                raise ModelError(f"`{key}` does not apply to the {kind} analysis{hint}")
+                raise ModelError(_core.not_applicable(key, kind))
         kwargs = {k: v for k, v in given.items() if k in allowed}
         methods: dict[str, Callable[..., Results]] = {
             "kinematics": self.kinematics,
@@ -417,14 +403,13 @@ class Model:
         """
         check_settings(locals())
         grid = self.times(t_end, step, times)
-        tol, max_iter = self._solver("kinematics", tol, max_iter)
         with_jerk = bool(self.analysis.get("jerk", False) if jerk is None else jerk)
         q0 = None if start is None else np.ascontiguousarray(start, dtype=np.float64).ravel()
         return self._run(
             "kinematics",
             output,
             lambda **kw: self._core.run_kinematics(
-                grid, tol=tol, max_iter=max_iter, jerk=with_jerk, start=q0, **kw
+                grid, **_solver(tol, max_iter), jerk=with_jerk, start=q0, **kw
             ),
             points,
             on_rows,
@@ -448,11 +433,10 @@ class Model:
         energy and constraint drift. Arguments as `kinematics`."""
         check_settings(locals())
         grid = self.times(t_end, step, times)
-        tol, max_iter = self._solver("inverse_dynamics", tol, max_iter)
         return self._run(
             "inverse_dynamics",
             output,
-            lambda **kw: self._core.run_inverse_dynamics(grid, tol=tol, max_iter=max_iter, **kw),
+            lambda **kw: self._core.run_inverse_dynamics(grid, **_solver(tol, max_iter), **kw),
             points,
             on_rows,
         )
@@ -472,11 +456,10 @@ class Model:
         one row with the channels of `inverse_dynamics`."""
         check_settings(locals())
         time = float(self.analysis["time"] if time is None else time)
-        tol, max_iter = self._solver("equilibrium", tol, max_iter)
         return self._run(
             "equilibrium",
             output,
-            lambda **kw: self._core.run_equilibrium(time, tol=tol, max_iter=max_iter, **kw),
+            lambda **kw: self._core.run_equilibrium(time, **_solver(tol, max_iter), **kw),
             points,
             on_rows,
         )
@@ -513,53 +496,23 @@ class Model:
         ``velocity_drift`` (largest |Φ| and |Φ_q q̇ − ν|).
         """
         check_settings(locals())
-        a = self.analysis
         grid = self.times(t_end, step, times)
-        if h is None:
-            h = a["h"]
-        if h is None:
-            out_step = step if step is not None else a["step"]
-            h = min(float(out_step), DEFAULT_H) if out_step is not None else DEFAULT_H
-        rho_inf = float(a["rho_inf"] if rho_inf is None else rho_inf)
-        adaptive = bool(a["adaptive"] if adaptive is None else adaptive)
-        if not adaptive and any(v is not None for v in (atol, rtol, h_min)):
-            raise ModelError("atol, rtol and h_min set the error control: pass adaptive=True")
-        control = (
-            (
-                float(a["atol"] if atol is None else atol),
-                float(a["rtol"] if rtol is None else rtol),
-                float(a["h_min"] if h_min is None else h_min),
-            )
-            if adaptive
-            else None
-        )
-        projection_tol = float(a["projection_tol"] if projection_tol is None else projection_tol)
-        tol, max_iter = self._solver("dynamics", tol, max_iter)
+        # Settings left None take the file's, else the core's defaults:
+        # h the output step but at most 1 ms; the error control only with
+        # adaptive (camlink_model::analysis).
+        settings = {
+            "adaptive": None if adaptive is None else bool(adaptive),
+            **_floats(
+                step=step, h=h, rho_inf=rho_inf, atol=atol, rtol=rtol, h_min=h_min,
+                projection_tol=projection_tol,
+            ),
+            **_solver(tol, max_iter),
+        }
 
         def core(**kw: Any) -> Any:
-            return self._core.run_dynamics(
-                grid,
-                h=float(h),
-                rho_inf=rho_inf,
-                tol=tol,
-                max_iter=max_iter,
-                projection_tol=projection_tol,
-                adaptive=control,
-                **kw,
-            )
+            return self._core.run_dynamics(grid, **settings, **kw)
 
         return self._run("dynamics", output, core, points, on_rows)
-
-    def _solver(self, kind: str, tol: float | None, max_iter: int | None) -> tuple[float, int]:
-        """Newton settings: the arguments, else the file's, else the
-        analysis' defaults."""
-        a = self.analysis
-        d_tol, d_iter = _core.Model.analysis_defaults()[kind]
-        tol = tol if tol is not None else a["tol"] if a["tol"] is not None else d_tol
-        max_iter = (
-            max_iter if max_iter is not None else a["max_iter"] if a["max_iter"] is not None else d_iter
-        )
-        return float(tol), int(max_iter)
 
     def _run(
         self,
@@ -688,6 +641,18 @@ def _unpickle(
     return model.with_parameters(**overrides) if overrides else model
 
 
+def _floats(**given: float | None) -> dict[str, float | None]:
+    """The settings given as floats for the core, None kept (not given)."""
+    return {k: None if v is None else float(v) for k, v in given.items()}
+
+
+def _solver(tol: float | None, max_iter: int | None) -> dict[str, Any]:
+    """Newton settings for the core, None where not given: the core takes
+    the file's, else the analysis' defaults."""
+    return {"tol": None if tol is None else float(tol),
+            "max_iter": None if max_iter is None else int(max_iter)}
+
+
 def _summary(kind: str, raw: dict[str, Any]) -> RunSummary:
     """The binding's summary dict as a `RunSummary`."""
     typed = RunSummary(
@@ -748,11 +713,8 @@ def _impact(r: dict[str, Any]) -> ImpactRecord:
 
 def _as_times(times: Any) -> npt.NDArray[np.float64]:
     t = np.ascontiguousarray(times, dtype=np.float64)
-    if t.ndim != 1 or t.size == 0:
+    if t.ndim != 1:
         raise ModelError("times must be a non-empty list of numbers")
-    if not np.all(np.isfinite(t)):
-        raise ModelError("times must be finite numbers")
-    if np.any(np.diff(t) <= 0):
-        k = int(np.argmax(np.diff(t) <= 0))
-        raise ModelError(f"times must increase, but {t[k + 1]:g} follows {t[k]:g}")
+    # Non-empty, finite, increasing: the core's rule (camlink_core::run::check_times).
+    _core.check_times(t)
     return t

@@ -86,7 +86,8 @@ def test_channel_order_bodies_then_points(four_bar_file):
     [
         (dict(t_end=1.0, step=0.0), "step"),
         (dict(t_end=-1.0, step=0.1), "t_end must be"),
-        (dict(times=[0.0, 0.2, 0.1]), "increase"),
+        (dict(times=[0.0, 0.2, 0.1]), "^times must increase, but 0.1 follows 0.2$"),
+        (dict(times=[0.0, float("nan")]), "^times must be finite numbers$"),
         (dict(times=[]), "non-empty"),
         (dict(points=["coupler.Q"]), "no point 'Q'"),
         (dict(points=["nobody.P"]), "no body named 'nobody'"),

@@ -402,10 +402,34 @@ pub fn check_next_time(prev: Option<f64>, t: f64) -> Result<(), AnalysisError> {
         Some(p) if t <= p || t.is_nan() => Err(AnalysisError::new(
             Kind::InvalidInput,
             t,
-            format!("times must increase, but {} follows {}", num(t), num(p)),
+            not_increasing(t, p),
         )),
         _ => Ok(()),
     }
+}
+
+/// Checks a run's output times (s) before it starts: at least one, all
+/// finite, each after the one before. The error is the index of the first
+/// time that breaks the rule and what is wrong (the message
+/// [`check_next_time`] gives for times that do not increase).
+pub fn check_times(times: &[f64]) -> Result<(), (usize, String)> {
+    if times.is_empty() {
+        return Err((0, "times must be a non-empty list of numbers".into()));
+    }
+    for (k, &t) in times.iter().enumerate() {
+        if !t.is_finite() {
+            return Err((k, "times must be finite numbers".into()));
+        }
+        if k > 0 && t <= times[k - 1] {
+            return Err((k, not_increasing(t, times[k - 1])));
+        }
+    }
+    Ok(())
+}
+
+/// The message for output time `t` (s) that does not follow `prev`.
+fn not_increasing(t: f64, prev: f64) -> String {
+    format!("times must increase, but {} follows {}", num(t), num(prev))
 }
 
 /// The joints whose equations have the largest residuals |Φ| above `tol`,
@@ -640,6 +664,23 @@ impl LiftOff {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn output_times_are_checked_before_and_during_a_run_with_one_message() {
+        assert!(check_times(&[0.0, 0.1, 0.2]).is_ok());
+        assert_eq!(
+            check_times(&[0.0, 0.5, 0.5]),
+            Err((2, "times must increase, but 0.5 follows 0.5".into()))
+        );
+        let during = check_next_time(Some(0.5), 0.5).unwrap_err();
+        assert_eq!(during.message, check_times(&[0.5, 0.5]).unwrap_err().1);
+        assert_eq!(during.kind, Kind::InvalidInput);
+        assert_eq!(check_times(&[]).unwrap_err().0, 0);
+        assert_eq!(
+            check_times(&[0.0, f64::NAN]),
+            Err((1, "times must be finite numbers".into()))
+        );
+    }
 
     /// The kinds listed in `docs/errors.md`, between `<!-- kinds -->` and
     /// `<!-- /kinds -->`, as (name, "error" or "warning").

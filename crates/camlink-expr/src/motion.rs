@@ -102,6 +102,29 @@ impl Law {
         [s0, s1, s2, s3, s4]
     }
 
+    /// `[s, s', …, s⁽⁵⁾]` at u, 0 ≤ u ≤ 1: [`Law::shape4`] and the fifth
+    /// derivative
+    ///
+    /// ```text
+    /// ramp, step  s⁽⁵⁾ = 0
+    /// poly345     s⁽⁵⁾ = 720
+    /// harmonic    s⁽⁵⁾ = (π⁵/2) sin πu
+    /// cycloidal   s⁽⁵⁾ = −16π⁴ cos 2πu
+    /// ```
+    ///
+    /// The cam design's motion laws of the same shapes (constant velocity,
+    /// 3-4-5, simple harmonic, cycloidal) are these.
+    pub fn shape5(self, u: f64) -> [f64; 6] {
+        let [s0, s1, s2, s3, s4] = self.shape4(u);
+        let s5 = match self {
+            Law::Ramp | Law::Step => 0.0,
+            Law::Poly345 => 720.0,
+            Law::Harmonic => 0.5 * PI.powi(5) * (PI * u).sin(),
+            Law::Cycloidal => -16.0 * PI.powi(4) * (2.0 * PI * u).cos(),
+        };
+        [s0, s1, s2, s3, s4, s5]
+    }
+
     /// The highest order of derivative that is continuous at u = 0 and u = 1.
     pub fn continuity(self) -> usize {
         match self {
@@ -181,6 +204,29 @@ mod tests {
                         "{law:?} order {} at u = {u}: {} vs {fd}",
                         k + 1,
                         s[k + 1]
+                    );
+                }
+            }
+        }
+    }
+
+    /// The fourth and fifth derivatives against central differences of
+    /// the orders below.
+    #[test]
+    fn fourth_and_fifth_derivatives_match_differences() {
+        let h = 1e-5;
+        for law in LAWS {
+            for &u in &[0.1, 0.3, 0.5, 0.77, 0.9] {
+                let s = law.shape5(u);
+                let (p, m) = (law.shape5(u + h), law.shape5(u - h));
+                assert_eq!(s[..4], law.shape(u), "{law:?}");
+                for k in 3..5 {
+                    let fd = (p[k] - m[k]) / (2.0 * h);
+                    let tol = 1e-6 * (1.0 + s[k + 1].abs());
+                    assert!(
+                        (fd - s[k + 1]).abs() < tol,
+                        "{law:?} order {} at u = {u}",
+                        k + 1
                     );
                 }
             }

@@ -9,6 +9,7 @@
 //! itself is documented in `docs/model-files.md`.
 
 pub mod adm;
+mod analysis;
 pub mod convert;
 mod data_file;
 mod error;
@@ -25,6 +26,7 @@ use std::path::{Path, PathBuf};
 use camlink_core::dynamics::integrator::{Adaptive, Settings as IntegratorSettings};
 use camlink_core::dynamics::statics::Settings as StaticsSettings;
 
+pub use analysis::{needs_adaptive, not_applicable, DynamicsArgs, SettingError, ERROR_CONTROL};
 pub use data_file::LoadOptions;
 pub use error::LoadError;
 pub use file::AnalysisType;
@@ -202,10 +204,7 @@ impl AnalysisSpec {
     pub fn integrator_settings(&self) -> IntegratorSettings {
         let d = &self.dynamics;
         IntegratorSettings {
-            step: d.h.unwrap_or_else(|| {
-                self.step
-                    .map_or(DynamicsSpec::DEFAULT_H, |s| s.min(DynamicsSpec::DEFAULT_H))
-            }),
+            step: DynamicsSpec::integration_step(d.h, self.step),
             rho_inf: d.rho_inf,
             tol: self.tol_for(AnalysisType::Dynamics),
             max_iter: self.max_iter_for(AnalysisType::Dynamics),

@@ -896,41 +896,30 @@ impl Ctx {
             return Ok(AnalysisSpec::default());
         };
         let kind = a.kind.unwrap_or_default();
-        // Keys that only some analyses take.
-        let grid = kind != AnalysisType::Equilibrium;
-        let dynamics = kind == AnalysisType::Dynamics;
-        let adaptive = dynamics && a.adaptive == Some(true);
-        let timed = "kinematics, inverse_dynamics and dynamics";
-        let only = [
-            ("t_end", a.t_end.is_some(), grid, timed),
-            ("step", a.step.is_some(), grid, timed),
-            ("times", a.times.is_some(), grid, timed),
-            ("time", a.time.is_some(), !grid, "equilibrium"),
-            ("h", a.h.is_some(), dynamics, "dynamics"),
-            ("rho_inf", a.rho_inf.is_some(), dynamics, "dynamics"),
-            ("adaptive", a.adaptive.is_some(), dynamics, "dynamics"),
-            (
-                "projection_tol",
-                a.projection_tol.is_some(),
-                dynamics,
-                "dynamics",
-            ),
-            ("atol", a.atol.is_some(), adaptive, "dynamics"),
-            ("rtol", a.rtol.is_some(), adaptive, "dynamics"),
-            ("h_min", a.h_min.is_some(), adaptive, "dynamics"),
+        // Keys that only some analyses take (crate::analysis).
+        let adaptive = kind == AnalysisType::Dynamics && a.adaptive == Some(true);
+        let given = [
+            ("t_end", a.t_end.is_some()),
+            ("step", a.step.is_some()),
+            ("times", a.times.is_some()),
+            ("time", a.time.is_some()),
+            ("h", a.h.is_some()),
+            ("rho_inf", a.rho_inf.is_some()),
+            ("adaptive", a.adaptive.is_some()),
+            ("projection_tol", a.projection_tol.is_some()),
+            ("atol", a.atol.is_some()),
+            ("rtol", a.rtol.is_some()),
+            ("h_min", a.h_min.is_some()),
         ];
-        for (key, given, fits, which) in only {
-            if given && !fits {
-                let message = if dynamics {
-                    format!("`{key}` sets the error control: it needs adaptive = true")
-                } else {
-                    format!(
-                        "`{key}` does not apply to type = \"{}\" (it is a setting of {which})",
-                        kind.name()
-                    )
-                };
-                return fail(format!("analysis.{key}"), message);
-            }
+        for (key, _) in given.into_iter().filter(|&(_, given)| given) {
+            let message = if !kind.takes(key) {
+                crate::not_applicable(key, &format!("type = \"{}\"", kind.name()))
+            } else if crate::ERROR_CONTROL.contains(&key) && !adaptive {
+                crate::needs_adaptive(key)
+            } else {
+                continue;
+            };
+            return fail(format!("analysis.{key}"), message);
         }
         let t_end = self.setting(a.t_end.as_ref(), "t_end")?;
         let step = self.setting(a.step.as_ref(), "step")?;
@@ -944,14 +933,15 @@ impl Ctx {
                 }
                 let mut out = Vec::with_capacity(list.len());
                 for (k, n) in list.iter().enumerate() {
-                    let v = self.num(n, &format!("analysis.times[{k}]"))?;
-                    if let Some(&last) = out.last().filter(|&&last| v <= last) {
-                        return fail(
-                            format!("analysis.times[{k}]"),
-                            format!("times must increase ({} s follows {} s)", num(v), num(last)),
-                        );
-                    }
-                    out.push(v);
+                    out.push(self.num(n, &format!("analysis.times[{k}]"))?);
+                }
+                if let Err((k, e)) = camlink_core::run::check_times(&out) {
+                    let field = if out.is_empty() {
+                        "analysis.times".to_string()
+                    } else {
+                        format!("analysis.times[{k}]")
+                    };
+                    return fail(field, e);
                 }
                 Some(out)
             }

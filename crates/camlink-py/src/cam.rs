@@ -87,45 +87,7 @@ impl CamCore {
             });
         }
         let program = Program::new(&specs).map_err(value_error)?;
-        let need = |n: usize| {
-            if dims.len() == n {
-                Ok(())
-            } else {
-                Err(value_error(format!(
-                    "a {follower} follower takes {n} dimensions, got {}",
-                    dims.len()
-                )))
-            }
-        };
-        let f = match follower {
-            "translating-roller" => {
-                need(2)?;
-                Follower::TranslatingRoller {
-                    offset: dims[0],
-                    roller: dims[1],
-                }
-            }
-            "translating-flat" => {
-                need(0)?;
-                Follower::TranslatingFlat
-            }
-            "oscillating-roller" => {
-                need(3)?;
-                Follower::OscillatingRoller {
-                    pivot: dims[0],
-                    arm: dims[1],
-                    roller: dims[2],
-                }
-            }
-            "oscillating-flat" => {
-                need(2)?;
-                Follower::OscillatingFlat {
-                    pivot: dims[0],
-                    face_offset: dims[1],
-                }
-            }
-            other => return Err(value_error(format!("unknown follower type '{other}'"))),
-        };
+        let f = Follower::from_dims(follower, &dims).map_err(value_error)?;
         let cam = Cam::new(program, f, base_radius, ccw).map_err(value_error)?;
         Ok(CamCore { cam: Arc::new(cam) })
     }
@@ -439,6 +401,22 @@ impl CamCore {
 /// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
 /// The question camlink asks of a base circle radius `r` (m) metres long
 /// (`camlink_core::cam::base_radius_question`), or None.
+/// The follower kinds of cam design files and the dimensions each takes,
+/// as `{kind: [field, …]}` ([`Follower::KINDS`]).
+#[pyfunction]
+pub fn cam_followers() -> Vec<(&'static str, Vec<&'static str>)> {
+    Follower::KINDS
+        .iter()
+        .map(|(k, fields)| (*k, fields.to_vec()))
+        .collect()
+}
+
+/// The motion law names of cam design files, in the order of the docs.
+#[pyfunction]
+pub fn cam_laws() -> Vec<&'static str> {
+    LawKind::ALL.iter().map(|l| l.name()).collect()
+}
+
 #[pyfunction]
 pub fn cam_base_radius_question(r: f64) -> Option<String> {
     camlink_core::cam::base_radius_question(r)

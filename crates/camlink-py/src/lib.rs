@@ -12,6 +12,7 @@ mod csv_text;
 mod fourbar;
 mod machine;
 mod model_file;
+mod settings;
 mod study;
 mod synth;
 mod units;
@@ -261,28 +262,6 @@ impl Model {
         d.set_item("atol", ad.atol)?;
         d.set_item("rtol", ad.rtol)?;
         d.set_item("h_min", ad.h_min)?;
-        Ok(d)
-    }
-
-    /// Default `tol` and `max_iter` of each analysis type, as
-    /// `{type: (tol, max_iter)}`.
-    #[staticmethod]
-    fn analysis_defaults<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let d = PyDict::new(py);
-        for kind in [
-            AnalysisType::Kinematics,
-            AnalysisType::InverseDynamics,
-            AnalysisType::Equilibrium,
-            AnalysisType::Dynamics,
-        ] {
-            d.set_item(
-                kind.name(),
-                (
-                    camlink_model::AnalysisSpec::default_tol(kind),
-                    camlink_model::AnalysisSpec::default_max_iter(kind),
-                ),
-            )?;
-        }
         Ok(d)
     }
 
@@ -536,14 +515,14 @@ impl Model {
     ///
     /// `start`, if given, is q to assemble the first time from instead of
     /// the model's placement (m, rad; in the order of `coordinates`).
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true, jerk = false, start = None))]
+    #[pyo3(signature = (times, *, tol = None, max_iter = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true, jerk = false, start = None))]
     #[allow(clippy::too_many_arguments)]
     fn run_kinematics<'py>(
         &self,
         py: Python<'py>,
         times: PyReadonlyArray1<'py, f64>,
-        tol: f64,
-        max_iter: usize,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
@@ -551,6 +530,7 @@ impl Model {
         jerk: bool,
         start: Option<PyReadonlyArray1<'py, f64>>,
     ) -> PyResult<RunOutput<'py>> {
+        let (tol, max_iter) = self.solver(AnalysisType::Kinematics, tol, max_iter)?;
         let settings = Settings {
             tol,
             max_iter,
@@ -588,19 +568,20 @@ impl Model {
     /// where it rises again (None when the run ends in lift-off),
     /// `least_force` (N, negative) and where it is, `least_time` (s) and
     /// `least_cam_angle` (rad). The cam angle is φ of the cam body.
-    #[pyo3(signature = (times, *, tol = Settings::default().tol, max_iter = Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
+    #[pyo3(signature = (times, *, tol = None, max_iter = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_inverse_dynamics<'py>(
         &self,
         py: Python<'py>,
         times: PyReadonlyArray1<'py, f64>,
-        tol: f64,
-        max_iter: usize,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
         keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
+        let (tol, max_iter) = self.solver(AnalysisType::InverseDynamics, tol, max_iter)?;
         let settings = Settings {
             tol,
             max_iter,
@@ -618,19 +599,20 @@ impl Model {
 
     /// The equilibrium at `time` (s), as one row with the channels of
     /// `run_inverse_dynamics` (velocities and accelerations zero).
-    #[pyo3(signature = (time = 0.0, *, tol = statics::Settings::default().tol, max_iter = statics::Settings::default().max_iter, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
+    #[pyo3(signature = (time = 0.0, *, tol = None, max_iter = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_equilibrium<'py>(
         &self,
         py: Python<'py>,
         time: f64,
-        tol: f64,
-        max_iter: usize,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
         keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
+        let (tol, max_iter) = self.solver(AnalysisType::Equilibrium, tol, max_iter)?;
         let settings = statics::Settings { tol, max_iter };
         let delivery = Delivery::new(on_chunk, chunk_rows, keep_rows);
         self.run_with(py, &points, delivery, |model, points, sink| {
@@ -639,43 +621,52 @@ impl Model {
     }
 
     /// Forward dynamics with output at `times` (s; the first is the start
-    /// time), generalized-α with step `h` (s) and spectral radius `rho_inf`;
-    /// `adaptive = (atol, rtol, h_min)` for error-controlled steps (then
-    /// `h` is the largest step). Channels and the summary's `lift_off` as
-    /// `run_inverse_dynamics`.
-    #[pyo3(signature = (times, *, h = integrator::Settings::default().step, rho_inf = integrator::Settings::default().rho_inf, tol = integrator::Settings::default().tol, max_iter = integrator::Settings::default().max_iter, projection_tol = integrator::Settings::default().projection_tol, adaptive = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
+    /// time), generalized-α. Each setting left `None` takes the file's
+    /// `[analysis]` value, else the default
+    /// ([`camlink_model::AnalysisSpec::integrator_settings_with`]): `step`
+    /// is the output step that sets the default integration step `h` (s,
+    /// the largest step when `adaptive`), `rho_inf` the spectral radius,
+    /// `atol`, `rtol`, `h_min` the error control of the adaptive mode.
+    /// Channels and the summary's `lift_off` as `run_inverse_dynamics`.
+    #[pyo3(signature = (times, *, step = None, h = None, rho_inf = None, adaptive = None, atol = None, rtol = None, h_min = None, projection_tol = None, tol = None, max_iter = None, points = Vec::new(), on_chunk = None, chunk_rows = DEFAULT_CHUNK_ROWS, keep_rows = true))]
     #[allow(clippy::too_many_arguments)]
     fn run_dynamics<'py>(
         &self,
         py: Python<'py>,
         times: PyReadonlyArray1<'py, f64>,
-        h: f64,
-        rho_inf: f64,
-        tol: f64,
-        max_iter: usize,
-        projection_tol: f64,
-        adaptive: Option<(f64, f64, f64)>,
+        step: Option<f64>,
+        h: Option<f64>,
+        rho_inf: Option<f64>,
+        adaptive: Option<bool>,
+        atol: Option<f64>,
+        rtol: Option<f64>,
+        h_min: Option<f64>,
+        projection_tol: Option<f64>,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
         points: Vec<String>,
         on_chunk: Option<Py<PyAny>>,
         chunk_rows: usize,
         keep_rows: bool,
     ) -> PyResult<RunOutput<'py>> {
         let times = times.as_array().to_vec();
-        let check = |key: &str, v: f64| setting::check(key, v).map_err(ModelError::new_err);
-        check("h", h)?;
-        check("rho_inf", rho_inf)?;
-        if let Some((atol, rtol, h_min)) = adaptive {
-            setting::check_error_control(atol, rtol).map_err(ModelError::new_err)?;
-            check("h_min", h_min)?;
-        }
-        let settings = integrator::Settings {
-            step: h,
+        let args = camlink_model::DynamicsArgs {
+            step,
+            h,
             rho_inf,
+            adaptive,
+            atol,
+            rtol,
+            h_min,
+            projection_tol,
             tol,
             max_iter,
-            projection_tol,
-            adaptive: adaptive.map(|(atol, rtol, h_min)| Adaptive { atol, rtol, h_min }),
         };
+        let settings = self
+            .loaded
+            .analysis
+            .integrator_settings_with(&args)
+            .map_err(|e| ModelError::new_err(e.message))?;
         let delivery = Delivery::new(on_chunk, chunk_rows, keep_rows);
         self.run_with(py, &points, delivery, |model, points, sink| {
             integrator::run(model, &times, &settings, points, sink)
@@ -723,6 +714,21 @@ type GridAnalysis = fn(
 ) -> Result<Summary, CoreAnalysisError>;
 
 impl Model {
+    /// The Newton tolerance and most iterations of a `kind` run: those
+    /// given, else the file's, else the defaults of `kind`; each checked by
+    /// its rule.
+    fn solver(
+        &self,
+        kind: AnalysisType,
+        tol: Option<f64>,
+        max_iter: Option<usize>,
+    ) -> PyResult<(f64, usize)> {
+        let (tol, max_iter) = self.loaded.analysis.solver(kind, tol, max_iter);
+        setting::check("tol", tol).map_err(ModelError::new_err)?;
+        setting::check("max_iter", max_iter as f64).map_err(ModelError::new_err)?;
+        Ok((tol, max_iter))
+    }
+
     /// Runs `analysis` at `times` (s) with `settings`, as [`Model::run_with`].
     #[allow(clippy::too_many_arguments)]
     fn run_grid<'py>(
@@ -1267,6 +1273,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<machine::MachineCycle>()?;
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_base_radius_question, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_followers, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::cam_laws, m)?)?;
     m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
     m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
@@ -1278,10 +1286,13 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(machine::machine_report, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
+    m.add_function(wrap_pyfunction!(study::output_kinds, m)?)?;
+    m.add_function(wrap_pyfunction!(study::check_output, m)?)?;
     synth::register(m)?;
     fourbar::register(m)?;
     units::register(m)?;
     model_file::register(m)?;
+    settings::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;

@@ -7,10 +7,12 @@ use std::time::Duration;
 
 use camlink_model::file::Num;
 use camlink_model::Loaded;
+use camlink_study::declaration::{self, Value};
 use camlink_study::{BatchSettings, Reduction};
 use numpy::ndarray::Array2;
 use numpy::{PyArray2, ToPyArray};
 use pyo3::prelude::*;
+use pyo3::types::PyDict;
 
 use crate::{guard, model_error, Model, ModelError};
 
@@ -150,4 +152,59 @@ fn watch_signals(finished: &mpsc::Receiver<()>, stop: &AtomicBool) -> Option<PyE
 #[pyfunction]
 pub(crate) fn toml_position(text: &str, path: &str) -> Option<(usize, usize)> {
     camlink_model::toml_position(text, path)
+}
+
+/// The study output kinds and the fields each needs, as
+/// `{kind: [field, …]}` ([`declaration::KINDS`]).
+#[pyfunction]
+pub(crate) fn output_kinds(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+    let d = PyDict::new(py);
+    for &(kind, needed, _) in declaration::KINDS {
+        d.set_item(kind, needed.to_vec())?;
+    }
+    Ok(d)
+}
+
+/// A field's value in an output declaration, as Python gives it.
+#[derive(FromPyObject)]
+enum FieldValue {
+    Flag(bool),
+    Number(f64),
+    Text(String),
+    List(Vec<FieldValue>),
+    Other(Py<PyAny>),
+}
+
+impl FieldValue {
+    fn value(self, py: Python<'_>) -> Value {
+        match self {
+            FieldValue::Flag(b) => Value::Flag(b),
+            FieldValue::Number(x) => Value::Number(x),
+            FieldValue::Text(s) => Value::Text(s),
+            FieldValue::List(items) => {
+                Value::List(items.into_iter().map(|v| v.value(py)).collect())
+            }
+            FieldValue::Other(o) => Value::Other(
+                o.bind(py)
+                    .repr()
+                    .map_or_else(|_| "?".to_string(), |r| r.to_string()),
+            ),
+        }
+    }
+}
+
+/// Checks the output declaration `spec` (a dict with its `kind`) at
+/// `field` by [`declaration::declared`]; raises `ModelError` naming the
+/// output and the field at fault.
+#[pyfunction]
+pub(crate) fn check_output(field: &str, spec: &Bound<'_, PyDict>) -> PyResult<()> {
+    let py = spec.py();
+    let mut fields = Vec::with_capacity(spec.len());
+    for (key, value) in spec.iter() {
+        let key = key.str()?.to_string();
+        fields.push((key, value.extract::<FieldValue>()?.value(py)));
+    }
+    declaration::declared(field, &fields)
+        .map(|_| ())
+        .map_err(ModelError::new_err)
 }

@@ -3,7 +3,7 @@
 use camlink_core::dynamics::{integrator, inverse, statics};
 use camlink_core::kinematics;
 use camlink_core::run::{self, Settings, Sink, Summary};
-use camlink_model::{AnalysisType, Loaded};
+use camlink_model::{AnalysisSpec, AnalysisType, Loaded};
 
 /// Runs `[analysis] type` with the file's settings (as `model.run()` in
 /// Python does): output times `times`, else 0, `step`, … `t_end` with
@@ -26,9 +26,7 @@ pub fn run_file_analysis(model: &Loaded, sink: &mut dyn Sink) -> Result<Summary,
                 model.model.name
             )
         })?;
-        let step = a
-            .step
-            .unwrap_or(if t_end > 0.0 { t_end / 100.0 } else { 1.0 });
+        let step = a.step.unwrap_or(AnalysisSpec::default_step(t_end));
         run::time_grid(t_end, step)
     };
     let m = &model.model;

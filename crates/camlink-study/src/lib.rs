@@ -8,6 +8,7 @@
 //! error that stopped it; one failing variant never stops the others.
 
 mod analysis;
+pub mod declaration;
 pub mod reduce;
 
 use std::panic::{catch_unwind, AssertUnwindSafe};

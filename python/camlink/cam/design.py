@@ -23,28 +23,16 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from camlink import _core
 from camlink._core import CamCore, ModelError, cam_base_radius_question
 from camlink.cam.export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
 from camlink.cam.sizing import SURGE_RATIO, ContactSpec, SpringSpec, VibrationSpec
 from camlink.warn import LoadWarning
 
-FOLLOWERS: dict[str, tuple[str, ...]] = {
-    "translating-roller": ("offset", "roller_radius"),
-    "translating-flat": (),
-    "oscillating-roller": ("pivot_distance", "arm_length", "roller_radius"),
-    "oscillating-flat": ("pivot_distance", "face_offset"),
-}
-LAWS = (
-    "dwell",
-    "constant-velocity",
-    "simple-harmonic",
-    "cycloidal",
-    "modified-trapezoid",
-    "modified-sine",
-    "3-4-5",
-    "4-5-6-7",
-    "polynomial",
-)
+#: Each follower kind and the dimensions it takes (the core's table).
+FOLLOWERS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.cam_followers()}
+#: The motion laws of a segment (the core's names).
+LAWS: tuple[str, ...] = tuple(_core.cam_laws())
 RPM = 2.0 * math.pi / 60.0
 
 #: Highest cam speed (rev/min) a design file may give.

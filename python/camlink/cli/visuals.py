@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 import camlink
+from camlink import _core
 from camlink._core import AnalysisError, ModelError
 from camlink.io.output import check_not_input
 from camlink.progress import Progress
@@ -128,7 +129,7 @@ class _Grid:
         self.t_end = float(t_end)
         step = a.get("step") if args.step is None else args.step
         if step is None:
-            step = self.t_end / 100 if self.t_end > 0 else 1.0
+            step = _core.default_step(self.t_end)
         self.step = float(step)
         self.rows = math.floor(self.t_end / self.step + 1e-9) + 1.0
         self.span = self.t_end
@@ -150,12 +151,10 @@ class _Grid:
             return settings, None
         coarse = self.t_end / (most - 1)
         if self.model.analysis_type == "dynamics":
-            from camlink.model import DEFAULT_H
-
             h = self.model.analysis.get("h")
             if h is None:
                 # The integration step the finer output step would have given.
-                h = settings["h"] = min(self.step, DEFAULT_H)
+                h = settings["h"] = _core.integration_step(step=self.step)
             # Output times on the integration steps.
             coarse = h * math.ceil(coarse / h * (1 - 1e-12))
         settings["step"] = coarse

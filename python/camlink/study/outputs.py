@@ -23,6 +23,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from camlink import _core
 from camlink._core import ModelError
 
 __all__ = [
@@ -40,19 +41,10 @@ __all__ = [
     "range_of",
 ]
 
-#: Each kind and the fields it needs (besides the optional ones).
-KINDS: dict[str, tuple[str, ...]] = {
-    "max_abs": ("channel",),
-    "max": ("channel",),
-    "min": ("channel",),
-    "range": ("channel",),
-    "at": ("channel", "time"),
-    "least_transmission_angle": ("bodies",),
-    "max_pressure_angle": ("joint",),
-    "peak_effort": ("driver",),
-    "first_lift_off": (),
-}
-_OPTIONAL = {"first_lift_off": ("joint",)}
+#: Each kind and the fields it needs (the core's table,
+#: ``camlink_study::declaration::KINDS``; ``first_lift_off`` may name a
+#: joint).
+KINDS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.output_kinds().items()}
 
 
 @dataclass(frozen=True)
@@ -131,32 +123,10 @@ def parse_outputs(
             continue
         if not isinstance(spec, Mapping):
             raise ModelError(f"{field}: expected a table with a kind, got {type(spec).__name__}")
-        kind = spec.get("kind")
-        if kind not in KINDS:
-            raise ModelError(
-                f"{field}.kind: unknown output kind {kind!r} (expected one of {', '.join(KINDS)})"
-            )
-        needed = KINDS[kind]
-        allowed = {"kind", *needed, *_OPTIONAL.get(kind, ())}
-        for key in spec:
-            if key not in allowed:
-                raise ModelError(
-                    f"{field}.{key}: not a field of a {kind} output "
-                    f"(its fields: {', '.join(sorted(allowed - {'kind'}))})"
-                )
-        for key in needed:
-            if key not in spec:
-                raise ModelError(f"{field}: a {kind} output needs `{key}`")
+        # The core checks the kind and each field, naming the one at fault.
+        _core.check_output(field, dict(spec))
+        kind = spec["kind"]
         values = {k: v for k, v in spec.items() if k != "kind"}
-        for key, value in values.items():
-            if key in ("channel", "joint", "driver") and not isinstance(value, str):
-                raise ModelError(f"{field}.{key}: expected a name (a string), got {value!r}")
-            if key == "time" and (isinstance(value, bool) or not isinstance(value, int | float)):
-                raise ModelError(f"{field}.time: expected a time in seconds, got {value!r}")
-            if key == "bodies" and not (
-                isinstance(value, list | tuple) and len(value) == 2 and all(isinstance(b, str) for b in value)
-            ):
-                raise ModelError(f"{field}.bodies: expected two body names, got {value!r}")
         parsed[name] = Output(
             kind, tuple((k, list(v) if k == "bodies" else v) for k, v in sorted(values.items()))
         )

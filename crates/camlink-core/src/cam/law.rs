@@ -8,9 +8,11 @@
 //! (Norton, *Cam Design and Manufacturing Handbook*, 2nd ed.;
 //! Rothbart, *Cam Design Handbook*).
 //!
-//! Two kinds of shape are exact in closed form:
-//! - polynomials in u (constant velocity, 3-4-5, 4-5-6-7 and the fitted
-//!   polynomial);
+//! Constant velocity, 3-4-5, simple harmonic and cycloidal are the
+//! expression language's motion laws ([`camlink_expr::Law`]: `ramp`,
+//! `poly345`, `harmonic`, `cycloidal`), one implementation of each. The
+//! others are exact in closed form too:
+//! - polynomials in u (4-5-6-7 and the fitted polynomial);
 //! - piecewise trigonometric accelerations
 //!   S″ = A₀ + A₁ sin ω(u − u_k) + A₂ cos ω(u − u_k) on [u_k, u_{k+1}],
 //!   integrated exactly from S(0) = S′(0) = 0 and scaled so S(1) = 1
@@ -131,6 +133,8 @@ impl Piece {
 /// A normalised shape S(u).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
+    /// A motion law of the expression language.
+    Law(camlink_expr::Law),
     /// S = Σ c_i uⁱ.
     Poly(Vec<f64>),
     /// Piecewise trigonometric acceleration.
@@ -141,16 +145,16 @@ impl Shape {
     /// The shape of a named law (a dwell is S = 0, a fitted polynomial has
     /// no standard shape: both give `None`).
     pub fn of(kind: LawKind) -> Option<Shape> {
-        let c = |v: &[f64]| Some(Shape::Poly(v.to_vec()));
+        use camlink_expr::Law;
         match kind {
             LawKind::Dwell | LawKind::Polynomial => None,
-            LawKind::ConstantVelocity => c(&[0.0, 1.0]),
-            LawKind::Poly345 => c(&[0.0, 0.0, 0.0, 10.0, -15.0, 6.0]),
-            LawKind::Poly4567 => c(&[0.0, 0.0, 0.0, 0.0, 35.0, -84.0, 70.0, -20.0]),
-            // S″ ∝ cos πu.
-            LawKind::SimpleHarmonic => trig(&[(0.0, 0.0, 0.0, 1.0, PI)]),
-            // S″ ∝ sin 2πu.
-            LawKind::Cycloidal => trig(&[(0.0, 0.0, 1.0, 0.0, 2.0 * PI)]),
+            LawKind::ConstantVelocity => Some(Shape::Law(Law::Ramp)),
+            LawKind::Poly345 => Some(Shape::Law(Law::Poly345)),
+            LawKind::SimpleHarmonic => Some(Shape::Law(Law::Harmonic)),
+            LawKind::Cycloidal => Some(Shape::Law(Law::Cycloidal)),
+            LawKind::Poly4567 => Some(Shape::Poly(vec![
+                0.0, 0.0, 0.0, 0.0, 35.0, -84.0, 70.0, -20.0,
+            ])),
             // Sine ramps over eighths, constant over quarters.
             LawKind::ModifiedTrapezoid => trig(&[
                 (0.0, 0.0, 1.0, 0.0, 4.0 * PI),
@@ -173,6 +177,7 @@ impl Shape {
     pub fn eval(&self, u: f64) -> Shape5 {
         let u = u.clamp(0.0, 1.0);
         match self {
+            Shape::Law(law) => law.shape5(u),
             Shape::Poly(c) => poly_eval(c, u),
             Shape::Trig(pieces) => {
                 let k = pieces.iter().rposition(|p| p.u0 <= u).unwrap_or(0);
@@ -324,6 +329,37 @@ mod tests {
                     got[k],
                     want[k]
                 );
+            }
+        }
+    }
+
+    /// Constant velocity and 3-4-5 are their polynomials, simple harmonic
+    /// (1 − cos πu)/2, each with its derivatives to the fifth.
+    #[test]
+    fn polynomial_and_harmonic_laws_are_their_closed_forms() {
+        for &u in &[0.0, 0.1, 0.37, 0.8, 1.0] {
+            let (sn, cs) = (PI * u).sin_cos();
+            let harmonic = [
+                0.5 * (1.0 - cs),
+                0.5 * PI * sn,
+                0.5 * PI * PI * cs,
+                -0.5 * PI.powi(3) * sn,
+                -0.5 * PI.powi(4) * cs,
+                0.5 * PI.powi(5) * sn,
+            ];
+            for (kind, want) in [
+                (LawKind::ConstantVelocity, poly_eval(&[0.0, 1.0], u)),
+                (
+                    LawKind::Poly345,
+                    poly_eval(&[0.0, 0.0, 0.0, 10.0, -15.0, 6.0], u),
+                ),
+                (LawKind::SimpleHarmonic, harmonic),
+            ] {
+                let got = Shape::of(kind).unwrap().eval(u);
+                for k in 0..6 {
+                    let tol = 1e-12 * (1.0 + want[k].abs());
+                    assert!((got[k] - want[k]).abs() < tol, "{kind:?} order {k} at {u}");
+                }
             }
         }
     }

@@ -65,6 +65,49 @@ pub enum Follower {
 }
 
 impl Follower {
+    /// Every follower kind as design files name it, with the dimensions
+    /// (m) it takes in the order [`Follower::from_dims`] reads them.
+    pub const KINDS: [(&'static str, &'static [&'static str]); 4] = [
+        ("translating-roller", &["offset", "roller_radius"]),
+        ("translating-flat", &[]),
+        (
+            "oscillating-roller",
+            &["pivot_distance", "arm_length", "roller_radius"],
+        ),
+        ("oscillating-flat", &["pivot_distance", "face_offset"]),
+    ];
+
+    /// The follower of kind `name` (one of [`Follower::KINDS`]) with the
+    /// dimensions `dims` (m) in the order of its entry there.
+    pub fn from_dims(name: &str, dims: &[f64]) -> Result<Follower, String> {
+        let Some((_, fields)) = Follower::KINDS.iter().find(|(k, _)| *k == name) else {
+            return Err(format!("unknown follower type '{name}'"));
+        };
+        if dims.len() != fields.len() {
+            return Err(format!(
+                "a {name} follower takes {} dimensions, got {}",
+                fields.len(),
+                dims.len()
+            ));
+        }
+        Ok(match name {
+            "translating-roller" => Follower::TranslatingRoller {
+                offset: dims[0],
+                roller: dims[1],
+            },
+            "translating-flat" => Follower::TranslatingFlat,
+            "oscillating-roller" => Follower::OscillatingRoller {
+                pivot: dims[0],
+                arm: dims[1],
+                roller: dims[2],
+            },
+            _ => Follower::OscillatingFlat {
+                pivot: dims[0],
+                face_offset: dims[1],
+            },
+        })
+    }
+
     /// The name used in design files.
     pub fn name(&self) -> &'static str {
         match self {
@@ -454,6 +497,31 @@ mod tests {
             out.push(Cam::new(program(0.15), of, 0.04, ccw).unwrap());
         }
         out
+    }
+
+    /// Each follower kind is made from its table entry and names itself.
+    #[test]
+    fn followers_from_their_dimensions() {
+        for (name, fields) in Follower::KINDS {
+            let dims: Vec<f64> = (1..=fields.len()).map(|k| k as f64 * 0.01).collect();
+            assert_eq!(Follower::from_dims(name, &dims).unwrap().name(), name);
+            assert_eq!(
+                Follower::from_dims(name, &[0.0; 4]).unwrap_err(),
+                format!("a {name} follower takes {} dimensions, got 4", fields.len())
+            );
+        }
+        assert_eq!(
+            Follower::from_dims("oscillating-roller", &[0.1, 0.2, 0.03]),
+            Ok(Follower::OscillatingRoller {
+                pivot: 0.1,
+                arm: 0.2,
+                roller: 0.03
+            })
+        );
+        assert_eq!(
+            Follower::from_dims("knife-edge", &[]).unwrap_err(),
+            "unknown follower type 'knife-edge'"
+        );
     }
 
     /// p′, p″, p‴ of the surface and pitch curve against central
