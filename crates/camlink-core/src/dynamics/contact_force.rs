@@ -13,7 +13,8 @@
 //!   follower, of the slot for a pin in a slot). The contacts are
 //!   frictionless, so T is zero up to rounding: a check of λ.
 //!
-//! Which side is "pressing" comes from the material side of the curves. A
+//! Which side is "pressing" comes from the material side of the curves
+//! (the rules and the normals are [`crate::curve::contact`]'s). A
 //! closed curve (every polar profile, a closed parametric curve) bounds its
 //! body's material, with outward unit normal n_k = σ_k (−g_k⊥)/|g_k|,
 //! σ_k = +1 for a counterclockwise curve, −1 for a clockwise one
