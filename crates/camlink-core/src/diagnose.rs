@@ -12,10 +12,10 @@ use faer::Mat;
 
 use crate::assembly::Assembly;
 use crate::constraint::{Constraint, Equations};
+use crate::curve::contact::{sample_mean, side_of, solid_side};
 use crate::curve::distance::Features;
-use crate::curve::Curve;
 use crate::fmt_num::num;
-use crate::math::{dot, norm2, perp, point, rot, sub, V2};
+use crate::math::{norm2, perp, point, rot};
 use crate::model::Model;
 
 /// A unilateral contact whose gap at the model's placement exceeds this
@@ -36,11 +36,7 @@ pub fn gap_features(model: &Model, j: usize, q: [[f64; 3]; 2]) -> Result<Feature
             let cam_mean = point(q[0], sample_mean(&f.curve_i));
             let face = point(q[1], f.s_j);
             let nf = perp(f.u_j);
-            let s = if dot(rot(q[1][2], nf), sub(cam_mean, face)) < 0.0 {
-                -1.0
-            } else {
-                1.0
-            };
+            let s = side_of(rot(q[1][2], nf), face, cam_mean);
             Ok(Features::Face {
                 curve: f.curve_i.clone(),
                 point: f.s_j,
@@ -49,31 +45,17 @@ pub fn gap_features(model: &Model, j: usize, q: [[f64; 3]; 2]) -> Result<Feature
         }
         Constraint::CamFollower(c) => {
             let curves = [c.curve_i.clone(), c.curve_j.clone()];
-            match (c.curve_i.orientation(), c.curve_j.orientation()) {
-                (Some(sigma), _) => Ok(Features::Curves {
+            match solid_side([c.curve_i.orientation(), c.curve_j.orientation()]) {
+                Some((side, sigma)) => Ok(Features::Curves {
                     curves,
-                    side: 0,
+                    side,
                     sigma,
                 }),
-                (None, Some(sigma)) => Ok(Features::Curves {
-                    curves,
-                    side: 1,
-                    sigma,
-                }),
-                _ => Err("a unilateral cam_follower needs a closed curve on one side"),
+                None => Err("a unilateral cam_follower needs a closed curve on one side"),
             }
         }
         _ => Err("only cam_follower and flat_follower joints can be unilateral"),
     }
-}
-
-/// The mean of 64 samples of a curve (body frame, m).
-fn sample_mean(c: &Curve) -> V2 {
-    let (s0, s1) = c.range();
-    (0..64).fold([0.0; 2], |m, k| {
-        let p = c.jet(s0 + (s1 - s0) * k as f64 / 64.0).p;
-        [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
-    })
 }
 
 /// The gap (m) of unilateral joint `j` at the placement `q` (layout

@@ -37,6 +37,7 @@
 use super::sketch::{CurveRole, Mark, Side, Sketch};
 use super::{Equations, Feature, Jac, Local, Rows, MAX_OWN};
 use crate::constraint::BodyId;
+use crate::curve::contact::{sample_mean, side_of};
 use crate::curve::{carried_paths, search, Carried, Curve};
 use crate::math::{dot, norm, perp, rot, rot_t, scale, sub, V2};
 use crate::motion;
@@ -136,17 +137,8 @@ impl Equations for FlatFollower {
         let face = Carried::fixed(x.q[1], [0.0; 3], self.s_j).p;
         let guess = guess.map(|g| g[0]);
         // The cam's side of the face.
-        let (s0, s1) = self.curve_i.range();
-        let mean = (0..64).fold([0.0; 2], |m, k| {
-            let s = s0 + (s1 - s0) * k as f64 / 64.0;
-            let p = Carried::fixed(x.q[0], [0.0; 3], self.curve_i.jet(s).p).p;
-            [m[0] + p[0] / 64.0, m[1] + p[1] / 64.0]
-        });
-        let side = if dot(n, sub(mean, face)) < 0.0 {
-            -1.0
-        } else {
-            1.0
-        };
+        let mean = Carried::fixed(x.q[0], [0.0; 3], sample_mean(&self.curve_i)).p;
+        let side = side_of(n, face, mean);
         let dir = rot_t(x.q[0][2], scale(-side, n));
         let mut own = [0.0; MAX_OWN];
         own[0] = search::support(&self.curve_i, dir, guess);

@@ -27,6 +27,7 @@
 //!   comes closer is found. N is the outward normal of C_i when C_i is
 //!   closed, else the inward normal of C_j.
 
+use super::contact::{from_side, gap, gap_rate, outward_at};
 use super::{search, Curve};
 use crate::math::{dot, perp, point, point_vel, rot, rot_t, scale, sub, V2};
 
@@ -84,24 +85,12 @@ impl Features {
                 curves,
                 side,
                 sigma,
-            } => {
-                let out = rot(q[*side][2], outward(&curves[*side], *sigma, own[*side]));
-                if *side == 0 {
-                    out
-                } else {
-                    scale(-1.0, out)
-                }
-            }
+            } => from_side(
+                *side,
+                rot(q[*side][2], outward_at(&curves[*side], *sigma, own[*side])),
+            ),
         }
     }
-}
-
-/// The outward unit normal (body frame) of a closed curve of orientation
-/// σ (+1 counterclockwise) at parameter `s`.
-pub fn outward(curve: &Curve, sigma: f64, s: f64) -> V2 {
-    let g = curve.jet(s).d1;
-    let l = dot(g, g).sqrt();
-    scale(-sigma / l, perp(g))
 }
 
 /// The gap between curve `ci` of a body at (q_i, q̇_i) and the face of a
@@ -128,16 +117,16 @@ pub fn face_gap(
         }
     }
     let pi = point(q[0], ci.jet(s).p);
-    let gap = dot(mg, sub(pi, pj0));
-    let pj = sub(pi, scale(gap, mg));
+    let n = scale(-1.0, mg);
+    let g = gap(n, pi, pj0);
+    let pj = sub(pi, scale(g, mg));
     // Rates of the material points at the witnesses.
     let vi = point_vel(q[0], qd[0], ci.jet(s).p);
     let vj = point_vel(q[1], qd[1], rot_t(q[1][2], sub(pj, [q[1][0], q[1][1]])));
-    let n = scale(-1.0, mg);
     let n_dot = scale(qd[1][2], perp(n));
     Gap {
-        gap,
-        rate: dot(n_dot, sub(pj, pi)) + dot(n, sub(vj, vi)),
+        gap: g,
+        rate: gap_rate(n, n_dot, [pi, pj], [vi, vj]),
         params: [s, 0.0],
         points: [pi, pj],
         normal: n,
@@ -178,13 +167,11 @@ fn measure(
     let pw = [0, 1].map(|k| point(q[k], p[k]));
     let v = [0, 1].map(|k| point_vel(q[k], qd[k], p[k]));
     // N: outward of C_i, or inward of C_j.
-    let out = rot(q[side][2], outward(c[side], sign, s[side]));
-    let n = if side == 0 { out } else { scale(-1.0, out) };
+    let n = from_side(side, rot(q[side][2], outward_at(c[side], sign, s[side])));
     let n_dot = scale(qd[side][2], perp(n));
-    let d = sub(pw[1], pw[0]);
     Gap {
-        gap: dot(n, d),
-        rate: dot(n_dot, d) + dot(n, sub(v[1], v[0])),
+        gap: gap(n, pw[0], pw[1]),
+        rate: gap_rate(n, n_dot, pw, v),
         params: s,
         points: pw,
         normal: n,

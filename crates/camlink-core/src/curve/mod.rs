@@ -39,6 +39,7 @@ use crate::math::{cross, norm, sub, V2};
 use crate::quantity::Quantity;
 
 pub mod carried;
+pub mod contact;
 pub mod distance;
 pub mod fourier;
 pub mod parametric;

@@ -13,7 +13,8 @@
 //!   follower, of the slot for a pin in a slot). The contacts are
 //!   frictionless, so T is zero up to rounding: a check of λ.
 //!
-//! Which side is "pressing" comes from the material side of the curves. A
+//! Which side is "pressing" comes from the material side of the curves
+//! (the rules and the normals are [`crate::curve::contact`]'s). A
 //! closed curve (every polar profile, a closed parametric curve) bounds its
 //! body's material, with outward unit normal n_k = σ_k (−g_k⊥)/|g_k|,
 //! σ_k = +1 for a counterclockwise curve, −1 for a clockwise one
@@ -47,14 +48,14 @@ use super::reaction::Reaction;
 use crate::assembly::Assembly;
 use crate::constraint::Feature;
 use crate::contact::ContactView;
+use crate::curve::contact::{
+    away_from, closed_pair, from_side, normal_force, outward, sample_mean,
+};
 use crate::curve::Curve;
-use crate::math::{dot, norm, perp, point, rot, scale, sub, V2};
+use crate::math::{dot, norm, perp, point, rot, scale, V2};
 use crate::model::{BodyId, Model};
 use crate::quantity::{Channel, Quantity};
 use crate::run::{Crossing, Kind, LiftOff, Summary, Warning};
-
-/// Samples of a curve for the mean point of an open curve.
-const MEAN_SAMPLES: usize = 64;
 
 /// How one contact joint's normal is oriented.
 #[derive(Clone, Debug)]
@@ -83,21 +84,11 @@ impl ContactForces {
     pub fn new(model: &Model) -> Self {
         let items = ContactView::all(model)
             .filter(|v| !model.joints[v.joint].driver)
-            .map(|v| {
-                let mean = |c: &Curve| {
-                    let (s0, s1) = c.range();
-                    let n = MEAN_SAMPLES as f64;
-                    (0..MEAN_SAMPLES).fold([0.0; 2], |m, i| {
-                        let p = c.jet(s0 + (s1 - s0) * i as f64 / n).p;
-                        [m[0] + p[0] / n, m[1] + p[1] / n]
-                    })
-                };
-                Item {
-                    joint: v.joint,
-                    sides: [0, 1].map(|s| v.curve(s).and_then(Curve::orientation)),
-                    mean_i: v.curve(0).map_or([0.0; 2], mean),
-                    cam: (!v.two_walled()).then(|| v.cam(model)),
-                }
+            .map(|v| Item {
+                joint: v.joint,
+                sides: [0, 1].map(|s| v.curve(s).and_then(Curve::orientation)),
+                mean_i: v.curve(0).map_or([0.0; 2], sample_mean),
+                cam: (!v.two_walled()).then(|| v.cam(model)),
             })
             .collect();
         ContactForces { items }
@@ -156,37 +147,17 @@ impl ContactForces {
         // The tangent of C_j (global) and its parameter, when j carries a curve.
         let cj = v.curve(1).zip(v.own_of(1)).map(|(c, o)| (c, x.own[o]));
         let gj = || cj.map_or([f64::NAN; 2], |(c, a)| rot(x.q[1][2], c.jet(a).d1));
-        // Outward normal of a closed curve with orientation σ, tangent g.
-        let outward = |sigma: f64, g: V2| scale(-sigma, unit(perp(g)));
         let n = match it.sides {
             [Some(si), Some(sj)] => {
-                let (ni, nj) = (outward(si, gi), outward(sj, gj()));
-                let kj = cj.map_or(0.0, |(c, a)| c.curvature(a).abs());
-                if dot(ni, nj) <= 0.0 {
-                    ni
-                } else if ci.curvature(x.own[0]).abs() < kj {
-                    // C_i is a hole around C_j.
-                    scale(-1.0, nj)
-                } else {
-                    nj
-                }
+                let kj = cj.map_or(0.0, |(c, a)| c.curvature(a));
+                let ki = ci.curvature(x.own[0]);
+                closed_pair(outward(si, gi), outward(sj, gj()), ki, kj)
             }
             [Some(si), None] => outward(si, gi),
-            [None, Some(sj)] => scale(-1.0, outward(sj, gj())),
+            [None, Some(sj)] => from_side(1, outward(sj, gj())),
             [None, None] => away_from(point(x.q[0], it.mean_i), point(x.q[0], ji.p), gi),
         };
-        [dot(fj, n), dot(fj, t)]
-    }
-}
-
-/// The unit normal to tangent `g` at `p` pointing away from `inside`.
-fn away_from(inside: V2, p: V2, g: V2) -> V2 {
-    let n = perp(g);
-    let n = scale(1.0 / norm(n), n);
-    if dot(n, sub(p, inside)) < 0.0 {
-        scale(-1.0, n)
-    } else {
-        n
+        [normal_force(fj, n), dot(fj, t)]
     }
 }
 

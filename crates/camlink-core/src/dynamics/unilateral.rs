@@ -52,11 +52,12 @@ use super::stops::{self, Stop};
 use super::system::{Augmented, System};
 use crate::constraint::{Constraint, Equations};
 use crate::contact::{ContactView, Contacts};
+use crate::curve::contact::{self, face_normal_force};
 use crate::curve::distance::{Features, Gap};
 use crate::diagnose::gap_features;
 use crate::force::compliant_contact::CompliantContact;
 use crate::force::Force;
-use crate::math::{dot, perp, rot, V2};
+use crate::math::{perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::quantity::{Channel, Quantity};
 use crate::run::{
@@ -118,8 +119,8 @@ enum Watched {
 /// `lam` (its rows): the force on body j along N, −Φ_{r_j}ᵀλ · N.
 fn normal_force(model: &Model, j: usize, q_j: [f64; 3], lam: &[f64], n: V2) -> f64 {
     match &model.joints[j].constraint {
-        Constraint::CamFollower(_) => dot(n, [lam[0], lam[1]]),
-        Constraint::FlatFollower(f) => dot(n, perp(rot(q_j[2], f.u_j))) * lam[0],
+        Constraint::CamFollower(_) => contact::normal_force([lam[0], lam[1]], n),
+        Constraint::FlatFollower(f) => face_normal_force(n, perp(rot(q_j[2], f.u_j)), lam[0]),
         _ => f64::NAN,
     }
 }
