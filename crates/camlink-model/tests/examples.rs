@@ -427,35 +427,6 @@ fn slider_crank_slider_driven() {
 // 4. Four-bar crank-rocker
 // ---------------------------------------------------------------------------
 
-/// Freudenstein's closed form for the four-bar [d, a, b, c] at crank angle
-/// θ₂ and speed ω₂ (α₂ = 0): ([θ₃, θ₄], [ω₃, ω₄], [α₃, α₄]), open branch
-/// (`sign` = −1) or crossed (+1). Copied from camlink-core's
-/// `tests/common/mod.rs`.
-fn freudenstein(l: [f64; 4], th2: f64, w2: f64, sign: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let [d, a, b, c] = l;
-    let (k1, k2, k4) = (d / a, d / c, d / b);
-    let k3 = (a * a - b * b + c * c + d * d) / (2.0 * a * c);
-    let k5 = (c * c - d * d - a * a - b * b) / (2.0 * a * b);
-    let (cs, sn) = (th2.cos(), th2.sin());
-    let (aa, bb, cc) = (cs - k1 - k2 * cs + k3, -2.0 * sn, k1 - (k2 + 1.0) * cs + k3);
-    let th4 = 2.0 * (-bb + sign * (bb * bb - 4.0 * aa * cc).sqrt()).atan2(2.0 * aa);
-    let (dd, ee, ff) = (cs - k1 + k4 * cs + k5, -2.0 * sn, k1 + (k4 - 1.0) * cs + k5);
-    let th3 = 2.0 * (-ee + sign * (ee * ee - 4.0 * dd * ff).sqrt()).atan2(2.0 * dd);
-    // Velocity loop: a ω₂ e^{iθ₂}i + b ω₃ e^{iθ₃}i = c ω₄ e^{iθ₄}i.
-    let w3 = a * w2 * (th4 - th2).sin() / (b * (th3 - th4).sin());
-    let w4 = a * w2 * (th2 - th3).sin() / (c * (th4 - th3).sin());
-    // Acceleration loop, α₂ = 0: b α₃ i e^{iθ₃} − c α₄ i e^{iθ₄} = r, with
-    // r = a ω₂² e^{iθ₂} + b ω₃² e^{iθ₃} − c ω₄² e^{iθ₄}; solved by Cramer.
-    let rx = a * w2 * w2 * th2.cos() + b * w3 * w3 * th3.cos() - c * w4 * w4 * th4.cos();
-    let ry = a * w2 * w2 * th2.sin() + b * w3 * w3 * th3.sin() - c * w4 * w4 * th4.sin();
-    let (m11, m12) = (-b * th3.sin(), c * th4.sin());
-    let (m21, m22) = (b * th3.cos(), -c * th4.cos());
-    let det = m11 * m22 - m12 * m21;
-    let al3 = (rx * m22 - m12 * ry) / det;
-    let al4 = (m11 * ry - rx * m21) / det;
-    ([th3, th4], [w3, w4], [al3, al4])
-}
-
 /// Link angles θ₃, θ₄ and their rates from Freudenstein (open branch, B
 /// above the ground line); the coupler point P = A + A(θ₃)[b/2, p] and the
 /// rocker tip B by rigid-body kinematics on those.
@@ -471,7 +442,7 @@ fn four_bar() {
     assert!(a + d <= b + cc && a < b.min(cc).min(d));
     for (k, t) in c.t().into_iter().enumerate() {
         let th2 = [th0 + w * t, w, 0.0];
-        let (th, om, al) = freudenstein(l, th2[0], w, -1.0);
+        let (th, om, al) = camlink_testkit::common::freudenstein(l, th2[0], w, -1.0);
         assert!(th[1].sin() > 0.0, "open branch");
         // Scales: a ω and a ω² for points, (a/c) ω and (a/c) ω² for rotations.
         let (vs, as_) = (a * w, a * w * w);
