@@ -301,7 +301,12 @@ async def _run_checks(path: Path) -> None:
         got = np.frombuffer(base64.b64decode(channels["O2.fx"]["f64"]), "<f8")
         assert np.array_equal(got, expected["O2.fx"])
         await ws.send_str(json.dumps({"op": "runchannel", "name": "motor.effort", "seq": 4}))
-        reply = json.loads((await ws.receive()).data)
+        # Progress reports of the run sent before it finished may still be
+        # on their way (they are posted from the run's thread).
+        reply = json.loads((await ws.receive(timeout=30)).data)
+        while reply["type"] == "run":
+            assert reply["id"] == last["id"] and reply["n"] <= last["n"], reply
+            reply = json.loads((await ws.receive(timeout=30)).data)
         got = np.frombuffer(base64.b64decode(reply["values"]["f64"]), "<f8")
         assert reply["name"] == "motor.effort" and np.array_equal(got, expected["motor.effort"])
         await ws.close()
