@@ -916,9 +916,9 @@ def _extent(scene: Scene, poses: dict[str, Array]) -> tuple[Array, Array]:
     for p in scene.pins:
         local.setdefault(p.body_i, []).append(np.array([p.s_i]))
     # A slider's block travels with body j's point along the guide of body i.
-    for g in scene.guides:
-        local.setdefault(g.body_i, []).append(np.array([g.s_i]))
-        local.setdefault(g.body_j, []).append(np.array([g.s_j]))
+    for guide in scene.guides:
+        local.setdefault(guide.body_i, []).append(np.array([guide.s_i]))
+        local.setdefault(guide.body_j, []).append(np.array([guide.s_j]))
     found = [np.zeros((1, 2))] if not local else []
     for body, parts in local.items():
         pts = np.vstack(parts)
