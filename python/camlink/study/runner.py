@@ -496,6 +496,7 @@ def connect(scheduler: str) -> Client:
     from distributed import Client
 
     connection = _connection_args(scheduler)
+    _refused(scheduler)
     _probe_scheduler(scheduler, connection, CONNECT_TIMEOUT)
     try:
         return Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
@@ -536,6 +537,32 @@ def _connection_args(address: str) -> dict[str, Any]:
             "dask.distributed.Client with its Security in Python and pass it as client="
         )
     return args
+
+
+def _refused(address: str) -> None:
+    """`ModelError` at once when the host of `address` refuses a TCP
+    connection on its port (nothing listens there); Dask's own connect
+    keeps retrying such an address until its timeout. Any other outcome is
+    left to the probe."""
+    import socket
+
+    from distributed.comm import parse_address, parse_host_port
+
+    _, location = parse_address(address)
+    try:
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError):
+        return
+    try:
+        with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT):
+            pass
+    except ConnectionRefusedError:
+        raise ModelError(
+            f"--scheduler {address}: cannot reach the Dask scheduler (connection refused: "
+            f"nothing listens on port {port} of {host})"
+        ) from None
+    except OSError:
+        return
 
 
 def _probe_scheduler(address: str, connection: dict[str, Any], timeout: float) -> None:
