@@ -39,6 +39,7 @@ import shutil
 import tempfile
 import tomllib
 import warnings
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -338,7 +339,7 @@ def _sync(container: Any, plain: dict[str, Any]) -> None:
             container[key] = item
 
 
-class Editable:
+class Editable(ABC):
     """A file open for editing, held as plain data (`_data`): its edits
     with undo and redo, its text and saving. A subclass solves the data
     (`_solve`, giving `solution`) after each edit."""
@@ -358,9 +359,9 @@ class Editable:
         self._redo: list[str] = []
         self._gesture: object = None
 
+    @abstractmethod
     def _solve(self) -> Any:
         """The solution of the current data (set `_json` to its dump)."""
-        raise NotImplementedError
 
     # -- text -------------------------------------------------------------
 
