@@ -496,7 +496,7 @@ def connect(scheduler: str) -> Client:
     from distributed import Client
 
     connection = _connection_args(scheduler)
-    _refused(scheduler)
+    _listening(scheduler)
     _probe_scheduler(scheduler, connection, CONNECT_TIMEOUT)
     try:
         return Client(scheduler, timeout=f"{CONNECT_TIMEOUT}s")
@@ -539,11 +539,12 @@ def _connection_args(address: str) -> dict[str, Any]:
     return args
 
 
-def _refused(address: str) -> None:
-    """`ModelError` at once when the host of `address` refuses a TCP
-    connection on its port (nothing listens there); Dask's own connect
-    keeps retrying such an address until its timeout. Any other outcome is
-    left to the probe."""
+def _listening(address: str) -> None:
+    """`ModelError` at once when nothing listens at `address`: its host
+    refuses a TCP connection on the port (Dask's own connect retries such
+    an address until its timeout) or takes none within `CONNECT_TIMEOUT`
+    seconds. An address that takes the connection is left to the probe,
+    which asks whether a Dask scheduler answers there."""
     import socket
 
     from distributed.comm import parse_address, parse_host_port
@@ -553,16 +554,18 @@ def _refused(address: str) -> None:
         host, port = parse_host_port(location)
     except (ValueError, TypeError):
         return
+    why = None
     try:
         with socket.create_connection((host, port), timeout=CONNECT_TIMEOUT):
             pass
     except ConnectionRefusedError:
-        raise ModelError(
-            f"--scheduler {address}: cannot reach the Dask scheduler (connection refused: "
-            f"nothing listens on port {port} of {host})"
-        ) from None
+        why = f"connection refused: nothing listens on port {port} of {host}"
+    except TimeoutError:
+        why = f"no connection to port {port} of {host} within {CONNECT_TIMEOUT:g} s"
     except OSError:
         return
+    if why is not None:
+        raise ModelError(f"--scheduler {address}: cannot reach the Dask scheduler ({why})")
 
 
 def _probe_scheduler(address: str, connection: dict[str, Any], timeout: float) -> None:
