@@ -146,7 +146,9 @@ def test_issue27_scheduler_refused_and_worker_addresses(monkeypatch, capsys, tmp
     sock.close()  # nothing listens there now
     code, took, err = _run_bounded(monkeypatch, capsys, tmp_path, address, bound=1.0)
     assert code == 2 and took < 1.0 + 3, (code, took)
-    assert f"cannot reach the Dask scheduler (Timed out trying to connect to {address}" in err
+    host, port = address.removeprefix("tcp://").rsplit(":", 1)
+    assert (f"--scheduler {address}: cannot reach the Dask scheduler (connection refused: "
+            f"nothing listens on port {port} of {host})") in err
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=False, protocol="tcp",
                       dashboard_address=None) as cluster:
         worker = next(iter(cluster.scheduler.workers))
