@@ -20,7 +20,7 @@ from conftest import ROOT
 from conftest import run_cli as _run_cli
 
 EXAMPLE = ROOT / "examples" / "simengine2d" / "slider_crank.adm"
-FIXTURES = ROOT / "crates" / "camlink-model" / "tests" / "adm"
+FIXTURES = ROOT / "crates" / "camlink-adm" / "tests" / "adm"
 
 
 def run_cli(*args: object, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:

@@ -67,7 +67,7 @@ impl std::error::Error for LoadError {}
 
 impl LoadError {
     /// An error about the whole file.
-    pub(crate) fn file(source: &str, message: impl Into<String>) -> Self {
+    pub fn file(source: &str, message: impl Into<String>) -> Self {
         LoadError {
             source: source.to_string(),
             line: None,
@@ -79,7 +79,7 @@ impl LoadError {
 }
 
 /// 1-based (line, column) of byte `offset` in `text`; column counts characters.
-pub(crate) fn line_col(text: &str, offset: usize) -> (usize, usize) {
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let mut offset = offset.min(text.len());
     while !text.is_char_boundary(offset) {
         offset -= 1;

@@ -8,7 +8,6 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
-pub mod adm;
 mod analysis;
 pub mod convert;
 mod data_file;
@@ -32,6 +31,17 @@ pub use error::LoadError;
 pub use file::AnalysisType;
 pub use resolve::joints::{JointKindEntry, JOINT_KINDS};
 pub use variant::Recipe;
+
+/// Reading and placing text, for the readers of other formats that build
+/// a [`file::ModelFile`] (the course-file importer, `camlink-adm`): a
+/// file's text within [`MAX_FILE_SIZE`], the 1-based (line, column) of a
+/// byte offset, the byte span of a field path in JSON text, and a serde
+/// path written as errors write field paths (`joints[2].body_i`).
+pub mod text {
+    pub use crate::error::line_col;
+    pub use crate::locate::json_span;
+    pub use crate::{field_path, read_text, too_large};
+}
 
 /// Largest model file accepted (bytes).
 pub const MAX_FILE_SIZE: u64 = 16 * 1024 * 1024;
@@ -273,7 +283,7 @@ pub fn load_path_with(path: &Path, options: &LoadOptions) -> Result<Loaded, Load
 
 /// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
 /// name the file.
-pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+pub fn read_text(path: &Path) -> Result<String, LoadError> {
     let source = path.display().to_string();
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
@@ -302,7 +312,9 @@ pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
     Ok(text)
 }
 
-pub(crate) fn too_large(source: &str, len: Option<u64>) -> LoadError {
+/// The error for a text of `len` bytes (`None`: unknown, more than the
+/// limit) from `source`, longer than [`MAX_FILE_SIZE`].
+pub fn too_large(source: &str, len: Option<u64>) -> LoadError {
     let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
     LoadError::file(
         source,
@@ -337,11 +349,6 @@ pub fn load_str_with(
         Format::Toml => parse_toml(text, source)?,
         Format::Json => parse_json(text, source)?,
     };
-    let stem = Path::new(source)
-        .file_stem()
-        .and_then(|s| s.to_str())
-        .filter(|s| !s.is_empty())
-        .unwrap_or("model");
     let base = match &options.base_dir {
         Some(dir) => dir.as_path(),
         None => Path::new(source).parent().unwrap_or(Path::new("")),
@@ -351,11 +358,47 @@ pub fn load_str_with(
         text: text.to_string(),
         format,
         source: source.to_string(),
-        stem: stem.to_string(),
+        stem: stem(source).to_string(),
         base: base.to_path_buf(),
         allow_outside_data: options.allow_outside_data,
     };
     Recipe::resolve(&std::sync::Arc::new(recipe))
+}
+
+/// Resolves a model description built in memory rather than read from a
+/// file's text — a course file's translation (`camlink-adm`) — as
+/// [`load_str`] resolves a file's: named after `source`'s stem unless it
+/// names itself, data files read from `source`'s folder and below, lengths
+/// and angles in the units of its `[model] units`. A bad value is a
+/// [`LoadError`] naming `source` and the field path, without a line: the
+/// caller places it in the file it read.
+pub fn resolve_file(file: &file::ModelFile, source: &str) -> Result<Loaded, LoadError> {
+    let base = Path::new(source).parent().unwrap_or(Path::new(""));
+    let data = data_file::DataFiles::new(base, false);
+    let file = units::to_si(file);
+    let fail = |f: resolve::Fail| at("", source, None, Some(f.path), f.message);
+    let (model, analysis, outlines, data) =
+        resolve::resolve(&file, stem(source), data).map_err(fail)?;
+    let machine = resolve::machine(&file, &model).map_err(fail)?;
+    Ok(Loaded {
+        model,
+        analysis,
+        machine,
+        outlines,
+        data_files: data.into_read(),
+        recipe: None,
+        warnings: Vec::new(),
+    })
+}
+
+/// The model name of a file named `source` that gives none: its stem, else
+/// `model`.
+fn stem(source: &str) -> &str {
+    Path::new(source)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .filter(|s| !s.is_empty())
+        .unwrap_or("model")
 }
 
 /// The 1-based (line, column) of the field `path` (`study.outputs.swing`)
@@ -388,7 +431,7 @@ fn at(
 }
 
 /// Field path as written in our errors: `joints[2].body_i`.
-fn field_path(p: &serde_path_to_error::Path) -> String {
+pub fn field_path(p: &serde_path_to_error::Path) -> String {
     use serde_path_to_error::Segment;
     let mut out = String::new();
     for seg in p.iter() {

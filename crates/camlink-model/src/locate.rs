@@ -88,7 +88,7 @@ fn toml_walk(text: &str, path: &str) -> (Option<Range<usize>>, bool) {
 }
 
 /// Byte span of the value at `path` in JSON `text` (already known to be valid JSON).
-pub(crate) fn json_span(text: &str, path: &str) -> Option<Range<usize>> {
+pub fn json_span(text: &str, path: &str) -> Option<Range<usize>> {
     let mut s = Scanner {
         b: text.as_bytes(),
         k: 0,

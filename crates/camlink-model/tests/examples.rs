@@ -730,7 +730,7 @@ fn every_example_has_a_test() {
         if path.is_dir() && name == "data" {
             continue;
         }
-        // simEngine2D course models are run and checked by adm.rs.
+        // simEngine2D course models are run and checked by camlink-adm's tests (adm.rs).
         if path.is_dir() && name == "simengine2d" {
             continue;
         }

@@ -5,80 +5,7 @@
 use std::path::Path;
 
 use camlink_model::{load_str, Format};
-
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n.max(1) as u64) as usize
-    }
-}
-
-/// Fragments that tend to reach deep code paths when spliced in.
-const PIECES: &[&str] = &[
-    "\"",
-    "[",
-    "]",
-    "{",
-    "}",
-    ",",
-    "=",
-    ":",
-    "\n",
-    "-",
-    "0",
-    "1e308",
-    "-1e400",
-    "nan",
-    "inf",
-    "\"1/0\"",
-    "\"deg(\"",
-    "\"x\"",
-    "\"ground\"",
-    "[[joints]]\ntype = \"gear\"\n",
-    "[[bodies]]\nname = \"k\"\n",
-    "\u{e9}",
-    "\"t*t\"",
-    "\"\"",
-    "null",
-    "true",
-    "[0, 0]",
-    "\"a.b\"",
-    "\"crank.A\"",
-];
-
-fn mutate(rng: &mut Rng, text: &str) -> String {
-    let mut chars: Vec<char> = text.chars().collect();
-    for _ in 0..1 + rng.below(3) {
-        let k = rng.below(chars.len() + 1);
-        match rng.below(5) {
-            0 if k < chars.len() => {
-                chars.remove(k);
-            }
-            1 => {
-                let piece = PIECES[rng.below(PIECES.len())];
-                for (n, c) in piece.chars().enumerate() {
-                    chars.insert(k + n, c);
-                }
-            }
-            2 if k < chars.len() => {
-                let end = (k + 1 + rng.below(40)).min(chars.len());
-                chars.drain(k..end);
-            }
-            3 if k < chars.len() => {
-                chars[k] = (b' ' + rng.below(95) as u8) as char;
-            }
-            _ => chars.truncate(k),
-        }
-    }
-    chars.into_iter().collect()
-}
+use camlink_testkit::mutate::{mutate, Rng};
 
 fn fuzz(file: &str, format: Format, seed: u64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -139,37 +66,4 @@ fn deep_nesting_is_an_error_not_a_crash() {
     assert!(load_str(&toml, Format::Toml, "deep.toml").is_err());
     let json = format!("{{\"x\": {}{}}}", "[".repeat(depth), "]".repeat(depth));
     assert!(load_str(&json, Format::Json, "deep.json").is_err());
-}
-
-/// Mutated simEngine2D models never panic the `.adm` reader, and every one
-/// that loads converts to a TOML file that loads too.
-#[test]
-fn mutated_adm_never_panics_and_converts_when_it_loads() {
-    use camlink_model::adm::describe_str;
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let files = [
-        dir.join("../../examples/simengine2d/slider_crank.adm"),
-        dir.join("tests/adm/rack_pinion.adm"),
-        dir.join("tests/adm/forces.adm"),
-    ];
-    let mut rng = Rng(0x2545_F491_4F6C_DD1D);
-    let mut loaded = 0;
-    for path in files {
-        let base = std::fs::read_to_string(path).unwrap();
-        for _ in 0..500 {
-            let text = mutate(&mut rng, &base);
-            let Ok(described) = describe_str(&text, "m.adm", None) else {
-                continue;
-            };
-            if described.resolve().is_err() {
-                continue;
-            }
-            loaded += 1;
-            let toml = described.write(Format::Toml).unwrap();
-            if let Err(e) = load_str(&toml, Format::Toml, "m.toml") {
-                panic!("{e}\nfrom the .adm\n{text}\nconverted to\n{toml}");
-            }
-        }
-    }
-    assert!(loaded > 0);
 }

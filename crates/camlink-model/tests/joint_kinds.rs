@@ -1,15 +1,15 @@
 //! The joint-kind registry (issue 28): every `[[joints]]` type of the
 //! schema has its registry line (`JOINT_KINDS`), resolves, converts its
-//! units, has a drawing or says it has none, is mapped from the course
-//! files or says it is not, and is documented; the binding and the
-//! drawings never name a kind. `docs/adding-a-joint.md` lists the files.
+//! units, has a drawing or says it has none, and is documented; the
+//! binding and the drawings never name a kind (camlink-adm's
+//! `joint_kinds` checks the course-file types of the registry).
+//! `docs/adding-a-joint.md` lists the files.
 
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
 use camlink_core::assembly::Assembly;
 use camlink_core::Equations;
-use camlink_model::adm::CONSTRAINT_TYPES;
 use camlink_model::{load_str, Format, Loaded, JOINT_KINDS};
 
 fn root() -> PathBuf {
@@ -126,19 +126,6 @@ fn every_kind_converts_its_lengths() {
             );
         }
     }
-}
-
-#[test]
-fn course_types_map_onto_kinds() {
-    let mapped: BTreeSet<&str> = JOINT_KINDS
-        .iter()
-        .flat_map(|k| k.course_types.iter().copied())
-        .collect();
-    let read: BTreeSet<&str> = CONSTRAINT_TYPES.iter().copied().collect();
-    assert_eq!(
-        mapped, read,
-        "every course constraint type the importer reads names the kinds it becomes"
-    );
 }
 
 #[test]

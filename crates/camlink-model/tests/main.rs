@@ -6,9 +6,6 @@ use camlink_testkit::mechanisms;
 #[path = "../../../fuzz/src/lib.rs"]
 mod targets;
 
-mod adm;
-mod adm_course;
-mod adm_mfile;
 mod analysis;
 mod bad_models;
 mod cam_dynamics;

@@ -141,7 +141,7 @@ impl Model {
     #[pyo3(signature = (path, acf = None))]
     fn load_adm(py: Python<'_>, path: PathBuf, acf: Option<PathBuf>) -> PyResult<Model> {
         guard(|| {
-            let loaded = py.detach(|| camlink_model::adm::load_adm(&path, acf.as_deref()));
+            let loaded = py.detach(|| camlink_adm::load_adm(&path, acf.as_deref()));
             Ok(Model {
                 loaded: loaded.map_err(model_error)?,
             })
@@ -1252,7 +1252,7 @@ fn check_setting(key: &str, value: f64) -> PyResult<()> {
 fn convert_adm(path: PathBuf, format: &str, acf: Option<PathBuf>) -> PyResult<String> {
     guard(|| {
         let format = model_format(format)?;
-        camlink_model::adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
+        camlink_adm::convert_adm(&path, acf.as_deref(), format).map_err(model_error)
     })
 }
 

@@ -1,6 +1,6 @@
 //! An ordered tree of values: camlink's model description as the `.adm`
 //! reader writes it, serialised to TOML or JSON with keys in a readable
-//! order, and read back into [`crate::file::ModelFile`].
+//! order, and read back into [`camlink_model::file::ModelFile`].
 
 use serde::ser::{SerializeMap, SerializeSeq};
 use serde::{Serialize, Serializer};

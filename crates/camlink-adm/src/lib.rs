@@ -1,4 +1,5 @@
-//! simEngine2D course models: `.adm` model files and `.acf` analysis files.
+//! camlink's course-file importer: simEngine2D (the ME451 course engine)
+//! `.adm` model files and `.acf` analysis files.
 //!
 //! [`load_adm`] reads a `.adm` (and the `.acf` beside it, or one given) into
 //! camlink's own model description — the structure a TOML or JSON model
@@ -23,8 +24,8 @@ use serde_json::Value;
 pub use build::{CONSTRAINT_TYPES, FORCE_TYPES};
 pub use item::Item;
 
-use crate::error::line_col;
-use crate::{read_text, Format, LoadError, Loaded};
+use camlink_model::text::{field_path, json_span, line_col, read_text, too_large};
+use camlink_model::{Format, LoadError, Loaded, MAX_FILE_SIZE};
 
 /// A file's text, its leniently quoted form and its JSON value.
 struct Json {
@@ -41,8 +42,8 @@ impl Json {
     }
 
     fn parse(text: String, source: String) -> Result<Json, LoadError> {
-        if text.len() as u64 > crate::MAX_FILE_SIZE {
-            return Err(crate::too_large(&source, Some(text.len() as u64)));
+        if text.len() as u64 > MAX_FILE_SIZE {
+            return Err(too_large(&source, Some(text.len() as u64)));
         }
         let text = text
             .strip_prefix('\u{feff}')
@@ -80,7 +81,7 @@ impl Json {
 
     /// An error at the value of `path` (a field path such as `constraints[2].sP1`).
     fn error(&self, path: &str, label: Option<&str>, message: &str) -> LoadError {
-        let span = crate::locate::json_span(&self.relaxed.text, path);
+        let span = json_span(&self.relaxed.text, path);
         let (line, column) = match span {
             Some(s) => {
                 let (l, c) = line_col(&self.text, self.relaxed.original(s.start));
@@ -206,36 +207,22 @@ impl Described {
     pub fn resolve(&self) -> Result<Loaded, LoadError> {
         let value = serde_json::to_value(&self.doc)
             .map_err(|e| LoadError::file(&self.adm.source, format!("internal error: {e}")))?;
-        let file: crate::file::ModelFile =
-            serde_path_to_error::deserialize(value).map_err(|e| {
+        let file: camlink_model::file::ModelFile = serde_path_to_error::deserialize(value)
+            .map_err(|e| {
                 LoadError::file(
                     &self.adm.source,
                     format!(
                         "internal error: the translated model does not read back ({}: {})",
-                        crate::field_path(e.path()),
+                        field_path(e.path()),
                         e.inner()
                     ),
                 )
             })?;
-        let stem = Path::new(&self.adm.source)
-            .file_stem()
-            .and_then(|s| s.to_str())
-            .filter(|s| !s.is_empty())
-            .unwrap_or("model");
-        let base = Path::new(&self.adm.source)
-            .parent()
-            .unwrap_or(Path::new(""));
-        let data = crate::data_file::DataFiles::new(base, false);
-        let (model, analysis, outlines, data) = crate::resolve::resolve(&file, stem, data)
-            .map_err(|f| self.locate(&f.path, &f.message))?;
+        let loaded = camlink_model::resolve_file(&file, &self.adm.source)
+            .map_err(|e| self.locate(e.field.as_deref().unwrap_or(""), &e.message))?;
         Ok(Loaded {
-            model,
-            analysis,
-            machine: None,
-            outlines,
-            data_files: data.into_read(),
-            recipe: None,
             warnings: self.warnings.clone(),
+            ..loaded
         })
     }
 

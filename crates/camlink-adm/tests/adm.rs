@@ -6,10 +6,10 @@
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+use camlink_adm::{convert_adm, describe_str, load_adm};
 use camlink_core::dynamics::integrator;
 use camlink_core::kinematics;
 use camlink_core::run::{time_grid, Settings, Table};
-use camlink_model::adm::{convert_adm, describe_str, load_adm};
 use camlink_model::{load_path, load_str, Format, LoadError, Loaded};
 
 fn root() -> PathBuf {
@@ -330,7 +330,7 @@ fn unknown_type_lists_the_supported_ones() {
         s.contains("constraint 'c' (id 7)") && s.contains("'Spherical'"),
         "{s}"
     );
-    for t in camlink_model::adm::CONSTRAINT_TYPES {
+    for t in camlink_adm::CONSTRAINT_TYPES {
         assert!(s.contains(t), "{s}");
     }
     let e = load_adm_text(&format!("{{\"bodies\": [{BODY}], \"forces\": [{{\"name\": \"f\", \"id\": 2, \"type\": \"Spring\"}}]}}"), None).unwrap_err();

@@ -11,11 +11,11 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+use camlink_adm::mfile::translate;
+use camlink_adm::{describe, describe_str, load_adm};
 use camlink_core::dynamics::integrator;
 use camlink_core::run::{time_grid, Table};
 use camlink_expr::Expr;
-use camlink_model::adm::mfile::translate;
-use camlink_model::adm::{describe, describe_str, load_adm};
 use camlink_model::Format;
 
 fn dir() -> PathBuf {

@@ -139,7 +139,7 @@ fn fail<T>(path: impl Into<String>, label: Option<&str>, message: impl Into<Stri
 /// Deserialises `v` into `T`, with the failing field's path below `path`.
 fn parse<T: DeserializeOwned>(v: &Value, path: &str, label: Option<&str>) -> R<T> {
     serde_path_to_error::deserialize(v).map_err(|e| {
-        let inner = crate::field_path(e.path());
+        let inner = camlink_model::text::field_path(e.path());
         let full = match (path.is_empty(), inner.is_empty()) {
             (_, true) => path.to_string(),
             (true, false) => inner,
@@ -1184,7 +1184,7 @@ impl Builder {
                     );
                 };
                 let shown = found.display().to_string();
-                let src = crate::read_text(found)
+                let src = camlink_model::text::read_text(found)
                     .or_else(|e| fail(mpath.clone(), Some(&lab), e.to_string()))?;
                 let Some(bk) = body else {
                     return fail(

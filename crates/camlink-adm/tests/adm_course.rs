@@ -14,10 +14,10 @@
 
 use std::path::{Path, PathBuf};
 
+use camlink_adm::{describe_str, load_adm};
 use camlink_core::dynamics::{integrator, statics};
 use camlink_core::kinematics;
 use camlink_core::run::{time_grid, Settings, Table};
-use camlink_model::adm::{describe_str, load_adm};
 use camlink_model::{AnalysisType, Loaded};
 
 fn course_dir() -> PathBuf {
@@ -235,7 +235,7 @@ fn issue27_course_repository_models_run() {
     // function evaluated by hand in every branch.
     let m = dir.join("../pistonForce.m");
     let src = std::fs::read_to_string(&m).unwrap_or_else(|e| panic!("{}: {e}", m.display()));
-    let f = camlink_model::adm::mfile::translate(&src, "pistonForce.m", "slider").unwrap();
+    let f = camlink_adm::mfile::translate(&src, "pistonForce.m", "slider").unwrap();
     let piston = |_t: f64, q: [f64; 3], qd: [f64; 3]| {
         let (x3, x3d) = (q[0], qd[0]);
         let mut f = [0.0, 0.0];

@@ -9,7 +9,7 @@ use serde::de::{self, Deserializer};
 use serde::Deserialize;
 
 use super::matlab;
-use crate::file::Num;
+use camlink_model::file::Num;
 
 /// A number: a JSON number, or constant arithmetic in MATLAB syntax.
 #[derive(Clone, Copy, Debug, PartialEq)]
