@@ -1,7 +1,10 @@
 //! From a `.adm` (and `.acf`) to camlink's model description.
 //!
 //! Every course type maps onto camlink constraints and forces whose
-//! equations have the same solutions (see docs/simengine2d.md):
+//! equations have the same solutions (see docs/simengine2d.md). The joint
+//! kind a constraint type is read as comes from its line in the joint-kind
+//! registry (`camlink_model::JOINT_KINDS`); [`TRANSLATIONS`] holds each
+//! kind's translation:
 //!
 //! - `AbsoluteX`/`AbsoluteY`/`AbsoluteAngle` with a constant `fun` become
 //!   `absolute_x`/`absolute_y`/`absolute_phi` joints, with a `fun` of `t`
@@ -26,6 +29,7 @@ use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
+use camlink_model::JOINT_KINDS;
 use serde::de::DeserializeOwned;
 use serde_json::Value;
 
@@ -67,15 +71,46 @@ pub struct Built {
     pub warnings: Vec<AdmFail>,
 }
 
-/// The constraint types read, as the error for an unknown type lists them.
-pub const CONSTRAINT_TYPES: &[&str] = &[
-    "AbsoluteX",
-    "AbsoluteY",
-    "AbsoluteAngle",
-    "RevoluteJoint",
-    "TranslationalJoint",
-    "RackPinion",
+/// A course constraint's translation into camlink joints or drivers.
+type Translate = fn(&mut Builder, &Entry) -> R<()>;
+
+/// The translations of the course constraint types, by the joint kind
+/// whose registry line ([`JOINT_KINDS`]) lists them, in the order errors
+/// list the types. Each type has one translation: a `RackPinion`, listed
+/// under `rack_pinion` and `revolute_translational`, is a `rack_pinion`
+/// whose translation adds the `revolute_translational`.
+const TRANSLATIONS: &[(&str, Translate)] = &[
+    ("absolute_x", Builder::absolute_coord),
+    ("absolute_y", Builder::absolute_coord),
+    ("absolute_phi", Builder::absolute_angle),
+    ("revolute", Builder::revolute),
+    ("translational", Builder::translational),
+    ("rack_pinion", Builder::rack_pinion),
 ];
+
+/// The course constraint types the registry lists under `kind`.
+fn course_types(kind: &str) -> &'static [&'static str] {
+    JOINT_KINDS
+        .iter()
+        .find(|k| k.kind == kind)
+        .map_or(&[], |k| k.course_types)
+}
+
+/// The kind a course constraint type is read as, and its translation.
+fn translation(course: &str) -> Option<(&'static str, Translate)> {
+    TRANSLATIONS
+        .iter()
+        .find(|(kind, _)| course_types(kind).contains(&course))
+        .copied()
+}
+
+/// The constraint types read, as the error for an unknown type lists them.
+pub fn constraint_types() -> Vec<&'static str> {
+    TRANSLATIONS
+        .iter()
+        .flat_map(|(kind, _)| course_types(kind).iter().copied())
+        .collect()
+}
 
 /// The advice for a `PointForceFile` that is not translated.
 const ELSE: &str = "; or write the force as a [[forces]] entry of a converted model \
@@ -104,6 +139,31 @@ struct Pin {
     text: Item,
 }
 
+/// A course constraint being translated: where it is in the `.adm`, its
+/// course type and the joint kind the registry reads that type as.
+struct Entry<'a> {
+    v: &'a Value,
+    /// Its path in the `.adm`: `constraints[k]`.
+    path: &'a str,
+    /// `constraint 'name' (id n)`, for errors.
+    lab: &'a str,
+    /// The course type, e.g. `AbsoluteX`.
+    course: &'a str,
+    /// The joint kind, e.g. `absolute_x`.
+    kind: &'static str,
+    name: Option<&'a str>,
+    id: Option<&'a str>,
+    /// The name when the file gives none: `constraint<id>`.
+    fallback: &'a str,
+}
+
+impl Entry<'_> {
+    /// The `.adm` path of the entry's field `key`.
+    fn field(&self, key: &str) -> String {
+        format!("{}.{key}", self.path)
+    }
+}
+
 /// The lists of the description that the reader appends to.
 #[derive(Clone, Copy)]
 enum Section {
@@ -123,6 +183,8 @@ struct Builder {
     forces: Vec<Item>,
     origins: Vec<Origin>,
     warnings: Vec<AdmFail>,
+    /// The constant AbsoluteX and AbsoluteY read so far.
+    pins: Vec<Pin>,
     /// The `.adm`'s folder, where a `PointForceFile`'s m-file is looked for
     /// (then in its parent).
     folder: Option<PathBuf>,
@@ -246,6 +308,7 @@ pub fn build(adm: &Value, folder: Option<&Path>) -> R<Built> {
         forces: Vec::new(),
         origins: Vec::new(),
         warnings: Vec::new(),
+        pins: Vec::new(),
         folder: folder.map(Path::to_path_buf),
     };
     let list = |key: &str| -> R<Vec<Value>> {
@@ -262,11 +325,10 @@ pub fn build(adm: &Value, folder: Option<&Path>) -> R<Built> {
         return fail("bodies", None, "the model has no bodies");
     }
     b.bodies(&bodies)?;
-    let mut pins = Vec::new();
     for (k, c) in list("constraints")?.iter().enumerate() {
-        b.constraint(c, k, &mut pins)?;
+        b.constraint(c, k)?;
     }
-    b.pair_pins(pins);
+    b.pair_pins();
     for (k, f) in list("forces")?.iter().enumerate() {
         if f.as_object().is_some_and(|o| o.is_empty()) {
             b.warn(
@@ -618,290 +680,314 @@ impl Builder {
         self.origin(prefix, path, lab, fields);
     }
 
-    fn constraint(&mut self, v: &Value, k: usize, pins: &mut Vec<Pin>) -> R<()> {
+    /// Reads constraint `k`: the joint kind whose registry line lists its
+    /// course type, and that kind's translation.
+    fn constraint(&mut self, v: &Value, k: usize) -> R<()> {
         let path = format!("constraints[{k}]");
         let (name, id) = name_and_id(v);
         let lab = label("constraint", name.as_deref(), id.as_deref());
         let p = path.as_str();
-        let Some(kind) = v.get("type") else {
+        let Some(course) = v.get("type") else {
             return fail(
                 format!("{p}.type"),
                 Some(&lab),
                 format!(
                     "missing field `type` (one of {})",
-                    CONSTRAINT_TYPES.join(", ")
+                    constraint_types().join(", ")
                 ),
             );
         };
-        let kind = kind.as_str().unwrap_or_default();
+        let course = course.as_str().unwrap_or_default();
+        let Some((kind, translate)) = translation(course) else {
+            return fail(
+                format!("{p}.type"),
+                Some(&lab),
+                format!(
+                    "unknown constraint type '{course}'; the supported types are {}",
+                    constraint_types().join(", ")
+                ),
+            );
+        };
         let fallback = format!(
             "constraint{}",
             id.as_deref().map(clean).unwrap_or_else(|| k.to_string())
         );
-        match kind {
-            "AbsoluteX" | "AbsoluteY" => {
-                let c: format::AbsoluteCoord = parse(v, p, Some(&lab))?;
-                let body = self
-                    .body(Some(c.body1), &format!("{p}.body1"), &lab)?
-                    .unwrap_or_default();
-                if is_none(Some(&c.fun)) {
-                    return fail(
-                        format!("{p}.fun"),
-                        Some(&lab),
-                        format!("{kind} needs a fun: a constant or a function of t"),
-                    );
-                }
-                let (f, uses_t) = fun_item(&c.fun, &format!("{p}.fun"), &lab)?;
-                let axis = if kind == "AbsoluteX" {
-                    "absolute_x"
-                } else {
-                    "absolute_y"
-                };
-                let s = pair(c.sP1);
-                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
-                if uses_t {
-                    let point = self.point(Some(body), s, &name);
-                    let item = Item::table([
-                        ("name", Item::Str(name)),
-                        ("type", Item::Str(axis.into())),
-                        ("body", self.body_name(Some(body))),
-                        ("point", point),
-                        ("f", f),
-                    ]);
-                    self.add(
-                        Section::Drivers,
-                        item,
-                        p,
-                        &lab,
-                        vec![("body", "body1"), ("point", "sP1"), ("f", "fun")],
-                    );
-                } else {
-                    let value = match &f {
-                        Item::Str(text) => {
-                            camlink_expr::eval_constant(text, &Default::default())
-                                .or_else(|e| fail(format!("{p}.fun"), Some(&lab), e.message))?
-                        }
-                        Item::Num(v) => *v,
-                        _ => f64::NAN,
-                    };
-                    pins.push(Pin {
-                        path: path.clone(),
-                        label: lab.clone(),
-                        name,
-                        axis,
-                        body,
-                        s,
-                        value,
-                        text: f,
-                    });
-                }
-            }
-            "AbsoluteAngle" => {
-                let c: format::AbsoluteAngle = parse(v, p, Some(&lab))?;
-                let body = self.body(Some(c.body1), &format!("{p}.body1"), &lab)?;
-                if is_none(Some(&c.fun)) {
-                    return fail(
-                        format!("{p}.fun"),
-                        Some(&lab),
-                        "AbsoluteAngle needs a fun: a constant or a function of t",
-                    );
-                }
-                let (f, uses_t) = fun_item(&c.fun, &format!("{p}.fun"), &lab)?;
-                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
-                let mut item = Item::table([
-                    ("name", Item::Str(name)),
-                    ("type", Item::Str("absolute_phi".into())),
-                    ("body", self.body_name(body)),
-                ]);
-                if uses_t {
-                    item.push("f", f);
-                    self.add(
-                        Section::Drivers,
-                        item,
-                        p,
-                        &lab,
-                        vec![("body", "body1"), ("f", "fun")],
-                    );
-                } else {
-                    item.push("value", f);
-                    self.add(
-                        Section::Joints,
-                        item,
-                        p,
-                        &lab,
-                        vec![("body", "body1"), ("value", "fun")],
-                    );
-                }
-            }
-            "RevoluteJoint" => {
-                let (c, b1, b2) = self.joint_of::<format::Revolute>(v, p, &lab, kind)?;
-                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
-                let p1 = self.point(b1, pair(c.sP1), &name);
-                let p2 = self.point(b2, pair(c.sP2), &name);
-                let item = Item::table([
-                    ("name", Item::Str(name)),
-                    ("type", Item::Str("revolute".into())),
-                    ("body_i", self.body_name(b1)),
-                    ("point_i", p1),
-                    ("body_j", self.body_name(b2)),
-                    ("point_j", p2),
-                ]);
-                self.add(
-                    Section::Joints,
-                    item,
-                    p,
-                    &lab,
-                    vec![
-                        ("body_i", "body1"),
-                        ("point_i", "sP1"),
-                        ("body_j", "body2"),
-                        ("point_j", "sP2"),
-                    ],
-                );
-            }
-            "TranslationalJoint" => {
-                let (c, b1, b2) = self.joint_of::<format::Translational>(v, p, &lab, kind)?;
-                let (v1, v2) = (pair(c.vP1), pair(c.vP2));
-                for (field, v) in [("vP1", v1), ("vP2", v2)] {
-                    if v[0] == 0.0 && v[1] == 0.0 {
-                        return fail(
-                            format!("{p}.{field}"),
-                            Some(&lab),
-                            "the direction vector is zero",
-                        );
-                    }
-                }
-                // θ₀: the root of v₁⊥·v₂ = 0 nearest the initial φ₂ − φ₁.
-                let phi = |b: Option<usize>| b.map_or(0.0, |k| self.bodies[k].body.q0[2].0);
-                let base = v1[1].atan2(v1[0]) - v2[1].atan2(v2[0]);
-                let turns = ((phi(b2) - phi(b1) - base) / PI).round();
-                let angle = base + turns * PI;
-                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
-                let p1 = self.point(b1, pair(c.sP1), &name);
-                let p2 = self.point(b2, pair(c.sP2), &name);
-                let item = Item::table([
-                    ("name", Item::Str(name)),
-                    ("type", Item::Str("translational".into())),
-                    ("body_i", self.body_name(b1)),
-                    ("point_i", p1),
-                    ("axis", Item::pair(v1)),
-                    ("body_j", self.body_name(b2)),
-                    ("point_j", p2),
-                    ("angle", Item::Num(angle)),
-                ]);
-                self.add(
-                    Section::Joints,
-                    item,
-                    p,
-                    &lab,
-                    vec![
-                        ("body_i", "body1"),
-                        ("point_i", "sP1"),
-                        ("axis", "vP1"),
-                        ("body_j", "body2"),
-                        ("point_j", "sP2"),
-                        ("angle", "vP2"),
-                    ],
-                );
-            }
-            "RackPinion" => {
-                let (c, rack, pinion) = self.joint_of::<format::RackPinion>(v, p, &lab, kind)?;
-                let (sp, sq) = (pair(c.sP1), pair(c.sQ1));
-                let axis = [sq[0] - sp[0], sq[1] - sp[1]];
-                let length = axis[0].hypot(axis[1]);
-                if length == 0.0 {
-                    return fail(
-                        format!("{p}.sQ1"),
-                        Some(&lab),
-                        "sQ1 equals sP1: the pitch line has no direction",
-                    );
-                }
-                let r = c.R2.0;
-                if r <= 0.0 {
-                    return fail(
-                        format!("{p}.R2"),
-                        Some(&lab),
-                        format!(
-                            "the pitch radius R2 must be positive ({} m)",
-                            camlink_core::fmt_num::num(r)
-                        ),
-                    );
-                }
-                let phase = length + r * (c.theta1.0 - c.theta2.0 + 1.5 * PI);
-                let name = self.unique(name.as_deref(), &fallback, id.as_deref());
-                let centre_name = self.unique(Some(&format!("{name}_centre")), "", None);
-                let line = self.point(rack, sp, &format!("{name}_P"));
-                self.point(rack, sq, &format!("{name}_Q"));
-                let centre = self.point(pinion, pair(c.sP2), &name);
-                let rolling = Item::table([
-                    ("name", Item::Str(name)),
-                    ("type", Item::Str("rack_pinion".into())),
-                    ("body_i", self.body_name(pinion)),
-                    ("point_i", centre.clone()),
-                    ("radius", Item::Num(r)),
-                    ("body_j", self.body_name(rack)),
-                    ("point_j", line.clone()),
-                    ("axis", Item::pair(axis)),
-                    ("phase", Item::Num(phase)),
-                ]);
-                let fields = vec![
-                    ("body_i", "body2"),
-                    ("point_i", "sP2"),
-                    ("radius", "R2"),
-                    ("body_j", "body1"),
-                    ("point_j", "sP1"),
-                    ("axis", "sQ1"),
-                    ("phase", "theta1"),
-                ];
-                self.add(Section::Joints, rolling, p, &lab, fields);
-                let on_line = Item::table([
-                    ("name", Item::Str(centre_name)),
-                    ("type", Item::Str("revolute_translational".into())),
-                    ("body_i", self.body_name(pinion)),
-                    ("point_i", centre),
-                    ("body_j", self.body_name(rack)),
-                    ("point_j", line),
-                    ("axis", Item::pair(axis)),
-                    ("offset", Item::Num(r)),
-                ]);
-                let fields = vec![
-                    ("body_i", "body2"),
-                    ("point_i", "sP2"),
-                    ("body_j", "body1"),
-                    ("point_j", "sP1"),
-                    ("axis", "sQ1"),
-                    ("offset", "R2"),
-                ];
-                self.add(Section::Joints, on_line, p, &lab, fields);
-            }
-            other => {
-                return fail(
-                    format!("{p}.type"),
-                    Some(&lab),
-                    format!(
-                        "unknown constraint type '{other}'; the supported types are {}",
-                        CONSTRAINT_TYPES.join(", ")
-                    ),
-                )
-            }
+        let entry = Entry {
+            v,
+            path: p,
+            lab: &lab,
+            course,
+            kind,
+            name: name.as_deref(),
+            id: id.as_deref(),
+            fallback: &fallback,
+        };
+        translate(self, &entry)
+    }
+
+    /// The joint, driver or force name of an entry: its own, else its
+    /// fallback, made unique.
+    fn name_of(&mut self, e: &Entry) -> String {
+        self.unique(e.name, e.fallback, e.id)
+    }
+
+    /// The `fun` of an `AbsoluteX`, `AbsoluteY` or `AbsoluteAngle`, which
+    /// must be given: its value and whether it uses t.
+    fn driving_fun(e: &Entry, fun: &str) -> R<(Item, bool)> {
+        let path = e.field("fun");
+        if is_none(Some(fun)) {
+            return fail(
+                path,
+                Some(e.lab),
+                format!("{} needs a fun: a constant or a function of t", e.course),
+            );
+        }
+        fun_item(fun, &path, e.lab)
+    }
+
+    /// `AbsoluteX`/`AbsoluteY` → a driver of the kind (`absolute_x`,
+    /// `absolute_y`) for a function of t; for a constant a pin, which
+    /// [`Builder::pair_pins`] places.
+    fn absolute_coord(&mut self, e: &Entry) -> R<()> {
+        let c: format::AbsoluteCoord = parse(e.v, e.path, Some(e.lab))?;
+        let body = self
+            .body(Some(c.body1), &e.field("body1"), e.lab)?
+            .unwrap_or_default();
+        let (f, uses_t) = Self::driving_fun(e, &c.fun)?;
+        let s = pair(c.sP1);
+        let name = self.name_of(e);
+        if uses_t {
+            let point = self.point(Some(body), s, &name);
+            let item = Item::table([
+                ("name", Item::Str(name)),
+                ("type", Item::Str(e.kind.into())),
+                ("body", self.body_name(Some(body))),
+                ("point", point),
+                ("f", f),
+            ]);
+            self.add(
+                Section::Drivers,
+                item,
+                e.path,
+                e.lab,
+                vec![("body", "body1"), ("point", "sP1"), ("f", "fun")],
+            );
+        } else {
+            let value = match &f {
+                Item::Str(text) => camlink_expr::eval_constant(text, &Default::default())
+                    .or_else(|err| fail(e.field("fun"), Some(e.lab), err.message))?,
+                Item::Num(v) => *v,
+                _ => f64::NAN,
+            };
+            self.pins.push(Pin {
+                path: e.path.to_string(),
+                label: e.lab.to_string(),
+                name,
+                axis: e.kind,
+                body,
+                s,
+                value,
+                text: f,
+            });
         }
         Ok(())
     }
 
-    /// A joint between `body1` and `body2` read from `v`, with its bodies.
+    /// `AbsoluteAngle` → `absolute_phi`: a joint holding a constant, a
+    /// driver for a function of t.
+    fn absolute_angle(&mut self, e: &Entry) -> R<()> {
+        let c: format::AbsoluteAngle = parse(e.v, e.path, Some(e.lab))?;
+        let body = self.body(Some(c.body1), &e.field("body1"), e.lab)?;
+        let (f, uses_t) = Self::driving_fun(e, &c.fun)?;
+        let name = self.name_of(e);
+        let mut item = Item::table([
+            ("name", Item::Str(name)),
+            ("type", Item::Str(e.kind.into())),
+            ("body", self.body_name(body)),
+        ]);
+        if uses_t {
+            item.push("f", f);
+            self.add(
+                Section::Drivers,
+                item,
+                e.path,
+                e.lab,
+                vec![("body", "body1"), ("f", "fun")],
+            );
+        } else {
+            item.push("value", f);
+            self.add(
+                Section::Joints,
+                item,
+                e.path,
+                e.lab,
+                vec![("body", "body1"), ("value", "fun")],
+            );
+        }
+        Ok(())
+    }
+
+    /// `RevoluteJoint` → `revolute`.
+    fn revolute(&mut self, e: &Entry) -> R<()> {
+        let (c, b1, b2) = self.joint_of::<format::Revolute>(e)?;
+        let name = self.name_of(e);
+        let p1 = self.point(b1, pair(c.sP1), &name);
+        let p2 = self.point(b2, pair(c.sP2), &name);
+        let item = Item::table([
+            ("name", Item::Str(name)),
+            ("type", Item::Str(e.kind.into())),
+            ("body_i", self.body_name(b1)),
+            ("point_i", p1),
+            ("body_j", self.body_name(b2)),
+            ("point_j", p2),
+        ]);
+        self.add(
+            Section::Joints,
+            item,
+            e.path,
+            e.lab,
+            vec![
+                ("body_i", "body1"),
+                ("point_i", "sP1"),
+                ("body_j", "body2"),
+                ("point_j", "sP2"),
+            ],
+        );
+        Ok(())
+    }
+
+    /// `TranslationalJoint` → `translational`, with `angle` θ₀ the root of
+    /// v₁⊥·v₂ = 0 nearest the initial φ₂ − φ₁.
+    fn translational(&mut self, e: &Entry) -> R<()> {
+        let (c, b1, b2) = self.joint_of::<format::Translational>(e)?;
+        let (v1, v2) = (pair(c.vP1), pair(c.vP2));
+        for (field, v) in [("vP1", v1), ("vP2", v2)] {
+            if v[0] == 0.0 && v[1] == 0.0 {
+                return fail(e.field(field), Some(e.lab), "the direction vector is zero");
+            }
+        }
+        // θ₀: the root of v₁⊥·v₂ = 0 nearest the initial φ₂ − φ₁.
+        let phi = |b: Option<usize>| b.map_or(0.0, |k| self.bodies[k].body.q0[2].0);
+        let base = v1[1].atan2(v1[0]) - v2[1].atan2(v2[0]);
+        let turns = ((phi(b2) - phi(b1) - base) / PI).round();
+        let angle = base + turns * PI;
+        let name = self.name_of(e);
+        let p1 = self.point(b1, pair(c.sP1), &name);
+        let p2 = self.point(b2, pair(c.sP2), &name);
+        let item = Item::table([
+            ("name", Item::Str(name)),
+            ("type", Item::Str(e.kind.into())),
+            ("body_i", self.body_name(b1)),
+            ("point_i", p1),
+            ("axis", Item::pair(v1)),
+            ("body_j", self.body_name(b2)),
+            ("point_j", p2),
+            ("angle", Item::Num(angle)),
+        ]);
+        self.add(
+            Section::Joints,
+            item,
+            e.path,
+            e.lab,
+            vec![
+                ("body_i", "body1"),
+                ("point_i", "sP1"),
+                ("axis", "vP1"),
+                ("body_j", "body2"),
+                ("point_j", "sP2"),
+                ("angle", "vP2"),
+            ],
+        );
+        Ok(())
+    }
+
+    /// `RackPinion` → `rack_pinion` (rolling) with phase
+    /// c = |sQ1 − sP1| + R₂(θ₁ − θ₂ + 3π/2), then a `revolute_translational`
+    /// holding the pinion centre at R₂ to the left of the pitch line.
+    fn rack_pinion(&mut self, e: &Entry) -> R<()> {
+        let (c, rack, pinion) = self.joint_of::<format::RackPinion>(e)?;
+        let (sp, sq) = (pair(c.sP1), pair(c.sQ1));
+        let axis = [sq[0] - sp[0], sq[1] - sp[1]];
+        let length = axis[0].hypot(axis[1]);
+        if length == 0.0 {
+            return fail(
+                e.field("sQ1"),
+                Some(e.lab),
+                "sQ1 equals sP1: the pitch line has no direction",
+            );
+        }
+        let r = c.R2.0;
+        if r <= 0.0 {
+            return fail(
+                e.field("R2"),
+                Some(e.lab),
+                format!(
+                    "the pitch radius R2 must be positive ({} m)",
+                    camlink_core::fmt_num::num(r)
+                ),
+            );
+        }
+        let phase = length + r * (c.theta1.0 - c.theta2.0 + 1.5 * PI);
+        let name = self.name_of(e);
+        let centre_name = self.unique(Some(&format!("{name}_centre")), "", None);
+        let line = self.point(rack, sp, &format!("{name}_P"));
+        self.point(rack, sq, &format!("{name}_Q"));
+        let centre = self.point(pinion, pair(c.sP2), &name);
+        let rolling = Item::table([
+            ("name", Item::Str(name)),
+            ("type", Item::Str(e.kind.into())),
+            ("body_i", self.body_name(pinion)),
+            ("point_i", centre.clone()),
+            ("radius", Item::Num(r)),
+            ("body_j", self.body_name(rack)),
+            ("point_j", line.clone()),
+            ("axis", Item::pair(axis)),
+            ("phase", Item::Num(phase)),
+        ]);
+        let fields = vec![
+            ("body_i", "body2"),
+            ("point_i", "sP2"),
+            ("radius", "R2"),
+            ("body_j", "body1"),
+            ("point_j", "sP1"),
+            ("axis", "sQ1"),
+            ("phase", "theta1"),
+        ];
+        self.add(Section::Joints, rolling, e.path, e.lab, fields);
+        let on_line = Item::table([
+            ("name", Item::Str(centre_name)),
+            ("type", Item::Str("revolute_translational".into())),
+            ("body_i", self.body_name(pinion)),
+            ("point_i", centre),
+            ("body_j", self.body_name(rack)),
+            ("point_j", line),
+            ("axis", Item::pair(axis)),
+            ("offset", Item::Num(r)),
+        ]);
+        let fields = vec![
+            ("body_i", "body2"),
+            ("point_i", "sP2"),
+            ("body_j", "body1"),
+            ("point_j", "sP1"),
+            ("axis", "sQ1"),
+            ("offset", "R2"),
+        ];
+        self.add(Section::Joints, on_line, e.path, e.lab, fields);
+        Ok(())
+    }
+
+    /// A joint between `body1` and `body2` read from entry `e`, with its bodies.
     /// The course engine reads every constraint's `fun` and never uses a
     /// joint's: a constant `fun` is ignored with a warning, a function of t
     /// (which would mean a motion the joint cannot impose) is refused.
     fn joint_of<T: DeserializeOwned + format::TwoBodies>(
         &mut self,
-        v: &Value,
-        p: &str,
-        lab: &str,
-        kind: &str,
+        e: &Entry,
     ) -> R<(T, Option<usize>, Option<usize>)> {
-        let c: T = parse(v, p, Some(lab))?;
+        let (p, lab, kind) = (e.path, e.lab, e.course);
+        let c: T = parse(e.v, p, Some(lab))?;
         if let Some(fun) = c.fun().filter(|f| !is_none(Some(f))) {
-            let path = format!("{p}.fun");
+            let path = e.field("fun");
             let (_, uses_t) = fun_item(fun, &path, lab)?;
             if uses_t {
                 return fail(
@@ -950,7 +1036,8 @@ impl Builder {
     /// Places the constant AbsoluteX/AbsoluteY constraints: a pair at the
     /// same point of one body becomes a revolute to a ground point; the
     /// others stay single `absolute_x`/`absolute_y` joints.
-    fn pair_pins(&mut self, pins: Vec<Pin>) {
+    fn pair_pins(&mut self) {
+        let pins = std::mem::take(&mut self.pins);
         let mut used = vec![false; pins.len()];
         for a in 0..pins.len() {
             if used[a] {
@@ -1258,5 +1345,30 @@ impl Builder {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A translation is reached only through its kind's registry line.
+    #[test]
+    fn every_translated_kind_lists_its_course_types() {
+        for (kind, _) in TRANSLATIONS {
+            assert!(
+                !course_types(kind).is_empty(),
+                "the importer translates `{kind}`, but its line in `joint_kinds!` lists no course type"
+            );
+        }
+    }
+
+    #[test]
+    fn each_course_type_has_one_translation() {
+        let types = constraint_types();
+        for t in &types {
+            assert_eq!(types.iter().filter(|u| *u == t).count(), 1, "{t}");
+            assert!(translation(t).is_some(), "{t}");
+        }
     }
 }

@@ -21,7 +21,7 @@ use std::path::{Path, PathBuf};
 
 use serde_json::Value;
 
-pub use build::{CONSTRAINT_TYPES, FORCE_TYPES};
+pub use build::{constraint_types, FORCE_TYPES};
 pub use item::Item;
 
 use camlink_model::text::{field_path, json_span, line_col, read_text, too_large};

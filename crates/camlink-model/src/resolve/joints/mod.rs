@@ -80,7 +80,9 @@ pub struct JointKindEntry {
     /// The `type` of `[[joints]]`.
     pub kind: &'static str,
     /// The course-file (`.adm`) constraint types the importer turns into
-    /// this kind; empty when course files have no such constraint.
+    /// this kind; empty when course files have no such constraint. The
+    /// importer (camlink-adm) reads a course type as the kind listed here
+    /// whose translation it holds.
     pub course_types: &'static [&'static str],
 }
 
