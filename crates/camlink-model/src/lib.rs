@@ -375,11 +375,23 @@ pub fn load_str_with(
 pub fn resolve_file(file: &file::ModelFile, source: &str) -> Result<Loaded, LoadError> {
     let base = Path::new(source).parent().unwrap_or(Path::new(""));
     let data = data_file::DataFiles::new(base, false);
+    resolve_with(file, stem(source), data, |f| {
+        at("", source, None, Some(f.path), f.message)
+    })
+}
+
+/// `file` in SI, resolved with its `[machine]`, data files read through
+/// `data`; `place` turns a resolver failure into the caller's error. The
+/// result has no recipe and no warnings.
+fn resolve_with(
+    file: &file::ModelFile,
+    stem: &str,
+    data: data_file::DataFiles,
+    place: impl Fn(resolve::Fail) -> LoadError,
+) -> Result<Loaded, LoadError> {
     let file = units::to_si(file);
-    let fail = |f: resolve::Fail| at("", source, None, Some(f.path), f.message);
-    let (model, analysis, outlines, data) =
-        resolve::resolve(&file, stem(source), data).map_err(fail)?;
-    let machine = resolve::machine(&file, &model).map_err(fail)?;
+    let (model, analysis, outlines, data) = resolve::resolve(&file, stem, data).map_err(&place)?;
+    let machine = resolve::machine(&file, &model).map_err(&place)?;
     Ok(Loaded {
         model,
         analysis,

@@ -34,18 +34,10 @@ impl Recipe {
     pub(crate) fn resolve(recipe: &Arc<Recipe>) -> Result<Loaded, LoadError> {
         let r = recipe.as_ref();
         let data = data_file::DataFiles::new(&r.base, r.allow_outside_data);
-        let file = crate::units::to_si(&r.file);
-        let (model, analysis, outlines, data) =
-            resolve::resolve(&file, &r.stem, data).map_err(|f| r.error_at(f))?;
-        let machine = resolve::machine(&file, &model).map_err(|f| r.error_at(f))?;
+        let loaded = crate::resolve_with(&r.file, &r.stem, data, |f| r.error_at(f))?;
         Ok(Loaded {
-            model,
-            analysis,
-            machine,
-            outlines,
-            data_files: data.into_read(),
             recipe: Some(Arc::clone(recipe)),
-            warnings: Vec::new(),
+            ..loaded
         })
     }
 
