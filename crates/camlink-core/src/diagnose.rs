@@ -61,7 +61,7 @@ pub fn gap_features(model: &Model, j: usize, q: [[f64; 3]; 2]) -> Result<Feature
 /// The gap (m) of unilateral joint `j` at the placement `q` (layout
 /// `asm`), before any assembly: what a forward dynamics run starts from.
 /// `None` for a joint that cannot open.
-pub fn gap_at(model: &Model, asm: &Assembly, j: usize, q: &[f64]) -> Option<f64> {
+pub(crate) fn gap_at(model: &Model, asm: &Assembly, j: usize, q: &[f64]) -> Option<f64> {
     let mut qb = [[0.0; 3]; 2];
     for (s, b) in model.joints[j].constraint.bodies().iter().enumerate() {
         if let Some(c) = asm.body_col(b.0) {
@@ -98,7 +98,7 @@ pub struct Released {
 
 /// The unilateral contacts of `model` that are open at the placement or
 /// compliant, at time `t` (s, for the text), with their joint indices.
-pub fn released_at_start(model: &Model, t: f64) -> Vec<(usize, Released)> {
+pub(crate) fn released_at_start(model: &Model, t: f64) -> Vec<(usize, Released)> {
     let asm = Assembly::new(model);
     let q = asm.initial_q(model);
     let mut out = Vec::new();
@@ -191,7 +191,7 @@ pub struct Diagnosis {
 
 /// Largest model (coordinates) analysed by a dense singular value
 /// decomposition; its memory grows as n².
-pub const DENSE_MAX: usize = 2000;
+pub(crate) const DENSE_MAX: usize = 2000;
 
 /// Relative size under which a singular value counts as zero.
 const RANK_TOL: f64 = 1e-9;
@@ -279,7 +279,7 @@ fn diagnose_all(model: &Model, t: f64, tol: f64) -> Diagnosis {
 /// earlier independent ones, in model order: the rows an analysis must
 /// drop or regularise. Empty for a model too large for the dense analysis
 /// (more than [`DENSE_MAX`] coordinates).
-pub fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<Redundancy> {
+pub(crate) fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<Redundancy> {
     if asm.n > DENSE_MAX || asm.m == 0 {
         return Vec::new();
     }
@@ -297,7 +297,7 @@ const WEAK_SHARE: f64 = 0.1;
 /// a joint is named when the norm of u over its rows is at least
 /// [`WEAK_SHARE`] of the largest such norm. Empty for a model larger than
 /// [`DENSE_MAX`] coordinates or without equations.
-pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
+pub(crate) fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
     let (n, m) = (asm.n, asm.m);
     if n > DENSE_MAX || m == 0 || n == 0 {
         return Vec::new();
@@ -332,7 +332,7 @@ pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<S
 /// The clause of a warning naming the joints whose equations lose rank
 /// (empty when none are known): ` at joints O2, A, B, O4 (their equations
 /// lose rank)`.
-pub fn losing_rank(joints: &[String]) -> String {
+pub(crate) fn losing_rank(joints: &[String]) -> String {
     if joints.is_empty() {
         String::new()
     } else {
@@ -354,7 +354,7 @@ pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f
 /// The Levenberg–Marquardt step δ = (JᵀJ + μ s I)⁻¹ Jᵀ Φ into `out`, with
 /// μ relative to s, the largest diagonal entry of JᵀJ; q − δ lowers ‖Φ‖²
 /// where J is rank deficient or not square.
-pub fn levenberg_marquardt(j: &Mat<f64>, phi: &[f64], mu: f64, out: &mut [f64]) {
+pub(crate) fn levenberg_marquardt(j: &Mat<f64>, phi: &[f64], mu: f64, out: &mut [f64]) {
     let jtj = j.transpose() * j;
     let scale = (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
     let a = Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
@@ -531,7 +531,7 @@ fn drivers_among(model: &Model, redundant: &[Redundancy]) -> Vec<String> {
 }
 
 /// `joint.equation` for row `r`, e.g. `O4.x`.
-pub fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
+pub(crate) fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
     let (j, e) = asm.joint_of_row(r);
     let joint = &model.joints[j];
     let names = joint.constraint.equations();
@@ -720,7 +720,7 @@ mod tests {
 /// [`diagnose`] finds them) are left out of the solve; being combinations
 /// of the rows kept, they hold wherever those do.
 #[derive(Clone, Debug)]
-pub struct KeptRows {
+pub(crate) struct KeptRows {
     /// The rows kept, in model order: reduced row k is row `keep[k]`.
     keep: Vec<usize>,
     /// For each of the m rows, its reduced index (None: left out).
@@ -812,13 +812,13 @@ impl KeptRows {
 
     /// The reduced index of row `r`, None when it is left out.
     #[inline]
-    pub fn reduced(&self, r: usize) -> Option<usize> {
+    pub(crate) fn reduced(&self, r: usize) -> Option<usize> {
         self.map[r]
     }
 
     /// The full row of reduced row `k`.
     #[inline]
-    pub fn full_row(&self, k: usize) -> usize {
+    pub(crate) fn full_row(&self, k: usize) -> usize {
         self.keep[k]
     }
 
