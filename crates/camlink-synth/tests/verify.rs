@@ -497,6 +497,29 @@ fn freudenstein_matches_the_published_three_rocker_positions_example() {
             "{name} = {got}, published {published} ({rel:.2e})"
         );
     }
+    // The source's printed four-digit system (slide 13), solved exactly
+    // by Cramer's rule, gives camlink's K to 0.2 %: the rest of the 1 % is
+    // the source's arithmetic on that ill-conditioned system.
+    let printed = [
+        [1.0, -0.0210, -0.8189, 0.5566],
+        [1.0, -0.2043, -0.3827, 0.8262],
+        [1.0, -0.4569, 0.1732, 0.9552],
+    ];
+    let det = |c: [usize; 3]| {
+        let m = |i: usize, j: usize| printed[i][c[j]];
+        m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1))
+            - m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0))
+            + m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0))
+    };
+    let d = det([0, 1, 2]);
+    let z = [det([3, 1, 2]) / d, det([0, 3, 2]) / d, det([0, 1, 3]) / d];
+    for (got, zj, name) in [(k[2], z[0], "z₁"), (k[0], z[1], "z₂"), (k[1], z[2], "z₃")] {
+        let rel = (got - zj).abs() / zj;
+        assert!(
+            rel < 0.002,
+            "{name}: camlink {got}, printed system {zj} ({rel:.2e})"
+        );
+    }
     // The published linkage itself reaches the rocker angles only to 0.04°.
     let published = camlink_synth::fourbar::FourBar {
         o2: [0.0, 0.0],
