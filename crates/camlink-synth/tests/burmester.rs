@@ -261,6 +261,14 @@ fn burmester_points_of_the_sandor_and_erdman_five_positions() {
         assert!(d.circle_residual(&poses) <= TOL * size, "{d:?}");
     }
     assert_newton_finds_the_same_points(&poses, &pts, 6.0, 50.0);
+    // The four-bar pairing the two (either as the crank) has a branch
+    // defect, so the problem file is refused naming that check.
+    let e = err(
+        "[synthesis]\ntype = \"burmester\"\nposes = [\n    [0, 0, \"deg(0)\"],\n    \
+                 [1.5, 0.8, \"deg(10)\"],\n    [1.6, 1.5, \"deg(20)\"],\n    \
+                 [2.0, 3.0, \"deg(60)\"],\n    [2.3, 3.5, \"deg(90)\"],\n]\n",
+    );
+    assert!(e.contains("the branch check removed every one"), "{e}");
 }
 
 /// The known four-bar's own ground pivots lie on the centre-point curve of
