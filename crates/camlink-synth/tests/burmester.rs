@@ -190,6 +190,30 @@ fn assert_curves_satisfy_the_circle_condition(poses: &[Pose]) -> usize {
     n
 }
 
+/// Poses from rows (θ in degrees, x, y in m).
+fn poses_deg(rows: &[(f64, f64, f64)]) -> Vec<Pose> {
+    rows.iter()
+        .map(|&(th, x, y)| Pose {
+            x,
+            y,
+            theta: th.to_radians(),
+        })
+        .collect()
+}
+
+/// A `burmester` problem file with the poses of `rows` (θ in degrees, x, y
+/// in m).
+fn problem_deg(rows: &[(f64, f64, f64)]) -> String {
+    let poses: Vec<String> = rows
+        .iter()
+        .map(|(th, x, y)| format!("    [{x:?}, {y:?}, \"deg({th:?})\"],\n"))
+        .collect();
+    format!(
+        "[synthesis]\ntype = \"burmester\"\nposes = [\n{}]\n",
+        poses.concat()
+    )
+}
+
 /// Four positions published as a problem: McCarthy & Soh, *Geometric
 /// Design of Linkages* (2011), ch. 5, exercise 7, Table 5.3 (from Suh &
 /// Radcliffe), read in the chapter's text kept in the repository
@@ -209,18 +233,9 @@ fn burmester_curves_of_the_suh_and_radcliffe_four_positions() {
         (45.0, 3.0, 1.5),
         (90.0, 2.0, 2.0),
     ];
-    let poses: Vec<Pose> = rows
-        .iter()
-        .map(|&(th, x, y)| Pose {
-            x,
-            y,
-            theta: f64::to_radians(th),
-        })
-        .collect();
+    let poses = poses_deg(&rows);
     assert_curves_satisfy_the_circle_condition(&poses);
-    let text = "[synthesis]\ntype = \"burmester\"\nposes = [\n    [1.0, 1.0, \"deg(0)\"],\n    \
-                [2.0, 0.5, \"deg(0)\"],\n    [3.0, 1.5, \"deg(45)\"],\n    [2.0, 2.0, \"deg(90)\"],\n]\n";
-    let out = solve_str(text, "suh_radcliffe.toml", "suh_radcliffe").unwrap();
+    let out = solve_str(&problem_deg(&rows), "suh_radcliffe.toml", "suh_radcliffe").unwrap();
     assert!(!out.solutions.is_empty());
     for s in &out.solutions {
         assert_eq!(s.report["checks"]["defects"], Value::Array(vec![]));
@@ -245,14 +260,7 @@ fn burmester_points_of_the_sandor_and_erdman_five_positions() {
         (60.0, 2.0, 3.0),
         (90.0, 2.3, 3.5),
     ];
-    let poses: Vec<Pose> = rows
-        .iter()
-        .map(|&(th, x, y)| Pose {
-            x,
-            y,
-            theta: f64::to_radians(th),
-        })
-        .collect();
+    let poses = poses_deg(&rows);
     let eq = Equations::new(&poses, "poses").unwrap();
     let pts = eq.burmester_points(4096);
     assert_eq!(pts.len(), 2, "{pts:?}");
@@ -263,11 +271,7 @@ fn burmester_points_of_the_sandor_and_erdman_five_positions() {
     assert_newton_finds_the_same_points(&poses, &pts, 6.0, 50.0);
     // The four-bar pairing the two (either as the crank) has a branch
     // defect, so the problem file is refused naming that check.
-    let e = err(
-        "[synthesis]\ntype = \"burmester\"\nposes = [\n    [0, 0, \"deg(0)\"],\n    \
-                 [1.5, 0.8, \"deg(10)\"],\n    [1.6, 1.5, \"deg(20)\"],\n    \
-                 [2.0, 3.0, \"deg(60)\"],\n    [2.3, 3.5, \"deg(90)\"],\n]\n",
-    );
+    let e = err(&problem_deg(&rows));
     assert!(e.contains("the branch check removed every one"), "{e}");
 }
 
