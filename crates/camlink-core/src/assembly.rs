@@ -403,7 +403,15 @@ impl Assembly {
     }
 
     /// η(q, q̇, q̈, t) into `out`, the right side of Φ_q q⃛ = η.
-    pub(crate) fn eta(&self, model: &Model, q: &[f64], qd: &[f64], qdd: &[f64], t: f64, out: &mut [f64]) {
+    pub(crate) fn eta(
+        &self,
+        model: &Model,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) {
         let mut rows: Rows = [0.0; 3];
         for (j, joint) in model.joints.iter().enumerate() {
             let mut x = self.local(model, j, q, qd, t);

@@ -435,7 +435,12 @@ fn not_increasing(t: f64, prev: f64) -> String {
 /// The joints whose equations have the largest residuals |Φ| above `tol`,
 /// worst first and at most five, with the largest residual (m or rad); a
 /// NaN residual counts as infinite. `phi` is Φ at the failure.
-pub(crate) fn worst_joints(model: &Model, asm: &Assembly, phi: &[f64], tol: f64) -> (Vec<String>, f64) {
+pub(crate) fn worst_joints(
+    model: &Model,
+    asm: &Assembly,
+    phi: &[f64],
+    tol: f64,
+) -> (Vec<String>, f64) {
     let mut worst: Vec<(f64, usize)> = Vec::new();
     for j in 0..model.joints.len() {
         let r = asm

@@ -242,7 +242,11 @@ impl Curve {
     /// curve an interval across the start of the range is returned once, as
     /// (a, b) with s₀ ≤ a < s₁ < b; a jump of the predicate at the seam is
     /// not an edge.
-    pub(crate) fn ranges_where(&self, samples: usize, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
+    pub(crate) fn ranges_where(
+        &self,
+        samples: usize,
+        inside: impl Fn(f64) -> bool,
+    ) -> Vec<(f64, f64)> {
         let (s0, s1) = self.range();
         let at = |k: usize| s0 + (s1 - s0) * k as f64 / samples as f64;
         // Locate the change between a and b by bisection.
