@@ -166,9 +166,10 @@ fn assert_matches(step: &str, found: &[([P2; 2], Dyad)], table: &[[P2; 2]]) {
     }
 }
 
-/// The link frames of the book's design: B₂ (C₂→C₃), the selected B₄
-/// (G₁→W₁) and the end effector T, at the five task positions (mm, rad),
-/// with the dyads of steps 2 and 3 (step 3 seen from B₄).
+/// The link frames of the book's design: the crank B₁ (C₁→C₂), B₂
+/// (C₂→C₃), the selected B₄ (G₁→W₁) and the end effector T, at the five
+/// task positions (mm, rad), with the Burmester points of steps 2 and 3
+/// (step 3's dyads seen from B₄).
 struct Design {
     t: Vec<Pose>,
     b1: Vec<Pose>,
@@ -186,16 +187,8 @@ fn design() -> Design {
     let b2: Vec<Pose> = c2.iter().zip(&c3).map(|(&p, &q)| link(p, q)).collect();
     let ground = vec![link([0.0, 0.0], [1.0, 0.0]); 5];
     let step2 = points(&ground, &b2);
-    let (g1, chosen) = step2
-        .iter()
-        .min_by(|a, b| {
-            let d = |f: &[P2; 2]| {
-                (f[0][0] - STEP2[SELECTED][0][0]).hypot(f[0][1] - STEP2[SELECTED][0][1])
-            };
-            d(&a.0).total_cmp(&d(&b.0))
-        })
-        .map(|(f, d)| (f[0], d.clone()))
-        .unwrap();
+    let chosen = step2[row_of(&step2, STEP2[SELECTED])].1.clone();
+    let g1 = chosen.centre;
     let b4: Vec<Pose> = b2
         .iter()
         .map(|p| link(g1, p.place(chosen.moving)))
@@ -357,15 +350,15 @@ fn row_of(found: &[([P2; 2], Dyad)], row: [P2; 2]) -> usize {
 /// (the chains G₂W₂ other than W₁C₃, which only duplicates link B₂),
 /// written as model files and run by camlink's kinematics with the crank
 /// driven from position 1 to 5: the end effector passes the five task
-/// positions of Table 6.1 to 1e-9 m and rad. (Row 3's six-bar meets a
-/// limit position between task positions 3 and 4, so it cannot be driven
-/// through all five and is not run.) Along the way, the rotations from
+/// positions of Table 6.1 to 1e-9 m and rad. (With row 3 the kinematics
+/// stop at t = 0.549 s, between task positions 3 and 4, at a position the
+/// mechanism cannot reach, so that six-bar is not run.) Along the way, the rotations from
 /// position 1 of the crank (θ₁ of Table 6.3) and of link B₂ (θ₂, and θ₃,
 /// which differs from θ₂ by −154.34° in every row) agree with the
 /// differences of Table 6.3's printed angles to 0.01° (two printed values
 /// each within 0.005°). Table 6.3's θ₄ and θ₅ follow the book's loop
-/// equations (6.14)–(6.15) and match the rotation of no link of these
-/// six-bars, so they are not compared.
+/// equations (6.14)–(6.15) and match neither the rotation of G₁W₁ nor
+/// that of any chain G₂W₂, so they are not compared.
 #[test]
 fn steering_six_bars_reach_the_published_task_positions() {
     let d = design();
