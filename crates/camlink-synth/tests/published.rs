@@ -104,6 +104,17 @@ fn relative(a: &[Pose], b: &[Pose]) -> Vec<Pose> {
         .collect()
 }
 
+/// The elbow of a two-link chain from `c1` to `c3` with links `a12`,
+/// `a23` (any length unit): the one to the right of c1→c3.
+fn elbow(c1: P2, c3: P2, a12: f64, a23: f64) -> P2 {
+    let d = [c3[0] - c1[0], c3[1] - c1[1]];
+    let l2 = d[0] * d[0] + d[1] * d[1];
+    // Along c1→c3 by u·l, to its right by v·l.
+    let u = 0.5 + (a12 * a12 - a23 * a23) / (2.0 * l2);
+    let v = (a12 * a12 / l2 - u * u).sqrt();
+    [c1[0] + u * d[0] + v * d[1], c1[1] + u * d[1] - v * d[0]]
+}
+
 /// The five positions of the 3R chain solved from Table 6.1 (step 1):
 /// the end effector's frames T_j (mm, rad), C₂_j and C₃_j (mm). C₂ is the
 /// elbow to the right of C₁→C₃ (the book's choice, C₂ = (6.6, 1463.7)
@@ -113,10 +124,7 @@ fn three_r() -> (Vec<Pose>, Vec<P2>, Vec<P2>) {
     for &(phi, x, y) in &TASKS {
         let (s, c) = phi.to_radians().sin_cos();
         let p3 = [x + H * c, y + H * s];
-        let d = [p3[0] - C1[0], p3[1] - C1[1]];
-        let l = d[0].hypot(d[1]);
-        let h = (A * A - 0.25 * l * l).sqrt() / l;
-        c2.push([C1[0] + 0.5 * d[0] + h * d[1], C1[1] + 0.5 * d[1] - h * d[0]]);
+        c2.push(elbow(C1, p3, A, A));
         c3.push(p3);
         t.push(Pose {
             x,
@@ -226,100 +234,103 @@ fn burmester_points_match_the_published_steering_linkage() {
     assert_matches("step 3", &d.step3, &STEP3);
 }
 
-/// The book's Watt Ia six-bar as a camlink model file (m, rad): the 3R
-/// chain (crank C₁C₂, link B₂ = C₂C₃ carrying W₁, end effector E
-/// carrying C₃ and W₂), the selected chain G₁W₁ (link B₄, carrying G₂)
-/// and the chain G₂W₂ of the step-3 dyad `e` (link B₅); every body's
-/// frame is at its place in position 1. The crank is driven at the joint
-/// C₁ from its angle at position 1 (t = 0 s) to its angle at position 5
-/// (t = 1 s).
-fn six_bar(d: &Design, e: &Dyad) -> String {
-    let mm = |p: P2| format!("[{:?}, {:?}]", p[0] / 1e3, p[1] / 1e3);
-    let along = |l: f64| format!("[{:?}, 0.0]", l / 1e3);
-    let dist = |p: P2, q: P2| (q[0] - p[0]).hypot(q[1] - p[1]);
-    let (b1, b2, b4, t) = (&d.b1[0], &d.b2[0], &d.b4[0], &d.t[0]);
-    let g1 = [b4.x, b4.y];
-    let w1 = d.chosen.circle;
-    let g2 = b4.place(e.centre);
-    let w2 = t.place(e.moving);
-    let b5 = link(g2, w2);
-    let body = |name: &str, f: &Pose, points: String| {
-        format!(
-            "[[bodies]]\nname = \"{name}\"\nposition = {}\nangle = {:?}\npoints = {{ {points} }}\n\n",
-            mm([f.x, f.y]),
-            f.theta
-        )
+/// A model file (m, rad) of a linkage drawn at position 1: `ground`
+/// points, then bodies given by their frame and their points, all in the
+/// ground frame in the problem's length unit (`unit` m each); every joint
+/// is a revolute at the point of its name on both bodies. The crank
+/// joint `crank` is driven from the angle `from` (t = 0 s) to `to`
+/// (t = 1 s) (rad).
+fn model(
+    unit: f64,
+    ground: &[(&str, P2)],
+    bodies: &[(&str, Pose, Vec<(&str, P2)>)],
+    joints: &[(&str, &str, &str)],
+    crank: &str,
+    from: f64,
+    to: f64,
+) -> String {
+    let xy = |p: P2| format!("[{:?}, {:?}]", p[0] * unit, p[1] * unit);
+    let list = |f: &Pose, pts: &[(&str, P2)]| {
+        pts.iter()
+            .map(|&(n, p)| format!("{n} = {}", xy(f.local(p))))
+            .collect::<Vec<_>>()
+            .join(", ")
     };
-    let joint = |name: &str, i: &str, j: &str| {
-        format!(
-            "[[joints]]\nname = \"{name}\"\ntype = \"revolute\"\nbody_i = \"{i}\"\npoint_i = \"{name}\"\nbody_j = \"{j}\"\npoint_j = \"{name}\"\n\n"
-        )
+    let origin = Pose {
+        x: 0.0,
+        y: 0.0,
+        theta: 0.0,
     };
-    let th5 = d.b1[4].theta;
     let mut s = format!(
-        "[model]\nname = \"steering\"\n\n[ground]\npoints = {{ C1 = {}, G1 = {} }}\n\n",
-        mm(C1),
-        mm(g1)
+        "[model]\nname = \"published\"\n\n[ground]\npoints = {{ {} }}\n\n",
+        list(&origin, ground)
     );
-    s += &body("crank", b1, format!("C1 = [0.0, 0.0], C2 = {}", along(A)));
-    s += &body(
-        "b2",
-        b2,
-        format!(
-            "C2 = [0.0, 0.0], C3 = {}, W1 = {}",
-            along(A),
-            mm(d.chosen.moving)
-        ),
-    );
-    s += &body(
-        "b4",
-        b4,
-        format!(
-            "G1 = [0.0, 0.0], W1 = {}, G2 = {}",
-            along(dist(g1, w1)),
-            mm(e.centre)
-        ),
-    );
-    s += &body(
-        "b5",
-        &b5,
-        format!("G2 = [0.0, 0.0], W2 = {}", along(dist(g2, w2))),
-    );
-    s += &body(
-        "effector",
-        t,
-        format!("C3 = {}, W2 = {}", along(H), mm(e.moving)),
-    );
-    for (name, i, j) in [
-        ("C1", "ground", "crank"),
-        ("C2", "crank", "b2"),
-        ("C3", "b2", "effector"),
-        ("G1", "ground", "b4"),
-        ("W1", "b4", "b2"),
-        ("G2", "b4", "b5"),
-        ("W2", "b5", "effector"),
-    ] {
-        s += &joint(name, i, j);
+    for (name, f, pts) in bodies {
+        s += &format!(
+            "[[bodies]]\nname = \"{name}\"\nposition = {}\nangle = {:?}\npoints = {{ {} }}\n\n",
+            xy([f.x, f.y]),
+            f.theta,
+            list(f, pts)
+        );
     }
-    s += &format!(
-        "[[drivers]]\nname = \"crank\"\ntype = \"revolute_angle\"\njoint = \"C1\"\nf = \"{:?} + {:?}*t\"\n",
-        b1.theta,
-        th5 - b1.theta
-    );
-    s
+    for (name, i, j) in joints {
+        s += &format!(
+            "[[joints]]\nname = \"{name}\"\ntype = \"revolute\"\nbody_i = \"{i}\"\npoint_i = \"{name}\"\nbody_j = \"{j}\"\npoint_j = \"{name}\"\n\n"
+        );
+    }
+    s + &format!(
+        "[[drivers]]\nname = \"crank\"\ntype = \"revolute_angle\"\njoint = \"{crank}\"\nf = \"{from:?} + {:?}*t\"\n",
+        to - from
+    )
+}
+
+/// The book's Watt Ia six-bar as a model file: the 3R chain (crank
+/// C₁C₂, link B₂ = C₂C₃ carrying W₁, end effector E carrying C₃ and W₂),
+/// the selected chain G₁W₁ (link B₄, carrying G₂) and the chain G₂W₂ of
+/// the step-3 dyad `e` (link B₅); driven at C₁ from position 1 (t = 0 s)
+/// to position 5 (t = 1 s).
+fn six_bar(d: &Design, e: &Dyad) -> String {
+    let (b1, b2, b4, t) = (d.b1[0], d.b2[0], d.b4[0], d.t[0]);
+    let g1 = [b4.x, b4.y];
+    let (c2, c3, w1) = ([b2.x, b2.y], b2.place([A, 0.0]), d.chosen.circle);
+    let (g2, w2) = (b4.place(e.centre), t.place(e.moving));
+    model(
+        1e-3,
+        &[("C1", C1), ("G1", g1)],
+        &[
+            ("crank", b1, vec![("C1", C1), ("C2", c2)]),
+            ("b2", b2, vec![("C2", c2), ("C3", c3), ("W1", w1)]),
+            ("b4", b4, vec![("G1", g1), ("W1", w1), ("G2", g2)]),
+            ("b5", link(g2, w2), vec![("G2", g2), ("W2", w2)]),
+            ("effector", t, vec![("C3", c3), ("W2", w2)]),
+        ],
+        &[
+            ("C1", "ground", "crank"),
+            ("C2", "crank", "b2"),
+            ("C3", "b2", "effector"),
+            ("G1", "ground", "b4"),
+            ("W1", "b4", "b2"),
+            ("G2", "b4", "b5"),
+            ("W2", "b5", "effector"),
+        ],
+        "C1",
+        d.b1[0].theta,
+        d.b1[4].theta,
+    )
 }
 
 /// The crank angle's fraction of its travel from position 1 to 5 at each
-/// task position: the time (s) the model of `six_bar` reaches it.
-fn task_times(d: &Design) -> Vec<f64> {
-    let th = |k: usize| d.b1[k].theta;
+/// task position, `crank` its frames: the time (s) a model driven by
+/// `model` reaches it.
+fn task_times(crank: &[Pose]) -> Vec<f64> {
+    let th = |k: usize| crank[k].theta;
     (0..5).map(|k| (th(k) - th(0)) / (th(4) - th(0))).collect()
 }
 
 /// Runs `text` at 0, 0.01, …, 1 s and at `extra` (s); the solver stops
 /// at max |Φ| ≤ 1e-12.
 fn run_text(text: &str, extra: &[f64]) -> Table {
-    let loaded = load_str(text, Format::Toml, "steering.toml")
+    let loaded = load_str(text, Format::Toml, "published.toml")
         .unwrap_or_else(|e| panic!("the model does not load: {e}\n{text}"));
     let mut times: Vec<f64> = (0..=100).map(|k| k as f64 / 100.0).collect();
     times.extend_from_slice(extra);
@@ -334,6 +345,18 @@ fn run_text(text: &str, extra: &[f64]) -> Table {
     kinematics::run(&loaded.model, &times, &settings, &[], &mut table)
         .unwrap_or_else(|e| panic!("the model does not run: {e}\n{text}"));
     table
+}
+
+/// The body `name` of `table` is at the frame `p` (in `unit` m) at time
+/// `t`, to 1e-9 m and rad.
+fn assert_at(table: &Table, name: &str, t: f64, p: &Pose, unit: f64, what: &str) {
+    let ex = at(table, &format!("{name}.x"), t) - p.x * unit;
+    let ey = at(table, &format!("{name}.y"), t) - p.y * unit;
+    let et = wrap_pi(at(table, &format!("{name}.phi"), t) - p.theta);
+    assert!(
+        ex.abs() < TOL && ey.abs() < TOL && et.abs() < TOL,
+        "{what}: off by ({ex:e}, {ey:e}) m, {et:e} rad"
+    );
 }
 
 /// The index in `found` of the pair that rounds to `row` (Table 6.2).
@@ -352,32 +375,24 @@ fn row_of(found: &[([P2; 2], Dyad)], row: [P2; 2]) -> usize {
 /// driven from position 1 to 5: the end effector passes the five task
 /// positions of Table 6.1 to 1e-9 m and rad. (With row 3 the kinematics
 /// stop at t = 0.549 s, between task positions 3 and 4, at a position the
-/// mechanism cannot reach, so that six-bar is not run.) Along the way, the rotations from
-/// position 1 of the crank (θ₁ of Table 6.3) and of link B₂ (θ₂, and θ₃,
-/// which differs from θ₂ by −154.34° in every row) agree with the
-/// differences of Table 6.3's printed angles to 0.01° (two printed values
-/// each within 0.005°). Table 6.3's θ₄ and θ₅ follow the book's loop
-/// equations (6.14)–(6.15) and match neither the rotation of G₁W₁ nor
-/// that of any chain G₂W₂, so they are not compared.
+/// mechanism cannot reach, so that six-bar is not run.) Along the way, the
+/// rotations from position 1 of the crank (θ₁ of Table 6.3) and of link
+/// B₂ (θ₂, and θ₃, which differs from θ₂ by −154.34° in every row) agree
+/// with the differences of Table 6.3's printed angles to 0.01° (two
+/// printed values each within 0.005°). Table 6.3's θ₄ and θ₅ follow the
+/// book's loop equations (6.14)–(6.15) and match neither the rotation of
+/// G₁W₁ nor that of any chain G₂W₂, so they are not compared.
 #[test]
 fn steering_six_bars_reach_the_published_task_positions() {
     let d = design();
-    let times = task_times(&d);
+    let times = task_times(&d.b1);
     for row in [0, 1] {
         let e = &d.step3[row_of(&d.step3, STEP3[row])].1;
         let text = six_bar(&d, e);
         let table = run_text(&text, &times);
         for (k, &t) in times.iter().enumerate() {
-            let p = &d.t[k];
-            let ex = at(&table, "effector.x", t) - p.x / 1e3;
-            let ey = at(&table, "effector.y", t) - p.y / 1e3;
-            let et = wrap_pi(at(&table, "effector.phi", t) - p.theta);
-            assert!(
-                ex.abs() < TOL && ey.abs() < TOL && et.abs() < TOL,
-                "row {}: task position {}: off by ({ex:e}, {ey:e}) m, {et:e} rad\n{text}",
-                row + 1,
-                k + 1
-            );
+            let what = format!("row {}, task position {}\n{text}", row + 1, k + 1);
+            assert_at(&table, "effector", t, &d.t[k], 1e-3, &what);
             let turned =
                 |name: &str| wrap_pi(at(&table, name, t) - at(&table, name, 0.0)).to_degrees();
             let printed = |i: usize| ANGLES[k][i] - ANGLES[0][i];
