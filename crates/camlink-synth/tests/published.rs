@@ -1,5 +1,5 @@
-//! Burmester points against a published worked example with numbers:
-//! the steering linkage of McCarthy & Soh, *Geometric Design of Linkages*
+//! Burmester points against published worked examples with numbers: the
+//! steering linkage of McCarthy & Soh, *Geometric Design of Linkages*
 //! (2nd ed., 2011), §6.3 "Example: A Steering Linkage", Tables 6.1–6.3,
 //! read in the chapter's text kept in the public repository
 //! `haijunsu-osu/gdl_llm_reproduction` (ch6/Ch6_GDL.txt, commit
@@ -15,8 +15,14 @@
 //! G₂W₂ that guide the end effector through its five positions relative
 //! to the link B₄ = G₁W₁ chosen in step 2. Table 6.2 prints every pivot
 //! at position 1 to 0.1 mm; Table 6.3 the six-bar's angles at the task
-//! positions to 0.01°. All lengths here are in mm and angles in degrees
-//! unless stated; the model run by the kinematics is in m and rad.
+//! positions to 0.01°. Lengths of the steering linkage are in mm, of the
+//! sofa in cm, angles in degrees unless stated; the models run by the
+//! kinematics are in m and rad.
+//!
+//! The same chapter's convertible sofa (§6.6) is the weaker second
+//! check: its printed inputs do not give back its own Table 6.6 to the
+//! print (they appear rounded from the ones it computed with), and its
+//! Burmester points agree to 0.04 cm, not to the print.
 
 use camlink_core::kinematics;
 use camlink_core::run::{Settings, Table};
