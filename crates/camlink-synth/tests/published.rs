@@ -24,14 +24,12 @@
 //! print (they appear rounded from the ones it computed with), and its
 //! Burmester points agree to 0.04 cm, not to the print.
 
-use camlink_core::kinematics;
-use camlink_core::run::{Settings, Table};
-use camlink_model::{load_str, Format};
+use camlink_core::run::Table;
 use camlink_synth::burmester::{Dyad, Equations};
 use camlink_synth::fourbar::{wrap_pi, P2};
 use camlink_synth::motion::Pose;
 
-use crate::burmester::{at, TOL};
+use crate::burmester::{at, run_text, TOL};
 
 /// Table 6.1: the five task positions (φ in degrees, x, y in mm) of the
 /// end effector.
@@ -336,26 +334,6 @@ fn task_times(crank: &[Pose]) -> Vec<f64> {
     (0..5).map(|k| (th(k) - th(0)) / (th(4) - th(0))).collect()
 }
 
-/// Runs `text` at 0, 0.01, …, 1 s and at `extra` (s); the solver stops
-/// at max |Φ| ≤ 1e-12.
-fn run_text(text: &str, extra: &[f64]) -> Table {
-    let loaded = load_str(text, Format::Toml, "published.toml")
-        .unwrap_or_else(|e| panic!("the model does not load: {e}\n{text}"));
-    let mut times: Vec<f64> = (0..=100).map(|k| k as f64 / 100.0).collect();
-    times.extend_from_slice(extra);
-    times.sort_by(f64::total_cmp);
-    times.dedup();
-    let settings = Settings {
-        tol: 1e-12,
-        max_iter: 25,
-        jerk: false,
-    };
-    let mut table = Table::default();
-    kinematics::run(&loaded.model, &times, &settings, &[], &mut table)
-        .unwrap_or_else(|e| panic!("the model does not run: {e}\n{text}"));
-    table
-}
-
 /// The body `name` of `table` is at the frame `p` (in `unit` m) at time
 /// `t`, to 1e-9 m and rad.
 fn assert_at(table: &Table, name: &str, t: f64, p: &Pose, unit: f64, what: &str) {
@@ -398,7 +376,7 @@ fn steering_six_bars_reach_the_published_task_positions() {
     for row in [0, 1] {
         let e = &d.step3[row_of(&d.step3, STEP3[row])].1;
         let text = six_bar(&d, e);
-        let table = run_text(&text, &times);
+        let table = run_text(&text, "published.toml", &times);
         for (k, &t) in times.iter().enumerate() {
             let what = format!("row {}, task position {}\n{text}", row + 1, k + 1);
             assert_at(&table, "effector", t, &d.t[k], 1e-3, &what);
@@ -593,7 +571,7 @@ fn sofa_eight_bar_from_the_published_positions() {
     let text = sofa_model(&s, e2, e3);
     let times = task_times(&s.b1);
     let fine: Vec<f64> = (0..=4000).map(|k| k as f64 / 4000.0 * times[1]).collect();
-    let table = run_text(&text, &fine);
+    let table = run_text(&text, "published.toml", &fine);
     assert_at(&table, "bed", 0.0, &s.t[0], 1e-2, "task position 1");
     let bed = at(&table, "bed.phi", times[1]).to_degrees();
     assert!(
