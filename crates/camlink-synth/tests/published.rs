@@ -28,8 +28,10 @@ use camlink_core::run::Table;
 use camlink_synth::burmester::{Dyad, Equations};
 use camlink_synth::fourbar::{wrap_pi, P2};
 use camlink_synth::motion::Pose;
+use camlink_synth::solve_str;
+use serde_json::Value;
 
-use crate::burmester::{at, run_text, TOL};
+use crate::burmester::{assert_passes_poses, at, floats, run_text, TOL};
 
 /// Table 6.1: the five task positions (φ in degrees, x, y in mm) of the
 /// end effector.
@@ -157,7 +159,7 @@ fn points(base: &[Pose], poses: &[Pose]) -> Vec<([P2; 2], Dyad)> {
 /// Every published pair of `table` is one of `found`, coordinate by
 /// coordinate within half a unit of the printed digit, and no other pair
 /// was found.
-fn assert_matches(step: &str, found: &[([P2; 2], Dyad)], table: &[[P2; 2]]) {
+fn assert_matches(step: &str, found: &[[P2; 2]], table: &[[P2; 2]]) {
     assert_eq!(found.len(), table.len(), "{step}: {found:?}");
     for (k, pub_pair) in table.iter().enumerate() {
         let off = |f: &[P2; 2]| {
@@ -165,15 +167,12 @@ fn assert_matches(step: &str, found: &[([P2; 2], Dyad)], table: &[[P2; 2]]) {
                 .flat_map(|i| (0..2).map(move |j| (f[i][j] - pub_pair[i][j]).abs()))
                 .fold(0.0, f64::max)
         };
-        let best = found
-            .iter()
-            .map(|(f, _)| off(f))
-            .fold(f64::INFINITY, f64::min);
+        let best = found.iter().map(off).fold(f64::INFINITY, f64::min);
         assert!(
             best <= PRINTED_MM,
             "{step}, row {}: {pub_pair:?} is {best} mm from the nearest of {:?}",
             k + 1,
-            found.iter().map(|(f, _)| f).collect::<Vec<_>>()
+            found
         );
     }
 }
@@ -234,8 +233,9 @@ fn burmester_points_match_the_published_steering_linkage() {
         );
     }
     let d = design();
-    assert_matches("step 2", &d.step2, &STEP2);
-    assert_matches("step 3", &d.step3, &STEP3);
+    let pairs = |f: &[([P2; 2], Dyad)]| f.iter().map(|x| x.0).collect::<Vec<_>>();
+    assert_matches("step 2", &pairs(&d.step2), &STEP2);
+    assert_matches("step 3", &pairs(&d.step3), &STEP3);
 }
 
 /// A body of `model`: its name, its frame and its named points.
@@ -618,4 +618,55 @@ fn sofa_model(s: &Sofa, e2: &Dyad, e3: &Dyad) -> String {
         b1.theta,
         s.b1[4].theta,
     )
+}
+
+/// Step 2 of the steering linkage as a `burmester` problem file (the five
+/// positions of link B₂ in m and rad), solved by `camlink synth`'s
+/// solver: the report's Burmester points are Table 6.2's four (0.1 mm, as
+/// in `burmester_points_match_the_published_steering_linkage`), and every
+/// four-bar written, run by camlink's kinematics, guides B₂ through its
+/// five positions to 1e-9 m and rad; the book's four-bar C₁C₂W₁G₁ (the
+/// crank C₁C₂ with the selected chain G₁W₁) is one of them.
+#[test]
+fn steering_step_2_as_a_problem_file() {
+    let d = design();
+    let poses: Vec<String> =
+        d.b2.iter()
+            .map(|p| format!("    [{:?}, {:?}, {:?}],\n", p.x / 1e3, p.y / 1e3, p.theta))
+            .collect();
+    let text = format!(
+        "[synthesis]\ntype = \"burmester\"\nposes = [\n{}]\n",
+        poses.concat()
+    );
+    let out = solve_str(&text, "steering_b2.toml", "steering_b2")
+        .unwrap_or_else(|e| panic!("{e}\n{text}"));
+    assert!(!out.solutions.is_empty());
+    let pair = |v: &Value| {
+        let p = |k: &str| {
+            let f = floats(&v[k]);
+            [f[0] * 1e3, f[1] * 1e3]
+        };
+        [p("centre"), p("circle")]
+    };
+    let pts: Vec<[P2; 2]> = out.solutions[0].report["burmester_points"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(pair)
+        .collect();
+    assert_matches("the problem file", &pts, &STEP2);
+    let book = [STEP2[0][0], STEP2[SELECTED][0]];
+    let mut found = false;
+    for s in &out.solutions {
+        assert_passes_poses(s);
+        let ground = ["crank", "rocker"].map(|k| pair(&s.report["dyads"][k])[0]);
+        found |= ground
+            .iter()
+            .zip(book)
+            .all(|(g, b)| (g[0] - b[0]).abs() <= PRINTED_MM && (g[1] - b[1]).abs() <= PRINTED_MM);
+    }
+    assert!(
+        found,
+        "the book's four-bar C₁C₂W₁G₁ is not among the solutions"
+    );
 }
