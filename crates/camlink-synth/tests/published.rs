@@ -115,7 +115,7 @@ fn relative(a: &[Pose], b: &[Pose]) -> Vec<Pose> {
 fn elbow(c1: P2, c3: P2, a12: f64, a23: f64) -> P2 {
     let d = [c3[0] - c1[0], c3[1] - c1[1]];
     let l2 = d[0] * d[0] + d[1] * d[1];
-    // Along c1→c3 by u·l, to its right by v·l.
+    // u·d along c1→c3, then v·|d| to its right.
     let u = 0.5 + (a12 * a12 - a23 * a23) / (2.0 * l2);
     let v = (a12 * a12 / l2 - u * u).sqrt();
     [c1[0] + u * d[0] + v * d[1], c1[1] + u * d[1] - v * d[0]]
@@ -162,12 +162,10 @@ fn points(base: &[Pose], poses: &[Pose]) -> Vec<([P2; 2], Dyad)> {
 fn assert_matches(step: &str, found: &[[P2; 2]], table: &[[P2; 2]]) {
     assert_eq!(found.len(), table.len(), "{step}: {found:?}");
     for (k, pub_pair) in table.iter().enumerate() {
-        let off = |f: &[P2; 2]| {
-            (0..2)
-                .flat_map(|i| (0..2).map(move |j| (f[i][j] - pub_pair[i][j]).abs()))
-                .fold(0.0, f64::max)
-        };
-        let best = found.iter().map(off).fold(f64::INFINITY, f64::min);
+        let best = found
+            .iter()
+            .map(|f| off(f, pub_pair))
+            .fold(f64::INFINITY, f64::min);
         assert!(
             best <= PRINTED_MM,
             "{step}, row {}: {pub_pair:?} is {best} mm from the nearest of {:?}",
@@ -350,9 +348,7 @@ fn assert_at(table: &Table, name: &str, t: f64, p: &Pose, unit: f64, what: &str)
 fn row_of(found: &[([P2; 2], Dyad)], row: [P2; 2]) -> usize {
     found
         .iter()
-        .position(|(f, _)| {
-            (0..2).all(|i| (0..2).all(|j| (f[i][j] - row[i][j]).abs() <= PRINTED_MM))
-        })
+        .position(|(f, _)| off(f, &row) <= PRINTED_MM)
         .unwrap_or_else(|| panic!("{row:?} not found"))
 }
 
