@@ -542,12 +542,11 @@ fn burmester_points_of_the_published_sofa_linkage() {
 /// follows from position 1 (a circuit defect of this eight-bar). The book
 /// reports its eight-bar, whose pivots are up to 0.04 cm from these,
 /// passing all five (Table 6.6, Fig. 6.19); so the sofa is no kinematic
-/// check. Along the
-/// way, the loop's absolute link angles θ₁, θ₂, θ₄, θ₅ that camlink
-/// solves from the printed task positions differ from Table 6.6's by up
-/// to 0.03° (θ₄ at position 5: 134.499° against 134.47°), more than its
-/// printed 0.005°: evidence that the printed inputs are rounded from the
-/// ones the book computed with.
+/// check. Before that, the loop's absolute link angles θ₁, θ₂, θ₄, θ₅
+/// that camlink solves from the printed task positions differ from Table
+/// 6.6's by up to 0.03° (θ₄ at position 5: 134.499° against 134.47°),
+/// more than its printed 0.005°, which suggests the printed inputs are
+/// rounded from the ones the book computed with.
 #[test]
 fn sofa_eight_bar_from_the_published_positions() {
     let s = sofa();
