@@ -33,8 +33,14 @@ pub(crate) fn floats(v: &Value) -> Vec<f64> {
 /// Runs the model of `s` at 0, 0.01, …, 1 s and at `extra` (s); the
 /// solver stops at max |Φ| ≤ 1e-12.
 pub(crate) fn run(s: &Solution, extra: &[f64]) -> Table {
-    let loaded = load_str(&s.model, Format::Toml, &format!("{}.toml", s.name))
-        .unwrap_or_else(|e| panic!("the model does not load: {e}\n{}", s.model));
+    run_text(&s.model, &format!("{}.toml", s.name), extra)
+}
+
+/// Runs the model file `text` (TOML, named `name` in messages) at 0,
+/// 0.01, …, 1 s and at `extra` (s); the solver stops at max |Φ| ≤ 1e-12.
+pub(crate) fn run_text(text: &str, name: &str, extra: &[f64]) -> Table {
+    let loaded = load_str(text, Format::Toml, name)
+        .unwrap_or_else(|e| panic!("the model does not load: {e}\n{text}"));
     let mut times: Vec<f64> = (0..=100).map(|k| k as f64 / 100.0).collect();
     times.extend_from_slice(extra);
     times.sort_by(f64::total_cmp);
@@ -46,7 +52,7 @@ pub(crate) fn run(s: &Solution, extra: &[f64]) -> Table {
     };
     let mut table = Table::default();
     kinematics::run(&loaded.model, &times, &settings, &[], &mut table)
-        .unwrap_or_else(|e| panic!("the model does not run: {e}\n{}", s.model));
+        .unwrap_or_else(|e| panic!("the model does not run: {e}\n{text}"));
     table
 }
 
