@@ -24,10 +24,13 @@ started them.
 from __future__ import annotations
 
 import asyncio
+import base64
 import hmac
 import json
 import math
 import secrets
+import struct
+import time
 import webbrowser
 from collections import deque
 from concurrent.futures import ThreadPoolExecutor
@@ -42,7 +45,7 @@ from camlink.studio.document import Document, Editable, Solution
 from camlink.studio.runs import Run, Runs, studies_of
 from camlink.viz.front import asset, frame_data
 
-__all__ = ["StudioServer", "make_app", "payload", "run"]
+__all__ = ["StudioServer", "make_app", "pack", "payload", "run"]
 
 TOKEN_KEY = web.AppKey("token", str)
 DOC_KEY = web.AppKey("doc", Editable)
@@ -108,6 +111,35 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     data["undo"] = doc.can_undo
     data["redo"] = doc.can_redo
     return data
+
+
+def pack(msg: dict[str, Any]) -> bytes:
+    """`msg` as one binary websocket message, for a page that asked for
+    them (``"binary": true`` in its ``hello``): a little-endian uint32 n,
+    n bytes of UTF-8 JSON (padded with spaces so that what follows starts
+    at a multiple of 8 bytes), then the float64 arrays of `msg` back to
+    back. Each array `msg` carries as ``{"f64": base64}`` is in the JSON
+    as ``{"buf": [k, m]}``: m values from the k-th float64 of the block."""
+    blobs: list[bytes] = []
+    at = 0
+
+    def walk(v: Any) -> Any:
+        nonlocal at
+        if isinstance(v, dict):
+            if len(v) == 1 and isinstance(v.get("f64"), str):
+                raw = base64.b64decode(v["f64"])
+                ref = {"buf": [at, len(raw) // 8]}
+                blobs.append(raw)
+                at += len(raw) // 8
+                return ref
+            return {k: walk(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [walk(x) if isinstance(x, (dict, list)) else x for x in v]
+        return v
+
+    head = json.dumps(walk(msg), separators=(",", ":"), allow_nan=False).encode()
+    head += b" " * (-(4 + len(head)) % 8)
+    return struct.pack("<I", len(head)) + head + b"".join(blobs)
 
 
 def _allowed(request: web.Request) -> bool:
@@ -231,6 +263,8 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     executor = request.app[EXECUTOR_KEY]
     loop = asyncio.get_running_loop()
     queue: deque[dict[str, Any]] = deque()
+    arrived: dict[int, float] = {}  # id of a queued request: when it came (perf_counter, s)
+    binary = False  # whether the page reads binary replies (`pack`)
     wake = asyncio.Event()
 
     async def worker() -> None:
@@ -242,7 +276,15 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 reply = await loop.run_in_executor(executor, _handle, doc, msg)
                 if ws.closed:
                     return
-                await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
+                # The server's share of an edit (ms, from its arrival to
+                # its reply made), for the page's timing of edits.
+                came = arrived.pop(id(msg))
+                if reply.get("type") == "frames":
+                    reply["server_ms"] = round(1e3 * (time.perf_counter() - came), 3)
+                if binary:
+                    await ws.send_bytes(pack(reply))
+                else:
+                    await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
     def report(run: Run) -> None:
         # In the run's thread: its status to this page, from the loop
@@ -273,6 +315,8 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if not isinstance(msg, dict):
                 continue
+            if msg.get("op") == "hello" and msg.get("binary") is True:
+                binary = True
             if msg.get("op") == "param" and not _finite(msg.get("value")):
                 continue
             if msg.get("op") in ("run", "stop", "runchannel"):
@@ -286,7 +330,9 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
+            arrived[id(msg)] = time.perf_counter()
             if queue and _same_target(queue[-1], msg):
+                arrived.pop(id(queue[-1]), None)
                 queue[-1] = msg
             else:
                 queue.append(msg)

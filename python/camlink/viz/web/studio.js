@@ -28,8 +28,8 @@
     if (same) {
       list.forEach(function (p, i) {
         const input = box.querySelectorAll("input")[i], out = box.querySelectorAll("output")[i];
-        if (document.activeElement !== input) { input.value = String(p.value); }
-        out.textContent = String(p.value);
+        if (document.activeElement !== input && input.value !== String(p.value)) input.value = String(p.value);
+        camlinkFront.setText(out, String(p.value));
       });
       params = list;
       return;
@@ -207,6 +207,6 @@
 
   // For scripts and benchmarks: `after(n)` is a promise of the reply to
   // request `n` having been shown (the page redrawn).
-  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after,
+  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after, phases: link.phases,
                            sent: link.sent, run: function () { return RUN; } };
 })();
