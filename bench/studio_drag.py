@@ -1,7 +1,7 @@
 """The studio's edit loop in Chromium: scripted drags, timed from the edit
 sent to the page redrawn with the re-solved cycle (issue 29).
 
-For each model, a studio server is started on a copy of the file, the page
+For each model, `camlink studio` is started on a copy of the file, the page
 is opened in Debian's chromium (Playwright, headless, every request off
 127.0.0.1 blocked), and a handle is dragged through 200 positions, one
 edit at a time: each time is from the websocket send to the end of the
@@ -30,22 +30,21 @@ the network service, DevTools' reports to Playwright), from /proc.
 from __future__ import annotations
 
 import argparse
-import asyncio
 import math
 import os
 import shutil
+import signal
 import statistics
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
-from camlink.studio import StudioServer, payload  # noqa: E402
+from camlink.studio import payload  # noqa: E402
 from camlink.studio.document import Document  # noqa: E402
 
 MODELS = [
@@ -79,17 +78,28 @@ def pct(values: list[float], q: float) -> float:
 
 
 class Studio:
+    """`camlink studio FILE --no-browser` in a process of its own, as a user
+    runs it (not in this process, where Playwright's client would share
+    its interpreter)."""
+
     def __init__(self, path: Path) -> None:
-        self.server = StudioServer(path)
-        self.loop = asyncio.new_event_loop()
-        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
-        self.thread.start()
-        self.url = asyncio.run_coroutine_threadsafe(self.server.start(), self.loop).result(60)
+        env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+        self.proc = subprocess.Popen([sys.executable, "-m", "camlink", "studio", str(path),
+                                      "--no-browser"], stdout=subprocess.PIPE, text=True, env=env)
+        assert self.proc.stdout is not None
+        line = self.proc.stdout.readline()
+        if not line.startswith("camlink studio: "):
+            self.proc.kill()
+            raise RuntimeError(f"camlink studio did not start: {line!r}")
+        self.url = line.split(": ", 1)[1].strip()
 
     def close(self) -> None:
-        asyncio.run_coroutine_threadsafe(self.server.stop(), self.loop).result(60)
-        self.loop.call_soon_threadsafe(self.loop.stop)
-        self.thread.join(10)
+        self.proc.send_signal(signal.SIGINT)
+        try:
+            self.proc.wait(30)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
 
 
 DRAG = """async ([id, n]) => {
