@@ -316,6 +316,39 @@ def test_issue29_studio_runs_over_the_socket(tmp_path: Path) -> None:
     asyncio.run(_run_checks(_copy(tmp_path, "four_bar.toml")))
 
 
+def test_issue29_studio_stopped_run_keeps_its_rows(tmp_path: Path) -> None:
+    # A long dynamics run stopped from the page keeps the rows computed up
+    # to the stop, the time it stopped at in its message: the rows of a
+    # run of the same model to that time; nothing is left in the folder.
+    from camlink.studio.runs import Run
+
+    path = tmp_path / "long.toml"
+    path.write_text((EXAMPLES / "dyn_pendulum.toml").read_text().replace(
+        "t_end = 3.0", "t_end = 1000.0"))
+    model = camlink.load(path)
+    run = Run(model, "dynamics", folder=tmp_path)
+
+    def report(r: Run) -> None:
+        if r.done > 0:
+            r.stop.set()
+
+    run.execute(report)
+    res = run.results
+    assert run.state == "stopped" and res is not None and 0 < len(res) < run.total
+    assert len(res) <= run.done
+    t_stop = float(res["t"][-1])
+    assert f"at t = {t_stop:.6g} s: the {len(res)} rows computed are kept" in run.message
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["long.toml"]
+    whole = model.run(analysis="dynamics", t_end=t_stop)
+    assert len(whole) == len(res) and list(whole.channels) == list(res.channels)
+    for c in res.channels:
+        np.testing.assert_allclose(res[c], whole[c], rtol=0, atol=1e-12, err_msg=c)
+    status = run.status(["arm.omega"])
+    assert status["state"] == "stopped" and status["names"] == list(res.channels)
+    got = np.frombuffer(base64.b64decode(status["channels"]["arm.omega"]["f64"]), "<f8")
+    assert np.array_equal(got, res["arm.omega"])
+
+
 def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
     from camlink.studio.runs import Run, studies_of
 

@@ -431,6 +431,11 @@ def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path
         s.close()
 
 
+def runs_of(s: Studio) -> Any:
+    """The server's runs."""
+    return s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+
+
 def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # A long run (a million rows): progress shows, the stop stops it, and
@@ -453,6 +458,16 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         run = pg.js("camlinkStudio.run()")
         assert run["state"] == "stopped" and 0 < run["done"] < run["total"]
         assert "stopped after" in pg.page.locator("#run-status").text_content()
+        # It keeps and plots the rows computed up to the stop, and says when.
+        kept = runs_of(s).current.results
+        assert kept is not None and 0 < len(kept) <= run["done"]
+        status = pg.page.locator("#run-status").text_content()
+        assert f"at t = {float(kept['t'][-1]):.6g} s: the {len(kept)} rows computed are kept" in status
+        pg.page.wait_for_function("() => camlinkStudio.run().t && camlinkStudio.run().values", timeout=20_000)
+        assert pg.js("camlinkStudio.run().t.length") == len(kept)
+        name = pg.js("camlinkStudio.run().channel")
+        assert np.array_equal(np.array(pg.js("Array.from(camlinkStudio.run().values)")), kept[name])
+        assert pg.page.locator("#run-plot canvas").count() > 0
         assert not pg.js("document.getElementById('run').disabled")
         pg.slider("L", 0.6)
         assert s.server.doc._data["parameters"]["L"] == 0.6
@@ -461,7 +476,7 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         pg.page.click("#run")
         pg.page.wait_for_function("() => camlinkStudio.run().state === 'running'", timeout=20_000)
         pg.page.close()
-        runs = s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+        runs = runs_of(s)
         assert runs.current is not None
         for _ in range(200):
             if runs.current.state != "running":

@@ -375,7 +375,7 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
                 if name not in studies_of(doc.path):
                     raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
                 analysis, study = "study", doc.path.parent / name
-            run = runs.start(doc.solution.model, analysis, report, study)
+            run = runs.start(doc.solution.model, analysis, report, study, doc.path.parent)
             return {**run.status(shown), "seq": seq}
         if op == "stop":
             runs.stop()
