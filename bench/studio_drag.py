@@ -112,7 +112,7 @@ DRAG = """async ([id, n]) => {
                          x: start[0] + r * Math.sin(a), y: start[1] + r * (1 - Math.cos(a)) });
     await S.after(seq);
     times.push(performance.now() - t0);
-    phases.push(S.phases[seq]);
+    phases.push(S.phases ? S.phases[seq] : null);  // null: a page that does not record them
   }
   return [times, phases];
 }"""
@@ -160,9 +160,10 @@ class BrowserRun:
             page.close()
         finally:
             studio.close()
-        self.wait = [p[0] for p in phases]
-        self.page = [p[1] + p[2] for p in phases]
-        self.server = [p[3] for p in phases]
+        split = [p for p in phases if p is not None]
+        self.wait = [p[0] for p in split]
+        self.page = [p[1] + p[2] for p in split]
+        self.server = [p[3] for p in split]
 
 
 def server_times(path: Path, handle: str, drags: int) -> tuple[list[float], list[float]]:
@@ -219,7 +220,9 @@ def main() -> None:
             shutil.copy(path.with_suffix(".orig"), path)
             server, cpu = server_times(path, handle, args.drags)
             rows = len(Document(path).solution.t)
-            med = statistics.median
+            def med(xs: list[float]) -> float:
+                return statistics.median(xs) if xs else math.nan
+
             print(f"| {label} | {rows} | {med(run.total):.1f} | {pct(run.total, 0.95):.1f} "
                   f"| {med(run.wait):.1f} | {med(run.server):.1f} | {med(run.page):.1f} "
                   f"| {run.chromium_cpu:.1f} | {med(server):.1f} | {pct(server, 0.95):.1f} "

@@ -170,7 +170,8 @@ class Run:
                     finally:
                         if output is not None:
                             self.results = _written(output)
-                self.message = f"{self.analysis}: {len(self.results)} rows"
+                self.message = (f"{self.analysis}: "
+                                f"{0 if self.results is None else len(self.results)} rows")
             self.state = "done"
         except Stopped:
             self.state = "stopped"
