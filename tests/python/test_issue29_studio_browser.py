@@ -128,6 +128,35 @@ def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[S
     assert pg.errors == [] and pg.blocked == []
 
 
+def test_issue29_studio_fast_drag_sends_one_edit_at_a_time(
+        browser: Any, studio: tuple[Studio, Path]) -> None:
+    # Forty positions of a drag made while the first is being solved: the
+    # page sends the first, then only the latest, then the drag's end; the
+    # handle ends at the last position and the drag is one undo step.
+    s, path = studio
+    pg = Page(browser, s.url)
+    old = pg.js("camlinkStudio.front.handle('joint:A')")
+    sent = pg.page.evaluate("""([x, y]) => {
+      const F = camlinkStudio.front, before = camlinkStudio.timing.sent;
+      for (let n = 1; n <= 40; n++) {
+        F.onEdit({ op: "move", handle: "joint:A", row: 0, x: x + 1e-4 * n, y: y - 5e-5 * n, gesture: "fast" });
+      }
+      F.onEditEnd("fast");
+      return camlinkStudio.timing.sent - before;
+    }""", old)
+    assert sent == 1
+    pg.wait()
+    # The first position, the last, the end.
+    assert pg.js("camlinkStudio.timing.sent") == 3 and pg.js("camlinkStudio.timing.edits") == 40
+    now = pg.js("camlinkStudio.front.handle('joint:A')")
+    assert now == pytest.approx([old[0] + 4e-3, old[1] - 2e-3], abs=1e-9)
+    page = pg.page
+    page.click("#undo")
+    pg.wait()
+    assert s.server.doc.text() == path.read_text()
+    assert pg.errors == [] and pg.blocked == []
+
+
 def test_issue29_studio_slider_same_trace_as_python_run(browser: Any, studio: tuple[Studio, Path]) -> None:
     s, _ = studio
     pg = Page(browser, s.url)
