@@ -369,3 +369,31 @@ def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
     assert run.state == "stopped" and run.done == 3 and run.total == 9
     assert run.message == "study stopped after 3 of 9 variants"
     assert seen[0] == ("running", 0, 9) and seen[-1] == ("stopped", 3, 9)
+
+
+def test_issue29_studio_notebook_shows_the_page_and_stops(tmp_path: Path) -> None:
+    # In a Jupyter kernel: the studio object shows as an iframe of its
+    # page (the tokened URL on 127.0.0.1), which answers until stop().
+    import nbformat
+    from nbclient import NotebookClient
+
+    path = _copy(tmp_path, "four_bar.toml")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [
+        nbformat.v4.new_code_cell(
+            "import urllib.request\n"
+            "import camlink.studio\n"
+            f"studio = camlink.studio.notebook({str(path)!r}, height=640)\n"
+            "studio"),
+        nbformat.v4.new_code_cell(
+            "print(urllib.request.urlopen(studio.url, timeout=10).status)\n"
+            "studio.stop()\n"
+            "studio"),
+    ]
+    NotebookClient(nb, timeout=120, kernel_name="python3").execute()
+    shown = nb.cells[0].outputs[0]["data"]["text/html"]
+    assert shown.startswith('<iframe src="http://127.0.0.1:') and 'height="640"' in shown
+    assert "?token=" in shown
+    out = nb.cells[1].outputs
+    assert out[0]["text"] == "200\n"
+    assert out[1]["data"]["text/html"] == "<p>camlink studio for four_bar.toml: stopped</p>"

@@ -45,7 +45,7 @@ from camlink.studio.document import Document, Editable, Solution
 from camlink.studio.runs import Run, Runs, studies_of
 from camlink.viz.front import asset, frame_data
 
-__all__ = ["StudioServer", "make_app", "pack", "payload", "run"]
+__all__ = ["StudioServer", "make_app", "notebook", "pack", "payload", "run"]
 
 TOKEN_KEY = web.AppKey("token", str)
 DOC_KEY = web.AppKey("doc", Editable)
@@ -65,8 +65,14 @@ RUNS_KEY = web.AppKey("runs", Runs)
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
 _ASSETS = ("camlink.js", "studio.js", "cam.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
 _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
-           "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; "
-           "frame-ancestors 'none'")
+           "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; ")
+#: Who may show the page in a frame: nobody, or, for a studio started from
+#: a notebook (`embed`), pages of this machine (a notebook served on
+#: localhost, VS Code's notebook view).
+_FRAMES = "frame-ancestors 'none'"
+_EMBED_FRAMES = ("frame-ancestors 'self' http://127.0.0.1:* http://localhost:* "
+                 "https://127.0.0.1:* https://localhost:* vscode-webview:")
+EMBED_KEY = web.AppKey("embed", bool)
 
 
 #: The line under the stage when an edit kept the assembly branch.
@@ -161,7 +167,8 @@ async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
     if not _allowed(request):
         return web.Response(status=403, text="forbidden: wrong token or origin\n")
     response = await handler(request)
-    response.headers["Content-Security-Policy"] = _POLICY
+    frames = _EMBED_FRAMES if request.app[EMBED_KEY] else _FRAMES
+    response.headers["Content-Security-Policy"] = _POLICY + frames
     response.headers["X-Content-Type-Options"] = "nosniff"
     response.headers["Cache-Control"] = "no-store"
     response.headers["Referrer-Policy"] = "no-referrer"
@@ -387,10 +394,13 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
         return _error(msg, e)
 
 
-def make_app(doc: Editable, token: str) -> web.Application:
-    """The studio's application for `doc`, answering only with `token`."""
+def make_app(doc: Editable, token: str, embed: bool = False) -> web.Application:
+    """The studio's application for `doc`, answering only with `token`;
+    with `embed`, its page may be shown in a frame of a page of this
+    machine (a notebook's)."""
     app = web.Application(middlewares=[_guard])
     app[TOKEN_KEY] = token
+    app[EMBED_KEY] = embed
     app[DOC_KEY] = doc
     app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
     app[SOCKETS_KEY] = _Sockets()
@@ -413,17 +423,19 @@ def make_app(doc: Editable, token: str) -> web.Application:
 
 
 class StudioServer:
-    """A running studio on 127.0.0.1 (`url` carries the token)."""
+    """A running studio on 127.0.0.1 (`url` carries the token); with
+    `embed`, its page may be framed by a page of this machine (`make_app`)."""
 
-    def __init__(self, path: str | Path, port: int = 0) -> None:
+    def __init__(self, path: str | Path, port: int = 0, embed: bool = False) -> None:
         self.doc = open_document(path)
         self.token = secrets.token_urlsafe(24)
         self.port = port
+        self.embed = embed
         self.url = ""
         self._runner: web.AppRunner | None = None
 
     async def start(self) -> str:
-        self._runner = web.AppRunner(make_app(self.doc, self.token), access_log=None)
+        self._runner = web.AppRunner(make_app(self.doc, self.token, self.embed), access_log=None)
         await self._runner.setup()
         site = web.TCPSite(self._runner, "127.0.0.1", self.port)
         await site.start()
@@ -456,3 +468,12 @@ def run(path: str | Path, port: int = 0, browser: bool = True) -> None:
         asyncio.run(main())
     except KeyboardInterrupt:
         pass
+
+
+def notebook(path: str | Path, *, port: int = 0, height: int = 760) -> Any:
+    """The studio for `path` in a Jupyter notebook: served from a thread of
+    this process and shown as an iframe (`camlink.studio.embed.notebook`,
+    which returns a `NotebookStudio`; call ``.stop()`` when done)."""
+    from camlink.studio.embed import notebook as serve
+
+    return serve(path, port=port, height=height)
