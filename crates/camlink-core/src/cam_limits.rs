@@ -393,7 +393,9 @@ pub fn force(cam: &Cam, train: &Train, omega: f64) -> Result<Force, CamError> {
 /// [`BASE_GRID`] radii and the first passing one refined by bisection
 /// against its failing neighbour to 1e-6 relative; the follower's other
 /// dimensions stay as given (an oscillating arm that cannot reach a
-/// radius fails there).
+/// radius fails there). A radius at which a sampled pressure angle
+/// already exceeds the limit fails without the rest of its geometry
+/// ([`pressure_exceeds`]): the same answer, sooner.
 pub fn smallest_base_radius(
     cam: &Cam,
     max_pressure: Option<f64>,
@@ -410,6 +412,9 @@ pub fn smallest_base_radius(
         let Ok(c) = cam.with_base_radius(rb) else {
             return false;
         };
+        if max_pressure.is_some_and(|m| pressure_exceeds(&c, m)) {
+            return false;
+        }
         let g = geometry(&c);
         let phi = [g.pressure_rise, g.pressure_return]
             .iter()
@@ -439,6 +444,18 @@ pub fn smallest_base_radius(
         }
     }
     Ok(Some(b))
+}
+
+/// Whether the pressure angle of `cam` at one of [`geometry`]'s samples in
+/// a rise or a return exceeds `max` (rad) in size. Then so does the
+/// extreme [`geometry`] reports for that rise or return, which is refined
+/// from the largest such sample and never below it: the cam fails a
+/// pressure limit of `max`. Stops at the first such sample.
+fn pressure_exceeds(cam: &Cam, max: f64) -> bool {
+    let specs = cam.program.specs();
+    angles(SAMPLES).any(|t| {
+        specs[cam.program.segment_at(t)].lift != 0.0 && cam.contact(t).pressure_angle.abs() > max
+    })
 }
 
 /// Radii scanned by [`smallest_base_radius`].
@@ -690,5 +707,85 @@ mod tests {
         };
         assert!(phi(rb) <= limit);
         assert!(phi(rb * 0.999) > limit);
+    }
+
+    /// The search with the early pressure check answers as the scan and
+    /// bisection of whole geometries: a centred and an offset translating
+    /// roller and an oscillating roller, against pressure and radius limits.
+    #[test]
+    fn smallest_base_radius_is_that_of_whole_geometries() {
+        // The search of `smallest_base_radius` with every radius judged by
+        // its whole geometry.
+        let whole = |cam: &Cam, max: Option<f64>, min: Option<f64>, lo: f64, hi: f64| {
+            let ok = |rb: f64| {
+                let Ok(c) = cam.with_base_radius(rb) else {
+                    return false;
+                };
+                let g = geometry(&c);
+                let phi = [g.pressure_rise, g.pressure_return]
+                    .iter()
+                    .flatten()
+                    .map(|e| e.value.abs())
+                    .fold(0.0, f64::max);
+                max.is_none_or(|m| phi <= m)
+                    && g.undercut.is_empty()
+                    && min.is_none_or(|m| g.min_convex_radius.value >= m)
+                    && (cam.follower.roller().is_some() || g.concave.is_empty())
+            };
+            let at = |k: usize| lo + (hi - lo) * k as f64 / BASE_GRID as f64;
+            let k = (0..=BASE_GRID).find(|&k| ok(at(k)))?;
+            if k == 0 {
+                return Some(lo);
+            }
+            let (mut a, mut b) = (at(k - 1), at(k));
+            while b - a > 1e-6 * b {
+                let m = 0.5 * (a + b);
+                if ok(m) {
+                    b = m;
+                } else {
+                    a = m;
+                }
+            }
+            Some(b)
+        };
+        let followers = [
+            Follower::TranslatingRoller {
+                offset: 0.0,
+                roller: 0.005,
+            },
+            Follower::TranslatingRoller {
+                offset: 0.004,
+                roller: 0.006,
+            },
+            Follower::OscillatingRoller {
+                pivot: 0.14,
+                arm: 0.08,
+                roller: 0.012,
+            },
+        ];
+        let mut found = 0;
+        for f in followers {
+            // A swing (rad) for the arm, a lift (m) for the stems.
+            let lift = if matches!(f, Follower::OscillatingRoller { .. }) {
+                deg(30.0)
+            } else {
+                0.01
+            };
+            let cam = Cam::new(program(lift, 70.0), f, 0.08, true).unwrap();
+            for (max, min) in [
+                (Some(deg(30.0)), None),
+                (Some(deg(35.0)), Some(0.01)),
+                (None, Some(0.02)),
+            ] {
+                let got = smallest_base_radius(&cam, max, min, 0.02, 0.2).unwrap();
+                assert_eq!(
+                    got,
+                    whole(&cam, max, min, 0.02, 0.2),
+                    "{f:?} {max:?} {min:?}"
+                );
+                found += usize::from(got.is_some());
+            }
+        }
+        assert!(found >= 6, "{found}");
     }
 }
