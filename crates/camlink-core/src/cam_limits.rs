@@ -415,24 +415,37 @@ pub fn smallest_base_radius(
         if max_pressure.is_some_and(|m| pressure_exceeds(&c, m)) {
             return false;
         }
-        let g = geometry(&c);
-        let phi = [g.pressure_rise, g.pressure_return]
-            .iter()
-            .flatten()
-            .map(|e| e.value.abs())
-            .fold(0.0, f64::max);
-        let pressure_ok = max_pressure.is_none_or(|m| phi <= m);
-        let radius_ok = g.undercut.is_empty()
-            && min_radius.is_none_or(|m| g.min_convex_radius.value >= m)
-            && (cam.follower.roller().is_some() || g.concave.is_empty());
-        pressure_ok && radius_ok
+        meets(&c, &geometry(&c), max_pressure, min_radius)
     };
+    Ok(smallest_passing(ok, lo, hi))
+}
+
+/// Whether the cam `c` of geometry `g` keeps every pressure angle within
+/// `max_pressure` (rad) and its least convex radius of curvature at least
+/// `min_radius` (m), with no undercut (and, under a flat face, no concave
+/// part).
+fn meets(c: &Cam, g: &Geometry, max_pressure: Option<f64>, min_radius: Option<f64>) -> bool {
+    let phi = [g.pressure_rise, g.pressure_return]
+        .iter()
+        .flatten()
+        .map(|e| e.value.abs())
+        .fold(0.0, f64::max);
+    let pressure_ok = max_pressure.is_none_or(|m| phi <= m);
+    let radius_ok = g.undercut.is_empty()
+        && min_radius.is_none_or(|m| g.min_convex_radius.value >= m)
+        && (c.follower.roller().is_some() || g.concave.is_empty());
+    pressure_ok && radius_ok
+}
+
+/// The smallest radius in [`lo`, `hi`] (m) that passes `ok`, as
+/// [`smallest_base_radius`] searches: the first of [`BASE_GRID`] + 1
+/// radii that passes, refined by bisection against its failing
+/// neighbour to 1e-6 relative.
+fn smallest_passing(ok: impl Fn(f64) -> bool, lo: f64, hi: f64) -> Option<f64> {
     let at = |k: usize| lo + (hi - lo) * k as f64 / BASE_GRID as f64;
-    let Some(k) = (0..=BASE_GRID).find(|&k| ok(at(k))) else {
-        return Ok(None);
-    };
+    let k = (0..=BASE_GRID).find(|&k| ok(at(k)))?;
     if k == 0 {
-        return Ok(Some(lo));
+        return Some(lo);
     }
     let (mut a, mut b) = (at(k - 1), at(k));
     while b - a > 1e-6 * b {
@@ -443,7 +456,7 @@ pub fn smallest_base_radius(
             a = m;
         }
     }
-    Ok(Some(b))
+    Some(b)
 }
 
 /// Whether the pressure angle of `cam` at one of [`geometry`]'s samples in
@@ -718,35 +731,10 @@ mod tests {
         // its whole geometry.
         let whole = |cam: &Cam, max: Option<f64>, min: Option<f64>, lo: f64, hi: f64| {
             let ok = |rb: f64| {
-                let Ok(c) = cam.with_base_radius(rb) else {
-                    return false;
-                };
-                let g = geometry(&c);
-                let phi = [g.pressure_rise, g.pressure_return]
-                    .iter()
-                    .flatten()
-                    .map(|e| e.value.abs())
-                    .fold(0.0, f64::max);
-                max.is_none_or(|m| phi <= m)
-                    && g.undercut.is_empty()
-                    && min.is_none_or(|m| g.min_convex_radius.value >= m)
-                    && (cam.follower.roller().is_some() || g.concave.is_empty())
+                cam.with_base_radius(rb)
+                    .is_ok_and(|c| meets(&c, &geometry(&c), max, min))
             };
-            let at = |k: usize| lo + (hi - lo) * k as f64 / BASE_GRID as f64;
-            let k = (0..=BASE_GRID).find(|&k| ok(at(k)))?;
-            if k == 0 {
-                return Some(lo);
-            }
-            let (mut a, mut b) = (at(k - 1), at(k));
-            while b - a > 1e-6 * b {
-                let m = 0.5 * (a + b);
-                if ok(m) {
-                    b = m;
-                } else {
-                    a = m;
-                }
-            }
-            Some(b)
+            smallest_passing(ok, lo, hi)
         };
         let followers = [
             Follower::TranslatingRoller {
