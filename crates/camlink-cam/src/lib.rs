@@ -21,7 +21,7 @@
 
 pub mod design;
 pub mod limits;
-mod load;
+pub mod load;
 mod table;
 
 pub use design::{

@@ -75,7 +75,7 @@ pub fn is_design(doc: &Map) -> bool {
 }
 
 /// The JSON object `text` as a TOML table.
-pub(crate) fn json_table(text: &str) -> Result<Map, String> {
+pub fn json_table(text: &str) -> Result<Map, String> {
     let v: serde_json::Value =
         serde_json::from_str(text).map_err(|e| format!("syntax error: {e}"))?;
     match Value::try_from(v) {
@@ -474,8 +474,9 @@ fn read_export(top: &mut Table, stem: &str, file_name: &str, dynamics: bool) -> 
     })
 }
 
-/// Why `name` is not a plain file name; `None` when it is.
-fn not_plain(name: &str) -> Option<&'static str> {
+/// Why `name` is not a plain file name (an export's or a file named
+/// beside the design); `None` when it is.
+pub fn not_plain(name: &str) -> Option<&'static str> {
     let b = name.as_bytes();
     if name.contains(['/', '\\']) {
         Some("holds a path separator")
