@@ -410,7 +410,10 @@ fn read_export(top: &mut Table, stem: &str, file_name: &str, dynamics: bool) -> 
     };
     let csv = out(&mut ex, "csv", format!("{stem}.csv"))?;
     let dxf = out(&mut ex, "dxf", format!("{stem}.dxf"))?;
-    let dxf_mode = match ex.text("dxf_mode", Some("polyline"), &["polyline", "arcs"])?.as_str() {
+    let dxf_mode = match ex
+        .text("dxf_mode", Some("polyline"), &["polyline", "arcs"])?
+        .as_str()
+    {
         "arcs" => DxfMode::Arcs,
         _ => DxfMode::Polyline,
     };
@@ -439,7 +442,11 @@ fn read_export(top: &mut Table, stem: &str, file_name: &str, dynamics: bool) -> 
         }
     }
     if kw.is_none() != kd.is_none() {
-        let key = if kw.is_none() { "keyway_width" } else { "keyway_depth" };
+        let key = if kw.is_none() {
+            "keyway_width"
+        } else {
+            "keyway_depth"
+        };
         return ex.fail(key, "a keyway needs both width and depth");
     }
     if let (Some(b), Some(w)) = (bore, kw) {
@@ -564,11 +571,17 @@ fn read_sizing(
         let types: Vec<&str> = LIFE_EXPONENTS.iter().map(|(k, _)| *k).collect();
         let bearing = t.text("bearing_type", Some("ball"), &types)?;
         if rating.is_some() && flat {
-            return t.fail("bearing_rating", "a flat-faced follower has no roller bearing");
+            return t.fail(
+                "bearing_rating",
+                "a flat-faced follower has no roller bearing",
+            );
         }
         let crown = t.optional("crown_radius", Num::POSITIVE_LENGTH)?;
         if crown.is_some() && flat {
-            return t.fail("crown_radius", "a flat-faced follower has no roller to crown");
+            return t.fail(
+                "crown_radius",
+                "a flat-faced follower has no roller to crown",
+            );
         }
         t.finish()?;
         design.contact = Some(ContactSpec {
@@ -671,7 +684,8 @@ fn read_sizing(
             Some(7200.0),
             Num::POSITIVE.most(MAX_STEPS as f64, ""),
         )? as usize;
-        let turns = t.number("turns", Some(3.0), Num::POSITIVE.most(MAX_TURNS as f64, ""))? as usize;
+        let turns =
+            t.number("turns", Some(3.0), Num::POSITIVE.most(MAX_TURNS as f64, ""))? as usize;
         let polydyne = t.flag("polydyne", false)?;
         if polydyne && masses.len() != 1 {
             return t.fail(
@@ -696,7 +710,11 @@ fn read_sizing(
 /// or, without `positive`, zero or positive.
 fn numbers(t: &mut Table, key: &str, default: Option<Vec<f64>>, positive: bool) -> R<Vec<f64>> {
     t.mark(key);
-    let what = if positive { "positive" } else { "zero or positive" };
+    let what = if positive {
+        "positive"
+    } else {
+        "zero or positive"
+    };
     let list = match (t.get(key), default) {
         (None, Some(d)) => return Ok(d),
         (None, None) => return t.fail(key, format!("is required: a list of {what} numbers")),
@@ -704,7 +722,9 @@ fn numbers(t: &mut Table, key: &str, default: Option<Vec<f64>>, positive: bool) 
     };
     let ok = |x: f64| x.is_finite() && if positive { x > 0.0 } else { x >= 0.0 };
     let read: Option<Vec<f64>> = match list {
-        Value::Array(a) if !a.is_empty() => a.iter().map(|x| number(x).filter(|&x| ok(x))).collect(),
+        Value::Array(a) if !a.is_empty() => {
+            a.iter().map(|x| number(x).filter(|&x| ok(x))).collect()
+        }
         _ => None,
     };
     match read {
@@ -743,7 +763,10 @@ fn check_profile(cam: &Cam, export: &Export) -> R<()> {
     let points: Vec<[f64; 2]> = (0..PROFILE_SAMPLES)
         .map(|k| cam.offset_point(k as f64 * step, 0.0))
         .collect();
-    if let Some(k) = points.iter().position(|p| !(p[0].is_finite() && p[1].is_finite())) {
+    if let Some(k) = points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
         return Err(Fail {
             field: None,
             message: format!(

@@ -142,9 +142,7 @@ impl<'a> Table<'a> {
             },
             Some(Value::Integer(i)) => *i as f64,
             Some(Value::Float(f)) if f.is_finite() => *f,
-            Some(other) => {
-                return self.fail(key, format!("must be a number, got {}", repr(other)))
-            }
+            Some(other) => return self.fail(key, format!("must be a number, got {}", repr(other))),
         };
         if bounds.positive && v <= 0.0 {
             return self.fail(key, format!("must be positive, got {}", num(v)));
@@ -153,7 +151,11 @@ impl<'a> Table<'a> {
             if v.abs() > most {
                 return self.fail(
                     key,
-                    format!("must be at most {}{unit} in size, got {}", num(most), num(v)),
+                    format!(
+                        "must be at most {}{unit} in size, got {}",
+                        num(most),
+                        num(v)
+                    ),
                 );
             }
         }
