@@ -3,10 +3,7 @@
 /// ` (did you mean 'x'?)` when a candidate is close to `name`, else empty:
 /// within an edit distance of a third of `name`'s length (at least 1, one
 /// more for names longer than five characters).
-pub fn did_you_mean<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> String {
+pub fn did_you_mean<'a>(name: &str, candidates: impl IntoIterator<Item = &'a str>) -> String {
     let best = candidates
         .into_iter()
         .map(|c| (edit_distance(name, c), c))
@@ -54,5 +51,4 @@ mod tests {
         );
         assert_eq!(did_you_mean("zzz", ["crank", "rocker"]), "");
     }
-
 }

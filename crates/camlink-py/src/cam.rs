@@ -1,12 +1,12 @@
 //! Binding of the cam design core: a synthesised cam, its motion, profile,
-//! limits and round trip. Converts only; the Python module
-//! `camlink.cam_design` reads design files and builds the report.
+//! limits and round trip. Converts only; design files are read by
+//! camlink-cam (`cam_design.rs`), and the Python module
+//! `camlink.cam.design` builds the report.
 
 use std::sync::Arc;
 
 use camlink_core::cam::hertz;
 use camlink_core::cam::motion::EndConditions;
-use camlink_core::cam::spring::Helical;
 use camlink_core::cam::vibration::{self, Chain};
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
 use camlink_core::cam_contact::{self, BearingSpec, ContactSpec};
@@ -398,9 +398,6 @@ impl CamCore {
     }
 }
 
-/// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
-/// The question camlink asks of a base circle radius `r` (m) metres long
-/// (`camlink_core::cam::base_radius_question`), or None.
 /// The follower kinds of cam design files and the dimensions each takes,
 /// as `{kind: [field, …]}` ([`Follower::KINDS`]).
 #[pyfunction]
@@ -417,11 +414,7 @@ pub fn cam_laws() -> Vec<&'static str> {
     LawKind::ALL.iter().map(|l| l.name()).collect()
 }
 
-#[pyfunction]
-pub fn cam_base_radius_question(r: f64) -> Option<String> {
-    camlink_core::cam::base_radius_question(r)
-}
-
+/// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
 #[pyfunction]
 pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
     hertz::MATERIALS
@@ -430,64 +423,10 @@ pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
         .collect()
 }
 
-/// Contact modulus E* (Pa) of two materials given as (E Pa, ν).
-#[pyfunction]
-pub fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
-    let m = |(young, poisson): (f64, f64)| hertz::Material {
-        young,
-        poisson,
-        shear: f64::NAN,
-        density: f64::NAN,
-    };
-    hertz::contact_modulus(&m(a), &m(b))
-}
-
 /// Hertz line contact of cylinders of radii r1, r2 (m; negative concave,
 /// inf flat) under force (N) over length (m), modulus E* (Pa):
 /// (half-width m, p_max Pa), or None without contact.
 #[pyfunction]
 pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, modulus: f64) -> Option<(f64, f64)> {
     hertz::line_contact(r1, r2, force, length, modulus).map(|c| (c.half_width, c.max_pressure))
-}
-
-/// A helical compression spring (d, D, N_a, N_t, L₀ in m or coils; G Pa;
-/// density kg/m³) installed at `installed` (m) and lifted by `max_lift`
-/// (m): a dict of rate, preload, solid, shortest, clash_margin, mass,
-/// surge (Hz), index. A `ValueError` names the field (`field: message`).
-#[pyfunction]
-#[allow(clippy::too_many_arguments)]
-pub fn helical_spring<'py>(
-    py: Python<'py>,
-    wire: f64,
-    mean_diameter: f64,
-    active_coils: f64,
-    total_coils: f64,
-    free_length: f64,
-    shear_modulus: f64,
-    density: f64,
-    installed: f64,
-    max_lift: f64,
-) -> PyResult<Bound<'py, PyDict>> {
-    let s = Helical {
-        wire,
-        mean_diameter,
-        active_coils,
-        total_coils,
-        free_length,
-        shear_modulus,
-        density,
-    };
-    let i = s
-        .install(installed, max_lift)
-        .map_err(|e| value_error(format!("{}: {}", e.field, e.message)))?;
-    let d = PyDict::new(py);
-    d.set_item("rate", i.rate)?;
-    d.set_item("preload", i.preload)?;
-    d.set_item("solid", i.solid)?;
-    d.set_item("shortest", i.shortest)?;
-    d.set_item("clash_margin", i.clash_margin)?;
-    d.set_item("mass", i.mass)?;
-    d.set_item("surge", i.surge)?;
-    d.set_item("index", i.index)?;
-    Ok(d)
 }

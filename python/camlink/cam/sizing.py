@@ -3,18 +3,18 @@ camshaft torque, the helical return spring and the follower train's
 vibration, read from the ``[contact]``, ``[spring]`` and ``[vibration]``
 tables of a cam design file and checked as limits of the cam report.
 
-The formulas are in the Rust core (``camlink._core``: ``CamCore.stress``,
-``CamCore.vibration``, ``helical_spring``, ``line_contact``,
-``cam_materials``) and the tables are read and checked by the design
-file's loader (``camlink_cam``); this module holds what it read and
-presents the checks. See
+The formulas are in the Rust core (``CamCore.stress``,
+``CamCore.vibration``, the materials table ``cam_materials``); the tables
+are read and checked, the spring installed and the contact modulus
+computed by the design file's loader (the ``camlink-cam`` crate). This
+module holds what it read and presents the checks. See
 docs/cam-design.md, *Contact stress*, *Springs* and *Follower vibration*.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np

@@ -318,7 +318,10 @@ impl Ctx {
                 };
                 let mut dims = Vec::with_capacity(keys.len());
                 for key in keys.iter() {
-                    let v = given.iter().find(|(k, _)| k == key).and_then(|(_, v)| v.as_ref());
+                    let v = given
+                        .iter()
+                        .find(|(k, _)| k == key)
+                        .and_then(|(_, v)| v.as_ref());
                     dims.push(if Follower::zero_default(key) {
                         self.opt(v, 0.0, &format!("{p}.{key}"))?
                     } else {
@@ -327,9 +330,7 @@ impl Ctx {
                 }
                 let f = Follower::from_dims(follower, &dims)
                     .or_else(|e| fail(format!("{p}.follower"), e))?;
-                if let Some((key, _)) = given
-                    .iter()
-                    .find(|(k, v)| v.is_some() && !keys.contains(k))
+                if let Some((key, _)) = given.iter().find(|(k, v)| v.is_some() && !keys.contains(k))
                 {
                     return fail(
                         format!("{p}.{key}"),
