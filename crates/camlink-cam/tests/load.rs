@@ -538,3 +538,30 @@ fn a_syntax_error_names_its_line() {
     assert_eq!(e.line, Some(1), "{e}");
     assert!(e.message.starts_with("syntax error"), "{e}");
 }
+
+/// Each `<!-- cam-output: FILE -->` marker of docs/errors.md is followed by
+/// a text block holding the message FILE (named by its file name) gives.
+#[test]
+fn docs_errors_page_matches_real_output() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let page = std::fs::read_to_string(root.join("docs/errors.md")).unwrap();
+    let lines: Vec<&str> = page.lines().collect();
+    let mut checked = 0;
+    for (k, line) in lines.iter().enumerate() {
+        let Some(file) = line.trim().strip_prefix("<!-- cam-output:") else {
+            continue;
+        };
+        let file = file.trim_end_matches("-->").trim();
+        let path = root.join(file);
+        let text = std::fs::read_to_string(&path).unwrap();
+        let name = path.file_name().unwrap().to_string_lossy();
+        let got = load_toml(&text, &name).unwrap_err().to_string();
+        assert!(
+            lines[k + 1].starts_with("```text"),
+            "no text block after {line}"
+        );
+        assert_eq!(lines[k + 2], got, "docs/errors.md, {file}");
+        checked += 1;
+    }
+    assert!(checked >= 1);
+}
