@@ -5,8 +5,12 @@ A design file (TOML) holds ``[cam]``, ``[follower]``, ``[[segments]]`` and
 optionally ``[limits]``, ``[dynamics]`` and ``[export]``; see
 docs/cam-design.md. Angles in the file are in degrees (keys end in
 ``_deg``) and cam speeds in rev/min (``_rpm``); lengths are in metres.
-Inside, everything is SI and radians; the mechanics run in the Rust core
-(``camlink._core.CamCore``).
+Inside, everything is SI and radians. The file is read and checked in
+Rust (the ``camlink-cam`` crate, through ``camlink._core.cam_design_read``):
+its rules, defaults and bounds are there, and its messages name the file,
+line and field; the mechanics run in the Rust core
+(``camlink._core.CamCore``). This module turns the checked design into
+dataclasses and presents the report.
 """
 
 from __future__ import annotations
