@@ -39,6 +39,7 @@ __all__ = [
     "check_output",
     "check_setting",
     "check_times",
+    "contact_modulus",
     "convert_adm",
     "convert_model",
     "csv_rows",
@@ -46,6 +47,7 @@ __all__ = [
     "did_you_mean",
     "fourbar_class",
     "fourbar_transmission",
+    "helical_spring",
     "integration_step",
     "json_schema",
     "length_units",
@@ -335,6 +337,18 @@ class CamCore:
     def round_trip(self, omega: float, steps: int) -> tuple[float, float, float]: ...
 
 def cam_materials() -> list[tuple[str, float, float, float, float]]: ...
+def contact_modulus(a: tuple[float, float], b: tuple[float, float]) -> float: ...
 def line_contact(
     r1: float, r2: float, force: float, length: float, modulus: float
 ) -> tuple[float, float] | None: ...
+def helical_spring(
+    wire: float,
+    mean_diameter: float,
+    active_coils: float,
+    total_coils: float,
+    free_length: float,
+    shear_modulus: float,
+    density: float,
+    installed: float,
+    max_lift: float,
+) -> dict[str, float]: ...

@@ -7,6 +7,7 @@ use std::sync::Arc;
 
 use camlink_core::cam::hertz;
 use camlink_core::cam::motion::EndConditions;
+use camlink_core::cam::spring::Helical;
 use camlink_core::cam::vibration::{self, Chain};
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
 use camlink_core::cam_contact::{self, BearingSpec, ContactSpec};
@@ -423,10 +424,64 @@ pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
         .collect()
 }
 
+/// Contact modulus E* (Pa) of two materials given as (E Pa, ν).
+#[pyfunction]
+pub fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
+    let m = |(young, poisson): (f64, f64)| hertz::Material {
+        young,
+        poisson,
+        shear: f64::NAN,
+        density: f64::NAN,
+    };
+    hertz::contact_modulus(&m(a), &m(b))
+}
+
 /// Hertz line contact of cylinders of radii r1, r2 (m; negative concave,
 /// inf flat) under force (N) over length (m), modulus E* (Pa):
 /// (half-width m, p_max Pa), or None without contact.
 #[pyfunction]
 pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, modulus: f64) -> Option<(f64, f64)> {
     hertz::line_contact(r1, r2, force, length, modulus).map(|c| (c.half_width, c.max_pressure))
+}
+
+/// A helical compression spring (d, D, N_a, N_t, L₀ in m or coils; G Pa;
+/// density kg/m³) installed at `installed` (m) and lifted by `max_lift`
+/// (m): a dict of rate, preload, solid, shortest, clash_margin, mass,
+/// surge (Hz), index. A `ValueError` names the field (`field: message`).
+#[pyfunction]
+#[allow(clippy::too_many_arguments)]
+pub fn helical_spring<'py>(
+    py: Python<'py>,
+    wire: f64,
+    mean_diameter: f64,
+    active_coils: f64,
+    total_coils: f64,
+    free_length: f64,
+    shear_modulus: f64,
+    density: f64,
+    installed: f64,
+    max_lift: f64,
+) -> PyResult<Bound<'py, PyDict>> {
+    let s = Helical {
+        wire,
+        mean_diameter,
+        active_coils,
+        total_coils,
+        free_length,
+        shear_modulus,
+        density,
+    };
+    let i = s
+        .install(installed, max_lift)
+        .map_err(|e| value_error(format!("{}: {}", e.field, e.message)))?;
+    let d = PyDict::new(py);
+    d.set_item("rate", i.rate)?;
+    d.set_item("preload", i.preload)?;
+    d.set_item("solid", i.solid)?;
+    d.set_item("shortest", i.shortest)?;
+    d.set_item("clash_margin", i.clash_margin)?;
+    d.set_item("mass", i.mass)?;
+    d.set_item("surge", i.surge)?;
+    d.set_item("index", i.index)?;
+    Ok(d)
 }

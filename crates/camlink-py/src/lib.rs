@@ -1275,7 +1275,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_followers, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_laws, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
+    m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
     m.add_function(wrap_pyfunction!(cam_design::cam_design_load, m)?)?;
     m.add_function(wrap_pyfunction!(cam_design::cam_design_read, m)?)?;
     m.add_function(wrap_pyfunction!(cam_design::cam_design_limits, m)?)?;
