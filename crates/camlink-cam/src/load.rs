@@ -296,9 +296,7 @@ fn read_limits(top: &mut Table) -> R<Limits> {
         None => None,
         Some(v) => {
             let pair = match v {
-                Value::Array(a) if a.len() == 2 => match (&a[0], &a[1]) {
-                    (lo, hi) => number(lo).zip(number(hi)),
-                },
+                Value::Array(a) if a.len() == 2 => number(&a[0]).zip(number(&a[1])),
                 _ => None,
             };
             match pair {
