@@ -28,7 +28,7 @@ use camlink_core::dynamics::statics::Settings as StaticsSettings;
 
 pub use analysis::{needs_adaptive, not_applicable, DynamicsArgs, SettingError, ERROR_CONTROL};
 pub use data_file::LoadOptions;
-pub use error::LoadError;
+pub use error::{line_col, LoadError};
 pub use file::AnalysisType;
 pub use resolve::joints::{JointKindEntry, JOINT_KINDS};
 pub use variant::Recipe;
@@ -273,7 +273,7 @@ pub fn load_path_with(path: &Path, options: &LoadOptions) -> Result<Loaded, Load
 
 /// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
 /// name the file.
-pub(crate) fn read_text(path: &Path) -> Result<String, LoadError> {
+pub fn read_text(path: &Path) -> Result<String, LoadError> {
     let source = path.display().to_string();
     let meta = std::fs::metadata(path)
         .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
