@@ -1,7 +1,7 @@
 """The studio's edit loop in Chromium: scripted drags, timed from the edit
 sent to the page redrawn with the re-solved cycle (issue 29).
 
-For each model, a studio server is started on a copy of the file, the page
+For each model, `camlink studio` is started on a copy of the file, the page
 is opened in Debian's chromium (Playwright, headless, every request off
 127.0.0.1 blocked), and a handle is dragged through 200 positions, one
 edit at a time: each time is from the websocket send to the end of the
@@ -16,26 +16,35 @@ Models: examples/four_bar.toml (401 times), a six-bar
 (examples/cam_seed_example_3_4_3.toml, 401 times), and a chain of 100
 bodies and 100 pins (200 joints with its drivers; 361 times).
 
-    uv run python bench/studio_drag.py [--drags 200]
+Each browser time is split as the page records it (`camlinkStudio.phases`):
+*wait*, from the send to the reply's arrival, of which *server* is the
+server's share (from the request's arrival to its reply made: edit, solve,
+reply data); *page*, the page's own work (parsing the reply and drawing
+it). *Chromium CPU* is the CPU time of every Chromium process over the
+drags, per edit (the renderer's layout, paint and raster, the compositor,
+the network service, DevTools' reports to Playwright), from /proc.
+
+    uv run python bench/studio_drag.py [--drags 200] [--models four-bar,cam]
 """
 
 from __future__ import annotations
 
 import argparse
-import asyncio
 import math
+import os
 import shutil
+import signal
 import statistics
+import subprocess
 import sys
 import tempfile
-import threading
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "python"))
 
-from camlink.studio import StudioServer, payload  # noqa: E402
+from camlink.studio import payload  # noqa: E402
 from camlink.studio.document import Document  # noqa: E402
 
 MODELS = [
@@ -69,22 +78,33 @@ def pct(values: list[float], q: float) -> float:
 
 
 class Studio:
+    """`camlink studio FILE --no-browser` in a process of its own, as a user
+    runs it (not in this process, where Playwright's client would share
+    its interpreter)."""
+
     def __init__(self, path: Path) -> None:
-        self.server = StudioServer(path)
-        self.loop = asyncio.new_event_loop()
-        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
-        self.thread.start()
-        self.url = asyncio.run_coroutine_threadsafe(self.server.start(), self.loop).result(60)
+        env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+        self.proc = subprocess.Popen([sys.executable, "-m", "camlink", "studio", str(path),
+                                      "--no-browser"], stdout=subprocess.PIPE, text=True, env=env)
+        assert self.proc.stdout is not None
+        line = self.proc.stdout.readline()
+        if not line.startswith("camlink studio: "):
+            self.proc.kill()
+            raise RuntimeError(f"camlink studio did not start: {line!r}")
+        self.url = line.split(": ", 1)[1].strip()
 
     def close(self) -> None:
-        asyncio.run_coroutine_threadsafe(self.server.stop(), self.loop).result(60)
-        self.loop.call_soon_threadsafe(self.loop.stop)
-        self.thread.join(10)
+        self.proc.send_signal(signal.SIGINT)
+        try:
+            self.proc.wait(30)
+        except subprocess.TimeoutExpired:
+            self.proc.kill()
+            self.proc.wait()
 
 
 DRAG = """async ([id, n]) => {
   const S = camlinkStudio, F = S.front;
-  const start = F.handle(id), times = [], scale = F.scale();
+  const start = F.handle(id), times = [], phases = [], scale = F.scale();
   for (let i = 0; i < n; i++) {
     const a = 2 * Math.PI * i / n, r = 12 / scale;
     const t0 = performance.now();
@@ -92,25 +112,58 @@ DRAG = """async ([id, n]) => {
                          x: start[0] + r * Math.sin(a), y: start[1] + r * (1 - Math.cos(a)) });
     await S.after(seq);
     times.push(performance.now() - t0);
+    phases.push(S.phases ? S.phases[seq] : null);  // null: a page that does not record them
   }
-  return times;
+  return [times, phases];
 }"""
 
 
-def browser_times(browser: object, path: Path, handle: str, drags: int) -> list[float]:
-    studio = Studio(path)
-    try:
-        page = browser.new_page(viewport={"width": 1300, "height": 900})  # type: ignore[attr-defined]
-        page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("http://127.0.0.1:")
-                   else r.abort())
-        page.goto(studio.url)
-        page.wait_for_function("() => window.camlinkStudio && camlinkStudio.answered >= 1")
-        page.evaluate(DRAG, [handle, 10])  # warm up
-        times: list[float] = page.evaluate(DRAG, [handle, drags])
-        page.close()
-        return times
-    finally:
-        studio.close()
+def chromium_cpu() -> float:
+    """CPU time (ms, user + system) of the Chromium processes this process
+    started (through Playwright's driver), from /proc; 0 without /proc."""
+    procs: dict[int, tuple[int, str, int]] = {}
+    for entry in Path("/proc").glob("[0-9]*"):
+        try:
+            stat = (entry / "stat").read_text()
+        except OSError:
+            continue
+        name, rest = stat[stat.index("(") + 1: stat.rindex(")")], stat[stat.rindex(")") + 2:].split()
+        procs[int(entry.name)] = (int(rest[1]), name, int(rest[11]) + int(rest[12]))
+    mine = {os.getpid()}
+    grew = True
+    while grew:
+        grew = False
+        for pid, (parent, _, _) in procs.items():
+            if parent in mine and pid not in mine:
+                mine.add(pid)
+                grew = True
+    ticks = sum(procs[p][2] for p in mine if "chrom" in procs[p][1].lower())
+    return 1e3 * ticks / os.sysconf("SC_CLK_TCK")
+
+
+class BrowserRun:
+    """The times (ms) of one model's drags in the page: each edit's total,
+    wait, server share and page work; the Chromium CPU per edit."""
+
+    def __init__(self, browser: object, path: Path, handle: str, drags: int) -> None:
+        studio = Studio(path)
+        try:
+            page = browser.new_page(viewport={"width": 1300, "height": 900})  # type: ignore[attr-defined]
+            page.route("**/*", lambda r: r.continue_()
+                       if r.request.url.startswith("http://127.0.0.1:") else r.abort())
+            page.goto(studio.url)
+            page.wait_for_function("() => window.camlinkStudio && camlinkStudio.answered >= 1")
+            page.evaluate(DRAG, [handle, 10])  # warm up
+            c0 = chromium_cpu()
+            self.total, phases = page.evaluate(DRAG, [handle, drags])
+            self.chromium_cpu = (chromium_cpu() - c0) / drags
+            page.close()
+        finally:
+            studio.close()
+        split = [p for p in phases if p is not None]
+        self.wait = [p[0] for p in split]
+        self.page = [p[1] + p[2] for p in split]
+        self.server = [p[3] for p in split]
 
 
 def server_times(path: Path, handle: str, drags: int) -> tuple[list[float], list[float]]:
@@ -135,32 +188,47 @@ def server_times(path: Path, handle: str, drags: int) -> tuple[list[float], list
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drags", type=int, default=200)
+    ap.add_argument("--models", default="four-bar,six-bar,cam,chain",
+                    help="comma-separated: four-bar, six-bar, cam, chain")
     args = ap.parse_args()
     from playwright.sync_api import sync_playwright
 
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    wanted = set(args.models.split(","))
+    head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                          capture_output=True, text=True).stdout.strip() or "?"
+    print(f"{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, commit {head}, "
+          f"load average {os.getloadavg()[0]:.1f} at the start, {args.drags} drags")
     with tempfile.TemporaryDirectory() as tmp, sync_playwright() as p:
         folder = Path(tmp)
         cases = []
-        for label, name, handle in MODELS:
-            shutil.copy(ROOT / "examples" / name, folder / name)
-            cases.append((label, folder / name, handle))
-        (folder / "chain.toml").write_text(chain_toml(100))
-        cases.append(("chain of 100 pins", folder / "chain.toml", "joint:j50"))
+        for key, (label, name, handle) in zip(("four-bar", "six-bar", "cam"), MODELS, strict=True):
+            if key in wanted:
+                shutil.copy(ROOT / "examples" / name, folder / name)
+                cases.append((label, folder / name, handle))
+        if "chain" in wanted:
+            (folder / "chain.toml").write_text(chain_toml(100))
+            cases.append(("chain of 100 pins", folder / "chain.toml", "joint:j50"))
         browser = p.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
-        print(f"{'model':<22} {'rows':>5} {'page median':>12} {'page p95':>9} "
-              f"{'server median':>14} {'server p95':>11} {'CPU median':>11} {'CPU p95':>8}"
-              f"   (ms, {args.drags} drags)")
+        print("| model | times | page median (ms) | page p95 (ms) | wait median | server median "
+              "| page work median | Chromium CPU per edit | in-process median | p95 "
+              "| in-process CPU median | p95 |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
         for label, path, handle in cases:
             shutil.copy(path, path.with_suffix(".orig"))
-            page = browser_times(browser, path, handle, args.drags)
+            run = BrowserRun(browser, path, handle, args.drags)
             shutil.copy(path.with_suffix(".orig"), path)
             server, cpu = server_times(path, handle, args.drags)
             rows = len(Document(path).solution.t)
-            print(f"{label:<22} {rows:>5} {statistics.median(page):>12.1f} {pct(page, 0.95):>9.1f} "
-                  f"{statistics.median(server):>14.1f} {pct(server, 0.95):>11.1f} "
-                  f"{statistics.median(cpu):>11.1f} {pct(cpu, 0.95):>8.1f}", flush=True)
+            def med(xs: list[float]) -> float:
+                return statistics.median(xs) if xs else math.nan
+
+            print(f"| {label} | {rows} | {med(run.total):.1f} | {pct(run.total, 0.95):.1f} "
+                  f"| {med(run.wait):.1f} | {med(run.server):.1f} | {med(run.page):.1f} "
+                  f"| {run.chromium_cpu:.1f} | {med(server):.1f} | {pct(server, 0.95):.1f} "
+                  f"| {med(cpu):.1f} | {pct(cpu, 0.95):.1f} |", flush=True)
         browser.close()
+    print(f"load average {os.getloadavg()[0]:.1f} at the end")
 
 
 if __name__ == "__main__":

@@ -29,8 +29,11 @@ __all__ = [
     "ModelError",
     "__version__",
     "analysis_settings",
-    "cam_base_radius_question",
+    "cam_design_limits",
+    "cam_design_load",
+    "cam_design_read",
     "cam_followers",
+    "cam_is_design",
     "cam_laws",
     "cam_materials",
     "check_output",
@@ -41,6 +44,7 @@ __all__ = [
     "convert_model",
     "csv_rows",
     "default_step",
+    "did_you_mean",
     "fourbar_class",
     "fourbar_transmission",
     "helical_spring",
@@ -53,6 +57,7 @@ __all__ = [
     "not_applicable",
     "output_kinds",
     "parse_units",
+    "plain_file_name_problem",
     "quantity_unit",
     "run_batch",
     "synth_file",
@@ -199,9 +204,16 @@ def model_error_of(
     text: str, format: str, base_dir: str | PathLike[str] | None = None
 ) -> dict[str, Any] | None: ...
 def time_grid(t_end: float, step: float) -> npt.NDArray[np.float64]: ...
-def cam_base_radius_question(r: float) -> str | None: ...
 def cam_followers() -> list[tuple[str, list[str]]]: ...
 def cam_laws() -> list[str]: ...
+def cam_design_load(
+    text: str, source: str, json: bool = False
+) -> tuple[dict[str, Any], list[str]]: ...
+def cam_design_read(path: str | PathLike[str]) -> tuple[dict[str, Any], list[str]]: ...
+def cam_design_limits() -> dict[str, Any]: ...
+def cam_is_design(json: str) -> bool: ...
+def did_you_mean(name: str, candidates: Sequence[str]) -> str: ...
+def plain_file_name_problem(name: str) -> str | None: ...
 def quantity_unit(quantity: str, units: str = "m,rad") -> tuple[str, float]: ...
 def parse_units(units: str) -> tuple[str, str]: ...
 def length_units() -> list[tuple[str, float]]: ...

@@ -316,6 +316,39 @@ def test_issue29_studio_runs_over_the_socket(tmp_path: Path) -> None:
     asyncio.run(_run_checks(_copy(tmp_path, "four_bar.toml")))
 
 
+def test_issue29_studio_stopped_run_keeps_its_rows(tmp_path: Path) -> None:
+    # A long dynamics run stopped from the page keeps the rows computed up
+    # to the stop, the time it stopped at in its message: the rows of a
+    # run of the same model to that time; nothing is left in the folder.
+    from camlink.studio.runs import Run
+
+    path = tmp_path / "long.toml"
+    path.write_text((EXAMPLES / "dyn_pendulum.toml").read_text().replace(
+        "t_end = 3.0", "t_end = 1000.0"))
+    model = camlink.load(path)
+    run = Run(model, "dynamics", folder=tmp_path)
+
+    def report(r: Run) -> None:
+        if r.done > 0:
+            r.stop.set()
+
+    run.execute(report)
+    res = run.results
+    assert run.state == "stopped" and res is not None and 0 < len(res) < run.total
+    assert len(res) <= run.done
+    t_stop = float(res["t"][-1])
+    assert f"at t = {t_stop:.6g} s: the {len(res)} rows computed are kept" in run.message
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["long.toml"]
+    whole = model.run(analysis="dynamics", t_end=t_stop)
+    assert len(whole) == len(res) and list(whole.channels) == list(res.channels)
+    for c in res.channels:
+        np.testing.assert_allclose(res[c], whole[c], rtol=0, atol=1e-12, err_msg=c)
+    status = run.status(["arm.omega"])
+    assert status["state"] == "stopped" and status["names"] == list(res.channels)
+    got = np.frombuffer(base64.b64decode(status["channels"]["arm.omega"]["f64"]), "<f8")
+    assert np.array_equal(got, res["arm.omega"])
+
+
 def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
     from camlink.studio.runs import Run, studies_of
 
@@ -336,3 +369,31 @@ def test_issue29_studio_study_run_stops_between_batches(tmp_path: Path) -> None:
     assert run.state == "stopped" and run.done == 3 and run.total == 9
     assert run.message == "study stopped after 3 of 9 variants"
     assert seen[0] == ("running", 0, 9) and seen[-1] == ("stopped", 3, 9)
+
+
+def test_issue29_studio_notebook_shows_the_page_and_stops(tmp_path: Path) -> None:
+    # In a Jupyter kernel: the studio object shows as an iframe of its
+    # page (the tokened URL on 127.0.0.1), which answers until stop().
+    import nbformat
+    from nbclient import NotebookClient
+
+    path = _copy(tmp_path, "four_bar.toml")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [
+        nbformat.v4.new_code_cell(
+            "import urllib.request\n"
+            "import camlink.studio\n"
+            f"studio = camlink.studio.notebook({str(path)!r}, height=640)\n"
+            "studio"),
+        nbformat.v4.new_code_cell(
+            "print(urllib.request.urlopen(studio.url, timeout=10).status)\n"
+            "studio.stop()\n"
+            "studio"),
+    ]
+    NotebookClient(nb, timeout=120, kernel_name="python3").execute()
+    shown = nb.cells[0].outputs[0]["data"]["text/html"]
+    assert shown.startswith('<iframe src="http://127.0.0.1:') and 'height="640"' in shown
+    assert "?token=" in shown
+    out = nb.cells[1].outputs
+    assert out[0]["text"] == "200\n"
+    assert out[1]["data"]["text/html"] == "<p>camlink studio for four_bar.toml: stopped</p>"

@@ -5,11 +5,13 @@ unassemblable edits and markup in names. Marked `browser`."""
 from __future__ import annotations
 
 import asyncio
+import http.server
 import json
 import shutil
 import threading
 import time
 import tomllib
+import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -125,6 +127,36 @@ def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[S
     page.click("#undo")
     pg.wait()
     assert s.server.doc.text() == (path.parent / "four_bar.toml.bak").read_text()
+    assert pg.errors == [] and pg.blocked == []
+
+
+def test_issue29_studio_fast_drag_sends_one_edit_at_a_time(
+        browser: Any, studio: tuple[Studio, Path]) -> None:
+    # Forty positions of a drag made while the first is being solved: the
+    # page sends the first, then only the latest, then the drag's end; the
+    # handle ends at the last position and the drag is one undo step.
+    s, path = studio
+    pg = Page(browser, s.url)
+    old = pg.js("camlinkStudio.front.handle('joint:A')")
+    sent = pg.page.evaluate("""([x, y]) => {
+      const F = camlinkStudio.front, before = camlinkStudio.timing.sent;
+      for (let n = 1; n <= 40; n++) {
+        F.onEdit({ op: "move", handle: "joint:A", row: 0, x: x + 1e-4 * n, y: y - 5e-5 * n,
+                   gesture: "fast" });
+      }
+      F.onEditEnd("fast");
+      return camlinkStudio.timing.sent - before;
+    }""", old)
+    assert sent == 1
+    pg.wait()
+    # The first position, the last, the end.
+    assert pg.js("camlinkStudio.timing.sent") == 3 and pg.js("camlinkStudio.timing.edits") == 40
+    now = pg.js("camlinkStudio.front.handle('joint:A')")
+    assert now == pytest.approx([old[0] + 4e-3, old[1] - 2e-3], abs=1e-9)
+    page = pg.page
+    page.click("#undo")
+    pg.wait()
+    assert s.server.doc.text() == path.read_text()
     assert pg.errors == [] and pg.blocked == []
 
 
@@ -431,6 +463,11 @@ def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path
         s.close()
 
 
+def runs_of(s: Studio) -> Any:
+    """The server's runs."""
+    return s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+
+
 def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         browser: Any, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     # A long run (a million rows): progress shows, the stop stops it, and
@@ -453,6 +490,16 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         run = pg.js("camlinkStudio.run()")
         assert run["state"] == "stopped" and 0 < run["done"] < run["total"]
         assert "stopped after" in pg.page.locator("#run-status").text_content()
+        # It keeps and plots the rows computed up to the stop, and says when.
+        kept = runs_of(s).current.results
+        assert kept is not None and 0 < len(kept) <= run["done"]
+        status = pg.page.locator("#run-status").text_content()
+        assert f"at t = {float(kept['t'][-1]):.6g} s: the {len(kept)} rows computed are kept" in status
+        pg.page.wait_for_function("() => camlinkStudio.run().t && camlinkStudio.run().values", timeout=20_000)
+        assert pg.js("camlinkStudio.run().t.length") == len(kept)
+        name = pg.js("camlinkStudio.run().channel")
+        assert np.array_equal(np.array(pg.js("Array.from(camlinkStudio.run().values)")), kept[name])
+        assert pg.page.locator("#run-plot canvas").count() > 0
         assert not pg.js("document.getElementById('run').disabled")
         pg.slider("L", 0.6)
         assert s.server.doc._data["parameters"]["L"] == 0.6
@@ -461,7 +508,7 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         pg.page.click("#run")
         pg.page.wait_for_function("() => camlinkStudio.run().state === 'running'", timeout=20_000)
         pg.page.close()
-        runs = s.server._runner.app[RUNS_KEY]  # type: ignore[union-attr]
+        runs = runs_of(s)
         assert runs.current is not None
         for _ in range(200):
             if runs.current.state != "running":
@@ -597,5 +644,70 @@ def test_issue29_studio_cam_names_with_markup_render_as_text(browser: Any, tmp_p
         assert pg.js("document.querySelectorAll('#message i').length") == 0
         assert pg.js("window.pwned === undefined")
         assert pg.errors == [] and pg.blocked == []
+    finally:
+        s.close()
+
+
+def test_issue29_studio_in_a_notebook_frame(browser: Any, tmp_path: Path) -> None:
+    # camlink.studio.notebook serves the studio from a thread of this
+    # process; its HTML, an iframe, shown in a page of this machine (a
+    # notebook's, here another server on 127.0.0.1) loads the studio,
+    # whose slider edits the model; after stop() the server is gone. A
+    # page served by `camlink studio` refuses every frame.
+    from camlink.studio import notebook
+
+    path = tmp_path / "four_bar.toml"
+    shutil.copy(EXAMPLES / "four_bar.toml", path)
+    nb = notebook(path, height=700)
+    try:
+        html = nb._repr_html_()
+        assert html.startswith("<iframe") and 'height="700"' in html
+        assert f'src="{nb.url.replace("&", "&amp;")}"' in html
+        # The notebook: a page of another server of this machine.
+        body = f"<!DOCTYPE html><html><body><h1>notebook</h1>{html}</body></html>".encode()
+
+        class Notebook(http.server.BaseHTTPRequestHandler):
+            def do_GET(self) -> None:
+                self.send_response(200)
+                self.send_header("Content-Type", "text/html")
+                self.send_header("Content-Length", str(len(body)))
+                self.end_headers()
+                self.wfile.write(body)
+
+            def log_message(self, *args: Any) -> None:
+                pass
+
+        jupyter = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Notebook)
+        threading.Thread(target=jupyter.serve_forever, daemon=True).start()
+        page = browser.new_page(viewport={"width": 1300, "height": 900})
+        errors: list[str] = []
+        page.on("pageerror", lambda e: errors.append(str(e)))
+        page.route("**/*", lambda r: r.continue_() if r.request.url.startswith("http://127.0.0.1:")
+                   else r.abort())
+        page.goto(f"http://127.0.0.1:{jupyter.server_address[1]}/notebooks/design.ipynb")
+        frame = page.frame_locator("iframe")
+        frame.locator("#params input[data-name='a']").wait_for(timeout=20_000)
+        studio = next(f for f in page.frames if f.url.startswith(f"http://127.0.0.1:{nb.server.port}/"))
+        studio.wait_for_function("() => camlinkStudio.answered >= 1")
+        assert studio.locator("#title").text_content() == nb.doc.solution.model.name
+        studio.eval_on_selector(
+            "#params input[data-name='a']",
+            "el => { el.value = '0.131'; el.dispatchEvent(new Event('input')); "
+            "el.dispatchEvent(new Event('change')); }")
+        studio.wait_for_function("() => camlinkStudio.answered >= camlinkStudio.sent()")
+        assert nb.doc._data["parameters"]["a"] == 0.131
+        assert errors == []
+        page.close()
+        jupyter.shutdown()
+    finally:
+        nb.stop()
+    assert "stopped" in nb._repr_html_()
+    with pytest.raises(OSError):
+        urllib.request.urlopen(nb.url, timeout=5)
+    # `camlink studio`'s own page may not be framed.
+    s = Studio(path)
+    try:
+        with urllib.request.urlopen(s.url, timeout=10) as r:
+            assert "frame-ancestors 'none'" in r.headers["Content-Security-Policy"]
     finally:
         s.close()

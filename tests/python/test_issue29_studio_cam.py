@@ -16,7 +16,15 @@ import numpy as np
 import pytest
 
 import camlink
-from camlink.cam.design import CamDesignError, analyse, json_safe, load, sample
+from camlink.cam.design import (
+    CamDesignError,
+    Report,
+    analyse,
+    from_data,
+    json_safe,
+    load,
+    sample,
+)
 from camlink.cli import main
 from camlink.studio.cam import SAMPLES, CamDocument, cam_payload, open_document
 from camlink.studio.document import Document
@@ -83,6 +91,41 @@ def test_issue29_studio_cam_lift_edit_saved_and_rerun(tmp_path: Path) -> None:
     doc.undo()
     assert [s.get("lift", 0.0) for s in doc._data["segments"]] == [0.0, 0.009, 0.0, -0.009]
     assert not doc.can_undo and doc.can_redo
+
+
+def _report(report: Report | None) -> object:
+    """A report as plain data (NaN as None), to compare two reports."""
+    assert report is not None
+    return json_safe(report.to_dict())
+
+
+def test_issue29_studio_cam_search_reused_for_data_seen_before(tmp_path: Path) -> None:
+    # The indexing design searches for its smallest base circle: a law
+    # tried and tried back, undo and redo reuse the analysis of data seen
+    # before (the search with it), equal to analysing that data afresh.
+    path = _copy(tmp_path, "cam_design_indexing.toml")
+    doc = open_document(path)
+    assert isinstance(doc, CamDocument)
+    first = doc.solution
+    assert first.report is not None and first.report.smallest_base_radius is not None
+
+    def fresh() -> object:
+        design = from_data(tomllib.loads(doc.text()), path)
+        return _report(analyse(design))
+
+    assert _report(first.report) == fresh()
+    tried = doc.set_segment(0, "law", "cycloidal", gesture="a")
+    assert tried is not first and tried.report is not None
+    # A new program: searched again (the cycloidal rise needs another base circle).
+    assert tried.report.smallest_base_radius != first.report.smallest_base_radius
+    assert _report(tried.report) == fresh()
+    doc.end_gesture()
+    back = doc.set_segment(0, "law", "modified-sine", gesture="b")
+    assert back is first and _report(back.report) == fresh()
+    assert doc.undo() is tried and _report(doc.solution.report) == fresh()
+    assert doc.undo() is first and _report(doc.solution.report) == fresh()
+    assert doc.redo() is tried
+    np.testing.assert_array_equal(doc.solution.surface, tried.surface)
 
 
 def test_issue29_studio_cam_bad_edits_are_shown(tmp_path: Path) -> None:

@@ -106,17 +106,17 @@ impl Assembly {
     }
 
     /// First column of joint `j`'s own coordinates.
-    pub fn own_col(&self, j: usize) -> usize {
+    pub(crate) fn own_col(&self, j: usize) -> usize {
         self.own_col[j]
     }
 
     /// Rows of joint `j`'s equations.
-    pub fn rows_of(&self, model: &Model, j: usize) -> std::ops::Range<usize> {
+    pub(crate) fn rows_of(&self, model: &Model, j: usize) -> std::ops::Range<usize> {
         self.row[j]..self.row[j] + model.joints[j].constraint.rows()
     }
 
     /// The joint owning equation `row`, and the equation's index within it.
-    pub fn joint_of_row(&self, row: usize) -> (usize, usize) {
+    pub(crate) fn joint_of_row(&self, row: usize) -> (usize, usize) {
         let j = self.row.partition_point(|&r| r <= row) - 1;
         (j, row - self.row[j])
     }
@@ -145,7 +145,7 @@ impl Assembly {
 
     /// True for the coordinates that are angles: bodies' φ and joints' own
     /// coordinates (contact parameters and centre-line angles).
-    pub fn angle_mask(&self, model: &Model) -> Vec<bool> {
+    pub(crate) fn angle_mask(&self, model: &Model) -> Vec<bool> {
         let mut mask = vec![false; self.n];
         for c in self.body_col.iter().flatten() {
             mask[c + 2] = true;
@@ -227,7 +227,7 @@ impl Assembly {
     /// Φ(q, t) into `phi` (length m) and Φ_q as [`jacobian`](Self::jacobian)
     /// does, in one pass over the joints.
     #[inline]
-    pub fn phi_and_jacobian(
+    pub(crate) fn phi_and_jacobian(
         &self,
         model: &Model,
         q: &[f64],
@@ -403,7 +403,15 @@ impl Assembly {
     }
 
     /// η(q, q̇, q̈, t) into `out`, the right side of Φ_q q⃛ = η.
-    pub fn eta(&self, model: &Model, q: &[f64], qd: &[f64], qdd: &[f64], t: f64, out: &mut [f64]) {
+    pub(crate) fn eta(
+        &self,
+        model: &Model,
+        q: &[f64],
+        qd: &[f64],
+        qdd: &[f64],
+        t: f64,
+        out: &mut [f64],
+    ) {
         let mut rows: Rows = [0.0; 3];
         for (j, joint) in model.joints.iter().enumerate() {
             let mut x = self.local(model, j, q, qd, t);

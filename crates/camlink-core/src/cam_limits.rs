@@ -393,7 +393,9 @@ pub fn force(cam: &Cam, train: &Train, omega: f64) -> Result<Force, CamError> {
 /// [`BASE_GRID`] radii and the first passing one refined by bisection
 /// against its failing neighbour to 1e-6 relative; the follower's other
 /// dimensions stay as given (an oscillating arm that cannot reach a
-/// radius fails there).
+/// radius fails there). A radius at which a sampled pressure angle
+/// already exceeds the limit fails without the rest of its geometry
+/// ([`pressure_exceeds`]): the same answer, sooner.
 pub fn smallest_base_radius(
     cam: &Cam,
     max_pressure: Option<f64>,
@@ -410,24 +412,40 @@ pub fn smallest_base_radius(
         let Ok(c) = cam.with_base_radius(rb) else {
             return false;
         };
-        let g = geometry(&c);
-        let phi = [g.pressure_rise, g.pressure_return]
-            .iter()
-            .flatten()
-            .map(|e| e.value.abs())
-            .fold(0.0, f64::max);
-        let pressure_ok = max_pressure.is_none_or(|m| phi <= m);
-        let radius_ok = g.undercut.is_empty()
-            && min_radius.is_none_or(|m| g.min_convex_radius.value >= m)
-            && (cam.follower.roller().is_some() || g.concave.is_empty());
-        pressure_ok && radius_ok
+        if max_pressure.is_some_and(|m| pressure_exceeds(&c, m)) {
+            return false;
+        }
+        meets(&c, &geometry(&c), max_pressure, min_radius)
     };
+    Ok(smallest_passing(ok, lo, hi))
+}
+
+/// Whether the cam `c` of geometry `g` keeps every pressure angle within
+/// `max_pressure` (rad) and its least convex radius of curvature at least
+/// `min_radius` (m), with no undercut (and, under a flat face, no concave
+/// part).
+fn meets(c: &Cam, g: &Geometry, max_pressure: Option<f64>, min_radius: Option<f64>) -> bool {
+    let phi = [g.pressure_rise, g.pressure_return]
+        .iter()
+        .flatten()
+        .map(|e| e.value.abs())
+        .fold(0.0, f64::max);
+    let pressure_ok = max_pressure.is_none_or(|m| phi <= m);
+    let radius_ok = g.undercut.is_empty()
+        && min_radius.is_none_or(|m| g.min_convex_radius.value >= m)
+        && (c.follower.roller().is_some() || g.concave.is_empty());
+    pressure_ok && radius_ok
+}
+
+/// The smallest radius in [`lo`, `hi`] (m) that passes `ok`, as
+/// [`smallest_base_radius`] searches: the first of [`BASE_GRID`] + 1
+/// radii that passes, refined by bisection against its failing
+/// neighbour to 1e-6 relative.
+fn smallest_passing(ok: impl Fn(f64) -> bool, lo: f64, hi: f64) -> Option<f64> {
     let at = |k: usize| lo + (hi - lo) * k as f64 / BASE_GRID as f64;
-    let Some(k) = (0..=BASE_GRID).find(|&k| ok(at(k))) else {
-        return Ok(None);
-    };
+    let k = (0..=BASE_GRID).find(|&k| ok(at(k)))?;
     if k == 0 {
-        return Ok(Some(lo));
+        return Some(lo);
     }
     let (mut a, mut b) = (at(k - 1), at(k));
     while b - a > 1e-6 * b {
@@ -438,7 +456,19 @@ pub fn smallest_base_radius(
             a = m;
         }
     }
-    Ok(Some(b))
+    Some(b)
+}
+
+/// Whether the pressure angle of `cam` at one of [`geometry`]'s samples in
+/// a rise or a return exceeds `max` (rad) in size. Then so does the
+/// extreme [`geometry`] reports for that rise or return, which is refined
+/// from the largest such sample and never below it: the cam fails a
+/// pressure limit of `max`. Stops at the first such sample.
+fn pressure_exceeds(cam: &Cam, max: f64) -> bool {
+    let specs = cam.program.specs();
+    angles(SAMPLES).any(|t| {
+        specs[cam.program.segment_at(t)].lift != 0.0 && cam.contact(t).pressure_angle.abs() > max
+    })
 }
 
 /// Radii scanned by [`smallest_base_radius`].
@@ -690,5 +720,60 @@ mod tests {
         };
         assert!(phi(rb) <= limit);
         assert!(phi(rb * 0.999) > limit);
+    }
+
+    /// The search with the early pressure check answers as the scan and
+    /// bisection of whole geometries: a centred and an offset translating
+    /// roller and an oscillating roller, against pressure and radius limits.
+    #[test]
+    fn smallest_base_radius_is_that_of_whole_geometries() {
+        // The search of `smallest_base_radius` with every radius judged by
+        // its whole geometry.
+        let whole = |cam: &Cam, max: Option<f64>, min: Option<f64>, lo: f64, hi: f64| {
+            let ok = |rb: f64| {
+                cam.with_base_radius(rb)
+                    .is_ok_and(|c| meets(&c, &geometry(&c), max, min))
+            };
+            smallest_passing(ok, lo, hi)
+        };
+        let followers = [
+            Follower::TranslatingRoller {
+                offset: 0.0,
+                roller: 0.005,
+            },
+            Follower::TranslatingRoller {
+                offset: 0.004,
+                roller: 0.006,
+            },
+            Follower::OscillatingRoller {
+                pivot: 0.14,
+                arm: 0.08,
+                roller: 0.012,
+            },
+        ];
+        let mut found = 0;
+        for f in followers {
+            // A swing (rad) for the arm, a lift (m) for the stems.
+            let lift = if matches!(f, Follower::OscillatingRoller { .. }) {
+                deg(30.0)
+            } else {
+                0.01
+            };
+            let cam = Cam::new(program(lift, 70.0), f, 0.08, true).unwrap();
+            for (max, min) in [
+                (Some(deg(30.0)), None),
+                (Some(deg(35.0)), Some(0.01)),
+                (None, Some(0.02)),
+            ] {
+                let got = smallest_base_radius(&cam, max, min, 0.02, 0.2).unwrap();
+                assert_eq!(
+                    got,
+                    whole(&cam, max, min, 0.02, 0.2),
+                    "{f:?} {max:?} {min:?}"
+                );
+                found += usize::from(got.is_some());
+            }
+        }
+        assert!(found >= 6, "{found}");
     }
 }

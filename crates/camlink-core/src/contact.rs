@@ -103,19 +103,19 @@ impl<'a> ContactView<'a> {
     }
 
     /// The own coordinate that runs on the curve of `side`.
-    pub fn own_of(&self, side: usize) -> Option<usize> {
+    pub(crate) fn own_of(&self, side: usize) -> Option<usize> {
         self.curve(side)?;
         Some((0..side).filter(|&s| self.curve(s).is_some()).count())
     }
 
     /// (side, curve) that own coordinate `own` runs on.
-    pub fn own_curve(&self, own: usize) -> Option<(usize, &'a Curve)> {
+    pub(crate) fn own_curve(&self, own: usize) -> Option<(usize, &'a Curve)> {
         (0..2).filter_map(|s| Some((s, self.curve(s)?))).nth(own)
     }
 
     /// The name of own coordinate `own` in reports: α_i on a curve of
     /// body i, α_j on one of body j.
-    pub fn own_name(&self, own: usize) -> &'static str {
+    pub(crate) fn own_name(&self, own: usize) -> &'static str {
         match self.own_curve(own) {
             Some((0, _)) => "α_i",
             _ => "α_j",
@@ -124,7 +124,7 @@ impl<'a> ContactView<'a> {
 
     /// True for a pin in a slot: the slot has two walls and pushes either
     /// way; every other contact is a cam that can only push.
-    pub fn two_walled(&self) -> bool {
+    pub(crate) fn two_walled(&self) -> bool {
         self.sides.iter().any(|s| matches!(s, Feature::Point(_)))
     }
 
@@ -133,7 +133,7 @@ impl<'a> ContactView<'a> {
     /// coordinates `own`. The point is body i's: the point of C_i at α_i,
     /// or the pin. The tangent is a face's direction where there is a face,
     /// else the tangent of the first curve, as α grows.
-    pub fn point_tangent(&self, q: &[[f64; 3]; 2], own: &[f64]) -> (V2, V2) {
+    pub(crate) fn point_tangent(&self, q: &[[f64; 3]; 2], own: &[f64]) -> (V2, V2) {
         let p = match self.sides[0] {
             Feature::Curve(c) => point(q[0], c.jet(own[0]).p),
             Feature::Point(s) | Feature::Face(s) => point(q[0], s),

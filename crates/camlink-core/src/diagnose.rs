@@ -61,7 +61,7 @@ pub fn gap_features(model: &Model, j: usize, q: [[f64; 3]; 2]) -> Result<Feature
 /// The gap (m) of unilateral joint `j` at the placement `q` (layout
 /// `asm`), before any assembly: what a forward dynamics run starts from.
 /// `None` for a joint that cannot open.
-pub fn gap_at(model: &Model, asm: &Assembly, j: usize, q: &[f64]) -> Option<f64> {
+pub(crate) fn gap_at(model: &Model, asm: &Assembly, j: usize, q: &[f64]) -> Option<f64> {
     let mut qb = [[0.0; 3]; 2];
     for (s, b) in model.joints[j].constraint.bodies().iter().enumerate() {
         if let Some(c) = asm.body_col(b.0) {
@@ -98,7 +98,7 @@ pub struct Released {
 
 /// The unilateral contacts of `model` that are open at the placement or
 /// compliant, at time `t` (s, for the text), with their joint indices.
-pub fn released_at_start(model: &Model, t: f64) -> Vec<(usize, Released)> {
+pub(crate) fn released_at_start(model: &Model, t: f64) -> Vec<(usize, Released)> {
     let asm = Assembly::new(model);
     let q = asm.initial_q(model);
     let mut out = Vec::new();
@@ -191,7 +191,7 @@ pub struct Diagnosis {
 
 /// Largest model (coordinates) analysed by a dense singular value
 /// decomposition; its memory grows as n².
-pub const DENSE_MAX: usize = 2000;
+pub(crate) const DENSE_MAX: usize = 2000;
 
 /// Relative size under which a singular value counts as zero.
 const RANK_TOL: f64 = 1e-9;
@@ -279,7 +279,12 @@ fn diagnose_all(model: &Model, t: f64, tol: f64) -> Diagnosis {
 /// earlier independent ones, in model order: the rows an analysis must
 /// drop or regularise. Empty for a model too large for the dense analysis
 /// (more than [`DENSE_MAX`] coordinates).
-pub fn redundant_equations(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<Redundancy> {
+pub(crate) fn redundant_equations(
+    model: &Model,
+    asm: &Assembly,
+    q: &[f64],
+    t: f64,
+) -> Vec<Redundancy> {
     if asm.n > DENSE_MAX || asm.m == 0 {
         return Vec::new();
     }
@@ -297,7 +302,7 @@ const WEAK_SHARE: f64 = 0.1;
 /// a joint is named when the norm of u over its rows is at least
 /// [`WEAK_SHARE`] of the largest such norm. Empty for a model larger than
 /// [`DENSE_MAX`] coordinates or without equations.
-pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
+pub(crate) fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<String> {
     let (n, m) = (asm.n, asm.m);
     if n > DENSE_MAX || m == 0 || n == 0 {
         return Vec::new();
@@ -332,7 +337,7 @@ pub fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Vec<S
 /// The clause of a warning naming the joints whose equations lose rank
 /// (empty when none are known): ` at joints O2, A, B, O4 (their equations
 /// lose rank)`.
-pub fn losing_rank(joints: &[String]) -> String {
+pub(crate) fn losing_rank(joints: &[String]) -> String {
     if joints.is_empty() {
         String::new()
     } else {
@@ -354,7 +359,7 @@ pub fn dense_jacobian(model: &Model, asm: &Assembly, q: &[f64], t: f64) -> Mat<f
 /// The Levenberg–Marquardt step δ = (JᵀJ + μ s I)⁻¹ Jᵀ Φ into `out`, with
 /// μ relative to s, the largest diagonal entry of JᵀJ; q − δ lowers ‖Φ‖²
 /// where J is rank deficient or not square.
-pub fn levenberg_marquardt(j: &Mat<f64>, phi: &[f64], mu: f64, out: &mut [f64]) {
+pub(crate) fn levenberg_marquardt(j: &Mat<f64>, phi: &[f64], mu: f64, out: &mut [f64]) {
     let jtj = j.transpose() * j;
     let scale = (0..jtj.nrows()).fold(1e-12f64, |a, k| a.max(jtj[(k, k)]));
     let a = Mat::from_fn(jtj.nrows(), jtj.ncols(), |r, c| {
@@ -531,7 +536,7 @@ fn drivers_among(model: &Model, redundant: &[Redundancy]) -> Vec<String> {
 }
 
 /// `joint.equation` for row `r`, e.g. `O4.x`.
-pub fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
+pub(crate) fn equation_name(model: &Model, asm: &Assembly, r: usize) -> String {
     let (j, e) = asm.joint_of_row(r);
     let joint = &model.joints[j];
     let names = joint.constraint.equations();
@@ -558,6 +563,143 @@ fn describe_motion(model: &Model, asm: &Assembly, v: &[f64]) -> Vec<(String, f64
         .into_iter()
         .map(|(k, x)| (asm.coordinate_name(model, k), x))
         .collect()
+}
+
+/// The independent equations of a model with redundant ones, for an
+/// analysis that needs a square Φ_q (kinematics): the redundant rows
+/// (dependent on earlier rows at the assembled configuration, as
+/// [`diagnose`] finds them) are left out of the solve; being combinations
+/// of the rows kept, they hold wherever those do.
+#[derive(Clone, Debug)]
+pub(crate) struct KeptRows {
+    /// The rows kept, in model order: reduced row k is row `keep[k]`.
+    keep: Vec<usize>,
+    /// For each of the m rows, its reduced index (None: left out).
+    map: Vec<Option<usize>>,
+    /// Scratch of length m.
+    full: Vec<f64>,
+    /// The redundant equations (`joint.equation`), in model order.
+    pub equations: Vec<String>,
+    /// The joints of the redundant rows and of the rows they depend on,
+    /// in model order: their reactions are not unique.
+    pub joints: Vec<String>,
+}
+
+impl KeptRows {
+    /// The rows to keep for a model with more equations than coordinates,
+    /// from its [`diagnose`] at time `t` (s) with assembly tolerance `tol`:
+    /// an error message when the dependent equations do not make up the
+    /// excess (a model that is locked or singular, not only redundant), or
+    /// the model is too large for the dense analysis.
+    pub fn find(model: &Model, asm: &Assembly, t: f64, tol: f64) -> Result<KeptRows, String> {
+        let (n, m) = (asm.n, asm.m);
+        let d = diagnose(model, t, tol);
+        if !d.exact {
+            return Err(format!(
+                "{n} coordinates but {m} equations, and the model is too large (more than \
+                 {DENSE_MAX} coordinates) to find its redundant equations; remove {} \
+                 equation(s)",
+                m - n
+            ));
+        }
+        if d.residual > tol {
+            return Err(format!(
+                "{n} coordinates but {m} equations, and the model does not assemble \
+                 (largest |Φ| {:.3e}), so its redundant equations cannot be told apart",
+                d.residual
+            ));
+        }
+        if d.rank < n || d.redundant.len() != m - n {
+            return Err(format!(
+                "{n} coordinates but {m} equations of rank {}: {} equation(s) too many \
+                 and {} degree(s) of freedom left; remove redundant joints or drivers \
+                 (`camlink check` names them)",
+                d.rank,
+                m - d.rank,
+                n - d.rank
+            ));
+        }
+        // A driver among the dependent equations fixes a motion that the
+        // others fix already: over-driven, consistent at most at time t.
+        if !d.redundant_drivers.is_empty() {
+            return Err(format!(
+                "{n} coordinates but {m} equations: over-driven, driver(s) {} fix a motion \
+                 that the other equations fix already; remove one (`camlink check` names \
+                 the redundant equations)",
+                d.redundant_drivers.join(", ")
+            ));
+        }
+        let equations: Vec<String> = d.redundant.iter().map(|r| r.equation.clone()).collect();
+        let dropped: Vec<usize> = (0..m)
+            .filter(|&r| equations.contains(&equation_name(model, asm, r)))
+            .collect();
+        let keep: Vec<usize> = (0..m).filter(|r| !dropped.contains(r)).collect();
+        let mut map = vec![None; m];
+        for (k, &r) in keep.iter().enumerate() {
+            map[r] = Some(k);
+        }
+        let involved: Vec<&str> = d
+            .redundant
+            .iter()
+            .flat_map(|r| {
+                std::iter::once(joint_of(&r.equation))
+                    .chain(r.depends_on.iter().map(|(e, _)| joint_of(e)))
+            })
+            .collect();
+        let joints = model
+            .joints
+            .iter()
+            .filter(|j| involved.contains(&j.name.as_str()))
+            .map(|j| j.name.clone())
+            .collect();
+        Ok(KeptRows {
+            keep,
+            map,
+            full: vec![0.0; m],
+            equations,
+            joints,
+        })
+    }
+
+    /// The reduced index of row `r`, None when it is left out.
+    #[inline]
+    pub(crate) fn reduced(&self, r: usize) -> Option<usize> {
+        self.map[r]
+    }
+
+    /// The full row of reduced row `k`.
+    #[inline]
+    pub(crate) fn full_row(&self, k: usize) -> usize {
+        self.keep[k]
+    }
+
+    /// Fills the full scratch (length m) with `fill`, then copies the kept
+    /// rows into `out` (length m − redundant).
+    #[inline]
+    pub fn gather(&mut self, fill: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+        fill(&mut self.full);
+        for (o, &r) in out.iter_mut().zip(&self.keep) {
+            *o = self.full[r];
+        }
+    }
+
+    /// The warning of a run that left the redundant equations out, at time
+    /// `t` (s).
+    pub fn warning(&self, t: f64) -> crate::run::Warning {
+        crate::run::Warning {
+            kind: crate::run::Kind::Redundant,
+            time: t,
+            joints: self.joints.clone(),
+            message: format!(
+                "{} redundant constraint equation(s) ({}) left out of the solve (they hold \
+                 wherever the others do): the motion is determined, but the reactions of \
+                 joints {} are not unique; the minimum-norm split is reported",
+                self.equations.len(),
+                self.equations.join(", "),
+                self.joints.join(", ")
+            ),
+        }
+    }
 }
 
 #[cfg(test)]
@@ -711,142 +853,5 @@ mod tests {
         let motion: Vec<&str> = d.free_motions[0].iter().map(|(n, _)| n.as_str()).collect();
         assert!(motion.contains(&"crank.phi"), "{motion:?}");
         assert!(motion.contains(&"rocker.phi"), "{motion:?}");
-    }
-}
-
-/// The independent equations of a model with redundant ones, for an
-/// analysis that needs a square Φ_q (kinematics): the redundant rows
-/// (dependent on earlier rows at the assembled configuration, as
-/// [`diagnose`] finds them) are left out of the solve; being combinations
-/// of the rows kept, they hold wherever those do.
-#[derive(Clone, Debug)]
-pub struct KeptRows {
-    /// The rows kept, in model order: reduced row k is row `keep[k]`.
-    keep: Vec<usize>,
-    /// For each of the m rows, its reduced index (None: left out).
-    map: Vec<Option<usize>>,
-    /// Scratch of length m.
-    full: Vec<f64>,
-    /// The redundant equations (`joint.equation`), in model order.
-    pub equations: Vec<String>,
-    /// The joints of the redundant rows and of the rows they depend on,
-    /// in model order: their reactions are not unique.
-    pub joints: Vec<String>,
-}
-
-impl KeptRows {
-    /// The rows to keep for a model with more equations than coordinates,
-    /// from its [`diagnose`] at time `t` (s) with assembly tolerance `tol`:
-    /// an error message when the dependent equations do not make up the
-    /// excess (a model that is locked or singular, not only redundant), or
-    /// the model is too large for the dense analysis.
-    pub fn find(model: &Model, asm: &Assembly, t: f64, tol: f64) -> Result<KeptRows, String> {
-        let (n, m) = (asm.n, asm.m);
-        let d = diagnose(model, t, tol);
-        if !d.exact {
-            return Err(format!(
-                "{n} coordinates but {m} equations, and the model is too large (more than \
-                 {DENSE_MAX} coordinates) to find its redundant equations; remove {} \
-                 equation(s)",
-                m - n
-            ));
-        }
-        if d.residual > tol {
-            return Err(format!(
-                "{n} coordinates but {m} equations, and the model does not assemble \
-                 (largest |Φ| {:.3e}), so its redundant equations cannot be told apart",
-                d.residual
-            ));
-        }
-        if d.rank < n || d.redundant.len() != m - n {
-            return Err(format!(
-                "{n} coordinates but {m} equations of rank {}: {} equation(s) too many \
-                 and {} degree(s) of freedom left; remove redundant joints or drivers \
-                 (`camlink check` names them)",
-                d.rank,
-                m - d.rank,
-                n - d.rank
-            ));
-        }
-        // A driver among the dependent equations fixes a motion that the
-        // others fix already: over-driven, consistent at most at time t.
-        if !d.redundant_drivers.is_empty() {
-            return Err(format!(
-                "{n} coordinates but {m} equations: over-driven, driver(s) {} fix a motion \
-                 that the other equations fix already; remove one (`camlink check` names \
-                 the redundant equations)",
-                d.redundant_drivers.join(", ")
-            ));
-        }
-        let equations: Vec<String> = d.redundant.iter().map(|r| r.equation.clone()).collect();
-        let dropped: Vec<usize> = (0..m)
-            .filter(|&r| equations.contains(&equation_name(model, asm, r)))
-            .collect();
-        let keep: Vec<usize> = (0..m).filter(|r| !dropped.contains(r)).collect();
-        let mut map = vec![None; m];
-        for (k, &r) in keep.iter().enumerate() {
-            map[r] = Some(k);
-        }
-        let involved: Vec<&str> = d
-            .redundant
-            .iter()
-            .flat_map(|r| {
-                std::iter::once(joint_of(&r.equation))
-                    .chain(r.depends_on.iter().map(|(e, _)| joint_of(e)))
-            })
-            .collect();
-        let joints = model
-            .joints
-            .iter()
-            .filter(|j| involved.contains(&j.name.as_str()))
-            .map(|j| j.name.clone())
-            .collect();
-        Ok(KeptRows {
-            keep,
-            map,
-            full: vec![0.0; m],
-            equations,
-            joints,
-        })
-    }
-
-    /// The reduced index of row `r`, None when it is left out.
-    #[inline]
-    pub fn reduced(&self, r: usize) -> Option<usize> {
-        self.map[r]
-    }
-
-    /// The full row of reduced row `k`.
-    #[inline]
-    pub fn full_row(&self, k: usize) -> usize {
-        self.keep[k]
-    }
-
-    /// Fills the full scratch (length m) with `fill`, then copies the kept
-    /// rows into `out` (length m − redundant).
-    #[inline]
-    pub fn gather(&mut self, fill: impl FnOnce(&mut [f64]), out: &mut [f64]) {
-        fill(&mut self.full);
-        for (o, &r) in out.iter_mut().zip(&self.keep) {
-            *o = self.full[r];
-        }
-    }
-
-    /// The warning of a run that left the redundant equations out, at time
-    /// `t` (s).
-    pub fn warning(&self, t: f64) -> crate::run::Warning {
-        crate::run::Warning {
-            kind: crate::run::Kind::Redundant,
-            time: t,
-            joints: self.joints.clone(),
-            message: format!(
-                "{} redundant constraint equation(s) ({}) left out of the solve (they hold \
-                 wherever the others do): the motion is determined, but the reactions of \
-                 joints {} are not unique; the minimum-norm split is reported",
-                self.equations.len(),
-                self.equations.join(", "),
-                self.joints.join(", ")
-            ),
-        }
     }
 }

@@ -39,14 +39,14 @@ use crate::run::{
 };
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
-pub const MAX_HALVINGS: u32 = 8;
+pub(crate) const MAX_HALVINGS: u32 = 8;
 /// Relative pivot of Φ_q under which a configuration is reported as near
 /// singular (a healthy four-bar stays near 0.25; a parallelogram sampled
 /// 1 mrad from its change point gives about 1e-4).
-pub const NEAR_SINGULAR: f64 = 1e-3;
+pub(crate) const NEAR_SINGULAR: f64 = 1e-3;
 /// Largest correction of an angle (rad) from the predicted position that
 /// still counts as continuous motion; a larger one is treated as a jump.
-pub const JUMP_ANGLE: f64 = 0.2;
+pub(crate) const JUMP_ANGLE: f64 = 0.2;
 
 /// What `check` reports about a model.
 #[derive(Clone, Debug, PartialEq)]
@@ -310,7 +310,7 @@ impl<'m> Solver<'m> {
 
     /// Sets q, from which the first [`step`](Self::step) assembles, to
     /// `start` (laid out as [`coordinate_names`]).
-    pub fn start_from(&mut self, start: &[f64]) -> Result<(), AnalysisError> {
+    pub(crate) fn start_from(&mut self, start: &[f64]) -> Result<(), AnalysisError> {
         if start.len() != self.q.len() {
             return Err(fail(
                 Kind::InvalidInput,
@@ -714,7 +714,7 @@ impl<'m> Solver<'m> {
     }
 
     /// Fills the channels of [`jerk_channels`] from the solved jerk.
-    pub fn jerk_outputs(&self, points: &[PointOutput], out: &mut [f64]) {
+    pub(crate) fn jerk_outputs(&self, points: &[PointOutput], out: &mut [f64]) {
         let body = |v: &[f64], id: BodyId| -> [f64; 3] {
             match self.asm.body_col(id.0) {
                 Some(c) => [v[c], v[c + 1], v[c + 2]],
@@ -886,7 +886,7 @@ fn model_size(model: &Model) -> f64 {
 /// Iterations allowed to assemble from the model's placement.
 const ASSEMBLY_ITER: usize = 100;
 /// Largest change of an angle (rad) in one assembly iteration.
-pub const MAX_ANGLE_STEP: f64 = 0.5;
+pub(crate) const MAX_ANGLE_STEP: f64 = 0.5;
 
 /// An error before the first step (t = 0).
 fn fail(kind: Kind, message: &str) -> AnalysisError {

@@ -10,8 +10,9 @@
 //! The modules are layered; each imports only modules of its own or an
 //! earlier line, with no cycle (`tests/layers.rs` checks it):
 //!
-//! 1. [`math`], [`quantity`], [`cam`], [`curve`], [`function`], [`motion`],
-//!    [`newton`]: geometry (a synthesised cam's profile too), units of
+//! 1. [`math`], [`quantity`], [`names`], [`cam`], [`curve`], [`function`],
+//!    [`motion`], [`newton`]: geometry (a synthesised cam's profile too),
+//!    known names nearest a mistyped one, units of
 //!    channels, functions of time, time derivatives of points along a
 //!    motion, and Newton's stopping test;
 //! 2. [`constraint`], [`force`]: Φ, Φ_q, ν, γ and applied forces Q;
@@ -31,6 +32,7 @@ pub mod fmt_num;
 pub mod function;
 pub mod math;
 pub mod motion;
+pub mod names;
 pub mod newton;
 pub mod quantity;
 

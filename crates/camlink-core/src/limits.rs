@@ -22,7 +22,7 @@ use crate::run::{Kind, Warning};
 
 /// Excursion (m or rad) past a limit below which kinematics does not
 /// warn: the rounding of a motion that just touches its stop.
-pub const EXCEEDED: f64 = 1e-9;
+pub(crate) const EXCEEDED: f64 = 1e-9;
 
 /// The range text of `limits`, e.g. `[-0.5, 1] rad` or `[0.1, ∞) m`.
 pub fn range_text(limits: &Limits, unit: &str) -> String {
@@ -47,7 +47,7 @@ struct Excursion {
 }
 
 /// The check of a kinematic run against the model's joint limits.
-pub struct LimitWatch {
+pub(crate) struct LimitWatch {
     /// Per limited joint: its index, coordinate, limits and excursion.
     joints: Vec<(usize, RelativeCoord, Limits, Option<Excursion>)>,
 }
@@ -68,7 +68,7 @@ impl LimitWatch {
     }
 
     /// Looks at the coordinates at time `t` (s) and positions `q`.
-    pub fn observe(&mut self, model: &Model, asm: &Assembly, q: &[f64], t: f64) {
+    pub(crate) fn observe(&mut self, model: &Model, asm: &Assembly, q: &[f64], t: f64) {
         for (j, coord, limits, exc) in &mut self.joints {
             let x = asm.local(model, *j, q, &[], t);
             let (c, _) = coord.value_and_rate(&x);

@@ -26,14 +26,14 @@
 
 /// A pivot is kept while |U_kk| ≥ THRESHOLD · max_{i>k} |L_ik U_kk| (the
 /// entries below it before elimination).
-pub const THRESHOLD: f64 = 0.1;
+pub(crate) const THRESHOLD: f64 = 0.1;
 
 /// An index in the compiled lists (a slot, a row or a column).
 type Ix = u32;
 
 /// The compiled elimination of an n × n matrix with a fixed pattern.
 #[derive(Clone, Debug)]
-pub struct Elimination {
+pub(crate) struct Elimination {
     n: usize,
     /// The structural nonzeros of A, row-major.
     pattern: Vec<bool>,
@@ -76,7 +76,7 @@ struct Pivot {
 
 /// Why a replay stopped: the caller factors with pivoting instead.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Refresh;
+pub(crate) struct Refresh;
 
 impl Elimination {
     /// For an n × n matrix whose nonzeros are at `pattern` (row, col);
@@ -107,22 +107,24 @@ impl Elimination {
     }
 
     /// Whether (r, c) is in the pattern.
-    pub fn in_pattern(&self, r: usize, c: usize) -> bool {
+    pub(crate) fn in_pattern(&self, r: usize, c: usize) -> bool {
         self.pattern[r * self.n + c]
     }
 
     /// Forgets the recorded order (the next replay refreshes).
-    pub fn forget(&mut self) {
+    pub(crate) fn forget(&mut self) {
         self.recorded = false;
     }
 
     /// Number of slots: the structural nonzeros of the recorded factors.
-    pub fn slots(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn slots(&self) -> usize {
         self.src.len()
     }
 
     /// Number of off-diagonal factor entries a solve visits.
-    pub fn solve_entries(&self) -> usize {
+    #[cfg(test)]
+    pub(crate) fn solve_entries(&self) -> usize {
         self.src.len() - self.n
     }
 
@@ -227,7 +229,7 @@ impl Elimination {
     /// pivot relative to the largest |a_rc| over the pattern, or
     /// [`Refresh`] when there is no recorded order or a pivot fails the
     /// threshold or singular test (`factors` is then meaningless).
-    pub fn replay(
+    pub(crate) fn replay(
         &self,
         a: &[f64],
         factors: &mut [f64],
@@ -282,7 +284,7 @@ impl Elimination {
     }
 
     /// Row k of the factors is row `perm()[k]` of A.
-    pub fn perm(&self) -> &[usize] {
+    pub(crate) fn perm(&self) -> &[usize] {
         &self.perm
     }
 
@@ -335,7 +337,7 @@ impl Elimination {
 /// The solve of [`Elimination::solve`] over gathered nonzeros
 /// ([`Elimination::gather`]: L's entries up to `lower`, then the scaled
 /// upper ones) with the row order `perm`.
-pub fn solve_gathered(
+pub(crate) fn solve_gathered(
     nonzeros: &[(Ix, Ix, f64)],
     lower: usize,
     perm: &[usize],

@@ -50,7 +50,7 @@ pub fn rot(phi: f64, s: V2) -> V2 {
 
 /// B(φ) s = dA/dφ s = A(φ) s⊥.
 #[inline]
-pub fn rot_d(phi: f64, s: V2) -> V2 {
+pub(crate) fn rot_d(phi: f64, s: V2) -> V2 {
     let (sn, cs) = sin_cos(phi);
     [-sn * s[0] - cs * s[1], cs * s[0] - sn * s[1]]
 }
@@ -104,7 +104,7 @@ pub fn inner(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// Euclidean norm ‖v‖₂ of a vector of any length.
-pub fn norm2(v: &[f64]) -> f64 {
+pub(crate) fn norm2(v: &[f64]) -> f64 {
     v.iter().map(|x| x * x).sum::<f64>().sqrt()
 }
 
@@ -129,7 +129,7 @@ pub fn point(q: [f64; 3], s: V2) -> V2 {
 
 /// Velocity ṙ + B(φ) s' φ̇ of a body point.
 #[inline]
-pub fn point_vel(q: [f64; 3], qd: [f64; 3], s: V2) -> V2 {
+pub(crate) fn point_vel(q: [f64; 3], qd: [f64; 3], s: V2) -> V2 {
     add([qd[0], qd[1]], scale(qd[2], rot_d(q[2], s)))
 }
 

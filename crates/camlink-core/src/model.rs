@@ -280,7 +280,7 @@ pub const SHAKING: [&str; 3] = ["shaking.fx", "shaking.fy", "shaking.moment"];
 
 /// The namespace of [`SHAKING`]: no body, joint or driver may take this
 /// name (a joint `shaking` would write its reaction into `shaking.fx`).
-pub const SHAKING_NAME: &str = "shaking";
+pub(crate) const SHAKING_NAME: &str = "shaking";
 
 /// Why `name` cannot name a body, joint or driver (`what`), if it cannot.
 pub fn reserved_name(name: &str, what: &str) -> Option<String> {
@@ -445,7 +445,7 @@ impl Model {
 
 impl Model {
     /// The joint kinds that take friction, as model files name them.
-    pub fn friction_kinds() -> &'static [&'static str] {
+    pub(crate) fn friction_kinds() -> &'static [&'static str] {
         &[
             "revolute",
             "translational",

@@ -28,7 +28,7 @@
 use crate::math::{add, cross as cross2, dot as dot2, perp, rot, scale, sub as sub2, V2};
 
 /// A number and its time derivatives `[x, ẋ, ẍ, x⃛*]`.
-pub type Scalar = [f64; 4];
+pub(crate) type Scalar = [f64; 4];
 
 /// A planar vector and its time derivatives `[x, ẋ, ẍ, x⃛*]`.
 pub type Path = [V2; 4];
@@ -115,14 +115,14 @@ pub fn angle(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> [f64; 3] {
 /// r + A(φ) v for a body at (q, q̇, q̈) and a body-frame vector v with its
 /// derivatives: a body point (v constant) or a point moving on the body.
 #[inline]
-pub fn on_body(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], v: &Path) -> Path {
+pub(crate) fn on_body(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], v: &Path) -> Path {
     let origin = [[q[0], q[1]], [qd[0], qd[1]], [qdd[0], qdd[1]], [0.0; 2]];
     plus(&origin, &rotated(angle(q, qd, qdd), v))
 }
 
 /// The body point s′ (body frame, m) of a body at (q, q̇, q̈).
 #[inline]
-pub fn body_point(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], s: V2) -> Path {
+pub(crate) fn body_point(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], s: V2) -> Path {
     on_body(q, qd, qdd, &constant(s))
 }
 

@@ -224,7 +224,7 @@ impl Length {
     /// Units in one metre, exact for m, cm and mm (divide by it to turn a
     /// value in this unit into metres: 25 / 1000 is the nearest double to
     /// 0.025, which 25 · 0.001 is not always).
-    pub fn per_metre(self) -> f64 {
+    pub(crate) fn per_metre(self) -> f64 {
         match self {
             Length::M => 1.0,
             Length::Cm => 100.0,

@@ -346,7 +346,7 @@ impl AnalysisError {
 
     /// The same error with the joints involved and the largest |Φ| (m or
     /// rad).
-    pub fn at_joints(mut self, joints: Vec<String>, residual: f64) -> Self {
+    pub(crate) fn at_joints(mut self, joints: Vec<String>, residual: f64) -> Self {
         self.joints = joints;
         self.residual = residual;
         self
@@ -355,10 +355,10 @@ impl AnalysisError {
 
 /// What is called before every step of an analysis: the sink's
 /// [`Sink::tick`], whose error (an interrupt) stops the run.
-pub type Tick<'a> = dyn FnMut() -> Result<(), AnalysisError> + 'a;
+pub(crate) type Tick<'a> = dyn FnMut() -> Result<(), AnalysisError> + 'a;
 
 /// An analysis as the output loop drives it ([`output_loop`]).
-pub trait Analysis {
+pub(crate) trait Analysis {
     /// Reaches output time `t` (s) from the previous one, `prev` (None at
     /// the first), calling `tick` before every step.
     fn reach(&mut self, t: f64, prev: Option<f64>, tick: &mut Tick) -> Result<(), AnalysisError>;
@@ -374,7 +374,7 @@ pub trait Analysis {
 /// then, for each output time in turn (checked to increase,
 /// [`check_next_time`]), the analysis reaches it and its row goes to
 /// `sink` at once, so a run that fails keeps every row before.
-pub fn output_loop(
+pub(crate) fn output_loop(
     analysis: &mut dyn Analysis,
     times: &[f64],
     names: &[Channel],
@@ -397,7 +397,7 @@ pub fn output_loop(
 /// Checks that output time `t` (s) follows the previous one, `prev`
 /// (`None` for the first): an `invalid_input` error when it does not
 /// increase or is NaN.
-pub fn check_next_time(prev: Option<f64>, t: f64) -> Result<(), AnalysisError> {
+pub(crate) fn check_next_time(prev: Option<f64>, t: f64) -> Result<(), AnalysisError> {
     match prev {
         Some(p) if t <= p || t.is_nan() => Err(AnalysisError::new(
             Kind::InvalidInput,
@@ -435,7 +435,12 @@ fn not_increasing(t: f64, prev: f64) -> String {
 /// The joints whose equations have the largest residuals |Φ| above `tol`,
 /// worst first and at most five, with the largest residual (m or rad); a
 /// NaN residual counts as infinite. `phi` is Φ at the failure.
-pub fn worst_joints(model: &Model, asm: &Assembly, phi: &[f64], tol: f64) -> (Vec<String>, f64) {
+pub(crate) fn worst_joints(
+    model: &Model,
+    asm: &Assembly,
+    phi: &[f64],
+    tol: f64,
+) -> (Vec<String>, f64) {
     let mut worst: Vec<(f64, usize)> = Vec::new();
     for j in 0..model.joints.len() {
         let r = asm
@@ -535,7 +540,7 @@ pub fn channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
 /// The jerk channels of a run with [`Settings::jerk`], after those of
 /// [`channels`]: `<body>.jx .jy .jphi` for every moving body (m/s³, m/s³,
 /// rad/s³), then `<point>.jx .jy` for every output point (m/s³).
-pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
+pub(crate) fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
     use Quantity::*;
     let mut out = Vec::new();
     for (_, b) in model.moving_bodies() {
@@ -553,7 +558,7 @@ pub fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<Channel> {
 
 /// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
 /// points, own coordinates, then contact outputs.
-pub fn fill_outputs(
+pub(crate) fn fill_outputs(
     model: &Model,
     asm: &Assembly,
     contacts: &Contacts,

@@ -21,7 +21,7 @@ pub enum Rule {
 }
 
 /// Every run setting and its rule; units in the comments.
-pub const RULES: &[(&str, Rule)] = &[
+pub(crate) const RULES: &[(&str, Rule)] = &[
     ("t_end", Rule::NonNegative),       // s
     ("step", Rule::Positive),           // s
     ("time", Rule::Finite),             // s

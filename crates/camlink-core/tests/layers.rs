@@ -19,6 +19,7 @@ const LAYERS: &[&[&str]] = &[
         "math",
         "fmt_num",
         "quantity",
+        "names",
         "cam",
         "curve",
         "function",

@@ -33,7 +33,7 @@ impl Jet {
     /// A flat u gives a flat result whatever g's derivatives are, so a
     /// singular g' (sqrt at 0) does not turn a constant into NaN.
     #[inline]
-    pub fn compose(self, g: [f64; 4]) -> Jet {
+    pub(crate) fn compose(self, g: [f64; 4]) -> Jet {
         let [_, u1, u2, u3] = self.0;
         if self.is_flat() {
             return Jet::constant(g[0]);
@@ -49,7 +49,7 @@ impl Jet {
 
     /// c / u, the quotient rule with a constant numerator.
     #[inline]
-    pub fn rdiv_c(self, c: f64) -> Jet {
+    pub(crate) fn rdiv_c(self, c: f64) -> Jet {
         let [v0, v1, v2, v3] = self.0;
         let w0 = c / v0;
         let r = 1.0 / v0;
@@ -63,7 +63,7 @@ impl Jet {
     ///
     /// g⁽ᵏ⁾(u) = c(c−1)…(c−k+1) u^(c−k); a factor c(c−1)…(c−k+1) that is zero
     /// gives a zero term, so `u^2` at u = 0 has u''' = 0 rather than 0·∞.
-    pub fn pow_c(self, c: f64) -> Jet {
+    pub(crate) fn pow_c(self, c: f64) -> Jet {
         let u0 = self.0[0];
         let g0 = u0.powf(c);
         let (f1, f2, f3) = (c, c * (c - 1.0), c * (c - 1.0) * (c - 2.0));
@@ -82,7 +82,7 @@ impl Jet {
     }
 
     /// uⁿ for an integer exponent n, by repeated multiplication (`powi`).
-    pub fn pow_i(self, n: i32) -> Jet {
+    pub(crate) fn pow_i(self, n: i32) -> Jet {
         let u0 = self.0[0];
         let g = match n {
             2 => [u0.powi(2), 2.0 * u0, 2.0, 0.0],

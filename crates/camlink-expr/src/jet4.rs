@@ -36,7 +36,7 @@ impl Jet4 {
     /// g(u) from `g = [g, g', g'', g''', g'''']` at u by Faà di Bruno's
     /// formula; a flat u gives a flat result.
     #[inline]
-    pub fn compose(self, g: [f64; 5]) -> Jet4 {
+    pub(crate) fn compose(self, g: [f64; 5]) -> Jet4 {
         let [_, u1, u2, u3, u4] = self.0;
         if self.is_flat() {
             return Jet4::constant(g[0]);
@@ -56,13 +56,13 @@ impl Jet4 {
 
     /// c / u.
     #[inline]
-    pub fn rdiv_c(self, c: f64) -> Jet4 {
+    pub(crate) fn rdiv_c(self, c: f64) -> Jet4 {
         Jet4::constant(c) / self
     }
 
     /// uᶜ for a constant real exponent c; a falling factorial
     /// c(c−1)…(c−k+1) that is zero gives a zero term.
-    pub fn pow_c(self, c: f64) -> Jet4 {
+    pub(crate) fn pow_c(self, c: f64) -> Jet4 {
         let u0 = self.0[0];
         let g0 = u0.powf(c);
         let f = [
@@ -93,7 +93,7 @@ impl Jet4 {
     }
 
     /// uⁿ for an integer exponent n.
-    pub fn pow_i(self, n: i32) -> Jet4 {
+    pub(crate) fn pow_i(self, n: i32) -> Jet4 {
         let u0 = self.0[0];
         let nf = n as f64;
         let f = [

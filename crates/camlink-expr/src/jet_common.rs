@@ -12,7 +12,7 @@ macro_rules! jet_common {
     ($jet:ident, $n:literal) => {
         impl $jet {
             /// The jet of the zero function.
-            pub const ZERO: $jet = $jet([0.0; $n]);
+            pub(crate) const ZERO: $jet = $jet([0.0; $n]);
 
             /// The jet of a constant c: `[c, 0, …]`.
             #[inline]
@@ -40,12 +40,12 @@ macro_rules! jet_common {
             /// True when every derivative is zero (u does not vary at this
             /// point).
             #[inline]
-            pub fn is_flat(self) -> bool {
+            pub(crate) fn is_flat(self) -> bool {
                 self.0[1..].iter().all(|&d| d == 0.0)
             }
 
             /// The first component that is not finite, as (order, value).
-            pub fn first_non_finite(self) -> Option<(usize, f64)> {
+            pub(crate) fn first_non_finite(self) -> Option<(usize, f64)> {
                 self.0
                     .iter()
                     .enumerate()
@@ -61,7 +61,7 @@ macro_rules! jet_common {
 
             /// u + c.
             #[inline]
-            pub fn add_c(self, c: f64) -> $jet {
+            pub(crate) fn add_c(self, c: f64) -> $jet {
                 let mut w = self;
                 w.0[0] += c;
                 w
@@ -69,19 +69,19 @@ macro_rules! jet_common {
 
             /// u · c.
             #[inline]
-            pub fn mul_c(self, c: f64) -> $jet {
+            pub(crate) fn mul_c(self, c: f64) -> $jet {
                 self.map(|u| u * c)
             }
 
             /// u / c.
             #[inline]
-            pub fn div_c(self, c: f64) -> $jet {
+            pub(crate) fn div_c(self, c: f64) -> $jet {
                 self.map(|u| u / c)
             }
 
             /// c − u.
             #[inline]
-            pub fn rsub_c(self, c: f64) -> $jet {
+            pub(crate) fn rsub_c(self, c: f64) -> $jet {
                 let mut w = -self;
                 w.0[0] = c - self.0[0];
                 w

@@ -3,6 +3,8 @@
 use std::borrow::Cow;
 use std::fmt;
 
+pub(crate) use camlink_core::names::did_you_mean;
+
 /// Why a model file could not be loaded.
 ///
 /// Displays as `four_bar.toml:12:5: joints[2].body_i: no body named 'crnak'
@@ -162,45 +164,6 @@ pub(crate) fn unknown_key(
     }
 }
 
-pub(crate) fn did_you_mean<'a>(
-    name: &str,
-    candidates: impl IntoIterator<Item = &'a str>,
-) -> String {
-    let best = candidates
-        .into_iter()
-        .map(|c| (edit_distance(name, c), c))
-        .min_by_key(|(d, _)| *d);
-    match best {
-        Some((d, c)) if d <= (name.chars().count() / 3).max(1) + usize::from(name.len() > 5) => {
-            format!(" (did you mean '{c}'?)")
-        }
-        _ => String::new(),
-    }
-}
-
-/// Levenshtein distance in characters, with adjacent transposition counted as one edit.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let a: Vec<char> = a.chars().collect();
-    let b: Vec<char> = b.chars().collect();
-    let w = b.len() + 1;
-    let mut d = vec![0usize; (a.len() + 1) * w];
-    for i in 0..=a.len() {
-        for j in 0..=b.len() {
-            d[i * w + j] = if i == 0 || j == 0 {
-                i + j
-            } else {
-                let sub = d[(i - 1) * w + j - 1] + usize::from(a[i - 1] != b[j - 1]);
-                let mut v = sub.min(d[(i - 1) * w + j] + 1).min(d[i * w + j - 1] + 1);
-                if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
-                    v = v.min(d[(i - 2) * w + j - 2] + 1);
-                }
-                v
-            };
-        }
-    }
-    d[a.len() * w + b.len()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,15 +177,6 @@ mod tests {
         e.line = Some(12);
         e.column = Some(5);
         assert_eq!(e.to_string(), "m.toml:12:5: joints[2].body_i: bad");
-    }
-
-    #[test]
-    fn suggestions() {
-        assert_eq!(
-            did_you_mean("crnak", ["crank", "rocker"]),
-            " (did you mean 'crank'?)"
-        );
-        assert_eq!(did_you_mean("zzz", ["crank", "rocker"]), "");
     }
 
     #[test]

@@ -27,7 +27,7 @@ use camlink_core::dynamics::statics::Settings as StaticsSettings;
 
 pub use analysis::{needs_adaptive, not_applicable, DynamicsArgs, SettingError, ERROR_CONTROL};
 pub use data_file::LoadOptions;
-pub use error::LoadError;
+pub use error::{line_col, LoadError};
 pub use file::AnalysisType;
 pub use resolve::joints::{JointKindEntry, JOINT_KINDS};
 pub use variant::Recipe;

@@ -1,6 +1,7 @@
 //! Binding of the cam design core: a synthesised cam, its motion, profile,
-//! limits and round trip. Converts only; the Python module
-//! `camlink.cam_design` reads design files and builds the report.
+//! limits and round trip. Converts only; design files are read by
+//! camlink-cam (`cam_design.rs`), and the Python module
+//! `camlink.cam.design` builds the report.
 
 use std::sync::Arc;
 
@@ -398,9 +399,6 @@ impl CamCore {
     }
 }
 
-/// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
-/// The question camlink asks of a base circle radius `r` (m) metres long
-/// (`camlink_core::cam::base_radius_question`), or None.
 /// The follower kinds of cam design files and the dimensions each takes,
 /// as `{kind: [field, …]}` ([`Follower::KINDS`]).
 #[pyfunction]
@@ -417,11 +415,7 @@ pub fn cam_laws() -> Vec<&'static str> {
     LawKind::ALL.iter().map(|l| l.name()).collect()
 }
 
-#[pyfunction]
-pub fn cam_base_radius_question(r: f64) -> Option<String> {
-    camlink_core::cam::base_radius_question(r)
-}
-
+/// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
 #[pyfunction]
 pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
     hertz::MATERIALS

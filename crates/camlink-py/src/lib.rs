@@ -8,6 +8,7 @@
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
 mod cam;
+mod cam_design;
 mod csv_text;
 mod fourbar;
 mod machine;
@@ -1272,12 +1273,17 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<cam::CamCore>()?;
     m.add_class::<machine::MachineCycle>()?;
     m.add_function(wrap_pyfunction!(cam::cam_materials, m)?)?;
-    m.add_function(wrap_pyfunction!(cam::cam_base_radius_question, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_followers, m)?)?;
     m.add_function(wrap_pyfunction!(cam::cam_laws, m)?)?;
     m.add_function(wrap_pyfunction!(cam::contact_modulus, m)?)?;
     m.add_function(wrap_pyfunction!(cam::line_contact, m)?)?;
     m.add_function(wrap_pyfunction!(cam::helical_spring, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_design_load, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_design_read, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_design_limits, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_is_design, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::did_you_mean, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::plain_file_name_problem, m)?)?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;

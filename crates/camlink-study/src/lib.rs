@@ -110,7 +110,7 @@ pub fn run_batch(
 }
 
 /// One variant, a panic included, as an [`Outcome`].
-pub fn run_one(
+pub(crate) fn run_one(
     base: &Loaded,
     values: &[(String, f64)],
     outputs: &[(String, Reduction)],

@@ -7,6 +7,7 @@ mod closed_forms;
 mod constructions;
 mod path_generation;
 mod problem_files;
+mod published;
 mod slider_crank;
 mod two_positions;
 mod verify;

@@ -5,27 +5,28 @@ A design file (TOML) holds ``[cam]``, ``[follower]``, ``[[segments]]`` and
 optionally ``[limits]``, ``[dynamics]`` and ``[export]``; see
 docs/cam-design.md. Angles in the file are in degrees (keys end in
 ``_deg``) and cam speeds in rev/min (``_rpm``); lengths are in metres.
-Inside, everything is SI and radians; the mechanics run in the Rust core
-(``camlink._core.CamCore``).
+Inside, everything is SI and radians. The file is read and checked in
+Rust (the ``camlink-cam`` crate, through ``camlink._core.cam_design_read``):
+its rules, defaults and bounds are there, and its messages name the file,
+line and field; the mechanics run in the Rust core
+(``camlink._core.CamCore``). This module turns the checked design into
+dataclasses and presents the report.
 """
 
 from __future__ import annotations
 
-import difflib
+import json
 import math
-import tomllib
 import warnings
-from collections.abc import Iterable
 from dataclasses import dataclass, field
-from pathlib import Path, PureWindowsPath
+from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from camlink import _core
-from camlink._core import CamCore, ModelError, cam_base_radius_question
-from camlink.cam.export import MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE
+from camlink._core import CamCore, ModelError
 from camlink.cam.sizing import SURGE_RATIO, ContactSpec, SpringSpec, VibrationSpec
 from camlink.warn import LoadWarning
 
@@ -33,21 +34,18 @@ from camlink.warn import LoadWarning
 FOLLOWERS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.cam_followers()}
 #: The motion laws of a segment (the core's names).
 LAWS: tuple[str, ...] = tuple(_core.cam_laws())
-RPM = 2.0 * math.pi / 60.0
 
+_LIMITS = _core.cam_design_limits()
+#: One rev/min in rad/s.
+RPM: float = _LIMITS["rpm"]
 #: Highest cam speed (rev/min) a design file may give.
-MAX_RPM = 1e6
-
-#: Most segments in a motion program (a real program has tens; each one
-#: costs its share of every sample, report line and picture).
-MAX_SEGMENTS = 1000
-
+MAX_RPM: float = _LIMITS["max_rpm"]
+#: Most segments in a motion program.
+MAX_SEGMENTS: int = _LIMITS["max_segments"]
 #: Least span (deg) of a segment.
-MIN_SPAN_DEG = 1e-3
-
-#: Largest length (m) a design file may give: base radius, follower
-#: dimensions, lifts, limits, tool radius, search range.
-MAX_LENGTH = 1e3
+MIN_SPAN_DEG: float = _LIMITS["min_span_deg"]
+#: Largest length (m) a design file may give.
+MAX_LENGTH: float = _LIMITS["max_length"]
 
 
 class CamDesignError(ModelError):
@@ -181,121 +179,80 @@ class Design:
             raise CamDesignError(f"{self.path}: {e}") from None
 
 
-class _Table:
-    """Typed reads from one TOML table with messages naming the field."""
-
-    def __init__(self, path: Path, where: str, data: object) -> None:
-        if not isinstance(data, dict):
-            raise CamDesignError(f"{path}: {where} must be a table")
-        self.path, self.where, self.data = path, where, data
-        self.used: set[str] = set()
-
-    def fail(self, key: str, message: str) -> CamDesignError:
-        return CamDesignError(f"{self.path}: {self.where}.{key}: {message}")
-
-    def number(
-        self,
-        key: str,
-        default: float | None = None,
-        *,
-        positive: bool = False,
-        most: float | None = None,
-        unit: str = "",
-    ) -> float:
-        """The number at `key`; with `most`, |value| ≤ `most` (`unit`)."""
-        self.used.add(key)
-        v = self.data.get(key, default)
-        if v is None:
-            raise self.fail(key, "is required")
-        if (
-            isinstance(v, bool)
-            or not isinstance(v, (int, float))
-            or not math.isfinite(v)
-        ):
-            raise self.fail(key, f"must be a number, got {v!r}")
-        if positive and v <= 0:
-            raise self.fail(key, f"must be positive, got {v}")
-        if most is not None and abs(v) > most:
-            raise self.fail(key, f"must be at most {most:g}{unit} in size, got {v}")
-        return float(v)
-
-    def length(self, key: str, default: float | None = None, *, positive: bool = False) -> float:
-        """A length (m) at `key`: at most `MAX_LENGTH` in size."""
-        return self.number(key, default, positive=positive, most=MAX_LENGTH, unit=" m")
-
-    def optional(
-        self, key: str, *, positive: bool = False, most: float | None = None, unit: str = ""
-    ) -> float | None:
-        if key not in self.data:
-            self.used.add(key)
-            return None
-        return self.number(key, positive=positive, most=most, unit=unit)
-
-    def text(
-        self, key: str, default: str | None = None, choices: tuple[str, ...] = ()
-    ) -> str:
-        self.used.add(key)
-        v = self.data.get(key, default)
-        if not isinstance(v, str):
-            raise self.fail(
-                key, "is required" if v is None else f"must be a string, got {v!r}"
-            )
-        if choices and v not in choices:
-            raise self.fail(
-                key, f"'{v}' is not one of {', '.join(choices)}{_did_you_mean(v, choices)}"
-            )
-        return v
-
-    def finish(self) -> None:
-        """Refuses a key no read asked for, suggesting the nearest known one."""
-        extra = sorted(set(self.data) - self.used)
-        if extra:
-            known = sorted(k for k in self.used if not k.startswith("_"))
-            raise self.fail(
-                extra[0],
-                f"unknown key{_did_you_mean(extra[0], known)}; "
-                f"the keys here are {', '.join(known)}",
-            )
-
-
-def _did_you_mean(name: str, candidates: Iterable[str]) -> str:
-    """`` (did you mean 'x'?)`` for the candidate closest to `name`, if any is close."""
-    close = difflib.get_close_matches(name, list(candidates), n=1, cutoff=0.6)
-    return f" (did you mean '{close[0]}'?)" if close else ""
-
-
-def _ends(
-    t: _Table, key: str, scale: float
-) -> tuple[float | None, float | None, float | None]:
-    t.used.add(key)
-    if key not in t.data:
-        return (None, None, None)
-    e = _Table(t.path, f"{t.where}.{key}", t.data[key])
-    out = tuple(
-        None if k not in e.data else e.number(k) * scale
-        for k in ("velocity", "acceleration", "jerk")
+def _design(d: dict[str, Any], path: Path) -> Design:
+    """The dataclasses of the core's checked design `d`."""
+    lim = dict(d["limits"])
+    if lim["base_radius_range"] is not None:
+        lim["base_radius_range"] = tuple(lim["base_radius_range"])
+    ex = dict(d["export"])
+    ex["given"] = frozenset(ex["given"])
+    c, sp, v = d["contact"], d["spring"], d["vibration"]
+    return Design(
+        path=path,
+        name=d["name"],
+        follower=d["follower"],
+        dims=tuple(d["dims"]),
+        base_radius=d["base_radius"],
+        ccw=d["ccw"],
+        segments=tuple(
+            Segment(law, span, lift, (s0[0], s0[1], s0[2]), (s1[0], s1[1], s1[2]))
+            for law, span, lift, s0, s1 in d["segments"]
+        ),
+        limits=Limits(**lim),
+        dynamics=None if d["dynamics"] is None else Dynamics(**d["dynamics"]),
+        export=Export(**ex),
+        contact=None if c is None else ContactSpec(**{**c, "materials": tuple(c["materials"])}),
+        spring=None if sp is None else SpringSpec(**sp),
+        vibration=None
+        if v is None
+        else VibrationSpec(
+            tuple(v["masses"]),
+            tuple(v["stiffness"]),
+            tuple(v["damping"]),
+            v["steps"],
+            v["turns"],
+            v["polydyne"],
+        ),
     )
-    e.used.update(("velocity", "acceleration", "jerk"))
-    e.finish()
-    return (out[0], out[1], out[2])
+
+
+def _checked(read: Any, path: Path) -> Design:
+    """The design the core's `read()` returns, its warnings issued as
+    `LoadWarning`; raises CamDesignError with the core's message."""
+    try:
+        d, notes = read()
+    except ModelError as e:
+        raise CamDesignError(str(e)) from None
+    for note in notes:
+        warnings.warn(LoadWarning(note), stacklevel=3)
+    return _design(d, path)
 
 
 def load(path: str | Path) -> Design:
-    """Reads and checks a design file; raises CamDesignError naming the field."""
+    """Reads and checks a design file (in the core, `camlink_cam`); raises
+    CamDesignError naming the file, line and field."""
     p = Path(path)
-    try:
-        with p.open("rb") as f:
-            doc = tomllib.load(f)
-    except tomllib.TOMLDecodeError as e:
-        raise CamDesignError(f"{p}: {e}") from None
-    return from_data(doc, p)
+    return _checked(lambda: _core.cam_design_read(p), p)
 
 
 def is_design(doc: dict[str, Any]) -> bool:
     """Whether the parsed TOML `doc` is a cam design file (a motion
     program: top-level ``[[segments]]`` and ``[follower]``) rather than a
     model file."""
-    return isinstance(doc.get("segments"), list) and "follower" in doc and "bodies" not in doc
+    return bool(_core.cam_is_design(json.dumps(doc, default=str)))
+
+
+def _plain(v: object) -> object:
+    """`v` with its infinities and NaN as the words TOML writes them
+    ('inf', 'nan'), which JSON cannot hold: the loader refuses them as
+    numbers, naming the field."""
+    if isinstance(v, float) and not math.isfinite(v):
+        return repr(v)
+    if isinstance(v, dict):
+        return {k: _plain(x) for k, x in v.items()}
+    if isinstance(v, list):
+        return [_plain(x) for x in v]
+    return v
 
 
 def from_data(doc: dict[str, Any], path: str | Path) -> Design:
@@ -303,253 +260,8 @@ def from_data(doc: dict[str, Any], path: str | Path) -> Design:
     messages; its stem names the default exports) as `load` does; raises
     CamDesignError naming the field."""
     p = Path(path)
-    top = _Table(p, "design", doc)
-    name = top.text("name", p.stem)
-    cam = _Table(p, "cam", doc.get("cam", {}))
-    top.used.add("cam")
-    base = cam.length("base_radius", positive=True)
-    question = cam_base_radius_question(base)
-    if question is not None:
-        warnings.warn(
-            LoadWarning(f"{p}: [cam] base_radius: {question} (design files are in metres)"),
-            stacklevel=2,
-        )
-    rotation = cam.text("rotation", "ccw", ("ccw", "cw"))
-    cam.finish()
-    fol = _Table(p, "follower", doc.get("follower", {}))
-    top.used.add("follower")
-    kind = fol.text("type", None, tuple(FOLLOWERS))
-    dims = []
-    for k in FOLLOWERS[kind]:
-        dims.append(
-            fol.length(
-                k,
-                0.0 if k in ("offset", "face_offset") else None,
-                positive=k not in ("offset", "face_offset"),
-            )
-        )
-    fol.finish()
-    oscillating = kind.startswith("oscillating")
-    raw = doc.get("segments")
-    top.used.add("segments")
-    if not isinstance(raw, list) or not raw:
-        raise CamDesignError(
-            f"{p}: [[segments]]: the motion program needs at least one segment"
-        )
-    if len(raw) > MAX_SEGMENTS:
-        raise CamDesignError(
-            f"{p}: [[segments]]: {len(raw)} segments; a motion program has at most "
-            f"{MAX_SEGMENTS}"
-        )
-    segments = []
-    for i, r in enumerate(raw):
-        s = _Table(p, f"segments[{i}]", r)
-        law = s.text("law", None, LAWS)
-        span_deg = s.number("span_deg", positive=True, most=360.0, unit="°")
-        if span_deg < MIN_SPAN_DEG:
-            raise s.fail("span_deg", f"must be at least {MIN_SPAN_DEG:g}°, got {span_deg:g}")
-        span = math.radians(span_deg)
-        if oscillating:
-            lift = math.radians(s.number("swing_deg", 0.0, most=180.0, unit="°"))
-            scale = 1.0
-        else:
-            lift = s.length("lift", 0.0)
-            scale = 1.0
-        start, end = _ends(s, "start", scale), _ends(s, "end", scale)
-        s.finish()
-        segments.append(Segment(law, span, lift, start, end))
-    lim = _Table(p, "limits", doc.get("limits", {}))
-    top.used.add("limits")
-    phi = lim.optional("max_pressure_angle_deg", positive=True, most=90.0, unit="°")
-    rng = None
-    lim.used.add("base_radius_search")
-    if "base_radius_search" in lim.data:
-        v = lim.data["base_radius_search"]
-        if not (
-            isinstance(v, list)
-            and len(v) == 2
-            and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)
-            and 0 < v[0] < v[1] <= MAX_LENGTH
-        ):
-            raise lim.fail(
-                "base_radius_search",
-                f"must be [lo, hi] with 0 < lo < hi ≤ {MAX_LENGTH:g} (m), got {v!r}",
-            )
-        rng = (float(v[0]), float(v[1]))
-    limits = Limits(
-        max_pressure_angle=None if phi is None else math.radians(phi),
-        min_radius=lim.optional("min_radius", positive=True, most=MAX_LENGTH, unit=" m"),
-        max_face_width=lim.optional("max_face_width", positive=True, most=MAX_LENGTH, unit=" m"),
-        base_radius_range=rng,
-        max_contact_stress=lim.optional("max_contact_stress", positive=True, unit=" Pa"),
-        min_bearing_life_hours=lim.optional("min_bearing_life_hours", positive=True, unit=" h"),
-        min_coil_clearance=lim.optional(
-            "min_coil_clearance", positive=True, most=MAX_LENGTH, unit=" m"
-        ),
-        min_surge_ratio=lim.number("min_surge_ratio", SURGE_RATIO, positive=True),
-        max_residual_vibration=lim.optional("max_residual_vibration", positive=True),
-    )
-    lim.finish()
-    dynamics = None
-    dynamics_given: frozenset[str] = frozenset()
-    if "dynamics" in doc:
-        top.used.add("dynamics")
-        d = _Table(p, "dynamics", doc["dynamics"])
-        red = d.optional("redline_rpm", positive=True, most=MAX_RPM, unit=" rpm")
-        dynamics = Dynamics(
-            mass=d.number("mass", positive=True),
-            spring_rate=d.number("spring_rate", 0.0),
-            preload=d.number("preload", 0.0),
-            damping=d.number("damping", 0.0),
-            speed=d.number("speed_rpm", positive=True, most=MAX_RPM, unit=" rpm") * RPM,
-            redline=None if red is None else red * RPM,
-        )
-        for k in ("spring_rate", "preload", "damping"):
-            if getattr(dynamics, k) < 0:
-                raise d.fail(k, "must not be negative")
-        d.finish()
-        dynamics_given = frozenset(d.data)
-    sizing: dict[str, Any] = {k: doc[k] for k in ("contact", "spring", "vibration") if k in doc}
-    top.used.update(sizing)
-    ex = _Table(p, "export", doc.get("export", {}))
-    top.used.add("export")
-    stem = p.stem
-
-    names: dict[str, str] = {}
-    given: set[str] = set()
-
-    def out(key: str, default: str) -> str | None:
-        ex.used.add(key)
-        v = ex.data.get(key, default)
-        if v is False:
-            return None
-        if not isinstance(v, str) or not v:
-            raise ex.fail(key, f"must be a file name or false, got {v!r}")
-        problem = _not_plain(v)
-        if problem:
-            raise ex.fail(
-                key, f"'{v}' {problem}; an export is a plain file name inside the output folder"
-            )
-        if v == p.name:
-            raise ex.fail(key, f"'{v}' is the design file's name; choose another file name")
-        if v in names:
-            raise ex.fail(key, f"'{v}' is also export.{names[v]}; each export needs its own file")
-        names[v] = key
-        if key in ex.data:
-            given.add(key)
-        return v
-
-    chord = ex.optional("csv_chord_tolerance", positive=True, most=MAX_LENGTH, unit=" m")
-    step_deg = None if chord is not None else ex.number("csv_step_deg", 1.0, positive=True)
-    if step_deg is not None and 360.0 / step_deg > MAX_CSV_ROWS:
-        raise ex.fail(
-            "csv_step_deg",
-            f"{step_deg:g}° makes {360.0 / step_deg:.3g} rows; the CSV holds at most "
-            f"{MAX_CSV_ROWS} (a step of at least {360.0 / MAX_CSV_ROWS:g}°)",
-        )
-    export = Export(
-        csv=out("csv", f"{stem}.csv"),
-        csv_step=0.0 if step_deg is None else math.radians(step_deg),
-        csv_chord=chord,
-        dxf=out("dxf", f"{stem}.dxf"),
-        dxf_mode="arcs"
-        if ex.text("dxf_mode", "polyline", ("polyline", "arcs")) == "arcs"
-        else "polyline",
-        tolerance=ex.number("tolerance", 1e-5, positive=True, most=MAX_LENGTH, unit=" m"),
-        svg=out("svg", f"{stem}.svg"),
-        tool_radius=ex.optional("tool_radius", positive=True, most=MAX_LENGTH, unit=" m"),
-        svaj=out("svaj_plot", f"{stem}_svaj.png"),
-        profile=out("profile_plot", f"{stem}_profile.png"),
-        given=frozenset(given),
-        units=ex.text("units", "m", ("m", "mm")),
-        svaj_time=out("svaj_time_plot", f"{stem}_svaj_time.png") if dynamics else None,
-        vibration=out("vibration_plot", f"{stem}_vibration.png") if "vibration" in doc else None,
-    )
-    bore = ex.optional("bore_diameter", positive=True, most=MAX_LENGTH, unit=" m")
-    kw = ex.optional("keyway_width", positive=True, most=MAX_LENGTH, unit=" m")
-    kd = ex.optional("keyway_depth", positive=True, most=MAX_LENGTH, unit=" m")
-    ka = ex.number("keyway_angle_deg", 0.0, most=360.0, unit="°")
-    ex.used.add("timing_mark")
-    mark = ex.data.get("timing_mark", True)
-    if not isinstance(mark, bool):
-        raise ex.fail("timing_mark", f"must be true or false, got {mark!r}")
-    for key, v in (("keyway_width", kw), ("keyway_depth", kd)):
-        if v is not None and bore is None:
-            raise ex.fail(key, "needs export.bore_diameter")
-    if (kw is None) != (kd is None):
-        raise ex.fail("keyway_width" if kw is None else "keyway_depth", "a keyway needs both width and depth")
-    if bore is not None and kw is not None and kw >= bore:
-        raise ex.fail("keyway_width", f"{kw} m must be narrower than the bore {bore} m")
-    from dataclasses import replace as _replace
-
-    export = _replace(
-        export,
-        bore_radius=None if bore is None else bore / 2.0,
-        keyway_width=kw,
-        keyway_depth=kd,
-        keyway_angle=math.radians(ka),
-        timing_mark=mark,
-    )
-    ex.finish()
-    top.finish()
-    design = Design(
-        p,
-        name,
-        kind,
-        tuple(dims),
-        base,
-        rotation == "ccw",
-        tuple(segments),
-        limits,
-        dynamics,
-        export,
-    )
-    core = design.core()  # checks the program and the follower's geometry
-    if sizing:
-        from camlink.cam import sizing as cam_sizing
-
-        design = cam_sizing.complete(design, sizing, dynamics_given)
-    th = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
-    bad = ~np.all(np.isfinite(np.asarray(core.surface(th))), axis=1)
-    if bad.any():
-        raise CamDesignError(
-            f"{p}: the synthesised profile is not finite at θ = "
-            f"{math.degrees(th[np.argmax(bad)]):.2f}° (check the base radius, the follower's "
-            "dimensions, the lifts and the end conditions)"
-        )
-    if export.bore_radius is not None:
-        th_all = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
-        least = float(np.min(np.hypot(*np.asarray(core.surface(th_all)).T)))
-        outer = export.bore_radius + (export.keyway_depth or 0.0)
-        if outer >= least:
-            raise ex.fail(
-                "bore_diameter",
-                f"the bore and keyway reach {outer:.6g} m from the centre, beyond the "
-                f"profile's least radius {least:.6g} m",
-            )
-    size = float(core.geometry()["max_radius"]) + (export.tool_radius or 0.0)
-    for key, tol in (("tolerance", export.tolerance), ("csv_chord_tolerance", export.csv_chord)):
-        least = MIN_RELATIVE_TOLERANCE * size
-        if tol is not None and tol < least:
-            raise ex.fail(
-                key,
-                f"{tol:g} m is finer than {MIN_RELATIVE_TOLERANCE:g} of the profile's size "
-                f"({size:.6g} m); use at least {least:.3g} m",
-            )
-    return design
-
-
-def _not_plain(name: str) -> str:
-    """Why `name` is not a plain file name ("" when it is)."""
-    if "/" in name or "\\" in name:
-        return "holds a path separator"
-    if name in (".", ".."):
-        return "is a folder"
-    if any(ord(c) < 32 for c in name):
-        return "holds a control character"
-    if Path(name).is_absolute() or PureWindowsPath(name).drive:
-        return "is an absolute path"
-    return ""
+    text = json.dumps(_plain(doc), default=str)
+    return _checked(lambda: _core.cam_design_load(text, str(p), json=True), p)
 
 
 @dataclass(frozen=True)

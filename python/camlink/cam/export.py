@@ -17,18 +17,19 @@ import ezdxf
 import numpy as np
 from numpy.typing import NDArray
 
-from camlink._core import CamCore
+from camlink._core import CamCore, cam_design_limits
 from camlink.units import LENGTH_UNITS as METRES
 
 Points: TypeAlias = NDArray[np.float64]
 
 #: Finest chord or arc-fit tolerance, relative to the size of the curve
 #: (its largest distance from the cam centre): about 80,000 points for a
-#: closed profile at the limit.
-MIN_RELATIVE_TOLERANCE = 1e-9
+#: closed profile at the limit (the core's bound, which design files
+#: are held to).
+MIN_RELATIVE_TOLERANCE: float = cam_design_limits()["min_relative_tolerance"]
 
 #: Most rows of a CSV export (a step of at least 0.00036°).
-MAX_CSV_ROWS = 1_000_000
+MAX_CSV_ROWS: int = cam_design_limits()["max_csv_rows"]
 
 #: Most points `angles_by_chord` gives.
 MAX_POINTS = 2_000_000

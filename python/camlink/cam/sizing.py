@@ -3,27 +3,26 @@ camshaft torque, the helical return spring and the follower train's
 vibration, read from the ``[contact]``, ``[spring]`` and ``[vibration]``
 tables of a cam design file and checked as limits of the cam report.
 
-The formulas are in the Rust core (``camlink._core``: ``CamCore.stress``,
-``CamCore.vibration``, ``helical_spring``, ``line_contact``,
-``cam_materials``); this module reads the file and presents them. See
+The formulas are in the Rust core (``CamCore.stress``,
+``CamCore.vibration``, the materials table ``cam_materials``); the tables
+are read and checked, the spring installed and the contact modulus
+computed by the design file's loader (the ``camlink-cam`` crate). This
+module holds what it read and presents the checks. See
 docs/cam-design.md, *Contact stress*, *Springs* and *Follower vibration*.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from camlink._core import CamCore, cam_materials, contact_modulus, helical_spring
-
-#: Largest length (m) in a design file (as `cam_design.MAX_LENGTH`).
-MAX_LENGTH = 1e3
+from camlink._core import CamCore, cam_design_limits, cam_materials
 
 if TYPE_CHECKING:
-    from camlink.cam.design import Check, Design, _Table
+    from camlink.cam.design import Check, Design
 
 #: Materials by name: (E Pa, ν, G Pa, density kg/m³), Shigley's
 #: *Mechanical Engineering Design*, 10th ed., Table A-5 (in the core).
@@ -31,18 +30,21 @@ MATERIALS: dict[str, tuple[float, float, float, float]] = {
     n: (e, nu, g, rho) for n, e, nu, g, rho in cam_materials()
 }
 
+_LIMITS = cam_design_limits()
+
 #: Life exponent of a bearing type (ISO 281).
-LIFE_EXPONENT = {"ball": 3.0, "roller": 10.0 / 3.0}
+LIFE_EXPONENT: dict[str, float] = dict(_LIMITS["life_exponents"])
 
 #: Default least ratio of spring surge frequency to the forcing (cam)
 #: frequency: Norton, *Machine Design*, ch. 13 ("at least 13 times").
-SURGE_RATIO = 13.0
+SURGE_RATIO: float = _LIMITS["surge_ratio"]
 
-RPM = 2.0 * math.pi / 60.0
+#: One rev/min in rad/s.
+RPM: float = _LIMITS["rpm"]
 
 #: Most integration steps per turn and turns of `[vibration]` (seconds of work).
-MAX_STEPS = 100_000
-MAX_TURNS = 20
+MAX_STEPS: int = _LIMITS["max_steps"]
+MAX_TURNS: int = _LIMITS["max_turns"]
 
 
 @dataclass(frozen=True)
@@ -81,170 +83,6 @@ class VibrationSpec:
     steps: int
     turns: int
     polydyne: bool
-
-
-def _material(t: _Table, key: str) -> tuple[str, float, float, float, float]:
-    """(label, E, ν, G, density) of `key`: a name from `MATERIALS` or a
-    table ``{young_modulus, poisson_ratio[, shear_modulus, density]}``."""
-    from camlink.cam.design import _Table
-
-    t.used.add(key)
-    v = t.data.get(key, "steel")
-    if isinstance(v, str):
-        if v not in MATERIALS:
-            raise t.fail(
-                key,
-                f"'{v}' is not in the materials table ({', '.join(MATERIALS)}); give "
-                "{ young_modulus = …, poisson_ratio = … } (Pa) instead",
-            )
-        return (v, *MATERIALS[v])
-    m = _Table(t.path, f"{t.where}.{key}", v)
-    e = m.number("young_modulus", positive=True)
-    nu = m.number("poisson_ratio")
-    if not 0.0 <= nu < 0.5:
-        raise m.fail("poisson_ratio", f"must be in [0, 0.5), got {nu}")
-    g = m.optional("shear_modulus", positive=True)
-    rho = m.optional("density", positive=True)
-    m.finish()
-    return ("given", e, nu, math.nan if g is None else g, math.nan if rho is None else rho)
-
-
-def complete(design: Design, raw: dict[str, Any], dynamics_given: frozenset[str]) -> Design:
-    """`design` with its ``[contact]``, ``[spring]`` and ``[vibration]``
-    tables read from `raw`; the spring sets the rate and preload of
-    ``[dynamics]``. Raises CamDesignError naming the field."""
-    from camlink.cam.design import CamDesignError, _Table
-
-    p = design.path
-    dyn = design.dynamics
-    contact = spring = vibration = None
-    for key in raw:
-        if dyn is None:
-            raise CamDesignError(f"{p}: [{key}] needs [dynamics] (the follower's mass and speed)")
-    if "contact" in raw:
-        t = _Table(p, "contact", raw["contact"])
-        width = t.length("width", positive=True)
-        cam_m = _material(t, "cam_material")
-        fol_m = _material(t, "follower_material")
-        rating = t.optional("bearing_rating", positive=True, unit=" N")
-        kind = t.text("bearing_type", "ball", tuple(LIFE_EXPONENT))
-        if rating is not None and design.follower.endswith("flat"):
-            raise t.fail("bearing_rating", "a flat-faced follower has no roller bearing")
-        crown = t.optional("crown_radius", positive=True, most=MAX_LENGTH, unit=" m")
-        if crown is not None and design.follower.endswith("flat"):
-            raise t.fail("crown_radius", "a flat-faced follower has no roller to crown")
-        t.finish()
-        contact = ContactSpec(
-            width,
-            contact_modulus(cam_m[1:3], fol_m[1:3]),
-            (cam_m[0], fol_m[0]),
-            rating,
-            LIFE_EXPONENT[kind],
-            crown,
-        )
-    if "spring" in raw:
-        assert dyn is not None
-        t = _Table(p, "spring", raw["spring"])
-        if design.oscillating:
-            raise CamDesignError(
-                f"{p}: [spring]: a helical spring on the stem needs a translating follower; "
-                "give dynamics.spring_rate and preload (per radian) for an oscillating one"
-            )
-        for k in ("spring_rate", "preload"):
-            if k in dynamics_given:
-                raise CamDesignError(
-                    f"{p}: dynamics.{k}: [spring] gives the rate and preload; remove one of them"
-                )
-        nums = {
-            k: t.length(k, positive=True)
-            for k in ("wire_diameter", "mean_diameter", "free_length", "installed_length")
-        }
-        coils = {
-            k: t.number(k, positive=True, most=1e4)
-            for k in ("active_coils", "total_coils")
-        }
-        mat = None
-        if "shear_modulus" in t.data or "density" in t.data:
-            g = t.number("shear_modulus", positive=True)
-            rho = t.number("density", positive=True)
-        else:
-            mat = _material(t, "material")
-            g, rho = mat[3], mat[4]
-            if not (math.isfinite(g) and math.isfinite(rho)):
-                raise t.fail("material", "needs shear_modulus and density for a spring")
-        t.finish()
-        th = np.linspace(0.0, 2.0 * math.pi, 7201)
-        lift = float(np.max(np.asarray(design.core().motion(th))[:, 0]))
-        try:
-            fig = helical_spring(
-                nums["wire_diameter"],
-                nums["mean_diameter"],
-                coils["active_coils"],
-                coils["total_coils"],
-                nums["free_length"],
-                g,
-                rho,
-                nums["installed_length"],
-                lift,
-            )
-        except ValueError as e:
-            field, _, msg = str(e).partition(": ")
-            raise CamDesignError(f"{p}: spring.{field}: {msg}") from None
-        spring = SpringSpec(
-            nums["wire_diameter"],
-            nums["mean_diameter"],
-            coils["active_coils"],
-            coils["total_coils"],
-            nums["free_length"],
-            nums["installed_length"],
-            g,
-            rho,
-            dict(fig),
-        )
-        dyn = replace(dyn, spring_rate=fig["rate"], preload=fig["preload"])
-    if "vibration" in raw:
-        assert dyn is not None
-        t = _Table(p, "vibration", raw["vibration"])
-
-        def numbers(key: str, default: list[float] | None, *, positive: bool) -> list[float]:
-            t.used.add(key)
-            v = t.data.get(key, default)
-            if not (
-                isinstance(v, list)
-                and v
-                and all(
-                    isinstance(x, (int, float))
-                    and not isinstance(x, bool)
-                    and math.isfinite(x)
-                    and (x > 0 if positive else x >= 0)
-                    for x in v
-                )
-            ):
-                what = "positive" if positive else "zero or positive"
-                raise t.fail(key, f"must be a list of {what} numbers, got {v!r}")
-            return [float(x) for x in v]
-
-        masses = numbers("masses", [dyn.mass], positive=True)
-        stiffness = numbers("stiffness", None, positive=True)
-        damping = numbers("damping", [0.0] * len(masses), positive=False)
-        for key, v in (("stiffness", stiffness), ("damping", damping)):
-            if len(v) != len(masses):
-                raise t.fail(
-                    key, f"gives {len(v)} values for {len(masses)} masses; one per mass"
-                )
-        steps = int(t.number("steps_per_turn", 7200, positive=True, most=MAX_STEPS))
-        turns = int(t.number("turns", 3, positive=True, most=MAX_TURNS))
-        t.used.add("polydyne")
-        poly = t.data.get("polydyne", False)
-        if not isinstance(poly, bool):
-            raise t.fail("polydyne", f"must be true or false, got {poly!r}")
-        if poly and len(masses) != 1:
-            raise t.fail("polydyne", f"takes a one-mass train, got {len(masses)} masses")
-        t.finish()
-        vibration = VibrationSpec(
-            tuple(masses), tuple(stiffness), tuple(damping), steps, turns, poly
-        )
-    return replace(design, dynamics=dyn, contact=contact, spring=spring, vibration=vibration)
 
 
 def checks(design: Design, core: CamCore) -> tuple[list[Check], dict[str, Any]]:

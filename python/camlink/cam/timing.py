@@ -27,16 +27,92 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from camlink import _core
 from camlink._core import ModelError
 from camlink.cam import design as cam_design
-from camlink.cam.design import CamDesignError, _Table
+from camlink.cam.design import CamDesignError
+from camlink.cam.export import MAX_CSV_ROWS
 from camlink.units import LENGTH_UNITS as METRES
 
-RPM = 2.0 * math.pi / 60.0
+RPM = cam_design.RPM
 
 #: Length units of tables and the diagram: name -> metres per unit (of
 #: camlink's length units, `camlink.units.LENGTH_UNITS`).
 UNITS = {u: METRES[u] for u in ("m", "mm")}
+
+
+class _Table:
+    """Typed reads from one TOML table of a timing file with messages
+    naming the field."""
+
+    def __init__(self, path: Path, where: str, data: object) -> None:
+        if not isinstance(data, dict):
+            raise CamDesignError(f"{path}: {where} must be a table")
+        self.path, self.where, self.data = path, where, data
+        self.used: set[str] = set()
+
+    def fail(self, key: str, message: str) -> CamDesignError:
+        return CamDesignError(f"{self.path}: {self.where}.{key}: {message}")
+
+    def number(
+        self,
+        key: str,
+        default: float | None = None,
+        *,
+        positive: bool = False,
+        most: float | None = None,
+        unit: str = "",
+    ) -> float:
+        """The number at `key`; with `most`, |value| ≤ `most` (`unit`)."""
+        self.used.add(key)
+        v = self.data.get(key, default)
+        if v is None:
+            raise self.fail(key, "is required")
+        if (
+            isinstance(v, bool)
+            or not isinstance(v, (int, float))
+            or not math.isfinite(v)
+        ):
+            raise self.fail(key, f"must be a number, got {v!r}")
+        if positive and v <= 0:
+            raise self.fail(key, f"must be positive, got {v}")
+        if most is not None and abs(v) > most:
+            raise self.fail(key, f"must be at most {most:g}{unit} in size, got {v}")
+        return float(v)
+
+    def length(self, key: str, default: float | None = None, *, positive: bool = False) -> float:
+        """A length (m) at `key`: at most `cam_design.MAX_LENGTH` in size."""
+        return self.number(
+            key, default, positive=positive, most=cam_design.MAX_LENGTH, unit=" m"
+        )
+
+    def text(
+        self, key: str, default: str | None = None, choices: tuple[str, ...] = ()
+    ) -> str:
+        self.used.add(key)
+        v = self.data.get(key, default)
+        if not isinstance(v, str):
+            raise self.fail(
+                key, "is required" if v is None else f"must be a string, got {v!r}"
+            )
+        if choices and v not in choices:
+            raise self.fail(
+                key,
+                f"'{v}' is not one of {', '.join(choices)}"
+                f"{_core.did_you_mean(v, list(choices))}",
+            )
+        return v
+
+    def finish(self) -> None:
+        """Refuses a key no read asked for, suggesting the nearest known one."""
+        extra = sorted(set(self.data) - self.used)
+        if extra:
+            known = sorted(k for k in self.used if not k.startswith("_"))
+            raise self.fail(
+                extra[0],
+                f"unknown key{_core.did_you_mean(extra[0], known)}; "
+                f"the keys here are {', '.join(known)}",
+            )
 
 
 @dataclass(frozen=True)
@@ -106,7 +182,7 @@ def load(path: str | Path) -> Timing:
         if any(a.name == an for a in axes):
             raise t.fail("name", f"'{an}' names two axes")
         file = t.text("design")
-        problem = cam_design._not_plain(file)
+        problem = _core.plain_file_name_problem(file)
         if problem:
             raise t.fail("design", f"'{file}' {problem}; name a design file beside {p.name}")
         dp = p.parent / file
@@ -167,12 +243,12 @@ def load(path: str | Path) -> Timing:
     ex = _Table(p, "export", doc.get("export", {}))
     top.used.add("export")
     step = ex.number("resolution_deg", 1.0, positive=True, most=90.0, unit="°")
-    if 360.0 / step > cam_design.MAX_CSV_ROWS:
-        raise ex.fail("resolution_deg", f"{step:g}° makes more than {cam_design.MAX_CSV_ROWS} rows")
+    if 360.0 / step > MAX_CSV_ROWS:
+        raise ex.fail("resolution_deg", f"{step:g}° makes more than {MAX_CSV_ROWS} rows")
     units = ex.text("units", "m", tuple(UNITS))
     ex.used.add("diagram")
     diagram = ex.data.get("diagram", f"{p.stem}_timing.png")
-    plain = isinstance(diagram, str) and diagram and not cam_design._not_plain(diagram)
+    plain = isinstance(diagram, str) and diagram and not _core.plain_file_name_problem(diagram)
     if diagram is not False and not plain:
         raise ex.fail("diagram", f"must be a plain file name or false, got {diagram!r}")
     ex.used.add("tables")

@@ -24,10 +24,13 @@ started them.
 from __future__ import annotations
 
 import asyncio
+import base64
 import hmac
 import json
 import math
 import secrets
+import struct
+import time
 import webbrowser
 from collections import deque
 from concurrent.futures import ThreadPoolExecutor
@@ -42,7 +45,7 @@ from camlink.studio.document import Document, Editable, Solution
 from camlink.studio.runs import Run, Runs, studies_of
 from camlink.viz.front import asset, frame_data
 
-__all__ = ["StudioServer", "make_app", "payload", "run"]
+__all__ = ["StudioServer", "make_app", "notebook", "pack", "payload", "run"]
 
 TOKEN_KEY = web.AppKey("token", str)
 DOC_KEY = web.AppKey("doc", Editable)
@@ -62,8 +65,14 @@ RUNS_KEY = web.AppKey("runs", Runs)
 _TYPES = {".js": "text/javascript", ".css": "text/css", ".html": "text/html"}
 _ASSETS = ("camlink.js", "studio.js", "cam.js", "uPlot.iife.min.js", "uPlot.min.css", "studio.css")
 _POLICY = ("default-src 'none'; script-src 'self'; style-src 'self' 'unsafe-inline'; "
-           "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; "
-           "frame-ancestors 'none'")
+           "connect-src 'self'; img-src 'self' data:; base-uri 'none'; form-action 'none'; ")
+#: Who may show the page in a frame: nobody, or, for a studio started from
+#: a notebook (`embed`), pages of this machine (a notebook served on
+#: localhost, VS Code's notebook view).
+_FRAMES = "frame-ancestors 'none'"
+_EMBED_FRAMES = ("frame-ancestors 'self' http://127.0.0.1:* http://localhost:* "
+                 "https://127.0.0.1:* https://localhost:* vscode-webview:")
+EMBED_KEY = web.AppKey("embed", bool)
 
 
 #: The line under the stage when an edit kept the assembly branch.
@@ -110,6 +119,35 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
     return data
 
 
+def pack(msg: dict[str, Any]) -> bytes:
+    """`msg` as one binary websocket message, for a page that asked for
+    them (``"binary": true`` in its ``hello``): a little-endian uint32 n,
+    n bytes of UTF-8 JSON (padded with spaces so that what follows starts
+    at a multiple of 8 bytes), then the float64 arrays of `msg` back to
+    back. Each array `msg` carries as ``{"f64": base64}`` is in the JSON
+    as ``{"buf": [k, m]}``: m values from the k-th float64 of the block."""
+    blobs: list[bytes] = []
+    at = 0
+
+    def walk(v: Any) -> Any:
+        nonlocal at
+        if isinstance(v, dict):
+            if len(v) == 1 and isinstance(v.get("f64"), str):
+                raw = base64.b64decode(v["f64"])
+                ref = {"buf": [at, len(raw) // 8]}
+                blobs.append(raw)
+                at += len(raw) // 8
+                return ref
+            return {k: walk(x) for k, x in v.items()}
+        if isinstance(v, list):
+            return [walk(x) if isinstance(x, (dict, list)) else x for x in v]
+        return v
+
+    head = json.dumps(walk(msg), separators=(",", ":"), allow_nan=False).encode()
+    head += b" " * (-(4 + len(head)) % 8)
+    return struct.pack("<I", len(head)) + head + b"".join(blobs)
+
+
 def _allowed(request: web.Request) -> bool:
     token = request.app[TOKEN_KEY]
     given = request.query.get("token", "")
@@ -129,7 +167,8 @@ async def _guard(request: web.Request, handler: Any) -> web.StreamResponse:
     if not _allowed(request):
         return web.Response(status=403, text="forbidden: wrong token or origin\n")
     response = await handler(request)
-    response.headers["Content-Security-Policy"] = _POLICY
+    frames = _EMBED_FRAMES if request.app[EMBED_KEY] else _FRAMES
+    response.headers["Content-Security-Policy"] = _POLICY + frames
     response.headers["X-Content-Type-Options"] = "nosniff"
     response.headers["Cache-Control"] = "no-store"
     response.headers["Referrer-Policy"] = "no-referrer"
@@ -231,6 +270,8 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
     executor = request.app[EXECUTOR_KEY]
     loop = asyncio.get_running_loop()
     queue: deque[dict[str, Any]] = deque()
+    arrived: dict[int, float] = {}  # id of a queued request: when it came (perf_counter, s)
+    binary = False  # whether the page reads binary replies (`pack`)
     wake = asyncio.Event()
 
     async def worker() -> None:
@@ -242,7 +283,15 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 reply = await loop.run_in_executor(executor, _handle, doc, msg)
                 if ws.closed:
                     return
-                await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
+                # The server's share of an edit (ms, from its arrival to
+                # its reply made), for the page's timing of edits.
+                came = arrived.pop(id(msg))
+                if reply.get("type") == "frames":
+                    reply["server_ms"] = round(1e3 * (time.perf_counter() - came), 3)
+                if binary:
+                    await ws.send_bytes(pack(reply))
+                else:
+                    await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
 
     def report(run: Run) -> None:
         # In the run's thread: its status to this page, from the loop
@@ -273,6 +322,8 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             if not isinstance(msg, dict):
                 continue
+            if msg.get("op") == "hello" and msg.get("binary") is True:
+                binary = True
             if msg.get("op") == "param" and not _finite(msg.get("value")):
                 continue
             if msg.get("op") in ("run", "stop", "runchannel"):
@@ -286,7 +337,9 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 continue
             # A newer edit of the same point or parameter replaces the
             # one still waiting: only the latest is solved.
+            arrived[id(msg)] = time.perf_counter()
             if queue and _same_target(queue[-1], msg):
+                arrived.pop(id(queue[-1]), None)
                 queue[-1] = msg
             else:
                 queue.append(msg)
@@ -329,7 +382,7 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
                 if name not in studies_of(doc.path):
                     raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
                 analysis, study = "study", doc.path.parent / name
-            run = runs.start(doc.solution.model, analysis, report, study)
+            run = runs.start(doc.solution.model, analysis, report, study, doc.path.parent)
             return {**run.status(shown), "seq": seq}
         if op == "stop":
             runs.stop()
@@ -341,10 +394,13 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
         return _error(msg, e)
 
 
-def make_app(doc: Editable, token: str) -> web.Application:
-    """The studio's application for `doc`, answering only with `token`."""
+def make_app(doc: Editable, token: str, embed: bool = False) -> web.Application:
+    """The studio's application for `doc`, answering only with `token`;
+    with `embed`, its page may be shown in a frame of a page of this
+    machine (a notebook's)."""
     app = web.Application(middlewares=[_guard])
     app[TOKEN_KEY] = token
+    app[EMBED_KEY] = embed
     app[DOC_KEY] = doc
     app[EXECUTOR_KEY] = ThreadPoolExecutor(max_workers=1, thread_name_prefix="camlink-studio")
     app[SOCKETS_KEY] = _Sockets()
@@ -367,17 +423,19 @@ def make_app(doc: Editable, token: str) -> web.Application:
 
 
 class StudioServer:
-    """A running studio on 127.0.0.1 (`url` carries the token)."""
+    """A running studio on 127.0.0.1 (`url` carries the token); with
+    `embed`, its page may be framed by a page of this machine (`make_app`)."""
 
-    def __init__(self, path: str | Path, port: int = 0) -> None:
+    def __init__(self, path: str | Path, port: int = 0, embed: bool = False) -> None:
         self.doc = open_document(path)
         self.token = secrets.token_urlsafe(24)
         self.port = port
+        self.embed = embed
         self.url = ""
         self._runner: web.AppRunner | None = None
 
     async def start(self) -> str:
-        self._runner = web.AppRunner(make_app(self.doc, self.token), access_log=None)
+        self._runner = web.AppRunner(make_app(self.doc, self.token, self.embed), access_log=None)
         await self._runner.setup()
         site = web.TCPSite(self._runner, "127.0.0.1", self.port)
         await site.start()
@@ -410,3 +468,12 @@ def run(path: str | Path, port: int = 0, browser: bool = True) -> None:
         asyncio.run(main())
     except KeyboardInterrupt:
         pass
+
+
+def notebook(path: str | Path, *, port: int = 0, height: int = 760) -> Any:
+    """The studio for `path` in a Jupyter notebook: served from a thread of
+    this process and shown as an iframe (`camlink.studio.embed.notebook`,
+    which returns a `NotebookStudio`; call ``.stop()`` when done)."""
+    from camlink.studio.embed import notebook as serve
+
+    return serve(path, port=port, height=height)

@@ -10,6 +10,14 @@ followers). Each edit reads the data as `camlink cam` reads the file
 `camlink cam` prints): SVAJ over a turn (`CamCore.motion`), the profile
 (`CamCore.surface`, a roller's pitch curve) and every design limit.
 
+The analysis is a function of the data alone (the design file reads no
+other file): the analyses of the last `CACHED` data are kept, keyed on
+the data's JSON, so going back to data seen before (undo, redo, a law
+tried and tried back) reuses its analysis, the base circle search of
+``[limits] base_radius_search`` with it, instead of analysing again. Every
+segment edit changes the motion program, which the search depends on:
+an edit to data not seen before runs it.
+
 An edit that makes the design invalid (spans that do not add up to 360°,
 lifts that do not return the follower) is kept, so the next edit can mend
 it; the solution then carries the loader's message and no curves, and the
@@ -50,6 +58,9 @@ Array = npt.NDArray[np.float64]
 
 #: Samples of θ over a turn for SVAJ and the profile: every 0.25°.
 SAMPLES = 1441
+
+#: Analyses kept for data seen before (`CamDocument`).
+CACHED = 16
 
 #: The keys of a segment the studio edits.
 KEYS = ("law", "span_deg", "lift", "swing_deg")
@@ -125,6 +136,8 @@ class CamDocument(Editable):
         if first.error is not None:
             raise CamDesignError(first.error)
         self._open(full, text)
+        # The analyses of the last data, by the data's JSON (oldest first).
+        self._analyses: dict[str, CamSolution] = {self._json: first}
         self.solution: CamSolution = first
 
     @property
@@ -150,7 +163,13 @@ class CamDocument(Editable):
 
     def _solve(self) -> CamSolution:
         self._json = self._dump()
-        return analyse_data(self._data, self.path)
+        solution = self._analyses.pop(self._json, None)
+        if solution is None:
+            solution = analyse_data(self._data, self.path)
+        self._analyses[self._json] = solution
+        while len(self._analyses) > CACHED:
+            del self._analyses[next(iter(self._analyses))]
+        return solution
 
     def set_segment(self, index: int, key: str, value: str | float,
                     gesture: object = None) -> CamSolution:

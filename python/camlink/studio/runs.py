@@ -8,8 +8,13 @@ A run is `Model.run(analysis=…)` of the model as the page shows it, which
 is the model `camlink run` reads from the saved file. Its rows are counted
 as the core hands them over (`on_rows`, every `camlink.model.CHUNK_ROWS`
 rows and at the end); the stop is seen there too, so a run stops within a
-chunk of rows (a stopped run keeps no rows: run it from the command line
-with ``-o`` for partial output). A study is the one of a study file
+chunk of rows. A run stopped, or failed, keeps the rows it computed, as
+`camlink run` keeps what it computed: the rows go to a results file
+(``output=``) in a private folder beside the model file (the studio writes
+nothing outside the model's folder), read back when the run ends and
+removed; the message of a stopped run names the time it stopped at. Where
+that folder cannot be made (a read-only folder), the run keeps its rows in
+memory only when it ends. A study is the one of a study file
 beside the model that names it, run on the model as edited, as `camlink
 study` runs it but writing no files; its variants are counted as each
 batch comes back (`run_variants`' ``on_batch``), and it stops between
@@ -29,11 +34,13 @@ from __future__ import annotations
 
 import itertools
 import math
+import tempfile
 import threading
 import time
 import tomllib
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import contextmanager
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -70,11 +77,15 @@ class Run:
     """One analysis of `model` (`analysis`: one of `ANALYSES`), or the
     study of the file `study` (`analysis` = ``"study"``) on `model`."""
 
-    def __init__(self, model: Model, analysis: str, study: Path | None = None) -> None:
+    def __init__(self, model: Model, analysis: str, study: Path | None = None,
+                 folder: Path | None = None) -> None:
         if analysis not in ANALYSES and not (analysis == "study" and study is not None):
             raise ModelError(f"unknown analysis {analysis!r} (one of {', '.join(ANALYSES)})")
         self.model = model
         self.analysis = analysis
+        #: Where the run's rows are written as they come (a private folder
+        #: made in it, removed at the end); None: kept in memory only.
+        self.folder = folder
         self.study: StudyFile | None = None
         if study is not None:
             from camlink.study.study_file import read_study
@@ -152,20 +163,57 @@ class Run:
                                 + ("" if len(self.table) <= MAX_TABLE else
                                    f" (the first {MAX_TABLE} shown)"))
             else:
-                self.results = self.model.run(analysis=self.analysis, on_rows=on_rows)
-                self.message = f"{self.analysis}: {len(self.results)} rows"
+                with _scratch(self.folder) as output:
+                    try:
+                        self.results = self.model.run(analysis=self.analysis, on_rows=on_rows,
+                                                      output=output)
+                    finally:
+                        if output is not None:
+                            self.results = _written(output)
+                self.message = (f"{self.analysis}: "
+                                f"{0 if self.results is None else len(self.results)} rows")
             self.state = "done"
         except Stopped:
             self.state = "stopped"
             self.message = f"{self.analysis} stopped after {self.done} of {self.total} {unit}"
+            res = self.results
+            if res is not None and len(res):
+                self.message += (f", at t = {float(res['t'][-1]):.6g} s: the {len(res)} rows "
+                                 "computed are kept")
         except AnalysisError as e:
-            self.results = e.results
+            if self.results is None:
+                self.results = e.results
             self.state = "failed"
             self.message = str(e)
         except (ModelError, ValueError) as e:
             self.state = "failed"
             self.message = str(e)
         report(self)
+
+
+@contextmanager
+def _scratch(folder: Path | None) -> Iterator[Path | None]:
+    """A results file (Parquet) in a private folder made in `folder`,
+    removed with what is in it on leaving; None when there is no `folder`
+    or the folder cannot be made there."""
+    if folder is None:
+        yield None
+        return
+    try:
+        tmp = tempfile.TemporaryDirectory(prefix=".camlink-run-", dir=folder)
+    except OSError:
+        yield None
+        return
+    with tmp as name:
+        yield Path(name) / "run.parquet"
+
+
+def _written(output: Path) -> Results | None:
+    """The rows a run wrote to `output` (or, stopped or failed, to the
+    file it leaves beside it), read into memory; None when it wrote none."""
+    found = [output, *sorted(output.parent.glob(f"{output.stem}*{output.suffix}"))]
+    path = next((p for p in found if p.is_file()), None)
+    return None if path is None else Results.load(path)
 
 
 def _run_study(model: Model, sf: StudyFile,
@@ -221,12 +269,13 @@ class Runs:
         self.current: Run | None = None
 
     def start(self, model: Model, analysis: str, report: Callable[[Run], None],
-              study: Path | None = None) -> Run:
+              study: Path | None = None, folder: Path | None = None) -> Run:
         """Starts `analysis` of `model` (the study `study` when `analysis`
-        is ``"study"``); raises ValueError while a run is going."""
+        is ``"study"``), its rows written as they come in a private folder
+        made in `folder` (`Run`); raises ValueError while a run is going."""
         if self.current is not None and self.current.state == "running":
             raise ValueError("a run is going: stop it first")
-        run = Run(model, analysis, study)
+        run = Run(model, analysis, study, folder)
         self.current = run
         self.executor.submit(run.execute, report)
         return run

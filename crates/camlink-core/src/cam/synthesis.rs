@@ -77,6 +77,25 @@ impl Follower {
         ("oscillating-flat", &["pivot_distance", "face_offset"]),
     ];
 
+    /// The dimensions that a file may leave out: 0 when not given, and
+    /// any sign (a stem's offset ε, a flat face's offset from the arm's
+    /// pivot line). Every other dimension is required and positive.
+    pub const ZERO_DEFAULT: [&'static str; 2] = ["offset", "face_offset"];
+
+    /// Whether dimension `key` of [`Follower::KINDS`] is 0 when not given
+    /// (and of any sign) rather than required and positive.
+    pub fn zero_default(key: &str) -> bool {
+        Follower::ZERO_DEFAULT.contains(&key)
+    }
+
+    /// The follower kinds' names, "translating-roller, …, or
+    /// oscillating-flat" (for messages).
+    pub fn kinds_text() -> String {
+        let names: Vec<&str> = Follower::KINDS.iter().map(|(k, _)| *k).collect();
+        let (last, init) = names.split_last().expect("follower kinds");
+        format!("{} or {last}", init.join(", "))
+    }
+
     /// The follower of kind `name` (one of [`Follower::KINDS`]) with the
     /// dimensions `dims` (m) in the order of its entry there.
     pub fn from_dims(name: &str, dims: &[f64]) -> Result<Follower, String> {
@@ -517,6 +536,10 @@ mod tests {
                 arm: 0.2,
                 roller: 0.03
             })
+        );
+        assert_eq!(
+            Follower::kinds_text(),
+            "translating-roller, translating-flat, oscillating-roller or oscillating-flat"
         );
         assert_eq!(
             Follower::from_dims("knife-edge", &[]).unwrap_err(),

@@ -128,7 +128,7 @@ fn close(what: &str, kind: &str, r: usize, got: f64, want: f64, x: &Local) {
 /// Checks Φ_q, ν, γ and η of `c` at the configuration `x` (velocities in
 /// `x.qd`, `x.own_d` are the trajectory's v; its acceleration is `acc`, which
 /// η reads from `x.qdd`, `x.own_dd` too; its jerk is `jerk`).
-pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[f64; NZ]) {
+pub(crate) fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[f64; NZ]) {
     let m = c.rows();
     let mask = moving(c);
     let z0 = to_z(x);
@@ -283,7 +283,7 @@ pub fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[f64; NZ
 /// A random configuration for `c` with its acceleration and jerk: ground
 /// bodies at rest at the origin, own coordinates drawn from `own_range`;
 /// the acceleration is also in the configuration's `qdd`, `own_dd`.
-pub fn random_local<C: Equations>(
+pub(crate) fn random_local<C: Equations>(
     c: &C,
     rng: &mut Rng,
     own_range: [(f64, f64); MAX_OWN],
@@ -319,14 +319,14 @@ pub fn random_local<C: Equations>(
 }
 
 /// Checks `c` on `n` random configurations, own coordinates in [−π, π].
-pub fn check_random<C: Equations>(c: &C, n: usize) {
+pub(crate) fn check_random<C: Equations>(c: &C, n: usize) {
     let pi = std::f64::consts::PI;
     check_random_own(c, n, [(-pi, pi); MAX_OWN]);
 }
 
 /// Checks `c` on `n` random configurations with own coordinates drawn from
 /// `own_range` (for curves with a limited parameter range).
-pub fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); MAX_OWN]) {
+pub(crate) fn check_random_own<C: Equations>(c: &C, n: usize, own_range: [(f64, f64); MAX_OWN]) {
     let mut rng = Rng::new(0x5EED ^ n as u64);
     for _ in 0..n {
         let (x, acc, jerk) = random_local(c, &mut rng, own_range);

@@ -88,14 +88,14 @@ impl Gear {
 
     /// θ = atan2 of the centre line from P_i to P_j for bodies at `qi` and
     /// `qj` = (x, y, φ), in (−π, π] (rad); 0 when the centres coincide.
-    pub fn centre_line_angle(&self, qi: [f64; 3], qj: [f64; 3]) -> f64 {
+    pub(crate) fn centre_line_angle(&self, qi: [f64; 3], qj: [f64; 3]) -> f64 {
         let d = sub(point(qj, self.s_j), point(qi, self.s_i));
         d[1].atan2(d[0])
     }
 
     /// c = R_i(φ_i − θ) ± R_j(φ_j − θ) (m): the phase for which bodies at
     /// `qi`, `qj` with centre-line angle `theta` satisfy Φ₂.
-    pub fn phase_at(&self, qi: [f64; 3], qj: [f64; 3], theta: f64) -> f64 {
+    pub(crate) fn phase_at(&self, qi: [f64; 3], qj: [f64; 3], theta: f64) -> f64 {
         self.radius_i * (qi[2] - theta) + self.sign() * self.radius_j * (qj[2] - theta)
     }
 

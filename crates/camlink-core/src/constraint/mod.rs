@@ -61,22 +61,22 @@ pub enum Feature<'a> {
 }
 
 /// Most equations one constraint contributes.
-pub const MAX_ROWS: usize = 3;
+pub(crate) const MAX_ROWS: usize = 3;
 /// Most own coordinates one constraint carries.
 pub const MAX_OWN: usize = 2;
 
 /// A set of a constraint's local coordinates, bit k for local coordinate k:
 /// 0–2 are (x, y, φ) of body i, 3–5 of body j, 6 and up its own.
-pub type CoordMask = u8;
+pub(crate) type CoordMask = u8;
 /// Every local coordinate.
-pub const ALL_COORDS: CoordMask = CoordMask::MAX;
+pub(crate) const ALL_COORDS: CoordMask = CoordMask::MAX;
 
 /// Number of local coordinates: (x, y, φ) of bodies i and j, then the
 /// constraint's own.
-pub const LOCAL_COORDS: usize = 6 + MAX_OWN;
+pub(crate) const LOCAL_COORDS: usize = 6 + MAX_OWN;
 
 /// A square block over the local coordinates.
-pub type LocalBlock = [[f64; LOCAL_COORDS]; LOCAL_COORDS];
+pub(crate) type LocalBlock = [[f64; LOCAL_COORDS]; LOCAL_COORDS];
 
 /// Values of a constraint's equations; entries past `rows()` are unused.
 pub type Rows = [f64; MAX_ROWS];
@@ -105,13 +105,13 @@ impl Local {
     /// The body point s′ of body k (0 for i, 1 for j) with its time
     /// derivatives, for η.
     #[inline]
-    pub fn point_path(&self, k: usize, s: V2) -> motion::Path {
+    pub(crate) fn point_path(&self, k: usize, s: V2) -> motion::Path {
         motion::body_point(self.q[k], self.qd[k], self.qdd[k], s)
     }
 
     /// A vector w′ fixed in body k, A_k w′, with its time derivatives.
     #[inline]
-    pub fn vector_path(&self, k: usize, w: V2) -> motion::Path {
+    pub(crate) fn vector_path(&self, k: usize, w: V2) -> motion::Path {
         motion::rotated(
             [self.q[k][2], self.qd[k][2], self.qdd[k][2]],
             &motion::constant(w),
@@ -120,13 +120,13 @@ impl Local {
 
     /// Own coordinate o's `[value, rate, second derivative]`.
     #[inline]
-    pub fn own_path(&self, o: usize) -> [f64; 3] {
+    pub(crate) fn own_path(&self, o: usize) -> [f64; 3] {
         [self.own[o], self.own_d[o], self.own_dd[o]]
     }
 
     /// A point of body i (`s_i`, body i frame) expressed in body j's frame,
     /// at the current configuration (m).
-    pub fn on_j(&self, s_i: V2) -> V2 {
+    pub(crate) fn on_j(&self, s_i: V2) -> V2 {
         let (qi, qj) = (self.q[0], self.q[1]);
         rot_t(qj[2], sub(point(qi, s_i), [qj[0], qj[1]]))
     }

@@ -69,4 +69,4 @@ pub enum Mark<'a> {
 }
 
 /// The marks of one joint, in drawing order.
-pub type Sketch<'a> = Vec<Mark<'a>>;
+pub(crate) type Sketch<'a> = Vec<Mark<'a>>;

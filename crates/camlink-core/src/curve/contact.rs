@@ -31,11 +31,11 @@ use super::Curve;
 use crate::math::{dot, norm, perp, scale, sub, V2};
 
 /// Samples of a curve for its mean point.
-pub const MEAN_SAMPLES: usize = 64;
+pub(crate) const MEAN_SAMPLES: usize = 64;
 
 /// The mean of [`MEAN_SAMPLES`] points of curve `c`, evenly spaced in its
 /// parameter (body frame, m): a point on the solid side of an open curve.
-pub fn sample_mean(c: &Curve) -> V2 {
+pub(crate) fn sample_mean(c: &Curve) -> V2 {
     let (s0, s1) = c.range();
     let n = MEAN_SAMPLES as f64;
     (0..MEAN_SAMPLES).fold([0.0; 2], |m, k| {
@@ -46,20 +46,20 @@ pub fn sample_mean(c: &Curve) -> V2 {
 
 /// The outward unit normal n = −σ g⊥/|g| of a closed curve of orientation
 /// σ (±1) whose tangent is `g` (same frame as g).
-pub fn outward(sigma: f64, g: V2) -> V2 {
+pub(crate) fn outward(sigma: f64, g: V2) -> V2 {
     let l = dot(g, g).sqrt();
     scale(-sigma / l, perp(g))
 }
 
 /// The outward unit normal (body frame) of closed curve `curve` of
 /// orientation σ at parameter `s`.
-pub fn outward_at(curve: &Curve, sigma: f64, s: f64) -> V2 {
+pub(crate) fn outward_at(curve: &Curve, sigma: f64, s: f64) -> V2 {
     outward(sigma, curve.jet(s).d1)
 }
 
 /// N from the outward normal `out` of the closed curve of `side`: `out`
 /// itself for body i's curve (side 0), −`out` for body j's (side 1).
-pub fn from_side(side: usize, out: V2) -> V2 {
+pub(crate) fn from_side(side: usize, out: V2) -> V2 {
     if side == 0 {
         out
     } else {
@@ -70,7 +70,7 @@ pub fn from_side(side: usize, out: V2) -> V2 {
 /// The side whose closed curve defines N, with its orientation σ, from
 /// the orientations of C_i and C_j (`None`: open or absent): C_i when it
 /// is closed, else C_j; `None` when neither is closed.
-pub fn solid_side(sides: [Option<f64>; 2]) -> Option<(usize, f64)> {
+pub(crate) fn solid_side(sides: [Option<f64>; 2]) -> Option<(usize, f64)> {
     match sides {
         [Some(sigma), _] => Some((0, sigma)),
         [None, Some(sigma)] => Some((1, sigma)),
@@ -83,7 +83,7 @@ pub fn solid_side(sides: [Option<f64>; 2]) -> Option<(usize, f64)> {
 /// (nᵢ · nⱼ ≤ 0), N = nᵢ; one inside the other, the curve of smaller |κ|
 /// encloses the other and is a hole in its body: N = −nⱼ when C_i is the
 /// hole, nⱼ when C_j is.
-pub fn closed_pair(ni: V2, nj: V2, ki: f64, kj: f64) -> V2 {
+pub(crate) fn closed_pair(ni: V2, nj: V2, ki: f64, kj: f64) -> V2 {
     if dot(ni, nj) <= 0.0 {
         ni
     } else if ki.abs() < kj.abs() {
@@ -96,7 +96,7 @@ pub fn closed_pair(ni: V2, nj: V2, ki: f64, kj: f64) -> V2 {
 /// The side of a face line through `face` with normal `n` on which the
 /// point `inside` lies: +1 where n points, −1 on the other side (+1 on the
 /// line).
-pub fn side_of(n: V2, face: V2, inside: V2) -> f64 {
+pub(crate) fn side_of(n: V2, face: V2, inside: V2) -> f64 {
     if dot(n, sub(inside, face)) < 0.0 {
         -1.0
     } else {
@@ -107,7 +107,7 @@ pub fn side_of(n: V2, face: V2, inside: V2) -> f64 {
 /// The unit normal to tangent `g` at `p` pointing away from `inside` (the
 /// outward normal of an open curve whose material is on the side of
 /// `inside`).
-pub fn away_from(inside: V2, p: V2, g: V2) -> V2 {
+pub(crate) fn away_from(inside: V2, p: V2, g: V2) -> V2 {
     let n = perp(g);
     let n = scale(1.0 / norm(n), n);
     if dot(n, sub(p, inside)) < 0.0 {
@@ -126,7 +126,7 @@ pub fn gap(n: V2, pi: V2, pj: V2) -> f64 {
 /// The rate ġ = Ṅᵀ (P_j − P_i) + Nᵀ (v_j − v_i) (m/s) of the gap at the
 /// witnesses, with `p` = (P_i, P_j), the velocities `v` of the material
 /// points there and the rate `n_dot` of N.
-pub fn gap_rate(n: V2, n_dot: V2, p: [V2; 2], v: [V2; 2]) -> f64 {
+pub(crate) fn gap_rate(n: V2, n_dot: V2, p: [V2; 2], v: [V2; 2]) -> f64 {
     dot(n_dot, sub(p[1], p[0])) + dot(n, sub(v[1], v[0]))
 }
 
@@ -140,7 +140,7 @@ pub fn normal_force(fj: V2, n: V2) -> f64 {
 /// The normal force N = (N · n_f) λ₀ (N) of a face contact whose first row
 /// keeps a point on the face of unit normal `face_n` (global), from that
 /// row's multiplier `lam0`: F_j = n_f λ₀.
-pub fn face_normal_force(n: V2, face_n: V2, lam0: f64) -> f64 {
+pub(crate) fn face_normal_force(n: V2, face_n: V2, lam0: f64) -> f64 {
     dot(n, face_n) * lam0
 }
 

@@ -97,7 +97,7 @@ impl Features {
 /// body at (q_j, q̇_j) through `face_point` with unit normal `m` (both in
 /// body j's frame; m points into the cam's side). `guess` is the last
 /// witness parameter on C_i.
-pub fn face_gap(
+pub(crate) fn face_gap(
     ci: &Curve,
     q: [[f64; 3]; 2],
     qd: [[f64; 3]; 2],
@@ -137,7 +137,7 @@ pub fn face_gap(
 /// body at (q_j, q̇_j). `sigma` is the orientation of the closed curve
 /// that defines N: `(0, σ_i)` for C_i, `(1, σ_j)` for C_j. `guess`: the
 /// last witness parameters.
-pub fn curve_gap(
+pub(crate) fn curve_gap(
     c: [&Curve; 2],
     q: [[f64; 3]; 2],
     qd: [[f64; 3]; 2],

@@ -128,7 +128,7 @@ impl Curve {
     /// What the parameter measures: the angle α (rad) of a polar profile
     /// or a synthesised cam, arc length (m) of a line, arc, circle or
     /// spline, a pure number for a curve written as expressions in `s`.
-    pub fn parameter_quantity(&self) -> Quantity {
+    pub(crate) fn parameter_quantity(&self) -> Quantity {
         match self {
             Curve::Polar(_) | Curve::Parametric(Parametric::Cam { .. }) => Quantity::Angle,
             Curve::Parametric(Parametric::Expr { .. }) => Quantity::Dimensionless,
@@ -182,7 +182,7 @@ impl Curve {
     /// +1 for a counterclockwise closed curve, −1 for a clockwise one (the
     /// sign of its enclosed area ½∮ p × p′ ds, summed at 720 midpoints);
     /// `None` for an open curve.
-    pub fn orientation(&self) -> Option<f64> {
+    pub(crate) fn orientation(&self) -> Option<f64> {
         const SAMPLES: usize = 720;
         if !self.closed() {
             return None;
@@ -201,7 +201,7 @@ impl Curve {
     /// The centre (m, body frame) and radius r (m) of a circular curve (a
     /// roller: a constant-radius polar profile, a circle or an arc); `None`
     /// for any other curve.
-    pub fn circle_centre(&self) -> Option<(V2, f64)> {
+    pub(crate) fn circle_centre(&self) -> Option<(V2, f64)> {
         match self {
             Curve::Polar(p) => match p.rho {
                 Radius::Const(r) => Some((p.q, r)),
@@ -227,7 +227,7 @@ impl Curve {
     }
 
     /// Largest |κ| (1/m) over `samples` points spread over the range.
-    pub fn max_curvature(&self, samples: usize) -> f64 {
+    pub(crate) fn max_curvature(&self, samples: usize) -> f64 {
         let (s0, s1) = self.range();
         (0..samples)
             .map(|k| {
@@ -242,7 +242,11 @@ impl Curve {
     /// curve an interval across the start of the range is returned once, as
     /// (a, b) with s₀ ≤ a < s₁ < b; a jump of the predicate at the seam is
     /// not an edge.
-    pub fn ranges_where(&self, samples: usize, inside: impl Fn(f64) -> bool) -> Vec<(f64, f64)> {
+    pub(crate) fn ranges_where(
+        &self,
+        samples: usize,
+        inside: impl Fn(f64) -> bool,
+    ) -> Vec<(f64, f64)> {
         let (s0, s1) = self.range();
         let at = |k: usize| s0 + (s1 - s0) * k as f64 / samples as f64;
         // Locate the change between a and b by bisection.

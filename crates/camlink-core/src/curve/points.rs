@@ -22,7 +22,7 @@ use crate::math::V2;
 pub const MAX_POINTS_FILE_SIZE: u64 = 16 * 1024 * 1024;
 
 /// Most characters of a line quoted in an error.
-pub const EXCERPT_CHARS: usize = 24;
+pub(crate) const EXCERPT_CHARS: usize = 24;
 
 /// Reads the points of the CSV file at `path`: a regular file of at most
 /// [`MAX_POINTS_FILE_SIZE`] bytes of UTF-8 text.

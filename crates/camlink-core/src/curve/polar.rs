@@ -21,7 +21,7 @@ use super::{CurveError, CurveJet, CurveJet4, Fourier, Spline};
 use crate::math::V2;
 
 /// Largest angle between neighbouring points of a polar spline (rad): 90°.
-pub const MAX_GAP: f64 = std::f64::consts::FRAC_PI_2;
+pub(crate) const MAX_GAP: f64 = std::f64::consts::FRAC_PI_2;
 
 /// The radius function ρ(α) (m) of a polar profile.
 #[derive(Clone, Debug)]

@@ -117,7 +117,7 @@ fn minimize(curve: &Curve, f: impl Fn(&CurveJet) -> (f64, f64, f64), guess: Opti
 /// result that fails to converge or lands farther apart than the samples
 /// by a tenth of the smaller curve's size is dropped for the nearest
 /// samples.
-pub fn contact_pair(
+pub(crate) fn contact_pair(
     ci: &Curve,
     qi: [f64; 3],
     cj: &Curve,

@@ -156,7 +156,7 @@ impl Spline {
     }
 
     /// True for a periodic spline.
-    pub fn is_periodic(&self) -> bool {
+    pub(crate) fn is_periodic(&self) -> bool {
         self.periodic
     }
 

@@ -47,7 +47,7 @@ impl HuntCrossley {
     }
 
     /// The elastic part's potential V = k δⁿ⁺¹/(n + 1) (J) at overlap δ (m).
-    pub fn potential(&self, delta: f64) -> f64 {
+    pub(crate) fn potential(&self, delta: f64) -> f64 {
         if delta <= 0.0 {
             return 0.0;
         }

@@ -99,7 +99,7 @@ impl Friction {
     /// outside the band across it is stopped at v = 0 by the dynamics,
     /// [`crate::dynamics::friction`].)
     #[inline]
-    pub fn newton_slope(&self, v: f64) -> f64 {
+    pub(crate) fn newton_slope(&self, v: f64) -> f64 {
         let [f, fd] = self.law(v);
         let inside = v.abs() < self.transition_speed;
         if inside && v.abs() > 1e-6 * self.transition_speed {
@@ -155,7 +155,7 @@ impl Applied for PinFriction {
 impl PinFriction {
     /// The derivatives with the law's slope f′ replaced by
     /// [`Friction::newton_slope`], for Newton's iteration matrix.
-    pub fn newton_derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
+    pub(crate) fn newton_derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
         self.derivatives_with(x, dq, dqd, Friction::newton_slope);
     }
 
@@ -252,7 +252,7 @@ impl Applied for SlideFriction {
 impl SlideFriction {
     /// The derivatives with the law's slope f′ replaced by
     /// [`Friction::newton_slope`], for Newton's iteration matrix.
-    pub fn newton_derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
+    pub(crate) fn newton_derivatives(&self, x: &Local, dq: &mut BodyJac, dqd: &mut BodyJac) {
         self.derivatives_with(x, dq, dqd, Friction::newton_slope);
     }
 

@@ -54,7 +54,7 @@ pub struct Reads {
 
 /// Derivative blocks of the read bodies: `d[a][k][r][c]` = ∂Q_a,r / ∂q_k,c
 /// for a ∈ {i, j} and read body k.
-pub type ReadJac = [[[[f64; 3]; 3]; MAX_READ]; 2];
+pub(crate) type ReadJac = [[[[f64; 3]; 3]; MAX_READ]; 2];
 
 /// ∂Q/∂q and ∂Q/∂q̇ of one force: the blocks of its bodies i and j
 /// (`dq`, `dqd`) and of its read bodies (`rq`, `rqd`).
@@ -260,7 +260,7 @@ pub struct ForceError(pub String);
 
 /// A shared user function, for [`callback::Callback`]: (t, q_k, q̇_k) to
 /// Q_k, or an error that stops the run.
-pub type ForceFn =
+pub(crate) type ForceFn =
     Arc<dyn Fn(f64, [f64; 3], [f64; 3]) -> Result<[f64; 3], ForceError> + Send + Sync>;
 
 /// Finite-difference checks of `generalized` against `derivatives`, shared
@@ -333,7 +333,7 @@ pub(crate) mod check {
     }
 
     /// Checks Q = −∂V/∂q for a force with no velocity or time dependence.
-    pub fn potential<F: Applied>(f: &F, x: &Local) {
+    pub(crate) fn potential<F: Applied>(f: &F, x: &Local) {
         let mut q = BodyQ::default();
         f.generalized(x, &mut q).unwrap();
         let h = 1e-6;

@@ -35,7 +35,7 @@ pub struct Rsda {
 
 impl Rsda {
     /// The twist T (N·m).
-    pub fn twist(&self, x: &Local) -> f64 {
+    pub(crate) fn twist(&self, x: &Local) -> f64 {
         let th = x.q[1][2] - x.q[0][2];
         let thd = x.qd[1][2] - x.qd[0][2];
         self.stiffness * (th - self.free_angle) + self.damping * thd + self.actuator.value(x.t)

@@ -32,7 +32,7 @@ use crate::constraint::Local;
 use crate::math::V2;
 
 /// Most channels one expression may read.
-pub const MAX_CHANNELS: usize = 16;
+pub(crate) const MAX_CHANNELS: usize = 16;
 
 /// The slot of the ground, which reads as zero, for a channel of a joint
 /// between the ground and one of the force's bodies.

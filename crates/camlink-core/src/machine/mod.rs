@@ -556,7 +556,7 @@ fn settle_cycles(m: Option<&Motor>, inertia: f64, w: f64, period: f64) -> usize 
 }
 
 /// Most cycles the flywheel's forward run settles for.
-pub const MAX_SETTLE: usize = 10;
+pub(crate) const MAX_SETTLE: usize = 10;
 
 /// The flywheel for band `cs`, and a forward run with it.
 fn size_flywheel(

@@ -287,7 +287,7 @@ impl Ctx {
                         )
                     }
                 };
-                let need = |v: &Option<Num>, key: &str| -> R<f64> {
+                let need = |v: Option<&Num>, key: &str| -> R<f64> {
                     match v {
                         Some(n) => self.positive(n, &format!("{p}.{key}"), key),
                         None => fail(
@@ -296,61 +296,42 @@ impl Ctx {
                         ),
                     }
                 };
+                // The follower's dimensions in the order of the core's
+                // table (`Follower::KINDS`), which design files share.
                 let given = [
-                    ("offset", offset.is_some()),
-                    ("roller_radius", roller_radius.is_some()),
-                    ("pivot_distance", pivot_distance.is_some()),
-                    ("arm_length", arm_length.is_some()),
-                    ("face_offset", face_offset.is_some()),
+                    ("offset", offset),
+                    ("roller_radius", roller_radius),
+                    ("pivot_distance", pivot_distance),
+                    ("arm_length", arm_length),
+                    ("face_offset", face_offset),
                 ];
-                let (f, keys): (Follower, &[&str]) = match follower.as_str() {
-                    "translating-roller" => (
-                        Follower::TranslatingRoller {
-                            offset: self.opt(offset.as_ref(), 0.0, &format!("{p}.offset"))?,
-                            roller: need(roller_radius, "roller_radius")?,
-                        },
-                        &["offset", "roller_radius"],
-                    ),
-                    "translating-flat" => (Follower::TranslatingFlat, &[]),
-                    "oscillating-roller" => (
-                        Follower::OscillatingRoller {
-                            pivot: need(pivot_distance, "pivot_distance")?,
-                            arm: need(arm_length, "arm_length")?,
-                            roller: need(roller_radius, "roller_radius")?,
-                        },
-                        &["pivot_distance", "arm_length", "roller_radius"],
-                    ),
-                    "oscillating-flat" => (
-                        Follower::OscillatingFlat {
-                            pivot: need(pivot_distance, "pivot_distance")?,
-                            face_offset: self.opt(
-                                face_offset.as_ref(),
-                                0.0,
-                                &format!("{p}.face_offset"),
-                            )?,
-                        },
-                        &["pivot_distance", "face_offset"],
-                    ),
-                    other => {
-                        return fail(
-                            format!("{p}.follower"),
-                            format!(
-                                "unknown follower '{other}' (translating-roller, translating-flat, \
-                                 oscillating-roller or oscillating-flat){}",
-                                did_you_mean(
-                                    other,
-                                    [
-                                        "translating-roller",
-                                        "translating-flat",
-                                        "oscillating-roller",
-                                        "oscillating-flat"
-                                    ]
-                                )
-                            ),
-                        )
-                    }
+                let Some((_, keys)) = Follower::KINDS.iter().find(|(k, _)| k == follower) else {
+                    let names = Follower::KINDS.iter().map(|(k, _)| *k);
+                    return fail(
+                        format!("{p}.follower"),
+                        format!(
+                            "unknown follower '{follower}' ({}){}",
+                            Follower::kinds_text(),
+                            did_you_mean(follower, names)
+                        ),
+                    );
                 };
-                if let Some((key, _)) = given.iter().find(|(k, g)| *g && !keys.contains(k)) {
+                let mut dims = Vec::with_capacity(keys.len());
+                for key in keys.iter() {
+                    let v = given
+                        .iter()
+                        .find(|(k, _)| k == key)
+                        .and_then(|(_, v)| v.as_ref());
+                    dims.push(if Follower::zero_default(key) {
+                        self.opt(v, 0.0, &format!("{p}.{key}"))?
+                    } else {
+                        need(v, key)?
+                    });
+                }
+                let f = Follower::from_dims(follower, &dims)
+                    .or_else(|e| fail(format!("{p}.follower"), e))?;
+                if let Some((key, _)) = given.iter().find(|(k, v)| v.is_some() && !keys.contains(k))
+                {
                     return fail(
                         format!("{p}.{key}"),
                         format!("`{key}` does not apply to a {follower} follower"),

@@ -15,11 +15,13 @@
 // acceleration, from its body's channels (v_P = v + ω × A s′,
 // a_P = a + α × A s′ − ω² A s′), are drawn as arrows and read out.
 // An array is a list of numbers, or {f64: base64} / {f32: base64}
-// little-endian (a bare base64 string is float64).
+// little-endian (a bare base64 string is float64), or a typed array (the
+// studio's binary replies, `unpack`).
 "use strict";
 (function (root) {
   function decode(a) {
     if (a === null || a === undefined) return new Float64Array(0);
+    if (ArrayBuffer.isView(a)) return a;
     if (typeof a === "string") a = { f64: a };
     if (Array.isArray(a)) return Float64Array.from(a, function (v) { return v === null ? NaN : v; });
     const b64 = a.f64 !== undefined ? a.f64 : a.f32;
@@ -27,6 +29,21 @@
     for (let i = 0; i < n; i++) bytes[i] = bin.charCodeAt(i);
     return a.f64 !== undefined ? new Float64Array(bytes.buffer) : new Float32Array(bytes.buffer);
   }
+
+  // A binary reply of the studio (camlink.studio.pack): a uint32 n, n
+  // bytes of JSON, then float64s; each {buf: [k, m]} in the JSON is the
+  // m values from the k-th float64 (a view, not a copy).
+  function unpack(buf) {
+    const n = new DataView(buf).getUint32(0, true), base = 4 + n;
+    const text = new TextDecoder().decode(new Uint8Array(buf, 4, n));
+    return JSON.parse(text, function (key, v) {
+      return v !== null && typeof v === "object" && Array.isArray(v.buf) ? new Float64Array(buf, base + 8 * v.buf[0], v.buf[1]) : v;
+    });
+  }
+
+  // Sets e's text only when it differs: an unchanged text leaves the page's
+  // layout as it was (an edit redraws without laying the page out again).
+  function setText(e, text) { if (e.textContent !== text) e.textContent = text; }
 
   function el(tag, cls, text) {
     const e = document.createElement(tag);
@@ -163,16 +180,10 @@
       if (frame >= n) frame = n - 1;
       simTime = D.t[frame];
       drawBand();
-      info.textContent = "";
-      for (const line of D.info) info.appendChild(el("div", null, line));
-      for (const m of D.marks) {
-        const a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
-        const line = el("div", "cl-mark", m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
-        line.dataset.t = String(m.t); line.dataset.crank = String(m.crank);
-        info.appendChild(line);
-      }
+      const infoKey = JSON.stringify([D.info, D.marks, angleUnit]);
+      if (infoKey !== shownInfo) { shownInfo = infoKey; showInfo(); }
       const bad = D.ok ? D.ok.reduce(function (s, v) { return s + (v ? 0 : 1); }, 0) : 0;
-      status.textContent = bad ? ("does not assemble at " + bad + " of " + n + " times (marked red)") : "";
+      setText(status, bad ? ("does not assemble at " + bad + " of " + n + " times (marked red)") : "");
       status.classList.toggle("cl-bad", bad > 0);
       if (first) {
         for (const c of D.plots) newPlot(c);
@@ -181,9 +192,25 @@
       }
       render();
     }
+    // The lines under the stage: the mechanism's, then its marks.
+    let shownInfo = null;
+    function showInfo() {
+      info.textContent = "";
+      for (const line of D.info) info.appendChild(el("div", null, line));
+      for (const m of D.marks) {
+        const a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
+        const line = el("div", "cl-mark", m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
+        line.dataset.t = String(m.t); line.dataset.crank = String(m.crank);
+        info.appendChild(line);
+      }
+    }
 
     // The unreachable times, red on a strip under the slider.
+    let shownBand = null;
     function drawBand() {
+      const key = (D.ok ? D.ok.join("") : "") + "|" + D.marks.map(function (m) { return m.t; }).join(",") + "|" + D.rows;
+      if (key === shownBand) return;
+      shownBand = key;
       const g = band.getContext("2d");
       g.setTransform(dpr, 0, 0, dpr, 0, 0);
       g.fillStyle = "#cfe3cf"; g.fillRect(0, 0, 380, 6);
@@ -448,19 +475,18 @@
       ctx.fillText(label, e[0] + 5, e[1] - 3);
     }
     function drawPicked(k) {
-      pickBox.textContent = "";
-      if (!picked) return;
+      if (!picked) { setText(pickBox, ""); return; }
       const m = pointMotion(picked, k), sc = m ? vectorScales(picked) : null;
       const g = place(pose(D.bodyIndex[picked.body], k), picked.s), P = toScreen(g[0], g[1]);
       ctx.strokeStyle = "#000"; ctx.lineWidth = 2; ctx.beginPath(); ctx.arc(P[0], P[1], 9, 0, 2 * Math.PI); ctx.stroke();
-      if (!m || !sc) { pickBox.textContent = picked.label + ": velocity and acceleration on their way"; return; }
+      if (!m || !sc) { setText(pickBox, picked.label + ": velocity and acceleration on their way"); return; }
       arrow(P, [P[0] + m.v[0] * sc[0], P[1] - m.v[1] * sc[0]], "#1f77b4", "v");
       arrow(P, [P[0] + m.a[0] * sc[1], P[1] - m.a[1] * sc[1]], "#9467bd", "a");
       const k2 = lengthUnit === "mm" ? 1000 : 1, u = lengthUnit;
       const f = function (x) { return (x * k2).toPrecision(6); };
-      pickBox.textContent = picked.label + " (" + picked.body + "): v = (" + f(m.v[0]) + ", " + f(m.v[1]) + ") " + u + "/s, |v| = " +
+      setText(pickBox, picked.label + " (" + picked.body + "): v = (" + f(m.v[0]) + ", " + f(m.v[1]) + ") " + u + "/s, |v| = " +
         f(Math.hypot(m.v[0], m.v[1])) + " " + u + "/s\n" + " ".repeat(picked.label.length + picked.body.length + 3) +
-        "a = (" + f(m.a[0]) + ", " + f(m.a[1]) + ") " + u + "/s², |a| = " + f(Math.hypot(m.a[0], m.a[1])) + " " + u + "/s²";
+        "a = (" + f(m.a[0]) + ", " + f(m.a[1]) + ") " + u + "/s², |a| = " + f(Math.hypot(m.a[0], m.a[1])) + " " + u + "/s²");
       pickBox.dataset.vx = String(m.v[0]); pickBox.dataset.vy = String(m.v[1]);
       pickBox.dataset.ax = String(m.a[0]); pickBox.dataset.ay = String(m.a[1]);
       pickBox.dataset.row = String(k);
@@ -523,7 +549,7 @@
         drawHandles(k);
         drawPicked(k);
       } else {
-        pickBox.textContent = "";
+        setText(pickBox, "");
       }
       ctx.font = "12px system-ui, sans-serif"; ctx.textAlign = "left"; ctx.textBaseline = "top";
       let y = 6;
@@ -537,8 +563,8 @@
         const v = channel(c + ".phi");
         if (v && k >= 0) { ctx.fillText("cam " + c + ": " + angleText(v[k]), 40, y); y += 16; }
       }
-      timeLabel.textContent = "t = " + D.t[frame].toFixed(4) + " s";
-      slider.value = String(frame);
+      setText(timeLabel, "t = " + D.t[frame].toFixed(4) + " s");
+      if (slider.value !== String(frame)) slider.value = String(frame);
       for (const p of plots) p.cursor();
       updateReadout();
       const dt = performance.now() - t0;
@@ -554,7 +580,7 @@
         const b = D.bodyIndex[hover.body];
         if (b > 0) { const q = pose(b, k); lines.push(hover.body + ": x = " + lengthText(q[0]) + ", y = " + lengthText(q[1]) + ", φ = " + angleText(q[2])); }
       }
-      readout.textContent = lines.join("\n");
+      setText(readout, lines.join("\n"));
     }
 
     // -- time -----------------------------------------------------------
@@ -741,7 +767,7 @@
       }
       function showValue(i) {
         const v = p.data[1][i];
-        p.value.textContent = " t = " + D.t[i].toFixed(4) + " s: " + (v === null ? "not assembled" : Number(v).toPrecision(7) + " " + shownUnit(p.name));
+        setText(p.value, " t = " + D.t[i].toFixed(4) + " s: " + (v === null ? "not assembled" : Number(v).toPrecision(7) + " " + shownUnit(p.name)));
         p.value.dataset.row = String(i);
       }
       // New data: the same plot with new values when the channels are the
@@ -817,10 +843,13 @@
   function editor(opts) {
     const token = document.querySelector('meta[name="camlink-token"]').content;
     const message = document.getElementById("message");
-    const waiting = {}, sentAt = {};
+    const waiting = {}, sentAt = {}, phases = {};
     let ws = null, seq = 0;
-    const api = { answered: 0, sentAt: sentAt };
-    api.say = function (text, bad) { message.textContent = text; message.classList.toggle("bad", !!bad); };
+    // phases[n]: [ms from request n sent to its reply received, to parse
+    // the reply, to show it, the server's share of the first] (for the
+    // benchmark's breakdown).
+    const api = { answered: 0, sentAt: sentAt, phases: phases };
+    api.say = function (text, bad) { setText(message, text); message.classList.toggle("bad", !!bad); };
     api.send = function (msg) {
       seq += 1; msg.seq = seq; sentAt[seq] = performance.now();
       if (opts.before) opts.before(msg);
@@ -833,10 +862,10 @@
       return new Promise(function (resolve) { (waiting[n] = waiting[n] || []).push(resolve); });
     };
     api.shown = function (data) {
-      document.getElementById("title").textContent = data.title;
-      document.getElementById("file").textContent = data.file;
-      document.getElementById("dirty").textContent = data.dirty ? "● unsaved" : "";
-      document.title = data.title + " · camlink studio";
+      setText(document.getElementById("title"), data.title);
+      setText(document.getElementById("file"), data.file);
+      setText(document.getElementById("dirty"), data.dirty ? "● unsaved" : "");
+      if (document.title !== data.title + " · camlink studio") document.title = data.title + " · camlink studio";
       document.getElementById("undo").disabled = !data.undo;
       document.getElementById("redo").disabled = !data.redo;
     };
@@ -850,10 +879,13 @@
     });
     const url = (location.protocol === "https:" ? "wss://" : "ws://") + location.host + "/ws?token=" + encodeURIComponent(token);
     ws = new WebSocket(url);
-    ws.onopen = function () { api.send({ op: "hello" }); };
+    ws.binaryType = "arraybuffer";
+    ws.onopen = function () { api.send({ op: "hello", binary: true }); };
     ws.onclose = function () { api.say("disconnected from the server", true); };
     ws.onmessage = function (ev) {
-      const reply = JSON.parse(ev.data);
+      const t0 = performance.now();
+      const reply = typeof ev.data === "string" ? JSON.parse(ev.data) : unpack(ev.data);
+      const t1 = performance.now();
       if (reply.seq) api.answered = Math.max(api.answered, reply.seq);
       if (reply.type === "saved") {
         document.getElementById("dirty").textContent = reply.dirty ? "● unsaved" : "";
@@ -862,6 +894,9 @@
         api.say(reply.message, true);
       }
       opts.reply(reply);
+      if (reply.seq && sentAt[reply.seq] !== undefined) {
+        phases[reply.seq] = [t0 - sentAt[reply.seq], t1 - t0, performance.now() - t1, reply.server_ms];
+      }
       for (const n of Object.keys(waiting)) {
         if (Number(n) <= api.answered) { for (const f of waiting[n]) f(); delete waiting[n]; }
       }
@@ -869,5 +904,5 @@
     return api;
   }
 
-  root.camlinkFront = { create: create, decode: decode, editor: editor, niceStep: niceStep, fmt: fmt };
+  root.camlinkFront = { create: create, decode: decode, unpack: unpack, setText: setText, editor: editor, niceStep: niceStep, fmt: fmt };
 })(window);

@@ -3,7 +3,8 @@
 "use strict";
 (function () {
   const front = camlinkFront.create(document.getElementById("app"), { width: 720, height: 520 });
-  const timing = { edits: 0, last: null, waits: [] };
+  // edits: made on the page; sent: sent to the server (edits and their ends).
+  const timing = { edits: 0, sent: 0, last: null, waits: [] };
   let params = [];
   const link = camlinkFront.editor({
     before: function (msg) { if (front.data()) msg.plots = front.picked(); },
@@ -18,6 +19,7 @@
         else if (reply.seq > 1) link.say("");
       }
       window.camlinkStudio.answered = link.answered;
+      editAnswered(reply.seq);
     },
   });
   const send = link.send;
@@ -28,8 +30,8 @@
     if (same) {
       list.forEach(function (p, i) {
         const input = box.querySelectorAll("input")[i], out = box.querySelectorAll("output")[i];
-        if (document.activeElement !== input) { input.value = String(p.value); }
-        out.textContent = String(p.value);
+        if (document.activeElement !== input && input.value !== String(p.value)) input.value = String(p.value);
+        camlinkFront.setText(out, String(p.value));
       });
       params = list;
       return;
@@ -194,19 +196,48 @@
     sliders(data.parameters);
   }
 
+  // One edit in flight at a time: an edit made while another is being
+  // solved waits, replacing a waiting edit of the same handle or
+  // parameter in the same gesture, so a fast drag never queues positions behind old ones and
+  // each reply shows the latest. The end of a drag or a slider move waits
+  // behind its edits (it must reach the server after them).
+  const waitingEdits = new Map();
+  let inFlight = 0;
+  function edit(msg) {
+    const key = msg.op + "\n" + (msg.handle || msg.name || "") + "\n" + msg.gesture;
+    if (inFlight || waitingEdits.size) {
+      waitingEdits.delete(key);  // the newer goes last
+      waitingEdits.set(key, msg);
+      if (!inFlight) nextEdit();
+      return;
+    }
+    inFlight = send(msg); timing.sent += 1;
+    if (msg.op === "end") inFlight = 0;
+  }
+  function nextEdit() {
+    while (!inFlight && waitingEdits.size) {
+      const [key, msg] = waitingEdits.entries().next().value;
+      waitingEdits.delete(key);
+      inFlight = send(msg); timing.sent += 1;
+      if (msg.op === "end") inFlight = 0;
+    }
+  }
+  function editAnswered(seq) {
+    if (seq && seq === inFlight) { inFlight = 0; nextEdit(); }
+  }
+  front.onEdit = function (msg) { timing.edits += 1; edit(msg); };
   // Every request names the channels the plots show: the reply carries
   // their values (and the poses and traces), not every channel's.
-  front.onEdit = function (msg) { timing.edits += 1; send(msg); };
   let needed = false;
   front.onNeed = function () {
     if (needed) return;
     needed = true;
     setTimeout(function () { needed = false; send({ op: "hello" }); }, 0);
   };
-  front.onEditEnd = function (gesture) { send({ op: "end", gesture: gesture }); };
+  front.onEditEnd = function (gesture) { edit({ op: "end", gesture: gesture }); };
 
   // For scripts and benchmarks: `after(n)` is a promise of the reply to
   // request `n` having been shown (the page redrawn).
-  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after,
+  window.camlinkStudio = { front: front, send: send, timing: timing, answered: 0, after: link.after, phases: link.phases,
                            sent: link.sent, run: function () { return RUN; } };
 })();

@@ -1,0 +1,3 @@
+//! camlink-cam's integration tests, one binary (`autotests = false`).
+
+mod load;
