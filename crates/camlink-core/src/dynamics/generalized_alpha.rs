@@ -1346,85 +1346,152 @@ impl<'m> Integrator<'m> {
     fn apply_correction(&mut self, k: &StepCoeffs, last: f64) -> Correction {
         let n = self.sys.n();
         let (bp, gp) = (k.bp, k.gp);
-        // Converged when every position, velocity and acceleration
-        // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
-        // rounding of its own value ([`newton::settled`]); a position
-        // settled at its rounding settles its rates too. What Newton
-        // leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves
-        // positions by up to δq̈ t²/2 by time t whatever h: bounding
-        // the velocity correction alone (δq ≤ tol β h/γ) lets that
-        // drift grow as 1/h at a fixed tol. A correction's floor is the
-        // rounding of the residual carried through the solve, `noise`,
-        // measured when the iteration first stalls, and applied from
-        // the next iteration, whose matrix is fresh: at small steps
-        // (γ' = γ/(βh) large) or near a singular position (S
-        // ill-conditioned) a velocity's tol can lie below it. A chord
-        // iteration is not stopped at a coarser floor (such as the
-        // rounding of the largest coordinate): it contracts slowly,
-        // so what it leaves is systematic, and at small steps its
-        // acceleration β'Δq adds up over the steps into a drift of
-        // the energy and the phase.
-        // A slow iteration's correction understates its error: with
-        // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
-        // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
-        // At a singular position without branch rows S_ε's
-        // regularisation damps the lost direction's correction (by
-        // σ²/(σ² + ε) at singular value σ): a first correction within
-        // tol does not bound the error there: the iteration goes on
-        // at least once more.
-        let tol = self.settings.tol;
-        let share = self.settings.adaptive.as_ref().map(|ad| (ad.atol, ad.rtol));
-        let dnew = max_abs(&self.rhs[..n]);
-        let unproven =
-            self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
-        let theta = dnew / last;
+        // The correction applied; its largest |Δq_k| and where (a
+        // correction that is not a number leaves them alone).
+        let (mut dmax, mut at, mut nan) = (0.0f64, 0, false);
+        for i in 0..n {
+            let d = self.rhs[i];
+            self.q[i] += d;
+            self.qd[i] += gp * d;
+            self.qdd[i] += bp * d;
+            if d.abs() > dmax {
+                (dmax, at) = (d.abs(), i);
+            }
+            nan |= d.is_nan();
+        }
+        for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
+            *l += d / k.s;
+        }
+        let theta = if nan { f64::NAN } else { dmax / last };
+        let converged = self.converged(k, last, theta, dmax, at, nan);
+        Correction {
+            dmax,
+            theta,
+            converged,
+        }
+    }
+
+    /// Newton's stop test after the correction in `rhs` was applied
+    /// (largest |Δq_k| `dmax` at coordinate `at`, contraction `theta`
+    /// from the iteration before, whose largest correction was `last`;
+    /// `nan` when a correction is not a number).
+    ///
+    /// Converged when every coordinate's position, velocity and
+    /// acceleration corrections (Δq_k, γ'Δq_k, β'Δq_k) are within tol or
+    /// the rounding of their own value ([`Self::settles`]), or its
+    /// correction is within the rounding noise of the solve. What Newton
+    /// leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves positions
+    /// by up to δq̈ t²/2 by time t whatever h: bounding the velocity
+    /// correction alone (δq ≤ tol β h/γ) lets that drift grow as 1/h at
+    /// a fixed tol. A correction's floor is the rounding of the residual
+    /// carried through the solve, `noise`, measured when the iteration
+    /// first stalls, and applied from the next iteration, whose matrix
+    /// is fresh: at small steps (γ' = γ/(βh) large) or near a singular
+    /// position (S ill-conditioned) a velocity's tol can lie below it. A
+    /// chord iteration is not stopped at a coarser floor (such as the
+    /// rounding of the largest coordinate): it contracts slowly, so what
+    /// it leaves is systematic, and at small steps its acceleration β'Δq
+    /// adds up over the steps into a drift of the energy and the phase.
+    ///
+    /// The largest correction decides most iterations alone: within the
+    /// noise, or with its position, velocity and acceleration within the
+    /// smallest tol of any coordinate, every coordinate has settled; not
+    /// settled and above the noise, the step goes on. The other
+    /// coordinates are looked at only when neither holds.
+    fn converged(
+        &self,
+        k: &StepCoeffs,
+        last: f64,
+        theta: f64,
+        dmax: f64,
+        at: usize,
+        nan: bool,
+    ) -> bool {
+        let n = self.sys.n();
+        let d = &self.rhs[..n];
+        // (A noise that is not a number settles nothing.)
+        if self.noise.is_nan() {
+            return false;
+        }
+        // At a singular position (S_ε factored) the lost direction
+        // converges as slowly as an augmented-Lagrangian update; the
+        // iteration stops when the position corrections are within tol.
+        // Without branch rows S_ε's regularisation damps the lost
+        // direction's correction (by σ²/(σ² + ε) at singular value σ): a
+        // first correction within tol does not bound the error there, so
+        // the iteration goes on at least once more.
+        if self.at_singular_position() || self.follow.rows.is_some() {
+            let unproven =
+                self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
+            return !unproven
+                && (0..n).all(|i| newton::settled(d[i], self.q[i], self.tol_at(self.q[i])));
+        }
+        // A slow iteration's correction understates its error: with the
+        // contraction θ the error left is about θ/(1 − θ) |Δ_k| (Hairer &
+        // Wanner IV.8), which must pass too.
         let eta = if theta < 1.0 {
             (theta / (1.0 - theta)).max(1.0)
         } else {
             f64::INFINITY
         };
-        // At a singular position (S_ε factored) the lost direction
-        // converges as slowly as an augmented-Lagrangian update; the
-        // iteration stops when the position corrections are within tol.
-        let lost = self.at_singular_position() || self.follow.rows.is_some();
-        let mut dmax = 0.0f64;
-        // The largest correction of a coordinate whose position or
-        // velocity has not settled by tol or its rounding: within the
-        // noise, it has settled too.
-        let mut pending = 0.0f64;
-        let mut settled = true;
-        for i in 0..n {
-            let d = self.rhs[i];
-            let de = eta * d;
-            self.q[i] += d;
-            self.qd[i] += gp * d;
-            self.qdd[i] += bp * d;
-            dmax = dmax.max(d.abs());
-            // Error-controlled: within NEWTON_SHARE of the local error
-            // allowed to the coordinate, atol + rtol |q_i|.
-            let tol = match share {
-                Some((atol, rtol)) => tol.min(NEWTON_SHARE * (atol + rtol * self.q[i].abs())),
-                None => tol,
-            };
-            if lost {
-                settled &= !unproven && newton::settled(d, self.q[i], tol);
-            } else {
-                let round = newton::rounding(self.q[i]);
-                let position = newton::settled(de, self.q[i], tol) || d.abs() <= round;
-                let velocity = newton::settled(gp * de, self.qd[i], tol) || d.abs() <= round;
-                let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
-                if !(position && velocity && acceleration) {
-                    pending = pending.max(d.abs());
-                }
+        if !nan {
+            if dmax <= self.noise {
+                return true;
+            }
+            let x = eta * dmax;
+            let floor = self.tol_floor();
+            if x <= floor && k.gp * x <= floor && k.bp * x <= floor {
+                return true;
+            }
+            let i = at;
+            if !self.settles(k, eta, d[i], i) {
+                return false;
             }
         }
-        for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
-            *l += d / k.s;
+        // The largest correction of a coordinate that has not settled:
+        // within the noise, it has settled too.
+        let pending = (0..n)
+            .filter(|&i| !self.settles(k, eta, d[i], i))
+            .fold(0.0f64, |p, i| p.max(d[i].abs()));
+        pending <= self.noise
+    }
+
+    /// True when coordinate `i`'s correction `d` (already applied) has
+    /// settled: its position, velocity and acceleration corrections
+    /// (Δq_i, γ'Δq_i, β'Δq_i), each times `eta` (the error a slow
+    /// iteration leaves), are within tol or the rounding of their value
+    /// ([`newton::settled`]); a position settled at its rounding settles
+    /// its rates too.
+    #[inline]
+    fn settles(&self, k: &StepCoeffs, eta: f64, d: f64, i: usize) -> bool {
+        let (q, tol) = (self.q[i], self.tol_at(self.q[i]));
+        let round = newton::rounding(q);
+        let de = eta * d;
+        let position = newton::settled(de, q, tol) || d.abs() <= round;
+        let velocity = newton::settled(k.gp * de, self.qd[i], tol) || d.abs() <= round;
+        let acceleration = (k.bp * de).abs() <= tol || d.abs() <= round;
+        position && velocity && acceleration
+    }
+
+    /// Newton's tolerance at a coordinate of value `q`: `tol`, and in the
+    /// error-controlled mode at most [`NEWTON_SHARE`] of the local error
+    /// allowed to it, atol + rtol |q|.
+    #[inline]
+    fn tol_at(&self, q: f64) -> f64 {
+        let tol = self.settings.tol;
+        match &self.settings.adaptive {
+            Some(ad) => tol.min(NEWTON_SHARE * (ad.atol + ad.rtol * q.abs())),
+            None => tol,
         }
-        Correction {
-            dmax,
-            theta,
-            converged: settled && pending <= self.noise,
+    }
+
+    /// A tolerance no larger than [`Self::tol_at`] of any coordinate.
+    #[inline]
+    fn tol_floor(&self) -> f64 {
+        let tol = self.settings.tol;
+        match &self.settings.adaptive {
+            Some(ad) => tol.min(NEWTON_SHARE * ad.atol),
+            None => tol,
         }
     }
 
