@@ -74,6 +74,12 @@ const SLOW: f64 = 0.2;
 /// See [`SLOW`].
 const ABOVE_ROUNDING: f64 = 1e3;
 
+/// Newton stops on the error a correction leaves, estimated from the
+/// contraction, while the correction is more than this many times the
+/// rounding of the largest coordinate; below, on the correction itself
+/// too (see `Integrator::converged`).
+const ESTIMATE_ABOVE_ROUNDING: f64 = 1e2;
+
 /// A correction within this many times the measured rounding noise of the
 /// solve counts as converged.
 const NOISE_SAFETY: f64 = 4.0;
@@ -101,6 +107,12 @@ const SLIVER: f64 = 1e-6;
 /// A factorization whose smallest relative pivot falls below this makes
 /// the step look for a lost rank of Φ_q ([`branch`]).
 const PIVOT_WATCH: f64 = 1e-6;
+
+/// The predictor extrapolates quadratically only while the smallest
+/// relative pivot of the last factorization is at least this (1e-3 to
+/// 5e-2 along the slider-crank's and the parallelogram chains' regular
+/// positions; it falls as σ² towards a singular position).
+const QUADRATIC_PIVOT: f64 = 1e-4;
 
 /// The first plain step past a window of branch rows has kept to the
 /// branch when its motion across the rows is within this fraction of it.
@@ -242,12 +254,47 @@ impl State {
     }
 }
 
-/// q̈ and λ at the start of the last step, from which the predictor
-/// extrapolates the next step's linearly.
+/// q̈ and λ at the start of the last step and of the one before, and
+/// the length (s) of the one before (0: none), from which the predictor
+/// extrapolates the next step's ([`Integrator::predict`]).
 #[derive(Clone, Debug, Default)]
 struct History {
     qdd: Vec<f64>,
     lambda: Vec<f64>,
+    qdd2: Vec<f64>,
+    lambda2: Vec<f64>,
+    h2: f64,
+}
+
+impl History {
+    fn new(n: usize, m: usize) -> Self {
+        History {
+            qdd: vec![0.0; n],
+            lambda: vec![0.0; m],
+            qdd2: vec![0.0; n],
+            lambda2: vec![0.0; m],
+            h2: 0.0,
+        }
+    }
+
+    /// Copies `from` into this history, reusing its vectors.
+    fn copy_from(&mut self, from: &History) {
+        self.qdd.clone_from(&from.qdd);
+        self.lambda.clone_from(&from.lambda);
+        self.qdd2.clone_from(&from.qdd2);
+        self.lambda2.clone_from(&from.lambda2);
+        self.h2 = from.h2;
+    }
+
+    /// After a step of `h_prev` (s) from a state with q̈ `qdd` and λ
+    /// `lambda`: that state becomes the last one, the last the one before.
+    fn push(&mut self, h_prev: f64, qdd: &[f64], lambda: &[f64]) {
+        std::mem::swap(&mut self.qdd, &mut self.qdd2);
+        std::mem::swap(&mut self.lambda, &mut self.lambda2);
+        self.qdd.copy_from_slice(qdd);
+        self.lambda.copy_from_slice(lambda);
+        self.h2 = h_prev;
+    }
 }
 
 /// A copy of an integrator's state: t, (q, q̇, q̈, λ, a) and the
@@ -268,8 +315,7 @@ impl Snapshot {
         self.h_prev = s.h_prev;
         self.h_a = s.h_a;
         self.state.copy_from(&s.state);
-        self.prev.qdd.clone_from(&s.prev.qdd);
-        self.prev.lambda.clone_from(&s.prev.lambda);
+        self.prev.copy_from(&s.prev);
     }
 
     /// Its time (s).
@@ -509,10 +555,7 @@ impl<'m> Integrator<'m> {
                     a: vec![0.0; n],
                 },
             },
-            prev: History {
-                qdd: vec![0.0; n],
-                lambda: vec![0.0; m],
-            },
+            prev: History::new(n, m),
             h_prev: 0.0,
             rhs: vec![0.0; n + m],
             work: vec![0.0; n],
@@ -577,12 +620,11 @@ impl<'m> Integrator<'m> {
             (&mut to.qdd, &self.qdd),
             (&mut to.lambda, &self.lambda),
             (&mut to.a, &self.a),
-            (&mut s.prev.qdd, &self.prev.qdd),
-            (&mut s.prev.lambda, &self.prev.lambda),
         ] {
             to.clear();
             to.extend_from_slice(from);
         }
+        s.prev.copy_from(&self.prev);
     }
 
     /// Returns to the state of a [`snapshot`](Self::snapshot).
@@ -592,8 +634,7 @@ impl<'m> Integrator<'m> {
         self.h_prev = s.h_prev;
         self.h_a = s.h_a;
         self.load(&s.state);
-        self.prev.qdd.copy_from_slice(&s.prev.qdd);
-        self.prev.lambda.copy_from_slice(&s.prev.lambda);
+        self.prev.copy_from(&s.prev);
     }
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
@@ -1157,18 +1198,41 @@ impl<'m> Integrator<'m> {
                 *a = qdd + r * (*a - qdd);
             }
         }
-        // Predictor: q̈ and λ extrapolated linearly from the last two steps
-        // (held constant on the first); a_{n+1} and (q, q̇) follow.
+        // Predictor: q̈ and λ extrapolated from the last steps; a_{n+1}
+        // and (q, q̇) follow. After three equal steps away from singular
+        // positions, quadratically: Newton's first correction is then
+        // about the third difference of q̈ over a step, not the second
+        // (the slider-crank of the benchmarks at 1 ms: 2e-8 m against
+        // 2e-7). Near one the multipliers of the lost direction grow as
+        // 1/δ, and a parabola through them overshoots into a spurious
+        // root: linearly there, from the last two steps (held constant on
+        // the first).
         let r = if self.h_prev > 0.0 {
             h / self.h_prev
         } else {
             0.0
         };
-        for k in 0..n {
-            self.qdd[k] += r * (self.qdd[k] - self.prev.qdd[k]);
-        }
-        for k in 0..self.lambda.len() {
-            self.lambda[k] += r * (self.lambda[k] - self.prev.lambda[k]);
+        let p = &self.prev;
+        let equal = |a: f64, b: f64| (a - b).abs() <= SLIVER * h;
+        if r > 0.0
+            && p.h2 > 0.0
+            && equal(h, self.h_prev)
+            && equal(p.h2, self.h_prev)
+            && self.regular()
+        {
+            for k in 0..n {
+                self.qdd[k] = 3.0 * (self.qdd[k] - p.qdd[k]) + p.qdd2[k];
+            }
+            for k in 0..self.lambda.len() {
+                self.lambda[k] = 3.0 * (self.lambda[k] - p.lambda[k]) + p.lambda2[k];
+            }
+        } else {
+            for k in 0..n {
+                self.qdd[k] += r * (self.qdd[k] - p.qdd[k]);
+            }
+            for k in 0..self.lambda.len() {
+                self.lambda[k] += r * (self.lambda[k] - p.lambda[k]);
+            }
         }
         for k in 0..n {
             let a0 = self.a[k];
@@ -1346,85 +1410,162 @@ impl<'m> Integrator<'m> {
     fn apply_correction(&mut self, k: &StepCoeffs, last: f64) -> Correction {
         let n = self.sys.n();
         let (bp, gp) = (k.bp, k.gp);
-        // Converged when every position, velocity and acceleration
-        // correction (Δq_k, γ'Δq_k, β'Δq_k) is within tol or the
-        // rounding of its own value ([`newton::settled`]); a position
-        // settled at its rounding settles its rates too. What Newton
-        // leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves
-        // positions by up to δq̈ t²/2 by time t whatever h: bounding
-        // the velocity correction alone (δq ≤ tol β h/γ) lets that
-        // drift grow as 1/h at a fixed tol. A correction's floor is the
-        // rounding of the residual carried through the solve, `noise`,
-        // measured when the iteration first stalls, and applied from
-        // the next iteration, whose matrix is fresh: at small steps
-        // (γ' = γ/(βh) large) or near a singular position (S
-        // ill-conditioned) a velocity's tol can lie below it. A chord
-        // iteration is not stopped at a coarser floor (such as the
-        // rounding of the largest coordinate): it contracts slowly,
-        // so what it leaves is systematic, and at small steps its
-        // acceleration β'Δq adds up over the steps into a drift of
-        // the energy and the phase.
-        // A slow iteration's correction understates its error: with
-        // the contraction θ = |Δ_k|/|Δ_{k−1}| the error left is about
-        // θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8), which must pass too.
-        // At a singular position without branch rows S_ε's
-        // regularisation damps the lost direction's correction (by
-        // σ²/(σ² + ε) at singular value σ): a first correction within
-        // tol does not bound the error there: the iteration goes on
-        // at least once more.
-        let tol = self.settings.tol;
-        let share = self.settings.adaptive.as_ref().map(|ad| (ad.atol, ad.rtol));
-        let dnew = max_abs(&self.rhs[..n]);
-        let unproven =
-            self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
-        let theta = dnew / last;
-        let eta = if theta < 1.0 {
-            (theta / (1.0 - theta)).max(1.0)
-        } else {
-            f64::INFINITY
-        };
-        // At a singular position (S_ε factored) the lost direction
-        // converges as slowly as an augmented-Lagrangian update; the
-        // iteration stops when the position corrections are within tol.
-        let lost = self.at_singular_position() || self.follow.rows.is_some();
-        let mut dmax = 0.0f64;
-        // The largest correction of a coordinate whose position or
-        // velocity has not settled by tol or its rounding: within the
-        // noise, it has settled too.
-        let mut pending = 0.0f64;
-        let mut settled = true;
+        // The correction applied; its largest |Δq_k| and where (a
+        // correction that is not a number leaves them alone).
+        let (mut dmax, mut at, mut nan) = (0.0f64, 0, false);
         for i in 0..n {
             let d = self.rhs[i];
-            let de = eta * d;
             self.q[i] += d;
             self.qd[i] += gp * d;
             self.qdd[i] += bp * d;
-            dmax = dmax.max(d.abs());
-            // Error-controlled: within NEWTON_SHARE of the local error
-            // allowed to the coordinate, atol + rtol |q_i|.
-            let tol = match share {
-                Some((atol, rtol)) => tol.min(NEWTON_SHARE * (atol + rtol * self.q[i].abs())),
-                None => tol,
-            };
-            if lost {
-                settled &= !unproven && newton::settled(d, self.q[i], tol);
-            } else {
-                let round = newton::rounding(self.q[i]);
-                let position = newton::settled(de, self.q[i], tol) || d.abs() <= round;
-                let velocity = newton::settled(gp * de, self.qd[i], tol) || d.abs() <= round;
-                let acceleration = (bp * de).abs() <= tol || d.abs() <= round;
-                if !(position && velocity && acceleration) {
-                    pending = pending.max(d.abs());
-                }
+            if d.abs() > dmax {
+                (dmax, at) = (d.abs(), i);
             }
+            nan |= d.is_nan();
         }
         for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
             *l += d / k.s;
         }
+        let theta = if nan { f64::NAN } else { dmax / last };
+        let converged = self.converged(k, last, theta, dmax, at, nan);
         Correction {
             dmax,
             theta,
-            converged: settled && pending <= self.noise,
+            converged,
+        }
+    }
+
+    /// Newton's stop test after the correction in `rhs` was applied
+    /// (largest |Δq_k| `dmax` at coordinate `at`, contraction `theta`
+    /// from the iteration before, whose largest correction was `last`;
+    /// `nan` when a correction is not a number).
+    ///
+    /// Converged when every coordinate's position, velocity and
+    /// acceleration corrections (Δq_k, γ'Δq_k, β'Δq_k) are within tol or
+    /// the rounding of their own value ([`Self::settles`]), or its
+    /// correction is within the rounding noise of the solve. What Newton
+    /// leaves of q̈, δq̈, adds γ h δq̈ to q̇ each step, and moves positions
+    /// by up to δq̈ t²/2 by time t whatever h: bounding the velocity
+    /// correction alone (δq ≤ tol β h/γ) lets that drift grow as 1/h at
+    /// a fixed tol. A correction's floor is the rounding of the residual
+    /// carried through the solve, `noise`, measured when the iteration
+    /// first stalls, and applied from the next iteration, whose matrix
+    /// is fresh: at small steps (γ' = γ/(βh) large) or near a singular
+    /// position (S ill-conditioned) a velocity's tol can lie below it. A
+    /// chord iteration is not stopped at a coarser floor (such as the
+    /// rounding of the largest coordinate): it contracts slowly, so what
+    /// it leaves is systematic, and at small steps its acceleration β'Δq
+    /// adds up over the steps into a drift of the energy and the phase.
+    ///
+    /// The largest correction decides most iterations alone: within the
+    /// noise, or with its position, velocity and acceleration within the
+    /// smallest tol of any coordinate, every coordinate has settled; not
+    /// settled and above the noise, the step goes on. The other
+    /// coordinates are looked at only when neither holds.
+    fn converged(
+        &self,
+        k: &StepCoeffs,
+        last: f64,
+        theta: f64,
+        dmax: f64,
+        at: usize,
+        nan: bool,
+    ) -> bool {
+        let n = self.sys.n();
+        let d = &self.rhs[..n];
+        // (A noise that is not a number settles nothing.)
+        if self.noise.is_nan() {
+            return false;
+        }
+        // At a singular position (S_ε factored) the lost direction
+        // converges as slowly as an augmented-Lagrangian update; the
+        // iteration stops when the position corrections are within tol.
+        // Without branch rows S_ε's regularisation damps the lost
+        // direction's correction (by σ²/(σ² + ε) at singular value σ): a
+        // first correction within tol does not bound the error there, so
+        // the iteration goes on at least once more.
+        if self.at_singular_position() || self.follow.rows.is_some() {
+            let unproven =
+                self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
+            return !unproven
+                && (0..n).all(|i| newton::settled(d[i], self.q[i], self.tol_at(self.q[i])));
+        }
+        // With the contraction θ the error left after a correction Δ_k
+        // is about θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8): a slow
+        // iteration's correction understates it, a fast one's overstates
+        // it. That estimate must pass; where the correction is within
+        // [`ESTIMATE_ABOVE_ROUNDING`] times the rounding of the largest
+        // coordinate (θ then a ratio of rounding errors), and at the
+        // first iteration (θ unknown), the correction itself must too.
+        let estimate = if theta < 1.0 {
+            theta / (1.0 - theta)
+        } else {
+            f64::INFINITY
+        };
+        let above_rounding = dmax > ESTIMATE_ABOVE_ROUNDING * newton::rounding(max_abs(&self.q));
+        let eta = if !last.is_infinite() && above_rounding {
+            estimate
+        } else {
+            estimate.max(1.0)
+        };
+        if !nan {
+            if dmax <= self.noise {
+                return true;
+            }
+            let x = eta * dmax;
+            let floor = self.tol_floor();
+            if x <= floor && k.gp * x <= floor && k.bp * x <= floor {
+                return true;
+            }
+            let i = at;
+            if !self.settles(k, eta, d[i], i) {
+                return false;
+            }
+        }
+        // The largest correction of a coordinate that has not settled:
+        // within the noise, it has settled too.
+        let pending = (0..n)
+            .filter(|&i| !self.settles(k, eta, d[i], i))
+            .fold(0.0f64, |p, i| p.max(d[i].abs()));
+        pending <= self.noise
+    }
+
+    /// True when coordinate `i`'s correction `d` (already applied) has
+    /// settled: its position, velocity and acceleration corrections
+    /// (Δq_i, γ'Δq_i, β'Δq_i), each times `eta` (the error a slow
+    /// iteration leaves), are within tol or the rounding of their value
+    /// ([`newton::settled`]); a position settled at its rounding settles
+    /// its rates too.
+    #[inline]
+    fn settles(&self, k: &StepCoeffs, eta: f64, d: f64, i: usize) -> bool {
+        let (q, tol) = (self.q[i], self.tol_at(self.q[i]));
+        let round = newton::rounding(q);
+        let de = eta * d;
+        let position = newton::settled(de, q, tol) || d.abs() <= round;
+        let velocity = newton::settled(k.gp * de, self.qd[i], tol) || d.abs() <= round;
+        let acceleration = (k.bp * de).abs() <= tol || d.abs() <= round;
+        position && velocity && acceleration
+    }
+
+    /// Newton's tolerance at a coordinate of value `q`: `tol`, and in the
+    /// error-controlled mode at most [`NEWTON_SHARE`] of the local error
+    /// allowed to it, atol + rtol |q|.
+    #[inline]
+    fn tol_at(&self, q: f64) -> f64 {
+        let tol = self.settings.tol;
+        match &self.settings.adaptive {
+            Some(ad) => tol.min(NEWTON_SHARE * (ad.atol + ad.rtol * q.abs())),
+            None => tol,
+        }
+    }
+
+    /// A tolerance no larger than [`Self::tol_at`] of any coordinate.
+    #[inline]
+    fn tol_floor(&self) -> f64 {
+        let tol = self.settings.tol;
+        match &self.settings.adaptive {
+            Some(ad) => tol.min(NEWTON_SHARE * ad.atol),
+            None => tol,
         }
     }
 
@@ -1435,9 +1576,9 @@ impl<'m> Integrator<'m> {
         for i in 0..self.a.len() {
             self.a[i] = c.next_a(self.qdd[i], self.start.state.qdd[i], self.a[i]);
         }
-        self.prev.qdd.copy_from_slice(&self.start.state.qdd);
         self.lambda_max_before = max_abs(&self.prev.lambda);
-        self.prev.lambda.copy_from_slice(&self.start.state.lambda);
+        let start = &self.start.state;
+        self.prev.push(self.h_prev, &start.qdd, &start.lambda);
         self.h_prev = k.h;
         self.h_a = k.h;
         self.t = k.t1;
@@ -1483,6 +1624,19 @@ impl<'m> Integrator<'m> {
             max_abs(&self.start.state.lambda),
         );
         self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
+    }
+
+    /// True away from singular positions, where the predictor may
+    /// extrapolate quadratically: S factored without regularisation, no
+    /// branch rows in use or being watched for, and the smallest relative
+    /// pivot of the last factorization at least [`QUADRATIC_PIVOT`].
+    fn regular(&self) -> bool {
+        let f = &self.follow;
+        self.aug.eps() == 0.0
+            && f.rows.is_none()
+            && f.seen.is_none()
+            && f.guard.is_none()
+            && self.aug.min_pivot().is_some_and(|p| p >= QUADRATIC_PIVOT)
     }
 
     /// True when the last factorization found S singular in a model

@@ -6,7 +6,8 @@
 //! A step on Φ alone takes the [`PLAIN`] ladder:
 //!
 //! 1. [`Way::Chord`]: Newton with the factorization kept from the steps
-//!    before, from the linear predictor. Nearly every step ends here.
+//!    before, from the predictor (quadratic or linear,
+//!    `Integrator::predict`). Nearly every step ends here.
 //! 2. [`Way::BranchAtSingular`]: a slow mechanism whose chord step found
 //!    the Newton matrix singular (a bifurcation point reached at rest or
 //!    nearly) is taken along the branch with its rows; if that fails, the
@@ -34,7 +35,7 @@ pub const SINGULAR_ITER: usize = 4;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Way {
     /// Φ alone, the factorization kept (a chord iteration), from the
-    /// linear predictor; a slow step that finds the matrix singular stops
+    /// predictor; a slow step that finds the matrix singular stops
     /// at once, for [`Way::BranchAtSingular`].
     Chord,
     /// Along the branch from the start of the step, when the chord step
