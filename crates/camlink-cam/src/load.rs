@@ -681,9 +681,14 @@ fn read_sizing(
             "steps_per_turn",
             Some(7200.0),
             Num::POSITIVE.most(MAX_STEPS as f64, ""),
-        )? as usize;
-        let turns =
-            t.number("turns", Some(3.0), Num::POSITIVE.most(MAX_TURNS as f64, ""))? as usize;
+        )?;
+        let turns = t.number("turns", Some(3.0), Num::POSITIVE.most(MAX_TURNS as f64, ""))?;
+        for (key, v) in [("steps_per_turn", steps), ("turns", turns)] {
+            if v.fract() != 0.0 {
+                return t.fail(key, format!("is {}: a whole number is needed", num(v)));
+            }
+        }
+        let (steps, turns) = (steps as usize, turns as usize);
         let polydyne = t.flag("polydyne", false)?;
         if polydyne && masses.len() != 1 {
             return t.fail(

@@ -387,6 +387,20 @@ fn every_bad_field_is_refused_naming_file_line_and_field() {
         ),
         (
             38,
+            "stiffness = [1e6]\nsteps_per_turn = 0.5",
+            "vibration.steps_per_turn",
+            39,
+            "is 0.5: a whole number is needed",
+        ),
+        (
+            38,
+            "stiffness = [1e6]\nturns = 2.5",
+            "vibration.turns",
+            39,
+            "is 2.5: a whole number is needed",
+        ),
+        (
+            38,
             "stiffness = [1e6]\npolydyne = 1",
             "vibration.polydyne",
             39,

@@ -239,7 +239,7 @@ def is_design(doc: dict[str, Any]) -> bool:
     """Whether the parsed TOML `doc` is a cam design file (a motion
     program: top-level ``[[segments]]`` and ``[follower]``) rather than a
     model file."""
-    return bool(_core.cam_is_design(json.dumps(doc, default=str)))
+    return bool(_core.cam_is_design(json.dumps(_plain(doc), default=str)))
 
 
 def _plain(v: object) -> object:
