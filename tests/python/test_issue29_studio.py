@@ -336,6 +336,7 @@ def test_issue29_studio_stopped_run_keeps_its_rows(tmp_path: Path) -> None:
     res = run.results
     assert run.state == "stopped" and res is not None and 0 < len(res) < run.total
     assert len(res) <= run.done
+    assert res.complete is False and res.mechanism is run.model
     t_stop = float(res["t"][-1])
     assert f"at t = {t_stop:.6g} s: the {len(res)} rows computed are kept" in run.message
     assert sorted(p.name for p in tmp_path.iterdir()) == ["long.toml"]

@@ -47,6 +47,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from camlink._core import AnalysisError, ModelError
+from camlink.io.output import partial_path
 from camlink.model import ANALYSES, Model
 from camlink.results import Results
 from camlink.viz.front import b64, default_plots
@@ -169,7 +170,7 @@ class Run:
                                                       output=output)
                     finally:
                         if output is not None:
-                            self.results = _written(output)
+                            self.results = _written(output, self.model)
                 self.message = (f"{self.analysis}: "
                                 f"{0 if self.results is None else len(self.results)} rows")
             self.state = "done"
@@ -208,12 +209,19 @@ def _scratch(folder: Path | None) -> Iterator[Path | None]:
         yield Path(name) / "run.parquet"
 
 
-def _written(output: Path) -> Results | None:
-    """The rows a run wrote to `output` (or, stopped or failed, to the
-    file it leaves beside it), read into memory; None when it wrote none."""
-    found = [output, *sorted(output.parent.glob(f"{output.stem}*{output.suffix}"))]
-    path = next((p for p in found if p.is_file()), None)
-    return None if path is None else Results.load(path)
+def _written(output: Path, model: Model) -> Results | None:
+    """The rows a run of `model` wrote to `output`, or, stopped or
+    failed, to its partial file (`partial_path`), read into memory and
+    marked incomplete; None when it wrote none."""
+    if output.is_file():
+        res = Results.load(output)
+    elif (partial := partial_path(output)).is_file():
+        res = Results.load(partial)
+        res.complete = False
+    else:
+        return None
+    res.mechanism = model
+    return res
 
 
 def _run_study(model: Model, sf: StudyFile,
