@@ -17,7 +17,7 @@ them and the report). Two runs of edits:
   edit after the first two returns to data seen before, whose analysis
   the server keeps (`camlink.studio.cam.CACHED`).
 
-    uv run python bench/studio_cam_edit.py [--edits 20]
+    uv run python bench/studio_cam_edit.py [--edits 8]   # at most 4 per edited segment
 """
 
 from __future__ import annotations
@@ -26,6 +26,7 @@ import argparse
 import shutil
 import statistics
 import tempfile
+import tomllib
 from pathlib import Path
 
 from studio_drag import ROOT, Studio, pct
@@ -52,14 +53,17 @@ EDITS = """async (edits) => {
 }"""
 
 
-def new_programs(segments: tuple[int, ...], n: int) -> list[tuple[int, str]]:
-    """n edits, each giving a program not seen before: edit k gives the
-    segment k mod m (of the m `segments`) the next law of `LAWS` (all
-    segments move on one law every m edits; n ≤ m (len(LAWS) − 1))."""
+def new_programs(path: Path, segments: tuple[int, ...], n: int) -> list[tuple[int, str]]:
+    """n edits, each giving a program not seen before (nor the file's
+    own): edit k gives segment k mod m (of the m `segments`) the next of
+    the laws of `LAWS` other than its law in the design file `path`, so
+    every segment moves on one law every m edits; n ≤ m (len(LAWS) − 1)."""
     m = len(segments)
     if n > m * (len(LAWS) - 1):
         raise SystemExit(f"at most {m * (len(LAWS) - 1)} new programs for {m} segments")
-    return [(segments[k % m], LAWS[(k // m + 1) % len(LAWS)]) for k in range(n)]
+    given = tomllib.loads(path.read_text())["segments"]
+    others = {s: [law for law in LAWS if law != given[s]["law"]] for s in segments}
+    return [(segments[k % m], others[segments[k % m]][k // m]) for k in range(n)]
 
 
 def times(browser: object, path: Path, edits: list[tuple[int, str]]) -> list[float]:
@@ -90,7 +94,7 @@ def main() -> None:
         browser = p.chromium.launch(executable_path=shutil.which("chromium"), args=["--no-sandbox"])
         for name, segments, a, b in CASES:
             path = Path(tmp) / name
-            runs = (("new programs", new_programs(segments, args.edits)),
+            runs = (("new programs", new_programs(ROOT / "examples" / name, segments, args.edits)),
                     ("back and forth", [(segments[0], b if k % 2 == 0 else a)
                                         for k in range(args.edits)]))
             for kind, edits in runs:
