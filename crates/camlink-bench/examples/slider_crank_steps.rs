@@ -24,12 +24,12 @@ fn main() {
         let mut it = Integrator::new(&model, settings.clone()).expect("consistent start");
         let mut h = 1e-3;
         it.advance_to(1.0, &mut h).expect("1,000 steps");
-        let s = &it.summary;
+        let s = &it.diagnostics().summary;
         println!(
             "steps {} newton_iterations {} factorizations {}",
             s.steps, s.newton_iterations, s.factorizations
         );
         // The end state to the last bit, to compare builds.
-        println!("q {:?}\nqd {:?}", it.q, it.qd);
+        println!("q {:?}\nqd {:?}", it.state().q, it.state().qd);
     }
 }

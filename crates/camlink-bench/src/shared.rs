@@ -15,7 +15,7 @@ pub fn fixed_steps(bencher: divan::Bencher, model: &Model, steps: usize) {
         .bench_local_values(|mut it| {
             let mut h = 1e-3;
             it.advance_to(steps as f64 * 1e-3, &mut h).unwrap();
-            assert_eq!(it.summary.steps, steps);
-            it.q[0]
+            assert_eq!(it.diagnostics().summary.steps, steps);
+            it.state().q[0]
         });
 }

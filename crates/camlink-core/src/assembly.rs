@@ -60,9 +60,16 @@ pub struct Assembly {
     own_col: Vec<usize>,
     /// First row of each joint's equations, by joint index.
     row: Vec<usize>,
+    /// Number of each joint's equations.
+    row_count: Vec<usize>,
     /// For each joint: the first columns of its bodies i and j (`None` for
     /// the ground), and its number of own coordinates.
     joint_cols: Vec<([Option<usize>; 2], usize)>,
+    /// Φ_q's structural entries, joint by joint from `entry_start`: the
+    /// entry of the joint's [`Jac`] and its (row, column) in Φ_q, in the
+    /// order [`jacobian`](Self::jacobian) visits them.
+    entries: Vec<(JacEntry, u32, u32)>,
+    entry_start: Vec<u32>,
 }
 
 impl Assembly {
@@ -82,6 +89,7 @@ impl Assembly {
             row.push(m);
             m += j.constraint.rows();
         }
+        let row_count = model.joints.iter().map(|j| j.constraint.rows()).collect();
         let joint_cols = model
             .joints
             .iter()
@@ -90,14 +98,51 @@ impl Assembly {
                 ([body_col[bi.0], body_col[bj.0]], j.constraint.own_count())
             })
             .collect();
+        // Φ_q's structural entries from each joint's pattern: row by row,
+        // body i's (x, y, φ), body j's, then the joint's own columns.
+        let mut entries = Vec::new();
+        let mut entry_start = Vec::with_capacity(model.joints.len() + 1);
+        for (j, joint) in model.joints.iter().enumerate() {
+            entry_start.push(entries.len() as u32);
+            let c = &joint.constraint;
+            let bodies = c.bodies();
+            for (r, &row_pattern) in c.jacobian_pattern().iter().enumerate().take(c.rows()) {
+                let to = (row[j] + r) as u32;
+                for (k, b) in bodies.iter().enumerate() {
+                    if let Some(col) = body_col[b.0] {
+                        for d in 0..3 {
+                            if row_pattern & (1 << (3 * k + d)) != 0 {
+                                entries.push((JacEntry::new(k, r, d), to, (col + d) as u32));
+                            }
+                        }
+                    }
+                }
+                for o in 0..c.own_count() {
+                    if row_pattern & (1 << (6 + o)) != 0 {
+                        entries.push((JacEntry::new(2, r, o), to, (own_col[j] + o) as u32));
+                    }
+                }
+            }
+        }
+        entry_start.push(entries.len() as u32);
         Assembly {
             n,
             m,
             body_col,
             own_col,
             row,
+            row_count,
             joint_cols,
+            entries,
+            entry_start,
         }
+    }
+
+    /// Joint `j`'s structural entries of Φ_q: (entry of its [`Jac`], row,
+    /// column).
+    #[inline]
+    fn entries_of(&self, j: usize) -> &[(JacEntry, u32, u32)] {
+        &self.entries[self.entry_start[j] as usize..self.entry_start[j + 1] as usize]
     }
 
     /// First column of a body's (x, y, φ), or `None` for the ground.
@@ -111,8 +156,9 @@ impl Assembly {
     }
 
     /// Rows of joint `j`'s equations.
-    pub(crate) fn rows_of(&self, model: &Model, j: usize) -> std::ops::Range<usize> {
-        self.row[j]..self.row[j] + model.joints[j].constraint.rows()
+    #[inline]
+    pub(crate) fn rows_of(&self, _model: &Model, j: usize) -> std::ops::Range<usize> {
+        self.row[j]..self.row[j] + self.row_count[j]
     }
 
     /// The joint owning equation `row`, and the equation's index within it.
@@ -185,6 +231,21 @@ impl Assembly {
         x
     }
 
+    /// Joint `j`'s positions at (q, t) into the view `x`: t, its bodies'
+    /// (x, y, φ) (zero for the ground) and its own coordinates; the rates
+    /// are left as they are.
+    #[inline(always)]
+    fn set_positions(&self, j: usize, q: &[f64], t: f64, x: &mut Local) {
+        let (cols, own) = self.joint_cols[j];
+        x.t = t;
+        for (k, col) in cols.iter().enumerate() {
+            x.q[k] = col.map_or([0.0; 3], |c| [q[c], q[c + 1], q[c + 2]]);
+        }
+        let o = self.own_col[j];
+        // Element by element: a copy of a slice this short calls memcpy.
+        x.own = std::array::from_fn(|k| if k < own { q[o + k] } else { 0.0 });
+    }
+
     /// The starting coordinate vector: bodies at their given placement, own
     /// coordinates from the model's guesses refined by each joint.
     pub fn initial_q(&self, model: &Model) -> Vec<f64> {
@@ -208,12 +269,12 @@ impl Assembly {
     /// Φ(q, t) into `out` (length m).
     pub fn phi(&self, model: &Model, q: &[f64], t: f64, out: &mut [f64]) {
         let mut rows: Rows = [0.0; 3];
+        let mut x = Local::default();
         for (j, joint) in model.joints.iter().enumerate() {
-            let x = self.local(model, j, q, &[], t);
+            self.set_positions(j, q, t, &mut x);
             joint.constraint.phi(&x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
+            let rows_j = self.rows_of(model, j);
+            out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
 
@@ -249,32 +310,20 @@ impl Assembly {
     ) {
         let mut jac = Jac::default();
         let mut rows: Rows = [0.0; 3];
+        // One view for every joint: the rates stay zero.
+        let mut x = Local::default();
         for (j, joint) in model.joints.iter().enumerate() {
             let c = &joint.constraint;
-            let x = self.local(model, j, q, &[], t);
-            let r0 = self.row[j];
+            self.set_positions(j, q, t, &mut x);
             if let Some(out) = phi.as_deref_mut() {
-                c.phi(&x, &mut rows);
-                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
+                c.phi_and_jacobian(&x, &mut rows, &mut jac);
+                let rows_j = self.rows_of(model, j);
+                out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
+            } else {
+                c.jacobian(&x, &mut jac);
             }
-            c.jacobian(&x, &mut jac);
-            let bodies = c.bodies();
-            let pattern = c.jacobian_pattern();
-            for (r, &row_pattern) in pattern.iter().enumerate().take(c.rows()) {
-                for (k, b) in bodies.iter().enumerate() {
-                    if let Some(col) = self.body_col[b.0] {
-                        for d in 0..3 {
-                            if row_pattern & (1 << (3 * k + d)) != 0 {
-                                put(r0 + r, col + d, jac.body[k][r][d]);
-                            }
-                        }
-                    }
-                }
-                for o in 0..c.own_count() {
-                    if row_pattern & (1 << (6 + o)) != 0 {
-                        put(r0 + r, self.own_col[j] + o, jac.own[r][o]);
-                    }
-                }
+            for &(e, r, col) in self.entries_of(j) {
+                put(r as usize, col as usize, e.of(&jac));
             }
         }
     }
@@ -288,30 +337,11 @@ impl Assembly {
         mut dest: impl FnMut(usize, usize) -> Option<usize>,
     ) -> JacobianPlan {
         let mut plan = JacobianPlan::default();
-        for (j, joint) in model.joints.iter().enumerate() {
+        for j in 0..model.joints.len() {
             plan.start.push(plan.entries.len() as u32);
-            let c = &joint.constraint;
-            let bodies = c.bodies();
-            let r0 = self.row[j];
-            for (r, &row_pattern) in c.jacobian_pattern().iter().enumerate().take(c.rows()) {
-                let mut add = |k: usize, d: usize, col: usize| {
-                    if let Some(to) = dest(r0 + r, col) {
-                        plan.entries.push((JacEntry::new(k, r, d), to as u32));
-                    }
-                };
-                for (k, b) in bodies.iter().enumerate() {
-                    if let Some(col) = self.body_col[b.0] {
-                        for d in 0..3 {
-                            if row_pattern & (1 << (3 * k + d)) != 0 {
-                                add(k, d, col + d);
-                            }
-                        }
-                    }
-                }
-                for o in 0..c.own_count() {
-                    if row_pattern & (1 << (6 + o)) != 0 {
-                        add(2, o, self.own_col[j] + o);
-                    }
+            for &(e, r, col) in self.entries_of(j) {
+                if let Some(to) = dest(r as usize, col as usize) {
+                    plan.entries.push((e, to as u32));
                 }
             }
         }
@@ -323,15 +353,8 @@ impl Assembly {
     /// `locals` (one per joint).
     pub fn gather(&self, _model: &Model, q: &[f64], t: f64, locals: &mut [Local]) {
         for (j, x) in locals.iter_mut().enumerate() {
-            let (cols, own) = self.joint_cols[j];
-            x.t = t;
-            for (k, col) in cols.iter().enumerate() {
-                x.q[k] = col.map_or([0.0; 3], |c| [q[c], q[c + 1], q[c + 2]]);
-                x.qd[k] = [0.0; 3];
-            }
-            let o = self.own_col[j];
-            x.own = [0.0; MAX_OWN];
-            x.own[..own].copy_from_slice(&q[o..o + own]);
+            self.set_positions(j, q, t, x);
+            x.qd = [[0.0; 3]; 2];
             x.own_d = [0.0; MAX_OWN];
         }
     }
@@ -357,8 +380,8 @@ impl Assembly {
             }
             if let Some(out) = nu.as_deref_mut() {
                 c.nu(x, &mut rows);
-                let r0 = self.row[j];
-                out[r0..r0 + c.rows()].copy_from_slice(&rows[..c.rows()]);
+                let rows_j = self.rows_of(model, j);
+                out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
             }
         }
     }
@@ -384,21 +407,20 @@ impl Assembly {
         for (j, (joint, x)) in model.joints.iter().zip(locals.iter_mut()).enumerate() {
             self.rates_into(j, qd, &mut x.qd, &mut x.own_d);
             joint.constraint.gamma(x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
+            let rows_j = self.rows_of(model, j);
+            out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
 
     /// ν(q, t) into `out`.
     pub fn nu(&self, model: &Model, q: &[f64], t: f64, out: &mut [f64]) {
         let mut rows: Rows = [0.0; 3];
+        let mut x = Local::default();
         for (j, joint) in model.joints.iter().enumerate() {
-            let x = self.local(model, j, q, &[], t);
+            self.set_positions(j, q, t, &mut x);
             joint.constraint.nu(&x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
+            let rows_j = self.rows_of(model, j);
+            out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
 
@@ -417,9 +439,8 @@ impl Assembly {
             let mut x = self.local(model, j, q, qd, t);
             self.rates_into(j, qdd, &mut x.qdd, &mut x.own_dd);
             joint.constraint.eta(&x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
+            let rows_j = self.rows_of(model, j);
+            out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
 
@@ -429,9 +450,8 @@ impl Assembly {
         for (j, joint) in model.joints.iter().enumerate() {
             let x = self.local(model, j, q, qd, t);
             joint.constraint.gamma(&x, &mut rows);
-            let r = self.row[j];
-            let m = joint.constraint.rows();
-            out[r..r + m].copy_from_slice(&rows[..m]);
+            let rows_j = self.rows_of(model, j);
+            out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
 }

@@ -35,7 +35,7 @@ use crate::motion;
 use crate::newton::{self, Failure};
 use crate::run::{
     channels, fill_outputs, jerk_channels, worst_joints, AnalysisError, Kind, PointOutput,
-    Settings, Sink, Summary, Warning,
+    Settings, Sink, StateView, Summary, Warning,
 };
 
 /// Times an output step may be halved when Newton fails or a jump is seen.
@@ -216,7 +216,7 @@ pub struct Solver<'m> {
     qdd_prev2: Vec<f64>,
     h_prev2: Option<f64>,
     /// The state at the start of a step, to retry it.
-    saved: [Vec<f64>; 5],
+    saved: Saved,
     /// True for angle coordinates (bodies' φ, joints' own coordinates).
     angles: Vec<bool>,
     /// A length that sizes the model (m), for the jump test.
@@ -230,6 +230,19 @@ pub struct Solver<'m> {
     contacts: Contacts,
     /// The vectors of the Newton iterations.
     newton: newton::Workspace,
+}
+
+/// The solver's state at the start of a step, to retry it
+/// ([`Solver::advance`]): q, q̇, q̈ and the predictor's history (q̈ of the
+/// two steps before and their intervals, s).
+struct Saved {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    qdd_prev: Vec<f64>,
+    h_prev: Option<f64>,
+    qdd_prev2: Vec<f64>,
+    h_prev2: Option<f64>,
 }
 
 impl<'m> Solver<'m> {
@@ -295,7 +308,15 @@ impl<'m> Solver<'m> {
             h_prev: None,
             qdd_prev2: vec![0.0; n],
             h_prev2: None,
-            saved: std::array::from_fn(|_| vec![0.0; n]),
+            saved: Saved {
+                q: vec![0.0; n],
+                qd: vec![0.0; n],
+                qdd: vec![0.0; n],
+                qdd_prev: vec![0.0; n],
+                h_prev: None,
+                qdd_prev2: vec![0.0; n],
+                h_prev2: None,
+            },
             angles: asm.angle_mask(model),
             size: model_size(model),
             near_singular: false,
@@ -338,16 +359,14 @@ impl<'m> Solver<'m> {
     /// (up to [`MAX_HALVINGS`] times) where Newton fails or the solution
     /// jumps away from the prediction.
     pub fn advance(&mut self, prev: f64, t: f64, depth: u32) -> Result<(), AnalysisError> {
-        for (s, v) in self.saved.iter_mut().zip([
-            &self.q,
-            &self.qd,
-            &self.qdd,
-            &self.qdd_prev,
-            &self.qdd_prev2,
-        ]) {
-            s.copy_from_slice(v);
-        }
-        let (h_prev, h_prev2) = (self.h_prev, self.h_prev2);
+        let s = &mut self.saved;
+        s.q.copy_from_slice(&self.q);
+        s.qd.copy_from_slice(&self.qd);
+        s.qdd.copy_from_slice(&self.qdd);
+        s.qdd_prev.copy_from_slice(&self.qdd_prev);
+        s.h_prev = self.h_prev;
+        s.qdd_prev2.copy_from_slice(&self.qdd_prev2);
+        s.h_prev2 = self.h_prev2;
         let outcome = self.step(t, Some(prev)).and_then(|jump| match jump {
             Some(what) => Err(self.failure(Kind::BranchJump, t, &what)),
             None => Ok(()),
@@ -356,12 +375,14 @@ impl<'m> Solver<'m> {
             Ok(()) => Ok(()),
             Err(e) if depth >= MAX_HALVINGS => Err(e),
             Err(_) => {
-                self.q.copy_from_slice(&self.saved[0]);
-                self.qd.copy_from_slice(&self.saved[1]);
-                self.qdd.copy_from_slice(&self.saved[2]);
-                self.qdd_prev.copy_from_slice(&self.saved[3]);
-                self.qdd_prev2.copy_from_slice(&self.saved[4]);
-                (self.h_prev, self.h_prev2) = (h_prev, h_prev2);
+                let s = &self.saved;
+                self.q.copy_from_slice(&s.q);
+                self.qd.copy_from_slice(&s.qd);
+                self.qdd.copy_from_slice(&s.qdd);
+                self.qdd_prev.copy_from_slice(&s.qdd_prev);
+                self.h_prev = s.h_prev;
+                self.qdd_prev2.copy_from_slice(&s.qdd_prev2);
+                self.h_prev2 = s.h_prev2;
                 self.jac.invalidate();
                 self.summary.halvings += 1;
                 let mid = 0.5 * (prev + t);
@@ -691,7 +712,11 @@ impl<'m> Solver<'m> {
             self.model,
             &self.asm,
             &self.contacts,
-            [&self.q, &self.qd, &self.qdd],
+            StateView {
+                q: &self.q,
+                qd: &self.qd,
+                qdd: &self.qdd,
+            },
             points,
             out,
         );

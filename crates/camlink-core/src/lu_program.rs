@@ -276,7 +276,14 @@ impl Elimination {
                 f[s as usize] *= inv;
             }
             for &[t, l, u] in updates {
-                f[t as usize] -= f[l as usize] * f[u as usize];
+                let (t, l, u) = (t as usize, l as usize, u as usize);
+                debug_assert!(t < f.len() && l < f.len() && u < f.len());
+                // SAFETY: `record` makes every slot below the number of
+                // slots, the length of `f`.
+                unsafe {
+                    let product = *f.get_unchecked(l) * *f.get_unchecked(u);
+                    *f.get_unchecked_mut(t) -= product;
+                }
             }
         }
         self.scale_upper(factors, inv_diag);
@@ -317,19 +324,21 @@ impl Elimination {
         let (lower, upper) = (..self.lower, self.lower + self.n..self.src.len());
         let entries =
             |range: std::ops::Range<usize>| factors[range.clone()].iter().zip(&self.at[range]);
+        let n = self.n;
+        let (b, work) = (&mut b[..n], &mut work[..n]);
         for (w, &p) in work.iter_mut().zip(&self.perm) {
             *w = b[p];
         }
         // L y = P b (unit diagonal): row by row, each entry's y_j is final.
         for (&l, &(i, j)) in entries(0..lower.end) {
-            work[i as usize] -= l * work[j as usize];
+            sub_product(work, i, j, l);
         }
         // U x = y as D (I + D⁻¹U') x = y, rows from the last.
         for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
             *x = y * inv;
         }
         for (&u, &(i, j)) in entries(upper).rev() {
-            b[i as usize] -= u * b[j as usize];
+            sub_product(b, i, j, u);
         }
     }
 }
@@ -345,17 +354,39 @@ pub(crate) fn solve_gathered(
     b: &mut [f64],
     work: &mut [f64],
 ) {
+    let n = perm.len();
+    let (b, work) = (&mut b[..n], &mut work[..n]);
     for (w, &p) in work.iter_mut().zip(perm) {
         *w = b[p];
     }
     for &(i, j, l) in &nonzeros[..lower] {
-        work[i as usize] -= l * work[j as usize];
+        sub_product(work, i, j, l);
     }
     for ((x, &y), &inv) in b.iter_mut().zip(work.iter()).zip(inv_diag) {
         *x = y * inv;
     }
     for &(i, j, u) in nonzeros[lower..].iter().rev() {
-        b[i as usize] -= u * b[j as usize];
+        sub_product(b, i, j, u);
+    }
+}
+
+/// `v[i] −= a v[j]`, the step of the triangular solves, for the row and
+/// column of a factor entry ([`Elimination`]'s `at`, or the entries
+/// [`Elimination::gather`] takes from it).
+///
+/// The solves spend most of their time here, and a bounds check on both
+/// indices about doubles its cost; the indices are checked in debug
+/// builds only.
+#[inline(always)]
+fn sub_product(v: &mut [f64], i: Ix, j: Ix, a: f64) {
+    let (i, j) = (i as usize, j as usize);
+    debug_assert!(i < v.len() && j < v.len());
+    // SAFETY: the solves pass vectors of n values, and every row and
+    // column in `at` is below n: `record` makes them from 0..n only, and
+    // an elimination keeps its n for life.
+    unsafe {
+        let x = *v.get_unchecked(j);
+        *v.get_unchecked_mut(i) -= a * x;
     }
 }
 

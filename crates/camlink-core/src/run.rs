@@ -556,13 +556,23 @@ pub(crate) fn jerk_channels(model: &Model, points: &[PointOutput]) -> Vec<Channe
     out
 }
 
+/// The motion at one time, in an assembly's layout: positions q (m or
+/// rad), velocities q̇ (m/s or rad/s) and accelerations q̈ (m/s² or
+/// rad/s²).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct StateView<'a> {
+    pub q: &'a [f64],
+    pub qd: &'a [f64],
+    pub qdd: &'a [f64],
+}
+
 /// Fills the channels of [`channels`] from the state (q, q̇, q̈): bodies,
 /// points, own coordinates, then contact outputs.
 pub(crate) fn fill_outputs(
     model: &Model,
     asm: &Assembly,
     contacts: &Contacts,
-    state: [&[f64]; 3],
+    state: StateView,
     points: &[PointOutput],
     out: &mut [f64],
 ) {
@@ -574,13 +584,17 @@ pub(crate) fn fill_outputs(
     };
     let mut k = 0;
     for (id, _) in model.moving_bodies() {
-        for v in state {
+        for v in [state.q, state.qd, state.qdd] {
             out[k..k + 3].copy_from_slice(&body(v, id));
             k += 3;
         }
     }
     for p in points {
-        let [q, qd, qdd] = state.map(|v| body(v, p.body));
+        let (q, qd, qdd) = (
+            body(state.q, p.body),
+            body(state.qd, p.body),
+            body(state.qdd, p.body),
+        );
         let r = point(q, p.s);
         let v = point_vel(q, qd, p.s);
         // r̈^P = r̈ + B s' φ̈ − A s' φ̇²
@@ -595,11 +609,11 @@ pub(crate) fn fill_outputs(
     for (j, joint) in model.joints.iter().enumerate() {
         let c = asm.own_col(j);
         for o in 0..joint.constraint.own_count() {
-            out[k] = state[0][c + o];
+            out[k] = state.q[c + o];
             k += 1;
         }
     }
-    contacts.fill(model, asm, state[0], &mut out[k..]);
+    contacts.fill(model, asm, state.q, &mut out[k..]);
 }
 
 /// A time and the cam angle then.

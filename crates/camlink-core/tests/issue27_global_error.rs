@@ -62,7 +62,10 @@ fn slider_crank_error(settings: &Settings) -> (f64, usize) {
     let mut it = Integrator::new(&model, settings.clone()).unwrap();
     let mut h = settings.step.min(1e-4);
     it.advance_to(1.0, &mut h).unwrap();
-    ((it.q[6] - x_ref).abs(), it.summary.steps)
+    (
+        (it.state().q[6] - x_ref).abs(),
+        it.diagnostics().summary.steps,
+    )
 }
 
 /// Andrews' mechanism to 0.03 s: (the largest error of its seven angles

@@ -86,14 +86,14 @@ fn reactions_of_a_redundant_chain_are_the_minimum_norm_split() {
     let mut lam = vec![0.0; m];
     it.min_norm_multipliers(&mut lam).unwrap();
     let asm = Assembly::new(&model);
-    let j = dense_jacobian(&model, &asm, &it.q, it.t);
+    let j = dense_jacobian(&model, &asm, &it.state().q, it.state().t);
     let n = j.ncols();
     let force = |l: &[f64]| -> Vec<f64> {
         (0..n)
             .map(|c| (0..m).map(|r| j[(r, c)] * l[r]).sum())
             .collect()
     };
-    let (f_int, f_min) = (force(&it.lambda), force(&lam));
+    let (f_int, f_min) = (force(&it.state().lambda), force(&lam));
     let scale = f_int.iter().fold(0.0f64, |a, v| a.max(v.abs()));
     for c in 0..n {
         assert!(

@@ -66,7 +66,7 @@ fn dynamics(model: &camlink_core::Model, steps: usize) -> Result<f64, String> {
     let mut h = 1e-3;
     it.advance_to(steps as f64 * 1e-3, &mut h)
         .map_err(|e| e.to_string())?;
-    Ok(it.q[0])
+    Ok(it.state().q[0])
 }
 
 fn main() -> ExitCode {

@@ -140,6 +140,30 @@ pub(crate) fn check_at<C: Equations>(c: &C, x: &Local, acc: &[f64; NZ], jerk: &[
     let mut jac = Jac::default();
     c.jacobian(x, &mut jac);
 
+    // Φ and Φ_q in one evaluation are those of the two, to the last bit.
+    let (mut phi, mut phi_both, mut jac_both) = ([0.0; 3], [0.0; 3], Jac::default());
+    c.phi(x, &mut phi);
+    c.phi_and_jacobian(x, &mut phi_both, &mut jac_both);
+    for r in 0..m {
+        let (row, row_both) = (jac_row(&jac, r), jac_row(&jac_both, r));
+        let pairs = std::iter::once((phi[r], phi_both[r]))
+            .chain(row.into_iter().zip(row_both))
+            .enumerate();
+        for (k, (alone, both)) in pairs {
+            assert_eq!(
+                alone.to_bits(),
+                both.to_bits(),
+                "{}: row {r}, {} of phi_and_jacobian is {both:e}, of phi or jacobian {alone:e}",
+                c.kind(),
+                if k == 0 {
+                    "Φ".to_string()
+                } else {
+                    format!("Φ_q entry {}", k - 1)
+                }
+            );
+        }
+    }
+
     // Φ_q against differences in each coordinate.
     for k in 0..NZ {
         if !mask[k] {

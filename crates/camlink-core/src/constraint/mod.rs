@@ -223,6 +223,16 @@ pub trait Equations {
     fn phi(&self, x: &Local, out: &mut Rows);
     /// Φ_q as per-body blocks (every entry of `out` is written).
     fn jacobian(&self, x: &Local, out: &mut Jac);
+
+    /// Φ into `phi` and Φ_q into `jac`, the same values as
+    /// [`phi`](Self::phi) and [`jacobian`](Self::jacobian) to the last
+    /// bit: a constraint whose two share their rotations evaluates them
+    /// once (the residual of dynamics needs both at every iterate).
+    #[inline]
+    fn phi_and_jacobian(&self, x: &Local, phi: &mut Rows, jac: &mut Jac) {
+        self.phi(x, phi);
+        self.jacobian(x, jac);
+    }
     /// ν = −Φ_t.
     fn nu(&self, x: &Local, out: &mut Rows);
     /// γ = −(Φ_q q̇)_q q̇ − 2 Φ_qt q̇ − Φ_tt.
@@ -309,6 +319,10 @@ macro_rules! constraints {
             #[inline]
             fn jacobian(&self, x: &Local, out: &mut Jac) {
                 match self { $(Constraint::$variant(c) => c.jacobian(x, out),)* }
+            }
+            #[inline]
+            fn phi_and_jacobian(&self, x: &Local, phi: &mut Rows, jac: &mut Jac) {
+                match self { $(Constraint::$variant(c) => c.phi_and_jacobian(x, phi, jac),)* }
             }
             #[inline]
             fn nu(&self, x: &Local, out: &mut Rows) {

@@ -143,6 +143,18 @@ pub(super) fn projection_phi(x: &Local, axis: usize, s_a: V2, w: V2, s_b: V2) ->
 /// ∂/∂r_a = −(A_a w')ᵀ, ∂/∂φ_a = (B_a w')ᵀe − (A_a w')ᵀB_a s'_a,
 /// ∂/∂r_b = (A_a w')ᵀ, ∂/∂φ_b = (A_a w')ᵀB_b s'_b.
 pub(super) fn projection_jac(x: &Local, axis: usize, s_a: V2, w: V2, s_b: V2) -> [[f64; 3]; 2] {
+    projection_phi_and_jac(x, axis, s_a, w, s_b).1
+}
+
+/// The projection ([`projection_phi`]) and its Φ_q ([`projection_jac`])
+/// from one evaluation of e and A_a w'.
+pub(super) fn projection_phi_and_jac(
+    x: &Local,
+    axis: usize,
+    s_a: V2,
+    w: V2,
+    s_b: V2,
+) -> (f64, [[f64; 3]; 2]) {
     let (a, b) = (axis, 1 - axis);
     let (pa, pb) = (x.q[a][2], x.q[b][2]);
     let e = sub(point(x.q[b], s_b), point(x.q[a], s_a));
@@ -150,7 +162,7 @@ pub(super) fn projection_jac(x: &Local, axis: usize, s_a: V2, w: V2, s_b: V2) ->
     let mut out = [[0.0; 3]; 2];
     out[a] = [-aw[0], -aw[1], dot(bw, e) - dot(aw, rot_d(pa, s_a))];
     out[b] = [aw[0], aw[1], dot(aw, rot_d(pb, s_b))];
-    out
+    (dot(aw, e), out)
 }
 
 /// γ of the projection:

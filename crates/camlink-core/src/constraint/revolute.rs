@@ -10,7 +10,7 @@
 use super::sketch::{Mark, Sketch};
 use super::{CoordMask, Equations, Jac, Local, LocalBlock, Rows, MAX_ROWS};
 use crate::constraint::BodyId;
-use crate::math::{point, rot, rot_d, V2};
+use crate::math::{perp, point, rot, rot_d, V2};
 use crate::motion;
 
 #[derive(Clone, Debug)]
@@ -76,11 +76,17 @@ impl Equations for Revolute {
     fn jacobian(&self, x: &Local, out: &mut Jac) {
         let bi = rot_d(x.q[0][2], self.s_i);
         let bj = rot_d(x.q[1][2], self.s_j);
-        *out = Jac::default();
-        out.body[0][0] = [1.0, 0.0, bi[0]];
-        out.body[0][1] = [0.0, 1.0, bi[1]];
-        out.body[1][0] = [-1.0, 0.0, -bj[0]];
-        out.body[1][1] = [0.0, -1.0, -bj[1]];
+        jacobian_of(bi, bj, out);
+    }
+
+    /// With A_i s'_i and A_j s'_j evaluated once: B s' = (A s')⊥.
+    fn phi_and_jacobian(&self, x: &Local, phi: &mut Rows, jac: &mut Jac) {
+        let ai = rot(x.q[0][2], self.s_i);
+        let aj = rot(x.q[1][2], self.s_j);
+        let (qi, qj) = (x.q[0], x.q[1]);
+        phi[0] = (qi[0] + ai[0]) - (qj[0] + aj[0]);
+        phi[1] = (qi[1] + ai[1]) - (qj[1] + aj[1]);
+        jacobian_of(perp(ai), perp(aj), jac);
     }
 
     fn nu(&self, _x: &Local, out: &mut Rows) {
@@ -100,6 +106,17 @@ impl Equations for Revolute {
         let d = motion::sub(&x.point_path(0, self.s_i), &x.point_path(1, self.s_j));
         *out = [-d[3][0], -d[3][1], 0.0];
     }
+}
+
+/// Φ_q = [I  B_i s'_i | −I  −B_j s'_j] from `bi` = B_i s'_i and `bj` =
+/// B_j s'_j.
+#[inline]
+fn jacobian_of(bi: V2, bj: V2, out: &mut Jac) {
+    *out = Jac::default();
+    out.body[0][0] = [1.0, 0.0, bi[0]];
+    out.body[0][1] = [0.0, 1.0, bi[1]];
+    out.body[1][0] = [-1.0, 0.0, -bj[0]];
+    out.body[1][1] = [0.0, -1.0, -bj[1]];
 }
 
 #[cfg(test)]

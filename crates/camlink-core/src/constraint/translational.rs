@@ -17,7 +17,9 @@
 //! v'_i is normalised when the equations are evaluated, so Φ₁ is a distance
 //! in metres whatever the length of the given vector (which must not be zero).
 
-use super::relative::{projection_eta, projection_gamma, projection_jac, projection_phi, unit};
+use super::relative::{
+    projection_eta, projection_gamma, projection_jac, projection_phi, projection_phi_and_jac, unit,
+};
 use super::sketch::{Mark, Sketch};
 use super::{Equations, Jac, Local, Rows};
 use crate::constraint::BodyId;
@@ -82,12 +84,17 @@ impl Equations for Translational {
     }
 
     fn jacobian(&self, x: &Local, out: &mut Jac) {
-        *out = Jac::default();
         let [ji, jj] = projection_jac(x, 0, self.s_i, self.normal(), self.s_j);
-        out.body[0][0] = ji;
-        out.body[1][0] = jj;
-        out.body[0][1] = [0.0, 0.0, -1.0];
-        out.body[1][1] = [0.0, 0.0, 1.0];
+        jacobian_of(ji, jj, out);
+    }
+
+    /// With the axis normal, d and A_i w' evaluated once.
+    fn phi_and_jacobian(&self, x: &Local, phi: &mut Rows, jac: &mut Jac) {
+        let (normal, [ji, jj]) = projection_phi_and_jac(x, 0, self.s_i, self.normal(), self.s_j);
+        phi[0] = normal;
+        phi[1] = x.q[1][2] - x.q[0][2] - self.angle;
+        phi[2] = 0.0;
+        jacobian_of(ji, jj, jac);
     }
 
     fn nu(&self, _x: &Local, out: &mut Rows) {
@@ -105,6 +112,17 @@ impl Equations for Translational {
         out[1] = 0.0;
         out[2] = 0.0;
     }
+}
+
+/// Φ_q from the normal equation's blocks `ji` (body i) and `jj` (body j);
+/// the angle equation's are constant.
+#[inline]
+fn jacobian_of(ji: [f64; 3], jj: [f64; 3], out: &mut Jac) {
+    *out = Jac::default();
+    out.body[0][0] = ji;
+    out.body[1][0] = jj;
+    out.body[0][1] = [0.0, 0.0, -1.0];
+    out.body[1][1] = [0.0, 0.0, 1.0];
 }
 
 #[cfg(test)]

@@ -59,7 +59,7 @@ use crate::linsolve::DenseLu;
 use crate::math::{inner, max_abs};
 use crate::model::Model;
 use crate::newton;
-use crate::run::{self, AnalysisError, Kind, Summary};
+use crate::run::{self, AnalysisError, Kind, StateView, Summary};
 
 /// A Newton correction larger than this fraction of the one before means
 /// the chord iteration has stalled: the next iteration refactors.
@@ -232,95 +232,166 @@ impl Coeffs {
     }
 }
 
-/// The state at one time: positions q (m or rad), velocities q̇,
-/// accelerations q̈, multipliers λ and the pseudo-acceleration a.
+/// The state of a forward-dynamics run at time t (s): positions q (m or
+/// rad), velocities q̇ (m/s or rad/s), accelerations q̈ (m/s² or rad/s²),
+/// multipliers λ (one per equation of Φ) and the pseudo-acceleration a
+/// (m/s² or rad/s²) with the step h_a that made it. Vectors in the
+/// layout of the integrator's assembly.
 #[derive(Clone, Debug, Default)]
-struct State {
-    q: Vec<f64>,
-    qd: Vec<f64>,
-    qdd: Vec<f64>,
-    lambda: Vec<f64>,
-    a: Vec<f64>,
+pub struct State {
+    pub t: f64,
+    pub q: Vec<f64>,
+    pub qd: Vec<f64>,
+    pub qdd: Vec<f64>,
+    pub lambda: Vec<f64>,
+    pub a: Vec<f64>,
+    /// The step (s) that made `a`, a ≈ q̈(t + (α_m − α_f) h_a), or 0 when
+    /// `a` is not known to lie so (it is q̈, or q̈ was solved afresh).
+    pub h_a: f64,
 }
 
 impl State {
+    /// The state at `t` (s) with positions `q` and velocities `qd`, the
+    /// rest zero, for a system of `m` equations.
+    fn at(t: f64, q: Vec<f64>, qd: Vec<f64>, m: usize) -> Self {
+        let n = q.len();
+        State {
+            t,
+            q,
+            qd,
+            qdd: vec![0.0; n],
+            lambda: vec![0.0; m],
+            a: vec![0.0; n],
+            h_a: 0.0,
+        }
+    }
+
     /// Copies `from` into this state, reusing its vectors.
     fn copy_from(&mut self, from: &State) {
+        self.t = from.t;
         self.q.clone_from(&from.q);
         self.qd.clone_from(&from.qd);
         self.qdd.clone_from(&from.qdd);
         self.lambda.clone_from(&from.lambda);
         self.a.clone_from(&from.a);
+        self.h_a = from.h_a;
+    }
+
+    /// a = q̈, as at a start (h_a = 0).
+    fn restart_a(&mut self) {
+        self.a.copy_from_slice(&self.qdd);
+        self.h_a = 0.0;
+    }
+
+    /// Its positions, velocities and accelerations.
+    pub(crate) fn view(&self) -> StateView<'_> {
+        StateView {
+            q: &self.q,
+            qd: &self.qd,
+            qdd: &self.qdd,
+        }
     }
 }
 
-/// q̈ and λ at the start of the last step and of the one before, and
-/// the length (s) of the one before (0: none), from which the predictor
-/// extrapolates the next step's ([`Integrator::predict`]).
+/// The predictor's history ([`Integrator::predict`]): the length h (s)
+/// of the last step (0: none, or not to extrapolate from) with q̈ and λ
+/// at its start, and the same of the step before it.
 #[derive(Clone, Debug, Default)]
 struct History {
+    h: f64,
     qdd: Vec<f64>,
     lambda: Vec<f64>,
+    h2: f64,
     qdd2: Vec<f64>,
     lambda2: Vec<f64>,
-    h2: f64,
 }
 
 impl History {
     fn new(n: usize, m: usize) -> Self {
         History {
+            h: 0.0,
             qdd: vec![0.0; n],
             lambda: vec![0.0; m],
+            h2: 0.0,
             qdd2: vec![0.0; n],
             lambda2: vec![0.0; m],
-            h2: 0.0,
         }
     }
 
     /// Copies `from` into this history, reusing its vectors.
     fn copy_from(&mut self, from: &History) {
+        self.h = from.h;
         self.qdd.clone_from(&from.qdd);
         self.lambda.clone_from(&from.lambda);
+        self.h2 = from.h2;
         self.qdd2.clone_from(&from.qdd2);
         self.lambda2.clone_from(&from.lambda2);
-        self.h2 = from.h2;
     }
 
-    /// After a step of `h_prev` (s) from a state with q̈ `qdd` and λ
-    /// `lambda`: that state becomes the last one, the last the one before.
-    fn push(&mut self, h_prev: f64, qdd: &[f64], lambda: &[f64]) {
+    /// True when the last step, the one before it and a step of `h` (s)
+    /// are equal, within [`SLIVER`] h.
+    fn equal_steps(&self, h: f64) -> bool {
+        let equal = |a: f64, b: f64| (a - b).abs() <= SLIVER * h;
+        self.h > 0.0 && self.h2 > 0.0 && equal(h, self.h) && equal(self.h2, self.h)
+    }
+
+    /// q̈ and λ at the end of the next step, from `qdd` and `lambda` at
+    /// its start, by the parabola through them and the values at the start
+    /// of the last two steps (equal steps, [`equal_steps`](Self::equal_steps)):
+    /// x₊ = 3 (x − x₁) + x₂.
+    fn extrapolate_quadratic(&self, qdd: &mut [f64], lambda: &mut [f64]) {
+        for (x, (x1, x2)) in qdd.iter_mut().zip(self.qdd.iter().zip(&self.qdd2)) {
+            *x = 3.0 * (*x - x1) + x2;
+        }
+        for (x, (x1, x2)) in lambda.iter_mut().zip(self.lambda.iter().zip(&self.lambda2)) {
+            *x = 3.0 * (*x - x1) + x2;
+        }
+    }
+
+    /// q̈ and λ at the end of the next step, of `h` (s), from `qdd` and
+    /// `lambda` at its start, by the line through them and the values at
+    /// the start of the last step, x₊ = x + (h/h₁)(x − x₁); held constant
+    /// when there is no last step (h₁ = 0).
+    fn extrapolate_linear(&self, h: f64, qdd: &mut [f64], lambda: &mut [f64]) {
+        let r = if self.h > 0.0 { h / self.h } else { 0.0 };
+        for (x, x1) in qdd.iter_mut().zip(&self.qdd) {
+            *x += r * (*x - x1);
+        }
+        for (x, x1) in lambda.iter_mut().zip(&self.lambda) {
+            *x += r * (*x - x1);
+        }
+    }
+
+    /// After a step of `h` (s) from a state with q̈ `qdd` and λ `lambda`:
+    /// that step becomes the last one, the last the one before.
+    fn push(&mut self, h: f64, qdd: &[f64], lambda: &[f64]) {
         std::mem::swap(&mut self.qdd, &mut self.qdd2);
         std::mem::swap(&mut self.lambda, &mut self.lambda2);
         self.qdd.copy_from_slice(qdd);
         self.lambda.copy_from_slice(lambda);
-        self.h2 = h_prev;
+        self.h2 = self.h;
+        self.h = h;
     }
 }
 
-/// A copy of an integrator's state: t, (q, q̇, q̈, λ, a) and the
-/// predictor's history, for stepping again from the same start.
+/// A copy of an integrator's [`State`] and the predictor's history, for
+/// stepping again from the same start.
 #[derive(Clone, Debug, Default)]
 pub struct Snapshot {
-    t: f64,
-    h_prev: f64,
-    h_a: f64,
     state: State,
-    prev: History,
+    history: History,
 }
 
 impl Snapshot {
     /// Copies `s` into this snapshot, reusing its vectors.
     pub fn copy_from(&mut self, s: &Snapshot) {
-        self.t = s.t;
-        self.h_prev = s.h_prev;
-        self.h_a = s.h_a;
         self.state.copy_from(&s.state);
-        self.prev.copy_from(&s.prev);
+        self.history.copy_from(&s.history);
     }
 
     /// Its time (s).
     pub fn t(&self) -> f64 {
-        self.t
+        self.state.t
     }
 }
 
@@ -367,43 +438,46 @@ struct Correction {
     converged: bool,
 }
 
-/// A forward-dynamics run: the system, the state at t, the start of the
-/// step being taken, the predictor's history, Newton's scratch, the
-/// branch being followed and the run's diagnostics; allocated once.
+/// A forward-dynamics run, allocated once: the system, the settings, the
+/// state at t, the start of the step being taken, the predictor's
+/// history, Newton's matrix and scratch, the branch being followed, the
+/// run's diagnostics and the dense output.
 pub struct Integrator<'m> {
     pub sys: System<'m>,
     /// The model's redundant equations, if any.
     pub redundant: Option<Redundant>,
-    aug: Augmented,
     settings: Settings,
     c: Coeffs,
 
-    // The state.
-    /// Time t (s) and the state there.
-    pub t: f64,
-    pub q: Vec<f64>,
-    pub qd: Vec<f64>,
-    pub qdd: Vec<f64>,
-    pub lambda: Vec<f64>,
-    /// The pseudo-acceleration a.
-    a: Vec<f64>,
-    /// The step (s) that made `a`, a ≈ q̈(t + (α_m − α_f) h_a), or 0 when
-    /// `a` is not known to lie so (it is q̈, or q̈ was solved afresh).
-    h_a: f64,
+    /// The state at t.
+    state: State,
     /// The state at the start of the step, to retry it.
-    start: Start,
+    start: State,
 
-    // The predictor.
-    /// q̈ and λ at the start of the step before, and its length (0:
-    /// none), for the predictor.
-    prev: History,
-    h_prev: f64,
+    /// The predictor's history.
+    history: History,
     /// max |λ| two steps back (0: not known).
     lambda_max_before: f64,
     /// The weighted error of the last accepted error-controlled step.
     err_prev: Option<f64>,
 
-    // Newton's matrix and scratch.
+    newton: Newton,
+
+    /// Near a bifurcation point, the branch being followed.
+    follow: Follow,
+
+    diagnostics: Diagnostics,
+
+    /// The state at an output time inside the last step
+    /// ([`dense_output`](Self::dense_output)); made at its first use.
+    pub dense: Option<Dense>,
+}
+
+/// Newton's matrix and scratch: the augmented matrix S (or S_ε) and the
+/// step it was factored for, the right side, a vector of length n and the
+/// rounding noise of a correction.
+struct Newton {
+    aug: Augmented,
     /// The step h the factorization was made for (0: none).
     h_factored: f64,
     /// Right side and correction, length n + m.
@@ -413,30 +487,18 @@ pub struct Integrator<'m> {
     /// The rounding noise of a Newton correction, the same level for
     /// every coordinate (zero until measured in an attempt at a step).
     noise: f64,
+}
 
-    /// Near a bifurcation point, the branch being followed.
-    follow: Follow,
-
-    // The diagnostics.
+/// What a run reports beside its state.
+#[derive(Clone, Debug, Default)]
+pub struct Diagnostics {
+    /// Steps, Newton iterations, factorizations and warnings.
     pub summary: Summary,
     /// Steps rejected by the error control.
     pub rejected: usize,
     /// Whether the last step ended at a singular position (warned once
     /// per visit).
     near_singular: bool,
-
-    /// The state at an output time inside the last step
-    /// ([`dense_output`](Self::dense_output)); made at its first use.
-    pub dense: Option<Dense>,
-}
-
-/// The start of the step being taken: its time (s), `h_a` there and the
-/// state (q, q̇, q̈, λ, a).
-#[derive(Debug, Default)]
-struct Start {
-    t: f64,
-    h_a: f64,
-    state: State,
 }
 
 /// Near a bifurcation point ([`branch`]): the branch rows in use, their
@@ -474,6 +536,17 @@ pub struct Dense {
     rhs: Vec<f64>,
     /// The projections' scratch.
     proj: project::Workspace,
+}
+
+impl Dense {
+    /// Its positions, velocities and accelerations.
+    pub(crate) fn view(&self) -> StateView<'_> {
+        StateView {
+            q: &self.q,
+            qd: &self.qd,
+            qdd: &self.qdd,
+        }
+    }
 }
 
 impl<'m> Integrator<'m> {
@@ -534,46 +607,33 @@ impl<'m> Integrator<'m> {
         project::positions(&sys, &mut aug, &mut q, t0, settings.projection_tol, 100)
             .map_err(|e| named(e, &q))?;
         project::velocities(&sys, &mut aug, &q, &mut qd, t0).map_err(|e| named(e, &q))?;
+        let state = State::at(t0, q, qd, m);
         let mut it = Integrator {
             c: Coeffs::new(settings.rho_inf),
-            aug,
             settings,
-            t: t0,
-            qdd: vec![0.0; n],
-            lambda: vec![0.0; m],
-            a: vec![0.0; n],
-            h_a: 0.0,
-            h_factored: 0.0,
-            start: Start {
-                t: t0,
-                h_a: 0.0,
-                state: State {
-                    q: q.clone(),
-                    qd: qd.clone(),
-                    qdd: vec![0.0; n],
-                    lambda: vec![0.0; m],
-                    a: vec![0.0; n],
-                },
-            },
-            prev: History::new(n, m),
-            h_prev: 0.0,
-            rhs: vec![0.0; n + m],
-            work: vec![0.0; n],
-            noise: 0.0,
-            q,
-            qd,
-            sys,
-            summary,
-            redundant,
-            rejected: 0,
-            err_prev: None,
-            near_singular: false,
+            start: state.clone(),
+            state,
+            history: History::new(n, m),
             lambda_max_before: 0.0,
+            err_prev: None,
+            newton: Newton {
+                aug,
+                h_factored: 0.0,
+                rhs: vec![0.0; n + m],
+                work: vec![0.0; n],
+                noise: 0.0,
+            },
             follow: Follow::default(),
+            diagnostics: Diagnostics {
+                summary,
+                ..Diagnostics::default()
+            },
             dense: None,
+            sys,
+            redundant,
         };
         it.accelerations()?;
-        it.a.copy_from_slice(&it.qdd);
+        it.state.restart_a();
         it.watch_singularity();
         Ok(it)
     }
@@ -584,19 +644,33 @@ impl<'m> Integrator<'m> {
     /// dropped.
     pub fn restart(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Result<(), AnalysisError> {
         self.leave_branch();
-        self.t = t;
-        self.q.copy_from_slice(q);
-        self.qd.copy_from_slice(qd);
+        self.state.t = t;
+        self.state.q.copy_from_slice(q);
+        self.state.qd.copy_from_slice(qd);
         let tol = self.settings.projection_tol;
-        let projected = project::positions(&self.sys, &mut self.aug, &mut self.q, t, tol, 100)
-            .and_then(|_| project::velocities(&self.sys, &mut self.aug, &self.q, &mut self.qd, t));
+        let projected = project::positions(
+            &self.sys,
+            &mut self.newton.aug,
+            &mut self.state.q,
+            t,
+            tol,
+            100,
+        )
+        .and_then(|_| {
+            project::velocities(
+                &self.sys,
+                &mut self.newton.aug,
+                &self.state.q,
+                &mut self.state.qd,
+                t,
+            )
+        });
         if let Err(e) = projected {
             return Err(self.error(e.kind, &e.message));
         }
         self.accelerations()?;
-        self.a.copy_from_slice(&self.qdd);
-        self.h_a = 0.0;
-        self.h_prev = 0.0;
+        self.state.restart_a();
+        self.history.h = 0.0;
         self.err_prev = None;
         Ok(())
     }
@@ -604,46 +678,40 @@ impl<'m> Integrator<'m> {
     /// The system and its augmented matrix, for a one-shot solve of the
     /// caller's (the impact's); the step's factorization is dropped.
     pub fn system_and_matrix(&mut self) -> (&System<'m>, &mut Augmented) {
-        self.h_factored = 0.0;
-        (&self.sys, &mut self.aug)
+        self.newton.h_factored = 0.0;
+        (&self.sys, &mut self.newton.aug)
     }
 
     /// Copies the state into `s`, to [`resume`](Self::resume) from it.
     pub fn snapshot(&self, s: &mut Snapshot) {
-        s.t = self.t;
-        s.h_prev = self.h_prev;
-        s.h_a = self.h_a;
-        let to = &mut s.state;
-        for (to, from) in [
-            (&mut to.q, &self.q),
-            (&mut to.qd, &self.qd),
-            (&mut to.qdd, &self.qdd),
-            (&mut to.lambda, &self.lambda),
-            (&mut to.a, &self.a),
-        ] {
-            to.clear();
-            to.extend_from_slice(from);
-        }
-        s.prev.copy_from(&self.prev);
+        s.state.copy_from(&self.state);
+        s.history.copy_from(&self.history);
     }
 
     /// Returns to the state of a [`snapshot`](Self::snapshot).
     pub fn resume(&mut self, s: &Snapshot) {
         self.leave_branch();
-        self.t = s.t;
-        self.h_prev = s.h_prev;
-        self.h_a = s.h_a;
-        self.load(&s.state);
-        self.prev.copy_from(&s.prev);
+        self.state.copy_from(&s.state);
+        self.history.copy_from(&s.history);
+    }
+
+    /// The state at t.
+    pub fn state(&self) -> &State {
+        &self.state
+    }
+
+    /// The run's counts, warnings and rejected steps so far.
+    pub fn diagnostics(&self) -> &Diagnostics {
+        &self.diagnostics
     }
 
     /// q̈ and λ at the current (t, q, q̇): [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ].
     pub fn accelerations(&mut self) -> Result<(), AnalysisError> {
         self.consistent()?;
         let n = self.sys.n();
-        self.qdd.copy_from_slice(&self.rhs[..n]);
-        self.lambda.copy_from_slice(&self.rhs[n..]);
-        self.h_a = 0.0;
+        self.state.qdd.copy_from_slice(&self.newton.rhs[..n]);
+        self.state.lambda.copy_from_slice(&self.newton.rhs[n..]);
+        self.state.h_a = 0.0;
         Ok(())
     }
 
@@ -659,26 +727,48 @@ impl<'m> Integrator<'m> {
             scale: 1.0,
             ..Default::default()
         };
-        self.h_factored = 0.0;
+        self.newton.h_factored = 0.0;
         if self
+            .newton
             .aug
-            .refactor(s, &self.q, &self.qd, &self.qdd, None, self.t, k)
+            .refactor(
+                s,
+                &self.state.q,
+                &self.state.qd,
+                &self.state.qdd,
+                None,
+                self.state.t,
+                k,
+            )
             .is_err()
         {
             return Err(self.error(Kind::LockUp, "the constraint Jacobian is singular"));
         }
-        self.rhs.fill(0.0);
-        s.add_jt_lambda(&self.q, self.t, &self.lambda, &mut self.rhs[..n]);
-        self.aug.solve_refined(&mut self.rhs);
-        out.copy_from_slice(&self.rhs[n..]);
+        self.newton.rhs.fill(0.0);
+        s.add_jt_lambda(
+            &self.state.q,
+            self.state.t,
+            &self.state.lambda,
+            &mut self.newton.rhs[..n],
+        );
+        self.newton.aug.solve_refined(&mut self.newton.rhs);
+        out.copy_from_slice(&self.newton.rhs[n..]);
         Ok(())
     }
 
     /// Solves [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q; γ] into `rhs`, λ of minimum norm.
     fn consistent(&mut self) -> Result<(), AnalysisError> {
-        self.h_factored = 0.0;
-        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
-        solve_consistent(&self.sys, &mut self.aug, t, q, qd, qdd, &mut self.rhs)
+        self.newton.h_factored = 0.0;
+        let (t, q, qd, qdd) = (self.state.t, &self.state.q, &self.state.qd, &self.state.qdd);
+        solve_consistent(
+            &self.sys,
+            &mut self.newton.aug,
+            t,
+            q,
+            qd,
+            qdd,
+            &mut self.newton.rhs,
+        )
     }
 
     /// [`consistent`](Self::consistent) at the current state with the
@@ -691,11 +781,11 @@ impl<'m> Integrator<'m> {
         rhs: &mut Vec<f64>,
     ) -> Result<(), AnalysisError> {
         rhs.resize(self.sys.n() + self.sys.m(), 0.0);
-        let (t, q, qd, qdd) = (self.t, &self.q, &self.qd, &self.qdd);
+        let (t, q, qd, qdd) = (self.state.t, &self.state.q, &self.state.qd, &self.state.qdd);
         solve_consistent(&self.sys, aug, t, q, qd, qdd, rhs)
     }
 
-    /// The state at `t` (s) inside the last step, t₀ ≤ t ≤ t₁ = `self.t`,
+    /// The state at `t` (s) inside the last step, t₀ ≤ t ≤ t₁ = `self.state.t`,
     /// into [`dense`](Self::dense) ([`Dense`]). The accelerations and
     /// multipliers of a step scale like 1/h², so a step cut short to land
     /// on t would not give them; the integrator's state and factorization
@@ -705,9 +795,7 @@ impl<'m> Integrator<'m> {
         // Projected, or where the projection fails, as interpolated.
         for project in [true, false] {
             let d = self.dense.as_mut().expect("dense output");
-            let s0 = &self.start.state;
-            let start = (self.start.t, [&s0.q[..], &s0.qd, &s0.qdd]);
-            hermite(d, t, start, (self.t, [&self.q, &self.qd, &self.qdd]));
+            hermite(d, t, &self.start, &self.state);
             let settled = self.settle_dense(project);
             if settled.is_ok() || !project {
                 return settled;
@@ -729,13 +817,7 @@ impl<'m> Integrator<'m> {
         // Projected, or where the projection fails, as interpolated.
         for project in [true, false] {
             let d = self.dense.as_mut().expect("dense output");
-            let (s0, s1) = (&start.state, &end.state);
-            hermite(
-                d,
-                t,
-                (start.t, [&s0.q, &s0.qd, &s0.qdd]),
-                (end.t, [&s1.q, &s1.qd, &s1.qdd]),
-            );
+            hermite(d, t, &start.state, &end.state);
             let settled = self.settle_dense(project);
             if settled.is_ok() || !project {
                 return settled;
@@ -748,7 +830,7 @@ impl<'m> Integrator<'m> {
     fn make_dense(&mut self, t: f64) -> Result<(), AnalysisError> {
         if self.dense.is_none() {
             let (n, m) = (self.sys.n(), self.sys.m());
-            let aug = Augmented::new(&self.sys, &self.q)
+            let aug = Augmented::new(&self.sys, &self.state.q)
                 .map_err(|e| AnalysisError::new(Kind::Internal, t, e.to_string()))?;
             self.dense = Some(Dense {
                 t,
@@ -801,7 +883,7 @@ impl<'m> Integrator<'m> {
     /// An error at the current state, naming the joints furthest from
     /// Φ = 0 (at most five) and the largest |Φ|.
     fn error(&self, kind: Kind, what: &str) -> AnalysisError {
-        error_at(&self.sys, self.t, &self.q, kind, what)
+        error_at(&self.sys, self.state.t, &self.state.q, kind, what)
     }
 
     /// Advances one step of size `h`; the state is unchanged on failure.
@@ -817,7 +899,7 @@ impl<'m> Integrator<'m> {
             && !(self.slow(h) && self.enter_branch())
         {
             self.accelerations()?;
-            self.h_prev = 0.0;
+            self.history.h = 0.0;
         }
         self.save();
         let mut last = Attempt::Failed;
@@ -861,7 +943,7 @@ impl<'m> Integrator<'m> {
                     return Ok(None);
                 }
             }
-            Way::Fresh => self.h_prev = 0.0,
+            Way::Fresh => self.history.h = 0.0,
             Way::BranchWhereLost => {
                 if !self.enter_branch() {
                     return Ok(None);
@@ -886,7 +968,7 @@ impl<'m> Integrator<'m> {
                 self.accelerations()?;
                 self.save();
             }
-            Way::AlongBranch => self.h_prev = 0.0,
+            Way::AlongBranch => self.history.h = 0.0,
             Way::Chord | Way::Fresh | Way::BranchWhereLost | Way::LeaveBranch => {}
         }
         Ok(())
@@ -900,8 +982,7 @@ impl<'m> Integrator<'m> {
         if let Some(rows) = self.crossed_branch() {
             // Back to the start of the step: its state, time and count.
             self.restore();
-            self.t = self.start.t;
-            self.summary.steps -= 1;
+            self.diagnostics.summary.steps -= 1;
             self.use_rows(rows);
             self.save();
             if !self.try_step(h, true)? {
@@ -913,7 +994,7 @@ impl<'m> Integrator<'m> {
             }
             return self.after_branch_step();
         }
-        if self.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) && self.slow(h) {
+        if self.newton.aug.min_pivot().is_some_and(|p| p < PIVOT_WATCH) && self.slow(h) {
             self.watch_branch();
         } else {
             self.follow.seen = None;
@@ -929,7 +1010,8 @@ impl<'m> Integrator<'m> {
         if self.redundant.is_some() {
             return false;
         }
-        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+        let Some(rows) = branch::analyse(&self.sys, &self.state.q, self.state.t, self.direction())
+        else {
             return false;
         };
         self.use_rows(rows);
@@ -944,9 +1026,9 @@ impl<'m> Integrator<'m> {
         self.follow.border = vec![0.0; k * (n + m)];
         self.follow.schur = Some(DenseLu::new(k));
         self.follow.rows = Some(rows);
-        self.aug.set_regularised(true);
-        self.aug.invalidate();
-        self.h_prev = 0.0;
+        self.newton.aug.set_regularised(true);
+        self.newton.aug.invalidate();
+        self.history.h = 0.0;
     }
 
     /// True when a step of `h` moves every coordinate by less than
@@ -955,15 +1037,15 @@ impl<'m> Integrator<'m> {
     /// steps over it with Φ alone, whose roots are then a step's motion
     /// apart, while the rows' linearisation would err by the square of it.
     fn slow(&self, h: f64) -> bool {
-        h * max_abs(&self.qd) < SLOW_STEP
+        h * max_abs(&self.state.qd) < SLOW_STEP
     }
 
     /// The direction of motion: the velocity, or at rest the acceleration.
     fn direction(&self) -> &[f64] {
-        if max_abs(&self.qd) > 0.0 {
-            &self.qd
+        if max_abs(&self.state.qd) > 0.0 {
+            &self.state.qd
         } else {
-            &self.qdd
+            &self.state.qdd
         }
     }
 
@@ -974,8 +1056,8 @@ impl<'m> Integrator<'m> {
         self.follow.guard = None;
         let rows = self.follow.rows.take()?;
         self.follow.schur = None;
-        self.aug.set_regularised(false);
-        self.aug.invalidate();
+        self.newton.aug.set_regularised(false);
+        self.newton.aug.invalidate();
         Some(rows)
     }
 
@@ -985,15 +1067,21 @@ impl<'m> Integrator<'m> {
     fn crossed_branch(&mut self) -> Option<BranchRows> {
         let rows = self.follow.guard.take()?;
         let n = self.sys.n();
-        for ((d, q), q0) in self.work.iter_mut().zip(&self.q).zip(&self.start.state.q) {
+        for ((d, q), q0) in self
+            .newton
+            .work
+            .iter_mut()
+            .zip(&self.state.q)
+            .zip(&self.start.q)
+        {
             *d = q - q0;
         }
         let across = rows
             .a
             .chunks(n)
-            .map(|row| inner(row, &self.work).abs())
+            .map(|row| inner(row, &self.newton.work).abs())
             .fold(0.0, f64::max);
-        (across > GUARD * max_abs(&self.work)).then_some(rows)
+        (across > GUARD * max_abs(&self.newton.work)).then_some(rows)
     }
 
     /// After a plain step that ended near a singular position: follows
@@ -1002,7 +1090,7 @@ impl<'m> Integrator<'m> {
         if self.redundant.is_some() {
             return;
         }
-        let Some(pivot) = self.aug.min_pivot() else {
+        let Some(pivot) = self.newton.aug.min_pivot() else {
             return;
         };
         // The smallest pivot falls as σ² near the point: scaled by the
@@ -1014,7 +1102,8 @@ impl<'m> Integrator<'m> {
                 return;
             }
         }
-        let Some(rows) = branch::analyse(&self.sys, &self.q, self.t, self.direction()) else {
+        let Some(rows) = branch::analyse(&self.sys, &self.state.q, self.state.t, self.direction())
+        else {
             self.follow.seen = None;
             return;
         };
@@ -1031,12 +1120,12 @@ impl<'m> Integrator<'m> {
         let Some(old) = &self.follow.rows else {
             return Ok(());
         };
-        let next = branch::analyse(&self.sys, &self.q, self.t, &old.tangent);
+        let next = branch::analyse(&self.sys, &self.state.q, self.state.t, &old.tangent);
         match next {
             Some(rows) if rows.k == old.k && rows.sigma_rel < branch::WINDOW_EXIT => {
                 // The same forces Aᵀμ on the new rows (orthonormal).
                 let n = self.sys.n();
-                let force = &mut self.work;
+                let force = &mut self.newton.work;
                 force.fill(0.0);
                 for (row, mu) in old.a.chunks(n).zip(&self.follow.mu) {
                     for (f, x) in force.iter_mut().zip(row) {
@@ -1052,39 +1141,21 @@ impl<'m> Integrator<'m> {
                 // The first plain step is checked against the last rows.
                 self.follow.guard = self.leave_branch();
                 self.accelerations()?;
-                self.h_prev = 0.0;
+                self.history.h = 0.0;
             }
         }
         self.watch_singularity();
         Ok(())
     }
 
+    /// Keeps the state as the start of the step.
     fn save(&mut self) {
-        self.start.t = self.t;
-        self.start.h_a = self.h_a;
-        let to = &mut self.start.state;
-        to.q.copy_from_slice(&self.q);
-        to.qd.copy_from_slice(&self.qd);
-        to.qdd.copy_from_slice(&self.qdd);
-        to.lambda.copy_from_slice(&self.lambda);
-        to.a.copy_from_slice(&self.a);
+        self.start.copy_from(&self.state);
     }
 
+    /// Back to the start of the step: its time and state.
     fn restore(&mut self) {
-        self.h_a = self.start.h_a;
-        // (Moved out and back: no copy of the vectors.)
-        let saved = std::mem::take(&mut self.start.state);
-        self.load(&saved);
-        self.start.state = saved;
-    }
-
-    /// Sets (q, q̇, q̈, λ, a) to `from`'s.
-    fn load(&mut self, from: &State) {
-        self.q.copy_from_slice(&from.q);
-        self.qd.copy_from_slice(&from.qd);
-        self.qdd.copy_from_slice(&from.qdd);
-        self.lambda.copy_from_slice(&from.lambda);
-        self.a.copy_from_slice(&from.a);
+        self.state.copy_from(&self.start);
     }
 
     /// One step; Ok(false) when Newton did not converge.
@@ -1101,10 +1172,10 @@ impl<'m> Integrator<'m> {
         fresh: bool,
         stop_at_singular: bool,
     ) -> Result<Attempt, AnalysisError> {
-        let k = StepCoeffs::new(&self.c, self.t, h);
+        let k = StepCoeffs::new(&self.c, self.state.t, h);
         self.predict(h)?;
         let mut last = f64::INFINITY;
-        self.noise = 0.0;
+        self.newton.noise = 0.0;
         let mut noise_known = false;
         // Near a singular position Newton converges only linearly (the
         // root is singular); the retry with a fresh matrix each iteration
@@ -1117,8 +1188,8 @@ impl<'m> Integrator<'m> {
         for _ in 0..max_iter {
             self.newton_residual(&k)?;
             // The factorization serves steps within rounding of its own.
-            let same_h = (h - self.h_factored).abs() <= 1e-6 * h;
-            if fresh || !self.aug.is_valid() || !same_h || self.follow.rows.is_some() {
+            let same_h = (h - self.newton.h_factored).abs() <= 1e-6 * h;
+            if fresh || !self.newton.aug.is_valid() || !same_h || self.follow.rows.is_some() {
                 self.newton_matrix(&k)?;
                 // Near a bifurcation point S_ε's regularisation damps the
                 // lost direction's correction while Φ barely sees it: a
@@ -1135,7 +1206,7 @@ impl<'m> Integrator<'m> {
                 self.border_matrix()?;
             }
             self.newton_correction(&k);
-            self.summary.newton_iterations += 1;
+            self.diagnostics.summary.newton_iterations += 1;
             let Correction {
                 dmax,
                 theta,
@@ -1158,9 +1229,9 @@ impl<'m> Integrator<'m> {
             if !lost
                 && theta > SLOW
                 && dmax <= STALL * last
-                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.q))
+                && dmax > ABOVE_ROUNDING * newton::rounding(max_abs(&self.state.q))
             {
-                self.aug.invalidate();
+                self.newton.aug.invalidate();
             }
             // An iteration that stalls has reached the noise of the solve
             // (measured once per attempt; it applies from the next
@@ -1170,19 +1241,20 @@ impl<'m> Integrator<'m> {
                     self.measure_noise(k.t1, k.s)?;
                     noise_known = true;
                 }
-                self.aug.invalidate();
+                self.newton.aug.invalidate();
             }
             last = dmax;
         }
-        self.aug.invalidate();
+        self.newton.aug.invalidate();
         Ok(Attempt::Failed)
     }
 
     /// The predicted state at the end of a step of `h`: q̈ and λ
     /// extrapolated, a_{n+1}, q and q̇ from them.
     fn predict(&mut self, h: f64) -> Result<(), AnalysisError> {
-        let c = self.c;
-        let n = self.sys.n();
+        let (c, n) = (self.c, self.sys.n());
+        let quadratic = self.history.equal_steps(h) && self.regular();
+        let s = &mut self.state;
         // a_n ≈ q̈(t_n + (α_m − α_f) h_a) + O(h²) (Arnold & Brüls 2007) for
         // the step h_a that made it; a step of another length h needs
         // q̈(t_n + (α_m − α_f) h), q̈_n + (h/h_a)(a_n − q̈_n) to that order.
@@ -1192,9 +1264,9 @@ impl<'m> Integrator<'m> {
         // first order (IFToMM A02, atol = 1e-8: 4.5e-3 rad against 9e-5 at
         // a fixed step of the same mean length). Fixed steps that differ by
         // the rounding of t, or a stretch within SLIVER, are left alone.
-        if self.h_a > 0.0 && (h - self.h_a).abs() > SLIVER * self.h_a {
-            let r = h / self.h_a;
-            for (a, qdd) in self.a.iter_mut().zip(&self.qdd) {
+        if s.h_a > 0.0 && (h - s.h_a).abs() > SLIVER * s.h_a {
+            let r = h / s.h_a;
+            for (a, qdd) in s.a.iter_mut().zip(&s.qdd) {
                 *a = qdd + r * (*a - qdd);
             }
         }
@@ -1207,38 +1279,17 @@ impl<'m> Integrator<'m> {
         // 1/δ, and a parabola through them overshoots into a spurious
         // root: linearly there, from the last two steps (held constant on
         // the first).
-        let r = if self.h_prev > 0.0 {
-            h / self.h_prev
+        let p = &self.history;
+        if quadratic {
+            p.extrapolate_quadratic(&mut s.qdd, &mut s.lambda);
         } else {
-            0.0
-        };
-        let p = &self.prev;
-        let equal = |a: f64, b: f64| (a - b).abs() <= SLIVER * h;
-        if r > 0.0
-            && p.h2 > 0.0
-            && equal(h, self.h_prev)
-            && equal(p.h2, self.h_prev)
-            && self.regular()
-        {
-            for k in 0..n {
-                self.qdd[k] = 3.0 * (self.qdd[k] - p.qdd[k]) + p.qdd2[k];
-            }
-            for k in 0..self.lambda.len() {
-                self.lambda[k] = 3.0 * (self.lambda[k] - p.lambda[k]) + p.lambda2[k];
-            }
-        } else {
-            for k in 0..n {
-                self.qdd[k] += r * (self.qdd[k] - p.qdd[k]);
-            }
-            for k in 0..self.lambda.len() {
-                self.lambda[k] += r * (self.lambda[k] - p.lambda[k]);
-            }
+            p.extrapolate_linear(h, &mut s.qdd, &mut s.lambda);
         }
         for k in 0..n {
-            let a0 = self.a[k];
-            let a1 = c.next_a(self.qdd[k], self.start.state.qdd[k], a0);
-            self.q[k] += h * self.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
-            self.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
+            let a0 = s.a[k];
+            let a1 = c.next_a(s.qdd[k], self.start.qdd[k], a0);
+            s.q[k] += h * s.qd[k] + h * h * ((0.5 - c.beta) * a0 + c.beta * a1);
+            s.qd[k] += h * ((1.0 - c.gamma) * a0 + c.gamma * a1);
         }
         // Near a singular position the multipliers of the lost direction
         // grow as 1/δ with the distance δ from it, and their tension pulls
@@ -1250,7 +1301,7 @@ impl<'m> Integrator<'m> {
         // predicted state.
         if self.lambda_jumps() {
             self.consistent()?;
-            self.lambda.copy_from_slice(&self.rhs[n..]);
+            self.state.lambda.copy_from_slice(&self.newton.rhs[n..]);
         }
         Ok(())
     }
@@ -1260,12 +1311,12 @@ impl<'m> Integrator<'m> {
     /// the lost equations the rows replace.
     fn newton_residual(&mut self, k: &StepCoeffs) -> Result<(), AnalysisError> {
         let n = self.sys.n();
-        let (r_motion, r_phi) = self.rhs.split_at_mut(n);
+        let (r_motion, r_phi) = self.newton.rhs.split_at_mut(n);
         self.sys.residual_and_phi(
-            &self.q,
-            &self.qd,
-            &self.qdd,
-            &self.lambda,
+            &self.state.q,
+            &self.state.qd,
+            &self.state.qdd,
+            &self.state.lambda,
             k.t1,
             r_motion,
             r_phi,
@@ -1306,25 +1357,26 @@ impl<'m> Integrator<'m> {
             identity: 0.0,
             scale: k.s,
         };
-        let (q, qd, qdd) = (&self.q, &self.qd, &self.qdd);
+        let (q, qd, qdd) = (&self.state.q, &self.state.qd, &self.state.qdd);
         if self
+            .newton
             .aug
             .refactor(
                 &self.sys,
                 q,
                 qd,
                 qdd,
-                Some(&self.lambda),
+                Some(&self.state.lambda),
                 k.t1,
                 coefficients,
             )
             .is_err()
         {
-            self.h_factored = 0.0;
+            self.newton.h_factored = 0.0;
             return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
         }
-        self.h_factored = k.h;
-        self.summary.factorizations += 1;
+        self.newton.h_factored = k.h;
+        self.diagnostics.summary.factorizations += 1;
         Ok(())
     }
 
@@ -1336,13 +1388,13 @@ impl<'m> Integrator<'m> {
         let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) else {
             return Ok(());
         };
-        let nm = self.rhs.len();
+        let nm = self.newton.rhs.len();
         for (x, row) in self.follow.border.chunks_mut(nm).zip(b.a.chunks(n)) {
             x[..n].copy_from_slice(row);
             x[n..].fill(0.0);
-            self.aug.solve(x);
+            self.newton.aug.solve(x);
         }
-        let eps = self.aug.eps();
+        let eps = self.newton.aug.eps();
         let c = faer::Mat::from_fn(b.k, b.k, |v, w| {
             let bx = inner(
                 &b.a[v * n..(v + 1) * n],
@@ -1351,7 +1403,7 @@ impl<'m> Integrator<'m> {
             -bx - if v == w { eps } else { 0.0 }
         });
         if lu.factor(c.as_ref()).is_err() {
-            self.h_factored = 0.0;
+            self.newton.h_factored = 0.0;
             return Err(self.error(Kind::LockUp, "the Newton iteration matrix is singular"));
         }
         Ok(())
@@ -1363,15 +1415,15 @@ impl<'m> Integrator<'m> {
     /// transition band.
     fn newton_correction(&mut self, k: &StepCoeffs) {
         let n = self.sys.n();
-        self.aug.solve(&mut self.rhs);
+        self.newton.aug.solve(&mut self.newton.rhs);
         if let (Some(b), Some(lu)) = (&self.follow.rows, &mut self.follow.schur) {
             // With z = S_ε⁻¹ b₁ in `rhs`: y = C⁻¹ (b₂ − B z) for the
             // rows A (q − q_n) = 0 from the start of the step, then
             // x = z − X y.
-            let nm = self.rhs.len();
+            let nm = self.newton.rhs.len();
             let y = &mut self.follow.ext[..b.k];
             for (yw, row) in y.iter_mut().zip(b.a.chunks(n)) {
-                let moved = self.q.iter().zip(&self.start.state.q).zip(&self.rhs);
+                let moved = self.state.q.iter().zip(&self.start.q).zip(&self.newton.rhs);
                 *yw = -row
                     .iter()
                     .zip(moved)
@@ -1380,7 +1432,7 @@ impl<'m> Integrator<'m> {
             }
             lu.solve(y);
             for (x, &yw) in self.follow.border.chunks(nm).zip(y.iter()) {
-                for (r, xi) in self.rhs.iter_mut().zip(x) {
+                for (r, xi) in self.newton.rhs.iter_mut().zip(x) {
                     *r -= xi * yw;
                 }
             }
@@ -1389,18 +1441,18 @@ impl<'m> Integrator<'m> {
             }
         }
         // No joint's friction jumps across its transition band.
-        let (q, qd) = (&self.q, &self.qd);
+        let (q, qd) = (&self.state.q, &self.state.qd);
         let theta = self.sys.friction.step_fraction(
             self.sys.model,
             &self.sys.asm,
             q,
             qd,
-            &self.rhs,
+            &self.newton.rhs,
             k.gp,
             k.t1,
         );
         if theta < 1.0 {
-            self.rhs.iter_mut().for_each(|v| *v *= theta);
+            self.newton.rhs.iter_mut().for_each(|v| *v *= theta);
         }
     }
 
@@ -1414,16 +1466,16 @@ impl<'m> Integrator<'m> {
         // correction that is not a number leaves them alone).
         let (mut dmax, mut at, mut nan) = (0.0f64, 0, false);
         for i in 0..n {
-            let d = self.rhs[i];
-            self.q[i] += d;
-            self.qd[i] += gp * d;
-            self.qdd[i] += bp * d;
+            let d = self.newton.rhs[i];
+            self.state.q[i] += d;
+            self.state.qd[i] += gp * d;
+            self.state.qdd[i] += bp * d;
             if d.abs() > dmax {
                 (dmax, at) = (d.abs(), i);
             }
             nan |= d.is_nan();
         }
-        for (l, d) in self.lambda.iter_mut().zip(&self.rhs[n..]) {
+        for (l, d) in self.state.lambda.iter_mut().zip(&self.newton.rhs[n..]) {
             *l += d / k.s;
         }
         let theta = if nan { f64::NAN } else { dmax / last };
@@ -1472,9 +1524,9 @@ impl<'m> Integrator<'m> {
         nan: bool,
     ) -> bool {
         let n = self.sys.n();
-        let d = &self.rhs[..n];
+        let d = &self.newton.rhs[..n];
         // (A noise that is not a number settles nothing.)
-        if self.noise.is_nan() {
+        if self.newton.noise.is_nan() {
             return false;
         }
         // At a singular position (S_ε factored) the lost direction
@@ -1488,7 +1540,8 @@ impl<'m> Integrator<'m> {
             let unproven =
                 self.at_singular_position() && self.follow.rows.is_none() && last.is_infinite();
             return !unproven
-                && (0..n).all(|i| newton::settled(d[i], self.q[i], self.tol_at(self.q[i])));
+                && (0..n)
+                    .all(|i| newton::settled(d[i], self.state.q[i], self.tol_at(self.state.q[i])));
         }
         // With the contraction θ the error left after a correction Δ_k
         // is about θ/(1 − θ) |Δ_k| (Hairer & Wanner IV.8): a slow
@@ -1502,14 +1555,15 @@ impl<'m> Integrator<'m> {
         } else {
             f64::INFINITY
         };
-        let above_rounding = dmax > ESTIMATE_ABOVE_ROUNDING * newton::rounding(max_abs(&self.q));
+        let above_rounding =
+            dmax > ESTIMATE_ABOVE_ROUNDING * newton::rounding(max_abs(&self.state.q));
         let eta = if !last.is_infinite() && above_rounding {
             estimate
         } else {
             estimate.max(1.0)
         };
         if !nan {
-            if dmax <= self.noise {
+            if dmax <= self.newton.noise {
                 return true;
             }
             let x = eta * dmax;
@@ -1527,7 +1581,7 @@ impl<'m> Integrator<'m> {
         let pending = (0..n)
             .filter(|&i| !self.settles(k, eta, d[i], i))
             .fold(0.0f64, |p, i| p.max(d[i].abs()));
-        pending <= self.noise
+        pending <= self.newton.noise
     }
 
     /// True when coordinate `i`'s correction `d` (already applied) has
@@ -1538,11 +1592,11 @@ impl<'m> Integrator<'m> {
     /// its rates too.
     #[inline]
     fn settles(&self, k: &StepCoeffs, eta: f64, d: f64, i: usize) -> bool {
-        let (q, tol) = (self.q[i], self.tol_at(self.q[i]));
+        let (q, tol) = (self.state.q[i], self.tol_at(self.state.q[i]));
         let round = newton::rounding(q);
         let de = eta * d;
         let position = newton::settled(de, q, tol) || d.abs() <= round;
-        let velocity = newton::settled(k.gp * de, self.qd[i], tol) || d.abs() <= round;
+        let velocity = newton::settled(k.gp * de, self.state.qd[i], tol) || d.abs() <= round;
         let acceleration = (k.bp * de).abs() <= tol || d.abs() <= round;
         position && velocity && acceleration
     }
@@ -1573,16 +1627,14 @@ impl<'m> Integrator<'m> {
     /// history, t = t₁.
     fn accept(&mut self, k: &StepCoeffs) {
         let c = self.c;
-        for i in 0..self.a.len() {
-            self.a[i] = c.next_a(self.qdd[i], self.start.state.qdd[i], self.a[i]);
+        for i in 0..self.state.a.len() {
+            self.state.a[i] = c.next_a(self.state.qdd[i], self.start.qdd[i], self.state.a[i]);
         }
-        self.lambda_max_before = max_abs(&self.prev.lambda);
-        let start = &self.start.state;
-        self.prev.push(self.h_prev, &start.qdd, &start.lambda);
-        self.h_prev = k.h;
-        self.h_a = k.h;
-        self.t = k.t1;
-        self.summary.steps += 1;
+        self.lambda_max_before = max_abs(&self.history.lambda);
+        self.history.push(k.h, &self.start.qdd, &self.start.lambda);
+        self.state.h_a = k.h;
+        self.state.t = k.t1;
+        self.diagnostics.summary.steps += 1;
     }
 
     /// Records a `near_singular` warning, naming the joints whose
@@ -1590,12 +1642,12 @@ impl<'m> Integrator<'m> {
     /// step ends at a singular position after one that did not.
     fn watch_singularity(&mut self) {
         let near = self.at_singular_position();
-        if near && !self.near_singular {
+        if near && !self.diagnostics.near_singular {
             let (model, asm) = (self.sys.model, &self.sys.asm);
-            let joints = crate::diagnose::weakest_joints(model, asm, &self.q, self.t);
-            self.summary.warnings.push(run::Warning {
+            let joints = crate::diagnose::weakest_joints(model, asm, &self.state.q, self.state.t);
+            self.diagnostics.summary.warnings.push(run::Warning {
                 kind: Kind::NearSingular,
-                time: self.t,
+                time: self.state.t,
                 message: format!(
                     "near-singular configuration{}: the constraint Jacobian loses rank \
                      (a toggle, a dead centre, the flat position of a parallelogram); \
@@ -1610,7 +1662,7 @@ impl<'m> Integrator<'m> {
                 joints,
             });
         }
-        self.near_singular = near;
+        self.diagnostics.near_singular = near;
     }
 
     /// True when the largest multiplier grew by more than [`LAMBDA_JUMP`]
@@ -1620,10 +1672,12 @@ impl<'m> Integrator<'m> {
     fn lambda_jumps(&self) -> bool {
         let (l0, l1, l2) = (
             self.lambda_max_before,
-            max_abs(&self.prev.lambda),
-            max_abs(&self.start.state.lambda),
+            max_abs(&self.history.lambda),
+            max_abs(&self.start.lambda),
         );
-        self.h_prev > 0.0 && l2 > LAMBDA_JUMP * l1 && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
+        self.history.h > 0.0
+            && l2 > LAMBDA_JUMP * l1
+            && (l2 * l0 > l1 * l1 || l2 > LAMBDA_LEAP * l1)
     }
 
     /// True away from singular positions, where the predictor may
@@ -1632,18 +1686,22 @@ impl<'m> Integrator<'m> {
     /// pivot of the last factorization at least [`QUADRATIC_PIVOT`].
     fn regular(&self) -> bool {
         let f = &self.follow;
-        self.aug.eps() == 0.0
+        self.newton.aug.eps() == 0.0
             && f.rows.is_none()
             && f.seen.is_none()
             && f.guard.is_none()
-            && self.aug.min_pivot().is_some_and(|p| p >= QUADRATIC_PIVOT)
+            && self
+                .newton
+                .aug
+                .min_pivot()
+                .is_some_and(|p| p >= QUADRATIC_PIVOT)
     }
 
     /// True when the last factorization found S singular in a model
     /// without redundant equations (which always factors S_ε, its lost
     /// directions being exact and harmless): a singular position.
     fn at_singular_position(&self) -> bool {
-        self.aug.eps() > 0.0 && self.redundant.is_none()
+        self.newton.aug.eps() > 0.0 && self.redundant.is_none()
     }
 
     /// The rounding noise of a Newton correction at the current iterate
@@ -1655,20 +1713,21 @@ impl<'m> Integrator<'m> {
     fn measure_noise(&mut self, t: f64, s: f64) -> Result<(), AnalysisError> {
         let n = self.sys.n();
         let u = newton::ULPS * f64::EPSILON;
-        let (head, tail) = self.rhs.split_at_mut(n);
-        self.sys.forces(&self.q, &self.qd, t, head)?;
+        let (head, tail) = self.newton.rhs.split_at_mut(n);
+        self.sys.forces(&self.state.q, &self.state.qd, t, head)?;
         head.iter_mut().for_each(|v| *v = v.abs());
-        self.work.fill(0.0);
-        self.sys.add_mass_times(&self.q, &self.qdd, &mut self.work);
+        self.newton.work.fill(0.0);
         self.sys
-            .add_jt_lambda(&self.q, t, &self.lambda, &mut self.work);
-        for (h, w) in head.iter_mut().zip(&self.work) {
+            .add_mass_times(&self.state.q, &self.state.qdd, &mut self.newton.work);
+        self.sys
+            .add_jt_lambda(&self.state.q, t, &self.state.lambda, &mut self.newton.work);
+        for (h, w) in head.iter_mut().zip(&self.newton.work) {
             *h = u * s * (*h + w.abs());
         }
-        tail.fill(u * max_abs(&self.q));
-        self.aug.solve(&mut self.rhs);
+        tail.fill(u * max_abs(&self.state.q));
+        self.newton.aug.solve(&mut self.newton.rhs);
         // One level for all: the pattern of the rounding errors is unknown.
-        self.noise = NOISE_SAFETY * max_abs(&self.rhs[..n]);
+        self.newton.noise = NOISE_SAFETY * max_abs(&self.newton.rhs[..n]);
         Ok(())
     }
 
@@ -1676,9 +1735,9 @@ impl<'m> Integrator<'m> {
     fn local_error(&self, h: f64, ad: &Adaptive) -> f64 {
         let w = h * h * (self.c.beta - 1.0 / 6.0).abs();
         let mut e = 0.0f64;
-        for k in 0..self.q.len() {
-            let d = w * (self.qdd[k] - self.start.state.qdd[k]);
-            e = e.max(d.abs() / (ad.atol + ad.rtol * self.q[k].abs()));
+        for k in 0..self.state.q.len() {
+            let d = w * (self.state.qdd[k] - self.start.qdd[k]);
+            e = e.max(d.abs() / (ad.atol + ad.rtol * self.state.q[k].abs()));
         }
         e
     }
@@ -1714,7 +1773,7 @@ impl<'m> Integrator<'m> {
         tick: &mut dyn FnMut() -> Result<(), AnalysisError>,
     ) -> Result<bool, AnalysisError> {
         self.advance(t_out, h_next, tick, true)?;
-        if t_out - self.t >= -arrived_within(t_out, self.settings.step) {
+        if t_out - self.state.t >= -arrived_within(t_out, self.settings.step) {
             return Ok(false);
         }
         self.dense_output(t_out)?;
@@ -1732,9 +1791,9 @@ impl<'m> Integrator<'m> {
     ) -> Result<(), AnalysisError> {
         let h_max = self.settings.step;
         let done = arrived_within(t_end, h_max);
-        while t_end - self.t > done {
+        while t_end - self.state.t > done {
             tick()?;
-            let left = t_end - self.t;
+            let left = t_end - self.state.t;
             match self.settings.adaptive.clone() {
                 None if over && steps_over(left, h_max) => self.step(h_max)?,
                 None => self.step(fixed_step(left, h_max))?,
@@ -1753,14 +1812,16 @@ impl<'m> Integrator<'m> {
                         h
                     };
                     // A step below the rounding of t leaves t unchanged.
-                    if h < 4.0 * f64::EPSILON * self.t.abs() || self.t + h == self.t {
+                    if h < 4.0 * f64::EPSILON * self.state.t.abs()
+                        || self.state.t + h == self.state.t
+                    {
                         return Err(self.error(
                             Kind::NotConverged,
                             &format!(
                                 "the step fell to {} s, below the rounding of t = {} s; \
                              raise h_min or loosen atol/rtol",
                                 crate::fmt_num::num(h),
-                                crate::fmt_num::num(self.t)
+                                crate::fmt_num::num(self.state.t)
                             ),
                         ));
                     }
@@ -1768,8 +1829,8 @@ impl<'m> Integrator<'m> {
                     // error is too large, down to h_min.
                     match self.step(h) {
                         Err(e) if e.kind == Kind::NotConverged && h > ad.h_min => {
-                            self.h_prev = 0.0;
-                            self.rejected += 1;
+                            self.history.h = 0.0;
+                            self.diagnostics.rejected += 1;
                             *h_next = (0.25 * h).max(ad.h_min);
                             continue;
                         }
@@ -1787,11 +1848,15 @@ impl<'m> Integrator<'m> {
                     }
                     .clamp(0.2, 2.0);
                     if err > 1.0 && h > ad.h_min {
+                        // Back to the start of the step, at t₁ − h (which
+                        // may differ from t₀ in the last bit; the steps
+                        // that follow are taken from there).
+                        let t1 = self.state.t;
                         self.restore();
-                        self.h_prev = 0.0;
-                        self.t -= h;
-                        self.summary.steps -= 1;
-                        self.rejected += 1;
+                        self.state.t = t1 - h;
+                        self.history.h = 0.0;
+                        self.diagnostics.summary.steps -= 1;
+                        self.diagnostics.rejected += 1;
                         *h_next = (h * factor).max(ad.h_min);
                         continue;
                     }
@@ -1802,19 +1867,19 @@ impl<'m> Integrator<'m> {
                 }
             }
         }
-        self.t = t_end.max(self.t);
+        self.state.t = t_end.max(self.state.t);
         Ok(())
     }
 }
 
 /// The step's state at `t` (s) into `d`: q from the cubic Hermite
-/// interpolant of (q, q̇) at the step's ends (t₀, [q, q̇, q̈]₀) and
-/// (t₁, [q, q̇, q̈]₁), q̇ from that of (q̇, q̈).
-fn hermite(d: &mut Dense, t: f64, (t0, [q0, v0, a0]): End, (t1, [q1, v1, a1]): End) {
+/// interpolant of (q, q̇) at the step's ends `s0` and `s1` (their times
+/// t₀ and t₁), q̇ from that of (q̇, q̈).
+fn hermite(d: &mut Dense, t: f64, s0: &State, s1: &State) {
     d.t = t;
-    let h = t1 - t0;
+    let h = s1.t - s0.t;
     let th = if h > 0.0 {
-        ((t - t0) / h).clamp(0.0, 1.0)
+        ((t - s0.t) / h).clamp(0.0, 1.0)
     } else {
         1.0
     };
@@ -1824,13 +1889,10 @@ fn hermite(d: &mut Dense, t: f64, (t0, [q0, v0, a0]): End, (t1, [q1, v1, a1]): E
     let h01 = 3.0 * t2 - 2.0 * t3;
     let h11 = (t3 - t2) * h;
     for k in 0..d.q.len() {
-        d.q[k] = h00 * q0[k] + h10 * v0[k] + h01 * q1[k] + h11 * v1[k];
-        d.qd[k] = h00 * v0[k] + h10 * a0[k] + h01 * v1[k] + h11 * a1[k];
+        d.q[k] = h00 * s0.q[k] + h10 * s0.qd[k] + h01 * s1.q[k] + h11 * s1.qd[k];
+        d.qd[k] = h00 * s0.qd[k] + h10 * s0.qdd[k] + h01 * s1.qd[k] + h11 * s1.qdd[k];
     }
 }
-
-/// One end of a step: its time (s) and [q, q̇, q̈].
-type End<'a> = (f64, [&'a [f64]; 3]);
 
 /// [M Φ_qᵀ; Φ_q 0][q̈; λ] = [Q + Q_f(λ); γ] of system `s` at (t, q, q̇) into `rhs`
 /// (length n + m), λ of minimum norm; `aug` is refactored for it (q̈
@@ -1918,8 +1980,8 @@ mod tests {
         for _ in 0..10 {
             it.step(h).unwrap();
         }
-        let (t0, steps) = (it.t, it.summary.steps);
-        let phi0 = it.q[2];
+        let (t0, steps) = (it.state.t, it.diagnostics.summary.steps);
+        let phi0 = it.state.q[2];
         it.follow.guard = Some(BranchRows {
             k: 1,
             a: vec![0.0, 0.0, 1.0],
@@ -1928,13 +1990,18 @@ mod tests {
             lost: vec![0.0; it.sys.m()],
         });
         it.step(h).unwrap();
-        assert_eq!(it.t, t0 + h, "the retried step ends at t = {} s", it.t);
-        assert_eq!(it.summary.steps, steps + 1);
+        assert_eq!(
+            it.state.t,
+            t0 + h,
+            "the retried step ends at t = {} s",
+            it.state.t
+        );
+        assert_eq!(it.diagnostics.summary.steps, steps + 1);
         // The retry held the rows: the angle of the start of the step.
         assert!(
-            (it.q[2] - phi0).abs() < 1e-9,
+            (it.state.q[2] - phi0).abs() < 1e-9,
             "φ moved by {}",
-            it.q[2] - phi0
+            it.state.q[2] - phi0
         );
     }
 }

@@ -8,7 +8,9 @@
 //! other runs on one integrator here. Both write the same channels
 //! ([`super::output`]) and the run's drift ([`super::drift`]).
 
-pub use super::generalized_alpha::{Adaptive, Coeffs, Dense, Integrator, Settings, Snapshot};
+pub use super::generalized_alpha::{
+    Adaptive, Coeffs, Dense, Diagnostics, Integrator, Settings, Snapshot, State,
+};
 
 use super::contact_force::LiftOffWatch;
 use super::output::{self, Scratch};
@@ -80,7 +82,7 @@ fn run_bilateral(
         it,
     };
     run::output_loop(&mut r, times, &names, sink)?;
-    let mut summary = r.it.summary.clone();
+    let mut summary = r.it.diagnostics().summary.clone();
     r.lift_off.report(&mut summary);
     Ok(summary)
 }
@@ -121,33 +123,30 @@ impl run::Analysis for BilateralRun<'_, '_> {
         // An output time inside a step: the state there, its multipliers
         // of minimum norm ([`Integrator::dense_output`]).
         if let (true, Some(d)) = (self.inside, &it.dense) {
-            let state = [&d.q[..], &d.qd, &d.qdd];
             run::fill_outputs(
                 model,
                 asm,
                 &self.contacts,
-                state,
+                d.view(),
                 self.points,
                 &mut values[..nk],
             );
-            let (q, qd, lam) = (&d.q, &d.qd, &d.lambda);
             output::fill(
                 &it.sys,
                 &mut self.scratch,
-                q,
-                qd,
-                lam,
+                &d.q,
+                &d.qd,
+                &d.lambda,
                 d.t,
                 &mut values[nk..],
             );
             return Ok(());
         }
-        let state = [&it.q[..], &it.qd, &it.qdd];
         run::fill_outputs(
             model,
             asm,
             &self.contacts,
-            state,
+            it.state().view(),
             self.points,
             &mut values[..nk],
         );
@@ -155,16 +154,16 @@ impl run::Analysis for BilateralRun<'_, '_> {
         if it.redundant.is_some() {
             it.min_norm_multipliers(&mut self.lambda)?;
         } else {
-            self.lambda.copy_from_slice(&it.lambda);
+            self.lambda.copy_from_slice(&it.state().lambda);
         }
-        let (q, qd) = (&it.q, &it.qd);
+        let s = it.state();
         output::fill(
             &it.sys,
             &mut self.scratch,
-            q,
-            qd,
+            &s.q,
+            &s.qd,
             &self.lambda,
-            it.t,
+            s.t,
             &mut values[nk..],
         );
         Ok(())

@@ -324,7 +324,11 @@ pub fn run(
         model,
         &s.asm,
         &contacts,
-        [&e.q, &zeros, &zeros],
+        run::StateView {
+            q: &e.q,
+            qd: &zeros,
+            qdd: &zeros,
+        },
         points,
         &mut values[..nk],
     );

@@ -340,6 +340,9 @@ pub struct Augmented {
     m: usize,
     sys: SystemMatrix,
     pattern: Vec<(usize, usize)>,
+    /// Where each entry of the pattern goes in the system matrix's values
+    /// ([`SystemMatrix::slot`]).
+    dest: Vec<usize>,
     /// Values of the pattern's entries, then one trash slot that takes
     /// entries known to be zero.
     vals: Vec<f64>,
@@ -505,6 +508,11 @@ impl Augmented {
         // The multiplier block's diagonal, −ε.
         let mult_slots: Vec<usize> = (0..m).map(|r| slot(n + r, n + r)).collect();
         let sys = SystemMatrix::try_new(n + m, &pattern)?;
+        let dest = pattern
+            .iter()
+            .enumerate()
+            .map(|(k, &(r, c))| sys.slot(k, r, c))
+            .collect();
         let vals = vec![0.0; pattern.len() + 1];
         let trash = vals.len() - 1;
         for b in &mut body_slots {
@@ -518,6 +526,7 @@ impl Augmented {
             vals,
             sys,
             pattern,
+            dest,
             body_slots,
             own_slots,
             force_slots,
@@ -645,8 +654,9 @@ impl Augmented {
         for &k in &self.mult_slots {
             self.vals[k] = -self.eps;
         }
-        for (slot, (&(r, c), &v)) in self.pattern.iter().zip(&self.vals).enumerate() {
-            self.sys.put(slot, r, c, v);
+        let values = self.sys.values_mut();
+        for (&d, &v) in self.dest.iter().zip(&self.vals) {
+            values[d] = v;
         }
         self.sys.factor()
     }

@@ -61,7 +61,8 @@ use crate::math::{perp, rot, V2};
 use crate::model::{BodyId, Model, Unilateral};
 use crate::quantity::{Channel, Quantity};
 use crate::run::{
-    self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, Summary, Tick,
+    self, AnalysisError, Crossing, Flight, Impact, Kind, PointOutput, Sink, StateView, Summary,
+    Tick,
 };
 
 pub use crate::diagnose::OPEN_AT_START;
@@ -283,6 +284,26 @@ enum Event {
     Impact(usize),
 }
 
+/// A state of the full model, in its layout: positions q (m or rad),
+/// velocities q̇, accelerations q̈ and multipliers λ.
+#[derive(Clone, Debug, Default)]
+struct FullState {
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    lambda: Vec<f64>,
+}
+
+impl FullState {
+    fn view(&self) -> StateView<'_> {
+        StateView {
+            q: &self.q,
+            qd: &self.qd,
+            qdd: &self.qdd,
+        }
+    }
+}
+
 /// The run's state: the full model's vectors, the models of the active
 /// sets and their integrators.
 struct Run<'a> {
@@ -295,11 +316,8 @@ struct Run<'a> {
     settings: Settings,
     mask: usize,
     contacts: Vec<Contact>,
-    /// The full model's q, q̇, q̈, λ.
-    q: Vec<f64>,
-    qd: Vec<f64>,
-    qdd: Vec<f64>,
-    lambda: Vec<f64>,
+    /// The full model's state at the active integrator's time.
+    state: FullState,
     /// λ of the consistent accelerations (full layout), which the
     /// lift-off events watch.
     lam_watch: Vec<f64>,
@@ -322,12 +340,14 @@ struct Run<'a> {
     /// The active set of the last step kept, and its two ends: the start
     /// and the end before any event was handled.
     held: Option<usize>,
-    held_ends: [Snapshot; 2],
-    /// A dense output in the full layout: q, q̇, q̈, λ and the gaps.
-    out: [Vec<f64>; 4],
+    held_start: Snapshot,
+    held_end: Snapshot,
+    /// A dense output in the full layout: the state and the gaps.
+    out: FullState,
     out_gaps: Vec<Option<Gap>>,
-    /// Scratch: the state at an impact (the active set's layout).
-    at_event: [Vec<f64>; 2],
+    /// Scratch: q and q̇ at an impact (the active set's layout).
+    event_q: Vec<f64>,
+    event_qd: Vec<f64>,
     summary: Summary,
 }
 
@@ -360,8 +380,8 @@ impl<'a> Run<'a> {
         let mut qd = [[0.0; 3]; 2];
         for (s, b) in self.contacts[k].bodies.iter().enumerate() {
             if let Some(c) = self.full.asm.body_col(b.0) {
-                q[s].copy_from_slice(&self.q[c..c + 3]);
-                qd[s].copy_from_slice(&self.qd[c..c + 3]);
+                q[s].copy_from_slice(&self.state.q[c..c + 3]);
+                qd[s].copy_from_slice(&self.state.qd[c..c + 3]);
             }
         }
         (q, qd)
@@ -373,18 +393,18 @@ impl<'a> Run<'a> {
         let mask = self.mask;
         self.layout(mask);
         let layout = self.layouts[mask].as_ref().expect("layout");
-        let it = self.its[mask].as_ref().expect("integrator");
+        let s = self.its[mask].as_ref().expect("integrator").state();
         for (f, c) in layout.cols.iter().enumerate() {
             let (a, b, d) = match c {
-                Some(c) => (it.q[*c], it.qd[*c], it.qdd[*c]),
-                None => (self.q[f], 0.0, 0.0),
+                Some(c) => (s.q[*c], s.qd[*c], s.qdd[*c]),
+                None => (self.state.q[f], 0.0, 0.0),
             };
-            self.q[f] = a;
-            self.qd[f] = b;
-            self.qdd[f] = d;
+            self.state.q[f] = a;
+            self.state.qd[f] = b;
+            self.state.qdd[f] = d;
         }
         for (f, r) in layout.rows.iter().enumerate() {
-            self.lambda[f] = r.map_or(0.0, |r| it.lambda[r]);
+            self.state.lambda[f] = r.map_or(0.0, |r| s.lambda[r]);
         }
         for k in 0..self.contacts.len() {
             if !self.contacts[k].open {
@@ -397,7 +417,7 @@ impl<'a> Run<'a> {
             let j = self.contacts[k].joint;
             let o = self.full.asm.own_col(j);
             for s in 0..self.full.model.joints[j].constraint.own_count() {
-                self.q[o + s] = g.params[s];
+                self.state.q[o + s] = g.params[s];
             }
         }
         if self.contacts.iter().any(|c| !c.open) {
@@ -415,8 +435,9 @@ impl<'a> Run<'a> {
         let mask = self.mask;
         let it = self.its[mask].as_ref().expect("integrator");
         if self.watch[mask].is_none() {
-            let aug = Augmented::new(&it.sys, &it.q)
-                .map_err(|e| AnalysisError::new(Kind::Internal, it.t, e.to_string()))?;
+            let s = it.state();
+            let aug = Augmented::new(&it.sys, &s.q)
+                .map_err(|e| AnalysisError::new(Kind::Internal, s.t, e.to_string()))?;
             self.watch[mask] = Some(aug);
         }
         let aug = self.watch[mask].as_mut().expect("watch");
@@ -441,10 +462,10 @@ impl<'a> Run<'a> {
         self.layout(mask);
         let layout = self.layouts[mask].as_ref().expect("layout");
         let it = self.its[mask].as_mut().expect("integrator");
-        let (mut q, mut v) = (it.q.clone(), it.qd.clone());
+        let (mut q, mut v) = (it.state().q.clone(), it.state().qd.clone());
         for (f, c) in layout.cols.iter().enumerate() {
             if let Some(c) = c {
-                q[*c] = self.q[f];
+                q[*c] = self.state.q[f];
                 v[*c] = qd[f];
             }
         }
@@ -468,7 +489,10 @@ impl<'a> Run<'a> {
         };
         let (q, _) = self.bodies(k);
         let o = self.full.asm.own_col(c.joint);
-        let own = [self.q[o], self.q.get(o + 1).copied().unwrap_or(0.0)];
+        let own = [
+            self.state.q[o],
+            self.state.q.get(o + 1).copied().unwrap_or(0.0),
+        ];
         normal_force(
             self.full.model,
             c.joint,
@@ -499,7 +523,11 @@ impl<'a> Run<'a> {
     /// The crossing record at time `t` of contact `k`.
     fn crossing(&self, k: usize, t: f64) -> Crossing {
         let cam = self.contacts[k].cam;
-        let cam_angle = self.full.asm.body_col(cam.0).map_or(0.0, |c| self.q[c + 2]);
+        let cam_angle = self
+            .full
+            .asm
+            .body_col(cam.0)
+            .map_or(0.0, |c| self.state.q[c + 2]);
         Crossing { time: t, cam_angle }
     }
 
@@ -523,7 +551,7 @@ impl<'a> Run<'a> {
         tick: &mut Tick,
     ) -> Result<(), AnalysisError> {
         self.it().snapshot(snap);
-        let t0 = self.it().t;
+        let t0 = self.it().state().t;
         let mut n0 = std::mem::take(&mut self.n0);
         n0.clear();
         n0.extend((0..self.contacts.len()).map(|k| self.watched(k).then(|| self.value(k))));
@@ -545,7 +573,7 @@ impl<'a> Run<'a> {
     ) -> Result<(), AnalysisError> {
         self.it().step(h)?;
         self.pull()?;
-        let t1 = self.it().t;
+        let t1 = self.it().state().t;
         // A grazing approach between the step's ends; a normal force that
         // dips below zero between them (the parabola through N at the last
         // three step ends).
@@ -661,7 +689,7 @@ impl<'a> Run<'a> {
         let it = self.its[mask].as_mut().expect("integrator");
         it.dense_output(t)?;
         let d = it.dense.as_ref().expect("dense output");
-        let [q, qd] = &mut self.at_event;
+        let (q, qd) = (&mut self.event_q, &mut self.event_qd);
         q.clone_from(&d.q);
         qd.clone_from(&d.qd);
         it.restart(t, q, qd)?;
@@ -676,9 +704,9 @@ impl<'a> Run<'a> {
         }
         let mask = self.mask;
         self.held = Some(mask);
-        let [a, b] = &mut self.held_ends;
-        a.copy_from(start);
-        self.its[mask].as_ref().expect("integrator").snapshot(b);
+        self.held_start.copy_from(start);
+        let it = self.its[mask].as_ref().expect("integrator");
+        it.snapshot(&mut self.held_end);
     }
 
     /// The state at output time `t` (s) inside the step kept last into
@@ -689,7 +717,7 @@ impl<'a> Run<'a> {
         let Some(mask) = self.held else {
             return Ok(None);
         };
-        let [a, b] = &self.held_ends;
+        let (a, b) = (&self.held_start, &self.held_end);
         if !(a.t() <= t && t <= b.t()) {
             return Ok(None);
         }
@@ -699,11 +727,11 @@ impl<'a> Run<'a> {
         let layout = self.layouts[mask].as_ref().expect("layout");
         let it = self.its[mask].as_ref().expect("integrator");
         let d = it.dense.as_ref().expect("dense output");
-        let [q, qd, qdd, lambda] = &mut self.out;
-        q.clone_from(&self.q);
+        let FullState { q, qd, qdd, lambda } = &mut self.out;
+        q.clone_from(&self.state.q);
         qd.resize(q.len(), 0.0);
         qdd.resize(q.len(), 0.0);
-        lambda.resize(self.lambda.len(), 0.0);
+        lambda.resize(self.state.lambda.len(), 0.0);
         for (f, c) in layout.cols.iter().enumerate() {
             let (x, v, acc) = match c {
                 Some(c) => (d.q[*c], d.qd[*c], d.qdd[*c]),
@@ -746,7 +774,7 @@ impl<'a> Run<'a> {
     /// [`MAX_BURST`] events each within 100 event tolerances of the last
     /// (a contact switching without end) stops the run.
     fn count_event(&mut self, tol: f64) -> Result<(), AnalysisError> {
-        let t = self.it().t;
+        let t = self.it().state().t;
         if t - self.burst.1 <= 100.0 * tol {
             self.burst.0 += 1;
         } else {
@@ -818,18 +846,18 @@ impl<'a> Run<'a> {
 
     /// Opens contact `k` at the current state.
     fn lift_off(&mut self, k: usize) -> Result<(), AnalysisError> {
-        let t = self.it().t;
+        let t = self.it().state().t;
         let at = self.crossing(k, t);
         self.contacts[k].open = true;
         self.contacts[k].gap = None;
         self.contacts[k].flight = Some(self.flight(k, at));
-        let qd = self.qd.clone();
+        let qd = self.state.qd.clone();
         self.switch(self.mask | (1 << k), t, &qd)
     }
 
     /// The impact of contact `k` at the current state.
     fn impact(&mut self, k: usize) -> Result<(), AnalysisError> {
-        let t = self.it().t;
+        let t = self.it().state().t;
         let gap = self.contacts[k].gap.expect("open contact has a gap");
         let law = self.contacts[k].law;
         let approach = -gap.rate;
@@ -837,7 +865,7 @@ impl<'a> Run<'a> {
         let e = if closes { 0.0 } else { law.restitution };
         // Close the contact at the impact position, then the impulse.
         let closed = self.mask & !(1 << k);
-        let qd_before = self.qd.clone();
+        let qd_before = self.state.qd.clone();
         self.contacts[k].open = false;
         self.switch(closed, t, &qd_before)?;
         let j = self.contacts[k].joint;
@@ -845,13 +873,13 @@ impl<'a> Run<'a> {
         let at = self.crossing(k, t);
         let layout = self.layouts[closed].as_ref().expect("layout");
         let it = self.its[closed].as_mut().expect("integrator");
-        let mut v = vec![0.0; it.qd.len()];
+        let mut v = vec![0.0; it.state().qd.len()];
         for (f, c) in layout.cols.iter().enumerate() {
             if let Some(c) = c {
                 v[*c] = qd_before[f];
             }
         }
-        let q = it.q.clone();
+        let q = it.state().q.clone();
         let (sys, aug) = it.system_and_matrix();
         let rows = match &self.contacts[k].features {
             Watched::Stop(s) => Some(s.impact_rows().to_vec()),
@@ -885,7 +913,7 @@ impl<'a> Run<'a> {
             self.pull()?;
         } else {
             // The follower leaves again: a new flight from the bounce.
-            let mut qd_full = self.qd.clone();
+            let mut qd_full = self.state.qd.clone();
             for (f, c) in layout.cols.iter().enumerate() {
                 if let Some(c) = c {
                     qd_full[f] = out.qd[*c];
@@ -926,14 +954,13 @@ impl<'a> Run<'a> {
 /// (the active integrator's, or its dense output inside a step), and the
 /// active set's system with its own q and q̇ for the energy and drift.
 struct Row<'r, 'm> {
-    q: &'r [f64],
-    qd: &'r [f64],
-    qdd: &'r [f64],
-    lambda: &'r [f64],
+    state: &'r FullState,
     t: f64,
     full: &'r System<'m>,
     sys: &'r System<'m>,
-    own: [&'r [f64]; 2],
+    /// q and q̇ of the active set's system.
+    own_q: &'r [f64],
+    own_qd: &'r [f64],
 }
 
 /// The run's output scratch and the places of its channels.
@@ -964,27 +991,26 @@ impl Row<'_, '_> {
             f.model,
             &self.full.asm,
             &f.view,
-            [self.q, self.qd, self.qdd],
+            self.state.view(),
             f.points,
             &mut values[..nk],
         );
         let forces = output::fill_forces(
             self.full,
             &mut f.scratch,
-            self.q,
-            self.qd,
-            self.lambda,
+            &self.state.q,
+            &self.state.qd,
+            &self.state.lambda,
             self.t,
             &mut values[nk..nd],
         );
         // Energy and drift of the model in force: its potential includes
         // the compliant contacts' and an open joint's equations are released.
-        let [q, qd] = self.own;
         values[nk + forces..nd].copy_from_slice(&output::energy_and_drift(
             self.sys,
             &mut f.drift,
-            q,
-            qd,
+            self.own_q,
+            self.own_qd,
             self.t,
         ));
         for (k, (c, (open, gap))) in contacts.iter().zip(states).enumerate() {
@@ -997,7 +1023,11 @@ impl Row<'_, '_> {
             } else if let (Some(s), Some(at)) = (c.stop(), f.normal_at[k]) {
                 // A rigid stop: −σλ while closed.
                 let row = self.full.asm.rows_of(f.model, c.joint).start;
-                values[at] = if open { 0.0 } else { s.push(self.lambda[row]) };
+                values[at] = if open {
+                    0.0
+                } else {
+                    s.push(self.state.lambda[row])
+                };
             }
         }
     }
@@ -1024,9 +1054,9 @@ impl run::Analysis for UnilateralRun<'_, '_> {
             // land on t short of a whole step goes past it, keeping its
             // ends for the output there.
             let done = arrived_within(t, h_max);
-            while t - r.it().t > done {
+            while t - r.it().state().t > done {
                 tick()?;
-                let left = t - r.it().t;
+                let left = t - r.it().state().t;
                 r.hold = steps_over(left, h_max);
                 let h = if r.hold {
                     h_max
@@ -1034,12 +1064,12 @@ impl run::Analysis for UnilateralRun<'_, '_> {
                     fixed_step(left, h_max)
                 };
                 r.step(h, &mut self.snap, tick)?;
-                let now = r.it().t;
+                let now = r.it().state().t;
                 r.track_flights(now);
             }
         }
         // Past t: the state there from the step that holds it.
-        self.inside = if r.it().t - t > arrived_within(t, h_max) {
+        self.inside = if r.it().state().t - t > arrived_within(t, h_max) {
             r.dense_row(t)?
         } else {
             None
@@ -1053,35 +1083,30 @@ impl run::Analysis for UnilateralRun<'_, '_> {
     fn fill(&mut self, t: f64, values: &mut [f64]) -> Result<(), AnalysisError> {
         let r = &mut self.r;
         if let Some(mask) = self.inside {
-            let [q, qd, qdd, lambda] = &r.out;
             let it = r.its[mask].as_ref().expect("integrator");
             let d = it.dense.as_ref().expect("dense output");
             let opens = (0..r.contacts.len()).map(|k| mask & (1 << k) != 0);
             let state = Row {
-                q,
-                qd,
-                qdd,
-                lambda,
+                state: &r.out,
                 t,
                 full: &r.full,
                 sys: &it.sys,
-                own: [&d.q, &d.qd],
+                own_q: &d.q,
+                own_qd: &d.qd,
             };
             let states = opens.zip(r.out_gaps.iter().copied());
             state.fill(&mut self.fill, &r.contacts, states, values);
             return Ok(());
         }
-        let tr = r.it().t;
         let it = r.its[r.mask].as_ref().expect("integrator");
+        let s = it.state();
         let state = Row {
-            q: &r.q,
-            qd: &r.qd,
-            qdd: &r.qdd,
-            lambda: &r.lambda,
-            t: tr,
+            state: &r.state,
+            t: s.t,
             full: &r.full,
             sys: &it.sys,
-            own: [&it.q, &it.qd],
+            own_q: &s.q,
+            own_qd: &s.qd,
         };
         let states = r.contacts.iter().map(|c| (c.open, c.gap));
         state.fill(&mut self.fill, &r.contacts, states, values);
@@ -1203,10 +1228,12 @@ pub fn run(
         settings: settings.clone(),
         mask: 0,
         contacts,
-        q: q0,
-        qd: qd0,
-        qdd: vec![0.0; n],
-        lambda: vec![0.0; m],
+        state: FullState {
+            q: q0,
+            qd: qd0,
+            qdd: vec![0.0; n],
+            lambda: vec![0.0; m],
+        },
         lam_watch: vec![0.0; m],
         watch: (0..1 << k).map(|_| None).collect(),
         burst: (0, f64::NEG_INFINITY),
@@ -1216,10 +1243,12 @@ pub fn run(
         gaps_lo: Vec::new(),
         hold: false,
         held: None,
-        held_ends: Default::default(),
-        out: Default::default(),
+        held_start: Snapshot::default(),
+        held_end: Snapshot::default(),
+        out: FullState::default(),
         out_gaps: Vec::new(),
-        at_event: Default::default(),
+        event_q: Vec::new(),
+        event_qd: Vec::new(),
         summary: Summary::default(),
     };
     // Compliant contacts are always released; contacts apart at the given
@@ -1329,10 +1358,11 @@ pub fn run(
         .flights
         .sort_by(|a, b| a.start.time.total_cmp(&b.start.time));
     for it in r.its.iter().flatten() {
-        summary.steps += it.summary.steps;
-        summary.newton_iterations += it.summary.newton_iterations;
-        summary.factorizations += it.summary.factorizations;
-        for w in &it.summary.warnings {
+        let s = &it.diagnostics().summary;
+        summary.steps += s.steps;
+        summary.newton_iterations += s.newton_iterations;
+        summary.factorizations += s.factorizations;
+        for w in &s.warnings {
             if !summary.warnings.contains(w) {
                 summary.warnings.push(w.clone());
             }
