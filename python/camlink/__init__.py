@@ -46,6 +46,7 @@ from camlink.warn import (
 )
 
 if TYPE_CHECKING:
+    from camlink import cam as cam
     from camlink import study
     from camlink.study import monte_carlo, optimize, sweep
 

@@ -1,7 +1,7 @@
 //! A checked design file, in SI units and radians.
 
 use camlink_core::cam::motion::EndConditions;
-use camlink_core::cam::{Cam, Follower, LawKind, MotionError, Program, SegmentSpec};
+use camlink_core::cam::{Cam, CamError, Follower, LawKind, MotionError, Program, SegmentSpec};
 
 /// One segment of the motion program as the file gives it.
 #[derive(Clone, Debug, PartialEq)]
@@ -164,6 +164,29 @@ pub struct VibrationSpec {
     pub polydyne: bool,
 }
 
+/// Why a design's cam does not synthesise.
+#[derive(Clone, Debug, PartialEq)]
+pub enum CamBuildError {
+    /// The motion program (a segment, or spans not closing the turn).
+    Program(MotionError),
+    /// The follower's kind or dimensions.
+    Follower(String),
+    /// The profile's geometry (the follower cannot ride the program).
+    Geometry(CamError),
+}
+
+impl std::fmt::Display for CamBuildError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CamBuildError::Program(e) => e.fmt(f),
+            CamBuildError::Follower(m) => f.write_str(m),
+            CamBuildError::Geometry(e) => e.fmt(f),
+        }
+    }
+}
+
+impl std::error::Error for CamBuildError {}
+
 /// A checked design file.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Design {
@@ -210,15 +233,16 @@ impl Design {
     }
 
     /// The synthesised cam with base circle `base_radius` (m); an error
-    /// says why the program or the follower's geometry does not work.
-    pub fn cam_with(&self, base_radius: f64) -> Result<Cam, String> {
-        let program = self.program().map_err(|e| e.to_string())?;
-        let follower = Follower::from_dims(self.follower, &self.dims)?;
-        Cam::new(program, follower, base_radius, self.ccw).map_err(|e| e.to_string())
+    /// says which part (program, follower, geometry) does not work and why.
+    pub fn cam_with(&self, base_radius: f64) -> Result<Cam, CamBuildError> {
+        let program = self.program().map_err(CamBuildError::Program)?;
+        let follower =
+            Follower::from_dims(self.follower, &self.dims).map_err(CamBuildError::Follower)?;
+        Cam::new(program, follower, base_radius, self.ccw).map_err(CamBuildError::Geometry)
     }
 
     /// The synthesised cam.
-    pub fn cam(&self) -> Result<Cam, String> {
+    pub fn cam(&self) -> Result<Cam, CamBuildError> {
         self.cam_with(self.base_radius)
     }
 }

@@ -12,7 +12,11 @@
 //!   file, the line and column (TOML) and the field, as model files do:
 //!   `valve.toml:14:7: segments[1].law: 'septic' is not one of dwell, …`;
 //! - [`design`]: the checked file's types;
-//! - [`limits`]: the bounds and defaults every design file is held to.
+//! - [`limits`]: the bounds and defaults every design file is held to;
+//! - [`export`]: the cam angles and fitted arcs of the exports;
+//! - [`timing`]: timing files (several cams on one master angle), their
+//!   clearances and servo cam tables;
+//! - [`report`]: the design report, each limit checked with its margin.
 //!
 //! The mechanics (motion laws, synthesis, contact stress, springs,
 //! vibration, the limits over a turn) are camlink-core's
@@ -20,9 +24,12 @@
 //! that runs a synthesised cam needs them too.
 
 pub mod design;
+pub mod export;
 pub mod limits;
 pub mod load;
+pub mod report;
 mod table;
+pub mod timing;
 
 pub use design::{
     ContactSpec, Design, DxfMode, Dynamics, Export, Limits, Segment, SpringSpec, VibrationSpec,

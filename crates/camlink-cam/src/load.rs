@@ -9,7 +9,6 @@ use std::path::Path;
 use camlink_core::cam::hertz::{self, Material};
 use camlink_core::cam::spring::Helical;
 use camlink_core::cam::{self, Cam, Follower, LawKind, MotionError, Program};
-use camlink_core::cam_limits;
 use camlink_core::fmt_num::num;
 use camlink_model::LoadError;
 use toml::{Table as Map, Value};
@@ -28,7 +27,7 @@ pub struct Loaded {
 
 /// Reads and checks the design file at `path` (TOML).
 pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
-    let text = camlink_model::read_text(path)?;
+    let text = camlink_model::text::read_text(path)?;
     load_toml(&text, &path.display().to_string())
 }
 
@@ -37,10 +36,17 @@ pub fn load_path(path: &Path) -> Result<Loaded, LoadError> {
 /// column of the field.
 pub fn load_toml(text: &str, source: &str) -> Result<Loaded, LoadError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let doc: Map = text.parse().map_err(|e: toml::de::Error| {
+    let doc = parse_toml(text, source)?;
+    read(&doc, source).map_err(|f| located(f, Some(text), source))
+}
+
+/// The TOML table `text` (without a byte order mark); a syntax error gives
+/// its line and column.
+pub(crate) fn parse_toml(text: &str, source: &str) -> Result<Map, LoadError> {
+    text.parse().map_err(|e: toml::de::Error| {
         let (line, column) = e
             .span()
-            .map(|s| camlink_model::line_col(text, s.start))
+            .map(|s| camlink_model::text::line_col(text, s.start))
             .unzip();
         LoadError {
             source: source.to_string(),
@@ -49,8 +55,7 @@ pub fn load_toml(text: &str, source: &str) -> Result<Loaded, LoadError> {
             field: None,
             message: format!("syntax error: {}", e.message().trim()),
         }
-    })?;
-    read(&doc, source).map_err(|f| located(f, Some(text), source))
+    })
 }
 
 /// Checks a design file given as JSON `text` (the data of a TOML file, as
@@ -86,7 +91,7 @@ pub fn json_table(text: &str) -> Result<Map, String> {
 }
 
 /// The load error of `f`, at its field's line in TOML `text`.
-fn located(f: Fail, text: Option<&str>, source: &str) -> LoadError {
+pub(crate) fn located(f: Fail, text: Option<&str>, source: &str) -> LoadError {
     let (line, column) = text
         .zip(f.field.as_deref())
         .and_then(|(t, p)| camlink_model::toml_position(t, p))
@@ -100,14 +105,16 @@ fn located(f: Fail, text: Option<&str>, source: &str) -> LoadError {
     }
 }
 
-fn read(doc: &Map, source: &str) -> R<Loaded> {
+/// The stem and the file name of the path `source` (empty when it has none).
+pub(crate) fn stem_and_name(source: &str) -> (String, String) {
     let path = Path::new(source);
-    let stem = path
-        .file_stem()
-        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
-    let file_name = path
-        .file_name()
-        .map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    let text =
+        |s: Option<&std::ffi::OsStr>| s.map_or(String::new(), |s| s.to_string_lossy().into_owned());
+    (text(path.file_stem()), text(path.file_name()))
+}
+
+fn read(doc: &Map, source: &str) -> R<Loaded> {
+    let (stem, file_name) = stem_and_name(source);
     let mut warnings = Vec::new();
     let mut top = Table::root(doc);
     let name = top.text("name", Some(&stem), &[])?;
@@ -120,24 +127,22 @@ fn read(doc: &Map, source: &str) -> R<Loaded> {
             "{source}: [cam] base_radius: {q} (design files are in metres)"
         ));
     }
-    let ccw = c.text("rotation", Some("ccw"), &["ccw", "cw"])? == "ccw";
+    let ccw = c.choice("rotation", Some("ccw"), &[("ccw", true), ("cw", false)])?;
     c.finish()?;
 
     // [follower]: its dimensions as the core's table lists them.
     let mut f = top.table("follower")?;
     let kinds: Vec<&str> = Follower::KINDS.iter().map(|(k, _)| *k).collect();
     let kind = f.text("type", None, &kinds)?;
-    let Some(&(follower, keys)) = Follower::KINDS.iter().find(|(k, _)| *k == kind) else {
+    let read = Follower::read(&kind, |key, zero_default| match zero_default {
+        true => f.number(key, Some(0.0), Num::LENGTH),
+        false => f.number(key, None, Num::POSITIVE_LENGTH),
+    });
+    let Some(read) = read else {
         return f.fail("type", format!("'{kind}' is not a follower"));
     };
-    let mut dims = Vec::with_capacity(keys.len());
-    for key in keys {
-        dims.push(if Follower::zero_default(key) {
-            f.number(key, Some(0.0), Num::LENGTH)?
-        } else {
-            f.number(key, None, Num::POSITIVE_LENGTH)?
-        });
-    }
+    let (shape, dims) = read?;
+    let follower = shape.name();
     f.finish()?;
     let oscillating = follower.starts_with("oscillating");
 
@@ -161,12 +166,11 @@ fn read(doc: &Map, source: &str) -> R<Loaded> {
             ),
         );
     }
-    let laws: Vec<&str> = LawKind::ALL.iter().map(|l| l.name()).collect();
+    let laws: Vec<(&str, LawKind)> = LawKind::ALL.iter().map(|&l| (l.name(), l)).collect();
     let mut segments = Vec::with_capacity(raw.len());
     for (i, r) in raw.iter().enumerate() {
         let mut s = Table::new(format!("segments[{i}]"), Some(r))?;
-        let law = s.text("law", None, &laws)?;
-        let law = LawKind::parse(&law).unwrap_or(LawKind::Dwell);
+        let law = s.choice("law", None, &laws)?;
         let span_deg = s.number("span_deg", None, Num::POSITIVE.most(360.0, "°"))?;
         if span_deg < MIN_SPAN_DEG {
             return s.fail(
@@ -252,25 +256,25 @@ fn read(doc: &Map, source: &str) -> R<Loaded> {
         vibration: None,
     };
     // The program and the follower's geometry, checked by synthesis.
-    let program = design.program().map_err(|e| match e {
-        MotionError::Segment { segment, message } => Fail {
+    let cam = design.cam().map_err(|e| match e {
+        CamBuildError::Program(MotionError::Segment { segment, message }) => Fail {
             field: Some(format!("segments[{segment}]")),
             message,
         },
-        e @ MotionError::NotClosed(_) => Fail {
+        CamBuildError::Program(e @ MotionError::NotClosed(_)) => Fail {
             field: Some("segments".into()),
             message: e.to_string(),
         },
+        CamBuildError::Follower(message) => Fail {
+            field: Some("follower".into()),
+            message,
+        },
+        CamBuildError::Geometry(e) => Fail {
+            field: None,
+            message: e.to_string(),
+        },
     })?;
-    let f = Follower::from_dims(design.follower, &design.dims).map_err(|message| Fail {
-        field: Some("follower".into()),
-        message,
-    })?;
-    let cam = Cam::new(program.clone(), f, design.base_radius, design.ccw).map_err(|e| Fail {
-        field: None,
-        message: e.to_string(),
-    })?;
-    read_sizing(doc, &sizing, &dynamics_given, &program, &mut design)?;
+    read_sizing(doc, &sizing, &dynamics_given, &cam.program, &mut design)?;
     check_profile(&cam, &design.export)?;
     Ok(Loaded { design, warnings })
 }
@@ -408,13 +412,11 @@ fn read_export(top: &mut Table, stem: &str, file_name: &str, dynamics: bool) -> 
     };
     let csv = out(&mut ex, "csv", format!("{stem}.csv"))?;
     let dxf = out(&mut ex, "dxf", format!("{stem}.dxf"))?;
-    let dxf_mode = match ex
-        .text("dxf_mode", Some("polyline"), &["polyline", "arcs"])?
-        .as_str()
-    {
-        "arcs" => DxfMode::Arcs,
-        _ => DxfMode::Polyline,
-    };
+    let dxf_mode = ex.choice(
+        "dxf_mode",
+        Some("polyline"),
+        &[("polyline", DxfMode::Polyline), ("arcs", DxfMode::Arcs)],
+    )?;
     let tolerance = ex.number("tolerance", Some(TOLERANCE), Num::POSITIVE_LENGTH)?;
     let svg = out(&mut ex, "svg", format!("{stem}.svg"))?;
     let tool_radius = ex.optional("tool_radius", Num::POSITIVE_LENGTH)?;
@@ -566,8 +568,7 @@ fn read_sizing(
         let (cam_name, cam_m) = material(&mut t, "cam_material")?;
         let (fol_name, fol_m) = material(&mut t, "follower_material")?;
         let rating = t.optional("bearing_rating", Num::POSITIVE)?;
-        let types: Vec<&str> = LIFE_EXPONENTS.iter().map(|(k, _)| *k).collect();
-        let bearing = t.text("bearing_type", Some("ball"), &types)?;
+        let exponent = t.choice("bearing_type", Some("ball"), &LIFE_EXPONENTS)?;
         if rating.is_some() && flat {
             return t.fail(
                 "bearing_rating",
@@ -587,10 +588,7 @@ fn read_sizing(
             modulus: hertz::contact_modulus(&cam_m, &fol_m),
             materials: (cam_name, fol_name),
             rating,
-            exponent: LIFE_EXPONENTS
-                .iter()
-                .find(|(k, _)| *k == bearing)
-                .map_or(3.0, |(_, e)| *e),
+            exponent,
             crown,
         });
     }
@@ -759,8 +757,9 @@ fn largest_lift(program: &Program) -> f64 {
         })
 }
 
-/// The synthesised profile is finite, clear of the bore and keyway, and
-/// larger than the export tolerances can resolve.
+/// The synthesised profile, sampled at [`PROFILE_SAMPLES`] angles, is
+/// finite, clear of the bore and keyway, and larger than the export
+/// tolerances can resolve.
 fn check_profile(cam: &Cam, export: &Export) -> R<()> {
     let step = TAU / PROFILE_SAMPLES as f64;
     let points: Vec<[f64; 2]> = (0..PROFILE_SAMPLES)
@@ -779,11 +778,9 @@ fn check_profile(cam: &Cam, export: &Export) -> R<()> {
             ),
         });
     }
+    let radii: Vec<f64> = points.iter().map(|p| p[0].hypot(p[1])).collect();
     if let Some(bore) = export.bore_radius {
-        let least = points
-            .iter()
-            .map(|p| p[0].hypot(p[1]))
-            .fold(f64::INFINITY, f64::min);
+        let least = radii.iter().copied().fold(f64::INFINITY, f64::min);
         let outer = bore + export.keyway_depth.unwrap_or(0.0);
         if outer >= least {
             return fail(
@@ -797,7 +794,8 @@ fn check_profile(cam: &Cam, export: &Export) -> R<()> {
             );
         }
     }
-    let size = cam_limits::geometry(cam).max_radius + export.tool_radius.unwrap_or(0.0);
+    let largest = radii.iter().copied().fold(0.0, f64::max);
+    let size = largest + export.tool_radius.unwrap_or(0.0);
     let least = MIN_RELATIVE_TOLERANCE * size;
     for (key, tol) in [
         ("tolerance", Some(export.tolerance)),

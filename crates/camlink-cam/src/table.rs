@@ -196,6 +196,22 @@ impl<'a> Table<'a> {
         Ok(v)
     }
 
+    /// The value of the choice named at `key` (or of the one named
+    /// `default`): one of the names of `choices`.
+    pub fn choice<T: Copy>(
+        &mut self,
+        key: &str,
+        default: Option<&str>,
+        choices: &[(&str, T)],
+    ) -> R<T> {
+        let names: Vec<&str> = choices.iter().map(|(n, _)| *n).collect();
+        let name = self.text(key, default, &names)?;
+        match choices.iter().find(|(n, _)| *n == name) {
+            Some((_, v)) => Ok(*v),
+            None => self.fail(key, format!("'{name}' is not one of {}", names.join(", "))),
+        }
+    }
+
     /// The true or false at `key`, or `default`.
     pub fn flag(&mut self, key: &str, default: bool) -> R<bool> {
         self.mark(key);

@@ -554,7 +554,8 @@ fn a_syntax_error_names_its_line() {
 }
 
 /// Each `<!-- cam-output: FILE -->` marker of docs/errors.md is followed by
-/// a text block holding the message FILE (named by its file name) gives.
+/// a text block holding the message FILE (a design or a timing file, named
+/// by its file name) gives.
 #[test]
 fn docs_errors_page_matches_real_output() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
@@ -569,7 +570,15 @@ fn docs_errors_page_matches_real_output() {
         let path = root.join(file);
         let text = std::fs::read_to_string(&path).unwrap();
         let name = path.file_name().unwrap().to_string_lossy();
-        let got = load_toml(&text, &name).unwrap_err().to_string();
+        let doc: toml::Table = text.parse().unwrap();
+        let got = if camlink_cam::timing::is_timing(&doc) {
+            let dir = path.parent().unwrap();
+            camlink_cam::timing::load_toml(&text, &name, dir)
+                .unwrap_err()
+                .to_string()
+        } else {
+            load_toml(&text, &name).unwrap_err().to_string()
+        };
         assert!(
             lines[k + 1].starts_with("```text"),
             "no text block after {line}"
@@ -577,5 +586,33 @@ fn docs_errors_page_matches_real_output() {
         assert_eq!(lines[k + 2], got, "docs/errors.md, {file}");
         checked += 1;
     }
-    assert!(checked >= 1);
+    assert!(checked >= 2);
+}
+
+/// Each law name loads as its own law (the loader carries the parsed
+/// law; no name falls back to another), and so do the choices of
+/// rotation, DXF mode and bearing type.
+#[test]
+fn every_law_name_loads_as_its_law() {
+    for law in LawKind::ALL {
+        let text = GOOD.replacen(
+            "law = \"cycloidal\"",
+            &format!("law = \"{}\"", law.name()),
+            1,
+        );
+        match load_toml(&text, "t.toml") {
+            Ok(l) => assert_eq!(l.design.segments[0].law, law),
+            // A law that cannot make this segment is refused at it, never
+            // read as another.
+            Err(e) => assert_eq!(e.field.as_deref(), Some("segments[0]"), "{e}"),
+        }
+    }
+    let text = GOOD
+        .replace("rotation = \"ccw\"", "rotation = \"cw\"")
+        .replace("units = \"mm\"", "units = \"mm\"\ndxf_mode = \"arcs\"")
+        .replace("[contact]", "[contact]\nbearing_type = \"roller\"");
+    let d = load_toml(&text, "t.toml").unwrap().design;
+    assert!(!d.ccw);
+    assert_eq!(d.export.dxf_mode, DxfMode::Arcs);
+    assert_eq!(d.contact.unwrap().exponent, 10.0 / 3.0);
 }

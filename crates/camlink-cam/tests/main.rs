@@ -1,3 +1,6 @@
 //! camlink-cam's integration tests, one binary (`autotests = false`).
 
+mod export;
 mod load;
+mod report;
+mod timing;

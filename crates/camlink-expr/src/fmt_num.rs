@@ -37,8 +37,9 @@ fn shortest_digits(v: f64) -> usize {
     mantissa.chars().filter(char::is_ascii_digit).count().max(1)
 }
 
-/// `v` with at most `digits` significant digits, as [`num`].
-fn num_digits(v: f64, digits: usize) -> String {
+/// `v` with at most `digits` significant digits, as [`num`] writes it
+/// with [`DIGITS`].
+pub fn num_digits(v: f64, digits: usize) -> String {
     if !v.is_finite() {
         return if v.is_nan() {
             "NaN".into()

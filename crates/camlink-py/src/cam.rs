@@ -5,6 +5,7 @@
 
 use std::sync::Arc;
 
+use camlink_cam::report::round_trip_errors;
 use camlink_core::cam::hertz;
 use camlink_core::cam::motion::EndConditions;
 use camlink_core::cam::spring::Helical;
@@ -12,9 +13,6 @@ use camlink_core::cam::vibration::{self, Chain};
 use camlink_core::cam::{Cam, Follower, LawKind, Program, SegmentSpec};
 use camlink_core::cam_contact::{self, BearingSpec, ContactSpec};
 use camlink_core::cam_limits::{self, Extreme, Train};
-use camlink_core::cam_mechanism::round_trip;
-use camlink_core::fmt_num;
-use camlink_core::run::Kind;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
@@ -45,7 +43,7 @@ type FactorRow = (usize, String, [f64; 3], Option<[f64; 3]>);
 /// A synthesised cam.
 #[pyclass(frozen, module = "camlink._core")]
 pub struct CamCore {
-    cam: Arc<Cam>,
+    pub(crate) cam: Arc<Cam>,
 }
 
 fn value_error(e: impl std::fmt::Display) -> PyErr {
@@ -381,21 +379,10 @@ impl CamCore {
     /// cam mechanism stops, a `ValueError` says at which cam angle and why,
     /// in the design's terms (the mechanism's joints are camlink's own).
     fn round_trip(&self, py: Python<'_>, omega: f64, steps: usize) -> PyResult<(f64, f64, f64)> {
-        let r = py
-            .detach(|| round_trip(&self.cam, omega, steps))
-            .map_err(|e| {
-                let why = match e.kind {
-                    Kind::NotFinite => "the profile's geometry is not finite there",
-                    Kind::Undercut => "the follower meets an undercut or concave part of the profile",
-                    _ => "the follower cannot stay on the profile there (a steep, cusped or undercut part)",
-                };
-                value_error(format!(
-                    "camlink's kinematics of the synthesised cam stops at θ = {}° ({}): {why}",
-                    fmt_num::num((omega * e.time).to_degrees()),
-                    e.kind.name()
-                ))
-            })?;
-        Ok((r.displacement, r.velocity, r.acceleration))
+        let [d, v, a] = py
+            .detach(|| round_trip_errors(&self.cam, omega, steps))
+            .map_err(value_error)?;
+        Ok((d, v, a))
     }
 }
 
@@ -474,14 +461,5 @@ pub fn helical_spring<'py>(
     let i = s
         .install(installed, max_lift)
         .map_err(|e| value_error(format!("{}: {}", e.field, e.message)))?;
-    let d = PyDict::new(py);
-    d.set_item("rate", i.rate)?;
-    d.set_item("preload", i.preload)?;
-    d.set_item("solid", i.solid)?;
-    d.set_item("shortest", i.shortest)?;
-    d.set_item("clash_margin", i.clash_margin)?;
-    d.set_item("mass", i.mass)?;
-    d.set_item("surge", i.surge)?;
-    d.set_item("index", i.index)?;
-    Ok(d)
+    crate::cam_design::installed_dict(py, &i)
 }

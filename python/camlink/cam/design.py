@@ -356,221 +356,50 @@ class Report:
         return d
 
 
-def _deg_ranges(r: list[tuple[float, float]]) -> tuple[tuple[float, float], ...]:
-    return tuple((math.degrees(a), math.degrees(b)) for a, b in r)
+def _pairs(r: list[tuple[float, float]]) -> tuple[tuple[float, float], ...]:
+    return tuple((a, b) for a, b in r)
+
+
+def _report(d: dict[str, Any], files: tuple[str, ...] = ()) -> Report:
+    """The dataclasses of the core's report `d` (`_core.cam_design_report`)."""
+    travel = d["face_travel"]
+    return Report(
+        name=d["name"],
+        follower=d["follower"],
+        base_radius=d["base_radius"],
+        boundaries=tuple(BoundaryReport(**b) for b in d["boundaries"]),
+        factors=tuple(FactorReport(**f) for f in d["factors"]),
+        checks=tuple(Check(**c) for c in d["checks"]),
+        concave_deg=_pairs(d["concave_deg"]),
+        undercut_deg=_pairs(d["undercut_deg"]),
+        tool_undercut_deg=_pairs(d["tool_undercut_deg"]),
+        smallest_base_radius=d["smallest_base_radius"],
+        round_trip=d["round_trip"],
+        face_travel=None if travel is None else FaceTravel(**travel),
+        files=files,
+        units=d["units"],
+        sizing=d["sizing"],
+    )
 
 
 def tool_undercut(
-    core: CamCore, tool_radius: float, n: int = 3600
+    core: CamCore, tool_radius: float, n: int | None = None
 ) -> list[tuple[float, float]]:
-    """θ ranges (rad) a tool of `tool_radius` (m) cannot cut: where the
-    surface is concave tighter than the tool, or already cusped."""
-    th = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
-    rho = np.asarray(core.contact(th)["rho"])
-    bad = (rho < 0) & (-rho < tool_radius) | ~np.isfinite(rho)
-    out: list[tuple[float, float]] = []
-    start: float | None = None
-    for i in range(n + 1):
-        b = bool(bad[i % n])
-        if b and start is None:
-            start = float(th[i % n]) + (2 * math.pi if i >= n else 0.0)
-        elif not b and start is not None:
-            out.append((start, float(th[i - 1]) + 2 * math.pi / n))
-            start = None
-    if start is not None:
-        out.append((start, 2 * math.pi))
-    return out
+    """θ ranges (rad) a tool of `tool_radius` (m) cannot cut, sampled at
+    `n` angles (the core's default, every 0.1°): where the surface is
+    concave tighter than the tool, or already cusped (the core's rule,
+    ``camlink_cam::report::tool_undercut``)."""
+    return list(_core.cam_tool_undercut(core, tool_radius, n))
 
 
 def analyse(design: Design) -> Report:
-    """Synthesises the cam and checks every limit."""
-    core = design.core()
-    g = core.geometry()
-    checks: list[Check] = []
-    deg = math.degrees
-    lim = design.limits
-    for key, label in (
-        ("pressure_rise", "pressure angle, rise"),
-        ("pressure_return", "pressure angle, return"),
-    ):
-        e = g[key]
-        if e is None or design.follower == "translating-flat":
-            continue
-        value, at = e
-        limit = lim.max_pressure_angle
-        margin = None if limit is None else deg(limit - abs(value))
-        checks.append(
-            Check(
-                label,
-                deg(value),
-                None if limit is None else deg(limit),
-                margin,
-                "deg",
-                deg(at),
-                margin is None or margin >= 0,
-            )
-        )
-    rmin, at = g["min_convex_radius"]
-    margin = None if lim.min_radius is None else rmin - lim.min_radius
-    checks.append(
-        Check(
-            "least radius of curvature (convex)",
-            rmin,
-            lim.min_radius,
-            margin,
-            "m",
-            deg(at),
-            margin is None or margin >= 0,
-        )
-    )
-    if g["min_pitch_radius"] is not None:
-        rp, at = g["min_pitch_radius"]
-        rr = design.dims[-1]
-        checks.append(
-            Check(
-                "least convex pitch-curve radius vs roller radius",
-                rp,
-                rr,
-                rp - rr,
-                "m",
-                deg(at),
-                rp > rr,
-            )
-        )
-    und = g["undercut"]
-    checks.append(
-        Check("undercut ranges", float(len(und)), None, None, "", None, not und)
-    )
-    travel = None
-    if design.follower.endswith("flat"):
-        (lo, lo_at), (hi, hi_at) = g["face_travel"]
-        travel = FaceTravel(lo, hi, deg(lo_at), deg(hi_at))
-        width = hi - lo
-        limit = lim.max_face_width
-        margin = None if limit is None else limit - width
-        checks.append(
-            Check(
-                "face width needed",
-                width,
-                limit,
-                margin,
-                "m",
-                None,
-                margin is None or margin >= 0,
-                f"contact travels from {lo:.6g} to {hi:.6g} m along the face",
-            )
-        )
-        conc = g["concave"]
-        if conc:
-            checks.append(
-                Check(
-                    "concave ranges under a flat face",
-                    float(len(conc)),
-                    None,
-                    None,
-                    "",
-                    None,
-                    False,
-                )
-            )
-    if design.dynamics is not None:
-        d = design.dynamics
-        f = core.force((d.mass, d.spring_rate, d.preload, d.damping), d.speed)
-        fmin, at = f["min_normal"]
-        checks.append(
-            Check(
-                f"least contact force at {d.speed / RPM:.6g} rpm",
-                fmin,
-                0.0,
-                fmin,
-                "N",
-                deg(at),
-                fmin > 0,
-            )
-        )
-        jump = f["jump"]
-        jump_rpm = math.inf if jump is None else jump[0] / RPM
-        if d.redline is not None:
-            red = d.redline / RPM
-            checks.append(
-                Check(
-                    "jump speed vs redline",
-                    jump_rpm,
-                    red,
-                    jump_rpm - red,
-                    "rpm",
-                    None if jump is None else deg(jump[1]),
-                    jump_rpm > red,
-                )
-            )
-        else:
-            checks.append(
-                Check(
-                    "jump speed",
-                    jump_rpm,
-                    None,
-                    None,
-                    "rpm",
-                    None if jump is None else deg(jump[1]),
-                    jump_rpm > d.speed / RPM,
-                )
-            )
-    tool = []
-    if design.export.tool_radius is not None:
-        tool = tool_undercut(core, design.export.tool_radius)
-    smallest = None
-    if lim.base_radius_range is not None:
-        smallest = core.smallest_base_radius(
-            lim.max_pressure_angle, lim.min_radius, *lim.base_radius_range
-        )
-        limit = design.base_radius
-        checks.append(
-            Check(
-                "smallest base circle meeting the limits",
-                math.nan if smallest is None else smallest,
-                limit,
-                None if smallest is None else limit - smallest,
-                "m",
-                None,
-                smallest is not None and smallest <= limit,
-            )
-        )
-    from camlink.cam import sizing as cam_sizing
-
-    more, sizing = cam_sizing.checks(design, core)
-    checks.extend(more)
+    """Synthesises the cam and checks every limit (the core's report,
+    ``camlink_cam::report``: which checks, their limits, margins and
+    verdicts); lengths in metres."""
     try:
-        rt: tuple[float, float, float] | None = core.round_trip(1.0, 720)
-    except ValueError as e:
-        rt = None
-        checks.append(
-            Check("round trip", math.nan, None, None, "", None, False, str(e))
-        )
-    return Report(
-        name=design.name,
-        follower=design.follower,
-        base_radius=design.base_radius,
-        boundaries=tuple(
-            BoundaryReport(
-                deg(b[0]), b[1], b[2], b[3], (b[4][0], b[4][1], b[4][2]), b[5]
-            )
-            for b in core.boundaries()
-        ),
-        factors=tuple(
-            FactorReport(
-                k, law, (c[0], c[1], c[2]), None if t is None else (t[0], t[1], t[2])
-            )
-            for k, law, c, t in core.factors()
-        ),
-        checks=tuple(checks),
-        concave_deg=_deg_ranges(g["concave"]),
-        undercut_deg=_deg_ranges(und),
-        tool_undercut_deg=_deg_ranges(tool),
-        smallest_base_radius=smallest,
-        round_trip=rt,
-        face_travel=travel,
-        sizing=sizing,
-    )
+        return _report(_core.cam_design_report(design))
+    except ModelError as e:
+        raise CamDesignError(str(e)) from None
 
 
 def json_safe(v: object) -> object:
@@ -588,40 +417,13 @@ def json_safe(v: object) -> object:
 
 
 def in_units(r: Report, units: str) -> Report:
-    """`r` with its lengths in `units` ("m" or "mm"): the checks in m, the
-    base circle, the smallest base circle and the face travel (angles are
-    in degrees already)."""
-    if units == "m":
+    """`r` with its lengths in `units` ("m" or "mm"): the checks in a
+    length unit, the base circle, the smallest base circle and the face
+    travel (angles are in degrees already; `sizing` stays SI). The rule is
+    the core's (``Report::in_units``)."""
+    if units == r.units:
         return r
-    from dataclasses import replace
-
-    k = 1000.0
-
-    def conv(c: Check) -> Check:
-        if c.unit != "m":
-            return c
-        f = lambda v: None if v is None else v * k  # noqa: E731
-        note = c.note
-        if r.face_travel is not None and c.name == "face width needed":
-            lo, hi = r.face_travel.lo * k, r.face_travel.hi * k
-            note = f"contact travels from {lo:.6g} to {hi:.6g} mm along the face"
-        return replace(
-            c, value=c.value * k, limit=f(c.limit), margin=f(c.margin), unit="mm", note=note
-        )
-
-    travel = r.face_travel
-    if travel is not None:
-        travel = replace(travel, lo=travel.lo * k, hi=travel.hi * k)
-    return replace(
-        r,
-        base_radius=r.base_radius * k,
-        checks=tuple(conv(c) for c in r.checks),
-        smallest_base_radius=None
-        if r.smallest_base_radius is None
-        else r.smallest_base_radius * k,
-        face_travel=travel,
-        units=units,
-    )
+    return _report(_core.cam_report_in_units(r, units), r.files)
 
 
 def format_report(r: Report) -> str:

@@ -17,6 +17,7 @@ import ezdxf
 import numpy as np
 from numpy.typing import NDArray
 
+from camlink import _core
 from camlink._core import CamCore, cam_design_limits
 from camlink.units import LENGTH_UNITS as METRES
 
@@ -31,8 +32,9 @@ MIN_RELATIVE_TOLERANCE: float = cam_design_limits()["min_relative_tolerance"]
 #: Most rows of a CSV export (a step of at least 0.00036°).
 MAX_CSV_ROWS: int = cam_design_limits()["max_csv_rows"]
 
-#: Most points `angles_by_chord` gives.
-MAX_POINTS = 2_000_000
+#: Most points `angles_by_chord` gives (the core's
+#: `camlink_cam::export::MAX_POINTS`).
+MAX_POINTS: int = _core.cam_export_limits()["max_points"]
 
 #: Length units of exports: name -> units per metre (of camlink's length
 #: units, `camlink.units.LENGTH_UNITS`).
@@ -81,31 +83,17 @@ class Hub:
 
 def angles_by_step(step: float) -> NDArray[np.float64]:
     """Cam angles θ (rad) over one turn at `step` (rad), the end excluded;
-    at most `MAX_CSV_ROWS` of them (ValueError for a finer step)."""
-    if not (step > 0 and math.isfinite(step)):
-        raise ValueError(f"the step must be positive, got {step} rad")
-    n = max(3, math.ceil(2.0 * math.pi / step - 1e-9))
-    if n > MAX_CSV_ROWS:
-        raise ValueError(
-            f"a step of {math.degrees(step):g}° makes {n} rows; at most {MAX_CSV_ROWS} "
-            f"(a step of at least {360.0 / MAX_CSV_ROWS:g}°)"
-        )
-    return np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    at most `MAX_CSV_ROWS` of them (ValueError for a finer step). The
+    core's `camlink_cam::export::angles_by_step`."""
+    return np.asarray(_core.cam_angles_by_step(step))
 
 
 def check_tolerance(core: CamCore, tolerance: float, offset: float = 0.0) -> None:
     """Raises ValueError when `tolerance` (m) is not positive or is finer
     than `MIN_RELATIVE_TOLERANCE` of the size of the curve `offset` (m)
-    outside the cam surface."""
-    if not (tolerance > 0 and math.isfinite(tolerance)):
-        raise ValueError(f"the tolerance must be positive, got {tolerance} m")
-    size = float(core.geometry()["max_radius"]) + abs(offset)
-    least = MIN_RELATIVE_TOLERANCE * size
-    if tolerance < least:
-        raise ValueError(
-            f"a tolerance of {tolerance:g} m is finer than {MIN_RELATIVE_TOLERANCE:g} of the "
-            f"profile's size ({size:.6g} m); use at least {least:.3g} m"
-        )
+    outside the cam surface (the core's
+    `camlink_cam::export::check_tolerance`)."""
+    _core.cam_check_tolerance(core, tolerance, offset)
 
 
 def angles_by_chord(
@@ -113,42 +101,11 @@ def angles_by_chord(
 ) -> NDArray[np.float64]:
     """Cam angles θ (rad) such that no curve point between two neighbours
     lies farther than `tolerance` (m) from their chord (checked at the
-    middle and quarter points of every interval, halving where it fails).
-    `tolerance` is at least `MIN_RELATIVE_TOLERANCE` of the curve's size
+    middle and quarter points of every interval, halving where it fails;
+    the core's `camlink_cam::export::chord_angles`). `tolerance` is at
+    least `MIN_RELATIVE_TOLERANCE` of the curve's size
     (`check_tolerance`), which keeps the count below `MAX_POINTS`."""
-    check_tolerance(core, tolerance, offset)
-    return _chord_angles(core, tolerance, offset)
-
-
-def _chord_angles(core: CamCore, tolerance: float, offset: float = 0.0) -> NDArray[np.float64]:
-    """`angles_by_chord` without the check of the tolerance."""
-    edges = np.linspace(0.0, 2.0 * math.pi, 73)
-    done: list[NDArray[np.float64]] = []
-    a, b = edges[:-1], edges[1:]
-    # Breadth first: every interval of one level is probed in one call.
-    while len(a):
-        u = np.array([0.0, 1.0, 0.25, 0.5, 0.75])
-        probe = a[:, None] + (b - a)[:, None] * u
-        p = np.asarray(core.surface(probe.ravel(), offset)).reshape(len(a), 5, 2)
-        d = p[:, 1] - p[:, 0]
-        ln = np.hypot(d[:, 0], d[:, 1])
-        r = p[:, 2:] - p[:, :1]
-        cross = np.abs(d[:, None, 0] * r[:, :, 1] - d[:, None, 1] * r[:, :, 0])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            dev = np.where(
-                ln[:, None] > 0, cross / ln[:, None], np.hypot(r[:, :, 0], r[:, :, 1])
-            ).max(axis=1)
-        split = (dev > tolerance) & (b - a > 1e-9)
-        done.append(b[~split])
-        if sum(len(x) for x in done) + 2 * int(split.sum()) > MAX_POINTS:
-            raise ValueError(
-                f"more than {MAX_POINTS} points are needed to follow the curve within "
-                f"{tolerance:g} m"
-            )
-        m = 0.5 * (a[split] + b[split])
-        a, b = np.concatenate([a[split], m]), np.concatenate([m, b[split]])
-    ends = np.sort(np.concatenate(done))
-    return np.concatenate([[0.0], ends[:-1]])
+    return np.asarray(_core.cam_angles_by_chord(core, tolerance, offset))
 
 
 def write_csv(
@@ -195,84 +152,19 @@ class Arc:
     p1: tuple[float, float]
 
 
-def _circle(a: Points, b: Points, c: Points) -> tuple[Points, float] | None:
-    """The circle through three points; None when they are collinear."""
-    d = 2.0 * (a[0] * (b[1] - c[1]) + b[0] * (c[1] - a[1]) + c[0] * (a[1] - b[1]))
-    if abs(d) < 1e-300:
-        return None
-    aa, bb, cc = a @ a, b @ b, c @ c
-    ux = (aa * (b[1] - c[1]) + bb * (c[1] - a[1]) + cc * (a[1] - b[1])) / d
-    uy = (aa * (c[0] - b[0]) + bb * (a[0] - c[0]) + cc * (b[0] - a[0])) / d
-    centre = np.array([ux, uy])
-    return centre, float(np.linalg.norm(a - centre))
-
-
-def _fit(run: Points, tolerance: float) -> Arc | None:
-    """The line (when every point of `run` lies within `tolerance` (m) of
-    the chord between its ends) or else the arc through its ends and middle
-    point covering `run` (when every point lies within `tolerance` of it,
-    less the arc's largest sagitta over the edges between neighbouring
-    points, so that the edges stay within `tolerance` too); None when
-    neither does."""
-    p0 = (float(run[0][0]), float(run[0][1]))
-    p1 = (float(run[-1][0]), float(run[-1][1]))
-    d = run[-1] - run[0]
-    ln = float(np.hypot(d[0], d[1]))
-    r = run - run[0]
-    off = (
-        float(np.max(np.abs(d[0] * r[:, 1] - d[1] * r[:, 0]))) / ln
-        if ln > 0
-        else float(np.max(np.hypot(r[:, 0], r[:, 1])))
-    )
-    if off <= tolerance:
-        return Arc((math.nan, math.nan), math.inf, 0.0, 0.0, p0, p1)
-    c = _circle(run[0], run[len(run) // 2], run[-1])
-    if c is None:
-        return None
-    centre, radius = c
-    half = 0.5 * np.hypot(*np.diff(run, axis=0).T)
-    sagitta = radius - math.sqrt(max(radius * radius - float(np.max(half)) ** 2, 0.0))
-    if not np.all(np.abs(np.linalg.norm(run - centre, axis=1) - radius) <= tolerance - sagitta):
-        return None
-    a0 = math.degrees(math.atan2(run[0][1] - centre[1], run[0][0] - centre[0]))
-    a1 = math.degrees(math.atan2(run[-1][1] - centre[1], run[-1][0] - centre[0]))
-    mid = run[len(run) // 2]
-    # Orientation of the run: ezdxf arcs run counterclockwise.
-    cross = (mid[0] - run[0][0]) * (run[-1][1] - run[0][1]) - (mid[1] - run[0][1]) * (
-        run[-1][0] - run[0][0]
-    )
-    if cross < 0:  # clockwise run: swap ends
-        a0, a1 = a1, a0
-    return Arc((float(centre[0]), float(centre[1])), radius, a0, a1, p0, p1)
-
-
 def fit_arcs(points: Points, tolerance: float, slack: float = 0.0) -> list[Arc]:
     """Lines and arcs (each arc through both ends of its run of points and
     its middle point) covering the closed polygon `points`, each run as
     long as every point and every edge of it stays within `tolerance` −
-    `slack` (m) of its line or arc (run lengths found by doubling, then
-    bisection). A curve that leaves each edge of the polygon by at most
-    `slack` stays within `tolerance` of the pieces. Neighbouring pieces
-    share their end points."""
-    n = len(points)
-    pts = np.vstack([points, points[:1]])
-    arcs: list[Arc] = []
-    i = 0
-    while i < n:
-        # A run of two points is its own chord. The run ends at `lo`, which
-        # fits; `hi` is the least end known not to (n + 1 until one fails).
-        lo, fit, hi, step = i + 1, _fit(pts[i : i + 2], tolerance - slack), n + 1, 1
-        while lo + 1 < hi:
-            j = min(lo + step, n) if hi > n else (lo + hi) // 2
-            f = _fit(pts[i : j + 1], tolerance - slack)
-            if f is None:
-                hi = j
-            else:
-                lo, fit, step = j, f, 2 * step
-        assert fit is not None
-        arcs.append(fit)
-        i = lo
-    return arcs
+    `slack` (m) of its line or arc (the core's
+    `camlink_cam::export::fit_arcs`). A curve that leaves each edge of the
+    polygon by at most `slack` stays within `tolerance` of the pieces.
+    Neighbouring pieces share their end points."""
+    rows = _core.cam_fit_arcs(np.asarray(points, dtype=np.float64), tolerance, slack)
+    return [
+        Arc((c[0], c[1]), r, a0, a1, (p0[0], p0[1]), (p1[0], p1[1]))
+        for c, r, a0, a1, p0, p1 in rows
+    ]
 
 
 def _polyline(msp: Any, points: Points, layer: str) -> None:
@@ -311,7 +203,8 @@ def write_dxf(
         # Between the points the curve leaves their chord by at most 0.1
         # of the tolerance: the fit keeps the polygon within the rest.
         check_tolerance(core, tolerance)
-        dense = np.asarray(core.surface(_chord_angles(core, 0.1 * tolerance)))
+        fine = _core.cam_angles_by_chord(core, 0.1 * tolerance, check=False)
+        dense = np.asarray(core.surface(fine))
         for a in fit_arcs(dense, tolerance, slack=0.1 * tolerance):
             if math.isinf(a.radius):
                 p0 = (a.p0[0] * k, a.p0[1] * k)

@@ -99,7 +99,7 @@ impl Follower {
     /// The follower of kind `name` (one of [`Follower::KINDS`]) with the
     /// dimensions `dims` (m) in the order of its entry there.
     pub fn from_dims(name: &str, dims: &[f64]) -> Result<Follower, String> {
-        let Some((_, fields)) = Follower::KINDS.iter().find(|(k, _)| *k == name) else {
+        let Some((kind, fields)) = Follower::KINDS.iter().find(|(k, _)| *k == name) else {
             return Err(format!("unknown follower type '{name}'"));
         };
         if dims.len() != fields.len() {
@@ -109,7 +109,31 @@ impl Follower {
                 dims.len()
             ));
         }
-        Ok(match name {
+        Ok(Follower::build(kind, dims))
+    }
+
+    /// The follower of kind `name` with each dimension of its entry in
+    /// [`Follower::KINDS`] read, in that order, by `dim(key, zero_default)`
+    /// (`zero_default`: the key may be left out, 0, of any sign; otherwise
+    /// it is required and positive, [`Follower::zero_default`]); and the
+    /// dimensions read. `None` when `name` is not a kind. The one reading
+    /// of a follower's dimensions, for design files and model files alike.
+    pub fn read<E>(
+        name: &str,
+        mut dim: impl FnMut(&'static str, bool) -> Result<f64, E>,
+    ) -> Option<Result<(Follower, Vec<f64>), E>> {
+        let (kind, keys) = Follower::KINDS.iter().find(|(k, _)| *k == name)?;
+        let dims: Result<Vec<f64>, E> = keys
+            .iter()
+            .map(|key| dim(key, Follower::zero_default(key)))
+            .collect();
+        Some(dims.map(|d| (Follower::build(kind, &d), d)))
+    }
+
+    /// The follower of kind `kind` (of [`Follower::KINDS`]) from as many
+    /// dimensions as its entry lists.
+    fn build(kind: &str, dims: &[f64]) -> Follower {
+        match kind {
             "translating-roller" => Follower::TranslatingRoller {
                 offset: dims[0],
                 roller: dims[1],
@@ -124,7 +148,7 @@ impl Follower {
                 pivot: dims[0],
                 face_offset: dims[1],
             },
-        })
+        }
     }
 
     /// The name used in design files.
@@ -492,6 +516,36 @@ mod tests {
             SegmentSpec::new(LawKind::Poly345, d(180.0), -lift),
         ])
         .unwrap()
+    }
+
+    /// `Follower::read` asks for each dimension of the kind in the order
+    /// of `KINDS`, says which may be left out, and stops at the first
+    /// that cannot be read.
+    #[test]
+    fn read_asks_each_dimension_in_order() {
+        let mut asked = Vec::new();
+        let (f, dims) = Follower::read("oscillating-flat", |key, zero_default| {
+            asked.push((key, zero_default));
+            Ok::<f64, ()>(if zero_default { -0.01 } else { 0.2 })
+        })
+        .unwrap()
+        .unwrap();
+        assert_eq!(asked, [("pivot_distance", false), ("face_offset", true)]);
+        assert_eq!(
+            f,
+            Follower::OscillatingFlat {
+                pivot: 0.2,
+                face_offset: -0.01
+            }
+        );
+        assert_eq!(dims, [0.2, -0.01]);
+        assert_eq!(Follower::from_dims("oscillating-flat", &dims), Ok(f));
+        assert!(Follower::read("sideways", |_, _| Ok::<f64, ()>(1.0)).is_none());
+        let missing = Follower::read("translating-roller", |key, _| match key {
+            "roller_radius" => Err(key),
+            _ => Ok(0.0),
+        });
+        assert_eq!(missing, Some(Err("roller_radius")));
     }
 
     fn cams() -> Vec<Cam> {

@@ -305,7 +305,20 @@ impl Ctx {
                     ("arm_length", arm_length),
                     ("face_offset", face_offset),
                 ];
-                let Some((_, keys)) = Follower::KINDS.iter().find(|(k, _)| k == follower) else {
+                let mut keys: Vec<&str> = Vec::new();
+                let read = Follower::read(follower, |key, zero_default| {
+                    keys.push(key);
+                    let v = given
+                        .iter()
+                        .find(|(k, _)| *k == key)
+                        .and_then(|(_, v)| v.as_ref());
+                    if zero_default {
+                        self.opt(v, 0.0, &format!("{p}.{key}"))
+                    } else {
+                        need(v, key)
+                    }
+                });
+                let Some(read) = read else {
                     let names = Follower::KINDS.iter().map(|(k, _)| *k);
                     return fail(
                         format!("{p}.follower"),
@@ -316,20 +329,7 @@ impl Ctx {
                         ),
                     );
                 };
-                let mut dims = Vec::with_capacity(keys.len());
-                for key in keys.iter() {
-                    let v = given
-                        .iter()
-                        .find(|(k, _)| k == key)
-                        .and_then(|(_, v)| v.as_ref());
-                    dims.push(if Follower::zero_default(key) {
-                        self.opt(v, 0.0, &format!("{p}.{key}"))?
-                    } else {
-                        need(v, key)?
-                    });
-                }
-                let f = Follower::from_dims(follower, &dims)
-                    .or_else(|e| fail(format!("{p}.follower"), e))?;
+                let (f, _) = read?;
                 if let Some((key, _)) = given.iter().find(|(k, v)| v.is_some() && !keys.contains(k))
                 {
                     return fail(
