@@ -218,8 +218,9 @@ impl Described {
                     ),
                 )
             })?;
-        let loaded = camlink_model::resolve_file(&file, &self.adm.source)
-            .map_err(|e| self.locate(e.field.as_deref().unwrap_or(""), &e.message))?;
+        let loaded = camlink_model::resolve_file(&file, &self.adm.source, |path, message| {
+            self.locate(path, message)
+        })?;
         Ok(Loaded {
             warnings: self.warnings.clone(),
             ..loaded

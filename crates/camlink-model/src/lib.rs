@@ -16,10 +16,10 @@ mod eval;
 pub mod file;
 mod locate;
 mod resolve;
+pub mod text;
 mod units;
 mod variant;
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
 
 use camlink_core::dynamics::integrator::{Adaptive, Settings as IntegratorSettings};
@@ -27,21 +27,11 @@ use camlink_core::dynamics::statics::Settings as StaticsSettings;
 
 pub use analysis::{needs_adaptive, not_applicable, DynamicsArgs, SettingError, ERROR_CONTROL};
 pub use data_file::LoadOptions;
-pub use error::{line_col, LoadError};
+pub use error::LoadError;
 pub use file::AnalysisType;
 pub use resolve::joints::{JointKindEntry, JOINT_KINDS};
+use text::{field_path, read_text, too_large};
 pub use variant::Recipe;
-
-/// Reading and placing text, for the readers of other formats that build
-/// a [`file::ModelFile`] (the course-file importer, `camlink-adm`): a
-/// file's text within [`MAX_FILE_SIZE`], the 1-based (line, column) of a
-/// byte offset, the byte span of a field path in JSON text, and a serde
-/// path written as errors write field paths (`joints[2].body_i`).
-pub mod text {
-    pub use crate::error::line_col;
-    pub use crate::locate::json_span;
-    pub use crate::{field_path, read_text, too_large};
-}
 
 /// Largest model file accepted (bytes).
 pub const MAX_FILE_SIZE: u64 = 16 * 1024 * 1024;
@@ -281,47 +271,6 @@ pub fn load_path_with(path: &Path, options: &LoadOptions) -> Result<Loaded, Load
     load_str_with(&text, format, &source, options)
 }
 
-/// The text of a file, at most [`MAX_FILE_SIZE`] bytes of UTF-8; errors
-/// name the file.
-pub fn read_text(path: &Path) -> Result<String, LoadError> {
-    let source = path.display().to_string();
-    let meta = std::fs::metadata(path)
-        .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
-    if meta.len() > MAX_FILE_SIZE {
-        return Err(too_large(&source, Some(meta.len())));
-    }
-    // A device or a pipe reports no length: read at most one byte past the limit.
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(MAX_FILE_SIZE + 1).read_to_end(&mut bytes))
-        .map_err(|e| LoadError::file(&source, format!("cannot read: {e}")))?;
-    if bytes.len() as u64 > MAX_FILE_SIZE {
-        return Err(too_large(&source, None));
-    }
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let valid = e.utf8_error().valid_up_to();
-        let before = String::from_utf8_lossy(&e.as_bytes()[..valid]);
-        at(
-            &before,
-            &source,
-            Some(valid),
-            None,
-            format!("not UTF-8 text (byte {valid}); save the file as UTF-8"),
-        )
-    })?;
-    Ok(text)
-}
-
-/// The error for a text of `len` bytes (`None`: unknown, more than the
-/// limit) from `source`, longer than [`MAX_FILE_SIZE`].
-pub fn too_large(source: &str, len: Option<u64>) -> LoadError {
-    let size = len.map_or("more than the limit".to_string(), |n| format!("{n} bytes"));
-    LoadError::file(
-        source,
-        format!("file is too large ({size}; the limit is {MAX_FILE_SIZE} bytes)"),
-    )
-}
-
 /// Loads a model from text; `source` names it in errors (usually the file
 /// name), and data files it names (a spline's CSV points) are read relative
 /// to `source`'s directory, and only from there and below.
@@ -369,15 +318,18 @@ pub fn load_str_with(
 /// file's text — a course file's translation (`camlink-adm`) — as
 /// [`load_str`] resolves a file's: named after `source`'s stem unless it
 /// names itself, data files read from `source`'s folder and below, lengths
-/// and angles in the units of its `[model] units`. A bad value is a
-/// [`LoadError`] naming `source` and the field path, without a line: the
-/// caller places it in the file it read.
-pub fn resolve_file(file: &file::ModelFile, source: &str) -> Result<Loaded, LoadError> {
+/// and angles in the units of its `[model] units`. A bad value reaches
+/// `place` as its field path in the description (`joints[2].body_i`) and
+/// the message; `place` returns the error placed in the file the caller
+/// read.
+pub fn resolve_file(
+    file: &file::ModelFile,
+    source: &str,
+    place: impl Fn(&str, &str) -> LoadError,
+) -> Result<Loaded, LoadError> {
     let base = Path::new(source).parent().unwrap_or(Path::new(""));
     let data = data_file::DataFiles::new(base, false);
-    resolve_with(file, stem(source), data, |f| {
-        at("", source, None, Some(f.path), f.message)
-    })
+    resolve_with(file, stem(source), data, |f| place(&f.path, &f.message))
 }
 
 /// `file` in SI, resolved with its `[machine]`, data files read through
@@ -422,7 +374,7 @@ pub fn toml_position(text: &str, path: &str) -> Option<(usize, usize)> {
 }
 
 /// A [`LoadError`] at byte `offset` of `text`.
-fn at(
+pub(crate) fn at(
     text: &str,
     source: &str,
     offset: Option<usize>,
@@ -440,25 +392,6 @@ fn at(
         field: field.filter(|f| !f.is_empty()),
         message,
     }
-}
-
-/// Field path as written in our errors: `joints[2].body_i`.
-pub fn field_path(p: &serde_path_to_error::Path) -> String {
-    use serde_path_to_error::Segment;
-    let mut out = String::new();
-    for seg in p.iter() {
-        match seg {
-            Segment::Seq { index } => out.push_str(&format!("[{index}]")),
-            Segment::Map { key } | Segment::Enum { variant: key } => {
-                if !out.is_empty() {
-                    out.push('.');
-                }
-                out.push_str(key);
-            }
-            Segment::Unknown => {}
-        }
-    }
-    out
 }
 
 fn parse_toml(text: &str, source: &str) -> Result<file::ModelFile, LoadError> {

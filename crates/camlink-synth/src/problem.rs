@@ -21,6 +21,7 @@
 //!
 //! Every field is documented in `docs/synthesis.md`.
 
+use camlink_model::text::{field_path, line_col};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -473,36 +474,6 @@ fn check_name(name: &str) -> Result<String, String> {
             name.escape_debug()
         ))
     }
-}
-
-/// 1-based (line, column) of byte `offset`; column counts characters.
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let mut offset = offset.min(text.len());
-    while !text.is_char_boundary(offset) {
-        offset -= 1;
-    }
-    let before = &text[..offset];
-    let line = before.matches('\n').count() + 1;
-    let start = before.rfind('\n').map_or(0, |k| k + 1);
-    (line, before[start..].chars().count() + 1)
-}
-
-fn field_path(p: &serde_path_to_error::Path) -> String {
-    use serde_path_to_error::Segment;
-    let mut out = String::new();
-    for seg in p.iter() {
-        match seg {
-            Segment::Seq { index } => out.push_str(&format!("[{index}]")),
-            Segment::Map { key } | Segment::Enum { variant: key } => {
-                if !out.is_empty() {
-                    out.push('.');
-                }
-                out.push_str(key);
-            }
-            Segment::Unknown => {}
-        }
-    }
-    out
 }
 
 fn invalid(field: &str, message: impl Into<String>) -> SynthError {
