@@ -563,7 +563,8 @@ class Model:
                     keep_rows=writer is None,
                 )
             complete = True
-            metadata = {
+            # What a results file carries besides its rows (only a file needs it).
+            metadata = None if writer is None else {
                 "camlink": _core.__version__,
                 "model": self.name,
                 "analysis": kind,

@@ -69,4 +69,7 @@ def channel_units(
         by_name = quantities
     else:
         by_name = dict(zip(names, quantities, strict=True))
-    return {n: unit_of(by_name.get(n, ""), units)[0] for n in names}
+    asked = parse_units(units)
+    # A model has many channels and few quantities: each looked up once.
+    unit = {q: unit_of(q, asked)[0] for q in {*by_name.values(), ""}}
+    return {n: unit[by_name.get(n, "")] for n in names}

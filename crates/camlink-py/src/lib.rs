@@ -9,11 +9,17 @@
 
 mod cam;
 mod cam_design;
+mod cam_export;
+mod cam_timing;
 mod csv_text;
+mod dicts;
+mod errors;
 mod fourbar;
 mod machine;
 mod model_file;
+mod py_force;
 mod settings;
+mod sink;
 mod study;
 mod synth;
 mod units;
@@ -23,73 +29,31 @@ use std::path::PathBuf;
 
 use std::sync::Arc;
 
-use camlink_core::constraint::sketch::{Mark, Side};
 use camlink_core::design::{self, Severity};
 use camlink_core::diagnose::diagnose;
 use camlink_core::dynamics::integrator::{self, Adaptive};
 use camlink_core::dynamics::{inverse, statics};
 use camlink_core::force::callback::Callback;
 use camlink_core::force::Force;
-use camlink_core::force::ForceError;
 use camlink_core::kinematics;
-use camlink_core::quantity::Quantity;
 use camlink_core::run::{
-    self, AnalysisError as CoreAnalysisError, Channel, Kind, LiftOff, PointOutput, Settings, Sink,
-    Stop, Summary,
+    self, AnalysisError as CoreAnalysisError, Kind, PointOutput, Settings, Summary,
 };
 use camlink_core::setting;
 use camlink_core::Equations;
 use camlink_model::{AnalysisType, Format, Loaded, OutlineShape};
-use numpy::ndarray::{Array2, ShapeBuilder};
+
+use dicts::{mark_dict, summary_dict};
+pub(crate) use errors::{
+    analysis_error, guard, internal_error, model_error, AnalysisError, ModelError,
+};
+use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
-use pyo3::create_exception;
-use pyo3::exceptions::{PyRuntimeError, PyValueError};
+use py_force::{call_force, FORCE_ERROR};
+use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
-
-create_exception!(
-    camlink,
-    ModelError,
-    PyValueError,
-    "A model file, a builder call or an argument is not valid."
-);
-create_exception!(
-    camlink,
-    AnalysisError,
-    PyRuntimeError,
-    "An analysis could not proceed. Attributes: time (s), joints (names), \
-     residual (largest |Φ|), names, quantities and data (the results computed \
-     so far)."
-);
-
-/// Rows buffered between two calls of `on_chunk`, unless the caller says.
-const DEFAULT_CHUNK_ROWS: usize = 1024;
-
-/// Most bytes of rows buffered between two calls of `on_chunk`, whatever
-/// `chunk_rows` says: a chunk holds at least one row and at most this many
-/// bytes of values, so that a wide model's chunk stays small.
-const CHUNK_BYTES: usize = 2 << 20;
-
-/// Runs `f`, turning a Rust panic into a Python `RuntimeError`.
-fn guard<T>(f: impl FnOnce() -> PyResult<T>) -> PyResult<T> {
-    catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|payload| Err(internal_error(payload)))
-}
-
-/// The `RuntimeError` for a caught panic.
-fn internal_error(payload: Box<dyn std::any::Any + Send>) -> PyErr {
-    let what = payload
-        .downcast_ref::<&str>()
-        .map(|s| s.to_string())
-        .or_else(|| payload.downcast_ref::<String>().cloned())
-        .unwrap_or_else(|| "unknown panic".to_string());
-    PyRuntimeError::new_err(format!(
-        "internal error: {what}; this is a bug in camlink, please report it with the model that caused it"
-    ))
-}
-
-fn model_error(e: impl std::fmt::Display) -> PyErr {
-    ModelError::new_err(e.to_string())
-}
+use sink::{ChunkSink, Delivery, DEFAULT_CHUNK_ROWS};
 
 /// A model file format by name: `"toml"` or `"json"`, any case.
 fn model_format(name: &str) -> PyResult<Format> {
@@ -803,50 +767,6 @@ impl Model {
     }
 }
 
-thread_local! {
-    /// The exception of the Python force function that stopped the run on
-    /// this thread, for [`Model::run_with`] to chain as the `__cause__` of
-    /// the `force_failed` error.
-    static FORCE_ERROR: std::cell::RefCell<Option<PyErr>> = const { std::cell::RefCell::new(None) };
-}
-
-/// Calls a Python force function `f(t, q, qd) -> (fx, fy, n)`; on an
-/// exception or a bad return value, keeps the exception in [`FORCE_ERROR`]
-/// and returns a [`ForceError`] that stops the run.
-fn call_force(f: &Py<PyAny>, t: f64, q: [f64; 3], qd: [f64; 3]) -> Result<[f64; 3], ForceError> {
-    let result = Python::attach(|py| -> PyResult<[f64; 3]> {
-        let out = f.call1(py, (t, (q[0], q[1], q[2]), (qd[0], qd[1], qd[2])))?;
-        out.extract::<[f64; 3]>(py).map_err(|_| {
-            let got = out
-                .bind(py)
-                .repr()
-                .map(|r| r.to_string())
-                .unwrap_or_else(|_| "?".to_string());
-            ModelError::new_err(format!(
-                "a force function must return three numbers (fx, fy, torque), not {got}"
-            ))
-        })
-    });
-    result.map_err(|e| {
-        let what = Python::attach(|py| {
-            let kind = e
-                .get_type(py)
-                .name()
-                .map(|n| n.to_string())
-                .unwrap_or_else(|_| "exception".to_string());
-            let text = e.value(py).to_string();
-            let text: String = text.chars().take(200).collect();
-            if text.is_empty() {
-                kind
-            } else {
-                format!("{kind}: {text}")
-            }
-        });
-        FORCE_ERROR.with(|slot| *slot.borrow_mut() = Some(e));
-        ForceError(what)
-    })
-}
-
 /// `"body.point"` names to core point outputs; a name given twice is an
 /// error (it would give two sets of identical channels).
 fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec<PointOutput>> {
@@ -864,369 +784,12 @@ fn resolve_points(model: &camlink_core::Model, names: &[String]) -> PyResult<Vec
         .collect()
 }
 
-/// The run summary as a dict: counts, `warnings` as dicts (`kind`, `time`,
-/// `joints`, `message`),
-/// `assembly_moves` as (body, (Δx, Δy, Δφ)) pairs and `lift_off` as a list
-/// of [`lift_off_dict`]s.
-/// A curve sampled for drawing: `closed` and `points` (n × 2, body frame,
-/// m) within `tol` (m) of the curve.
-/// One mark of a joint's sketch as a dict (see `Model.geometry`); `bodies`
-/// names the joint's bodies i and j.
-fn mark_dict<'py>(
-    py: Python<'py>,
-    mark: &Mark,
-    bodies: [&String; 2],
-    tol: f64,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    let body = |side: Side| match side {
-        Side::I => bodies[0],
-        Side::J => bodies[1],
-    };
-    match *mark {
-        Mark::Pin { s_i, s_j } | Mark::Rod { s_i, s_j } => {
-            let shape = if matches!(mark, Mark::Pin { .. }) {
-                "pin"
-            } else {
-                "rod"
-            };
-            d.set_item("shape", shape)?;
-            d.set_item("s_i", s_i)?;
-            d.set_item("s_j", s_j)?;
-        }
-        Mark::Guide { s_i, v_i, s_j } => {
-            d.set_item("shape", "guide")?;
-            d.set_item("s_i", s_i)?;
-            d.set_item("v_i", v_i)?;
-            d.set_item("s_j", s_j)?;
-        }
-        Mark::Slider { side, s } => {
-            d.set_item("shape", "slider")?;
-            d.set_item("body", body(side))?;
-            d.set_item("s", s)?;
-        }
-        Mark::Face { side, s, u } => {
-            d.set_item("shape", "face")?;
-            d.set_item("body", body(side))?;
-            d.set_item("s", s)?;
-            d.set_item("u", u)?;
-        }
-        Mark::Circle {
-            side,
-            s,
-            radius,
-            internal,
-        } => {
-            d.set_item("shape", "circle")?;
-            d.set_item("body", body(side))?;
-            d.set_item("s", s)?;
-            d.set_item("radius", radius)?;
-            d.set_item("internal", internal)?;
-        }
-        Mark::Curve { side, curve, role } => {
-            let pts = curve.sample(tol);
-            let flat: Vec<f64> = pts.iter().flat_map(|(_, p)| [p[0], p[1]]).collect();
-            d.set_item("shape", "curve")?;
-            d.set_item("body", body(side))?;
-            d.set_item("role", role.drawn(curve.closed()))?;
-            d.set_item("closed", curve.closed())?;
-            d.set_item("points", to_array(py, flat, 2)?)?;
-        }
-    }
-    Ok(d)
-}
-
-fn summary_dict<'py>(py: Python<'py>, s: &Summary) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("steps", s.steps)?;
-    d.set_item("newton_iterations", s.newton_iterations)?;
-    d.set_item("factorizations", s.factorizations)?;
-    d.set_item("halvings", s.halvings)?;
-    let warnings = PyList::empty(py);
-    for w in &s.warnings {
-        let wd = PyDict::new(py);
-        wd.set_item("kind", w.kind.name())?;
-        wd.set_item("time", w.time)?;
-        wd.set_item("joints", w.joints.clone())?;
-        wd.set_item("message", &w.message)?;
-        warnings.append(wd)?;
-    }
-    d.set_item("warnings", warnings)?;
-    d.set_item("assembly_moves", s.assembly_moves.clone())?;
-    let lift_off = PyList::empty(py);
-    for l in &s.lift_off {
-        lift_off.append(lift_off_dict(py, l)?)?;
-    }
-    d.set_item("lift_off", lift_off)?;
-    let flights = PyList::empty(py);
-    for f in &s.flights {
-        flights.append(flight_dict(py, f)?)?;
-    }
-    d.set_item("flights", flights)?;
-    let impacts = PyList::empty(py);
-    for i in &s.impacts {
-        impacts.append(impact_dict(py, i)?)?;
-    }
-    d.set_item("impacts", impacts)?;
-    if let Some(drift) = s.drift {
-        d.set_item("energy_drift", drift.energy)?;
-        d.set_item("constraint_drift", drift.constraint)?;
-        d.set_item("velocity_drift", drift.velocity)?;
-    }
-    Ok(d)
-}
-
-/// A flight of a unilateral contact as a dict: `joint`, `cam`,
-/// `start_time` (s), `start_cam_angle` (rad), `end_time` (s) and
-/// `end_cam_angle` (rad), None when the run ends in flight,
-/// `greatest_gap` (m), `greatest_time` (s), `greatest_cam_angle` (rad).
-fn flight_dict<'py>(
-    py: Python<'py>,
-    f: &camlink_core::run::Flight,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("joint", &f.joint)?;
-    d.set_item("cam", &f.cam)?;
-    d.set_item("start_time", f.start.time)?;
-    d.set_item("start_cam_angle", f.start.cam_angle)?;
-    d.set_item("end_time", f.end.map(|e| e.time))?;
-    d.set_item("end_cam_angle", f.end.map(|e| e.cam_angle))?;
-    d.set_item("greatest_gap", f.greatest_gap)?;
-    d.set_item("greatest_time", f.greatest_at.time)?;
-    d.set_item("greatest_cam_angle", f.greatest_at.cam_angle)?;
-    Ok(d)
-}
-
-/// An impact as a dict: `joint`, `time` (s), `cam_angle` (rad),
-/// `approach_speed` and `separation_speed` (m/s), `impulse` (N·s),
-/// `closed` (bool).
-fn impact_dict<'py>(
-    py: Python<'py>,
-    i: &camlink_core::run::Impact,
-) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("joint", &i.joint)?;
-    d.set_item("time", i.at.time)?;
-    d.set_item("cam_angle", i.at.cam_angle)?;
-    d.set_item("approach_speed", i.approach)?;
-    d.set_item("separation_speed", i.separation)?;
-    d.set_item("impulse", i.impulse)?;
-    d.set_item("closed", i.closed)?;
-    Ok(d)
-}
-
-/// A lift-off interval as a dict: `joint`, `cam`, `start_time` (s),
-/// `start_cam_angle` (rad), `end_time` (s) and `end_cam_angle` (rad), None
-/// when the run ends in lift-off, `least_force` (N), `least_time` (s),
-/// `least_cam_angle` (rad).
-fn lift_off_dict<'py>(py: Python<'py>, l: &LiftOff) -> PyResult<Bound<'py, PyDict>> {
-    let d = PyDict::new(py);
-    d.set_item("joint", &l.joint)?;
-    d.set_item("cam", &l.cam)?;
-    d.set_item("start_time", l.start.time)?;
-    d.set_item("start_cam_angle", l.start.cam_angle)?;
-    d.set_item("end_time", l.end.map(|e| e.time))?;
-    d.set_item("end_cam_angle", l.end.map(|e| e.cam_angle))?;
-    d.set_item("least_force", l.least)?;
-    d.set_item("least_time", l.least_at.time)?;
-    d.set_item("least_cam_angle", l.least_at.cam_angle)?;
-    Ok(d)
-}
-
 /// A `rows × width` NumPy array from row-major values.
 fn to_array(py: Python<'_>, values: Vec<f64>, width: usize) -> PyResult<Bound<'_, PyArray2<f64>>> {
     let rows = values.len().checked_div(width).unwrap_or(0);
     let a = Array2::from_shape_vec((rows, width), values)
         .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
     Ok(a.into_pyarray(py))
-}
-
-/// The Python `AnalysisError` for a core analysis error, with the partial
-/// results attached.
-fn analysis_error(
-    py: Python<'_>,
-    e: &CoreAnalysisError,
-    names: Vec<String>,
-    quantities: Vec<&'static str>,
-    data: Option<Bound<'_, PyArray2<f64>>>,
-) -> PyErr {
-    let err = AnalysisError::new_err(e.to_string());
-    let value = err.value(py);
-    let set = || -> PyResult<()> {
-        value.setattr("kind", e.kind.name())?;
-        value.setattr("time", e.time)?;
-        value.setattr("joints", e.joints.clone())?;
-        value.setattr("residual", e.residual)?;
-        value.setattr("names", names)?;
-        value.setattr("quantities", quantities)?;
-        match data {
-            Some(d) => value.setattr("data", d)?,
-            None => value.setattr("data", py.None())?,
-        }
-        Ok(())
-    };
-    match set() {
-        Ok(()) => err,
-        Err(e) => e,
-    }
-}
-
-/// Where a run's rows go: to `on_chunk` every `chunk_rows` rows and, with
-/// `keep_rows`, into the array the run returns.
-struct Delivery {
-    on_chunk: Option<Py<PyAny>>,
-    chunk_rows: usize,
-    keep_rows: bool,
-}
-
-impl Delivery {
-    fn new(on_chunk: Option<Py<PyAny>>, chunk_rows: usize, keep_rows: bool) -> Self {
-        Delivery {
-            on_chunk,
-            chunk_rows: chunk_rows.max(1),
-            keep_rows,
-        }
-    }
-}
-
-/// Collects rows and hands them to Python in chunks.
-struct ChunkSink {
-    names: Vec<String>,
-    /// What each of `names` measures ([`Quantity::name`]), `"time"` first.
-    quantities: Vec<&'static str>,
-    /// Rows of the current chunk, row-major.
-    chunk: Vec<f64>,
-    /// Every row so far, row-major, when `keep_rows`; else empty.
-    all: Vec<f64>,
-    keep_rows: bool,
-    /// Rows per chunk: the caller's `chunk_rows`, capped by [`CHUNK_BYTES`].
-    chunk_rows: usize,
-    on_chunk: Option<Py<PyAny>>,
-    callback_error: Option<PyErr>,
-    /// When Python's signal handlers last ran.
-    checked: std::time::Instant,
-    /// Ticks since the clock was last read.
-    ticks: u32,
-}
-
-/// Longest wall time between two checks for Ctrl-C and other signals.
-const SIGNAL_INTERVAL: std::time::Duration = std::time::Duration::from_millis(50);
-
-impl ChunkSink {
-    fn new(delivery: Delivery) -> Self {
-        ChunkSink {
-            names: Vec::new(),
-            quantities: Vec::new(),
-            chunk: Vec::new(),
-            all: Vec::new(),
-            keep_rows: delivery.keep_rows,
-            chunk_rows: delivery.chunk_rows,
-            on_chunk: delivery.on_chunk,
-            callback_error: None,
-            checked: std::time::Instant::now(),
-            ticks: 0,
-        }
-    }
-
-    /// Runs Python's signal handlers when [`SIGNAL_INTERVAL`] has passed
-    /// since they last ran; stops the run if one raised (Ctrl-C), the
-    /// exception going to the caller as for a failing `on_chunk`.
-    fn watch_signals(&mut self) -> Result<(), Stop> {
-        self.ticks += 1;
-        // Reading the clock costs about as much as a small step: every 16th.
-        if self.ticks < 16 {
-            return Ok(());
-        }
-        self.ticks = 0;
-        if self.checked.elapsed() < SIGNAL_INTERVAL {
-            return Ok(());
-        }
-        self.checked = std::time::Instant::now();
-        if let Err(e) = Python::attach(|py| py.check_signals()) {
-            // `on_chunk` stays: the rows buffered so far still reach it.
-            self.callback_error.get_or_insert(e);
-            return Err(Stop("interrupted".into()));
-        }
-        Ok(())
-    }
-
-    fn width(&self) -> usize {
-        self.names.len()
-    }
-
-    /// Calls `on_chunk` with the buffered rows (if any), column-major, then
-    /// moves them to `all` (with `keep_rows`) or drops them.
-    fn flush(&mut self) {
-        if self.chunk.is_empty() {
-            return;
-        }
-        let result = Python::attach(|py| -> PyResult<()> {
-            // Ctrl-C raises KeyboardInterrupt here even without a callback.
-            py.check_signals()?;
-            if let Some(cb) = &self.on_chunk {
-                let rows = to_column_major_array(py, &self.chunk, self.width())?;
-                cb.call1(py, (self.names.clone(), rows, self.quantities.clone()))?;
-            }
-            Ok(())
-        });
-        if let Err(e) = result {
-            self.callback_error.get_or_insert(e);
-            self.on_chunk = None;
-        }
-        if self.keep_rows {
-            self.all.extend_from_slice(&self.chunk);
-        }
-        self.chunk.clear();
-    }
-}
-
-/// A `rows × width` NumPy array in Fortran order from row-major values.
-fn to_column_major_array<'py>(
-    py: Python<'py>,
-    values: &[f64],
-    width: usize,
-) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    let rows = values.len().checked_div(width).unwrap_or(0);
-    let mut columns = Vec::with_capacity(values.len());
-    for k in 0..width {
-        columns.extend(values.iter().skip(k).step_by(width));
-    }
-    let a = Array2::from_shape_vec((rows, width).f(), columns)
-        .map_err(|e| PyRuntimeError::new_err(format!("internal error: {e}")))?;
-    Ok(a.into_pyarray(py))
-}
-
-impl Sink for ChunkSink {
-    fn begin(&mut self, channels: &[Channel]) {
-        self.names = std::iter::once("t".to_string())
-            .chain(channels.iter().map(|c| c.name.clone()))
-            .collect();
-        self.quantities = std::iter::once(Quantity::Time.name())
-            .chain(channels.iter().map(|c| c.quantity.name()))
-            .collect();
-        let width = self.width().max(1);
-        self.chunk_rows = self
-            .chunk_rows
-            .min(CHUNK_BYTES / (width * std::mem::size_of::<f64>()))
-            .max(1);
-        self.chunk.reserve(self.chunk_rows * width);
-    }
-
-    fn row(&mut self, t: f64, values: &[f64]) -> Result<(), Stop> {
-        self.chunk.push(t);
-        self.chunk.extend_from_slice(values);
-        if self.chunk.len() >= self.chunk_rows * self.width() {
-            self.flush();
-            if self.callback_error.is_some() {
-                return Err(Stop("on_chunk raised an exception".into()));
-            }
-        }
-        self.watch_signals()
-    }
-
-    fn tick(&mut self) -> Result<(), Stop> {
-        self.watch_signals()
-    }
 }
 
 /// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
@@ -1284,6 +847,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(cam_design::cam_is_design, m)?)?;
     m.add_function(wrap_pyfunction!(cam_design::did_you_mean, m)?)?;
     m.add_function(wrap_pyfunction!(cam_design::plain_file_name_problem, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_design_report, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_report_in_units, m)?)?;
+    m.add_function(wrap_pyfunction!(cam_design::cam_tool_undercut, m)?)?;
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
@@ -1297,6 +863,8 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     synth::register(m)?;
     fourbar::register(m)?;
     units::register(m)?;
+    cam_timing::register(m)?;
+    cam_export::register(m)?;
     model_file::register(m)?;
     settings::register(m)?;
     m.add("ModelError", py.get_type::<ModelError>())?;
