@@ -24,7 +24,15 @@ it). *Chromium CPU* is the CPU time of every Chromium process over the
 drags, per edit (the renderer's layout, paint and raster, the compositor,
 the network service, DevTools' reports to Playwright), from /proc.
 
+With ``--base DIR`` (another checkout, its extension built, e.g. a
+``git worktree`` of main), each model's drags are run against that
+checkout's studio and this one's in turn, ``--rounds`` times, in the same
+browser and the same minutes, for an A/B comparison on a machine whose
+load changes: a second table gives both sides' page median and p95 over
+all their rounds (a side whose page records no phases shows none).
+
     uv run python bench/studio_drag.py [--drags 200] [--models four-bar,cam]
+                                       [--base ../main --rounds 3]
 """
 
 from __future__ import annotations
@@ -80,10 +88,10 @@ def pct(values: list[float], q: float) -> float:
 class Studio:
     """`camlink studio FILE --no-browser` in a process of its own, as a user
     runs it (not in this process, where Playwright's client would share
-    its interpreter)."""
+    its interpreter), from the checkout `root` (default this one)."""
 
-    def __init__(self, path: Path) -> None:
-        env = {**os.environ, "PYTHONPATH": str(ROOT / "python")}
+    def __init__(self, path: Path, root: Path = ROOT) -> None:
+        env = {**os.environ, "PYTHONPATH": str(root / "python")}
         self.proc = subprocess.Popen([sys.executable, "-m", "camlink", "studio", str(path),
                                       "--no-browser"], stdout=subprocess.PIPE, text=True, env=env)
         assert self.proc.stdout is not None
@@ -145,8 +153,9 @@ class BrowserRun:
     """The times (ms) of one model's drags in the page: each edit's total,
     wait, server share and page work; the Chromium CPU per edit."""
 
-    def __init__(self, browser: object, path: Path, handle: str, drags: int) -> None:
-        studio = Studio(path)
+    def __init__(self, browser: object, path: Path, handle: str, drags: int,
+                 root: Path = ROOT) -> None:
+        studio = Studio(path, root)
         try:
             page = browser.new_page(viewport={"width": 1300, "height": 900})  # type: ignore[attr-defined]
             page.route("**/*", lambda r: r.continue_()
@@ -185,20 +194,58 @@ def server_times(path: Path, handle: str, drags: int) -> tuple[list[float], list
     return wall, cpu
 
 
+def med(xs: list[float]) -> float:
+    return statistics.median(xs) if xs else math.nan
+
+
+def head_of(root: Path) -> str:
+    """The short commit of the checkout `root` ("?" when not a git one)."""
+    out = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"],
+                         capture_output=True, text=True).stdout.strip()
+    return out or "?"
+
+
+def compare(browser: object, cases: list[tuple[str, Path, str]], base: Path, drags: int,
+            rounds: int) -> None:
+    """The drags of each case against the checkout `base` and this one in
+    turn, `rounds` times: both sides' page median and p95 (ms) over all
+    their drags, and the medians of their phases."""
+    print(f"\nA/B, back to back: base {base} ({head_of(base)}) against this checkout "
+          f"({head_of(ROOT)}), {rounds} rounds of {drags} drags each, alternating")
+    print("| model | side | page median (ms) | page p95 (ms) | wait median | server median "
+          "| page work median | Chromium CPU per edit |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for label, path, handle in cases:
+        runs: dict[str, list[BrowserRun]] = {"base": [], "this": []}
+        for _ in range(rounds):
+            for side, root in (("base", base), ("this", ROOT)):
+                shutil.copy(path.with_suffix(".orig"), path)
+                runs[side].append(BrowserRun(browser, path, handle, drags, root))
+        for side, done in runs.items():
+            total = [x for r in done for x in r.total]
+            cpu = statistics.mean(r.chromium_cpu for r in done)
+            print(f"| {label} | {side} | {med(total):.1f} | {pct(total, 0.95):.1f} "
+                  f"| {med([x for r in done for x in r.wait]):.1f} "
+                  f"| {med([x for r in done for x in r.server]):.1f} "
+                  f"| {med([x for r in done for x in r.page]):.1f} | {cpu:.1f} |", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--drags", type=int, default=200)
     ap.add_argument("--models", default="four-bar,six-bar,cam,chain",
                     help="comma-separated: four-bar, six-bar, cam, chain")
+    ap.add_argument("--base", type=Path, default=None,
+                    help="another checkout (its extension built) to compare with, back to back")
+    ap.add_argument("--rounds", type=int, default=2, help="rounds of the comparison (--base)")
     args = ap.parse_args()
     from playwright.sync_api import sync_playwright
 
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     wanted = set(args.models.split(","))
-    head = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                          capture_output=True, text=True).stdout.strip() or "?"
-    print(f"{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, commit {head}, "
-          f"load average {os.getloadavg()[0]:.1f} at the start, {args.drags} drags")
+    print(f"{time.strftime('%Y-%m-%d %H:%M', time.gmtime())} UTC, commit {head_of(ROOT)}, "
+          f"load average {os.getloadavg()[0]:.1f} at the start, {args.drags} drags, "
+          f"{os.cpu_count()} cores")
     with tempfile.TemporaryDirectory() as tmp, sync_playwright() as p:
         folder = Path(tmp)
         cases = []
@@ -210,6 +257,7 @@ def main() -> None:
             (folder / "chain.toml").write_text(chain_toml(100))
             cases.append(("chain of 100 pins", folder / "chain.toml", "joint:j50"))
         browser = p.chromium.launch(executable_path=chromium, args=["--no-sandbox"])
+        print(f"Chromium {browser.version}, headless; Python {sys.version.split()[0]}")
         print("| model | times | page median (ms) | page p95 (ms) | wait median | server median "
               "| page work median | Chromium CPU per edit | in-process median | p95 "
               "| in-process CPU median | p95 |")
@@ -220,13 +268,12 @@ def main() -> None:
             shutil.copy(path.with_suffix(".orig"), path)
             server, cpu = server_times(path, handle, args.drags)
             rows = len(Document(path).solution.t)
-            def med(xs: list[float]) -> float:
-                return statistics.median(xs) if xs else math.nan
-
             print(f"| {label} | {rows} | {med(run.total):.1f} | {pct(run.total, 0.95):.1f} "
                   f"| {med(run.wait):.1f} | {med(run.server):.1f} | {med(run.page):.1f} "
                   f"| {run.chromium_cpu:.1f} | {med(server):.1f} | {pct(server, 0.95):.1f} "
                   f"| {med(cpu):.1f} | {pct(cpu, 0.95):.1f} |", flush=True)
+        if args.base is not None:
+            compare(browser, cases, args.base.resolve(), args.drags, args.rounds)
         browser.close()
     print(f"load average {os.getloadavg()[0]:.1f} at the end")
 

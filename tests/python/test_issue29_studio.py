@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from aiohttp import WSMsgType
 
 import camlink
 from camlink import _core
@@ -398,3 +399,105 @@ def test_issue29_studio_notebook_shows_the_page_and_stops(tmp_path: Path) -> Non
     out = nb.cells[1].outputs
     assert out[0]["text"] == "200\n"
     assert out[1]["data"]["text/html"] == "<p>camlink studio for four_bar.toml: stopped</p>"
+
+
+def _unpack(data: bytes) -> dict[str, object]:
+    """A binary reply (`camlink.studio.pack`) read as the page reads it:
+    each ``{"buf": [k, m]}`` the m float64s from the k-th of the block."""
+    n = int.from_bytes(data[:4], "little")
+    block = np.frombuffer(data[4 + n:], "<f8")
+
+    def walk(v: object) -> object:
+        if isinstance(v, dict):
+            if isinstance(v.get("buf"), list):
+                k, m = v["buf"]
+                return block[k:k + m]
+            return {key: walk(x) for key, x in v.items()}
+        if isinstance(v, list):
+            return [walk(x) for x in v]
+        return v
+
+    out = walk(json.loads(data[4:4 + n]))
+    assert isinstance(out, dict)
+    return out
+
+
+def _decoded(v: object) -> object:
+    """A text reply's arrays (base64 float64) as arrays, the rest as it is."""
+    if isinstance(v, dict):
+        if set(v) == {"f64"}:
+            return np.frombuffer(base64.b64decode(v["f64"]), "<f8")
+        return {key: _decoded(x) for key, x in v.items()}
+    if isinstance(v, list):
+        return [_decoded(x) for x in v]
+    return v
+
+
+def _same(a: object, b: object, where: str = "") -> None:
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and set(a) == set(b), where
+        for key in a:
+            _same(a[key], b[key], f"{where}.{key}")
+    elif isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        # The text reply rounds the scene's shapes to 1e-12 m.
+        np.testing.assert_allclose(np.asarray(b, dtype=float), np.asarray(a, dtype=float),
+                                   rtol=0, atol=1e-12, err_msg=where)
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), where
+        for k, (x, y) in enumerate(zip(a, b, strict=True)):
+            _same(x, y, f"{where}[{k}]")
+    else:
+        assert a == b, where
+
+
+async def _coalesced_checks(path: Path) -> None:
+    doc = Document(path)
+    h = next(x for x in doc.solution.handles if x.id == "joint:B")
+    x0, y0, phi = doc.solution.pose(h.body, 0)
+    x0 += math.cos(phi) * h.local[0] - math.sin(phi) * h.local[1]
+    y0 += math.sin(phi) * h.local[0] + math.cos(phi) * h.local[1]
+    async with studio_client(doc) as (client, port):
+        # Offered permessage-deflate (as Chromium does), the server declines.
+        ws = await client.ws_connect(f"/ws?token={TOKEN}", headers={"Origin": f"http://127.0.0.1:{port}"},
+                                     compress=15)
+        assert ws.compress == 0
+        await ws.send_str(json.dumps({"op": "hello", "binary": True, "seq": 1}))
+        first = await ws.receive()
+        assert first.type == WSMsgType.BINARY
+        # Thirty positions of one drag sent at once: the server solves the
+        # first and then the latest waiting, never every one.
+        for n in range(1, 31):
+            await ws.send_str(json.dumps({"op": "move", "handle": "joint:B", "row": 0, "seq": 1 + n,
+                                          "x": x0 + 2e-4 * n, "y": y0 - 1e-4 * n, "gesture": "g"}))
+        await ws.send_str(json.dumps({"op": "end", "gesture": "g", "seq": 32}))
+        seqs: list[int] = []
+        last: dict[str, object] | None = None
+        while True:
+            m = await ws.receive(timeout=60)
+            assert m.type == WSMsgType.BINARY
+            reply = _unpack(m.data)
+            if reply["type"] == "ack":
+                assert reply["seq"] == 32
+                break
+            seq = reply["seq"]
+            assert reply["type"] == "frames" and isinstance(seq, int)
+            seqs.append(seq)
+            last = reply
+        assert seqs == sorted(seqs) and seqs[-1] == 31 and len(seqs) < 30
+        # The binary reply is the text one of the same cycle, its arrays as
+        # they are.
+        assert last is not None
+        got = {k: v for k, v in last.items() if k != "server_ms"}
+        _same(_decoded({"type": "frames", "seq": 31, "data": payload(doc, [])}), got)
+        # The state of the last edit: the same file as that one move alone,
+        # and one undo step.
+        alone = Document(path)
+        alone.move("joint:B", 0, x0 + 6e-3, y0 - 3e-3)
+        assert doc.text() == alone.text()
+        doc.undo()
+        assert doc.text() == path.read_text()
+        await ws.close()
+
+
+def test_issue29_studio_coalesced_edits_end_in_the_last(tmp_path: Path) -> None:
+    asyncio.run(_coalesced_checks(_copy(tmp_path, "four_bar.toml")))

@@ -4,7 +4,6 @@ unassemblable edits and markup in names. Marked `browser`."""
 
 from __future__ import annotations
 
-import asyncio
 import http.server
 import json
 import shutil
@@ -21,30 +20,15 @@ import pytest
 
 import camlink
 from camlink.cli import main
-from camlink.studio import RUNS_KEY, StudioServer
+from camlink.studio import RUNS_KEY
 from camlink.studio.document import Document
+from camlink.studio.embed import ServedStudio as Studio
 from conftest import STUCK_FOUR_BAR, four_bar_toml
 
 pytestmark = pytest.mark.browser
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
-
-
-class Studio:
-    """A studio server on its own event loop in a thread."""
-
-    def __init__(self, path: Path) -> None:
-        self.server = StudioServer(path)
-        self.loop = asyncio.new_event_loop()
-        self.thread = threading.Thread(target=self.loop.run_forever, daemon=True)
-        self.thread.start()
-        self.url = asyncio.run_coroutine_threadsafe(self.server.start(), self.loop).result(30)
-
-    def close(self) -> None:
-        asyncio.run_coroutine_threadsafe(self.server.stop(), self.loop).result(30)
-        self.loop.call_soon_threadsafe(self.loop.stop)
-        self.thread.join(10)
 
 
 class Page:
@@ -91,7 +75,7 @@ def studio(tmp_path: Path) -> Iterator[tuple[Studio, Path]]:
     shutil.copy(EXAMPLES / "four_bar.toml", path)
     s = Studio(path)
     yield s, path
-    s.close()
+    s.stop()
 
 
 def test_issue29_studio_drag_moves_joint_by_pixels(browser: Any, studio: tuple[Studio, Path]) -> None:
@@ -245,7 +229,7 @@ def test_issue29_studio_unassemblable_edit_marks_range(browser: Any, tmp_path: P
         assert all(pg.js("Array.from(camlinkStudio.front.data().ok)"))
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def test_issue29_studio_names_with_markup_render_as_text(browser: Any, tmp_path: Path) -> None:
@@ -262,7 +246,7 @@ def test_issue29_studio_names_with_markup_render_as_text(browser: Any, tmp_path:
         assert pg.js("window.pwned === undefined")
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def _stage_rgb(pg: Page, u: float, v: float) -> tuple[int, int, int]:
@@ -460,7 +444,7 @@ def test_issue29_studio_cam_segments_edited_in_page(browser: Any, tmp_path: Path
         assert np.max(np.abs(surface[::4][: len(rows), :] - rows[:, 1:3])) <= 1e-9
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def runs_of(s: Studio) -> Any:
@@ -516,7 +500,7 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
             time.sleep(0.05)
         assert runs.current.state == "stopped"
     finally:
-        s.close()
+        s.stop()
     # A run to its end: its channel is the CLI run's (1e-9).
     path = tmp_path / "pendulum.toml"
     shutil.copy(EXAMPLES / "dyn_pendulum.toml", path)
@@ -547,7 +531,7 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
         assert np.max(np.abs(table[:, head.index("arm.phi")] - phi)) <= 1e-9
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def test_issue29_studio_motion_curve_segments_applied(browser: Any, tmp_path: Path) -> None:
@@ -590,7 +574,7 @@ def test_issue29_studio_motion_curve_segments_applied(browser: Any, tmp_path: Pa
         assert np.ptp(res["follower.y"]) == pytest.approx(0.015, abs=1e-9)
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def test_issue29_studio_runs_a_study_of_the_model(
@@ -611,7 +595,7 @@ def test_issue29_studio_runs_a_study_of_the_model(
         table = run["table"]
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
     # `camlink study` of the same file: the same outputs (1e-9).
     import pandas as pd
 
@@ -645,7 +629,7 @@ def test_issue29_studio_cam_names_with_markup_render_as_text(browser: Any, tmp_p
         assert pg.js("window.pwned === undefined")
         assert pg.errors == [] and pg.blocked == []
     finally:
-        s.close()
+        s.stop()
 
 
 def test_issue29_studio_in_a_notebook_frame(browser: Any, tmp_path: Path) -> None:
@@ -710,4 +694,45 @@ def test_issue29_studio_in_a_notebook_frame(browser: Any, tmp_path: Path) -> Non
         with urllib.request.urlopen(s.url, timeout=10) as r:
             assert "frame-ancestors 'none'" in r.headers["Content-Security-Policy"]
     finally:
-        s.close()
+        s.stop()
+
+
+def test_issue29_studio_edit_keeps_lines_and_plot_arrays(
+        browser: Any, studio: tuple[Studio, Path]) -> None:
+    # An edit sets the text of the lines under the stage and refills the
+    # plots' arrays: the same nodes and arrays, holding the new cycle.
+    s, _ = studio
+    pg = Page(browser, s.url)
+    before = pg.js("""(() => {
+      const lines = Array.from(document.getElementById('info').children);
+      lines.forEach(function (e, i) { e.dataset.kept = String(i); });
+      const p = camlinkStudio.front.plots[0];
+      window.keptArrays = [p.data[0], p.data[1]];
+      return lines.map(function (e) { return e.textContent; });
+    })()""")
+    xy = pg.js("camlinkStudio.front.handle('joint:B')")
+    pg.page.evaluate("""async ([x, y]) => {
+      const S = camlinkStudio;
+      await S.after(S.send({ op: "move", handle: "joint:B", row: 0, x: x + 0.01, y: y + 0.005,
+                             gesture: "kept" }));
+    }""", xy)
+    after = pg.js("""(() => {
+      const D = camlinkStudio.front.data(), p = camlinkStudio.front.plots[0];
+      const lines = Array.from(document.getElementById('info').children);
+      const v = camlinkStudio.front.channel(p.name);
+      return {
+        kept: lines.map(function (e) { return e.dataset.kept; }),
+        texts: lines.map(function (e) { return e.textContent; }),
+        info: D.info, marks: D.marks.length,
+        same: p.data[0] === window.keptArrays[0] && p.data[1] === window.keptArrays[1],
+        plotted: Array.from(p.data[1]), values: Array.from(v), t: Array.from(p.data[0]),
+        times: Array.from(D.t),
+      };
+    })()""")
+    assert len(before) == len(after["texts"]) == len(after["info"]) + after["marks"]
+    assert after["kept"] == [str(i) for i in range(len(before))]
+    assert after["texts"][: len(after["info"])] == after["info"] and after["texts"] != before
+    assert after["same"] and after["t"] == after["times"]
+    # The first plot is a length (the coupler point's y): its values as sent.
+    assert after["plotted"] == after["values"]
+    assert pg.errors == [] and pg.blocked == []

@@ -11,11 +11,13 @@ carry the session's random token (``?token=…``) and, when it has an
 403. The page loads nothing from a network (its Content-Security-Policy
 allows only this server).
 
-Edits are solved one at a time in a worker thread, off the event loop; an
-edit that arrives while another is solving replaces a pending edit of the
-same handle, parameter or segment key, so a fast drag solves only its
-latest position. Each reply carries the whole re-solved cycle
-(`camlink.viz.front.frame_data`), or the analysed design. Analyses and
+Edits are solved one at a time in a worker thread, off the event loop,
+which also makes and encodes the reply (binary, `pack`, for the page;
+the event loop only receives and sends); an edit that arrives while
+another is solving replaces a pending edit of the same handle, parameter
+or segment key, so a fast drag solves only its latest position. Each
+reply carries the whole re-solved cycle (`camlink.viz.front.frame_data`),
+or the analysed design. The websocket is not compressed. Analyses and
 studies started from the page run in a thread of their own
 (`camlink.studio.runs`), reporting their progress to the page that
 started them.
@@ -24,7 +26,6 @@ started them.
 from __future__ import annotations
 
 import asyncio
-import base64
 import hmac
 import json
 import math
@@ -33,19 +34,21 @@ import struct
 import time
 import webbrowser
 from collections import deque
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from aiohttp import WSMsgType, web
 
 from camlink._core import ModelError
 from camlink.studio.cam import CamDocument, cam_payload, open_document
-from camlink.studio.document import Document, Editable, Solution
+from camlink.studio.document import Document, Editable, Floats, Solution, raw
 from camlink.studio.runs import Run, Runs, studies_of
-from camlink.viz.front import asset, frame_data
+from camlink.viz.front import asset, b64, frame_data
 
-__all__ = ["StudioServer", "make_app", "notebook", "pack", "payload", "run"]
+__all__ = ["StudioServer", "make_app", "notebook", "pack", "payload", "run", "text"]
 
 TOKEN_KEY = web.AppKey("token", str)
 DOC_KEY = web.AppKey("doc", Editable)
@@ -89,10 +92,13 @@ def info_lines(sol: Solution) -> list[str]:
     return describe(sol.model, sol.t, sol.names, sol.values, sol.scene)
 
 
-def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
+def payload(doc: Document, shown: list[str] | None = None,
+            encode: Callable[..., Any] = b64) -> dict[str, Any]:
     """The page's data for the document's current cycle: every channel's
     name, the poses, and the values of the traces, the default plots and
-    the channels `shown` (all when None)."""
+    the channels `shown` (all when None); each array as `encode` gives it
+    (base64 text by default; with `raw`, for a binary reply, the scene's
+    shapes too)."""
     sol = doc.solution
     points = [str(p) for p in (sol.model.analysis.get("points") or [])]
     channels = None
@@ -102,7 +108,8 @@ def payload(doc: Document, shown: list[str] | None = None) -> dict[str, Any]:
         channels = [c for c in [*traced, *shown] if c in have]
     data = frame_data(sol.model, sol.scene, sol.t, sol.names, sol.values, sol.ok, points=points,
                       channels=channels, all_names=True, units=sol.units,
-                      plots=doc.default_plots(points))
+                      plots=doc.default_plots(points), encode=encode,
+                      flat=None if encode is b64 else lambda a: encode(np.ravel(a), "f64"))
     data["handles"] = [{"id": h.id, "label": h.label, "body": h.body, "s": list(h.local)}
                        for h in sol.handles]
     data["parameters"] = doc.parameters()
@@ -124,26 +131,21 @@ def pack(msg: dict[str, Any]) -> bytes:
     them (``"binary": true`` in its ``hello``): a little-endian uint32 n,
     n bytes of UTF-8 JSON (padded with spaces so that what follows starts
     at a multiple of 8 bytes), then the float64 arrays of `msg` back to
-    back. Each array `msg` carries as ``{"f64": base64}`` is in the JSON
-    as ``{"buf": [k, m]}``: m values from the k-th float64 of the block."""
+    back. Each array `msg` carries as `Floats` (`raw`) is in the JSON as
+    ``{"buf": [k, m]}``: m values from the k-th float64 of the block."""
     blobs: list[bytes] = []
     at = 0
 
-    def walk(v: Any) -> Any:
+    def ref(v: object) -> dict[str, list[int]]:
         nonlocal at
-        if isinstance(v, dict):
-            if len(v) == 1 and isinstance(v.get("f64"), str):
-                raw = base64.b64decode(v["f64"])
-                ref = {"buf": [at, len(raw) // 8]}
-                blobs.append(raw)
-                at += len(raw) // 8
-                return ref
-            return {k: walk(x) for k, x in v.items()}
-        if isinstance(v, list):
-            return [walk(x) if isinstance(x, (dict, list)) else x for x in v]
-        return v
+        if not isinstance(v, Floats):
+            raise TypeError(f"{type(v).__name__} in a studio reply")
+        n = len(v.data) // 8
+        blobs.append(v.data)
+        at += n
+        return {"buf": [at - n, n]}
 
-    head = json.dumps(walk(msg), separators=(",", ":"), allow_nan=False).encode()
+    head = json.dumps(msg, separators=(",", ":"), allow_nan=False, default=ref).encode()
     head += b" " * (-(4 + len(head)) % 8)
     return struct.pack("<I", len(head)) + head + b"".join(blobs)
 
@@ -213,8 +215,26 @@ def _edit(doc: Editable, op: object, msg: dict[str, Any]) -> bool:
     return True
 
 
-def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
-    """One message from the page, in the worker thread: the reply."""
+def text(msg: dict[str, Any]) -> str:
+    """`msg` as one text websocket message (JSON; arrays as base64)."""
+    return json.dumps(msg, separators=(",", ":"), allow_nan=False)
+
+
+def _answer(doc: Editable, msg: dict[str, Any], came: float, binary: bool) -> bytes | str:
+    """One message from the page, which arrived at `came` (`time.perf_counter`,
+    s), in the worker thread: the reply as the websocket sends it, binary
+    (`pack`) or text. A reply of frames carries the server's share of the
+    edit (``server_ms``: from its arrival to the reply made, before it is
+    encoded), for the page's timing of edits."""
+    reply = _handle(doc, msg, raw if binary else b64)
+    if reply.get("type") == "frames":
+        reply["server_ms"] = round(1e3 * (time.perf_counter() - came), 3)
+    return pack(reply) if binary else text(reply)
+
+
+def _handle(doc: Editable, msg: dict[str, Any],
+            encode: Callable[..., Any] = b64) -> dict[str, Any]:
+    """One message from the page: the reply, its arrays as `encode` gives them."""
     op = msg.get("op")
     try:
         if op in ("undo", "redo", "save", "end"):
@@ -226,11 +246,11 @@ def _handle(doc: Editable, msg: dict[str, Any]) -> dict[str, Any]:
     except (ModelError, ValueError, KeyError, TypeError, OSError) as e:
         return _error(msg, e)
     if isinstance(doc, CamDocument):
-        return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc)}
+        return {"type": "frames", "seq": msg.get("seq"), "data": cam_payload(doc, encode)}
     assert isinstance(doc, Document)
     plots = msg.get("plots")
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
-    data = payload(doc, shown)
+    data = payload(doc, shown, encode)
     if op == "hello":
         data["studies"] = studies_of(doc.path)
     return {"type": "frames", "seq": msg.get("seq"), "data": data}
@@ -264,13 +284,16 @@ def _same_target(a: dict[str, Any], b: dict[str, Any]) -> bool:
 
 
 async def _socket(request: web.Request) -> web.WebSocketResponse:
-    ws = web.WebSocketResponse(max_msg_size=1 << 20)
+    # Uncompressed: on the loopback, deflating a reply (1.8 ms for the
+    # four-bar's 53 kB) and inflating it in the browser cost more than
+    # they save.
+    ws = web.WebSocketResponse(max_msg_size=1 << 20, compress=False)
     await ws.prepare(request)
     doc = request.app[DOC_KEY]
     executor = request.app[EXECUTOR_KEY]
     loop = asyncio.get_running_loop()
-    queue: deque[dict[str, Any]] = deque()
-    arrived: dict[int, float] = {}  # id of a queued request: when it came (perf_counter, s)
+    # Requests waiting to be solved, each with when it came (perf_counter, s).
+    queue: deque[tuple[dict[str, Any], float]] = deque()
     binary = False  # whether the page reads binary replies (`pack`)
     wake = asyncio.Event()
 
@@ -279,19 +302,15 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
             await wake.wait()
             wake.clear()
             while queue:
-                msg = queue.popleft()
-                reply = await loop.run_in_executor(executor, _handle, doc, msg)
+                msg, came = queue.popleft()
+                # Solved and encoded in the worker thread: the loop only sends.
+                reply = await loop.run_in_executor(executor, _answer, doc, msg, came, binary)
                 if ws.closed:
                     return
-                # The server's share of an edit (ms, from its arrival to
-                # its reply made), for the page's timing of edits.
-                came = arrived.pop(id(msg))
-                if reply.get("type") == "frames":
-                    reply["server_ms"] = round(1e3 * (time.perf_counter() - came), 3)
-                if binary:
-                    await ws.send_bytes(pack(reply))
+                if isinstance(reply, bytes):
+                    await ws.send_bytes(reply)
                 else:
-                    await ws.send_str(json.dumps(reply, separators=(",", ":"), allow_nan=False))
+                    await ws.send_str(reply)
 
     def report(run: Run) -> None:
         # In the run's thread: its status to this page, from the loop
@@ -336,13 +355,13 @@ async def _socket(request: web.Request) -> web.WebSocketResponse:
                 await _send(ws, reply)
                 continue
             # A newer edit of the same point or parameter replaces the
-            # one still waiting: only the latest is solved.
-            arrived[id(msg)] = time.perf_counter()
-            if queue and _same_target(queue[-1], msg):
-                arrived.pop(id(queue[-1]), None)
-                queue[-1] = msg
+            # one still waiting (and its time of arrival): only the latest
+            # is solved.
+            item = (msg, time.perf_counter())
+            if queue and _same_target(queue[-1][0], msg):
+                queue[-1] = item
             else:
-                queue.append(msg)
+                queue.append(item)
             wake.set()
     finally:
         task.cancel()
@@ -362,7 +381,7 @@ def _finite(v: object) -> bool:
 
 async def _send(ws: web.WebSocketResponse, msg: dict[str, Any]) -> None:
     if not ws.closed:
-        await ws.send_str(json.dumps(msg, separators=(",", ":"), allow_nan=False))
+        await ws.send_str(text(msg))
 
 
 def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,

@@ -30,6 +30,7 @@ import math
 import os
 import tomllib
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -211,7 +212,8 @@ def _peaks(theta: Array, motion: Array) -> dict[str, list[float]]:
     return out
 
 
-def cam_payload(doc: CamDocument) -> dict[str, Any]:
+def cam_payload(doc: CamDocument, encode: Callable[..., Any] = b64
+                ) -> dict[str, Any]:
     """The cam page's data: the segments, and for a valid design SVAJ over
     a turn (θ in rad; s, v = s′, a = s″, j = s‴ in m or rad per rad^k),
     their peaks, the profile (cam frame, m, x and y interleaved), the base
@@ -219,7 +221,8 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
     face) with its peak and the limit (rad, or None), the surface's
     curvature κ = 1/ρ at each θ (1/m, > 0 convex) with its largest and the
     limit 1/min_radius (1/m, or None), and `camlink cam`'s report (as
-    ``--json`` gives it)."""
+    ``--json`` gives it). Each array is given as `encode(array, dtype)`
+    (base64 text by default)."""
     sol = doc.solution
     data: dict[str, Any] = {
         "kind": "cam",
@@ -236,23 +239,23 @@ def cam_payload(doc: CamDocument) -> dict[str, Any]:
     }
     if sol.report is None or sol.design is None:
         return data
-    data["theta"] = b64(sol.theta)
+    data["theta"] = encode(sol.theta)
     for k, name in enumerate(("s", "v", "a", "j")):
-        data[name] = b64(sol.motion[:, k])
+        data[name] = encode(sol.motion[:, k])
     data["peaks"] = _peaks(sol.theta, sol.motion)
     if sol.pressure is not None:
-        data["pressure"] = b64(sol.pressure)
+        data["pressure"] = encode(sol.pressure)
         i = int(np.argmax(np.abs(sol.pressure)))
         data["peaks"]["p"] = [float(sol.pressure[i]), math.degrees(float(sol.theta[i]))]
         data["pressure_limit"] = sol.design.limits.max_pressure_angle
     if sol.curvature is not None:
-        data["curvature"] = b64(sol.curvature)
+        data["curvature"] = encode(sol.curvature)
         i = int(np.argmax(sol.curvature))
         data["peaks"]["k"] = [float(sol.curvature[i]), math.degrees(float(sol.theta[i]))]
         least = sol.design.limits.min_radius
         data["curvature_limit"] = None if least is None else 1.0 / least
-    data["surface"] = b64(sol.surface.ravel())
-    data["pitch"] = None if sol.pitch is None else b64(sol.pitch.ravel())
+    data["surface"] = encode(sol.surface.ravel())
+    data["pitch"] = None if sol.pitch is None else encode(sol.pitch.ravel())
     data["base_radius"] = sol.design.base_radius
     data["report"] = json_safe(sol.report.to_dict())
     return data

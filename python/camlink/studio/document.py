@@ -31,7 +31,6 @@ time at which it assembles again.
 
 from __future__ import annotations
 
-import base64
 import json
 import math
 import os
@@ -56,7 +55,7 @@ from camlink.units import unit_of
 from camlink.viz.front import default_plots
 from camlink.viz.scene import GROUND, Scene
 
-__all__ = ["Document", "Editable", "Handle", "Solution", "solve"]
+__all__ = ["Document", "Editable", "Floats", "Handle", "Solution", "raw", "solve"]
 
 Array = npt.NDArray[np.float64]
 
@@ -69,10 +68,21 @@ DEFAULT_TIMES = np.linspace(0.0, 1.0, 361)
 RESTARTS = 180
 
 
-def b64(a: npt.ArrayLike) -> dict[str, str]:
-    """A float array as little-endian float64 in base64, as the page reads it."""
-    little = np.ascontiguousarray(a, dtype="<f8")
-    return {"f64": base64.b64encode(little.tobytes()).decode("ascii")}
+class Floats:
+    """A float array as its little-endian float64 bytes (`data`), as a
+    binary reply carries it (`camlink.studio.pack`)."""
+
+    __slots__ = ("data",)
+
+    def __init__(self, a: npt.ArrayLike) -> None:
+        self.data = np.ascontiguousarray(a, dtype="<f8").tobytes()
+
+
+def raw(a: npt.ArrayLike, dtype: str = "f64") -> Floats:
+    """`a` for a binary reply (`Floats`); the studio sends float64 only."""
+    if dtype != "f64":
+        raise ValueError(f"the studio sends float64 arrays, not {dtype}")
+    return Floats(a)
 
 
 @dataclass(frozen=True)
@@ -153,12 +163,12 @@ def _points(model: Model) -> list[str]:
     return [str(p) for p in pts]
 
 
-def _kinematics(model: Model, times: Array, points: list[str],
-                start: Array | None = None) -> tuple[list[str], Array, dict[str, str]]:
-    """Names, rows and units of the kinematic run at `times` (assembled from the
-    coordinates `start` when given and finite, else from the placement), up
-    to the first time at which the mechanism does not assemble (no rows when
-    it does not at the first)."""
+def _kinematics(model: Model, times: Array, points: list[str], start: Array | None = None,
+                units: bool = True) -> tuple[list[str], Array, dict[str, str]]:
+    """Names, rows and (with `units`, else none) units of the kinematic run
+    at `times` (assembled from the coordinates `start` when given and
+    finite, else from the placement), up to the first time at which the
+    mechanism does not assemble (no rows when it does not at the first)."""
     if start is not None and not np.all(np.isfinite(start)):
         start = None
     try:
@@ -166,9 +176,8 @@ def _kinematics(model: Model, times: Array, points: list[str],
     except AnalysisError as e:
         res = e.results
     names = list(res.channels)
-    if len(res) == 0:
-        return names, np.empty((0, len(names))), res.units
-    return names, np.column_stack([res[c] for c in names]), res.units
+    rows = res.data[:, 1:] if len(res) else np.empty((0, len(names)))  # without t
+    return names, rows, res.units if units else {}
 
 
 def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Array) -> bool:
@@ -181,7 +190,7 @@ def _same_branch(model: Model, names: list[str], rows: Array, t0: float, q: Arra
         return True
     if len(rows) == 0:
         return False
-    got, mine, _ = _kinematics(model, np.array([t0]), [], q)
+    got, mine, _ = _kinematics(model, np.array([t0]), [], q, units=False)
     if len(mine) == 0:
         return True
     col = {c: i for i, c in enumerate(names)}
@@ -231,7 +240,8 @@ def solve(model: Model, previous: Solution | None = None
             # Past a row that does not assemble: the next time that does.
             found = False
             for j in range(start + 1, n, stride):
-                part_names, part, _ = _kinematics(model, t[j:], points, None if q is None else q[j])
+                part_names, part, _ = _kinematics(model, t[j:], points, None if q is None else q[j],
+                                                  units=False)
                 if len(part) and part_names == names:
                     values[j : j + len(part)] = part
                     ok[j : j + len(part)] = True
@@ -495,12 +505,15 @@ class Document(Editable):
         """The model of the current data, read as the CLI reads the saved
         file. A data that is not a valid model raises the message of its
         text (naming the file's line and field)."""
-        try:
-            # JSON has no infinity: such data is read from its text.
-            text = json.dumps(self._data, separators=(",", ":"), allow_nan=False)
-            fmt = "json"
-        except ValueError:
-            text, fmt = self.text(), self.format
+        # The data's compact JSON, as dumped for undo (`_json`, made with
+        # each change), when it is JSON proper; JSON has no infinity or NaN:
+        # such data is read from its text.
+        text, fmt = self._json, "json"
+        if "NaN" in text or "Infinity" in text:
+            try:
+                text = json.dumps(self._data, separators=(",", ":"), allow_nan=False)
+            except ValueError:
+                text, fmt = self.text(), self.format
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:

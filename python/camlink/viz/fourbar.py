@@ -62,8 +62,8 @@ def find(model: Model, scene: Scene) -> FourBarLoop | None:
     """The model's four-bar loop, or None when it is not one."""
     if len(scene.bodies) != 3 or len(scene.pins) != 4:
         return None
-    driven = {j["bodies"][1] for j in model.joints if j["driver"]} | {
-        j["bodies"][0] for j in model.joints if j["driver"]}
+    drivers = [j for j in model.joints if j["driver"]]
+    driven = {j["bodies"][1] for j in drivers} | {j["bodies"][0] for j in drivers}
     grounded = [p for p in scene.pins if p.grounded and p.body_i != p.body_j]
     moving = [p for p in scene.pins if not p.grounded and p.body_i != p.body_j]
     if len(grounded) != 2 or len(moving) != 2:
@@ -153,15 +153,30 @@ def summary(model: Model) -> dict[str, object] | None:
     }
 
 
-def _quintic(h: float, s: float, y0: float, v0: float, a0: float,
-             y1: float, v1: float, a1: float) -> float:
-    """The quintic through (y, y′, y″) at both ends of a step of `h`, at
-    the fraction `s` of it."""
-    s2, s3 = s * s, s * s * s
-    s4, s5 = s3 * s, s3 * s2
-    return (y0 * (1 - 10 * s3 + 15 * s4 - 6 * s5) + h * v0 * (s - 6 * s3 + 8 * s4 - 3 * s5)
-            + h * h * a0 * (s2 - 3 * s3 + 3 * s4 - s5) / 2 + y1 * (10 * s3 - 15 * s4 + 6 * s5)
-            + h * v1 * (-4 * s3 + 7 * s4 - 3 * s5) + h * h * a1 * (s3 - 2 * s4 + s5) / 2)
+#: The quintic through (y, y′, y″) at both ends of a step of h, as
+#: powers of the step's fraction s: row j holds the coefficients of s⁰…s⁵
+#: of the weight of y₀, h y′₀, h² y″₀, y₁, h y′₁, h² y″₁ in turn.
+_POWERS = np.arange(6.0)
+_HERMITE5 = np.array([
+    [1, 0, 0, -10, 15, -6],
+    [0, 1, 0, -6, 8, -3],
+    [0, 0, 0.5, -1.5, 1.5, -0.5],
+    [0, 0, 0, 10, -15, 6],
+    [0, 0, 0, -4, 7, -3],
+    [0, 0, 0, 0.5, -1, 0.5],
+])
+
+
+def _quintics(h: float, rows: Array, k: int) -> Array:
+    """The coefficients (channels × powers s⁰…s⁵) of each channel's
+    quintic through its (y, y′, y″) at rows k and k + 1 of `rows`, whose
+    columns are each channel's y, then every y′, then every y″ (three
+    blocks of equal width), over a step of `h`."""
+    m = rows.shape[1] // 3
+    y0, v0, a0 = rows[k, :m], rows[k, m:2 * m], rows[k, 2 * m:]
+    y1, v1, a1 = rows[k + 1, :m], rows[k + 1, m:2 * m], rows[k + 1, 2 * m:]
+    weights = np.column_stack([y0, h * v0, h * h * a0, y1, h * v1, h * h * a1])
+    return weights @ _HERMITE5
 
 
 def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
@@ -178,28 +193,26 @@ def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
     if loop is None or len(t) < 2:
         return []
     col = {n: i for i, n in enumerate(names)}
-    need = [f"{b}.{c}" for b in (loop.crank, loop.rocker)
-            for c in ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]
-    if any(n not in col for n in need):
+    if any(f"{b}.{c}" not in col for b in (loop.crank, loop.rocker)
+           for c in ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")):
         return []
-    solved = np.all(np.isfinite(values[:, [col[n] for n in need]]), axis=1)
+    # The crank's and the rocker's (x, y, φ), then their velocities, then
+    # their accelerations.
+    motion = values[:, [col[f"{b}.{c}"] for trio in (("x", "y", "phi"), ("vx", "vy", "omega"),
+                                                     ("ax", "ay", "alpha"))
+                        for b in (loop.crank, loop.rocker) for c in trio]]
+    solved = np.all(np.isfinite(motion), axis=1)
     if ok is not None:
         solved &= np.asarray(ok, dtype=bool)
-    crank = values[:, [col[f"{loop.crank}.{c}"] for c in
-                       ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]]
-    rocker = values[:, [col[f"{loop.rocker}.{c}"] for c in
-                        ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")]]
+    crank, rocker = motion[:, [0, 1, 2]], motion[:, [3, 4, 5]]
     (o2x, o2y), (o4x, o4y) = loop.o2, loop.o4
+    step: dict[int, Array] = {}
 
     def pins(k: int, s: float) -> tuple[float, float, float, float, float]:
         """A, B (global, m) and the crank angle (rad) at row k + s."""
-        h = float(t[k + 1] - t[k])
-        q = []
-        for body in (crank, rocker):
-            q.append([_quintic(h, s, body[k, i], body[k, i + 3], body[k, i + 6],
-                               body[k + 1, i], body[k + 1, i + 3], body[k + 1, i + 6])
-                      for i in range(3)])
-        (cx, cy, cp), (rx, ry, rp) = q
+        if k not in step:
+            step[k] = _quintics(float(t[k + 1] - t[k]), motion, k)
+        cx, cy, cp, rx, ry, rp = (float(v) for v in step[k] @ (s ** _POWERS))
         sa, sb = loop.a_on_crank, loop.b_on_rocker
         ax = cx + math.cos(cp) * sa[0] - math.sin(cp) * sa[1]
         ay = cy + math.sin(cp) * sa[0] + math.cos(cp) * sa[1]

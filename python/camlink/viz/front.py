@@ -9,7 +9,7 @@ Shared by the studio (`camlink.studio`) and the viewer file
 from __future__ import annotations
 
 import base64
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from importlib import resources
 from typing import TYPE_CHECKING, Any
 
@@ -42,18 +42,22 @@ def _flat(points: npt.ArrayLike) -> list[float]:
     return [round(float(v), 12) for v in np.asarray(points, dtype=np.float64).ravel()]
 
 
-def scene_data(model: Model, scene: Scene, size: float) -> dict[str, Any]:
-    """`scene` for the page: every shape in its body's frame (m); guides and
-    faces drawn `size` (m) long at most."""
+def scene_data(model: Model, scene: Scene, size: float,
+               flat: Callable[[Array], Any] | None = None) -> dict[str, Any]:
+    """`scene` for the page: every shape in its body's frame (m), the
+    points of links, outlines and curves (x and y interleaved) as `flat`
+    gives them (a list of numbers by default); guides and faces drawn
+    `size` (m) long at most."""
     half = 0.35 * size
+    flat = flat or _flat
     return {
-        "links": [{"body": lk.body, "points": _flat(lk.points)} for lk in scene.links],
-        "outlines": [{"body": b, "points": _flat(p)} for b, p in scene.outlines.items()],
+        "links": [{"body": lk.body, "points": flat(lk.points)} for lk in scene.links],
+        "outlines": [{"body": b, "points": flat(p)} for b, p in scene.outlines.items()],
         "pins": [{"name": p.joint, "body_i": p.body_i, "s_i": list(p.s_i), "body_j": p.body_j,
                   "s_j": list(p.s_j), "grounded": p.grounded} for p in scene.pins],
         "guides": [{"name": g.joint, "body_i": g.body_i, "s_i": list(g.s_i), "v_i": _unit(g.v_i),
                     "body_j": g.body_j, "s_j": list(g.s_j), "half": half} for g in scene.guides],
-        "curves": [{"name": c.joint, "body": c.body, "points": _flat(c.points), "closed": c.closed,
+        "curves": [{"name": c.joint, "body": c.body, "points": flat(c.points), "closed": c.closed,
                     "role": c.role} for c in scene.curves],
         "gears": [{"body": g.body, "centre": list(g.centre), "radius": g.radius} for g in scene.gears],
         "faces": [{"body": f.body, "s": list(f.s), "u": _unit(f.u), "half": 0.5 * half}
@@ -155,7 +159,12 @@ def extent(scene: Scene, bodies: Sequence[str], poses: dict[str, Array],
            extra: Sequence[Array] = ()) -> tuple[float, float, float, float]:
     """(x0, x1, y0, y1) (m) framing every point of the scene at every row,
     with a margin."""
-    found: list[Array] = [np.asarray(e).reshape(-1, 2) for e in extra]
+    xs: list[Array] = []
+    ys: list[Array] = []
+    for e in extra:
+        pair = np.asarray(e).reshape(-1, 2)
+        xs.append(pair[:, 0])
+        ys.append(pair[:, 1])
     local: dict[str, list[Array]] = {}
     for body, named in scene.points.items():
         if named:
@@ -167,20 +176,22 @@ def extent(scene: Scene, bodies: Sequence[str], poses: dict[str, Array],
         q = poses.get(body) if body != GROUND else np.zeros((1, 3))
         if q is None:
             continue
-        q = q[np.all(np.isfinite(q), axis=1)]
+        q = q[np.isfinite(q[:, 0]) & np.isfinite(q[:, 1]) & np.isfinite(q[:, 2])]
         q = q[:: max(1, len(q) // 90)]
         cq, sq = np.cos(q[:, 2:3]), np.sin(q[:, 2:3])
-        gx = q[:, 0:1] + cq * sl[:, 0] - sq * sl[:, 1]
-        gy = q[:, 1:2] + sq * sl[:, 0] + cq * sl[:, 1]
-        found.append(np.column_stack([gx.ravel(), gy.ravel()]))
-    pts = np.vstack(found) if found else np.zeros((1, 2))
-    pts = pts[np.all(np.isfinite(pts), axis=1)]
-    if not len(pts):
-        pts = np.zeros((1, 2))
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    size = float(np.hypot(*(hi - lo))) or 1.0
+        xs.append((q[:, 0:1] + cq * sl[:, 0] - sq * sl[:, 1]).ravel())
+        ys.append((q[:, 1:2] + sq * sl[:, 0] + cq * sl[:, 1]).ravel())
+    # Each coordinate apart (a reduction along a long axis, not across pairs).
+    x = np.concatenate(xs) if xs else np.zeros(1)
+    y = np.concatenate(ys) if ys else np.zeros(1)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if not ok.any():
+        x, y, ok = np.zeros(1), np.zeros(1), np.ones(1, dtype=bool)
+    x, y = x[ok], y[ok]
+    lo, hi = (float(x.min()), float(y.min())), (float(x.max()), float(y.max()))
+    size = float(np.hypot(hi[0] - lo[0], hi[1] - lo[1])) or 1.0
     pad = 0.12 * size
-    return (float(lo[0] - pad), float(hi[0] + pad), float(lo[1] - pad), float(hi[1] + pad))
+    return (lo[0] - pad, hi[0] + pad, lo[1] - pad, hi[1] + pad)
 
 
 def frame_data(
@@ -197,11 +208,15 @@ def frame_data(
     channels: Sequence[str] | None = None,
     all_names: bool = False,
     units: Mapping[str, str] | None = None,
+    encode: Callable[[Array, str], Any] = b64,
+    flat: Callable[[Array], Any] | None = None,
 ) -> dict[str, Any]:
     """Everything the page draws for a run: `values` (rows × `names`,
     NaN on rows where `ok` is false) over the times `t`; `channels` limits
     the channels sent (default all); with `all_names`, every channel is
-    named and only those sent have values (the others null)."""
+    named and only those sent have values (the others null). Each array
+    is given as `encode(array, dtype)`: base64 text by default (`b64`);
+    the scene's shapes as `flat` gives them (`scene_data`)."""
     bodies = list(scene.bodies)
     index = {n: i for i, n in enumerate(names)}
 
@@ -219,11 +234,11 @@ def frame_data(
     sent = list(names) if channels is None else list(dict.fromkeys([*channels, *chosen]))
     base: dict[str, Any] = {
         "title": model.name,
-        "t": b64(t),
+        "t": encode(t, "f64"),
         "ok": None if ok is None else [int(v) for v in ok],
         "bodies": [GROUND, *bodies],
-        "poses": [b64(poses[b].ravel(), pose_dtype) for b in bodies],
-        "scene": scene_data(model, scene, size),
+        "poses": [encode(poses[b].ravel(), pose_dtype) for b in bodies],
+        "scene": scene_data(model, scene, size, flat),
         "traces": tr,
         "springs": springs(model, scene),
         "forces": forces(scene, names),
@@ -238,8 +253,8 @@ def frame_data(
         have = set(sent)
         return {**base, "channels": {
             "names": list(names), "units": [units.get(c, "") for c in names],
-            "values": [b64(_column(names, values, c), pose_dtype) if c in have else None
+            "values": [encode(_column(names, values, c), pose_dtype) if c in have else None
                        for c in names]}}
     return {**base, "channels": {
         "names": sent, "units": [units.get(c, "") for c in sent],
-        "values": [b64(_column(names, values, c), pose_dtype) for c in sent]}}
+        "values": [encode(_column(names, values, c), pose_dtype) for c in sent]}}

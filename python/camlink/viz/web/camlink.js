@@ -32,13 +32,23 @@
 
   // A binary reply of the studio (camlink.studio.pack): a uint32 n, n
   // bytes of JSON, then float64s; each {buf: [k, m]} in the JSON is the
-  // m values from the k-th float64 (a view, not a copy).
+  // m values from the k-th float64 (a view, not a copy). The references
+  // are replaced after parsing, by a walk over objects and arrays only (a
+  // reviver would be called for every number of the reply).
+  const utf8 = new TextDecoder();
   function unpack(buf) {
     const n = new DataView(buf).getUint32(0, true), base = 4 + n;
-    const text = new TextDecoder().decode(new Uint8Array(buf, 4, n));
-    return JSON.parse(text, function (key, v) {
-      return v !== null && typeof v === "object" && Array.isArray(v.buf) ? new Float64Array(buf, base + 8 * v.buf[0], v.buf[1]) : v;
-    });
+    function walk(v) {
+      if (Array.isArray(v)) {
+        for (let i = 0; i < v.length; i++) { const x = v[i]; if (x !== null && typeof x === "object") v[i] = walk(x); }
+        return v;
+      }
+      const ref = v.buf;
+      if (Array.isArray(ref)) return new Float64Array(buf, base + 8 * ref[0], ref[1]);
+      for (const k in v) { const x = v[k]; if (x !== null && typeof x === "object") v[k] = walk(x); }
+      return v;
+    }
+    return walk(JSON.parse(utf8.decode(new Uint8Array(buf, 4, n))));
   }
 
   // Sets e's text only when it differs: an unchanged text leaves the page's
@@ -192,17 +202,26 @@
       }
       render();
     }
-    // The lines under the stage: the mechanism's, then its marks.
+    // The lines under the stage: the mechanism's, then its marks. The
+    // lines shown are kept and their text set; only a change in their
+    // number adds or removes lines.
     let shownInfo = null;
     function showInfo() {
-      info.textContent = "";
-      for (const line of D.info) info.appendChild(el("div", null, line));
-      for (const m of D.marks) {
-        const a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
-        const line = el("div", "cl-mark", m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
+      const lines = info.children, want = D.info.length + D.marks.length;
+      while (lines.length > want) info.removeChild(info.lastChild);
+      while (lines.length < want) info.appendChild(el("div"));
+      D.info.forEach(function (text, i) {
+        const line = lines[i];
+        if (line.className !== "") line.className = "";
+        delete line.dataset.t; delete line.dataset.crank;
+        setText(line, text);
+      });
+      D.marks.forEach(function (m, i) {
+        const line = lines[D.info.length + i], a = ((m.crank % (2 * Math.PI)) + 2 * Math.PI) % (2 * Math.PI);
+        if (line.className !== "cl-mark") line.className = "cl-mark";
+        setText(line, m.label + " at t = " + m.t.toFixed(5) + " s, crank " + angleText(a));
         line.dataset.t = String(m.t); line.dataset.crank = String(m.crank);
-        info.appendChild(line);
-      }
+      });
     }
 
     // The unreachable times, red on a strip under the slider.
@@ -694,15 +713,23 @@
       const u = D.channels.units[D.index[name]] || "";
       return isAngle(name) && angleUnit === "deg" ? u.replace("rad", "°") : u;
     }
-    function series(name) {
+    // The plotted values of channel `name` (null where not assembled),
+    // written into `out` when it is an array of the right length.
+    function series(name, out) {
       const v = channel(name), k = isAngle(name) && angleUnit === "deg" ? 180 / Math.PI : 1;
-      const out = new Array(D.rows);
+      if (!out || out.length !== D.rows) out = new Array(D.rows);
       if (!v) {
         // Not sent: ask for it (the studio), shown empty until it comes.
         if (api.onNeed) api.onNeed();
         return out.fill(null);
       }
       for (let i = 0; i < D.rows; i++) out[i] = v[i] === v[i] ? v[i] * k : null;
+      return out;
+    }
+    // The times as a plot's x values, in `out` when it has the right length.
+    function times(out) {
+      if (!out || out.length !== D.rows) return Array.from(D.t);
+      for (let i = 0; i < D.rows; i++) out[i] = D.t[i];
       return out;
     }
     function newPlot(name) {
@@ -783,7 +810,8 @@
           make();
           return;
         }
-        p.data = [Array.from(D.t), series(p.name)];
+        // The arrays of the last data, refilled (no new arrays per edit).
+        p.data = [times(p.data[0]), series(p.name, p.data[1])];
         p.u.setData(p.data);
       };
       p.cursor = function () { if (p.u) { p.u.redraw(false, false); if (p.u.cursor.idx === null || p.u.cursor.idx === undefined) showValue(frame); } };
@@ -866,8 +894,9 @@
       setText(document.getElementById("file"), data.file);
       setText(document.getElementById("dirty"), data.dirty ? "● unsaved" : "");
       if (document.title !== data.title + " · camlink studio") document.title = data.title + " · camlink studio";
-      document.getElementById("undo").disabled = !data.undo;
-      document.getElementById("redo").disabled = !data.redo;
+      const undo = document.getElementById("undo"), redo = document.getElementById("redo");
+      if (undo.disabled !== !data.undo) undo.disabled = !data.undo;
+      if (redo.disabled !== !data.redo) redo.disabled = !data.redo;
     };
     document.getElementById("undo").addEventListener("click", function () { api.send({ op: "undo" }); });
     document.getElementById("redo").addEventListener("click", function () { api.send({ op: "redo" }); });

@@ -151,7 +151,7 @@
   });
   function motion(list, seq) {
     const box = document.getElementById("motion"), body = box.querySelector("tbody");
-    box.hidden = list.length === 0;
+    if (box.hidden !== (list.length === 0)) box.hidden = list.length === 0;
     if (seq === applying && applying) {
       for (const id of Object.keys(staged)) delete staged[id];
       applyButton.disabled = true;
@@ -172,6 +172,7 @@
         body.appendChild(tr);
       }
     }
+    if (!list.length) return;
     body.querySelectorAll("input").forEach(function (input) {
       const g = list.find(function (v) { return v.curve === input.dataset.curve && String(v.index) === input.dataset.index; });
       const id = g.curve + "\n" + g.index + "\n" + input.dataset.key;
