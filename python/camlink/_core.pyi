@@ -57,6 +57,7 @@ __all__ = [
     "default_step",
     "did_you_mean",
     "fourbar_class",
+    "fourbar_marks",
     "fourbar_transmission",
     "helical_spring",
     "integration_step",
@@ -312,6 +313,15 @@ def fourbar_class(ground: float, crank: float, coupler: float, rocker: float) ->
 def fourbar_transmission(
     coupler: float, rocker: float, diagonal: npt.NDArray[np.float64]
 ) -> npt.NDArray[np.float64]: ...
+def fourbar_marks(
+    t: npt.NDArray[np.float64],
+    motion: npt.NDArray[np.float64],
+    solved: npt.NDArray[np.bool_],
+    o2: tuple[float, float],
+    o4: tuple[float, float],
+    a_on_crank: tuple[float, float],
+    b_on_rocker: tuple[float, float],
+) -> list[tuple[float, str, float, float, float]]: ...
 
 # One segment: law, span (rad), lift, start and end [s′, s″, s‴] (None where free).
 _CamSegment: TypeAlias = tuple[str, float, float, Sequence[float | None], Sequence[float | None]]

@@ -41,6 +41,7 @@ pub mod ball;
 pub mod cognates;
 pub mod dead_centre;
 pub mod lm;
+pub mod marks;
 pub mod path;
 pub mod precision;
 pub mod properties;

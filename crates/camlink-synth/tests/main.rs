@@ -5,6 +5,7 @@
 mod burmester;
 mod closed_forms;
 mod constructions;
+mod marks;
 mod path_generation;
 mod problem_files;
 mod published;

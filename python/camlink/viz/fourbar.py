@@ -1,5 +1,6 @@
 """Four-bars in a model: found by their joints, described by the Grashof
-class and the transmission angle of camlink-synth's checks (in the core).
+class, the transmission angle and the dead-centre and toggle marks of
+camlink-synth (in the core).
 
 A model is a four-bar when it has three moving bodies joined in a loop
 ground–crank–coupler–rocker–ground by four revolute joints (drivers
@@ -13,7 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import numpy.typing as npt
@@ -153,42 +154,16 @@ def summary(model: Model) -> dict[str, object] | None:
     }
 
 
-#: The quintic through (y, y′, y″) at both ends of a step of h, as
-#: powers of the step's fraction s: row j holds the coefficients of s⁰…s⁵
-#: of the weight of y₀, h y′₀, h² y″₀, y₁, h y′₁, h² y″₁ in turn.
-_POWERS = np.arange(6.0)
-_HERMITE5 = np.array([
-    [1, 0, 0, -10, 15, -6],
-    [0, 1, 0, -6, 8, -3],
-    [0, 0, 0.5, -1.5, 1.5, -0.5],
-    [0, 0, 0, 10, -15, 6],
-    [0, 0, 0, -4, 7, -3],
-    [0, 0, 0, 0.5, -1, 0.5],
-])
-
-
-def _quintics(h: float, rows: Array, k: int) -> Array:
-    """The coefficients (channels × powers s⁰…s⁵) of each channel's
-    quintic through its (y, y′, y″) at rows k and k + 1 of `rows`, whose
-    columns are each channel's y, then every y′, then every y″ (three
-    blocks of equal width), over a step of `h`."""
-    m = rows.shape[1] // 3
-    y0, v0, a0 = rows[k, :m], rows[k, m:2 * m], rows[k, 2 * m:]
-    y1, v1, a1 = rows[k + 1, :m], rows[k + 1, m:2 * m], rows[k + 1, 2 * m:]
-    weights = np.column_stack([y0, h * v0, h * h * a0, y1, h * v1, h * h * a1])
-    return weights @ _HERMITE5
-
-
 def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
           ok: npt.NDArray[np.bool_] | None = None) -> list[dict[str, object]]:
     """The four-bar's dead-centre positions (crank and coupler in line:
     the rocker at a limit of its swing) and toggle positions (coupler and
     rocker in line: μ = 0 or 180°) passed between two solved rows: the
-    time (s), found where the cross product of the two links' vectors
-    changes sign on the quintic through each row's pose, velocity and
-    acceleration; the crank angle then (rad) and the pin that marks it
-    (B for a dead centre, A for a toggle; global, m). Empty when the model
-    is not a four-bar."""
+    time (s), found by camlink-synth where the cross product of the two
+    links' vectors changes sign on the quintic through each row's pose,
+    velocity and acceleration; the crank angle then (rad) and the pin that
+    marks it (B for a dead centre, A for a toggle; global, m). Empty when
+    the model is not a four-bar."""
     loop = find(model, scene)
     if loop is None or len(t) < 2:
         return []
@@ -197,70 +172,14 @@ def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
            for c in ("x", "y", "phi", "vx", "vy", "omega", "ax", "ay", "alpha")):
         return []
     # The crank's and the rocker's (x, y, φ), then their velocities, then
-    # their accelerations.
+    # their accelerations: the rows camlink-synth's marks read.
     motion = values[:, [col[f"{b}.{c}"] for trio in (("x", "y", "phi"), ("vx", "vy", "omega"),
                                                      ("ax", "ay", "alpha"))
                         for b in (loop.crank, loop.rocker) for c in trio]]
-    solved = np.all(np.isfinite(motion), axis=1)
-    if ok is not None:
-        solved &= np.asarray(ok, dtype=bool)
-    crank, rocker = motion[:, [0, 1, 2]], motion[:, [3, 4, 5]]
-    (o2x, o2y), (o4x, o4y) = loop.o2, loop.o4
-    step: dict[int, Array] = {}
-
-    def pins(k: int, s: float) -> tuple[float, float, float, float, float]:
-        """A, B (global, m) and the crank angle (rad) at row k + s."""
-        if k not in step:
-            step[k] = _quintics(float(t[k + 1] - t[k]), motion, k)
-        cx, cy, cp, rx, ry, rp = (float(v) for v in step[k] @ (s ** _POWERS))
-        sa, sb = loop.a_on_crank, loop.b_on_rocker
-        ax = cx + math.cos(cp) * sa[0] - math.sin(cp) * sa[1]
-        ay = cy + math.sin(cp) * sa[0] + math.cos(cp) * sa[1]
-        bx = rx + math.cos(rp) * sb[0] - math.sin(rp) * sb[1]
-        by = ry + math.sin(rp) * sb[0] + math.cos(rp) * sb[1]
-        return ax, ay, bx, by, cp
-
-    # The cross products, of a row's pins (floats) or of every row's (arrays).
-    def dead(p: Any) -> Any:
-        ax, ay, bx, by, _ = p
-        return (ax - o2x) * (by - ay) - (ay - o2y) * (bx - ax)
-
-    def toggle(p: Any) -> Any:
-        ax, ay, bx, by, _ = p
-        return (bx - ax) * (o4y - by) - (by - ay) * (o4x - bx)
-
-    # Both cross products at every row, for the steps where one changes sign.
-    sa, sb = loop.a_on_crank, loop.b_on_rocker
-    cc, sc = np.cos(crank[:, 2]), np.sin(crank[:, 2])
-    cr, sr = np.cos(rocker[:, 2]), np.sin(rocker[:, 2])
-    rows = (crank[:, 0] + cc * sa[0] - sc * sa[1], crank[:, 1] + sc * sa[0] + cc * sa[1],
-            rocker[:, 0] + cr * sb[0] - sr * sb[1], rocker[:, 1] + sr * sb[0] + cr * sb[1],
-            crank[:, 2])
-    out: list[dict[str, object]] = []
-    both = solved[:-1] & solved[1:]
-    for kind, f in (("dead centre", dead), ("toggle", toggle)):
-        g = f(rows)
-        for row in np.flatnonzero(both & (g[:-1] * g[1:] <= 0) & (g[1:] != 0)):
-            k = int(row)
-            f0, f1 = float(g[k]), float(g[k + 1])
-            # Regula falsi (Illinois) on the step's quintic.
-            a, b, fa, fb, side, s = 0.0, 1.0, f0, f1, 0, 0.0
-            for _ in range(80):
-                s = (a * fb - b * fa) / (fb - fa)
-                fs = f(pins(k, s))
-                if fs == 0.0 or b - a < 1e-14:
-                    break
-                if fs * fb > 0:
-                    b, fb = s, fs
-                    fa = fa / 2 if side == -1 else fa
-                    side = -1
-                else:
-                    a, fa = s, fs
-                    fb = fb / 2 if side == 1 else fb
-                    side = 1
-            p = pins(k, s)
-            x, y = (p[2], p[3]) if kind == "dead centre" else (p[0], p[1])
-            out.append({"t": float(t[k] + s * (t[k + 1] - t[k])), "kind": kind, "label": kind,
-                        "crank": float(p[4]), "x": float(x), "y": float(y)})
-    out.sort(key=lambda m: float(m["t"]))  # type: ignore[arg-type]
-    return out
+    solved = np.ones(len(t), dtype=bool) if ok is None else np.asarray(ok, dtype=bool)
+    found = _core.fourbar_marks(np.ascontiguousarray(t, dtype=np.float64),
+                                np.ascontiguousarray(motion, dtype=np.float64),
+                                np.ascontiguousarray(solved), loop.o2, loop.o4,
+                                loop.a_on_crank, loop.b_on_rocker)
+    return [{"t": tm, "kind": kind, "label": kind, "crank": crank, "x": x, "y": y}
+            for tm, kind, crank, x, y in found]

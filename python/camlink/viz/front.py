@@ -235,7 +235,7 @@ def frame_data(
     base: dict[str, Any] = {
         "title": model.name,
         "t": encode(t, "f64"),
-        "ok": None if ok is None else [int(v) for v in ok],
+        "ok": None if ok is None else np.asarray(ok, dtype=np.int64).tolist(),
         "bodies": [GROUND, *bodies],
         "poses": [encode(poses[b].ravel(), pose_dtype) for b in bodies],
         "scene": scene_data(model, scene, size, flat),
