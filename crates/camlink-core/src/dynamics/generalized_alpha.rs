@@ -528,9 +528,13 @@ struct Follow {
 pub struct Dense {
     /// Time (s).
     pub t: f64,
+    /// Positions q (m or rad), in the layout of the integrator's assembly.
     pub q: Vec<f64>,
+    /// Velocities q̇ (m/s or rad/s).
     pub qd: Vec<f64>,
+    /// Accelerations q̈ (m/s² or rad/s²).
     pub qdd: Vec<f64>,
+    /// Multipliers λ, one per equation of Φ.
     pub lambda: Vec<f64>,
     aug: Augmented,
     rhs: Vec<f64>,
