@@ -31,7 +31,7 @@ import math
 import numbers
 import os
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any, TypeAlias
 
 from camlink import _core
@@ -89,11 +89,17 @@ class Mechanism:
         name: str,
         gravity: Vec2 | None = None,
         *,
+        units: Mapping[str, str] | None = None,
         base_dir: str | os.PathLike[str] | None = None,
     ) -> None:
-        """`base_dir`: the folder data files (a spline's ``file``) resolve
-        against, and must lie in; default: the current folder."""
-        self._model: dict[str, Any] = _fields(name=name, gravity=gravity)
+        """`gravity` (m/s², in the model's length unit per s²): the
+        ``[model]`` table's; `units`: the units the model's values are
+        written in, as the ``[model]`` table's ``units``, e.g.
+        ``{"length": "mm", "angle": "deg"}`` (default metres and radians;
+        docs/units.md); `base_dir`: the folder data files (a spline's
+        ``file``) resolve against, and must lie in; default: the current
+        folder."""
+        self._model: dict[str, Any] = _fields(name=name, gravity=gravity, units=units)
         self._base_dir = base_dir
         self._curves: list[dict[str, Any]] = []
         self._parameters: dict[str, Any] = {}
@@ -238,10 +244,24 @@ class Mechanism:
         point_i: PointRef | None,
         body_j: str,
         point_j: PointRef | None,
+        *,
+        limits: Mapping[str, Num] | None = None,
+        friction: Mapping[str, Num] | None = None,
     ) -> str:
-        """Point `point_i` of `body_i` coincides with `point_j` of `body_j`."""
+        """Point `point_i` of `body_i` coincides with `point_j` of `body_j`.
+        `limits`: end stops on the angle of body j relative to body i, e.g.
+        ``{"lower": "-pi/4", "upper": "pi/2", "restitution": 0.6}`` (rad);
+        `friction`: Coulomb friction in the pin, e.g. ``{"mu": 0.1,
+        "radius": 0.01}`` (radius in m); the fields of model-files.md."""
         return self.joint(
-            name, "revolute", body_i=body_i, point_i=point_i, body_j=body_j, point_j=point_j
+            name,
+            "revolute",
+            body_i=body_i,
+            point_i=point_i,
+            body_j=body_j,
+            point_j=point_j,
+            limits=limits,
+            friction=friction,
         )
 
     def translational(
@@ -253,9 +273,16 @@ class Mechanism:
         point_j: PointRef | None,
         axis: Vec2,
         angle: Num | None = None,
+        *,
+        limits: Mapping[str, Num] | None = None,
+        friction: Mapping[str, Num] | None = None,
     ) -> str:
         """`point_j` slides on the line through `point_i` along `axis` (body i
-        frame); the relative angle stays `angle` (default: its initial value)."""
+        frame); the relative angle stays `angle` (default: its initial value).
+        `limits`: end stops on the stroke along the axis, e.g. ``{"lower":
+        -0.1, "upper": 0.1, "restitution": 0.5}`` (m); `friction`: Coulomb
+        friction on the guide, e.g. ``{"mu": 0.3}``; the fields of
+        model-files.md."""
         return self.joint(
             name,
             "translational",
@@ -265,6 +292,8 @@ class Mechanism:
             body_j=body_j,
             point_j=point_j,
             angle=angle,
+            limits=limits,
+            friction=friction,
         )
 
     def revolute_revolute(
