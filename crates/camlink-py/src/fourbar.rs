@@ -46,7 +46,7 @@ fn fourbar_transmission<'py>(
 /// rocker's x, y, φ, then their rates, then their accelerations), `solved`
 /// (one flag a row), the ground pivots `o2`, `o4` (global, m), A on the
 /// crank and B on the rocker (their frames, m). Each mark as (t (s), kind,
-/// crank angle (rad), x, y (m)), in time order.
+/// crank body's angle φ (rad), x, y (m)), in time order.
 #[pyfunction]
 #[allow(clippy::too_many_arguments, clippy::type_complexity)]
 fn fourbar_marks(

@@ -58,9 +58,9 @@ impl MarkKind {
     }
 }
 
-/// A position passed: its time t (s), kind, the crank's angle then (rad)
-/// and the pin that marks it (B at a dead centre, A at a toggle; global,
-/// m).
+/// A position passed: its time t (s), kind, the crank body's angle φ then
+/// (rad) and the pin that marks it (B at a dead centre, A at a toggle;
+/// global, m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Mark {
     pub t: f64,
@@ -130,10 +130,11 @@ impl Step {
 }
 
 /// The dead-centre and toggle positions passed between consecutive rows
-/// that are both solved, in time order. `t` holds the rows' times (s),
-/// `motion` each row's [`ROW`] values, row after row, and `solved` whether
-/// each row was solved (a row with a value that is not finite counts as
-/// not solved).
+/// that are both solved, or on a solved row where the sign changes across
+/// it (or at either end of the solved rows), in time order. `t` holds the
+/// rows' times (s), `motion` each row's [`ROW`] values, row after row, and
+/// `solved` whether each row was solved (a row whose time or values are
+/// not finite counts as not solved).
 ///
 /// # Panics
 /// When `motion` does not hold [`ROW`] values for each time, or `solved`
@@ -144,7 +145,7 @@ pub fn marks(pins: &LoopPins, t: &[f64], motion: &[f64], solved: &[bool]) -> Vec
     assert_eq!(solved.len(), rows, "one solved flag a row");
     let row = |k: usize| &motion[k * ROW..(k + 1) * ROW];
     let ok: Vec<bool> = (0..rows)
-        .map(|k| solved[k] && row(k).iter().all(|v| v.is_finite()))
+        .map(|k| solved[k] && t[k].is_finite() && row(k).iter().all(|v| v.is_finite()))
         .collect();
     let mut out = Vec::new();
     for kind in [MarkKind::DeadCentre, MarkKind::Toggle] {
@@ -154,35 +155,66 @@ pub fn marks(pins: &LoopPins, t: &[f64], motion: &[f64], solved: &[bool]) -> Vec
                 kind.cross(pins, a, b)
             })
             .collect();
-        for k in 0..rows.saturating_sub(1) {
-            let (f0, f1) = (g[k], g[k + 1]);
-            if !(ok[k] && ok[k + 1] && f0 * f1 <= 0.0 && f1 != 0.0) {
-                continue;
-            }
-            let step = Step::new(t[k + 1] - t[k], row(k), row(k + 1));
-            let f = |s: f64| {
-                let (a, b, _) = pins_at(pins, &step.pose(s));
-                kind.cross(pins, a, b)
+        let mark = |k: usize, s: f64, pose: &[f64]| {
+            let (a, b, crank) = pins_at(pins, pose);
+            let t = if s == 0.0 {
+                t[k]
+            } else {
+                t[k] + s * (t[k + 1] - t[k])
             };
-            let s = illinois(f, f0, f1);
-            let (a, b, crank) = pins_at(pins, &step.pose(s));
-            out.push(Mark {
-                t: t[k] + s * (t[k + 1] - t[k]),
+            Mark {
+                t,
                 kind,
                 crank,
                 at: match kind {
                     MarkKind::DeadCentre => b,
                     MarkKind::Toggle => a,
                 },
-            });
+            }
+        };
+        for k in 0..rows {
+            if !ok[k] {
+                continue;
+            }
+            // Within the step to the next row: the signs differ.
+            if k + 1 < rows && ok[k + 1] && opposite(g[k], g[k + 1]) {
+                let step = Step::new(t[k + 1] - t[k], row(k), row(k + 1));
+                let f = |s: f64| {
+                    let (a, b, _) = pins_at(pins, &step.pose(s));
+                    kind.cross(pins, a, b)
+                };
+                let s = illinois(f, g[k], g[k + 1]);
+                out.push(mark(k, s, &step.pose(s)));
+            }
+            // On the row itself: a sign change across it, or a zero at
+            // either end of the solved rows; not where the links only come
+            // into line and go back.
+            if g[k] == 0.0 {
+                let before = (k > 0 && ok[k - 1]).then(|| g[k - 1]);
+                let after = (k + 1 < rows && ok[k + 1]).then(|| g[k + 1]);
+                let passed = match (before, after) {
+                    (Some(b), Some(a)) => opposite(b, a),
+                    (Some(x), None) | (None, Some(x)) => x != 0.0,
+                    (None, None) => false,
+                };
+                if passed {
+                    out.push(mark(k, 0.0, &row(k)[..6]));
+                }
+            }
         }
     }
     out.sort_by(|x, y| x.t.total_cmp(&y.t));
     out
 }
 
-/// A root in [0, 1] of `f`, whose values at the ends `fa` and `fb` differ
-/// in sign (or one is 0), by regula falsi with the Illinois halving.
+/// True when `a` and `b` are of strictly opposite signs (compared, not
+/// multiplied: a product of two small values can underflow to 0).
+fn opposite(a: f64, b: f64) -> bool {
+    (a < 0.0 && b > 0.0) || (a > 0.0 && b < 0.0)
+}
+
+/// A root in [0, 1] of `f`, whose values at the ends `fa` and `fb` are of
+/// opposite signs, by regula falsi with the Illinois halving.
 fn illinois(f: impl Fn(f64) -> f64, fa: f64, fb: f64) -> f64 {
     let (mut a, mut b, mut fa, mut fb) = (0.0, 1.0, fa, fb);
     // Which end moved last: -1 the right, 1 the left.
@@ -194,7 +226,7 @@ fn illinois(f: impl Fn(f64) -> f64, fa: f64, fb: f64) -> f64 {
         if fs == 0.0 || b - a < BRACKET {
             break;
         }
-        if fs * fb > 0.0 {
+        if (fs > 0.0) == (fb > 0.0) {
             (b, fb) = (s, fs);
             if side == -1 {
                 fa /= 2.0;
@@ -232,9 +264,15 @@ mod tests {
             assert!((p0[ch] - r0[ch]).abs() < 1e-15);
             assert!((p1[ch] - r1[ch]).abs() < 1e-13);
             // The rate at the ends: d/dt = (1/h) d/ds.
-            let ds = 1e-6;
-            let v0 = (step.pose(ds)[ch] - step.pose(-ds)[ch]) / (2.0 * ds * h);
-            assert!((v0 - r0[6 + ch]).abs() < 1e-7, "{ch}: {v0}");
+            let ds = 1e-4;
+            let y = |s: f64| step.pose(s)[ch];
+            for (s, r) in [(0.0, &r0), (1.0, &r1)] {
+                // d/dt = (1/h) d/ds, d²/dt² = (1/h²) d²/ds².
+                let v = (y(s + ds) - y(s - ds)) / (2.0 * ds * h);
+                let a = (y(s + ds) - 2.0 * y(s) + y(s - ds)) / (ds * ds * h * h);
+                assert!((v - r[6 + ch]).abs() < 1e-6, "{ch} at {s}: {v}");
+                assert!((a - r[12 + ch]).abs() < 1e-4, "{ch} at {s}: {a}");
+            }
         }
     }
 }

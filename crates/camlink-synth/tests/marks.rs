@@ -2,7 +2,7 @@
 //! form: the crank and the coupler in line at |O₂B| = a + b and b − a.
 
 use camlink_synth::fourbar::FourBar;
-use camlink_synth::marks::{marks, LoopPins, MarkKind, ROW};
+use camlink_synth::marks::{marks, LoopPins, Mark, MarkKind, ROW};
 use std::f64::consts::{PI, TAU};
 
 /// The studio example's crank-rocker (m): d = 0.4, a = 0.12, b = 0.38,
@@ -163,4 +163,71 @@ fn rows_not_solved_hide_the_marks_between_them() {
     solved[after(all[0].t)] = false;
     rows[after(all[1].t) * ROW + 4] = f64::NAN;
     assert!(marks(&pins, &t, &rows, &solved).is_empty());
+}
+
+/// Rows of a crank turning at 1 rad/s through the angles `phi` (rad), A
+/// at (a, 0) on it, and a "rocker" body held at (L, 0) with B at its
+/// origin: the dead-centre cross product is −a L sin φ, exactly 0 at
+/// φ = 0 (and the toggle's, with O₄ at (2L, 0), a sin φ).
+fn dead(found: Vec<Mark>) -> Vec<Mark> {
+    found
+        .into_iter()
+        .filter(|m| m.kind == MarkKind::DeadCentre)
+        .collect()
+}
+
+fn straight(phi: &[f64], rate: &[f64]) -> (LoopPins, Vec<f64>, Vec<f64>) {
+    let pins = LoopPins {
+        o2: [0.0, 0.0],
+        o4: [2.0, 0.0],
+        a_on_crank: [0.2, 0.0],
+        b_on_rocker: [0.0, 0.0],
+    };
+    let t: Vec<f64> = (0..phi.len()).map(|k| k as f64).collect();
+    let mut rows = Vec::new();
+    for (&p, &w) in phi.iter().zip(rate) {
+        rows.extend([0.0, 0.0, p, 1.0, 0.0, 0.0]);
+        rows.extend([0.0, 0.0, w, 0.0, 0.0, 0.0]);
+        rows.extend([0.0; 6]);
+    }
+    (pins, t, rows)
+}
+
+#[test]
+fn a_zero_on_a_row_is_one_mark_where_the_sign_changes_across_it() {
+    let d = 0.1;
+    // Through φ = 0 at the middle row: one mark, at that row's time.
+    let (pins, t, rows) = straight(&[-2.0 * d, -d, 0.0, d, 2.0 * d], &[d; 5]);
+    let found = dead(marks(&pins, &t, &rows, &[true; 5]));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!((found[0].t, found[0].crank), (2.0, 0.0));
+    assert_eq!(found[0].at, [1.0, 0.0]);
+    // Reaching φ = 0 at the last row: a mark there.
+    let (pins, t, rows) = straight(&[-2.0 * d, -d, 0.0], &[d; 3]);
+    let found = dead(marks(&pins, &t, &rows, &[true; 3]));
+    assert_eq!(found.len(), 1, "{found:?}");
+    assert_eq!(found[0].t, 2.0);
+    // Down to φ = 0 and back: the links come into line and part the way
+    // they came; no mark.
+    let (pins, t, rows) = straight(&[2.0 * d, d, 0.0, d, 2.0 * d], &[-d, -d, 0.0, d, d]);
+    assert!(marks(&pins, &t, &rows, &[true; 5]).is_empty());
+}
+
+#[test]
+fn tiny_cross_products_of_one_sign_are_no_mark() {
+    // Both products of the same sign and so small that their product
+    // underflows to 0.
+    let (pins, t, mut rows) = straight(&[1e-170, 2e-170], &[0.0; 2]);
+    rows[3] = 1e-150;
+    rows[ROW + 3] = 1e-150;
+    assert!(marks(&pins, &t, &rows, &[true; 2]).is_empty());
+}
+
+#[test]
+fn a_row_at_a_time_that_is_not_finite_is_not_solved() {
+    let d = 0.1;
+    let (pins, mut t, rows) = straight(&[-d, d], &[2.0 * d; 2]);
+    assert_eq!(dead(marks(&pins, &t, &rows, &[true; 2])).len(), 1);
+    t[1] = f64::NAN;
+    assert!(marks(&pins, &t, &rows, &[true; 2]).is_empty());
 }

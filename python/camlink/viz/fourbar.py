@@ -161,7 +161,7 @@ def marks(model: Model, scene: Scene, t: Array, names: list[str], values: Array,
     rocker in line: μ = 0 or 180°) passed between two solved rows: the
     time (s), found by camlink-synth where the cross product of the two
     links' vectors changes sign on the quintic through each row's pose,
-    velocity and acceleration; the crank angle then (rad) and the pin that
+    velocity and acceleration; the crank body's angle φ then (rad) and the pin that
     marks it (B for a dead centre, A for a toggle; global, m). Empty when
     the model is not a four-bar."""
     loop = find(model, scene)
