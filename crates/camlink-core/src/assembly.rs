@@ -157,7 +157,7 @@ impl Assembly {
 
     /// Rows of joint `j`'s equations.
     #[inline]
-    pub(crate) fn rows_of(&self, _model: &Model, j: usize) -> std::ops::Range<usize> {
+    pub(crate) fn rows_of(&self, j: usize) -> std::ops::Range<usize> {
         self.row[j]..self.row[j] + self.row_count[j]
     }
 
@@ -273,7 +273,7 @@ impl Assembly {
         for (j, joint) in model.joints.iter().enumerate() {
             self.set_positions(j, q, t, &mut x);
             joint.constraint.phi(&x, &mut rows);
-            let rows_j = self.rows_of(model, j);
+            let rows_j = self.rows_of(j);
             out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
@@ -317,7 +317,7 @@ impl Assembly {
             self.set_positions(j, q, t, &mut x);
             if let Some(out) = phi.as_deref_mut() {
                 c.phi_and_jacobian(&x, &mut rows, &mut jac);
-                let rows_j = self.rows_of(model, j);
+                let rows_j = self.rows_of(j);
                 out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
             } else {
                 c.jacobian(&x, &mut jac);
@@ -380,7 +380,7 @@ impl Assembly {
             }
             if let Some(out) = nu.as_deref_mut() {
                 c.nu(x, &mut rows);
-                let rows_j = self.rows_of(model, j);
+                let rows_j = self.rows_of(j);
                 out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
             }
         }
@@ -407,7 +407,7 @@ impl Assembly {
         for (j, (joint, x)) in model.joints.iter().zip(locals.iter_mut()).enumerate() {
             self.rates_into(j, qd, &mut x.qd, &mut x.own_d);
             joint.constraint.gamma(x, &mut rows);
-            let rows_j = self.rows_of(model, j);
+            let rows_j = self.rows_of(j);
             out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
@@ -419,7 +419,7 @@ impl Assembly {
         for (j, joint) in model.joints.iter().enumerate() {
             self.set_positions(j, q, t, &mut x);
             joint.constraint.nu(&x, &mut rows);
-            let rows_j = self.rows_of(model, j);
+            let rows_j = self.rows_of(j);
             out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
@@ -439,7 +439,7 @@ impl Assembly {
             let mut x = self.local(model, j, q, qd, t);
             self.rates_into(j, qdd, &mut x.qdd, &mut x.own_dd);
             joint.constraint.eta(&x, &mut rows);
-            let rows_j = self.rows_of(model, j);
+            let rows_j = self.rows_of(j);
             out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }
@@ -450,7 +450,7 @@ impl Assembly {
         for (j, joint) in model.joints.iter().enumerate() {
             let x = self.local(model, j, q, qd, t);
             joint.constraint.gamma(&x, &mut rows);
-            let rows_j = self.rows_of(model, j);
+            let rows_j = self.rows_of(j);
             out[rows_j.clone()].copy_from_slice(&rows[..rows_j.len()]);
         }
     }

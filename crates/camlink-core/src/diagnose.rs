@@ -318,7 +318,7 @@ pub(crate) fn weakest_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64) -
     let u = svd.U();
     let share: Vec<f64> = (0..model.joints.len())
         .map(|jt| {
-            asm.rows_of(model, jt)
+            asm.rows_of(jt)
                 .map(|r| u[(r, k)] * u[(r, k)])
                 .sum::<f64>()
                 .sqrt()
@@ -458,10 +458,7 @@ fn open_joints(model: &Model, asm: &Assembly, q: &[f64], t: f64, tol: f64) -> Ve
     asm.phi(model, q, t, &mut phi);
     let mut out: Vec<(String, f64)> = (0..model.joints.len())
         .filter_map(|j| {
-            let worst = asm
-                .rows_of(model, j)
-                .map(|r| phi[r].abs())
-                .fold(0.0, f64::max);
+            let worst = asm.rows_of(j).map(|r| phi[r].abs()).fold(0.0, f64::max);
             (worst > tol).then(|| (model.joints[j].name.clone(), worst))
         })
         .collect();

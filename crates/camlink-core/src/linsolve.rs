@@ -244,14 +244,18 @@ impl SmallLu {
             self.gathered = self.program.gather(&self.factors, &mut self.nonzeros);
         }
         let (lower, len) = self.gathered;
-        crate::lu_program::solve_gathered(
-            &self.nonzeros[..len],
-            lower,
-            self.program.perm(),
-            &self.inv_diag,
-            b,
-            work,
-        );
+        // SAFETY: `nonzeros` were gathered by this `program`, whose rows
+        // and columns are below its n, the length of its permutation.
+        unsafe {
+            crate::lu_program::solve_gathered(
+                &self.nonzeros[..len],
+                lower,
+                self.program.perm(),
+                &self.inv_diag,
+                b,
+                work,
+            );
+        }
     }
 
     /// The matrix as a faer matrix (for diagnostics).

@@ -346,7 +346,13 @@ impl Elimination {
 /// The solve of [`Elimination::solve`] over gathered nonzeros
 /// ([`Elimination::gather`]: L's entries up to `lower`, then the scaled
 /// upper ones) with the row order `perm`.
-pub(crate) fn solve_gathered(
+///
+/// # Safety
+/// Every row and column in `nonzeros` is below `perm.len()`: they are
+/// gathered by [`Elimination::gather`] of the elimination whose
+/// [`Elimination::perm`] is `perm`. The triangular solves index `b` and
+/// `work` with them unchecked.
+pub(crate) unsafe fn solve_gathered(
     nonzeros: &[(Ix, Ix, f64)],
     lower: usize,
     perm: &[usize],
@@ -383,7 +389,9 @@ fn sub_product(v: &mut [f64], i: Ix, j: Ix, a: f64) {
     debug_assert!(i < v.len() && j < v.len());
     // SAFETY: the solves pass vectors of n values, and every row and
     // column in `at` is below n: `record` makes them from 0..n only, and
-    // an elimination keeps its n for life.
+    // an elimination keeps its n for life; `gather` takes its entries from
+    // `at`, and `solve_gathered`'s caller passes them with that
+    // elimination's permutation of n.
     unsafe {
         let x = *v.get_unchecked(j);
         *v.get_unchecked_mut(i) -= a * x;

@@ -443,13 +443,13 @@ pub(crate) fn worst_joints(
 ) -> (Vec<String>, f64) {
     let mut worst: Vec<(f64, usize)> = Vec::new();
     for j in 0..model.joints.len() {
-        let r = asm
-            .rows_of(model, j)
-            .map(|k| phi[k].abs())
-            .fold(
-                0.0,
-                |a: f64, b| if b.is_nan() { f64::INFINITY } else { a.max(b) },
-            );
+        let r = asm.rows_of(j).map(|k| phi[k].abs()).fold(0.0, |a: f64, b| {
+            if b.is_nan() {
+                f64::INFINITY
+            } else {
+                a.max(b)
+            }
+        });
         if r > tol {
             worst.push((r, j));
         }

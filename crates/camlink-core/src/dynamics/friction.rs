@@ -105,7 +105,7 @@ impl JointFrictions {
         let j = self.items[k].0;
         let x = asm.local(model, j, q, qd, t);
         let c = &model.joints[j].constraint;
-        let normal = normal_force(c, &x, &lambda[asm.rows_of(model, j)]);
+        let normal = normal_force(c, &x, &lambda[asm.rows_of(j)]);
         (self.load_at(model, k, &x, normal), x)
     }
 

@@ -890,9 +890,12 @@ impl<'m> Integrator<'m> {
         error_at(&self.sys, self.state.t, &self.state.q, kind, what)
     }
 
-    /// Advances one step of size `h`; the state is unchanged on failure.
-    /// The ways of taking it are tried in the order of the retry policy
-    /// ([`retry`]), each from the state at the start of the step.
+    /// Advances one step of size `h`. The ways of taking it are tried in
+    /// the order of the retry policy ([`retry`]), each from the state at
+    /// the start of the step; when none converges the state is back there
+    /// and the error says so. An error raised within an attempt (a Newton
+    /// matrix that cannot be factored, a force that cannot be evaluated)
+    /// stops at that attempt's state.
     pub fn step(&mut self, h: f64) -> Result<(), AnalysisError> {
         // At a singular position (S_ε factored last) the multipliers of the
         // lost direction are not determined, and the ones carried over can

@@ -90,7 +90,7 @@ pub fn solve(
     let mut rhs = vec![0.0; n + m];
     s.add_mass_times(q, qd, &mut rhs[..n]);
     s.asm.nu(s.model, q, t, &mut rhs[n..]);
-    let r0 = n + s.asm.rows_of(s.model, j).start;
+    let r0 = n + s.asm.rows_of(j).start;
     let target = e * approach_rate;
     for &(r, w) in rows {
         rhs[r0 + r] += target * w;

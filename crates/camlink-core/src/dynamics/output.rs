@@ -193,7 +193,7 @@ pub fn fill_forces(
             *a += b;
         }
         if joint.driver {
-            let r = asm.rows_of(model, j).start;
+            let r = asm.rows_of(j).start;
             let (e, p) = effort(model, j, lambda[r], w.drift.nu[r], t);
             out[k] = e;
             out[k + 1] = p;

@@ -60,7 +60,7 @@ pub fn reactions(
     let x = asm.local(model, j, q, &[], t);
     let mut jac = Jac::default();
     c.jacobian(&x, &mut jac);
-    let lam = &lambda[asm.rows_of(model, j)];
+    let lam = &lambda[asm.rows_of(j)];
     let pts = c.joint_points(&x);
     let mut out = [Reaction::default(); 2];
     for (b, o) in out.iter_mut().enumerate() {

@@ -677,7 +677,7 @@ impl Augmented {
     /// analytic Jacobian.
     fn curvature(&mut self, s: &System, j: usize, q: &[f64], lambda: &[f64], t: f64, w: f64) {
         let c = &s.model.joints[j].constraint;
-        let rows = s.asm.rows_of(s.model, j);
+        let rows = s.asm.rows_of(j);
         let lam = &lambda[rows];
         let x0 = s.asm.local(s.model, j, q, &[], t);
         let (local, slots) = &self.joint_slots[j];

@@ -135,7 +135,7 @@ struct Layout {
 
 impl Layout {
     fn new(full: &System, sub: &System, removed: &[usize]) -> Self {
-        let (fm, sm) = (full.model, sub.model);
+        let fm = full.model;
         let mut cols = vec![None; full.n()];
         let mut rows = vec![None; full.m()];
         for b in 0..fm.bodies.len() {
@@ -154,7 +154,7 @@ impl Layout {
             for o in 0..fm.joints[j].constraint.own_count() {
                 cols[a + o] = Some(c + o);
             }
-            for (r, s) in full.asm.rows_of(fm, j).zip(sub.asm.rows_of(sm, k)) {
+            for (r, s) in full.asm.rows_of(j).zip(sub.asm.rows_of(k)) {
                 rows[r] = Some(s);
             }
             k += 1;
@@ -482,7 +482,7 @@ impl<'a> Run<'a> {
         if c.open {
             return c.gap.map_or(f64::INFINITY, |g| g.gap);
         }
-        let rows = self.full.asm.rows_of(self.full.model, c.joint);
+        let rows = self.full.asm.rows_of(c.joint);
         let f = match &c.features {
             Watched::Stop(s) => return s.push(self.lam_watch[rows.start]),
             Watched::Curves(f) => f,
@@ -1022,7 +1022,7 @@ impl Row<'_, '_> {
                 values[nd + 2 * k + 1] = if g.gap < 0.0 { 1.0 } else { 0.0 };
             } else if let (Some(s), Some(at)) = (c.stop(), f.normal_at[k]) {
                 // A rigid stop: −σλ while closed.
-                let row = self.full.asm.rows_of(f.model, c.joint).start;
+                let row = self.full.asm.rows_of(c.joint).start;
                 values[at] = if open {
                     0.0
                 } else {
