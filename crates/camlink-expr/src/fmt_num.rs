@@ -38,7 +38,9 @@ fn shortest_digits(v: f64) -> usize {
 }
 
 /// `v` with at most `digits` significant digits, as [`num`] writes it
-/// with [`DIGITS`].
+/// with [`DIGITS`]: in fixed notation from 1e-4 up to 10^`digits` (at most
+/// 1e6), with an exponent outside (`num_digits(12345.6, 4)` is
+/// `1.235e+4`).
 pub fn num_digits(v: f64, digits: usize) -> String {
     if !v.is_finite() {
         return if v.is_nan() {
@@ -53,7 +55,9 @@ pub fn num_digits(v: f64, digits: usize) -> String {
         return "0".into();
     }
     let a = v.abs();
-    if (1e-4..1e6).contains(&a) {
+    // Fixed notation below 10^digits: no more digits than asked for.
+    let fixed_below = 10f64.powi(digits.min(DIGITS) as i32);
+    if (1e-4..fixed_below).contains(&a) {
         // Fixed notation: enough decimals for DIGITS significant digits.
         let mag = a.log10().floor() as i32;
         let decimals = (digits as i32 - 1 - mag).max(0) as usize;
@@ -64,7 +68,7 @@ pub fn num_digits(v: f64, digits: usize) -> String {
             s
         };
         // Rounding can carry into a new digit (999999.5 → 1000000).
-        if s.parse::<f64>().is_ok_and(|r| r.abs() < 1e6) {
+        if s.parse::<f64>().is_ok_and(|r| r.abs() < fixed_below) {
             return s;
         }
     }
@@ -111,6 +115,18 @@ mod tests {
         assert_eq!(num(0.00012345678), "0.000123457");
         assert_eq!(count(1e300), "1e+300");
         assert_eq!(count(12.0), "12");
+    }
+
+    #[test]
+    fn fewer_digits_never_show_more() {
+        assert_eq!(num_digits(12345.6, 4), "1.235e+4");
+        assert_eq!(num_digits(1234.56, 4), "1235");
+        assert_eq!(num_digits(9999.7, 4), "1e+4");
+        assert_eq!(num_digits(0.0123456, 3), "0.0123");
+        assert_eq!(num_digits(123.456, 3), "123");
+        // Six digits and more: as num.
+        assert_eq!(num_digits(123456.7, 6), "123457");
+        assert_eq!(num_digits(1234567.0, 7), "1.234567e+6");
     }
 
     /// Issue 27: times such as 1e-300 s and 1.0000000000000001e-7 s are
