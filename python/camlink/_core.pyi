@@ -20,8 +20,11 @@ from camlink.records import (
 from camlink.results import Results
 
 __version__: str
+#: Steps of the cam design report's round trip through the kinematics.
+CAM_ROUND_TRIP_STEPS: int
 
 __all__ = [
+    "CAM_ROUND_TRIP_STEPS",
     "AnalysisError",
     "CamCore",
     "MachineCycle",

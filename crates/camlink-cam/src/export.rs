@@ -10,7 +10,7 @@ use std::f64::consts::TAU;
 
 use camlink_core::cam::Cam;
 use camlink_core::cam_limits;
-use camlink_core::fmt_num::num;
+use camlink_core::fmt_num::{self, num};
 
 use crate::limits::{MAX_CSV_ROWS, MIN_RELATIVE_TOLERANCE};
 
@@ -30,14 +30,17 @@ pub fn angles_by_step(step: f64) -> Result<Vec<f64>, String> {
     if !(step > 0.0 && step.is_finite()) {
         return Err(format!("the step must be positive, got {} rad", num(step)));
     }
-    let n = ((TAU / step - 1e-9).ceil() as usize).max(3);
-    if n > MAX_CSV_ROWS {
+    // Counted as a float: a tiny step's count does not fit a usize.
+    let rows = (TAU / step - 1e-9).ceil().max(3.0);
+    if rows > MAX_CSV_ROWS as f64 {
         return Err(format!(
-            "a step of {}° makes {n} rows; at most {MAX_CSV_ROWS} (a step of at least {}°)",
+            "a step of {}° makes {} rows; at most {MAX_CSV_ROWS} (a step of at least {}°)",
             num(step.to_degrees()),
+            fmt_num::count(rows),
             num(360.0 / MAX_CSV_ROWS as f64)
         ));
     }
+    let n = rows as usize;
     let h = TAU / n as f64;
     Ok((0..n).map(|k| k as f64 * h).collect())
 }
@@ -178,8 +181,8 @@ pub fn circle(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> Option<([f64; 2], f64)> 
     Some((centre, distance(a, centre)))
 }
 
-/// a · b, as a₁ b₁ + (a₀ b₀) with one rounding of the sum (as NumPy's
-/// `dot` computes it, so that exports keep their figures).
+/// a · b, as a₁ b₁ + (a₀ b₀), the sum rounded once (a fused
+/// multiply-add): the order the exports' recorded figures are made in.
 fn dot(a: [f64; 2], b: [f64; 2]) -> f64 {
     a[1].mul_add(b[1], a[0] * b[0])
 }
@@ -262,9 +265,23 @@ pub fn fit_run(run: &[[f64; 2]], tolerance: f64) -> Option<Arc> {
 /// `tolerance` − `slack` (m) of its line or arc (run lengths found by
 /// doubling, then bisection). A curve that leaves each edge of the polygon
 /// by at most `slack` stays within `tolerance` of the pieces. Neighbouring
-/// pieces share their end points. An error names the first point that
-/// is not finite (no piece fits it).
+/// pieces share their end points. An error when `tolerance` is not above
+/// `slack` or a point is not finite (naming the first).
 pub fn fit_arcs(points: &[[f64; 2]], tolerance: f64, slack: f64) -> Result<Vec<Arc>, String> {
+    let margin = tolerance - slack;
+    if margin.is_nan() || margin <= 0.0 {
+        return Err(format!(
+            "the tolerance ({} m) must be above the polygon's distance from the curve ({} m)",
+            num(tolerance),
+            num(slack)
+        ));
+    }
+    if let Some(k) = points
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        return Err(format!("the profile's point {k} is not finite"));
+    }
     let n = points.len();
     let mut pts = points.to_vec();
     if let Some(&p) = points.first() {
@@ -294,7 +311,7 @@ pub fn fit_arcs(points: &[[f64; 2]], tolerance: f64, slack: f64) -> Result<Vec<A
         // Two finite points always fit as their chord.
         let Some(fit) = fit else {
             return Err(format!(
-                "the profile's point {i} or {} is not finite",
+                "no line or arc fits the profile's points {i} and {}",
                 i + 1
             ));
         };

@@ -542,26 +542,32 @@ pub fn round_trip_errors(cam: &Arc<Cam>, omega: f64, steps: usize) -> Result<[f6
 /// θ ranges (rad) a tool of radius `tool_radius` (m) cannot cut, sampled
 /// at `n` angles θ_k = 2πk/n: where the surface is concave tighter than
 /// the tool (ρ < 0 and −ρ < r_tool) or its radius of curvature ρ is not
-/// finite (a cusp). A range open at 2π ends there; one that starts at
-/// θ = 0 after the last sample is reported from 2π.
+/// finite (a cusp). Each range runs from its first bad sample to the next
+/// good one; a range still open at the last sample ends at 2π (and one
+/// that goes on past θ = 0 is the range that starts at 0).
 pub fn tool_undercut(cam: &Cam, tool_radius: f64, n: usize) -> Vec<(f64, f64)> {
     let step = TAU / n as f64;
-    let theta: Vec<f64> = (0..n).map(|k| k as f64 * step).collect();
-    let bad: Vec<bool> = theta
-        .iter()
-        .map(|&t| {
-            let rho = cam.contact(t).rho;
+    let bad: Vec<bool> = (0..n)
+        .map(|k| {
+            let rho = cam.contact(k as f64 * step).rho;
             (rho < 0.0 && -rho < tool_radius) || !rho.is_finite()
         })
         .collect();
+    bad_ranges(&bad)
+}
+
+/// The ranges (rad) of the samples θ_k = 2πk/n flagged in `bad`, as
+/// [`tool_undercut`] gives them.
+fn bad_ranges(bad: &[bool]) -> Vec<(f64, f64)> {
+    let step = TAU / bad.len() as f64;
     let mut out = Vec::new();
     let mut start: Option<f64> = None;
-    for i in 0..=n {
-        let b = bad[i % n];
+    for (k, &b) in bad.iter().enumerate() {
+        let theta = k as f64 * step;
         match start {
-            None if b => start = Some(theta[i % n] + if i >= n { TAU } else { 0.0 }),
+            None if b => start = Some(theta),
             Some(s) if !b => {
-                out.push((s, theta[i - 1] + step));
+                out.push((s, theta));
                 start = None;
             }
             _ => {}
@@ -571,4 +577,28 @@ pub fn tool_undercut(cam: &Cam, tool_radius: f64, n: usize) -> Vec<(f64, f64)> {
         out.push((s, TAU));
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bad_ranges;
+    use std::f64::consts::TAU;
+
+    #[test]
+    fn bad_ranges_from_their_first_bad_sample_to_the_next_good_one() {
+        let q = TAU / 8.0;
+        let (f, t) = (false, true);
+        assert_eq!(bad_ranges(&[f, t, t, f, f, f, f, f]), [(q, 3.0 * q)]);
+        // From θ = 0, the last sample good: one range, none at 2π.
+        assert_eq!(bad_ranges(&[t, t, f, f, f, f, f, f]), [(0.0, 2.0 * q)]);
+        // Open at the last sample: it ends at 2π; with θ = 0 bad too, the
+        // range across 0 is its two ends.
+        assert_eq!(bad_ranges(&[f, f, f, f, f, f, t, t]), [(6.0 * q, TAU)]);
+        assert_eq!(
+            bad_ranges(&[t, f, f, f, f, f, f, t]),
+            [(0.0, q), (7.0 * q, TAU)]
+        );
+        assert_eq!(bad_ranges(&[t; 8]), [(0.0, TAU)]);
+        assert!(bad_ranges(&[f; 8]).is_empty());
+    }
 }

@@ -76,9 +76,13 @@ fn a_closed_circle_is_covered_by_arcs_of_its_centre_and_radius() {
     // A point that is not finite is named.
     let mut bad = points.clone();
     bad[7] = [f64::NAN, 0.0];
-    assert!(fit_arcs(&bad, 1e-5, 0.0)
-        .unwrap_err()
-        .contains("not finite"));
+    assert_eq!(
+        fit_arcs(&bad, 1e-5, 0.0).unwrap_err(),
+        "the profile's point 7 is not finite"
+    );
+    // A tolerance that the polygon's own distance from the curve uses up.
+    let e = fit_arcs(&points, 1e-5, 1e-5).unwrap_err();
+    assert!(e.contains("must be above"), "{e}");
 }
 
 #[test]
@@ -135,6 +139,9 @@ fn steps_and_tolerances_are_bounded() {
     assert!(angles_by_step(1e-7f64.to_radians())
         .unwrap_err()
         .contains("rows"));
+    // A step so small that its count of rows is no integer's.
+    let e = angles_by_step(1e-300).unwrap_err();
+    assert!(e.contains("makes 6.28319e+300 rows"), "{e}");
     assert!(angles_by_step(0.0).unwrap_err().contains("positive"));
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     let design = camlink_cam::load_path(&root.join("examples/cam_design_valve.toml"))

@@ -20,15 +20,15 @@ fn example() -> String {
 }
 
 #[test]
-fn the_example_loads_to_the_values_the_python_reader_gave() {
+fn the_example_loads_to_its_recorded_values() {
     let path = root().join("examples/cam_design_timing.toml");
     assert!(is_timing_path(&path));
     assert!(!is_timing_path(
         &root().join("examples/cam_design_timing_gate.toml")
     ));
     let t = load_path(&path).unwrap().timing;
-    // Figures printed by camlink.cam.timing.load before the reader moved
-    // (6.283185307179586 and 3.141592653589793 are 2π and π).
+    // Recorded figures (6.283185307179586 and 3.141592653589793 are 2π
+    // and π): a change in how the file is read or analysed shows here.
     assert_eq!(t.name, "pusher and gate");
     assert_eq!(t.speed, TAU);
     assert_eq!(t.resolution, 0.008726646259971648);
@@ -54,8 +54,8 @@ fn the_example_loads_to_the_values_the_python_reader_gave() {
     assert_eq!(t.clearances.len(), 1);
     let c = &t.clearances[0];
     assert_eq!((c.a, c.b, c.min_distance), (0, 1, 0.015));
-    // The clearance, the cam table and the gate's rise as the Python code
-    // computed them (bit for bit).
+    // The clearance, the cam table and the gate's rise, recorded bit for
+    // bit.
     let r = &t.clearances()[0];
     assert_eq!(r.least, 0.020012372787609613);
     assert_eq!(r.at_deg, 136.09816828283957);

@@ -213,8 +213,8 @@ pub(crate) fn design_dict<'py>(py: Python<'py>, d: &Design) -> PyResult<Bound<'p
 /// The design report of `design` (a `camlink.cam.design.Design`), as a
 /// dict with the keys of `camlink.cam.design.Report`'s fields (lengths in
 /// m, angles in degrees; see `camlink_cam::report`). A design whose cam
-/// does not synthesise raises `ModelError` naming the file; an analysis
-/// behind a check that cannot run raises `ValueError`.
+/// does not synthesise, or an analysis behind a check that cannot run,
+/// raises `ModelError` naming the file.
 #[pyfunction]
 pub fn cam_design_report<'py>(
     py: Python<'py>,
@@ -225,7 +225,7 @@ pub fn cam_design_report<'py>(
         .detach(|| report::analyse(&design))
         .map_err(|e| match e {
             ReportError::Design(m) => ModelError::new_err(format!("{}: {m}", design.source)),
-            ReportError::Analysis(m) => PyValueError::new_err(m),
+            ReportError::Analysis(m) => ModelError::new_err(format!("{}: {m}", design.source)),
         })?;
     report_dict(py, &report)
 }

@@ -870,5 +870,9 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add(
+        "CAM_ROUND_TRIP_STEPS",
+        camlink_cam::report::ROUND_TRIP_STEPS,
+    )?;
     Ok(())
 }

@@ -475,7 +475,8 @@ def format_report(r: Report) -> str:
     if r.round_trip is not None:
         d, v, a = r.round_trip
         lines.append(
-            "round trip (camlink kinematics of the synthesised cam vs the program, 720 steps):"
+            "round trip (camlink kinematics of the synthesised cam vs the program, "
+            f"{_core.CAM_ROUND_TRIP_STEPS} steps):"
         )
         lines.append(
             f"  displacement {d:.2e}, velocity {v:.2e}, acceleration {a:.2e} (relative)"

@@ -49,6 +49,9 @@ UNITS = {u: METRES[u] for u in ("m", "mm")}
 
 @dataclass(frozen=True)
 class Axis:
+    """One axis of a timing file, as read (see `Timing`: the analyses read
+    `core`, not these fields)."""
+
     name: str
     design: cam_design.Design
     phase: float
@@ -73,6 +76,13 @@ class Clearance:
 
 @dataclass(frozen=True)
 class Timing:
+    """A timing file as the core read and checked it. The analyses
+    (`motion`, `tip`, `clearances`, `table_rows`, `segment_rows`) read the
+    file from `core`; these fields are what it holds, for display: a copy
+    with other values (`dataclasses.replace`) is analysed as the file was
+    read. To analyse other values, write them into the file and `load`
+    it."""
+
     path: Path
     name: str
     speed: float
@@ -167,7 +177,8 @@ def clearances(t: Timing) -> list[ClearanceReport]:
 def table_rows(t: Timing, axis: Axis) -> NDArray[np.float64]:
     """The cam table of `axis`: rows [master deg, position, velocity,
     acceleration, jerk] in the timing file's length unit and seconds at
-    the machine speed, every `resolution` over a turn, both ends included."""
+    the machine speed, every `resolution` of the file over a turn, both
+    ends included."""
     return np.asarray(t.core.table(axis.index, t.units))
 
 

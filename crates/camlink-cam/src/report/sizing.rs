@@ -344,8 +344,8 @@ pub(super) fn checks(
     Ok(info)
 }
 
-/// Index of the least value (the first NaN if there is one, as numpy's
-/// `argmin`); 0 for an empty slice.
+/// Index of the least value (the first NaN if there is one: a NaN
+/// figure is the one to report); 0 for an empty slice.
 fn arg_min(v: &[f64]) -> usize {
     let mut best = 0;
     for (k, &x) in v.iter().enumerate() {
@@ -359,7 +359,7 @@ fn arg_min(v: &[f64]) -> usize {
     best
 }
 
-/// The largest |x| (NaN if any x is NaN, as numpy's `max`).
+/// The largest |x| (NaN if any x is NaN: the figure is then unknown).
 fn max_abs(v: impl Iterator<Item = f64>) -> f64 {
     v.fold(f64::NEG_INFINITY, |m, x| {
         if m.is_nan() || x.is_nan() {
