@@ -794,24 +794,15 @@ fn check_profile(cam: &Cam, export: &Export) -> R<()> {
             );
         }
     }
-    let largest = radii.iter().copied().fold(0.0, f64::max);
-    let size = largest + export.tool_radius.unwrap_or(0.0);
-    let least = MIN_RELATIVE_TOLERANCE * size;
+    // The exports' own bound (`export::check_tolerance`), on the curve
+    // the tool path offsets furthest.
+    let offset = export.tool_radius.unwrap_or(0.0);
     for (key, tol) in [
         ("tolerance", Some(export.tolerance)),
         ("csv_chord_tolerance", export.csv_chord),
     ] {
-        if let Some(tol) = tol.filter(|&t| t < least) {
-            return fail(
-                format!("export.{key}"),
-                format!(
-                    "{} m is finer than {} of the profile's size ({} m); use at least {} m",
-                    num(tol),
-                    num(MIN_RELATIVE_TOLERANCE),
-                    num(size),
-                    num(least)
-                ),
-            );
+        if let Some(Err(message)) = tol.map(|t| crate::export::check_tolerance(cam, t, offset)) {
+            return fail(format!("export.{key}"), message);
         }
     }
     Ok(())
