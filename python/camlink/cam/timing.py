@@ -42,9 +42,8 @@ from camlink.warn import LoadWarning
 
 RPM = cam_design.RPM
 
-#: Length units of tables and the diagram: name -> metres per unit (of
-#: camlink's length units, `camlink.units.LENGTH_UNITS`).
-UNITS = {u: METRES[u] for u in ("m", "mm")}
+# METRES: metres per length unit; the core allows a timing file's `units`
+# only among camlink_cam::timing::UNITS.
 
 
 @dataclass(frozen=True)
@@ -207,7 +206,7 @@ def diagram(t: Timing, report: list[ClearanceReport] | None = None) -> Any:
             ax.plot(deg, np.degrees(s), color="C0", lw=1.5)
             ax.set_ylabel(f"{axis.name}\n(deg)")
         else:
-            ax.plot(deg, s / UNITS[unit], color="C0", lw=1.5)
+            ax.plot(deg, s / METRES[unit], color="C0", lw=1.5)
             ax.set_ylabel(f"{axis.name}\n({unit})")
         for st in axis.design.core().starts():
             ax.axvline(math.degrees(st + axis.phase) % 360.0, color="0.6", lw=0.8, ls=":")
@@ -218,9 +217,9 @@ def diagram(t: Timing, report: list[ClearanceReport] | None = None) -> Any:
         for i, c in enumerate(t.clearances):
             pa = tip(by[c.a], motion(by[c.a], master)[:, 0])
             pb = tip(by[c.b], motion(by[c.b], master)[:, 0])
-            d = np.hypot(*(pa - pb).T) / UNITS[unit]
+            d = np.hypot(*(pa - pb).T) / METRES[unit]
             ax.plot(deg, d, color=f"C{i + 1}", lw=1.5, label=f"{c.a}–{c.b}")
-            ax.axhline(c.min_distance / UNITS[unit], color=f"C{i + 1}", lw=1.0, ls="--")
+            ax.axhline(c.min_distance / METRES[unit], color=f"C{i + 1}", lw=1.0, ls="--")
         ax.set_ylabel(f"clearance\n({unit})")
         ax.legend(loc="best", fontsize=8)
         ax.grid(True, alpha=0.3)
@@ -310,7 +309,7 @@ def format_report(t: Timing, report: list[ClearanceReport], files: list[str]) ->
     if report:
         lines.append("")
         lines.append("clearances:")
-    scale = UNITS[t.units]
+    scale = METRES[t.units]
     for c in report:
         mark = "ok  " if c.ok else "FAIL"
         lines.append(
