@@ -22,9 +22,21 @@ from camlink.results import Results
 __version__: str
 #: Steps of the cam design report's round trip through the kinematics.
 CAM_ROUND_TRIP_STEPS: int
+#: The kinds an analysis error may have (`camlink_core::run::Kind`).
+ERROR_KINDS: tuple[str, ...]
+#: The kinds a run's warning may have.
+WARNING_KINDS: tuple[str, ...]
+#: The analyses a model file may ask for.
+ANALYSES: tuple[str, ...]
+#: The statuses a variant's row of study results can hold.
+STUDY_STATUSES: tuple[str, ...]
 
 __all__ = [
+    "ANALYSES",
     "CAM_ROUND_TRIP_STEPS",
+    "ERROR_KINDS",
+    "STUDY_STATUSES",
+    "WARNING_KINDS",
     "AnalysisError",
     "CamCore",
     "MachineCycle",
@@ -75,6 +87,7 @@ __all__ = [
     "plain_file_name_problem",
     "quantity_unit",
     "run_batch",
+    "setting_is_flag",
     "synth_file",
     "synth_path_starts",
     "synth_read",
@@ -257,6 +270,7 @@ def length_units() -> list[tuple[str, float]]: ...
 
 def csv_rows(rows: npt.NDArray[np.float64]) -> bytes: ...
 def check_setting(key: str, value: float) -> None: ...
+def setting_is_flag(key: str) -> bool: ...
 def analysis_settings() -> dict[str, list[str]]: ...
 def not_applicable(key: str, kind: str) -> str: ...
 def integration_step(h: float | None = None, step: float | None = None) -> float: ...

@@ -12,28 +12,15 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Final
 
+from camlink import _core
+
 __all__ = ["ERROR_KINDS", "WARNING_KINDS", "RunWarning", "warnings_from"]
 
-#: The kinds an `AnalysisError` may have.
-ERROR_KINDS: Final = (
-    "invalid_input",
-    "not_driven",
-    "redundant",
-    "not_assembled",
-    "not_converged",
-    "lock_up",
-    "branch_jump",
-    "not_finite",
-    "singular_mass",
-    "off_curve",
-    "undercut",
-    "internal",
-    "force_failed",
-    "stopped",
-)
+#: The kinds an `AnalysisError` may have (the core's, in its order).
+ERROR_KINDS: Final[tuple[str, ...]] = _core.ERROR_KINDS
 
 #: The kinds a `RunWarning` may have.
-WARNING_KINDS: Final = ("near_singular", "lift_off", "limit_exceeded")
+WARNING_KINDS: Final[tuple[str, ...]] = _core.WARNING_KINDS
 
 
 @dataclass(frozen=True)

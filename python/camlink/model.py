@@ -44,7 +44,7 @@ __all__ = ["ANALYSES", "Model", "json_schema", "load", "loads"]
 CHUNK_ROWS = 1024
 
 #: The analyses a model can run; ``[analysis] type`` names one.
-ANALYSES = ("kinematics", "inverse_dynamics", "equilibrium", "dynamics")
+ANALYSES: tuple[str, ...] = _core.ANALYSES
 
 
 

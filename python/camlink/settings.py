@@ -16,9 +16,6 @@ __all__ = ["check_settings"]
 #: Arguments that are not numbers checked by a rule.
 _OTHER = {"self", "points", "times", "output", "analysis", "on_rows", "start"}
 
-#: Settings that are True or False.
-_FLAGS = {"adaptive", "jerk"}
-
 
 def check_settings(settings: Mapping[str, object]) -> None:
     """Raises `ModelError` naming the first setting whose value breaks its
@@ -26,7 +23,7 @@ def check_settings(settings: Mapping[str, object]) -> None:
     for key, value in settings.items():
         if value is None or key in _OTHER:
             continue
-        if key in _FLAGS:
+        if _core.setting_is_flag(key):
             if not isinstance(value, (bool, np.bool_)):
                 raise ModelError(f"{key} must be True or False, not {value!r}")
             continue

@@ -276,6 +276,15 @@ impl Kind {
         Kind::LimitExceeded,
     ];
 
+    /// True for the kinds of a [`Warning`] (the run went on); false for
+    /// those of an [`AnalysisError`].
+    pub fn is_warning(self) -> bool {
+        matches!(
+            self,
+            Kind::NearSingular | Kind::LiftOff | Kind::LimitExceeded
+        )
+    }
+
     /// The stable name, e.g. `not_converged`.
     pub fn name(self) -> &'static str {
         match self {
@@ -746,10 +755,7 @@ mod tests {
         let want: Vec<(String, String)> = Kind::ALL
             .iter()
             .map(|k| {
-                let level = match k {
-                    Kind::NearSingular | Kind::LiftOff | Kind::LimitExceeded => "warning",
-                    _ => "error",
-                };
+                let level = if k.is_warning() { "warning" } else { "error" };
                 (k.name().to_string(), level.to_string())
             })
             .collect();

@@ -18,6 +18,8 @@ pub enum Rule {
     UnitInterval,
     /// A whole number ≥ 1.
     Count,
+    /// True or false (1 or 0 as a number).
+    Flag,
 }
 
 /// Every run setting and its rule; units in the comments.
@@ -33,6 +35,8 @@ pub(crate) const RULES: &[(&str, Rule)] = &[
     ("atol", Rule::NonNegative),        // m or rad
     ("rtol", Rule::NonNegative),        // relative
     ("h_min", Rule::Positive),          // s
+    ("adaptive", Rule::Flag),           // error control on or off
+    ("jerk", Rule::Flag),               // third derivatives on or off
 ];
 
 /// The rule of setting `key`, if it is one.
@@ -53,6 +57,7 @@ pub fn check(key: &str, value: f64) -> Result<(), String> {
             Rule::Positive => value > 0.0,
             Rule::UnitInterval => (0.0..=1.0).contains(&value),
             Rule::Count => value >= 1.0 && value.fract() == 0.0 && value <= u32::MAX as f64,
+            Rule::Flag => value == 0.0 || value == 1.0,
         };
     if ok {
         return Ok(());
@@ -63,6 +68,7 @@ pub fn check(key: &str, value: f64) -> Result<(), String> {
         Rule::Positive => "a positive finite number",
         Rule::UnitInterval => "between 0 and 1",
         Rule::Count => "a whole number of at least 1",
+        Rule::Flag => "true or false",
     };
     Err(format!("{key} must be {must} ({})", num(value)))
 }
@@ -102,5 +108,11 @@ mod tests {
         assert!(check("atol", 0.0).is_ok() && check("h_min", 0.0).is_err());
         assert!(check_error_control(0.0, 0.0).is_err());
         assert!(check("nope", 1.0).unwrap_err().contains("unknown setting"));
+        assert!(check("jerk", 1.0).is_ok() && check("adaptive", 0.0).is_ok());
+        assert_eq!(
+            check("jerk", 2.0).unwrap_err(),
+            "jerk must be true or false (2)"
+        );
+        assert_eq!(rule("adaptive"), Some(Rule::Flag));
     }
 }

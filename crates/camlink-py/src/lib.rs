@@ -52,6 +52,7 @@ use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1};
 use py_force::{call_force, FORCE_ERROR};
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
+use pyo3::types::PyTuple;
 use pyo3::types::{PyDict, PyList};
 use sink::{ChunkSink, Delivery, DEFAULT_CHUNK_ROWS};
 
@@ -808,6 +809,12 @@ fn check_setting(key: &str, value: f64) -> PyResult<()> {
     camlink_core::setting::check(key, value).map_err(ModelError::new_err)
 }
 
+/// True when the run setting `key` is a flag (true or false).
+#[pyfunction]
+fn setting_is_flag(key: &str) -> bool {
+    setting::rule(key) == Some(setting::Rule::Flag)
+}
+
 /// A simEngine2D `.adm` model (with the analysis of `acf`, default the
 /// `.acf` beside it) written as a camlink model file; `format` is `"toml"`
 /// or `"json"`.
@@ -855,6 +862,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
+    m.add_function(wrap_pyfunction!(setting_is_flag, m)?)?;
     m.add_function(wrap_pyfunction!(machine::machine_report, m)?)?;
     m.add_function(wrap_pyfunction!(study::run_batch, m)?)?;
     m.add_function(wrap_pyfunction!(study::toml_position, m)?)?;
@@ -870,6 +878,19 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("ModelError", py.get_type::<ModelError>())?;
     m.add("AnalysisError", py.get_type::<AnalysisError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    let kinds = |warning: bool| -> Vec<&'static str> {
+        camlink_core::run::Kind::ALL
+            .iter()
+            .filter(|k| k.is_warning() == warning)
+            .map(|k| k.name())
+            .collect()
+    };
+    m.add("ERROR_KINDS", PyTuple::new(py, kinds(false))?)?;
+    m.add("WARNING_KINDS", PyTuple::new(py, kinds(true))?)?;
+    let analyses = AnalysisType::ALL.map(|k| k.name());
+    m.add("ANALYSES", PyTuple::new(py, analyses)?)?;
+    let statuses = camlink_study::Status::RESULTS.map(|s| s.name());
+    m.add("STUDY_STATUSES", PyTuple::new(py, statuses)?)?;
     m.add(
         "CAM_ROUND_TRIP_STEPS",
         camlink_cam::report::ROUND_TRIP_STEPS,

@@ -44,6 +44,16 @@ pub enum Status {
 }
 
 impl Status {
+    /// The statuses a variant's row of study results can hold: every one
+    /// but [`Status::Stopped`], whose outcome is not a result.
+    pub const RESULTS: [Status; 5] = [
+        Status::Ok,
+        Status::ModelError,
+        Status::AnalysisError,
+        Status::OutputError,
+        Status::InternalError,
+    ];
+
     /// The stable name written into study results.
     pub fn name(self) -> &'static str {
         match self {

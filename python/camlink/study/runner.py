@@ -78,7 +78,7 @@ BYTES_PER_VALUE = 128
 CONNECT_TIMEOUT = 20.0
 
 #: What a variant's ``status`` can be.
-STATUSES = ("ok", "model_error", "analysis_error", "output_error", "internal_error")
+STATUSES: tuple[str, ...] = _core.STUDY_STATUSES
 
 #: How a model loads again: (text, format, source, base_dir, allow_outside).
 Recipe = tuple[str, str, str, str | None, bool]
