@@ -4,6 +4,8 @@ those below it (the order is in camlink/__init__.py's docstring)."""
 from __future__ import annotations
 
 import ast
+import importlib
+import inspect
 import warnings
 from pathlib import Path
 
@@ -143,6 +145,38 @@ def test_dir_lists_the_public_names() -> None:
     for name in ("draw", "plot", "sweep", "load", "Model", "Results", "viz", "cam", "io", "study", "synth"):
         assert name in names, name
     assert "sys" not in names and "importlib" not in names
+
+
+@pytest.mark.parametrize(
+    "module",
+    [
+        "camlink.cam.design",
+        "camlink.cam.export",
+        "camlink.cam.jump",
+        "camlink.cam.plots",
+        "camlink.cam.sizing",
+        "camlink.cam.timing",
+        "camlink.io",
+        "camlink.io.model_form",
+        "camlink.io.output",
+        "camlink.io.results_file",
+        "camlink.io.simengine2d",
+    ],
+)
+def test_issue28_subpackage_modules_list_their_public_names(module: str) -> None:
+    # Each module says what is public: its __all__ names exist, and every
+    # public function or class defined in it is listed.
+    mod = importlib.import_module(module)
+    listed = set(mod.__all__)
+    assert all(hasattr(mod, name) for name in listed), module
+    defined = {
+        name
+        for name, value in vars(mod).items()
+        if not name.startswith("_")
+        and (inspect.isfunction(value) or inspect.isclass(value))
+        and value.__module__ == module
+    }
+    assert defined <= listed, f"{module}: not in __all__: {sorted(defined - listed)}"
 
 
 def test_issue28_cam_design_errors_are_model_errors(tmp_path: Path) -> None:

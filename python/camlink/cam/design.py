@@ -30,6 +30,36 @@ from camlink._core import CamCore, ModelError
 from camlink.cam.sizing import SURGE_RATIO, ContactSpec, SpringSpec, VibrationSpec
 from camlink.warn import LoadWarning
 
+__all__ = [
+    "FOLLOWERS",
+    "LAWS",
+    "MAX_LENGTH",
+    "MAX_RPM",
+    "MAX_SEGMENTS",
+    "MIN_SPAN_DEG",
+    "RPM",
+    "BoundaryReport",
+    "CamDesignError",
+    "Check",
+    "Design",
+    "Dynamics",
+    "Export",
+    "FaceTravel",
+    "FactorReport",
+    "Limits",
+    "Report",
+    "Segment",
+    "analyse",
+    "format_report",
+    "from_data",
+    "in_units",
+    "is_design",
+    "json_safe",
+    "load",
+    "sample",
+    "tool_undercut",
+]
+
 #: Each follower kind and the dimensions it takes (the core's table).
 FOLLOWERS: dict[str, tuple[str, ...]] = {k: tuple(v) for k, v in _core.cam_followers()}
 #: The motion laws of a segment (the core's names).

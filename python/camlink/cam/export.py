@@ -21,6 +21,22 @@ from camlink import _core
 from camlink._core import CamCore, cam_design_limits
 from camlink.units import LENGTH_UNITS as METRES
 
+__all__ = [
+    "LENGTH_UNITS",
+    "MAX_CSV_ROWS",
+    "MAX_POINTS",
+    "MIN_RELATIVE_TOLERANCE",
+    "Arc",
+    "Hub",
+    "angles_by_chord",
+    "angles_by_step",
+    "check_tolerance",
+    "fit_arcs",
+    "write_csv",
+    "write_dxf",
+    "write_svg",
+]
+
 Points: TypeAlias = NDArray[np.float64]
 
 #: Finest chord or arc-fit tolerance, relative to the size of the curve

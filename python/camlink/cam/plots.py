@@ -25,6 +25,16 @@ from matplotlib.text import Text
 
 from camlink._core import CamCore
 
+__all__ = [
+    "UNDERCUT_COLOUR",
+    "core_ccw",
+    "profile",
+    "save",
+    "svaj",
+    "svaj_time",
+    "vibration",
+]
+
 #: The colour undercut ranges are drawn in.
 UNDERCUT_COLOUR = "#ff2d2d"
 

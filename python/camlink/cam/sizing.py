@@ -18,6 +18,18 @@ from dataclasses import dataclass
 
 from camlink._core import cam_design_limits, cam_materials
 
+__all__ = [
+    "LIFE_EXPONENT",
+    "MATERIALS",
+    "MAX_STEPS",
+    "MAX_TURNS",
+    "RPM",
+    "SURGE_RATIO",
+    "ContactSpec",
+    "SpringSpec",
+    "VibrationSpec",
+]
+
 #: Materials by name: (E Pa, ν, G Pa, density kg/m³), Shigley's
 #: *Mechanical Engineering Design*, 10th ed., Table A-5 (in the core).
 MATERIALS: dict[str, tuple[float, float, float, float]] = {

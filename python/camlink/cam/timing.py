@@ -40,6 +40,25 @@ from camlink.cam.design import CamDesignError
 from camlink.units import LENGTH_UNITS as METRES
 from camlink.warn import LoadWarning
 
+__all__ = [
+    "RPM",
+    "Axis",
+    "Clearance",
+    "ClearanceReport",
+    "Timing",
+    "clearances",
+    "diagram",
+    "format_report",
+    "is_timing",
+    "load",
+    "motion",
+    "outputs",
+    "segment_rows",
+    "table_rows",
+    "tip",
+    "write",
+]
+
 RPM = cam_design.RPM
 
 # METRES: metres per length unit; the core allows a timing file's `units`
