@@ -393,13 +393,13 @@ def _run_request(doc: Editable, runs: Runs, msg: dict[str, Any], report: Any,
     seq = msg.get("seq")
     try:
         if not isinstance(doc, Document):
-            raise ValueError("a cam design file has no analyses to run; run `camlink cam` on it")
+            raise ModelError("a cam design file has no analyses to run; run `camlink cam` on it")
         if op == "run":
             analysis, study = str(msg.get("analysis")), None
             if analysis.startswith("study:"):
                 name = analysis[len("study:"):]
                 if name not in studies_of(doc.path):
-                    raise ValueError(f"no study file {name!r} naming {doc.path.name} beside it")
+                    raise ModelError(f"no study file {name!r} naming {doc.path.name} beside it")
                 analysis, study = "study", doc.path.parent / name
             run = runs.start(doc.solution.model, analysis, report, study, doc.path.parent)
             return {**run.status(shown), "seq": seq}

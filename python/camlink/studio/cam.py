@@ -191,7 +191,7 @@ class CamDocument(Editable):
         else:
             new = float(value)
             if not math.isfinite(new):
-                raise ValueError(f"segments[{index}].{key}: {value} is not a finite number")
+                raise ModelError(f"segments[{index}].{key}: {value} is not a finite number")
         seg = segs[index]
         solution: CamSolution = self._apply(gesture, lambda: seg.__setitem__(key, new))
         return solution

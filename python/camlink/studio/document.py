@@ -604,7 +604,7 @@ class Document(Editable):
         if params is None or name not in params:
             raise KeyError(f"no parameter {name!r}")
         if not math.isfinite(value):
-            raise ValueError(f"parameter {name!r}: {value} is not a finite number")
+            raise ModelError(f"parameter {name!r}: {value} is not a finite number")
         return self._apply(gesture, lambda: params.__setitem__(name, float(value)))
 
     def motion_segments(self) -> list[dict[str, Any]]:
@@ -646,7 +646,7 @@ class Document(Editable):
             if not isinstance(value, str):
                 value = float(value)
                 if not math.isfinite(value):
-                    raise ValueError(f"curve {curve!r} segments[{index}].{key}: {value} is not finite")
+                    raise ModelError(f"curve {curve!r} segments[{index}].{key}: {value} is not finite")
             edits.append((segs[index], key, value))
 
         def change() -> None:
