@@ -1,4 +1,4 @@
-//! cargo-fuzz target: see [`camlink_fuzz::expr`] and fuzz/README.md.
+//! cargo-fuzz target: see [`camlink_fuzz_targets::expr`] and fuzz/README.md.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz::expr(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz_targets::expr(data));

@@ -1,4 +1,4 @@
-//! cargo-fuzz target: see [`camlink_fuzz::load_toml`] and fuzz/README.md.
+//! cargo-fuzz target: see [`camlink_fuzz_targets::load_toml`] and fuzz/README.md.
 #![no_main]
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz::load_toml(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| camlink_fuzz_targets::load_toml(data));

@@ -1,7 +1,7 @@
 //! The fuzz targets on stable Rust: every seed in `fuzz/corpus/<target>/`,
 //! every crash kept in `fuzz/regressions/<target>/` and every model under
 //! `tests/models/` goes through the same code as the cargo-fuzz targets
-//! (`fuzz/src/lib.rs`), then a deterministic mutation loop (bit flips,
+//! (`camlink-fuzz-targets`), then a deterministic mutation loop (bit flips,
 //! truncations, splices, token insertions) runs a few thousand cases.
 //!
 //! The long run: `CAMLINK_FUZZ_ITERS=1000000 cargo test --release -p

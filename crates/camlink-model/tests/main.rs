@@ -2,9 +2,8 @@
 //! (one link instead of one per file). camlink-core's `test_layout` checks
 //! that every file in `tests/` is listed here or built on its own.
 
+use camlink_fuzz_targets as targets;
 use camlink_testkit::mechanisms;
-#[path = "../../../fuzz/src/lib.rs"]
-mod targets;
 
 mod analysis;
 mod bad_models;

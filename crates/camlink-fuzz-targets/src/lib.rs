@@ -1,7 +1,6 @@
 //! What each fuzz target does with its input, shared by the cargo-fuzz
 //! targets (`fuzz/fuzz_targets/`) and the stable test that replays the
-//! corpus and the regressions (`crates/camlink-model/tests/fuzz_corpus.rs`,
-//! which includes this file as a module).
+//! corpus and the regressions (`crates/camlink-model/tests/fuzz_corpus.rs`).
 //!
 //! A target returns normally for every input; a panic is the bug. Beyond
 //! "no panic", the targets assert properties that hold for every input:
