@@ -6,6 +6,7 @@ from __future__ import annotations
 import pytest
 
 import camlink
+from camlink import _core
 
 
 def test_analysis_settings_are_keyword_only(four_bar_file):
@@ -25,3 +26,17 @@ def test_run_takes_its_settings_by_keyword(four_bar_file):
     with pytest.raises(TypeError):
         model.run(0.1, 0.05, None, 1e-10)  # type: ignore[call-arg]
     assert len(model.run(0.1, 0.05, tol=1e-10)) == 3
+
+
+@pytest.mark.parametrize(
+    ("t_end", "step"), [(0.3, 0.1), (1.0, 0.01), (0.0, 0.5), (2.0, 0.3), (1e-3, 1e-4)]
+)
+def test_issue28_time_grid_rows_counts_the_grid(t_end: float, step: float) -> None:
+    # The CLI's row count is the grid's, end times within rounding of a
+    # multiple of the step included, without building the grid.
+    assert _core.time_grid_rows(t_end, step) == len(_core.time_grid(t_end, step))
+
+
+def test_issue28_time_grid_rows_refuses_a_bad_step() -> None:
+    with pytest.raises(camlink.ModelError, match="time step"):
+        _core.time_grid_rows(1.0, 0.0)

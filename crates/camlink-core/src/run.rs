@@ -472,6 +472,14 @@ pub(crate) fn worst_joints(
     (joints, worst.first().map_or(0.0, |w| w.0))
 }
 
+/// The number of steps of `step` (s) in [0, `t_end`] (s) of
+/// [`time_grid`]: ⌊t_end/step + 1e-9⌋, so that an end time within rounding
+/// of a multiple of the step is on the grid. For a positive step and
+/// t_end ≥ 0.
+pub fn grid_steps(t_end: f64, step: f64) -> f64 {
+    (t_end / step + 1e-9).floor()
+}
+
 /// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
 pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
     use crate::fmt_num::{count, num};
@@ -487,7 +495,7 @@ pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
             num(t_end)
         ));
     }
-    let steps = (t_end / step + 1e-9).floor();
+    let steps = grid_steps(t_end, step);
     if steps > 100_000_000.0 {
         return Err(format!(
             "{} steps ({} s at {} s) is more than 100 million; use a larger step",

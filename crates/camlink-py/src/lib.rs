@@ -802,6 +802,21 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
     })
 }
 
+/// The number of output rows of [`time_grid`] for `t_end` and `step` (s),
+/// without building them (however many).
+#[pyfunction]
+fn time_grid_rows(t_end: f64, step: f64) -> PyResult<f64> {
+    if !(step.is_finite() && step > 0.0 && t_end.is_finite() && t_end >= 0.0) {
+        return Err(ModelError::new_err(format!(
+            "the time step must be a positive number and the end time one ≥ 0 (step {}, \
+             end time {})",
+            camlink_core::fmt_num::num(step),
+            camlink_core::fmt_num::num(t_end)
+        )));
+    }
+    Ok(run::grid_steps(t_end, step) + 1.0)
+}
+
 /// Checks the run setting `key` = `value` by the rule a model file's
 /// `[analysis]` key follows; raises `ModelError` naming the setting.
 #[pyfunction]
@@ -860,6 +875,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(json_schema, m)?)?;
     m.add_function(wrap_pyfunction!(convert_adm, m)?)?;
     m.add_function(wrap_pyfunction!(time_grid, m)?)?;
+    m.add_function(wrap_pyfunction!(time_grid_rows, m)?)?;
     m.add_function(wrap_pyfunction!(csv_text::csv_rows, m)?)?;
     m.add_function(wrap_pyfunction!(check_setting, m)?)?;
     m.add_function(wrap_pyfunction!(setting_is_flag, m)?)?;

@@ -131,7 +131,7 @@ class _Grid:
         if step is None:
             step = _core.default_step(self.t_end)
         self.step = float(step)
-        self.rows = math.floor(self.t_end / self.step + 1e-9) + 1.0
+        self.rows = _core.time_grid_rows(self.t_end, self.step)
         self.span = self.t_end
 
     def bounded(self, most: int) -> tuple[dict[str, Any], str | None]:
