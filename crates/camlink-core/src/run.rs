@@ -480,9 +480,10 @@ pub fn grid_steps(t_end: f64, step: f64) -> f64 {
     (t_end / step + 1e-9).floor()
 }
 
-/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
-pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
-    use crate::fmt_num::{count, num};
+/// Checks a grid's step and end time (s): the step positive, the end
+/// time ≥ 0, both finite; the error says which.
+pub fn check_grid(t_end: f64, step: f64) -> Result<(), String> {
+    use crate::fmt_num::num;
     if !(step.is_finite() && step > 0.0) {
         return Err(format!(
             "the time step must be a positive number, not {}",
@@ -495,6 +496,13 @@ pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
             num(t_end)
         ));
     }
+    Ok(())
+}
+
+/// Times 0, h, 2h, … up to `t_end` (inclusive, within rounding).
+pub fn time_grid(t_end: f64, step: f64) -> Result<Vec<f64>, String> {
+    use crate::fmt_num::{count, num};
+    check_grid(t_end, step)?;
     let steps = grid_steps(t_end, step);
     if steps > 100_000_000.0 {
         return Err(format!(

@@ -806,14 +806,7 @@ fn time_grid(py: Python<'_>, t_end: f64, step: f64) -> PyResult<Bound<'_, PyArra
 /// without building them (however many).
 #[pyfunction]
 fn time_grid_rows(t_end: f64, step: f64) -> PyResult<f64> {
-    if !(step.is_finite() && step > 0.0 && t_end.is_finite() && t_end >= 0.0) {
-        return Err(ModelError::new_err(format!(
-            "the time step must be a positive number and the end time one ≥ 0 (step {}, \
-             end time {})",
-            camlink_core::fmt_num::num(step),
-            camlink_core::fmt_num::num(t_end)
-        )));
-    }
+    run::check_grid(t_end, step).map_err(ModelError::new_err)?;
     Ok(run::grid_steps(t_end, step) + 1.0)
 }
 
