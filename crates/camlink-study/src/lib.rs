@@ -175,3 +175,31 @@ pub(crate) fn run_one(
         failed(Status::InternalError, format!("internal error: {what}"))
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Status;
+
+    #[test]
+    fn the_result_statuses_are_every_status_but_stopped() {
+        // A new status fails to compile here until it is placed.
+        let written = |s: Status| match s {
+            Status::Ok
+            | Status::ModelError
+            | Status::AnalysisError
+            | Status::OutputError
+            | Status::InternalError => true,
+            Status::Stopped => false,
+        };
+        let all = [
+            Status::Ok,
+            Status::ModelError,
+            Status::AnalysisError,
+            Status::OutputError,
+            Status::InternalError,
+            Status::Stopped,
+        ];
+        let want: Vec<Status> = all.into_iter().filter(|&s| written(s)).collect();
+        assert_eq!(Status::RESULTS.to_vec(), want);
+    }
+}
