@@ -28,6 +28,7 @@ import numpy.typing as npt
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from PIL import Image
 
+from camlink import _core
 from camlink._core import ModelError
 from camlink.io.output import _Target, check_not_input
 from camlink.progress import Progress
@@ -124,7 +125,8 @@ def frame_count(span: float, fps: float, speed: float) -> int:
             f"{span:g} s of motion at {fps:g} frames per second and speed {speed:g} is {shown} "
             f"frames; at most {MOST_FRAMES}: raise the speed, lower the frame rate or shorten the run"
         )
-    return int(np.floor(exact + 1e-9)) + 1
+    # A frame every speed/fps seconds of motion: the core's grid rule.
+    return int(_core.time_grid_rows(span, speed / fps))
 
 
 @dataclass
