@@ -463,6 +463,10 @@ def test_issue29_studio_runs_dynamics_with_progress_and_stop(
     try:
         pg = Page(browser, s.url)
         assert pg.js("document.getElementById('run-analysis').value") == "dynamics"
+        # The page offers the analyses the core runs, as the server sent them.
+        offered = pg.js("[...document.querySelectorAll('#run-analysis option.analysis')]"
+                        ".map(o => o.value).join(',')")
+        assert offered == ",".join(camlink.ANALYSES)
         pg.page.click("#run")
         pg.page.wait_for_function(
             "() => camlinkStudio.run().state === 'running' && camlinkStudio.run().done > 0", timeout=20_000)

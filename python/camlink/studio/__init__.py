@@ -42,7 +42,7 @@ from typing import Any
 import numpy as np
 from aiohttp import WSMsgType, web
 
-from camlink._core import ModelError
+from camlink._core import ANALYSES, ModelError
 from camlink.studio.cam import CamDocument, cam_payload, open_document
 from camlink.studio.document import Document, Editable, Floats, Solution, raw
 from camlink.studio.runs import Run, Runs, studies_of
@@ -252,6 +252,7 @@ def _handle(doc: Editable, msg: dict[str, Any],
     shown = [str(p) for p in plots] if isinstance(plots, list) else []
     data = payload(doc, shown, encode)
     if op == "hello":
+        data["analyses"] = list(ANALYSES)
         data["studies"] = studies_of(doc.path)
     return {"type": "frames", "seq": msg.get("seq"), "data": data}
 

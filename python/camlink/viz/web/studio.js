@@ -65,9 +65,6 @@
   const RUN = { id: 0, n: 0, state: "idle", done: 0, total: 0, t: null, names: [], units: {},
                 channel: null, values: null, plot: null };
   const pickRun = document.getElementById("run-analysis");
-  for (const a of ["kinematics", "inverse_dynamics", "equilibrium", "dynamics"]) {
-    const o = document.createElement("option"); o.value = a; o.textContent = a.replace("_", " "); pickRun.appendChild(o);
-  }
   let analysisSet = false;
   const pickChannel = document.getElementById("run-channel");
   document.getElementById("run").addEventListener("click", function () { send({ op: "run", analysis: pickRun.value }); });
@@ -185,6 +182,15 @@
   function show(data, seq) {
     link.shown(data);
     motion(data.segments || [], seq);
+    if (data.analyses) {
+      // The analyses the core runs (sent with the first frames), before
+      // the studies beside the file.
+      pickRun.querySelectorAll("option.analysis").forEach(function (o) { o.remove(); });
+      for (const a of data.analyses) {
+        const o = document.createElement("option"); o.className = "analysis"; o.value = a;
+        o.textContent = a.replace("_", " "); pickRun.appendChild(o);
+      }
+    }
     if (!analysisSet) { pickRun.value = data.analysis; analysisSet = true; }
     if (data.studies) {
       pickRun.querySelectorAll("option.study").forEach(function (o) { o.remove(); });
