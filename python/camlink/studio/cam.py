@@ -189,7 +189,10 @@ class CamDocument(Editable):
                 raise TypeError(f"segments[{index}].law: {value!r} is not a name")
             new: str | float = value
         else:
-            new = float(value)
+            try:
+                new = float(value)
+            except (TypeError, ValueError):
+                raise ModelError(f"segments[{index}].{key}: {value!r} is not a number") from None
             if not math.isfinite(new):
                 raise ModelError(f"segments[{index}].{key}: {value} is not a finite number")
         seg = segs[index]
