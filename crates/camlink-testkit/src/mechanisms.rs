@@ -521,8 +521,8 @@ pub fn released_chain_failures(
     failures
 }
 
-/// One column of the long matrix of [`released_chain_failures`] (run
-/// with `--ignored`): N = 2 and 40 at h = 1e-3, 1e-4 and 1e-5 s and
+/// One column of the long matrix of [`released_chain_failures`] (full
+/// tier, `bash scripts/gate.sh --full`): N = 2 and 40 at h = 1e-3, 1e-4 and 1e-5 s and
 /// Newton tolerance `tol`, 20 s each. The matrix is run a column at a
 /// time (`tol` = 1e-6, 1e-8, 1e-10), one test each, so that the full
 /// tier spreads its columns over the machine's cores.
