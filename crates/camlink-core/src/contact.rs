@@ -232,20 +232,8 @@ impl Contacts {
         out
     }
 
-    /// Number of channels.
-    pub fn len(&self) -> usize {
-        self.items
-            .iter()
-            .map(|it| 2 + usize::from(it.follower.is_some()))
-            .sum()
-    }
-
-    pub fn is_empty(&self) -> bool {
-        self.items.is_empty()
-    }
-
-    /// Writes the channels for coordinates `q` into `out` (length
-    /// [`len`](Self::len)).
+    /// Writes the channels for coordinates `q` into `out` (one value per
+    /// channel of [`channels`](Self::channels), in its order).
     pub fn fill(&self, model: &Model, asm: &Assembly, q: &[f64], out: &mut [f64]) {
         let mut k = 0;
         for it in &self.items {

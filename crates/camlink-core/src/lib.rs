@@ -29,11 +29,11 @@
 pub mod cam;
 pub mod curve;
 pub mod fmt_num;
-pub mod function;
+pub(crate) mod function;
 pub mod math;
-pub mod motion;
+pub(crate) mod motion;
 pub mod names;
-pub mod newton;
+pub(crate) mod newton;
 pub mod quantity;
 
 pub mod constraint;
@@ -44,9 +44,9 @@ pub mod setting;
 
 pub mod assembly;
 pub mod linsolve;
-pub mod lu_program;
+pub(crate) mod lu_program;
 
-pub mod contact;
+pub(crate) mod contact;
 
 pub mod run;
 

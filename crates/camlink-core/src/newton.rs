@@ -181,11 +181,6 @@ impl Workspace {
             trial: vec![0.0; unknowns],
         }
     }
-
-    /// The residual at the last x of [`solve`].
-    pub fn residual(&self) -> &[f64] {
-        &self.r
-    }
 }
 
 /// Damped Newton on `problem` from `x`, which holds the solution on success
