@@ -69,7 +69,7 @@ struct Item {
 /// carry ([`Feature`]), which own coordinate runs on which curve, the
 /// contact point and tangent, the follower and the cam.
 #[derive(Clone, Copy, Debug)]
-pub struct ContactView<'a> {
+pub(crate) struct ContactView<'a> {
     /// Index of the joint in [`Model::joints`].
     pub joint: usize,
     /// Bodies i and j.
@@ -80,7 +80,7 @@ pub struct ContactView<'a> {
 
 impl<'a> ContactView<'a> {
     /// The view of joint `joint`, if it is a curve contact.
-    pub fn of(model: &'a Model, joint: usize) -> Option<Self> {
+    pub(crate) fn of(model: &'a Model, joint: usize) -> Option<Self> {
         let c = &model.joints[joint].constraint;
         Some(ContactView {
             joint,
@@ -90,12 +90,12 @@ impl<'a> ContactView<'a> {
     }
 
     /// Every curve contact of `model`, drivers included, in joint order.
-    pub fn all(model: &'a Model) -> impl Iterator<Item = ContactView<'a>> + 'a {
+    pub(crate) fn all(model: &'a Model) -> impl Iterator<Item = ContactView<'a>> + 'a {
         (0..model.joints.len()).filter_map(move |j| ContactView::of(model, j))
     }
 
     /// The curve body `side` (0: i, 1: j) carries, if it carries one.
-    pub fn curve(&self, side: usize) -> Option<&'a Curve> {
+    pub(crate) fn curve(&self, side: usize) -> Option<&'a Curve> {
         match self.sides[side] {
             Feature::Curve(c) => Some(c),
             _ => None,
@@ -152,7 +152,7 @@ impl<'a> ContactView<'a> {
     /// The follower body (see the module notes): the body that carries a
     /// face or a pin unless it is the ground; between two curves, the body
     /// that translates, else the one that is not driven, else body j.
-    pub fn follower(&self, model: &Model) -> BodyId {
+    pub(crate) fn follower(&self, model: &Model) -> BodyId {
         let [bi, bj] = self.bodies;
         let carrier = (0..2).find(|&s| self.curve(s).is_none());
         match carrier {
@@ -186,7 +186,7 @@ impl<'a> ContactView<'a> {
     }
 
     /// The cam: the body whose curve the follower runs on.
-    pub fn cam(&self, model: &Model) -> BodyId {
+    pub(crate) fn cam(&self, model: &Model) -> BodyId {
         let [bi, bj] = self.bodies;
         match (self.curve(0), self.curve(1)) {
             (Some(_), Some(_)) if self.follower(model) == bi => bj,
@@ -198,13 +198,13 @@ impl<'a> ContactView<'a> {
 
 /// The contact joints of a model and their followers, found once.
 #[derive(Clone, Debug, Default)]
-pub struct Contacts {
+pub(crate) struct Contacts {
     items: Vec<Item>,
 }
 
 impl Contacts {
     /// Finds the contact joints and their followers.
-    pub fn new(model: &Model) -> Self {
+    pub(crate) fn new(model: &Model) -> Self {
         let items = ContactView::all(model)
             .map(|v| Item {
                 joint: v.joint,
@@ -216,7 +216,7 @@ impl Contacts {
 
     /// Channel names, in fill order: `<joint>.cx`, `<joint>.cy` and, where
     /// the follower's motion is known, `<joint>.pressure_angle`.
-    pub fn channels(&self, model: &Model) -> Vec<Channel> {
+    pub(crate) fn channels(&self, model: &Model) -> Vec<Channel> {
         let mut out = Vec::new();
         for it in &self.items {
             let name = &model.joints[it.joint].name;
@@ -234,7 +234,7 @@ impl Contacts {
 
     /// Writes the channels for coordinates `q` into `out` (one value per
     /// channel of [`channels`](Self::channels), in its order).
-    pub fn fill(&self, model: &Model, asm: &Assembly, q: &[f64], out: &mut [f64]) {
+    pub(crate) fn fill(&self, model: &Model, asm: &Assembly, q: &[f64], out: &mut [f64]) {
         let mut k = 0;
         for it in &self.items {
             let Some(v) = ContactView::of(model, it.joint) else {
@@ -267,7 +267,7 @@ impl Contacts {
 
 /// The angle between the lines along `n` and `d`, in [0, π/2] (rad); NaN
 /// when either is zero.
-pub fn pressure_angle(n: V2, d: V2) -> f64 {
+pub(crate) fn pressure_angle(n: V2, d: V2) -> f64 {
     if norm(n) == 0.0 || norm(d) == 0.0 {
         return f64::NAN;
     }

@@ -588,7 +588,12 @@ impl KeptRows {
     /// an error message when the dependent equations do not make up the
     /// excess (a model that is locked or singular, not only redundant), or
     /// the model is too large for the dense analysis.
-    pub fn find(model: &Model, asm: &Assembly, t: f64, tol: f64) -> Result<KeptRows, String> {
+    pub(crate) fn find(
+        model: &Model,
+        asm: &Assembly,
+        t: f64,
+        tol: f64,
+    ) -> Result<KeptRows, String> {
         let (n, m) = (asm.n, asm.m);
         let d = diagnose(model, t, tol);
         if !d.exact {
@@ -673,7 +678,7 @@ impl KeptRows {
     /// Fills the full scratch (length m) with `fill`, then copies the kept
     /// rows into `out` (length m − redundant).
     #[inline]
-    pub fn gather(&mut self, fill: impl FnOnce(&mut [f64]), out: &mut [f64]) {
+    pub(crate) fn gather(&mut self, fill: impl FnOnce(&mut [f64]), out: &mut [f64]) {
         fill(&mut self.full);
         for (o, &r) in out.iter_mut().zip(&self.keep) {
             *o = self.full[r];
@@ -682,7 +687,7 @@ impl KeptRows {
 
     /// The warning of a run that left the redundant equations out, at time
     /// `t` (s).
-    pub fn warning(&self, t: f64) -> crate::run::Warning {
+    pub(crate) fn warning(&self, t: f64) -> crate::run::Warning {
         crate::run::Warning {
             kind: crate::run::Kind::Redundant,
             time: t,

@@ -26,6 +26,8 @@
 //! 9. [`dynamics`];
 //! 10. [`machine`]: shaking, balancing, flywheel and motor sizing.
 
+#![warn(unreachable_pub)]
+
 pub mod cam;
 pub mod curve;
 pub mod fmt_num;

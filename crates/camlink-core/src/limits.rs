@@ -53,7 +53,7 @@ pub(crate) struct LimitWatch {
 }
 
 impl LimitWatch {
-    pub fn new(model: &Model) -> Self {
+    pub(crate) fn new(model: &Model) -> Self {
         let joints = model
             .joints
             .iter()
@@ -95,7 +95,7 @@ impl LimitWatch {
     }
 
     /// One warning per joint whose coordinate left its range.
-    pub fn warnings(&self, model: &Model) -> Vec<Warning> {
+    pub(crate) fn warnings(&self, model: &Model) -> Vec<Warning> {
         self.joints
             .iter()
             .filter_map(|(j, _, limits, exc)| {

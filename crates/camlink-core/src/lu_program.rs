@@ -81,7 +81,7 @@ pub(crate) struct Refresh;
 impl Elimination {
     /// For an n × n matrix whose nonzeros are at `pattern` (row, col);
     /// all storage is made here, so recording and replaying allocate nothing.
-    pub fn new(n: usize, pattern: impl IntoIterator<Item = (usize, usize)>) -> Self {
+    pub(crate) fn new(n: usize, pattern: impl IntoIterator<Item = (usize, usize)>) -> Self {
         let mut p = vec![false; n * n];
         for (r, c) in pattern {
             p[r * n + c] = true;
@@ -130,7 +130,7 @@ impl Elimination {
 
     /// Records and compiles the elimination of a pivoted factorization
     /// whose row k is row `perm[k]` of A.
-    pub fn record(&mut self, perm: &[usize]) {
+    pub(crate) fn record(&mut self, perm: &[usize]) {
         let n = self.n;
         self.perm.copy_from_slice(perm);
         // The factors' pattern: A's rows permuted, the diagonal, fill-in.
@@ -204,7 +204,7 @@ impl Elimination {
     /// Copies row-major dense factors `lu`, made in the recorded order,
     /// into the slots of `factors`, and the reciprocals of their pivots
     /// into `inv_diag`.
-    pub fn load(&self, lu: &[f64], factors: &mut [f64], inv_diag: &mut [f64]) {
+    pub(crate) fn load(&self, lu: &[f64], factors: &mut [f64], inv_diag: &mut [f64]) {
         for (f, &d) in factors.iter_mut().zip(&self.dense) {
             *f = lu[d as usize];
         }
@@ -300,7 +300,7 @@ impl Elimination {
     /// strictly lower part, then the scaled upper part; returns the number
     /// of L's. Every entry is written and the end advances past nonzeros
     /// only, without a branch on the value.
-    pub fn gather(&self, factors: &[f64], nonzeros: &mut [(Ix, Ix, f64)]) -> (usize, usize) {
+    pub(crate) fn gather(&self, factors: &[f64], nonzeros: &mut [(Ix, Ix, f64)]) -> (usize, usize) {
         let mut len = 0;
         let mut lower = 0;
         let diag = self.lower..self.lower + self.n;
@@ -320,7 +320,7 @@ impl Elimination {
     /// Solves A x = b in place with factors in the recorded slots
     /// (`factors`, `inv_diag` as [`replay`](Self::replay) or
     /// [`load`](Self::load) left them); `work` holds n values.
-    pub fn solve(&self, factors: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
+    pub(crate) fn solve(&self, factors: &[f64], inv_diag: &[f64], b: &mut [f64], work: &mut [f64]) {
         let (lower, upper) = (..self.lower, self.lower + self.n..self.src.len());
         let entries =
             |range: std::ops::Range<usize>| factors[range.clone()].iter().zip(&self.at[range]);

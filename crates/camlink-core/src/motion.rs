@@ -31,23 +31,23 @@ use crate::math::{add, cross as cross2, dot as dot2, perp, rot, scale, sub as su
 pub(crate) type Scalar = [f64; 4];
 
 /// A planar vector and its time derivatives `[x, ẋ, ẍ, x⃛*]`.
-pub type Path = [V2; 4];
+pub(crate) type Path = [V2; 4];
 
 /// A constant vector.
 #[inline]
-pub fn constant(v: V2) -> Path {
+pub(crate) fn constant(v: V2) -> Path {
     [v, [0.0; 2], [0.0; 2], [0.0; 2]]
 }
 
 /// a − b.
 #[inline]
-pub fn sub(a: &Path, b: &Path) -> Path {
+pub(crate) fn sub(a: &Path, b: &Path) -> Path {
     std::array::from_fn(|k| sub2(a[k], b[k]))
 }
 
 /// a + b.
 #[inline]
-pub fn plus(a: &Path, b: &Path) -> Path {
+pub(crate) fn plus(a: &Path, b: &Path) -> Path {
     std::array::from_fn(|k| add(a[k], b[k]))
 }
 
@@ -64,20 +64,20 @@ fn leibniz(a: &Path, b: &Path, f: fn(V2, V2) -> f64) -> Scalar {
 
 /// aᵀb and its derivatives.
 #[inline]
-pub fn dot(a: &Path, b: &Path) -> Scalar {
+pub(crate) fn dot(a: &Path, b: &Path) -> Scalar {
     leibniz(a, b, dot2)
 }
 
 /// a × b = a₀b₁ − a₁b₀ and its derivatives.
 #[inline]
-pub fn cross(a: &Path, b: &Path) -> Scalar {
+pub(crate) fn cross(a: &Path, b: &Path) -> Scalar {
     leibniz(a, b, cross2)
 }
 
 /// A(φ) v in the global frame, from the angle's `[φ, ω, ω̇]` and the
 /// body-frame vector's `[v, v̇, v̈, v⃛*]` (the formulas of the module notes).
 #[inline]
-pub fn rotated(angle: [f64; 3], v: &Path) -> Path {
+pub(crate) fn rotated(angle: [f64; 3], v: &Path) -> Path {
     let [phi, w, wd] = angle;
     let r = |u: V2| perp(u);
     let a = |u: V2| rot(phi, u);
@@ -108,7 +108,7 @@ pub fn rotated(angle: [f64; 3], v: &Path) -> Path {
 
 /// The angle `[φ, φ̇, φ̈]` of body coordinates q, q̇, q̈.
 #[inline]
-pub fn angle(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> [f64; 3] {
+pub(crate) fn angle(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3]) -> [f64; 3] {
     [q[2], qd[2], qdd[2]]
 }
 
@@ -128,7 +128,7 @@ pub(crate) fn body_point(q: [f64; 3], qd: [f64; 3], qdd: [f64; 3], s: V2) -> Pat
 
 /// f² from f's `[f, f′, f″, f‴]`: `[f², 2ff′, 2(f′² + ff″), 2ff‴ + 6f′f″]`.
 #[inline]
-pub fn square(f: [f64; 4]) -> Scalar {
+pub(crate) fn square(f: [f64; 4]) -> Scalar {
     let [f0, f1, f2, f3] = f;
     [
         f0 * f0,

@@ -21,24 +21,24 @@
 //! |Δx| ≤ max(tol, ULPS · ε_mach · |x|).
 
 /// Units of rounding (ε_mach |x|) a converged correction may keep.
-pub const ULPS: f64 = 8.0;
+pub(crate) const ULPS: f64 = 8.0;
 
 /// The rounding level of a value `x`: ULPS · ε_mach · |x|.
 #[inline]
-pub fn rounding(x: f64) -> f64 {
+pub(crate) fn rounding(x: f64) -> f64 {
     ULPS * f64::EPSILON * x.abs()
 }
 
 /// True when the correction `dx` of the value `x` is within `tol` or
 /// within the rounding level of `x`, whichever is larger.
 #[inline]
-pub fn settled(dx: f64, x: f64, tol: f64) -> bool {
+pub(crate) fn settled(dx: f64, x: f64, tol: f64) -> bool {
     dx.abs() <= tol.max(rounding(x))
 }
 
 /// What a residual evaluation reports.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Measure {
+pub(crate) struct Measure {
     /// Whether r(x) passes the problem's stopping test.
     pub converged: bool,
     /// The merit the line search decreases, normally ‖r‖₂.
@@ -51,7 +51,7 @@ pub struct Measure {
 impl Measure {
     /// The usual measure of a residual `r`: size max |r|, merit ‖r‖₂,
     /// converged when max |r| ≤ `tol`.
-    pub fn max_abs(r: &[f64], tol: f64) -> Self {
+    pub(crate) fn max_abs(r: &[f64], tol: f64) -> Self {
         let size = crate::math::max_abs(r);
         Measure {
             converged: size <= tol,
@@ -63,7 +63,7 @@ impl Measure {
 
 /// Where the iteration is when a direction is asked for.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Progress {
+pub(crate) struct Progress {
     /// Iterations done before this one.
     pub iteration: usize,
     /// [`Measure::size`] now and at the previous iterate (∞ at the first).
@@ -72,7 +72,7 @@ pub struct Progress {
 }
 
 /// A system of equations r(x) = 0 solved by [`solve`].
-pub trait Problem {
+pub(crate) trait Problem {
     /// Why a direction could not be found (a singular matrix).
     type Error;
     /// Writes r(x) into `r` and measures it.
@@ -96,7 +96,7 @@ pub trait Problem {
 
 /// What the line search does when the step falls below its minimum.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stall {
+pub(crate) enum Stall {
     /// Stop with [`Failure::NoDescent`].
     Fail,
     /// Take the short step and go on.
@@ -106,7 +106,7 @@ pub enum Stall {
 /// A backtracking line search: a step s (from 1, halved) is accepted when
 /// merit(x + s Δx) ≤ (1 − 10⁻⁴ s) merit(x).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct LineSearch {
+pub(crate) struct LineSearch {
     /// Smallest step s tried.
     pub min_step: f64,
     /// What happens below it.
@@ -115,7 +115,7 @@ pub struct LineSearch {
 
 /// How [`solve`] iterates and ends.
 #[derive(Clone, Copy, Debug)]
-pub struct Options<'a> {
+pub(crate) struct Options<'a> {
     /// Newton iterations allowed; the residual is tested once more after
     /// the last.
     pub max_iter: usize,
@@ -132,7 +132,7 @@ pub struct Options<'a> {
 
 /// A converged solve.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Solved {
+pub(crate) struct Solved {
     /// Newton directions taken.
     pub iterations: usize,
     /// [`Measure::size`] of the converged residual.
@@ -141,7 +141,7 @@ pub struct Solved {
 
 /// Why [`solve`] stopped without converging.
 #[derive(Clone, Debug, PartialEq)]
-pub enum Failure<E> {
+pub(crate) enum Failure<E> {
     /// The residual is not a finite number.
     NotFinite,
     /// The line search found no step that decreases the merit.
@@ -155,7 +155,7 @@ pub enum Failure<E> {
 /// A failed solve: why, and the residual size at the last accepted x
 /// (which `solve` leaves in place).
 #[derive(Clone, Debug, PartialEq)]
-pub struct Failed<E> {
+pub(crate) struct Failed<E> {
     pub why: Failure<E>,
     pub size: f64,
     pub iterations: usize,
@@ -164,7 +164,7 @@ pub struct Failed<E> {
 /// The vectors of one [`solve`]: residuals at x and at a trial point, the
 /// direction and the trial point. Made once per analysis.
 #[derive(Clone, Debug, Default)]
-pub struct Workspace {
+pub(crate) struct Workspace {
     r: Vec<f64>,
     r_trial: Vec<f64>,
     dx: Vec<f64>,
@@ -173,7 +173,7 @@ pub struct Workspace {
 
 impl Workspace {
     /// For `unknowns` values of x and `equations` residuals.
-    pub fn new(unknowns: usize, equations: usize) -> Self {
+    pub(crate) fn new(unknowns: usize, equations: usize) -> Self {
         Workspace {
             r: vec![0.0; equations],
             r_trial: vec![0.0; equations],
@@ -185,7 +185,7 @@ impl Workspace {
 
 /// Damped Newton on `problem` from `x`, which holds the solution on success
 /// and the last accepted iterate on failure.
-pub fn solve<P: Problem>(
+pub(crate) fn solve<P: Problem>(
     problem: &mut P,
     x: &mut [f64],
     w: &mut Workspace,

@@ -271,7 +271,7 @@ pub(crate) mod check {
     use super::*;
 
     /// A deterministic state with both bodies moving.
-    pub fn state(seed: u64) -> Local {
+    pub(crate) fn state(seed: u64) -> Local {
         let mut s = seed
             .wrapping_mul(6364136223846793005)
             .wrapping_add(1442695040888963407);
@@ -296,7 +296,7 @@ pub(crate) mod check {
 
     /// Compares ∂Q/∂q and ∂Q/∂q̇ with central differences of Q, and −∂V/∂q
     /// with the conservative part `q_cons` when given.
-    pub fn derivatives<F: Applied>(f: &F, x: &Local) {
+    pub(crate) fn derivatives<F: Applied>(f: &F, x: &Local) {
         let mut dq = BodyJac::default();
         let mut dqd = BodyJac::default();
         f.derivatives(x, &mut dq, &mut dqd);
