@@ -41,7 +41,7 @@ use super::mfile;
 /// A failure in the `.adm`: the field path in the file, the entry it
 /// belongs to (e.g. `constraint 'crank_pin' (id 4)`) and what is wrong.
 #[derive(Debug)]
-pub struct AdmFail {
+pub(crate) struct AdmFail {
     pub path: String,
     pub label: Option<String>,
     pub message: String,
@@ -52,7 +52,7 @@ type R<T> = Result<T, AdmFail>;
 /// Where an entry of the description comes from, so that an error found in
 /// it later names the `.adm` entry and field.
 #[derive(Clone, Debug)]
-pub struct Origin {
+pub(crate) struct Origin {
     /// The entry's path in the description, e.g. `joints[2]`.
     pub prefix: String,
     /// The entry's path in the `.adm`, e.g. `constraints[3]`.
@@ -63,7 +63,7 @@ pub struct Origin {
 }
 
 /// The description and the origin of its entries.
-pub struct Built {
+pub(crate) struct Built {
     pub doc: Item,
     pub origins: Vec<Origin>,
     /// What was read and ignored, as the course engine ignores it: each at
@@ -293,7 +293,7 @@ fn fun_item(src: &str, path: &str, label: &str) -> R<(Item, bool)> {
 /// Builds the description of `adm`, read from `folder` (where a
 /// `PointForceFile`'s m-file is looked for); its `[analysis]` comes from
 /// [`analysis`].
-pub fn build(adm: &Value, folder: Option<&Path>) -> R<Built> {
+pub(crate) fn build(adm: &Value, folder: Option<&Path>) -> R<Built> {
     let Value::Object(top) = adm else {
         return fail("", None, "a .adm file is a JSON object");
     };
@@ -464,7 +464,7 @@ fn rectangle(vis: &Value) -> Option<Vec<[f64; 2]>> {
 }
 
 /// The `[analysis]` table of a `.acf`.
-pub fn analysis(acf: &Value) -> R<Item> {
+pub(crate) fn analysis(acf: &Value) -> R<Item> {
     let a: Acf = parse(acf, "", Some("analysis file"))?;
     let kind = match a.simulation.trim().to_ascii_lowercase().as_str() {
         "kinematics" => "kinematics",

@@ -13,7 +13,7 @@ use camlink_model::file::Num;
 
 /// A number: a JSON number, or constant arithmetic in MATLAB syntax.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Number(pub f64);
+pub(crate) struct Number(pub f64);
 
 impl<'de> Deserialize<'de> for Number {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -32,7 +32,7 @@ impl<'de> Deserialize<'de> for Number {
 }
 
 /// Evaluates constant MATLAB arithmetic such as `187/255` or `pi/2`.
-pub fn constant(src: &str) -> Result<f64, String> {
+pub(crate) fn constant(src: &str) -> Result<f64, String> {
     let t = matlab::translate(src, false).map_err(|e| format!("invalid number '{src}': {e}"))?;
     camlink_expr::eval_constant(&t.text, &Default::default())
         .map_err(|e| format!("invalid number '{src}': {}", e.message))
@@ -40,7 +40,7 @@ pub fn constant(src: &str) -> Result<f64, String> {
 
 /// A body id, or nothing (`null`, or the key left out) for the ground.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Id(pub i64);
+pub(crate) struct Id(pub i64);
 
 impl<'de> Deserialize<'de> for Id {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
@@ -91,7 +91,7 @@ fn fun_from(v: serde_json::Value) -> Result<String, String> {
 /// The top level of a `.adm` file; `bodies`, `constraints` and `forces` are
 /// read one entry at a time, so that an error can name the entry.
 #[derive(Debug, Deserialize)]
-pub struct AdmTop {
+pub(crate) struct AdmTop {
     #[serde(default)]
     pub name: Option<String>,
     #[serde(default)]
@@ -100,7 +100,7 @@ pub struct AdmTop {
 
 /// `bodies[]`: a rigid body whose frame sits at its centroid.
 #[derive(Debug, Deserialize)]
-pub struct Body {
+pub(crate) struct Body {
     pub id: Id,
     #[serde(default)]
     pub mass: Option<Number>,
@@ -121,7 +121,7 @@ pub struct Body {
 /// `AbsoluteX`, `AbsoluteY`: x (or y) of `sP1` on `body1` equals `fun(t)`.
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct AbsoluteCoord {
+pub(crate) struct AbsoluteCoord {
     pub body1: Id,
     pub sP1: [Number; 2],
     #[serde(deserialize_with = "fun_text")]
@@ -130,7 +130,7 @@ pub struct AbsoluteCoord {
 
 /// `AbsoluteAngle`: φ of `body1` equals `fun(t)`.
 #[derive(Debug, Deserialize)]
-pub struct AbsoluteAngle {
+pub(crate) struct AbsoluteAngle {
     pub body1: Id,
     #[serde(deserialize_with = "fun_text")]
     pub fun: String,
@@ -139,7 +139,7 @@ pub struct AbsoluteAngle {
 /// `RevoluteJoint`: `sP1` on `body1` coincides with `sP2` on `body2`.
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct Revolute {
+pub(crate) struct Revolute {
     #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
@@ -153,7 +153,7 @@ pub struct Revolute {
 /// `TranslationalJoint` (Haug): v₁⊥·d = 0 and v₁⊥·v₂ = 0.
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct Translational {
+pub(crate) struct Translational {
     #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
@@ -170,7 +170,7 @@ pub struct Translational {
 /// `body2` (centre `sP2`, pitch radius `R2`).
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct RackPinion {
+pub(crate) struct RackPinion {
     #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     pub sP1: [Number; 2],
@@ -186,7 +186,7 @@ pub struct RackPinion {
 }
 
 /// A joint between `body1` and `body2` that takes no function.
-pub trait TwoBodies {
+pub(crate) trait TwoBodies {
     fn bodies(&self) -> (Option<Id>, Option<Id>);
     fn fun(&self) -> Option<&str>;
 }
@@ -210,7 +210,7 @@ two_bodies!(Revolute, Translational, RackPinion);
 /// (`LRF`) components.
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct PointForce {
+pub(crate) struct PointForce {
     pub body1: Id,
     pub sP1: [Number; 2],
     pub frame: String,
@@ -222,7 +222,7 @@ pub struct PointForce {
 
 /// `Torque`: fun(t) on `body1`.
 #[derive(Debug, Deserialize)]
-pub struct Torque {
+pub(crate) struct Torque {
     pub body1: Id,
     #[serde(deserialize_with = "fun_text")]
     pub fun: String,
@@ -230,7 +230,7 @@ pub struct Torque {
 
 /// `RSDA1` (body to ground) and `RSDA2` (between two bodies).
 #[derive(Debug, Deserialize)]
-pub struct Rsda {
+pub(crate) struct Rsda {
     #[serde(default, deserialize_with = "ground_or_id")]
     pub body1: Option<Id>,
     #[serde(default, deserialize_with = "ground_or_id")]
@@ -246,7 +246,7 @@ pub struct Rsda {
 /// function `mfile`, in the frame `frame` (`GRF` or `LRF`).
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct PointForceFile {
+pub(crate) struct PointForceFile {
     pub body1: Id,
     pub sP1: [Number; 2],
     pub frame: String,
@@ -257,7 +257,7 @@ pub struct PointForceFile {
 /// A `.acf` analysis file.
 #[derive(Debug, Deserialize)]
 #[allow(non_snake_case)]
-pub struct Acf {
+pub(crate) struct Acf {
     pub simulation: String,
     #[serde(default)]
     pub tend: Option<Number>,

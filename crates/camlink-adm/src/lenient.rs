@@ -8,7 +8,7 @@
 //! offset in the quoted text back to the file, for error positions.
 
 /// Quoted text and where quotes were inserted.
-pub struct Relaxed {
+pub(crate) struct Relaxed {
     pub text: String,
     /// Offsets in `text` of the inserted quote characters, increasing.
     inserted: Vec<usize>,
@@ -16,13 +16,13 @@ pub struct Relaxed {
 
 impl Relaxed {
     /// The byte offset in the original file of byte `offset` of `self.text`.
-    pub fn original(&self, offset: usize) -> usize {
+    pub(crate) fn original(&self, offset: usize) -> usize {
         offset - self.inserted.iter().take_while(|&&k| k < offset).count()
     }
 }
 
 /// Quotes bare non-literal values of `text` (outside strings).
-pub fn relax(text: &str) -> Relaxed {
+pub(crate) fn relax(text: &str) -> Relaxed {
     let b = text.as_bytes();
     let mut out = String::with_capacity(text.len());
     let mut inserted = Vec::new();

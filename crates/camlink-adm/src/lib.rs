@@ -10,6 +10,8 @@
 //! body (name and id). The mapping of every type is documented in
 //! `docs/simengine2d.md` and in [`build`].
 
+#![warn(unreachable_pub)]
+
 mod build;
 mod format;
 mod item;

@@ -37,7 +37,7 @@ const FUNCTIONS: &[(&str, &str)] = &[
 
 /// A translated function: camlink expression text, and whether it uses `t`.
 #[derive(Clone, Debug, PartialEq)]
-pub struct Translated {
+pub(crate) struct Translated {
     pub text: String,
     pub uses_t: bool,
 }
@@ -45,7 +45,7 @@ pub struct Translated {
 /// Translates MATLAB text to a camlink expression of `t`.
 ///
 /// `allow_t = false` refuses `t` (a number position).
-pub fn translate(src: &str, allow_t: bool) -> Result<Translated, String> {
+pub(crate) fn translate(src: &str, allow_t: bool) -> Result<Translated, String> {
     let tokens = lex(src)?;
     let mut p = Parser {
         tokens,

@@ -23,6 +23,8 @@
 //! ([`camlink_core::cam`], [`camlink_core::cam_limits`]): the mechanism
 //! that runs a synthesised cam needs them too.
 
+#![warn(unreachable_pub)]
+
 pub mod design;
 pub mod export;
 pub mod limits;

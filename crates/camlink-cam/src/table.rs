@@ -37,22 +37,22 @@ pub(crate) struct Num {
 
 impl Num {
     /// Any finite number.
-    pub const ANY: Num = Num {
+    pub(crate) const ANY: Num = Num {
         positive: false,
         most: None,
     };
     /// A positive number.
-    pub const POSITIVE: Num = Num {
+    pub(crate) const POSITIVE: Num = Num {
         positive: true,
         most: None,
     };
     /// A length (m), at most [`MAX_LENGTH`] in size.
-    pub const LENGTH: Num = Num::ANY.most(MAX_LENGTH, " m");
+    pub(crate) const LENGTH: Num = Num::ANY.most(MAX_LENGTH, " m");
     /// A positive length (m).
-    pub const POSITIVE_LENGTH: Num = Num::POSITIVE.most(MAX_LENGTH, " m");
+    pub(crate) const POSITIVE_LENGTH: Num = Num::POSITIVE.most(MAX_LENGTH, " m");
 
     /// These bounds, and at most `most` (`unit`) in size.
-    pub const fn most(self, most: f64, unit: &'static str) -> Num {
+    pub(crate) const fn most(self, most: f64, unit: &'static str) -> Num {
         Num {
             most: Some((most, unit)),
             ..self
@@ -70,7 +70,7 @@ pub(crate) struct Table<'a> {
 
 impl<'a> Table<'a> {
     /// The top level of the file.
-    pub fn root(doc: &'a Map) -> Self {
+    pub(crate) fn root(doc: &'a Map) -> Self {
         Table {
             path: String::new(),
             data: Some(doc),
@@ -79,7 +79,7 @@ impl<'a> Table<'a> {
     }
 
     /// The table at `path`; an empty one when the file gives none.
-    pub fn new(path: impl Into<String>, value: Option<&'a Value>) -> R<Self> {
+    pub(crate) fn new(path: impl Into<String>, value: Option<&'a Value>) -> R<Self> {
         let path = path.into();
         let data = match value {
             None => None,
@@ -94,13 +94,13 @@ impl<'a> Table<'a> {
     }
 
     /// The sub-table `key` of this one (marked as read).
-    pub fn table(&mut self, key: &str) -> R<Table<'a>> {
+    pub(crate) fn table(&mut self, key: &str) -> R<Table<'a>> {
         self.mark(key);
         Table::new(self.field(key), self.get(key))
     }
 
     /// The path of `key` in this table.
-    pub fn field(&self, key: &str) -> String {
+    pub(crate) fn field(&self, key: &str) -> String {
         if self.path.is_empty() {
             key.to_string()
         } else {
@@ -109,31 +109,31 @@ impl<'a> Table<'a> {
     }
 
     /// A failure at `key`.
-    pub fn fail<T>(&self, key: &str, message: impl Into<String>) -> R<T> {
+    pub(crate) fn fail<T>(&self, key: &str, message: impl Into<String>) -> R<T> {
         fail(self.field(key), message)
     }
 
     /// The value at `key`, not marked as read.
-    pub fn get(&self, key: &str) -> Option<&'a Value> {
+    pub(crate) fn get(&self, key: &str) -> Option<&'a Value> {
         self.data.and_then(|d| d.get(key))
     }
 
-    pub fn has(&self, key: &str) -> bool {
+    pub(crate) fn has(&self, key: &str) -> bool {
         self.get(key).is_some()
     }
 
     /// The keys the file gives here.
-    pub fn keys(&self) -> impl Iterator<Item = &'a String> {
+    pub(crate) fn keys(&self) -> impl Iterator<Item = &'a String> {
         self.data.into_iter().flat_map(|d| d.keys())
     }
 
     /// Marks `key` as read.
-    pub fn mark(&mut self, key: &str) {
+    pub(crate) fn mark(&mut self, key: &str) {
         self.used.insert(key.to_string());
     }
 
     /// The number at `key` (or `default`), within `bounds`.
-    pub fn number(&mut self, key: &str, default: Option<f64>, bounds: Num) -> R<f64> {
+    pub(crate) fn number(&mut self, key: &str, default: Option<f64>, bounds: Num) -> R<f64> {
         self.mark(key);
         let v = match self.get(key) {
             None => match default {
@@ -163,7 +163,7 @@ impl<'a> Table<'a> {
     }
 
     /// The number at `key` within `bounds`, or `None` when not given.
-    pub fn optional(&mut self, key: &str, bounds: Num) -> R<Option<f64>> {
+    pub(crate) fn optional(&mut self, key: &str, bounds: Num) -> R<Option<f64>> {
         if !self.has(key) {
             self.mark(key);
             return Ok(None);
@@ -173,7 +173,7 @@ impl<'a> Table<'a> {
 
     /// The text at `key` (or `default`), one of `choices` when they are
     /// given.
-    pub fn text(&mut self, key: &str, default: Option<&str>, choices: &[&str]) -> R<String> {
+    pub(crate) fn text(&mut self, key: &str, default: Option<&str>, choices: &[&str]) -> R<String> {
         self.mark(key);
         let v = match (self.get(key), default) {
             (Some(Value::String(s)), _) => s.clone(),
@@ -198,7 +198,7 @@ impl<'a> Table<'a> {
 
     /// The value of the choice named at `key` (or of the one named
     /// `default`): one of the names of `choices`.
-    pub fn choice<T: Copy>(
+    pub(crate) fn choice<T: Copy>(
         &mut self,
         key: &str,
         default: Option<&str>,
@@ -213,7 +213,7 @@ impl<'a> Table<'a> {
     }
 
     /// The true or false at `key`, or `default`.
-    pub fn flag(&mut self, key: &str, default: bool) -> R<bool> {
+    pub(crate) fn flag(&mut self, key: &str, default: bool) -> R<bool> {
         self.mark(key);
         match self.get(key) {
             None => Ok(default),
@@ -223,7 +223,7 @@ impl<'a> Table<'a> {
     }
 
     /// Refuses a key that no read asked for, naming the nearest known one.
-    pub fn finish(self) -> R<()> {
+    pub(crate) fn finish(self) -> R<()> {
         let mut extra: Vec<&String> = self.keys().filter(|k| !self.used.contains(*k)).collect();
         extra.sort();
         let Some(first) = extra.first().copied() else {

@@ -98,6 +98,7 @@
 //! than [`MAX_NESTING`] levels deep are rejected with a [`ParseError`].
 
 #![forbid(unsafe_code)]
+#![warn(unreachable_pub)]
 
 mod compile;
 mod error;

@@ -11,12 +11,12 @@ use camlink_core::TimeFn;
 use camlink_expr::{Expr, ParseError};
 
 /// Evaluates a constant expression with the file's parameters.
-pub fn constant(src: &str, consts: &HashMap<String, f64>) -> Result<f64, String> {
+pub(crate) fn constant(src: &str, consts: &HashMap<String, f64>) -> Result<f64, String> {
     camlink_expr::eval_constant(src, consts).map_err(|e| describe(src, &e))
 }
 
 /// Parses a function of time `t` (s) with the file's parameters.
-pub fn time_fn(src: &str, consts: &HashMap<String, f64>) -> Result<TimeFn, String> {
+pub(crate) fn time_fn(src: &str, consts: &HashMap<String, f64>) -> Result<TimeFn, String> {
     let e = Expr::parse_with(src, Some("t"), consts).map_err(|e| describe(src, &e))?;
     if e.is_constant() {
         let v = e.eval(0.0);
@@ -45,18 +45,22 @@ fn describe(src: &str, e: &ParseError) -> String {
 
 /// Parses a function of the variable `var` (a curve's `a` or `s`) with the
 /// file's parameters.
-pub fn function_of(src: &str, var: &str, consts: &HashMap<String, f64>) -> Result<Expr, String> {
+pub(crate) fn function_of(
+    src: &str,
+    var: &str,
+    consts: &HashMap<String, f64>,
+) -> Result<Expr, String> {
     Expr::parse_with(src, Some(var), consts).map_err(|e| describe(src, &e))
 }
 
 /// The names `src` reads (its variables and parameters, not its functions).
-pub fn names(src: &str) -> Result<Vec<&str>, String> {
+pub(crate) fn names(src: &str) -> Result<Vec<&str>, String> {
     camlink_expr::names(src).map_err(|e| describe(src, &e))
 }
 
 /// Parses an expression of the named `inputs` (a force of state's
 /// channels) with the file's parameters.
-pub fn state_expr(
+pub(crate) fn state_expr(
     src: &str,
     inputs: &[&str],
     consts: &HashMap<String, f64>,

@@ -8,6 +8,8 @@
 //! [`json_schema`] is the published JSON Schema of the format; the format
 //! itself is documented in `docs/model-files.md`.
 
+#![warn(unreachable_pub)]
+
 mod analysis;
 pub mod convert;
 mod data_file;

@@ -389,7 +389,7 @@ impl CamCore {
 /// The follower kinds of cam design files and the dimensions each takes,
 /// as `{kind: [field, …]}` ([`Follower::KINDS`]).
 #[pyfunction]
-pub fn cam_followers() -> Vec<(&'static str, Vec<&'static str>)> {
+pub(crate) fn cam_followers() -> Vec<(&'static str, Vec<&'static str>)> {
     Follower::KINDS
         .iter()
         .map(|(k, fields)| (*k, fields.to_vec()))
@@ -398,13 +398,13 @@ pub fn cam_followers() -> Vec<(&'static str, Vec<&'static str>)> {
 
 /// The motion law names of cam design files, in the order of the docs.
 #[pyfunction]
-pub fn cam_laws() -> Vec<&'static str> {
+pub(crate) fn cam_laws() -> Vec<&'static str> {
     LawKind::ALL.iter().map(|l| l.name()).collect()
 }
 
 /// The materials table: name -> (E Pa, ν, G Pa, density kg/m³).
 #[pyfunction]
-pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
+pub(crate) fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
     hertz::MATERIALS
         .iter()
         .map(|(n, m)| (n.to_string(), m.young, m.poisson, m.shear, m.density))
@@ -413,7 +413,7 @@ pub fn cam_materials() -> Vec<(String, f64, f64, f64, f64)> {
 
 /// Contact modulus E* (Pa) of two materials given as (E Pa, ν).
 #[pyfunction]
-pub fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
+pub(crate) fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
     let m = |(young, poisson): (f64, f64)| hertz::Material {
         young,
         poisson,
@@ -427,7 +427,13 @@ pub fn contact_modulus(a: (f64, f64), b: (f64, f64)) -> f64 {
 /// inf flat) under force (N) over length (m), modulus E* (Pa):
 /// (half-width m, p_max Pa), or None without contact.
 #[pyfunction]
-pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, modulus: f64) -> Option<(f64, f64)> {
+pub(crate) fn line_contact(
+    r1: f64,
+    r2: f64,
+    force: f64,
+    length: f64,
+    modulus: f64,
+) -> Option<(f64, f64)> {
     hertz::line_contact(r1, r2, force, length, modulus).map(|c| (c.half_width, c.max_pressure))
 }
 
@@ -437,7 +443,7 @@ pub fn line_contact(r1: f64, r2: f64, force: f64, length: f64, modulus: f64) -> 
 /// surge (Hz), index. A `ValueError` names the field (`field: message`).
 #[pyfunction]
 #[allow(clippy::too_many_arguments)]
-pub fn helical_spring<'py>(
+pub(crate) fn helical_spring<'py>(
     py: Python<'py>,
     wire: f64,
     mean_diameter: f64,

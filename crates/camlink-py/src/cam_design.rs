@@ -29,7 +29,7 @@ use crate::ModelError;
 /// file, line and field.
 #[pyfunction]
 #[pyo3(signature = (text, source, json = false))]
-pub fn cam_design_load<'py>(
+pub(crate) fn cam_design_load<'py>(
     py: Python<'py>,
     text: &str,
     source: &str,
@@ -51,7 +51,7 @@ pub fn cam_design_load<'py>(
 /// Reads and checks the design file at `path` (TOML) as
 /// [`cam_design_load`] does.
 #[pyfunction]
-pub fn cam_design_read<'py>(
+pub(crate) fn cam_design_read<'py>(
     py: Python<'py>,
     path: std::path::PathBuf,
 ) -> PyResult<(Bound<'py, PyDict>, Vec<String>)> {
@@ -64,7 +64,7 @@ pub fn cam_design_read<'py>(
 /// The bounds and defaults of design files (`camlink_cam::limits`), by
 /// their lower-case names.
 #[pyfunction]
-pub fn cam_design_limits<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn cam_design_limits<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
     use camlink_cam::limits::*;
     let d = PyDict::new(py);
     d.set_item("rpm", RPM)?;
@@ -84,20 +84,20 @@ pub fn cam_design_limits<'py>(py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
 /// Whether the data `json` (a parsed TOML file as JSON) is a cam design
 /// file rather than a model file.
 #[pyfunction]
-pub fn cam_is_design(json: &str) -> bool {
+pub(crate) fn cam_is_design(json: &str) -> bool {
     camlink_cam::load::json_table(json).is_ok_and(|t| camlink_cam::is_design(&t))
 }
 
 /// Why `name` is not a plain file name (a path separator, a folder, a
 /// control character, a drive), or None.
 #[pyfunction]
-pub fn plain_file_name_problem(name: &str) -> Option<&'static str> {
+pub(crate) fn plain_file_name_problem(name: &str) -> Option<&'static str> {
     camlink_cam::load::not_plain(name)
 }
 
 /// ` (did you mean 'x'?)` for the candidate nearest `name`, or "".
 #[pyfunction]
-pub fn did_you_mean(name: &str, candidates: Vec<String>) -> String {
+pub(crate) fn did_you_mean(name: &str, candidates: Vec<String>) -> String {
     camlink_core::names::did_you_mean(name, candidates.iter().map(String::as_str))
 }
 
@@ -216,7 +216,7 @@ pub(crate) fn design_dict<'py>(py: Python<'py>, d: &Design) -> PyResult<Bound<'p
 /// does not synthesise, or an analysis behind a check that cannot run,
 /// raises `ModelError` naming the file.
 #[pyfunction]
-pub fn cam_design_report<'py>(
+pub(crate) fn cam_design_report<'py>(
     py: Python<'py>,
     design: &Bound<'py, PyAny>,
 ) -> PyResult<Bound<'py, PyDict>> {
@@ -233,7 +233,7 @@ pub fn cam_design_report<'py>(
 /// `report` (a `camlink.cam.design.Report`) with its lengths in `units`
 /// ("m" or "mm"; `Report::in_units`), as [`cam_design_report`]'s dict.
 #[pyfunction]
-pub fn cam_report_in_units<'py>(
+pub(crate) fn cam_report_in_units<'py>(
     py: Python<'py>,
     report: &Bound<'py, PyAny>,
     units: &str,
@@ -249,7 +249,7 @@ pub fn cam_report_in_units<'py>(
 /// `camlink_cam::report::TOOL_SAMPLES`; `report::tool_undercut`).
 #[pyfunction]
 #[pyo3(signature = (core, tool_radius, n = None))]
-pub fn cam_tool_undercut(
+pub(crate) fn cam_tool_undercut(
     core: &CamCore,
     tool_radius: f64,
     n: Option<usize>,

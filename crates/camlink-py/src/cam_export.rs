@@ -17,7 +17,7 @@ type ArcRow = ([f64; 2], f64, f64, f64, [f64; 2], [f64; 2]);
 /// Cam angles θ (rad) over one turn at `step` (rad), the end excluded;
 /// ValueError for a step that is not positive or makes too many rows.
 #[pyfunction]
-pub fn cam_angles_by_step(py: Python<'_>, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
+pub(crate) fn cam_angles_by_step(py: Python<'_>, step: f64) -> PyResult<Bound<'_, PyArray1<f64>>> {
     let th = export::angles_by_step(step).map_err(PyValueError::new_err)?;
     Ok(th.into_pyarray(py))
 }
@@ -26,7 +26,11 @@ pub fn cam_angles_by_step(py: Python<'_>, step: f64) -> PyResult<Bound<'_, PyArr
 /// size of the curve `offset` (m) outside `core`'s surface.
 #[pyfunction]
 #[pyo3(signature = (core, tolerance, offset = 0.0))]
-pub fn cam_check_tolerance(core: PyRef<'_, CamCore>, tolerance: f64, offset: f64) -> PyResult<()> {
+pub(crate) fn cam_check_tolerance(
+    core: PyRef<'_, CamCore>,
+    tolerance: f64,
+    offset: f64,
+) -> PyResult<()> {
     export::check_tolerance(&core.cam, tolerance, offset).map_err(PyValueError::new_err)
 }
 
@@ -35,7 +39,7 @@ pub fn cam_check_tolerance(core: PyRef<'_, CamCore>, tolerance: f64, offset: f64
 /// to the curve's size first.
 #[pyfunction]
 #[pyo3(signature = (core, tolerance, offset = 0.0, check = true))]
-pub fn cam_angles_by_chord<'py>(
+pub(crate) fn cam_angles_by_chord<'py>(
     py: Python<'py>,
     core: PyRef<'py, CamCore>,
     tolerance: f64,
@@ -59,7 +63,7 @@ pub fn cam_angles_by_chord<'py>(
 /// within `tolerance` − `slack` (m) of its run of points.
 #[pyfunction]
 #[pyo3(signature = (points, tolerance, slack = 0.0))]
-pub fn cam_fit_arcs(
+pub(crate) fn cam_fit_arcs(
     py: Python<'_>,
     points: PyReadonlyArray2<'_, f64>,
     tolerance: f64,
@@ -85,7 +89,7 @@ pub fn cam_fit_arcs(
 /// The bounds of the exports' geometry: `max_points`, the most angles
 /// `cam_angles_by_chord` gives.
 #[pyfunction]
-pub fn cam_export_limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+pub(crate) fn cam_export_limits(py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
     let d = PyDict::new(py);
     d.set_item("max_points", export::MAX_POINTS)?;
     Ok(d)

@@ -136,7 +136,7 @@ impl TimingCore {
 /// design as `cam_design_read` gives it) and the design files' warnings.
 /// Raises `ModelError` naming the file, line and field.
 #[pyfunction]
-pub fn cam_timing_read<'py>(
+pub(crate) fn cam_timing_read<'py>(
     py: Python<'py>,
     path: PathBuf,
 ) -> PyResult<(TimingCore, Bound<'py, PyDict>, Vec<String>)> {
@@ -176,7 +176,7 @@ pub fn cam_timing_read<'py>(
 
 /// Whether the file at `path` is a timing file (TOML with `axes`).
 #[pyfunction]
-pub fn cam_is_timing(path: PathBuf) -> bool {
+pub(crate) fn cam_is_timing(path: PathBuf) -> bool {
     timing::is_timing_path(&path)
 }
 

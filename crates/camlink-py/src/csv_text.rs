@@ -9,7 +9,7 @@ use pyo3::types::PyBytes;
 /// a float: `-0.0` as `0.0`, whole numbers with `.0` (so that a column of
 /// whole numbers is not read as integers by pandas and spreadsheets),
 /// `nan`, `inf` and `-inf` as NumPy, pandas and Python read them.
-pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
+pub(crate) fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
     if v.is_nan() {
         out.extend_from_slice(b"nan");
     } else if v.is_infinite() {
@@ -27,7 +27,7 @@ pub fn push_number(out: &mut Vec<u8>, buf: &mut zmij::Buffer, v: f64) {
 /// (the few rows sharing a cache line across its columns are read one
 /// after another).
 #[pyfunction]
-pub fn csv_rows<'py>(
+pub(crate) fn csv_rows<'py>(
     py: Python<'py>,
     rows: PyReadonlyArray2<'py, f64>,
 ) -> PyResult<Bound<'py, PyBytes>> {

@@ -7,6 +7,8 @@
 //! No Rust panic crosses into Python: every entry point runs under
 //! [`guard`], which turns a panic into `RuntimeError("internal error: …")`.
 
+#![warn(unreachable_pub)]
+
 mod cam;
 mod cam_design;
 mod cam_export;

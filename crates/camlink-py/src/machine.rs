@@ -33,7 +33,7 @@ fn load(
 /// The machine report of the model file at `path` (its `[machine]` table):
 /// SI units, angles in rad.
 #[pyfunction]
-pub fn machine_report(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
+pub(crate) fn machine_report(py: Python<'_>, path: PathBuf) -> PyResult<Bound<'_, PyDict>> {
     guard(|| {
         let (loaded, spec) = load(py, &path)?;
         let report = py

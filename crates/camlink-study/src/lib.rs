@@ -7,6 +7,8 @@
 //! (rayon). Each variant ends as a [`Outcome`]: its outputs, or the
 //! error that stopped it; one failing variant never stops the others.
 
+#![warn(unreachable_pub)]
+
 mod analysis;
 pub mod declaration;
 pub mod reduce;

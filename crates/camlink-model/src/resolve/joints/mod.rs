@@ -40,12 +40,12 @@ pub(crate) struct At<'a> {
 
 impl At<'_> {
     /// The name of a joint the file leaves unnamed: `<type>_<index>`.
-    pub fn default_name(&self) -> String {
+    pub(crate) fn default_name(&self) -> String {
         format!("{}_{}", self.kind, self.k)
     }
 
     /// The path of field `key` of this joint.
-    pub fn field(&self, key: &str) -> String {
+    pub(crate) fn field(&self, key: &str) -> String {
         format!("{}.{key}", self.path)
     }
 }
