@@ -90,3 +90,40 @@ fn parallelogram_chain_full_matrix_tol_1e_10() {
     let failures = released_chain_long_failures(CRANK, 1e-10);
     assert!(failures.is_empty(), "{failures:#?}");
 }
+
+/// One run from the environment, for measurements: `CHAIN_N` (40),
+/// `CHAIN_H` (1e-5 s), `CHAIN_TOL` (1e-10), `CHAIN_T` (0.6 s),
+/// `CHAIN_UNIFORM` (set: uniform cranks); its error, crank spread, run
+/// summary and time.
+#[test]
+#[ignore = "a probe: CHAIN_H=1e-4 cargo test --profile ci -- --ignored parallelogram_chain_probe"]
+fn parallelogram_chain_probe() {
+    let get = |k: &str, default: f64| {
+        std::env::var(k)
+            .ok()
+            .map_or(default, |v| v.parse::<f64>().unwrap())
+    };
+    let n = get("CHAIN_N", 40.0) as usize;
+    let (h, tol, t_end) = (
+        get("CHAIN_H", 1e-5),
+        get("CHAIN_TOL", 1e-10),
+        get("CHAIN_T", 0.6),
+    );
+    let crank = match std::env::var("CHAIN_UNIFORM") {
+        Ok(_) => CrankMass::Uniform,
+        Err(_) => CRANK,
+    };
+    let t0 = std::time::Instant::now();
+    let model = parallelogram_chain(n, 0.0, false, crank);
+    let (table, summary) = forward_with_summary(&model, h, tol, t_end).unwrap();
+    let err = parallelogram_error(&table, n, crank, 0.0, 9.81);
+    eprintln!(
+        "N = {n}, {crank:?}, h = {h:e} s, tol = {tol:e}, {t_end} s: max |θ − θ_exact| {err:.3e} rad, \
+         spread {:.1e} rad, {} steps, {} Newton iterations, {} factorizations, in {:.1} s",
+        mechanisms::crank_spread(&table, n),
+        summary.steps,
+        summary.newton_iterations,
+        summary.factorizations,
+        t0.elapsed().as_secs_f64()
+    );
+}

@@ -295,7 +295,9 @@ impl State {
 
 /// The predictor's history ([`Integrator::predict`]): the length h (s)
 /// of the last step (0: none, or not to extrapolate from) with q̈ and λ
-/// at its start, and the same of the step before it.
+/// at its start, and the same of the step before it; and of the step
+/// before that, which the last [`push`](Self::push) dropped, so that a
+/// step taken back ([`undo`](Self::undo)) leaves the history as it was.
 #[derive(Clone, Debug, Default)]
 struct History {
     h: f64,
@@ -304,6 +306,9 @@ struct History {
     h2: f64,
     qdd2: Vec<f64>,
     lambda2: Vec<f64>,
+    h3: f64,
+    qdd3: Vec<f64>,
+    lambda3: Vec<f64>,
 }
 
 impl History {
@@ -315,6 +320,9 @@ impl History {
             h2: 0.0,
             qdd2: vec![0.0; n],
             lambda2: vec![0.0; m],
+            h3: 0.0,
+            qdd3: vec![0.0; n],
+            lambda3: vec![0.0; m],
         }
     }
 
@@ -326,6 +334,9 @@ impl History {
         self.h2 = from.h2;
         self.qdd2.clone_from(&from.qdd2);
         self.lambda2.clone_from(&from.lambda2);
+        self.h3 = from.h3;
+        self.qdd3.clone_from(&from.qdd3);
+        self.lambda3.clone_from(&from.lambda3);
     }
 
     /// True when the last step, the one before it and a step of `h` (s)
@@ -363,14 +374,31 @@ impl History {
     }
 
     /// After a step of `h` (s) from a state with q̈ `qdd` and λ `lambda`:
-    /// that step becomes the last one, the last the one before.
+    /// that step becomes the last one, the last the one before (the
+    /// vectors rotate; only the new values are copied).
     fn push(&mut self, h: f64, qdd: &[f64], lambda: &[f64]) {
+        std::mem::swap(&mut self.qdd2, &mut self.qdd3);
+        std::mem::swap(&mut self.lambda2, &mut self.lambda3);
         std::mem::swap(&mut self.qdd, &mut self.qdd2);
         std::mem::swap(&mut self.lambda, &mut self.lambda2);
         self.qdd.copy_from_slice(qdd);
         self.lambda.copy_from_slice(lambda);
+        self.h3 = self.h2;
         self.h2 = self.h;
         self.h = h;
+    }
+
+    /// Takes back the last [`push`](Self::push), of a step that is
+    /// taken again: the history is the one that step started from (the
+    /// step before the two then known is not: h₃ = 0).
+    fn undo(&mut self) {
+        std::mem::swap(&mut self.qdd, &mut self.qdd2);
+        std::mem::swap(&mut self.lambda, &mut self.lambda2);
+        std::mem::swap(&mut self.qdd2, &mut self.qdd3);
+        std::mem::swap(&mut self.lambda2, &mut self.lambda3);
+        self.h = self.h2;
+        self.h2 = self.h3;
+        self.h3 = 0.0;
     }
 }
 
@@ -456,8 +484,6 @@ pub struct Integrator<'m> {
 
     /// The predictor's history.
     history: History,
-    /// max |λ| two steps back (0: not known).
-    lambda_max_before: f64,
     /// The weighted error of the last accepted error-controlled step.
     err_prev: Option<f64>,
 
@@ -618,7 +644,6 @@ impl<'m> Integrator<'m> {
             start: state.clone(),
             state,
             history: History::new(n, m),
-            lambda_max_before: 0.0,
             err_prev: None,
             newton: Newton {
                 aug,
@@ -987,9 +1012,8 @@ impl<'m> Integrator<'m> {
     /// rank.
     fn after_plain_step(&mut self, h: f64) -> Result<(), AnalysisError> {
         if let Some(rows) = self.crossed_branch() {
-            // Back to the start of the step: its state, time and count.
-            self.restore();
-            self.diagnostics.summary.steps -= 1;
+            // Back to the start of the step.
+            self.take_back();
             self.use_rows(rows);
             self.save();
             if !self.try_step(h, true)? {
@@ -1163,6 +1187,14 @@ impl<'m> Integrator<'m> {
     /// Back to the start of the step: its time and state.
     fn restore(&mut self) {
         self.state.copy_from(&self.start);
+    }
+
+    /// Takes back an accepted step, to take it again: the state at its
+    /// start, the step count and the predictor's history as they were.
+    fn take_back(&mut self) {
+        self.restore();
+        self.history.undo();
+        self.diagnostics.summary.steps -= 1;
     }
 
     /// One step; Ok(false) when Newton did not converge.
@@ -1637,7 +1669,6 @@ impl<'m> Integrator<'m> {
         for i in 0..self.state.a.len() {
             self.state.a[i] = c.next_a(self.state.qdd[i], self.start.qdd[i], self.state.a[i]);
         }
-        self.lambda_max_before = max_abs(&self.history.lambda);
         self.history.push(k.h, &self.start.qdd, &self.start.lambda);
         self.state.h_a = k.h;
         self.state.t = k.t1;
@@ -1678,7 +1709,7 @@ impl<'m> Integrator<'m> {
     /// from rest, which slows), or by more than [`LAMBDA_LEAP`] times.
     fn lambda_jumps(&self) -> bool {
         let (l0, l1, l2) = (
-            self.lambda_max_before,
+            max_abs(&self.history.lambda2),
             max_abs(&self.history.lambda),
             max_abs(&self.start.lambda),
         );
@@ -1859,10 +1890,8 @@ impl<'m> Integrator<'m> {
                         // may differ from t₀ in the last bit; the steps
                         // that follow are taken from there).
                         let t1 = self.state.t;
-                        self.restore();
+                        self.take_back();
                         self.state.t = t1 - h;
-                        self.history.h = 0.0;
-                        self.diagnostics.summary.steps -= 1;
                         self.diagnostics.rejected += 1;
                         *h_next = (h * factor).max(ad.h_min);
                         continue;
@@ -2010,5 +2039,66 @@ mod tests {
             "φ moved by {}",
             it.state.q[2] - phi0
         );
+    }
+
+    /// A push taken back leaves the history as it was: the last two
+    /// steps' lengths, q̈ and λ, bit for bit.
+    #[test]
+    fn a_push_taken_back_leaves_the_history_as_it_was() {
+        let mut hist = History::new(2, 1);
+        for (i, h) in [1e-3, 2e-3, 3e-3].into_iter().enumerate() {
+            let x = i as f64 + 1.0;
+            hist.push(h, &[x, -x], &[10.0 * x]);
+        }
+        let before = hist.clone();
+        hist.push(4e-3, &[7.0, 8.0], &[9.0]);
+        hist.undo();
+        assert_eq!((hist.h, hist.h2), (before.h, before.h2));
+        assert_eq!((&hist.qdd, &hist.qdd2), (&before.qdd, &before.qdd2));
+        assert_eq!(
+            (&hist.lambda, &hist.lambda2),
+            (&before.lambda, &before.lambda2)
+        );
+        // Pushing again gives what a single push gives.
+        let mut again = hist.clone();
+        let mut once = before.clone();
+        again.push(5e-3, &[1.0, 2.0], &[3.0]);
+        once.push(5e-3, &[1.0, 2.0], &[3.0]);
+        assert_eq!((again.h, again.h2), (once.h, once.h2));
+        assert_eq!((&again.qdd, &again.qdd2), (&once.qdd, &once.qdd2));
+        assert_eq!(
+            (&again.lambda, &again.lambda2),
+            (&once.lambda, &once.lambda2)
+        );
+    }
+
+    /// A step taken back by the crossed-branch retry does not stay in the
+    /// predictor's history: after the retry, the step before it is the
+    /// one before the retried step, with its λ (the multipliers two steps
+    /// back that [`Integrator::lambda_jumps`] compares with).
+    #[test]
+    fn a_retried_step_leaves_no_trace_in_the_history() {
+        let model = pendulum();
+        let h = 1e-3;
+        let settings = Settings {
+            step: h,
+            ..Settings::default()
+        };
+        let mut it = Integrator::new(&model, settings).unwrap();
+        for _ in 0..10 {
+            it.step(h).unwrap();
+        }
+        let last_lambda = it.history.lambda.clone();
+        let start_lambda = it.state.lambda.clone();
+        it.follow.guard = Some(BranchRows {
+            k: 1,
+            a: vec![0.0, 0.0, 1.0],
+            tangent: vec![1.0, 0.0, 0.0],
+            sigma_rel: 0.0,
+            lost: vec![0.0; it.sys.m()],
+        });
+        it.step(h).unwrap();
+        assert_eq!(it.history.lambda, start_lambda);
+        assert_eq!(it.history.lambda2, last_lambda);
     }
 }
