@@ -67,6 +67,11 @@ pub(crate) const WINDOW_EXIT: f64 = 4.0 * WINDOW;
 /// Relative step of the central differences of Φ_q along the kernel.
 const DIFF: f64 = 1e-5;
 
+/// The tangent's iteration may end where its residual, relative to the
+/// largest entry of G, stops falling below this (the noise of the
+/// differences; see [`tangent_on_cone`]).
+const STALL: f64 = 1e-9;
+
 /// The branch rows at a position near a bifurcation point.
 pub(crate) struct BranchRows {
     /// Number of rows k (lost ranks).
@@ -113,65 +118,29 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
         .iter()
         .map(|&c| (0..n).map(|i| v[(i, c)]).collect())
         .collect();
-    // G_w[a][b] = v_aᵀ (wᵀΦ)_qq v_b, from central differences of Φ_q
-    // along each v_b.
-    let eps = DIFF * q.iter().fold(1.0f64, |a, x| a.max(x.abs()));
-    let mut g = vec![vec![vec![0.0; d]; d]; k];
-    let mut qp = q.to_vec();
     // The lost left singular vectors w, k × m row-major.
     let w_rows: Vec<f64> = lost
         .iter()
         .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
         .collect();
-    // The same, m × k row-major: the k weights of each equation together.
-    let w_by_row: Vec<f64> = (0..m)
-        .flat_map(|row| lost.iter().map(move |&lw| u[(row, lw)]))
-        .collect();
-    // The kernel basis as a matrix, n × d.
-    let vk = Mat::from_fn(n, d, |i, a| basis[a][i]);
-    // (wᵀ Φ_q)_q v_b for every lost w from wᵀ Φ_q at q ± ε v_b (n × k,
-    // from the Jacobian's entries), then G_w[a][b] = v_a · that.
-    let mut wj = [vec![0.0; n * k], vec![0.0; n * k]];
-    for (b, vb) in basis.iter().enumerate() {
-        for (side, sign) in [(0, 1.0), (1, -1.0)] {
-            for i in 0..n {
-                qp[i] = q[i] + sign * eps * vb[i];
-            }
-            let out = &mut wj[side];
-            out.fill(0.0);
-            asm.jacobian(model, &qp, t, |row, c, x| {
-                let ws = &w_by_row[row * k..(row + 1) * k];
-                for (o, w) in out[c * k..(c + 1) * k].iter_mut().zip(ws) {
-                    *o += w * x;
-                }
-            });
-        }
-        let scale = 1.0 / (2.0 * eps);
-        let h = Mat::from_fn(n, k, |c, w| (wj[0][c * k + w] - wj[1][c * k + w]) * scale);
-        let gb = vk.transpose() * &h;
-        for (w, gw) in g.iter_mut().enumerate() {
-            for (a, row) in gw.iter_mut().enumerate() {
-                row[b] = gb[(a, w)];
-            }
-        }
-    }
-    for gw in &mut g {
-        for a in 1..d {
-            let (upper, lower) = gw.split_at_mut(a);
-            for (b, row_b) in upper.iter_mut().enumerate() {
-                let avg = 0.5 * (lower[0][b] + row_b[a]);
-                lower[0][b] = avg;
-                row_b[a] = avg;
-            }
-        }
-    }
-    let y = tangent_on_cone(&g, &basis, hint)?;
+    let second = SecondOrder {
+        sys,
+        q,
+        t,
+        eps: DIFF * q.iter().fold(1.0f64, |a, x| a.max(x.abs())),
+        k,
+        w_by_row: (0..m)
+            .flat_map(|row| lost.iter().map(move |&lw| u[(row, lw)]))
+            .collect(),
+        vk: Mat::from_fn(n, d, |i, a| basis[a][i]),
+        basis: &basis,
+    };
+    let (y, g) = tangent_on_cone(&second, hint)?;
     let tangent = combine(&basis, &y);
     // A rows: V G_w y, orthonormalised, each orthogonal to t.
     let mut a = Vec::with_capacity(k * n);
-    for gw in &g {
-        let gy: Vec<f64> = (0..d).map(|r| inner(&gw[r], &y)).collect();
-        let mut row = combine(&basis, &gy);
+    for gy in &g {
+        let mut row = combine(&basis, gy);
         let along = inner(&row, &tangent);
         for i in 0..n {
             row[i] -= along * tangent[i];
@@ -199,35 +168,104 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
     })
 }
 
+/// The second-order part of the lost equations wᵀΦ on the kernel:
+/// G_w = Vᵀ (wᵀΦ)_qq V, applied to a direction y of the kernel's
+/// coordinates.
+struct SecondOrder<'a, 's> {
+    sys: &'a System<'s>,
+    q: &'a [f64],
+    /// Time (s).
+    t: f64,
+    /// Step of the central differences (m or rad, per unit direction).
+    eps: f64,
+    /// Number of lost equations k.
+    k: usize,
+    /// The lost left singular vectors, m × k row-major: the k weights of
+    /// each equation together.
+    w_by_row: Vec<f64>,
+    /// The kernel basis V as a matrix, n × d.
+    vk: Mat<f64>,
+    /// The same, one vector per column of V.
+    basis: &'a [Vec<f64>],
+}
+
+impl SecondOrder<'_, '_> {
+    /// G_w y for every lost w (k rows of d), from the central difference
+    /// of wᵀΦ_q along the direction V y: (wᵀΦ_q)_q V y ≈ (wᵀΦ_q(q + εVy)
+    /// − wᵀΦ_q(q − εVy))/(2ε), then Vᵀ of it. One difference along V y
+    /// costs what one of the d columns of G did.
+    fn apply(&self, y: &[f64]) -> Vec<Vec<f64>> {
+        let (model, asm) = (self.sys.model, &self.sys.asm);
+        let (n, k) = (asm.n, self.k);
+        let dir = combine(self.basis, y);
+        let mut qp = self.q.to_vec();
+        let mut wj = [vec![0.0; n * k], vec![0.0; n * k]];
+        for (side, sign) in [(0, 1.0), (1, -1.0)] {
+            for i in 0..n {
+                qp[i] = self.q[i] + sign * self.eps * dir[i];
+            }
+            let out = &mut wj[side];
+            asm.jacobian(model, &qp, self.t, |row, c, x| {
+                let ws = &self.w_by_row[row * k..(row + 1) * k];
+                for (o, w) in out[c * k..(c + 1) * k].iter_mut().zip(ws) {
+                    *o += w * x;
+                }
+            });
+        }
+        let scale = 1.0 / (2.0 * self.eps);
+        let h = Mat::from_fn(n, k, |c, w| (wj[0][c * k + w] - wj[1][c * k + w]) * scale);
+        let gy = self.vk.transpose() * &h;
+        (0..k)
+            .map(|w| (0..gy.nrows()).map(|a| gy[(a, w)]).collect())
+            .collect()
+    }
+}
+
 /// The root y (unit) of the quadratic forms yᵀ G_w y nearest to the
-/// direction `hint` projected on the kernel: Gauss–Newton with
-/// minimum-norm corrections.
-fn tangent_on_cone(g: &[Vec<Vec<f64>>], basis: &[Vec<f64>], hint: &[f64]) -> Option<Vec<f64>> {
-    let (k, d) = (g.len(), basis.len());
-    let mut y: Vec<f64> = basis.iter().map(|v| inner(v, hint)).collect();
+/// direction `hint` projected on the kernel, and G_w y there: Gauss–Newton
+/// with minimum-norm corrections, each from one application of G.
+fn tangent_on_cone(
+    second: &SecondOrder<'_, '_>,
+    hint: &[f64],
+) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
+    let k = second.k;
+    let mut y: Vec<f64> = second.basis.iter().map(|v| inner(v, hint)).collect();
+    let d = y.len();
     let ny = norm2(&y);
     if ny.is_nan() || ny <= 0.0 {
         return None;
     }
     y.iter_mut().for_each(|x| *x /= ny);
-    let gmax = g
-        .iter()
-        .flatten()
-        .flatten()
-        .fold(0.0f64, |a, x| a.max(x.abs()));
-    if gmax == 0.0 {
-        return None;
-    }
+    // The scale of G: its largest entry along the first direction.
+    let mut gmax = None;
+    // The iterate with the smallest residual so far: max |F_w|, y, G y.
+    let mut best: Option<(f64, Vec<f64>, Vec<Vec<f64>>)> = None;
     for _ in 0..50 {
         // F_w = yᵀ G_w y, J = 2 (G_w y)ᵀ.
-        let gy: Vec<Vec<f64>> = g
-            .iter()
-            .map(|gw| (0..d).map(|r| inner(&gw[r], &y)).collect())
-            .collect();
+        let gy = second.apply(&y);
+        let scale = *gmax.get_or_insert_with(|| {
+            gy.iter()
+                .flatten()
+                .fold(0.0f64, |a: f64, x: &f64| a.max(x.abs()))
+        });
+        if scale == 0.0 || !scale.is_finite() {
+            return None;
+        }
         let f: Vec<f64> = gy.iter().map(|row| inner(row, &y)).collect();
         let fmax = f.iter().fold(0.0f64, |a, x| a.max(x.abs()));
-        if fmax <= 1e-14 * gmax {
-            return Some(y);
+        if fmax <= 1e-14 * scale {
+            return Some((y, gy));
+        }
+        // G y comes from differences along y, whose rounding varies with
+        // y: the iteration ends at that noise (some 1e-14 to 1e-11 of G)
+        // when a correction no longer halves the residual.
+        if let Some((fbest, ..)) = &best {
+            if fmax >= 0.5 * fbest && *fbest <= STALL * scale {
+                return best.map(|(_, y, gy)| (y, gy));
+            }
+        }
+        if best.as_ref().is_none_or(|(fbest, ..)| fmax < *fbest) {
+            best = Some((fmax, y.clone(), gy.clone()));
         }
         // Δy = Jᵀ (J Jᵀ)⁻¹ F.
         let jjt = Mat::from_fn(k, k, |a, b| 4.0 * inner(&gy[a], &gy[b]));
