@@ -51,6 +51,7 @@ use faer::Mat;
 
 use super::system::System;
 use crate::diagnose::dense_jacobian;
+use crate::linsolve::SparseLu;
 use crate::math::{inner, norm2};
 
 /// Singular values of Φ_q below this fraction of the largest count as
@@ -72,6 +73,33 @@ const DIFF: f64 = 1e-5;
 /// differences; see [`tangent_on_cone`]).
 const STALL: f64 = 1e-9;
 
+/// Largest residual of a refined pair of subspaces, ‖Φ_q V − W Σ‖ and
+/// ‖Φ_qᵀ W − V Σ‖ per column, relative to σ_max, for [`analyse_from`] to
+/// use them (a dense decomposition's is some 1e-15).
+const REFINED: f64 = 1e-11;
+
+/// Subspace iterations [`analyse_from`] takes at most before it falls
+/// back to a dense decomposition.
+const REFINE_ITER: usize = 4;
+
+/// Power iterations for σ_max from the last analysis' right vector.
+const POWER_ITER: usize = 3;
+
+/// The lost singular subspaces of Φ_q at one position: what an analysis
+/// at a nearby position starts from.
+pub(crate) struct Subspaces {
+    /// The lost left singular vectors W, m × k.
+    w: Mat<f64>,
+    /// The kernel basis V, n × d: the lost right singular vectors (the
+    /// first k columns, in W's order), then the null space of Φ_q.
+    v: Mat<f64>,
+    /// The lost singular values σ (k).
+    sigma: Vec<f64>,
+    /// The largest singular value σ_max of Φ_q and its right vector.
+    smax: f64,
+    top: Vec<f64>,
+}
+
 /// The branch rows at a position near a bifurcation point.
 pub(crate) struct BranchRows {
     /// Number of rows k (lost ranks).
@@ -85,12 +113,67 @@ pub(crate) struct BranchRows {
     /// The lost left singular vectors w, k × m row-major: the rows take
     /// the place of the equations wᵀΦ = 0.
     pub lost: Vec<f64>,
+    /// The singular subspaces they came from.
+    sub: Subspaces,
+}
+
+#[cfg(test)]
+impl BranchRows {
+    /// One row `a` with the tangent `tangent` (n each) in a system of `m`
+    /// equations, without the subspaces an analysis finds (for tests of
+    /// the integrator's use of rows).
+    pub(crate) fn one(a: Vec<f64>, tangent: Vec<f64>, m: usize) -> Self {
+        let n = a.len();
+        BranchRows {
+            k: 1,
+            a,
+            tangent,
+            sigma_rel: 0.0,
+            lost: vec![0.0; m],
+            sub: Subspaces {
+                w: Mat::zeros(m, 1),
+                v: Mat::zeros(n, 1),
+                sigma: vec![0.0],
+                smax: 1.0,
+                top: vec![0.0; n],
+            },
+        }
+    }
 }
 
 /// The branch rows at `q` (time `t`) for the branch whose tangent is
 /// nearest to `hint` (a direction of motion in q-space), or None when
 /// Φ_q has no lost direction there or the branches cannot be told apart.
+/// The lost subspaces come from a dense SVD of Φ_q.
 pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<BranchRows> {
+    rows(sys, q, t, hint, dense_subspaces(sys, q, t)?)
+}
+
+/// [`analyse`] at a position near that of `prev`, the rows found there:
+/// the lost subspaces are refined from `prev`'s by inverse subspace
+/// iteration with a sparse factorization (Φ_q's lost directions move
+/// little from one step to the next, and are apart from the others by
+/// the gap that makes them lost), or, when that does not settle to
+/// [`REFINED`] or a lost value has risen above [`LOST`], found anew by a
+/// dense SVD. The number of lost directions is `prev`'s when refined:
+/// the window's own analysis finds it.
+pub(crate) fn analyse_from(
+    sys: &System,
+    q: &[f64],
+    t: f64,
+    hint: &[f64],
+    prev: &BranchRows,
+) -> Option<BranchRows> {
+    let sub = match refine(sys, q, t, &prev.sub) {
+        Some(sub) => sub,
+        None => dense_subspaces(sys, q, t)?,
+    };
+    rows(sys, q, t, hint, sub)
+}
+
+/// The lost subspaces of Φ_q at `q` from its dense SVD; None when it has
+/// no lost direction.
+fn dense_subspaces(sys: &System, q: &[f64], t: f64) -> Option<Subspaces> {
     let (model, asm) = (sys.model, &sys.asm);
     let (n, m) = (asm.n, asm.m);
     if n == 0 || m == 0 {
@@ -100,28 +183,208 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
     let svd = j.svd().ok()?;
     let s = svd.S().column_vector();
     let r = m.min(n);
-    let smax = (0..r).fold(0.0f64, |a, i| a.max(s[i]));
+    let (imax, smax) = (0..r).fold(
+        (0, 0.0f64),
+        |(ia, a), i| {
+            if s[i] > a {
+                (i, s[i])
+            } else {
+                (ia, a)
+            }
+        },
+    );
     if smax <= 0.0 {
         return None;
     }
     let lost: Vec<usize> = (0..r).filter(|&i| s[i] < LOST * smax).collect();
-    let k = lost.len();
-    if k == 0 {
+    if lost.is_empty() {
         return None;
     }
-    let sigma_rel = lost.iter().fold(f64::INFINITY, |a, &i| a.min(s[i])) / smax;
     let (u, v) = (svd.U(), svd.V());
     // The kernel basis: the lost right singular vectors and the null space.
     let kernel: Vec<usize> = lost.iter().copied().chain(r..n).collect();
-    let d = kernel.len();
-    let basis: Vec<Vec<f64>> = kernel
-        .iter()
-        .map(|&c| (0..n).map(|i| v[(i, c)]).collect())
+    Some(Subspaces {
+        w: Mat::from_fn(m, lost.len(), |i, c| u[(i, lost[c])]),
+        v: Mat::from_fn(n, kernel.len(), |i, c| v[(i, kernel[c])]),
+        sigma: lost.iter().map(|&i| s[i]).collect(),
+        smax,
+        top: (0..n).map(|i| v[(i, imax)]).collect(),
+    })
+}
+
+/// Φ_q at `q` as a list of entries (row, column, value), one per entry.
+fn jacobian_entries(sys: &System, q: &[f64], t: f64) -> Vec<(usize, usize, f64)> {
+    let mut e = Vec::new();
+    sys.asm
+        .jacobian(sys.model, q, t, |r, c, v| e.push((r, c, v)));
+    e.sort_unstable_by_key(|&(r, c, _)| (r, c));
+    e.dedup_by(|b, a| {
+        let same = (a.0, a.1) == (b.0, b.1);
+        if same {
+            a.2 += b.2;
+        }
+        same
+    });
+    e
+}
+
+/// The lost subspaces at `q` refined from `prev`'s (see
+/// [`analyse_from`]); None when they do not settle.
+///
+/// With μ the largest lost singular value of `prev` (at least 1e-8
+/// σ_max), K = [μI Φ_q; Φ_qᵀ −μI] maps the pair (u, 0), (0, v) of a
+/// singular triplet (σ, u, v) into itself, and K⁻¹ scales the left part
+/// of (u, 0) and the right part of (0, v) by μ/(σ² + μ²): about 1/μ on
+/// the lost triplets and the null space, 1/σ on the others. Solving with
+/// K for W's and V's columns and orthonormalising each part therefore
+/// turns them towards the lost subspaces at `q`; the Rayleigh–Ritz step,
+/// the SVD of the small Wᵀ Φ_q V, pairs them and gives their values.
+fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces> {
+    let (n, m) = (sys.n(), sys.m());
+    let (k, d) = (prev.w.ncols(), prev.v.ncols());
+    let entries = jacobian_entries(sys, q, t);
+    // σ_max by power iteration from the last right vector.
+    let mut top = prev.top.clone();
+    let mut smax = 0.0;
+    for _ in 0..POWER_ITER {
+        let y = j_times(&entries, m, &top);
+        smax = norm2(&y);
+        let mut x = jt_times(&entries, n, &y);
+        let nx = norm2(&x);
+        if !(nx > 0.0 && nx.is_finite()) {
+            return None;
+        }
+        x.iter_mut().for_each(|v| *v /= nx);
+        top = x;
+    }
+    if !(smax > 0.0) {
+        return None;
+    }
+    let mu = prev.sigma.iter().fold(1e-8 * smax, |a, &s| a.max(s));
+    // K's pattern: the diagonal, Φ_q at rows 0..m and columns m..m+n, Φ_qᵀ.
+    let pattern: Vec<(usize, usize)> = (0..m + n)
+        .map(|i| (i, i))
+        .chain(entries.iter().map(|&(r, c, _)| (r, m + c)))
+        .chain(entries.iter().map(|&(r, c, _)| (m + c, r)))
+        .collect();
+    let mut lu = SparseLu::try_new(m + n, &pattern).ok()?;
+    for i in 0..m + n {
+        lu.put(i, if i < m { mu } else { -mu });
+    }
+    for (e, &(_, _, v)) in entries.iter().enumerate() {
+        lu.put(m + n + e, v);
+        lu.put(m + n + entries.len() + e, v);
+    }
+    lu.factor().ok()?;
+    let (mut w, mut v) = (prev.w.clone(), prev.v.clone());
+    let mut rhs = vec![0.0; m + n];
+    for _ in 0..REFINE_ITER {
+        // One step of inverse iteration on each part.
+        let mut wn = Mat::<f64>::zeros(m, k);
+        for c in 0..k {
+            rhs.fill(0.0);
+            for i in 0..m {
+                rhs[i] = w[(i, c)];
+            }
+            lu.solve(&mut rhs);
+            for i in 0..m {
+                wn[(i, c)] = rhs[i];
+            }
+        }
+        let mut vn = Mat::<f64>::zeros(n, d);
+        for c in 0..d {
+            rhs.fill(0.0);
+            for i in 0..n {
+                rhs[m + i] = v[(i, c)];
+            }
+            lu.solve(&mut rhs);
+            for i in 0..n {
+                vn[(i, c)] = rhs[m + i];
+            }
+        }
+        let (wq, vq) = (wn.qr().compute_thin_Q(), vn.qr().compute_thin_Q());
+        // Rayleigh–Ritz: B = Wᵀ Φ_q V and its SVD.
+        let jv = j_times_mat(&entries, m, &vq);
+        let b = wq.transpose() * &jv;
+        let svd = b.svd().ok()?;
+        w = &wq * svd.U();
+        v = &vq * svd.V();
+        let sigma: Vec<f64> = (0..k).map(|i| svd.S().column_vector()[i]).collect();
+        // The residuals of the pair: Φ_q v_c − σ_c w_c, Φ_qᵀ w_c − σ_c v_c.
+        let jv = j_times_mat(&entries, m, &v);
+        let mut resid = 0.0f64;
+        for c in 0..d {
+            let s = sigma.get(c).copied().unwrap_or(0.0);
+            let col: Vec<f64> = (0..m)
+                .map(|i| jv[(i, c)] - if c < k { s * w[(i, c)] } else { 0.0 })
+                .collect();
+            resid = resid.max(norm2(&col));
+        }
+        for c in 0..k {
+            let wc: Vec<f64> = (0..m).map(|i| w[(i, c)]).collect();
+            let mut col = jt_times(&entries, n, &wc);
+            for (i, x) in col.iter_mut().enumerate() {
+                *x -= sigma[c] * v[(i, c)];
+            }
+            resid = resid.max(norm2(&col));
+        }
+        if resid <= REFINED * smax {
+            if sigma.iter().any(|&s| !(s < LOST * smax)) {
+                return None;
+            }
+            return Some(Subspaces {
+                w,
+                v,
+                sigma,
+                smax,
+                top,
+            });
+        }
+    }
+    None
+}
+
+/// Φ_q x from its entries.
+fn j_times(entries: &[(usize, usize, f64)], m: usize, x: &[f64]) -> Vec<f64> {
+    let mut y = vec![0.0; m];
+    for &(r, c, v) in entries {
+        y[r] += v * x[c];
+    }
+    y
+}
+
+/// Φ_qᵀ y from its entries.
+fn jt_times(entries: &[(usize, usize, f64)], n: usize, y: &[f64]) -> Vec<f64> {
+    let mut x = vec![0.0; n];
+    for &(r, c, v) in entries {
+        x[c] += v * y[r];
+    }
+    x
+}
+
+/// Φ_q X from its entries, for X of n rows.
+fn j_times_mat(entries: &[(usize, usize, f64)], m: usize, x: &Mat<f64>) -> Mat<f64> {
+    let mut y = Mat::<f64>::zeros(m, x.ncols());
+    for c in 0..x.ncols() {
+        for &(r, col, v) in entries {
+            y[(r, c)] += v * x[(col, c)];
+        }
+    }
+    y
+}
+
+/// The rows of the branch nearest to `hint` from the lost subspaces `sub`.
+fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option<BranchRows> {
+    let (n, m) = (sys.n(), sys.m());
+    let (k, d) = (sub.w.ncols(), sub.v.ncols());
+    let sigma_rel = sub.sigma.iter().fold(f64::INFINITY, |a, &s| a.min(s)) / sub.smax;
+    let w = &sub.w;
+    let basis: Vec<Vec<f64>> = (0..d)
+        .map(|c| (0..n).map(|i| sub.v[(i, c)]).collect())
         .collect();
     // The lost left singular vectors w, k × m row-major.
-    let w_rows: Vec<f64> = lost
-        .iter()
-        .flat_map(|&lw| (0..m).map(move |row| u[(row, lw)]))
+    let w_rows: Vec<f64> = (0..k)
+        .flat_map(|c| (0..m).map(move |i| w[(i, c)]))
         .collect();
     let second = SecondOrder {
         sys,
@@ -130,9 +393,9 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
         eps: DIFF * q.iter().fold(1.0f64, |a, x| a.max(x.abs())),
         k,
         w_by_row: (0..m)
-            .flat_map(|row| lost.iter().map(move |&lw| u[(row, lw)]))
+            .flat_map(|i| (0..k).map(move |c| w[(i, c)]))
             .collect(),
-        vk: Mat::from_fn(n, d, |i, a| basis[a][i]),
+        vk: sub.v.clone(),
         basis: &basis,
     };
     let (y, g) = tangent_on_cone(&second, hint)?;
@@ -165,6 +428,7 @@ pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<B
         tangent,
         sigma_rel,
         lost: w_rows,
+        sub,
     })
 }
 
@@ -441,5 +705,76 @@ mod tests {
         let mut hint = vec![0.0; sys.n()];
         hint[2] = 1.0;
         assert!(analyse(&sys, &q, 0.0, &hint).is_none());
+    }
+
+    /// The projector V Vᵀ (n × n) on the columns of `v`.
+    fn projector(v: &Mat<f64>) -> Mat<f64> {
+        v * v.transpose()
+    }
+
+    /// The rows found from the last step's subspaces are those of a dense
+    /// decomposition at the new position: the same lost values, the same
+    /// subspaces (their projectors) and the same tangent, near the flat
+    /// position and across a step of 1e-4 rad.
+    #[test]
+    fn refined_subspaces_are_the_dense_ones() {
+        for (th0, th1) in [(1e-3, 1.1e-3), (-2e-5, 3e-5), (1e-3, 0.8e-3)] {
+            let model0 = four_bar(th0);
+            let sys0 = System::new(&model0);
+            let q0 = sys0.asm.initial_q(&model0);
+            let model1 = four_bar(th1);
+            let sys1 = System::new(&model1);
+            let q1 = sys1.asm.initial_q(&model1);
+            let mut hint = vec![0.0; sys0.n()];
+            hint[2] = -1.0;
+            hint[5] = -1.0;
+            let prev = analyse(&sys0, &q0, 0.0, &hint).expect("rows at th0");
+            let dense = dense_subspaces(&sys1, &q1, 0.0).expect("lost rank at th1");
+            let refined = refine(&sys1, &q1, 0.0, &prev.sub).expect("refined at th1");
+            assert_eq!(refined.sigma.len(), dense.sigma.len());
+            for (a, b) in refined.sigma.iter().zip(&dense.sigma) {
+                assert!((a - b).abs() <= 1e-12 * dense.smax, "σ {a:e} against {b:e}");
+            }
+            // σ_max, a scale only (of σ_rel and LOST), from a few power
+            // iterations: within some 1e-11 of it.
+            assert!(
+                (refined.smax - dense.smax).abs() <= 1e-9 * dense.smax,
+                "σ_max {:e} against {:e}",
+                refined.smax,
+                dense.smax
+            );
+            for (x, y) in [(&refined.w, &dense.w), (&refined.v, &dense.v)] {
+                let diff = projector(x) - projector(y);
+                let worst = (0..diff.nrows())
+                    .flat_map(|i| (0..diff.ncols()).map(move |j| (i, j)))
+                    .fold(0.0f64, |a, (i, j)| a.max(diff[(i, j)].abs()));
+                assert!(worst < 1e-10, "projectors differ by {worst:e}");
+            }
+            let from = analyse_from(&sys1, &q1, 0.0, &hint, &prev).expect("rows at th1");
+            let anew = analyse(&sys1, &q1, 0.0, &hint).expect("rows at th1");
+            assert_eq!(from.k, anew.k);
+            let dot: f64 = inner(&from.tangent, &anew.tangent);
+            assert!((dot.abs() - 1.0).abs() < 1e-12, "tangents at {dot}");
+            assert!((from.sigma_rel - anew.sigma_rel).abs() <= 1e-12);
+        }
+    }
+
+    /// Away from the flat position nothing is lost: the refinement gives
+    /// up (a lost value above [`LOST`]) and the dense decomposition finds
+    /// no rows, as [`analyse`] does.
+    #[test]
+    fn refinement_far_from_the_point_finds_no_rows() {
+        let model0 = four_bar(0.0);
+        let sys0 = System::new(&model0);
+        let q0 = sys0.asm.initial_q(&model0);
+        let mut hint = vec![0.0; sys0.n()];
+        hint[2] = 1.0;
+        hint[5] = 1.0;
+        let prev = analyse(&sys0, &q0, 0.0, &hint).expect("rows at the flat position");
+        let model1 = four_bar(0.7);
+        let sys1 = System::new(&model1);
+        let q1 = sys1.asm.initial_q(&model1);
+        assert!(refine(&sys1, &q1, 0.0, &prev.sub).is_none());
+        assert!(analyse_from(&sys1, &q1, 0.0, &hint, &prev).is_none());
     }
 }

@@ -1151,7 +1151,7 @@ impl<'m> Integrator<'m> {
         let Some(old) = &self.follow.rows else {
             return Ok(());
         };
-        let next = branch::analyse(&self.sys, &self.state.q, self.state.t, &old.tangent);
+        let next = branch::analyse_from(&self.sys, &self.state.q, self.state.t, &old.tangent, old);
         match next {
             Some(rows) if rows.k == old.k && rows.sigma_rel < branch::WINDOW_EXIT => {
                 // The same forces Aᵀμ on the new rows (orthonormal).
@@ -2018,13 +2018,11 @@ mod tests {
         }
         let (t0, steps) = (it.state.t, it.diagnostics.summary.steps);
         let phi0 = it.state.q[2];
-        it.follow.guard = Some(BranchRows {
-            k: 1,
-            a: vec![0.0, 0.0, 1.0],
-            tangent: vec![1.0, 0.0, 0.0],
-            sigma_rel: 0.0,
-            lost: vec![0.0; it.sys.m()],
-        });
+        it.follow.guard = Some(BranchRows::one(
+            vec![0.0, 0.0, 1.0],
+            vec![1.0, 0.0, 0.0],
+            it.sys.m(),
+        ));
         it.step(h).unwrap();
         assert_eq!(
             it.state.t,
@@ -2090,13 +2088,11 @@ mod tests {
         }
         let last_lambda = it.history.lambda.clone();
         let start_lambda = it.state.lambda.clone();
-        it.follow.guard = Some(BranchRows {
-            k: 1,
-            a: vec![0.0, 0.0, 1.0],
-            tangent: vec![1.0, 0.0, 0.0],
-            sigma_rel: 0.0,
-            lost: vec![0.0; it.sys.m()],
-        });
+        it.follow.guard = Some(BranchRows::one(
+            vec![0.0, 0.0, 1.0],
+            vec![1.0, 0.0, 0.0],
+            it.sys.m(),
+        ));
         it.step(h).unwrap();
         assert_eq!(it.history.lambda, start_lambda);
         assert_eq!(it.history.lambda2, last_lambda);
