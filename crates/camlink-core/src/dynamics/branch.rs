@@ -257,7 +257,7 @@ fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces
         x.iter_mut().for_each(|v| *v /= nx);
         top = x;
     }
-    if !(smax > 0.0) {
+    if smax.is_nan() || smax <= 0.0 {
         return None;
     }
     let mu = prev.sigma.iter().fold(1e-8 * smax, |a, &s| a.max(s));
@@ -329,7 +329,7 @@ fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces
             resid = resid.max(norm2(&col));
         }
         if resid <= REFINED * smax {
-            if sigma.iter().any(|&s| !(s < LOST * smax)) {
+            if sigma.iter().any(|&s| s.is_nan() || s >= LOST * smax) {
                 return None;
             }
             return Some(Subspaces {
