@@ -2000,6 +2000,19 @@ mod tests {
         m
     }
 
+    /// The pendulum after ten fixed steps of `h` (s).
+    fn swinging(model: &Model, h: f64) -> Integrator<'_> {
+        let settings = Settings {
+            step: h,
+            ..Settings::default()
+        };
+        let mut it = Integrator::new(model, settings).unwrap();
+        for _ in 0..10 {
+            it.step(h).unwrap();
+        }
+        it
+    }
+
     /// Issue 27: a plain step past a window of branch rows that crossed
     /// them is retried along the rows from the start of the step, t to
     /// t + h, and counts once. The rows here hold the pendulum's angle
@@ -2008,14 +2021,7 @@ mod tests {
     fn issue27_crossed_branch_retry_keeps_the_time() {
         let model = pendulum();
         let h = 1e-3;
-        let settings = Settings {
-            step: h,
-            ..Settings::default()
-        };
-        let mut it = Integrator::new(&model, settings).unwrap();
-        for _ in 0..10 {
-            it.step(h).unwrap();
-        }
+        let mut it = swinging(&model, h);
         let (t0, steps) = (it.state.t, it.diagnostics.summary.steps);
         let phi0 = it.state.q[2];
         it.follow.guard = Some(BranchRows::one(
@@ -2078,14 +2084,7 @@ mod tests {
     fn a_retried_step_leaves_no_trace_in_the_history() {
         let model = pendulum();
         let h = 1e-3;
-        let settings = Settings {
-            step: h,
-            ..Settings::default()
-        };
-        let mut it = Integrator::new(&model, settings).unwrap();
-        for _ in 0..10 {
-            it.step(h).unwrap();
-        }
+        let mut it = swinging(&model, h);
         let last_lambda = it.history.lambda.clone();
         let start_lambda = it.state.lambda.clone();
         it.follow.guard = Some(BranchRows::one(
