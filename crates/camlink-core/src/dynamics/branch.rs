@@ -110,11 +110,16 @@ pub(crate) struct BranchRows {
     pub tangent: Vec<f64>,
     /// The smallest lost singular value of Φ_q over the largest.
     pub sigma_rel: f64,
-    /// The lost left singular vectors w, k × m row-major: the rows take
-    /// the place of the equations wᵀΦ = 0.
-    pub lost: Vec<f64>,
     /// The singular subspaces they came from.
     sub: Subspaces,
+}
+
+impl BranchRows {
+    /// The lost left singular vectors w (m each): the rows take the place
+    /// of the equations wᵀΦ = 0.
+    pub(crate) fn lost(&self) -> impl Iterator<Item = &[f64]> {
+        (0..self.k).map(|c| self.sub.w.col_as_slice(c))
+    }
 }
 
 #[cfg(test)]
@@ -129,7 +134,6 @@ impl BranchRows {
             a,
             tangent,
             sigma_rel: 0.0,
-            lost: vec![0.0; m],
             sub: Subspaces {
                 w: Mat::zeros(m, 1),
                 v: Mat::zeros(n, 1),
@@ -376,16 +380,9 @@ fn j_times_mat(entries: &[(usize, usize, f64)], m: usize, x: &Mat<f64>) -> Mat<f
 /// The rows of the branch nearest to `hint` from the lost subspaces `sub`.
 fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option<BranchRows> {
     let (n, m) = (sys.n(), sys.m());
-    let (k, d) = (sub.w.ncols(), sub.v.ncols());
+    let k = sub.w.ncols();
     let sigma_rel = sub.sigma.iter().fold(f64::INFINITY, |a, &s| a.min(s)) / sub.smax;
     let w = &sub.w;
-    let basis: Vec<Vec<f64>> = (0..d)
-        .map(|c| (0..n).map(|i| sub.v[(i, c)]).collect())
-        .collect();
-    // The lost left singular vectors w, k × m row-major.
-    let w_rows: Vec<f64> = (0..k)
-        .flat_map(|c| (0..m).map(move |i| w[(i, c)]))
-        .collect();
     let second = SecondOrder {
         sys,
         q,
@@ -395,15 +392,14 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
         w_by_row: (0..m)
             .flat_map(|i| (0..k).map(move |c| w[(i, c)]))
             .collect(),
-        vk: sub.v.clone(),
-        basis: &basis,
+        v: &sub.v,
     };
     let (y, g) = tangent_on_cone(&second, hint)?;
-    let tangent = combine(&basis, &y);
+    let tangent = combine(&sub.v, &y);
     // A rows: V G_w y, orthonormalised, each orthogonal to t.
     let mut a = Vec::with_capacity(k * n);
     for gy in &g {
-        let mut row = combine(&basis, gy);
+        let mut row = combine(&sub.v, gy);
         let along = inner(&row, &tangent);
         for i in 0..n {
             row[i] -= along * tangent[i];
@@ -427,7 +423,6 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
         a,
         tangent,
         sigma_rel,
-        lost: w_rows,
         sub,
     })
 }
@@ -447,10 +442,8 @@ struct SecondOrder<'a, 's> {
     /// The lost left singular vectors, m × k row-major: the k weights of
     /// each equation together.
     w_by_row: Vec<f64>,
-    /// The kernel basis V as a matrix, n × d.
-    vk: Mat<f64>,
-    /// The same, one vector per column of V.
-    basis: &'a [Vec<f64>],
+    /// The kernel basis V, n × d.
+    v: &'a Mat<f64>,
 }
 
 impl SecondOrder<'_, '_> {
@@ -461,7 +454,7 @@ impl SecondOrder<'_, '_> {
     fn apply(&self, y: &[f64]) -> Vec<Vec<f64>> {
         let (model, asm) = (self.sys.model, &self.sys.asm);
         let (n, k) = (asm.n, self.k);
-        let dir = combine(self.basis, y);
+        let dir = combine(self.v, y);
         let mut qp = self.q.to_vec();
         let mut wj = [vec![0.0; n * k], vec![0.0; n * k]];
         for (side, sign) in [(0, 1.0), (1, -1.0)] {
@@ -478,7 +471,7 @@ impl SecondOrder<'_, '_> {
         }
         let scale = 1.0 / (2.0 * self.eps);
         let h = Mat::from_fn(n, k, |c, w| (wj[0][c * k + w] - wj[1][c * k + w]) * scale);
-        let gy = self.vk.transpose() * &h;
+        let gy = self.v.transpose() * &h;
         (0..k)
             .map(|w| (0..gy.nrows()).map(|a| gy[(a, w)]).collect())
             .collect()
@@ -493,7 +486,10 @@ fn tangent_on_cone(
     hint: &[f64],
 ) -> Option<(Vec<f64>, Vec<Vec<f64>>)> {
     let k = second.k;
-    let mut y: Vec<f64> = second.basis.iter().map(|v| inner(v, hint)).collect();
+    let v = second.v;
+    let mut y: Vec<f64> = (0..v.ncols())
+        .map(|c| inner(v.col_as_slice(c), hint))
+        .collect();
     let d = y.len();
     let ny = norm2(&y);
     if ny.is_nan() || ny <= 0.0 {
@@ -548,11 +544,11 @@ fn tangent_on_cone(
     None
 }
 
-/// Σ_b c_b v_b.
-fn combine(basis: &[Vec<f64>], c: &[f64]) -> Vec<f64> {
-    let mut out = vec![0.0; basis[0].len()];
-    for (vb, &cb) in basis.iter().zip(c) {
-        for (o, x) in out.iter_mut().zip(vb) {
+/// Σ_b c_b v_b over the columns v_b of `v`.
+fn combine(v: &Mat<f64>, c: &[f64]) -> Vec<f64> {
+    let mut out = vec![0.0; v.nrows()];
+    for (b, &cb) in c.iter().enumerate() {
+        for (o, x) in out.iter_mut().zip(v.col_as_slice(b)) {
             *o += cb * x;
         }
     }

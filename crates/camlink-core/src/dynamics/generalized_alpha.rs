@@ -1377,7 +1377,7 @@ impl<'m> Integrator<'m> {
         // hold along the branch only to the rows' linearisation: their
         // residual is left out, so the two do not pull against each other.
         if let Some(b) = &self.follow.rows {
-            for w in b.lost.chunks(r_phi.len()) {
+            for w in b.lost() {
                 let c = inner(w, r_phi);
                 for (r, x) in r_phi.iter_mut().zip(w) {
                     *r -= c * x;
