@@ -47,7 +47,8 @@
 //! resolved.
 
 use faer::linalg::solvers::Solve;
-use faer::Mat;
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Scale};
 
 use super::system::System;
 use crate::diagnose::dense_jacobian;
@@ -216,20 +217,12 @@ fn dense_subspaces(sys: &System, q: &[f64], t: f64) -> Option<Subspaces> {
     })
 }
 
-/// Φ_q at `q` as a list of entries (row, column, value), one per entry.
-fn jacobian_entries(sys: &System, q: &[f64], t: f64) -> Vec<(usize, usize, f64)> {
+/// Φ_q at `q` as a sparse matrix (m × n).
+fn sparse_jacobian(sys: &System, q: &[f64], t: f64) -> Option<SparseColMat<usize, f64>> {
     let mut e = Vec::new();
     sys.asm
-        .jacobian(sys.model, q, t, |r, c, v| e.push((r, c, v)));
-    e.sort_unstable_by_key(|&(r, c, _)| (r, c));
-    e.dedup_by(|b, a| {
-        let same = (a.0, a.1) == (b.0, b.1);
-        if same {
-            a.2 += b.2;
-        }
-        same
-    });
-    e
+        .jacobian(sys.model, q, t, |r, c, v| e.push(Triplet::new(r, c, v)));
+    SparseColMat::try_new_from_triplets(sys.m(), sys.n(), &e).ok()
 }
 
 /// The lost subspaces at `q` refined from `prev`'s (see
@@ -246,26 +239,34 @@ fn jacobian_entries(sys: &System, q: &[f64], t: f64) -> Vec<(usize, usize, f64)>
 fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces> {
     let (n, m) = (sys.n(), sys.m());
     let (k, d) = (prev.w.ncols(), prev.v.ncols());
-    let entries = jacobian_entries(sys, q, t);
+    let j = sparse_jacobian(sys, q, t)?;
     // σ_max by power iteration from the last right vector.
-    let mut top = prev.top.clone();
+    let mut top = Mat::from_fn(n, 1, |i, _| prev.top[i]);
     let mut smax = 0.0;
     for _ in 0..POWER_ITER {
-        let y = j_times(&entries, m, &top);
-        smax = norm2(&y);
-        let mut x = jt_times(&entries, n, &y);
-        let nx = norm2(&x);
+        let y = &j * &top;
+        smax = y.norm_l2();
+        let x = j.transpose() * &y;
+        let nx = x.norm_l2();
         if !(nx > 0.0 && nx.is_finite()) {
             return None;
         }
-        x.iter_mut().for_each(|v| *v /= nx);
-        top = x;
+        top = x * Scale(1.0 / nx);
     }
     if smax.is_nan() || smax <= 0.0 {
         return None;
     }
     let mu = prev.sigma.iter().fold(1e-8 * smax, |a, &s| a.max(s));
     // K's pattern: the diagonal, Φ_q at rows 0..m and columns m..m+n, Φ_qᵀ.
+    let entries: Vec<(usize, usize, f64)> = (0..n)
+        .flat_map(|c| {
+            let col = j.col_range(c);
+            let rows = &j.symbolic().row_idx()[col.clone()];
+            rows.iter()
+                .zip(&j.val()[col])
+                .map(move |(&r, &v)| (r, c, v))
+        })
+        .collect();
     let pattern: Vec<(usize, usize)> = (0..m + n)
         .map(|i| (i, i))
         .chain(entries.iter().map(|&(r, c, _)| (r, m + c)))
@@ -308,30 +309,20 @@ fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces
         }
         let (wq, vq) = (wn.qr().compute_thin_Q(), vn.qr().compute_thin_Q());
         // Rayleigh–Ritz: B = Wᵀ Φ_q V and its SVD.
-        let jv = j_times_mat(&entries, m, &vq);
-        let b = wq.transpose() * &jv;
+        let b = wq.transpose() * (&j * &vq);
         let svd = b.svd().ok()?;
         w = &wq * svd.U();
         v = &vq * svd.V();
         let sigma: Vec<f64> = (0..k).map(|i| svd.S().column_vector()[i]).collect();
-        // The residuals of the pair: Φ_q v_c − σ_c w_c, Φ_qᵀ w_c − σ_c v_c.
-        let jv = j_times_mat(&entries, m, &v);
-        let mut resid = 0.0f64;
-        for c in 0..d {
-            let s = sigma.get(c).copied().unwrap_or(0.0);
-            let col: Vec<f64> = (0..m)
-                .map(|i| jv[(i, c)] - if c < k { s * w[(i, c)] } else { 0.0 })
-                .collect();
-            resid = resid.max(norm2(&col));
-        }
-        for c in 0..k {
-            let wc: Vec<f64> = (0..m).map(|i| w[(i, c)]).collect();
-            let mut col = jt_times(&entries, n, &wc);
-            for (i, x) in col.iter_mut().enumerate() {
-                *x -= sigma[c] * v[(i, c)];
-            }
-            resid = resid.max(norm2(&col));
-        }
+        // The residuals of the pair, per column: Φ_q V − W Σ (Σ k × d,
+        // zero on the null space) and Φ_qᵀ W − V_k Σ.
+        let ws = Mat::from_fn(m, d, |i, c| if c < k { sigma[c] * w[(i, c)] } else { 0.0 });
+        let vs = Mat::from_fn(n, k, |i, c| sigma[c] * v[(i, c)]);
+        let (r_v, r_w) = (&j * &v - ws, j.transpose() * &w - vs);
+        let resid = (0..d)
+            .map(|c| r_v.col(c).norm_l2())
+            .chain((0..k).map(|c| r_w.col(c).norm_l2()))
+            .fold(0.0f64, f64::max);
         if resid <= REFINED * smax {
             if sigma.iter().any(|&s| s.is_nan() || s >= LOST * smax) {
                 return None;
@@ -341,40 +332,11 @@ fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces
                 v,
                 sigma,
                 smax,
-                top,
+                top: top.col_as_slice(0).to_vec(),
             });
         }
     }
     None
-}
-
-/// Φ_q x from its entries.
-fn j_times(entries: &[(usize, usize, f64)], m: usize, x: &[f64]) -> Vec<f64> {
-    let mut y = vec![0.0; m];
-    for &(r, c, v) in entries {
-        y[r] += v * x[c];
-    }
-    y
-}
-
-/// Φ_qᵀ y from its entries.
-fn jt_times(entries: &[(usize, usize, f64)], n: usize, y: &[f64]) -> Vec<f64> {
-    let mut x = vec![0.0; n];
-    for &(r, c, v) in entries {
-        x[c] += v * y[r];
-    }
-    x
-}
-
-/// Φ_q X from its entries, for X of n rows.
-fn j_times_mat(entries: &[(usize, usize, f64)], m: usize, x: &Mat<f64>) -> Mat<f64> {
-    let mut y = Mat::<f64>::zeros(m, x.ncols());
-    for c in 0..x.ncols() {
-        for &(r, col, v) in entries {
-            y[(r, c)] += v * x[(col, c)];
-        }
-    }
-    y
 }
 
 /// The rows of the branch nearest to `hint` from the lost subspaces `sub`.
