@@ -183,11 +183,7 @@ fn benchmark_a02_full_matrix_tol_1e_12() {
 #[test]
 #[ignore = "a probe: A02_N=40 A02_H=1e-5 A02_T=20 cargo test --profile ci -- --ignored a02_passes_probe"]
 fn a02_passes_probe() {
-    let get = |k: &str, default: f64| {
-        std::env::var(k)
-            .ok()
-            .map_or(default, |v| v.parse::<f64>().unwrap())
-    };
+    let get = crate::common::env_number;
     let n = get("A02_N", 2.0) as usize;
     let (h, tol, t_end) = (get("A02_H", 1e-4), get("A02_TOL", 1e-10), get("A02_T", 1.5));
     let mut model = mechanisms::benchmark_a02(n);

@@ -98,11 +98,7 @@ fn parallelogram_chain_full_matrix_tol_1e_10() {
 #[test]
 #[ignore = "a probe: CHAIN_H=1e-4 cargo test --profile ci -- --ignored parallelogram_chain_probe"]
 fn parallelogram_chain_probe() {
-    let get = |k: &str, default: f64| {
-        std::env::var(k)
-            .ok()
-            .map_or(default, |v| v.parse::<f64>().unwrap())
-    };
+    let get = crate::common::env_number;
     let n = get("CHAIN_N", 40.0) as usize;
     let (h, tol, t_end) = (
         get("CHAIN_H", 1e-5),

@@ -161,3 +161,15 @@ pub fn slider_crank(r: f64, l: f64, th: f64) -> Model {
     );
     m
 }
+
+/// The number in the environment variable `key`, or `default` when it is
+/// not set (for probes run by hand); panics on a value that is not a
+/// number, naming the variable.
+pub fn env_number(key: &str, default: f64) -> f64 {
+    match std::env::var(key) {
+        Ok(v) => v
+            .parse()
+            .unwrap_or_else(|_| panic!("{key}={v} is not a number")),
+        Err(_) => default,
+    }
+}
