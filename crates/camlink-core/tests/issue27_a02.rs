@@ -36,10 +36,7 @@ pub(crate) fn a02_errors(
         &mut table,
     )
     .map_err(|e| e.to_string())?;
-    let (nc, nb) = ((n + 1) as f64, n as f64);
-    let kappa = 9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb);
-    let want =
-        mechanisms::pendulum_like_reference(kappa, std::f64::consts::FRAC_PI_2, -1.0, &table.t);
+    let want = mechanisms::benchmark_a02_exact(n, &table.t);
     let th = table.channel("crank0.phi").unwrap();
     let max = th
         .iter()

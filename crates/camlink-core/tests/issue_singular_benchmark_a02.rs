@@ -177,9 +177,10 @@ fn benchmark_a02_full_matrix_tol_1e_12() {
 /// (rad). `A02_PERTURB` (m, default 0) moves every body's frame by that
 /// much along y before the start's projection, to see how far the
 /// passes amplify a small difference; with `A02_OUT` set, every output
-/// row (t, θ, θ̇, θ_exact, spread) goes to that file. `A02_N=40 A02_H=1e-5 A02_TOL=1e-12 A02_T=20`
-/// gives the rows of docs/validation.md ("The published benchmark IFToMM
-/// A02"), in about 6 minutes.
+/// row (t, θ, θ̇, θ_exact, spread) goes to that file.
+/// `A02_N=40 A02_H=1e-5 A02_TOL=1e-12 A02_T=20` gives the rows of
+/// docs/validation.md ("The published benchmark IFToMM A02"), in about
+/// 6 minutes.
 #[test]
 #[ignore = "a probe: A02_N=40 A02_H=1e-5 A02_T=20 cargo test --profile ci -- --ignored a02_passes_probe"]
 fn a02_passes_probe() {
@@ -192,24 +193,12 @@ fn a02_passes_probe() {
         b.q0[1] += perturb;
     }
     let (table, summary) = mechanisms::forward_with_summary(&model, h, tol, t_end).unwrap();
-    let (nc, nb) = ((n + 1) as f64, n as f64);
-    let kappa = 9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb);
-    let want =
-        mechanisms::pendulum_like_reference(kappa, std::f64::consts::FRAC_PI_2, -1.0, &table.t);
+    let kappa = mechanisms::benchmark_a02_kappa(n);
+    let want = mechanisms::benchmark_a02_exact(n, &table.t);
     let th = table.channel("crank0.phi").unwrap();
     let om = table.channel("crank0.omega").unwrap();
-    let cranks: Vec<Vec<f64>> = (1..=n)
-        .map(|k| table.channel(&format!("crank{k}.phi")).unwrap())
-        .collect();
+    let spread = mechanisms::crank_spreads(&table, n);
     let rows = table.t.len();
-    let spread: Vec<f64> = (0..rows)
-        .map(|i| {
-            cranks
-                .iter()
-                .map(|c| (c[i] - th[i]).abs())
-                .fold(0.0, f64::max)
-        })
-        .collect();
     let inv: Vec<f64> = (0..rows)
         .map(|i| 0.5 * om[i] * om[i] + kappa * th[i].sin())
         .collect();

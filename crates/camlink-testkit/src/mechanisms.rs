@@ -352,16 +352,22 @@ pub fn forward_with_summary(
 }
 
 /// The largest difference (rad) between the angles of cranks 1..=n and
-/// crank 0 over the rows of `table`: 0 on the parallelogram branch.
-pub fn crank_spread(table: &Table, n: usize) -> f64 {
+/// crank 0 at each row of `table`: 0 on the parallelogram branch.
+pub fn crank_spreads(table: &Table, n: usize) -> Vec<f64> {
     let th0 = table.channel("crank0.phi").unwrap();
-    let mut spread = 0.0f64;
+    let mut spread = vec![0.0f64; th0.len()];
     for k in 1..=n {
         let thk = table.channel(&format!("crank{k}.phi")).unwrap();
-        let d = thk.iter().zip(&th0).map(|(a, b)| (a - b).abs());
-        spread = spread.max(d.fold(0.0, f64::max));
+        for ((s, a), b) in spread.iter_mut().zip(&thk).zip(&th0) {
+            *s = s.max((a - b).abs());
+        }
     }
     spread
+}
+
+/// The largest of [`crank_spreads`] over the rows of `table` (rad).
+pub fn crank_spread(table: &Table, n: usize) -> f64 {
+    crank_spreads(table, n).into_iter().fold(0.0, f64::max)
 }
 
 /// The N-four-bar mechanism of the IFToMM multibody benchmark library
@@ -441,6 +447,25 @@ pub fn pendulum_like_reference(kappa: f64, th0: f64, omega0: f64, times: &[f64])
     out
 }
 
+/// κ (1/s²) of the exact motion θ̈ = −κ cos θ of [`benchmark_a02`] with
+/// `n` four-bars: κ = g (n_c m c + n m a)/(n_c J_O + n m a²), c = a/2,
+/// J_O = m a²/3, n_c = n + 1 cranks.
+pub fn benchmark_a02_kappa(n: usize) -> f64 {
+    let (nc, nb) = ((n + 1) as f64, n as f64);
+    9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb)
+}
+
+/// The exact crank angle θ (rad) of [`benchmark_a02`] with `n` four-bars
+/// at `times` (s).
+pub fn benchmark_a02_exact(n: usize, times: &[f64]) -> Vec<f64> {
+    pendulum_like_reference(
+        benchmark_a02_kappa(n),
+        std::f64::consts::FRAC_PI_2,
+        -1.0,
+        times,
+    )
+}
+
 /// Forward dynamics of [`benchmark_a02`] with `n` four-bars, step `h` (s)
 /// and Newton tolerance `tol` for `t_end` (s), output every 0.01 s: the
 /// largest |θ − θ_exact| of crank 0 and the largest difference between the
@@ -448,9 +473,7 @@ pub fn pendulum_like_reference(kappa: f64, th0: f64, omega0: f64, times: &[f64])
 /// κ = g (n_c m c + n m a)/(n_c J_O + n m a²), c = a/2, J_O = m a²/3.
 pub fn benchmark_a02_error(n: usize, h: f64, tol: f64, t_end: f64) -> Result<(f64, f64), String> {
     let table = forward(&benchmark_a02(n), h, tol, t_end)?;
-    let (nc, nb) = ((n + 1) as f64, n as f64);
-    let kappa = 9.81 * (nc * 0.5 + nb) / (nc / 3.0 + nb);
-    let want = pendulum_like_reference(kappa, std::f64::consts::FRAC_PI_2, -1.0, &table.t);
+    let want = benchmark_a02_exact(n, &table.t);
     let th0 = table.channel("crank0.phi").unwrap();
     let err = th0
         .iter()
