@@ -173,11 +173,12 @@ fn benchmark_a02_full_matrix_tol_1e_12() {
 /// `A02_N` (2), `A02_H` (1e-4 s), `A02_TOL` (1e-10), `A02_T` (1.5 s).
 /// At each flat position it prints the error of crank 0, the invariant
 /// I = θ̇²/2 + κ sin θ of the exact motion (rad²/s²) two outputs before
-/// and after the pass, relative to its start, and the crank spread there
-/// (rad). `A02_PERTURB` (m, default 0) moves every body's frame by that
-/// much along y before the start's projection, to see how far the
-/// passes amplify a small difference; with `A02_OUT` set, every output
-/// row (t, θ, θ̇, θ_exact, spread) goes to that file.
+/// and after the pass, relative to its start, the same of the total
+/// energy `energy.total` (J), and the crank spread there (rad).
+/// `A02_PERTURB` (m, default 0) moves every body's frame by that much
+/// along y before the start's projection, to see how far the passes
+/// amplify a small difference; with `A02_OUT` set, every output
+/// row (t, θ, θ̇, θ_exact, spread, total energy) goes to that file.
 /// `A02_N=40 A02_H=1e-5 A02_TOL=1e-12 A02_T=20` gives the rows of
 /// docs/validation.md ("The published benchmark IFToMM A02"), in about
 /// 6 minutes.
@@ -198,6 +199,7 @@ fn a02_passes_probe() {
     let th = table.channel("crank0.phi").unwrap();
     let om = table.channel("crank0.omega").unwrap();
     let spread = mechanisms::crank_spreads(&table, n);
+    let energy = table.channel("energy.total").unwrap();
     let rows = table.t.len();
     let inv: Vec<f64> = (0..rows)
         .map(|i| 0.5 * om[i] * om[i] + kappa * th[i].sin())
@@ -210,12 +212,14 @@ fn a02_passes_probe() {
             let near = spread[i - 2..=i + 2].iter().fold(0.0f64, |a, &b| a.max(b));
             eprintln!(
                 "t {:6.2} s, θ {:+8.3} rad: θ − θ_exact {:+.2e} rad, I − I₀ {:+.2e} before, \
-                 {:+.2e} after, spread {:.1e} rad",
+                 {:+.2e} after, E − E₀ {:+.2e} J before, {:+.2e} after, spread {:.1e} rad",
                 table.t[i],
                 want[i],
                 th[i] - want[i],
                 inv[i - 2] - inv[0],
                 inv[i + 2] - inv[0],
+                energy[i - 2] - energy[0],
+                energy[i + 2] - energy[0],
                 near
             );
         }
@@ -231,8 +235,8 @@ fn a02_passes_probe() {
         let mut text = String::new();
         for i in 0..rows {
             text += &format!(
-                "{} {} {} {} {}\n",
-                table.t[i], th[i], om[i], want[i], spread[i]
+                "{} {} {} {} {} {}\n",
+                table.t[i], th[i], om[i], want[i], spread[i], energy[i]
             );
         }
         std::fs::write(path, text).unwrap();

@@ -29,7 +29,10 @@
 //! forms from the direction of the motion (the velocity, or at rest the
 //! acceleration the loads give), so the branch followed is the one
 //! nearest to the motion: the one a slightly compliant mechanism would
-//! follow.
+//! follow. The cone's root is the tangent of the point itself; away
+//! from the point (σ_rel, below, above [`NULL_TANGENT`]) the rows are
+//! orthogonal instead to the branch's own tangent at q, Φ_q's null
+//! direction, which the root picks out ([`branch_tangent`]).
 //!
 //! The rows are found anew after every step inside the window, from the
 //! tangent of the step before, so A_n (q − q_n) = 0 holds along the
@@ -65,6 +68,11 @@ pub(crate) const WINDOW: f64 = 1e-5;
 
 /// Once in use, the rows are left when that value rises above this.
 pub(crate) const WINDOW_EXIT: f64 = 4.0 * WINDOW;
+
+/// Where the smallest lost singular value over the largest is above
+/// this, the tangent is Φ_q's own null direction rather than the cone's
+/// root ([`branch_tangent`]).
+pub(crate) const NULL_TANGENT: f64 = 2e-6;
 
 /// Relative step of the central differences of Φ_q along the kernel.
 const DIFF: f64 = 1e-5;
@@ -357,7 +365,12 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
         v: &sub.v,
     };
     let (y, g) = tangent_on_cone(&second, hint)?;
-    let tangent = combine(&sub.v, &y);
+    let cone = combine(&sub.v, &y);
+    let tangent = if sigma_rel > NULL_TANGENT {
+        branch_tangent(sys, q, t, &sub, cone)?
+    } else {
+        cone
+    };
     // A rows: V G_w y, orthonormalised, each orthogonal to t.
     let mut a = Vec::with_capacity(k * n);
     for gy in &g {
@@ -387,6 +400,47 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
         sigma_rel,
         sub,
     })
+}
+
+/// The branch's own tangent at `q` from the cone's root `c` (unit, n):
+/// c − V_k Σ⁻¹ Wᵀ Φ_q c, c without its lost components, so that
+/// Φ_q t = 0 in the lost directions too, normalised.
+///
+/// The cone's root is the tangent of the bifurcation point, not of the
+/// branch at q: at a distance s from the point it is off by order s,
+/// and in the directions that part the two branches by order s² (on
+/// IFToMM A02 with 40 four-bars, the cranks' rates differ by 1.9e-6 at
+/// the window's exit, s = 0.025). The steps of a window move along it,
+/// so across the window the mechanism drifts off its branch (the cranks
+/// by 1e-9 rad there), and the first step with Φ alone pulls it back
+/// with a jolt that changes the energy. Φ_q's null direction is the
+/// branch's tangent, but the lost gradients σ v that fix it turn by
+/// e/s when q is a distance e off the branch, so it serves only away
+/// from the point: above [`NULL_TANGENT`], where on A02 the two errors
+/// cross (e some 1e-11, s some 1e-3).
+fn branch_tangent(
+    sys: &System,
+    q: &[f64],
+    t: f64,
+    sub: &Subspaces,
+    mut c: Vec<f64>,
+) -> Option<Vec<f64>> {
+    let (n, m) = (sys.n(), sys.m());
+    let j = sparse_jacobian(sys, q, t)?;
+    let r = &j * Mat::from_fn(n, 1, |i, _| c[i]);
+    for (col, &sigma) in sub.sigma.iter().enumerate() {
+        let wr: f64 = (0..m).map(|i| sub.w[(i, col)] * r[(i, 0)]).sum();
+        let along = wr / sigma;
+        for (x, v) in c.iter_mut().zip(sub.v.col_as_slice(col)) {
+            *x -= along * v;
+        }
+    }
+    let norm = norm2(&c);
+    if !(norm.is_finite() && norm > 0.0) {
+        return None;
+    }
+    c.iter_mut().for_each(|x| *x /= norm);
+    Some(c)
 }
 
 /// The second-order part of the lost equations wᵀΦ on the kernel:
@@ -714,6 +768,46 @@ mod tests {
             let dot: f64 = inner(&from.tangent, &anew.tangent);
             assert!((dot.abs() - 1.0).abs() < 1e-12, "tangents at {dot}");
             assert!((from.sigma_rel - anew.sigma_rel).abs() <= 1e-12);
+        }
+    }
+
+    /// Near the flat position, but not at it, the rows' tangent is the
+    /// branch's own (the cranks at equal rates and the coupler's pin on
+    /// its circle), not the point's: within 4e-16 here, where the cone's
+    /// root alone is off by 5.3e-9 at 1e-3 rad from the point and 5.3e-7
+    /// at 1e-2 rad (its largest component).
+    #[test]
+    fn near_the_point_the_tangent_is_the_branch_s() {
+        for th in [1e-3, -1e-3, 1e-2] {
+            let model = four_bar(th);
+            let sys = System::new(&model);
+            let q = sys.asm.initial_q(&model);
+            let mut hint = vec![0.0; sys.n()];
+            hint[2] = 1.0;
+            hint[5] = 1.0;
+            let rows = analyse(&sys, &q, 0.0, &hint).expect("a lost rank near the flat position");
+            assert!(rows.sigma_rel > NULL_TANGENT, "σ_rel {}", rows.sigma_rel);
+            // dq/dθ on the parallelogram branch, normalised.
+            let mut exact = vec![
+                0.0,
+                0.0,
+                1.0,
+                0.0,
+                0.0,
+                1.0,
+                -A * th.sin(),
+                A * th.cos(),
+                0.0,
+            ];
+            let norm = norm2(&exact);
+            exact.iter_mut().for_each(|x| *x /= norm);
+            let off: f64 = rows
+                .tangent
+                .iter()
+                .zip(&exact)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0, f64::max);
+            assert!(off < 1e-12, "θ = {th}: tangent off the branch's by {off:e}");
         }
     }
 
