@@ -121,11 +121,11 @@ fn benchmark_a02_full_matrix_short() {
 /// smallest, the crank angle reaching −62 rad) and Newton tolerance
 /// `tol`: every run is held to the bounds of [`bound_failures`], and
 /// second order is checked from h = 1e-3 to 1e-5 s for N = 2 at `tol` =
-/// 1e-10 and for N = 40 at `tol` = 1e-12. At h = 1e-5 s the N = 40 error
-/// is set by the passes at speed, which that step takes with branch rows,
-/// and moves with the rows' last digits: 1.36e-7 and 5.36e-8 rad at
-/// `tol` = 1e-10 and 1e-12 with rows from a dense SVD, 1.31e-8 and
-/// 1.27e-7 with refined ones, the last under the ×33 this check asks for
+/// 1e-10 and for N = 40 at `tol` = 1e-12. At h = 1e-5 s every pass is
+/// taken with branch rows; while their tangent was the bifurcation
+/// point's, each pass left a jolt of energy and the N = 40 error moved
+/// with the rows' last digits (1.27e-7 rad at `tol` = 1e-12, under the
+/// ×33 this check asks for); with the branch's own tangent it is 3.01e-8
 /// (docs/validation.md, "The published benchmark IFToMM A02").
 fn a02_long_failures(ns: &[usize], tol: f64) -> Vec<String> {
     let steps = [1e-3, 1e-4, 1e-5];
