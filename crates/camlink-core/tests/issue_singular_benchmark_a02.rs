@@ -104,6 +104,54 @@ fn benchmark_a02_passes_its_flat_positions_at_second_order() {
     assert!(failures.is_empty(), "{failures:#?}");
 }
 
+/// The benchmark's own case (N = 40) through its first flat position at
+/// h = 1e-5 s, a step that takes the pass with branch rows (from about
+/// 0.72146 to 0.72215 s), with an output at every step from 0.7200 to
+/// 0.7230 s: the cranks stay within 2e-10 rad of each other (2.9e-11
+/// measured), and no step changes the total energy by 1e-8 J (6.4e-10).
+/// With rows along the tangent of the point rather than of the branch
+/// (before a7d1e16), the cranks parted by 1.6e-9 rad across the window
+/// and the steps with Φ alone past it pulled them together, one of them
+/// changing the energy by 2.7e-8 J (docs/validation.md, "The published
+/// benchmark IFToMM A02"). About 12 s.
+#[test]
+fn benchmark_a02_window_keeps_to_the_branch() {
+    use camlink_core::dynamics::integrator::{run, Settings};
+    use camlink_core::run::Table;
+    let (n, h) = (40, 1e-5);
+    // Outputs every 1000 steps to 0.72 s, then every step: times that are
+    // whole numbers of steps.
+    let steps: Vec<usize> = (0..72).map(|k| k * 1000).chain(72_000..=72_300).collect();
+    let times: Vec<f64> = steps.iter().map(|&k| k as f64 * h).collect();
+    let settings = Settings {
+        step: h,
+        tol: 1e-12,
+        ..Settings::default()
+    };
+    let mut table = Table::default();
+    run(
+        &mechanisms::benchmark_a02(n),
+        &times,
+        &settings,
+        &[],
+        &mut table,
+    )
+    .unwrap();
+    let spread = mechanisms::crank_spreads(&table, n);
+    let energy = table.channel("energy.total").unwrap();
+    let near = table.t.iter().position(|&t| t >= 0.72 - 1e-9).unwrap();
+    let parted = spread[near..].iter().fold(0.0f64, |a, &b| a.max(b));
+    let jolt = energy[near..]
+        .windows(2)
+        .map(|w| (w[1] - w[0]).abs())
+        .fold(0.0f64, f64::max);
+    eprintln!(
+        "A02 N = 40, first pass: cranks within {parted:.1e} rad, largest energy step {jolt:.1e} J"
+    );
+    assert!(parted < 2e-10, "cranks parted by {parted:e} rad");
+    assert!(jolt < 1e-8, "a step changed the energy by {jolt:e} J");
+}
+
 /// N = 2 over 1.5 s down to h = 1e-5 s at `tol` = 1e-10: second order
 /// from h = 1e-3 to 1e-5 s, and the bounds of [`bound_failures`].
 #[test]
