@@ -29,10 +29,10 @@
 //! forms from the direction of the motion (the velocity, or at rest the
 //! acceleration the loads give), so the branch followed is the one
 //! nearest to the motion: the one a slightly compliant mechanism would
-//! follow. The cone's root is the tangent of the point itself; away
-//! from the point (σ_rel, below, above [`NULL_TANGENT`]) the rows are
-//! orthogonal instead to the branch's own tangent at q, Φ_q's null
-//! direction, which the root picks out ([`branch_tangent`]).
+//! follow. The cone's root is the tangent of the point itself; as the
+//! motion leaves the point (σ_rel, below, above [`NULL_TANGENT`]) the
+//! rows are orthogonal instead to the branch's own tangent at q, Φ_q's
+//! null direction, which the root picks out ([`branch_tangent`]).
 //!
 //! The rows are found anew after every step inside the window, from the
 //! tangent of the step before, so A_n (q − q_n) = 0 holds along the
@@ -70,8 +70,8 @@ pub(crate) const WINDOW: f64 = 1e-5;
 pub(crate) const WINDOW_EXIT: f64 = 4.0 * WINDOW;
 
 /// Where the smallest lost singular value over the largest is above
-/// this, the tangent is Φ_q's own null direction rather than the cone's
-/// root ([`branch_tangent`]).
+/// this and the motion leaves the point, the tangent is Φ_q's own null
+/// direction rather than the cone's root ([`branch_tangent`]).
 pub(crate) const NULL_TANGENT: f64 = 2e-6;
 
 /// Relative step of the central differences of Φ_q along the kernel.
@@ -117,6 +117,9 @@ pub(crate) struct BranchRows {
     pub a: Vec<f64>,
     /// The branch tangent t (unit, n).
     pub tangent: Vec<f64>,
+    /// The distance from the bifurcation point along the branch (m or
+    /// rad, in q's units), positive ahead along the cone's root.
+    s: f64,
     /// The smallest lost singular value of Φ_q over the largest.
     pub sigma_rel: f64,
     /// The singular subspaces they came from.
@@ -142,6 +145,7 @@ impl BranchRows {
             k: 1,
             a,
             tangent,
+            s: 0.0,
             sigma_rel: 0.0,
             sub: Subspaces {
                 w: Mat::zeros(m, 1),
@@ -159,7 +163,7 @@ impl BranchRows {
 /// Φ_q has no lost direction there or the branches cannot be told apart.
 /// The lost subspaces come from a dense SVD of Φ_q.
 pub(crate) fn analyse(sys: &System, q: &[f64], t: f64, hint: &[f64]) -> Option<BranchRows> {
-    rows(sys, q, t, hint, dense_subspaces(sys, q, t)?)
+    rows(sys, q, t, hint, dense_subspaces(sys, q, t)?, None)
 }
 
 /// [`analyse`] at a position near that of `prev`, the rows found there:
@@ -181,7 +185,7 @@ pub(crate) fn analyse_from(
         Some(sub) => sub,
         None => dense_subspaces(sys, q, t)?,
     };
-    rows(sys, q, t, hint, sub)
+    rows(sys, q, t, hint, sub, Some(prev))
 }
 
 /// The lost subspaces of Φ_q at `q` from its dense SVD; None when it has
@@ -348,7 +352,16 @@ fn refine(sys: &System, q: &[f64], t: f64, prev: &Subspaces) -> Option<Subspaces
 }
 
 /// The rows of the branch nearest to `hint` from the lost subspaces `sub`.
-fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option<BranchRows> {
+/// `prev`, the rows of the step before inside a window, tells whether
+/// the motion leaves the point.
+fn rows(
+    sys: &System,
+    q: &[f64],
+    t: f64,
+    hint: &[f64],
+    sub: Subspaces,
+    prev: Option<&BranchRows>,
+) -> Option<BranchRows> {
     let (n, m) = (sys.n(), sys.m());
     let k = sub.w.ncols();
     let sigma_rel = sub.sigma.iter().fold(f64::INFINITY, |a, &s| a.min(s)) / sub.smax;
@@ -366,7 +379,21 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
     };
     let (y, g) = tangent_on_cone(&second, hint)?;
     let cone = combine(&sub.v, &y);
-    let tangent = if sigma_rel > NULL_TANGENT {
+    // The distance along the branch from the point, s = Σ g_w·(G_w y) /
+    // Σ |G_w y|² with g_w = Vᵀ Φ_qᵀ w = σ_w e_w, the lost gradients in the
+    // kernel's coordinates: on the branch g_w = ℓ_w ∇m_w and G_w y =
+    // (∇ℓ_w·t) ∇m_w, with ℓ_w = (∇ℓ_w·t) s to first order.
+    let (num, den) = g.iter().enumerate().fold((0.0, 0.0), |(a, b), (c, gy)| {
+        (a + sub.sigma[c] * gy[c], b + inner(gy, gy))
+    });
+    let s = num / den;
+    // Leaving the point: farther from it than the step before, or, at a
+    // window's first step, ahead of it along the motion (the hint).
+    let leaving = match prev {
+        Some(p) => s.abs() > p.s.abs(),
+        None => s > 0.0,
+    };
+    let tangent = if leaving && sigma_rel > NULL_TANGENT {
         branch_tangent(sys, q, t, &sub, cone)?
     } else {
         cone
@@ -397,6 +424,7 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
         k,
         a,
         tangent,
+        s,
         sigma_rel,
         sub,
     })
@@ -414,10 +442,15 @@ fn rows(sys: &System, q: &[f64], t: f64, hint: &[f64], sub: Subspaces) -> Option
 /// so across the window the mechanism drifts off its branch (the cranks
 /// by 1e-9 rad there), and the first step with Φ alone pulls it back
 /// with a jolt that changes the energy. Φ_q's null direction is the
-/// branch's tangent, but the lost gradients σ v that fix it turn by
-/// e/s when q is a distance e off the branch, so it serves only away
-/// from the point: above [`NULL_TANGENT`], where on A02 the two errors
-/// cross (e some 1e-11, s some 1e-3).
+/// branch's tangent where q is on the branch; a distance e off it, it is
+/// the tangent of the level set of the lost equations through q, which
+/// is off the branch's by e/s. A motion that leaves the point along
+/// that level set comes closer to the branch (the level sets of ℓ m
+/// close in on m = 0 as ℓ grows: e falls as 1/s); one that approaches
+/// the point along it would move away from the branch. The null
+/// direction therefore serves only for a motion that leaves the point,
+/// and not too near it: above [`NULL_TANGENT`], where on A02 the two
+/// errors cross (e some 1e-11, s some 1e-3).
 fn branch_tangent(
     sys: &System,
     q: &[f64],
@@ -771,22 +804,35 @@ mod tests {
         }
     }
 
-    /// Near the flat position, but not at it, the rows' tangent is the
-    /// branch's own (the cranks at equal rates and the coupler's pin on
-    /// its circle), not the point's: within 4e-16 here, where the cone's
-    /// root alone is off by 5.3e-9 at 1e-3 rad from the point and 5.3e-7
-    /// at 1e-2 rad (its largest component).
+    /// Near the flat position, but not at it, a motion that leaves the
+    /// point gets the branch's own tangent (the cranks at equal rates and
+    /// the coupler's pin on its circle) within 4e-16, where the cone's
+    /// root, the point's tangent, is off by 5.3e-9 at 1e-3 rad from the
+    /// point and 5.3e-7 at 1e-2 rad (its largest component); a motion
+    /// that approaches the point keeps the root.
     #[test]
-    fn near_the_point_the_tangent_is_the_branch_s() {
-        for th in [1e-3, -1e-3, 1e-2] {
+    fn leaving_the_point_the_tangent_is_the_branch_s() {
+        for (th, dir, leaving) in [
+            (1e-3, 1.0, true),
+            (-1e-3, -1.0, true),
+            (1e-2, 1.0, true),
+            (1e-3, -1.0, false),
+            (-1e-2, 1.0, false),
+        ] {
             let model = four_bar(th);
             let sys = System::new(&model);
             let q = sys.asm.initial_q(&model);
             let mut hint = vec![0.0; sys.n()];
-            hint[2] = 1.0;
-            hint[5] = 1.0;
+            hint[2] = dir;
+            hint[5] = dir;
             let rows = analyse(&sys, &q, 0.0, &hint).expect("a lost rank near the flat position");
-            assert!(rows.sigma_rel > NULL_TANGENT, "σ_rel {}", rows.sigma_rel);
+            // s, the arc length from the point in q, ahead along the motion.
+            let arc = dir * th * (2.0 + A * A).sqrt();
+            assert!(
+                (rows.s / arc - 1.0).abs() < 1e-2,
+                "θ = {th}: s = {} against {arc}",
+                rows.s
+            );
             // dq/dθ on the parallelogram branch, normalised.
             let mut exact = vec![
                 0.0,
@@ -799,7 +845,7 @@ mod tests {
                 A * th.cos(),
                 0.0,
             ];
-            let norm = norm2(&exact);
+            let norm = norm2(&exact) * dir;
             exact.iter_mut().for_each(|x| *x /= norm);
             let off: f64 = rows
                 .tangent
@@ -807,7 +853,14 @@ mod tests {
                 .zip(&exact)
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max);
-            assert!(off < 1e-12, "θ = {th}: tangent off the branch's by {off:e}");
+            if leaving {
+                assert!(off < 1e-12, "θ = {th}: tangent off the branch's by {off:e}");
+            } else {
+                assert!(
+                    off > 1e-9 && off < 1e-6,
+                    "θ = {th}: the root is off by {off:e}"
+                );
+            }
         }
     }
 
