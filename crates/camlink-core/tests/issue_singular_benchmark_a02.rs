@@ -107,8 +107,8 @@ fn benchmark_a02_passes_its_flat_positions_at_second_order() {
 /// The benchmark's own case (N = 40) through its first flat position at
 /// h = 1e-5 s, a step that takes the pass with branch rows (from about
 /// 0.72146 to 0.72215 s), with an output at every step from 0.7200 to
-/// 0.7230 s: the cranks stay within 2e-10 rad of each other (2.9e-11
-/// measured), and no step changes the total energy by 1e-8 J (6.4e-10).
+/// 0.7230 s: the cranks stay within 2e-10 rad of each other (3.2e-11
+/// measured), and no step changes the total energy by 1e-8 J (4.1e-10).
 /// With rows along the tangent of the point rather than of the branch
 /// (before a7d1e16), the cranks parted by 1.6e-9 rad across the window
 /// and the steps with Φ alone past it pulled them together, one of them
@@ -173,7 +173,7 @@ fn benchmark_a02_full_matrix_short() {
 /// taken with branch rows; while their tangent was the bifurcation
 /// point's, each pass left a jolt of energy and the N = 40 error moved
 /// with the rows' last digits (1.27e-7 rad at `tol` = 1e-12, under the
-/// ×33 this check asks for); with the branch's own tangent it is 3.01e-8
+/// ×33 this check asks for); with the branch's own tangent it is 3.03e-8
 /// (docs/validation.md, "The published benchmark IFToMM A02").
 fn a02_long_failures(ns: &[usize], tol: f64) -> Vec<String> {
     let steps = [1e-3, 1e-4, 1e-5];
