@@ -394,7 +394,7 @@ fn rows(
         None => s > 0.0,
     };
     let tangent = if leaving && sigma_rel > NULL_TANGENT {
-        branch_tangent(sys, q, t, &sub, cone)?
+        branch_tangent(&sub.v, k, &y)?
     } else {
         cone
     };
@@ -430,9 +430,11 @@ fn rows(
     })
 }
 
-/// The branch's own tangent at `q` from the cone's root `c` (unit, n):
-/// c − V_k Σ⁻¹ Wᵀ Φ_q c, c without its lost components, so that
-/// Φ_q t = 0 in the lost directions too, normalised.
+/// The branch's own tangent at q (unit, n) from the cone's root y in the
+/// kernel's coordinates: Φ_q's null direction, the part of the root
+/// along the null columns of V (those after the k lost ones), normalised
+/// (Φ_q V = W Σ on the lost columns, so this is c − V_k Σ⁻¹ Wᵀ Φ_q c
+/// for c = V y).
 ///
 /// The cone's root is the tangent of the bifurcation point, not of the
 /// branch at q: at a distance s from the point it is off by order s,
@@ -451,29 +453,19 @@ fn rows(
 /// direction therefore serves only for a motion that leaves the point,
 /// and not too near it: above [`NULL_TANGENT`], where on A02 the two
 /// errors cross (e some 1e-11, s some 1e-3).
-fn branch_tangent(
-    sys: &System,
-    q: &[f64],
-    t: f64,
-    sub: &Subspaces,
-    mut c: Vec<f64>,
-) -> Option<Vec<f64>> {
-    let (n, m) = (sys.n(), sys.m());
-    let j = sparse_jacobian(sys, q, t)?;
-    let r = &j * Mat::from_fn(n, 1, |i, _| c[i]);
-    for (col, &sigma) in sub.sigma.iter().enumerate() {
-        let wr: f64 = (0..m).map(|i| sub.w[(i, col)] * r[(i, 0)]).sum();
-        let along = wr / sigma;
-        for (x, v) in c.iter_mut().zip(sub.v.col_as_slice(col)) {
-            *x -= along * v;
+fn branch_tangent(v: &Mat<f64>, k: usize, y: &[f64]) -> Option<Vec<f64>> {
+    let mut t = vec![0.0; v.nrows()];
+    for (col, &yc) in y.iter().enumerate().skip(k) {
+        for (x, vc) in t.iter_mut().zip(v.col_as_slice(col)) {
+            *x += yc * vc;
         }
     }
-    let norm = norm2(&c);
+    let norm = norm2(&t);
     if !(norm.is_finite() && norm > 0.0) {
         return None;
     }
-    c.iter_mut().for_each(|x| *x /= norm);
-    Some(c)
+    t.iter_mut().for_each(|x| *x /= norm);
+    Some(t)
 }
 
 /// The second-order part of the lost equations wᵀΦ on the kernel:
